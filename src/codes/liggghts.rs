@@ -1,0 +1,31 @@
+//! The Liggghts driver (being written).
+
+use std::path::Path;
+
+use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use crate::law::DashpotLaw;
+
+/// The Liggghts driver.
+pub struct Liggghts;
+
+impl CodeDriver for Liggghts {
+    fn name(&self) -> &'static str {
+        "liggghts"
+    }
+    fn binary(&self) -> &'static str {
+        "liggghts"
+    }
+    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        Err(CodeError::Unsupported {
+            code: self.name().into(),
+            case: setup.case_name.clone(),
+            reason: "driver not written yet".into(),
+        })
+    }
+    fn parse(&self, _setup: &CodeSetup, _workdir: &Path, _log: &str) -> Result<ParsedRun, String> {
+        Err("driver not written yet".into())
+    }
+    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
+        DashpotLaw::damped_hertz(setup.reduced_mass, setup.stiffness, setup.target_restitution)
+    }
+}

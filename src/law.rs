@@ -1,0 +1,127 @@
+//! Contact laws: the paper's hysteretic law and the viscous laws the DEM codes run.
+//!
+//! Sign convention (used everywhere in the crate): `y` is the approach of the two centres of
+//! mass, positive in compression; `ẏ > 0` while the bodies approach. A force is positive when it
+//! pushes the bodies apart, so the equation of motion is `M ÿ = -F(y, ẏ)`.
+
+use serde::{Deserialize, Serialize};
+
+/// The paper's law: `F = C |y|^n (1 + η sign(ẏ))` while in contact.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PaperLaw {
+    /// Reduced mass `M`, kg.
+    pub mass: f64,
+    /// Contact stiffness `C`, N/m^n.
+    pub stiffness: f64,
+    /// Exponent `n` of the elastic force (1.5 Hertz, 1 linear).
+    pub exponent: f64,
+    /// Loss coefficient `η`, dimensionless, in [0, 1).
+    pub loss_coefficient: f64,
+}
+
+impl PaperLaw {
+    /// Elastic peak deformation `δ0 = [(n+1) M v0² / (2C)]^(1/(n+1))`, m: the length scale of
+    /// the dimensionless form.
+    pub fn elastic_peak(&self, impact_velocity: f64) -> f64 {
+        let n = self.exponent;
+        ((n + 1.0) * self.mass * impact_velocity * impact_velocity / (2.0 * self.stiffness))
+            .powf(1.0 / (n + 1.0))
+    }
+
+    /// Force scale `C δ0^n`, N: the dimensionless force times this is the force in newtons.
+    pub fn force_scale(&self, impact_velocity: f64) -> f64 {
+        self.stiffness * self.elastic_peak(impact_velocity).powf(self.exponent)
+    }
+
+    /// Total contact force, N, at approach `y` (m) and approach rate `v` (m/s), unilateral.
+    pub fn force(&self, y: f64, v: f64) -> f64 {
+        if y <= 0.0 {
+            return 0.0;
+        }
+        let elastic = self.stiffness * y.powf(self.exponent);
+        elastic * (1.0 + self.loss_coefficient * v.signum())
+    }
+}
+
+/// A viscoelastic (spring–dashpot) law, the family the DEM codes use:
+/// `F = k y^n + c y^m ẏ`, optionally clamped so that it never attracts.
+///
+/// Damped Hertz (LIGGGHTS `hertz`, YADE Hertz–Mindlin, LAMMPS `hertz/material`) has `n = 1.5`,
+/// `m = 0.25`; the linear spring–dashpot has `n = 1`, `m = 0`.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct DashpotLaw {
+    /// Mass the dynamics sees, kg (the reduced mass of the pair).
+    pub mass: f64,
+    /// Spring constant `k`, N/m^n.
+    pub stiffness: f64,
+    /// Exponent `n` of the spring force.
+    pub exponent: f64,
+    /// Dashpot coefficient `c`, N·s/m^(1+m).
+    pub damping: f64,
+    /// Exponent `m` of the overlap factor of the dashpot.
+    pub damping_exponent: f64,
+    /// Whether the code cuts the force at zero instead of letting it attract.
+    pub clamp_attractive: bool,
+}
+
+impl DashpotLaw {
+    /// Total contact force, N, at approach `y` (m) and approach rate `v` (m/s).
+    pub fn force(&self, y: f64, v: f64) -> f64 {
+        if y <= 0.0 {
+            return 0.0;
+        }
+        let f = self.stiffness * y.powf(self.exponent)
+            + self.damping * y.powf(self.damping_exponent) * v;
+        if self.clamp_attractive { f.max(0.0) } else { f }
+    }
+
+    /// Elastic peak deformation of the undamped spring at speed `v0`, m.
+    pub fn elastic_peak(&self, impact_velocity: f64) -> f64 {
+        let n = self.exponent;
+        ((n + 1.0) * self.mass * impact_velocity * impact_velocity / (2.0 * self.stiffness))
+            .powf(1.0 / (n + 1.0))
+    }
+
+    /// Damping ratio `β = -ln e / sqrt(ln² e + π²)` that the damped-Hertz and linear dashpot
+    /// laws use to realise a restitution `e` (0 < e ≤ 1).
+    pub fn damping_ratio(restitution: f64) -> f64 {
+        let l = restitution.ln();
+        -l / (l * l + std::f64::consts::PI * std::f64::consts::PI).sqrt()
+    }
+
+    /// The damped Hertz law that realises restitution `e` without a clamp:
+    /// `c = √5 β sqrt(M k)` (LIGGGHTS' `2 sqrt(5/6) β sqrt(S_n m*)` with `S_n = 2 E* sqrt(R* δ)`).
+    pub fn damped_hertz(mass: f64, stiffness: f64, restitution: f64) -> Self {
+        let beta = Self::damping_ratio(restitution);
+        DashpotLaw {
+            mass,
+            stiffness,
+            exponent: 1.5,
+            damping: 5f64.sqrt() * beta * (mass * stiffness).sqrt(),
+            damping_exponent: 0.25,
+            clamp_attractive: false,
+        }
+    }
+
+    /// The linear spring–dashpot that realises restitution `e` without a clamp:
+    /// `c = 2 ζ sqrt(M k)`, `e = exp(-π ζ / sqrt(1 - ζ²))`.
+    pub fn linear(mass: f64, stiffness: f64, restitution: f64) -> Self {
+        let zeta = Self::damping_ratio(restitution);
+        DashpotLaw {
+            mass,
+            stiffness,
+            exponent: 1.0,
+            damping: 2.0 * zeta * (mass * stiffness).sqrt(),
+            damping_exponent: 0.0,
+            clamp_attractive: false,
+        }
+    }
+
+    /// The same law with the attractive force cut at zero.
+    pub fn clamped(self) -> Self {
+        DashpotLaw {
+            clamp_attractive: true,
+            ..self
+        }
+    }
+}
