@@ -5,3 +5,5 @@
 pub mod codes;
 pub mod law;
 pub mod scene;
+pub mod exact;
+pub mod solve;

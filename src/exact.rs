@@ -1,0 +1,106 @@
+//! Closed forms of the paper's impact (physics.md §3) and of the elastic Hertz impact.
+
+use serde::{Deserialize, Serialize};
+
+use crate::law::PaperLaw;
+
+/// `J(n) = ∫0^1 (1 - u^(n+1))^(-1/2) du = sqrt(π) Γ(1 + 1/(n+1)) / Γ(1/2 + 1/(n+1))`:
+/// a quarter period of the undamped oscillation in units of `y_max / v0`.
+pub fn j_integral(n: f64) -> f64 {
+    let p = 1.0 / (n + 1.0);
+    std::f64::consts::PI.sqrt() * libm::tgamma(1.0 + p) / libm::tgamma(0.5 + p)
+}
+
+/// The COR of the paper's law: `e = sqrt((1 - η)/(1 + η))`, whatever `n`, `M`, `C` and `v0`.
+pub fn restitution(loss_coefficient: f64) -> f64 {
+    ((1.0 - loss_coefficient) / (1.0 + loss_coefficient)).sqrt()
+}
+
+/// The loss coefficient that gives COR `e`: `η = (1 - e²)/(1 + e²)`.
+pub fn loss_coefficient(restitution: f64) -> f64 {
+    let e2 = restitution * restitution;
+    (1.0 - e2) / (1.0 + e2)
+}
+
+/// The figures of one impact, SI units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImpactFigures {
+    /// Coefficient of restitution `-v_out / v_in`.
+    pub cor: f64,
+    /// Largest approach, m.
+    pub peak_deformation: f64,
+    /// Largest contact force, N.
+    pub peak_force: f64,
+    /// Time from contact to the turning point, s.
+    pub compression_time: f64,
+    /// Time from the turning point to separation, s.
+    pub restitution_time: f64,
+    /// Whole contact time, s.
+    pub contact_time: f64,
+    /// Kinetic energy lost, J.
+    pub absorbed_energy: f64,
+}
+
+/// The exact impact of the paper's law at approach speed `v0` (m/s).
+pub fn paper_impact(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
+    let (n, eta, v0) = (law.exponent, law.loss_coefficient, impact_velocity);
+    let e = restitution(eta);
+    let peak = ((n + 1.0) * law.mass * v0 * v0 / (2.0 * law.stiffness * (1.0 + eta)))
+        .powf(1.0 / (n + 1.0));
+    let j = j_integral(n);
+    let compression_time = j * peak / v0;
+    let restitution_time = compression_time / e;
+    ImpactFigures {
+        cor: e,
+        peak_deformation: peak,
+        peak_force: law.stiffness * (1.0 + eta) * peak.powf(n),
+        compression_time,
+        restitution_time,
+        contact_time: compression_time + restitution_time,
+        absorbed_energy: 0.5 * law.mass * v0 * v0 * (1.0 - e * e),
+    }
+}
+
+/// The elastic Hertz impact of physics.md §3, in SI units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct HertzElastic {
+    /// `δ_max = (15 M v0² / (16 E* sqrt(R*)))^(2/5)`, m.
+    pub peak_deformation: f64,
+    /// `t_c = 2 J(1.5) δ_max / v0`, s.
+    pub contact_time: f64,
+}
+
+/// Elastic Hertz figures for reduced mass `M` (kg), `E*` (Pa), `R*` (m) and speed `v0` (m/s).
+pub fn hertz_elastic(
+    mass: f64,
+    effective_modulus: f64,
+    effective_radius: f64,
+    impact_velocity: f64,
+) -> HertzElastic {
+    let v0 = impact_velocity;
+    let peak = (15.0 * mass * v0 * v0 / (16.0 * effective_modulus * effective_radius.sqrt()))
+        .powf(0.4);
+    HertzElastic {
+        peak_deformation: peak,
+        contact_time: 2.0 * j_integral(1.5) * peak / v0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn j_integral_known_values() {
+        assert_relative_eq!(j_integral(1.0), std::f64::consts::FRAC_PI_2, max_relative = 1e-15);
+        assert_relative_eq!(j_integral(1.5), 1.4716376, max_relative = 1e-7);
+    }
+
+    #[test]
+    fn restitution_and_loss_are_inverse() {
+        for eta in [0.0, 0.01, 0.35, 0.7, 0.99] {
+            assert_relative_eq!(loss_coefficient(restitution(eta)), eta, epsilon = 1e-15);
+        }
+    }
+}

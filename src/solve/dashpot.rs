@@ -1,0 +1,142 @@
+//! The DEM codes' own viscoelastic laws ([`DashpotLaw`]), integrated two ways: stepped the way
+//! each code steps (to reproduce its trajectory), and to near zero step error (to measure the
+//! model's own figures).
+
+use serde::{Deserialize, Serialize};
+
+use super::steppers::{Dopri5, State};
+use super::{SolveError, march};
+use crate::codes::{CodeTrajectory, TrajectoryMetrics};
+use crate::law::DashpotLaw;
+
+/// How a DEM code advances one step.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum StepScheme {
+    /// Velocity Verlet (LAMMPS and LIGGGHTS `fix nve/sphere`): half kick, drift, force from the
+    /// new position and the half-step velocity, half kick.
+    VelocityVerlet,
+    /// Leap-frog (YADE's NewtonIntegrator): force from the current position and the velocity of
+    /// the previous half step, kick, drift.
+    LeapFrog,
+}
+
+/// Step `law` from touching contact at approach speed `impact_velocity` (m/s) with a fixed
+/// `timestep` (s) for `steps` steps, the way a DEM code does. Row 0 is the initial state; row
+/// `k` is the state after `k` steps (for leap-frog the velocity is the half-step one, as the
+/// code reports it). The force column is the force computed in that step.
+pub fn step_trajectory(
+    law: &DashpotLaw,
+    impact_velocity: f64,
+    timestep: f64,
+    steps: u64,
+    scheme: StepScheme,
+) -> CodeTrajectory {
+    let capacity = steps as usize + 1;
+    let mut out = CodeTrajectory {
+        time: Vec::with_capacity(capacity),
+        overlap: Vec::with_capacity(capacity),
+        approach_velocity: Vec::with_capacity(capacity),
+        normal_force: Vec::with_capacity(capacity),
+    };
+    let (mut y, mut v, mut force) = (0.0, impact_velocity, 0.0);
+    let h = timestep;
+    let inverse_mass = 1.0 / law.mass;
+    let mut push = |k: u64, y: f64, v: f64, f: f64| {
+        out.time.push(k as f64 * h);
+        out.overlap.push(y);
+        out.approach_velocity.push(v);
+        out.normal_force.push(f);
+    };
+    push(0, y, v, force);
+    for k in 1..=steps {
+        match scheme {
+            StepScheme::VelocityVerlet => {
+                let half = v - 0.5 * h * force * inverse_mass;
+                y += h * half;
+                force = law.force(y, half);
+                v = half - 0.5 * h * force * inverse_mass;
+            }
+            StepScheme::LeapFrog => {
+                force = law.force(y, v);
+                v -= h * force * inverse_mass;
+                y += h * v;
+            }
+        }
+        push(k, y, v, force);
+    }
+    out
+}
+
+/// Figures of `law`'s impact at speed `impact_velocity` (m/s), integrated with error control at
+/// relative tolerance `rtol` and with the contact end (or, with a clamp, the instant the force
+/// reaches zero) located on the step.
+pub fn accurate_metrics(
+    law: &DashpotLaw,
+    impact_velocity: f64,
+    rtol: f64,
+) -> Result<TrajectoryMetrics, SolveError> {
+    let n = law.exponent;
+    let m = law.damping_exponent;
+    let y_scale = law.elastic_peak(impact_velocity);
+    let t_scale = y_scale / impact_velocity;
+    let k = 0.5 * (n + 1.0);
+    let d = law.damping * impact_velocity * y_scale.powf(m - n) / law.stiffness;
+    let clamp = law.clamp_attractive;
+    let force = move |s: &State| -> f64 {
+        let y = s[0].max(0.0);
+        let f = y.powf(n) + d * y.powf(m) * s[1];
+        if clamp { f.max(0.0) } else { f }
+    };
+    let rhs = move |s: &State| State::new(s[1], -k * force(s));
+    let mut stats = super::Stats::default();
+    let mut peak = 0.0f64;
+    let mut peak_force = 0.0f64;
+    let mut observe = |_t: f64, s: &State| {
+        peak = peak.max(s[0]);
+        peak_force = peak_force.max(force(s));
+    };
+    // The first step is short: the dashpot term grows like y^m from zero.
+    let start = State::new(0.0, 1.0);
+    let mut stepper = Dopri5::new(rtol);
+    let event_exit = |s: &State| s[0];
+    let end = if clamp {
+        // Separation is final once the force would attract, since it stays attractive while the
+        // overlap shrinks at constant speed; the bodies then fly apart until the overlap is zero.
+        let event_force = |s: &State| {
+            let y = s[0].max(0.0);
+            y.powf(n) + d * y.powf(m) * s[1]
+        };
+        let crossing = march(
+            &rhs,
+            start,
+            0.0,
+            &mut stepper,
+            &[&event_force, &event_exit],
+            None,
+            &mut stats,
+            &mut observe,
+        )?;
+        let (t, s) = (crossing.time, crossing.state);
+        let free_flight = if s[0] > 0.0 { s[0] / -s[1] } else { 0.0 };
+        (t + free_flight, s[1])
+    } else {
+        let crossing = march(
+            &rhs,
+            start,
+            0.0,
+            &mut stepper,
+            &[&event_exit],
+            None,
+            &mut stats,
+            &mut observe,
+        )?;
+        (crossing.time, crossing.state[1])
+    };
+    Ok(TrajectoryMetrics {
+        cor: -end.1,
+        peak_deformation: peak * y_scale,
+        peak_force: peak_force * law.stiffness * y_scale.powf(n),
+        contact_time: end.0 * t_scale,
+    })
+}

@@ -1,0 +1,288 @@
+//! Integrators of one impact: the paper's fixed-step RK4, RK4 with located events, an adaptive
+//! Dormand–Prince pair with located events, velocity Verlet as DEM codes step, and the closed
+//! forms.
+//!
+//! Every integrating method works on the dimensionless form of physics.md §3
+//! (`y = δ0 Y`, `t = (δ0/v0) τ`), so that its conditioning does not depend on the units or the
+//! scale of the case.
+
+pub mod dashpot;
+pub mod paper;
+pub mod series;
+pub mod steppers;
+
+use serde::{Deserialize, Serialize};
+use thiserror::Error;
+
+use series::ContactSeries;
+use steppers::{State, Stepper};
+
+/// The integration methods, as named on the command line and in reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// The paper's method: classical RK4 at a fixed step `T/N`, contact end at the first step
+    /// with `y < 0`, no event location.
+    Rk4,
+    /// RK4 at a fixed step with the turning point and the contact end located and the
+    /// integration restarted there; series start and end over the non-smooth `y^n`.
+    Rk4Event,
+    /// Dormand–Prince 5(4) with error control, the same event location and series treatment.
+    Dopri5,
+    /// Velocity Verlet at a fixed step, as DEM codes step (the damping sees the half-step
+    /// velocity); contact end at the first step with `y < 0`.
+    Verlet,
+    /// The closed forms.
+    Exact,
+}
+
+impl Method {
+    /// Every method, in report order.
+    pub const ALL: [Method; 5] = [
+        Method::Rk4,
+        Method::Rk4Event,
+        Method::Dopri5,
+        Method::Verlet,
+        Method::Exact,
+    ];
+
+    /// The name used on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Rk4 => "rk4",
+            Method::Rk4Event => "rk4-event",
+            Method::Dopri5 => "dopri5",
+            Method::Verlet => "verlet",
+            Method::Exact => "exact",
+        }
+    }
+
+    /// Whether the method steps at a fixed step set by steps per period.
+    pub fn is_fixed_step(self) -> bool {
+        matches!(self, Method::Rk4 | Method::Rk4Event | Method::Verlet)
+    }
+}
+
+/// A failure of the integration itself (not of the input).
+#[derive(Debug, Error, PartialEq)]
+pub enum SolveError {
+    /// The step budget ran out before the contact ended.
+    #[error("{method}: no contact end after {steps} steps (step budget exhausted)")]
+    StepBudget {
+        /// Method name.
+        method: &'static str,
+        /// Steps taken.
+        steps: u64,
+    },
+    /// The adaptive step fell below what the arithmetic can resolve.
+    #[error("{method}: step size underflow at τ = {time}")]
+    StepUnderflow {
+        /// Method name.
+        method: &'static str,
+        /// Dimensionless time reached.
+        time: f64,
+    },
+    /// A fixed step in seconds beyond the method's stability limit for the case.
+    #[error(
+        "{method}: time step {timestep:e} s gives ω·Δt = {omega_dt:.4}, above the stability limit {limit} of the method (ω = {omega:e} rad/s); use Δt < {max_timestep:e} s"
+    )]
+    Unstable {
+        /// Method name.
+        method: &'static str,
+        /// The step asked for, s.
+        timestep: f64,
+        /// The contact's angular frequency, rad/s.
+        omega: f64,
+        /// `ω Δt`.
+        omega_dt: f64,
+        /// The method's limit on `ω Δt`.
+        limit: f64,
+        /// The largest stable step, s.
+        max_timestep: f64,
+    },
+}
+
+/// Work counters of one run.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Stats {
+    /// Accepted steps (including event steps).
+    pub steps: u64,
+    /// Rejected adaptive steps.
+    pub rejected: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+}
+
+/// Where a [`march`] stopped.
+#[derive(Clone, Copy, Debug)]
+pub struct Crossing {
+    /// Dimensionless time of the event.
+    pub time: f64,
+    /// State at the event.
+    pub state: State,
+    /// Which event function changed sign.
+    pub event: usize,
+}
+
+/// Use the contact series instead of a step for the end of a power-law phase: the phase's
+/// acceleration is `-k y^n` and its event 0 is `y = 0`.
+#[derive(Clone, Debug)]
+pub struct SeriesEnd<'a> {
+    /// The series for the exponent.
+    pub series: &'a ContactSeries,
+    /// The stiffness factor `k`.
+    pub k: f64,
+}
+
+/// Largest number of steps in one phase before the run is declared stuck.
+pub const STEP_BUDGET: u64 = 200_000_000;
+
+/// Integrate `rhs` from `start` at time `t0` until one of `events` changes sign, locating that
+/// instant on the step (the root of the event along a step of the method itself, by the
+/// Illinois variant of regula falsi) and returning the state there. `observe` sees every
+/// accepted state, the event state last.
+#[allow(clippy::too_many_arguments)]
+pub fn march(
+    rhs: &dyn Fn(&State) -> State,
+    start: State,
+    t0: f64,
+    stepper: &mut dyn Stepper,
+    events: &[&dyn Fn(&State) -> f64],
+    series_end: Option<SeriesEnd<'_>>,
+    stats: &mut Stats,
+    observe: &mut dyn FnMut(f64, &State),
+) -> Result<Crossing, SolveError> {
+    let mut y = start;
+    let mut t = t0;
+    let mut fy = rhs(&y);
+    stats.rhs_evaluations += 1;
+    let mut h = stepper.first_step();
+    let mut phase_steps = 0u64;
+    let signs = |s: &State| -> Vec<f64> { events.iter().map(|g| g(s)).collect() };
+    let mut g_now = signs(&y);
+    loop {
+        if phase_steps > STEP_BUDGET {
+            return Err(SolveError::StepBudget {
+                method: "march",
+                steps: phase_steps,
+            });
+        }
+        if h <= t.abs().max(1.0) * 1e-15 {
+            return Err(SolveError::StepUnderflow {
+                method: "march",
+                time: t,
+            });
+        }
+        // Near a non-smooth end the derivatives of y^n grow without bound and a one-step
+        // method loses its order, however short its last step: the series takes over as soon
+        // as the end is within the series' reach.
+        if let Some(end) = series_end.as_ref()
+            && y[1] < 0.0
+            && end.series.argument(end.k, -y[1], y[0] / -y[1]).abs() <= series::MAX_W
+            && let Some((s, v)) = end.series.time_to_exit(end.k, y[0], y[1])
+        {
+            let state = State::new(0.0, -v);
+            stats.steps += 1;
+            observe(t + s, &state);
+            return Ok(Crossing {
+                time: t + s,
+                state,
+                event: 0,
+            });
+        }
+        let trial = stepper.attempt(rhs, &y, &fy, h);
+        stats.rhs_evaluations += trial.rhs_evaluations;
+        let g_next = signs(&trial.state);
+        let crossed = g_now
+            .iter()
+            .zip(&g_next)
+            .position(|(a, b)| *a != 0.0 && (a.signum() != b.signum() || *b == 0.0));
+
+        if trial.error > 1.0 || !trial.state.iter().all(|x| x.is_finite()) {
+            stats.rejected += 1;
+            h = stepper.next_step(h, trial.error.max(1.0)).min(0.5 * h);
+            continue;
+        }
+        if let Some(event) = crossed {
+            let g = events[event];
+            let (theta, state) = locate(rhs, stepper, &y, &fy, h, g, g_now[event], stats);
+            stats.steps += 1;
+            let time = t + theta * h;
+            observe(time, &state);
+            return Ok(Crossing { time, state, event });
+        }
+        t += h;
+        y = trial.state;
+        fy = match trial.end_derivative {
+            Some(f) => f,
+            None => {
+                stats.rhs_evaluations += 1;
+                rhs(&y)
+            }
+        };
+        g_now = g_next;
+        stats.steps += 1;
+        phase_steps += 1;
+        observe(t, &y);
+        h = stepper.next_step(h, trial.error);
+    }
+}
+
+/// The fraction `θ` of the step `h` from `y` at which `g` vanishes along the method's own
+/// step map, and the state there.
+#[allow(clippy::too_many_arguments)]
+fn locate(
+    rhs: &dyn Fn(&State) -> State,
+    stepper: &mut dyn Stepper,
+    y: &State,
+    fy: &State,
+    h: f64,
+    g: &dyn Fn(&State) -> f64,
+    g_start: f64,
+    stats: &mut Stats,
+) -> (f64, State) {
+    let mut step_to = |theta: f64| {
+        let attempt = stepper.attempt(rhs, y, fy, theta * h);
+        stats.rhs_evaluations += attempt.rhs_evaluations;
+        attempt.state
+    };
+    let (mut lo, mut g_lo) = (0.0f64, g_start);
+    let mut state_hi = step_to(1.0);
+    let (mut hi, mut g_hi) = (1.0f64, g(&state_hi));
+    let mut best = (hi, state_hi);
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if g_hi == 0.0 || hi - lo <= 4.0 * f64::EPSILON * hi {
+            break;
+        }
+        let theta = ((lo * g_hi - hi * g_lo) / (g_hi - g_lo)).clamp(lo, hi);
+        let theta = if theta <= lo || theta >= hi {
+            0.5 * (lo + hi)
+        } else {
+            theta
+        };
+        let state = step_to(theta);
+        let value = g(&state);
+        if value == 0.0 {
+            return (theta, state);
+        }
+        if value.signum() == g_lo.signum() {
+            lo = theta;
+            g_lo = value;
+            if side == -1 {
+                g_hi *= 0.5;
+            }
+            side = -1;
+        } else {
+            hi = theta;
+            g_hi = value;
+            state_hi = state;
+            best = (hi, state_hi);
+            if side == 1 {
+                g_lo *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    best
+}

@@ -1,0 +1,390 @@
+//! One impact of the paper's law by each method.
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use super::series::ContactSeries;
+use super::steppers::{Dopri5, Rk4, State, Stepper, rk4_step};
+use super::{Method, SeriesEnd, SolveError, Stats, march};
+use crate::exact::{self, ImpactFigures, j_integral};
+use crate::law::PaperLaw;
+
+/// One-sided (physical impact) or two-sided (paper Eq. 14) contact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactKind {
+    /// The bodies separate when the approach returns to zero.
+    #[default]
+    Unilateral,
+    /// The spring also pulls: a decaying oscillation through zero.
+    Bilateral,
+}
+
+/// How to integrate.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// The method.
+    pub method: Method,
+    /// Fixed-step methods: steps per undamped period `T = 4 J(n) δ0 / v0`.
+    pub steps_per_period: u32,
+    /// Fixed-step methods: a step in seconds instead (checked against the stability limit).
+    pub timestep: Option<f64>,
+    /// Adaptive method: relative tolerance.
+    pub rtol: f64,
+    /// Unilateral or bilateral contact.
+    pub contact: ContactKind,
+    /// Bilateral contact: how many undamped periods to follow.
+    pub periods: f64,
+    /// Keep the trajectory.
+    pub record: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            method: Method::Rk4Event,
+            steps_per_period: 1000,
+            timestep: None,
+            rtol: 1e-12,
+            contact: ContactKind::Unilateral,
+            periods: 3.0,
+            record: false,
+        }
+    }
+}
+
+/// One trajectory sample, SI units.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Sample {
+    /// Time, s.
+    pub t: f64,
+    /// Approach, m.
+    pub y: f64,
+    /// Approach rate, m/s.
+    pub v: f64,
+}
+
+/// The result of one impact by one method.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outcome {
+    /// The figures (COR, peak, times, energy).
+    pub figures: ImpactFigures,
+    /// Work counters.
+    pub stats: Stats,
+    /// Wall time of the integration, s.
+    pub wall_time: f64,
+    /// The fixed step used, s (fixed-step methods).
+    pub timestep: Option<f64>,
+    /// The trajectory, when recorded.
+    pub trajectory: Vec<Sample>,
+    /// Bilateral contact: the speed at each passage through zero approach, m/s.
+    pub crossing_speeds: Vec<f64>,
+}
+
+/// Dimensionless result.
+#[derive(Default)]
+struct Scaled {
+    cor: f64,
+    peak: f64,
+    peak_force: f64,
+    compression_time: f64,
+    contact_time: f64,
+    stats: Stats,
+    samples: Vec<(f64, f64, f64)>,
+    crossing_speeds: Vec<f64>,
+}
+
+/// The stability limit of a fixed-step method on an undamped oscillator, as `ω Δt`: RK4's
+/// region meets the imaginary axis at `2√2`; velocity Verlet's at 2.
+pub fn stability_limit(method: Method) -> Option<f64> {
+    match method {
+        Method::Rk4 | Method::Rk4Event => Some(2.0 * std::f64::consts::SQRT_2),
+        Method::Verlet => Some(2.0),
+        _ => None,
+    }
+}
+
+/// The contact's largest angular frequency, rad/s: that of the loading stiffness linearised at
+/// the peak, `ω² = n C (1+η) y_max^(n-1) / M`.
+pub fn angular_frequency(law: &PaperLaw, impact_velocity: f64) -> f64 {
+    let n = law.exponent;
+    let peak = exact::paper_impact(law, impact_velocity).peak_deformation;
+    (n * law.stiffness * (1.0 + law.loss_coefficient) * peak.powf(n - 1.0) / law.mass).sqrt()
+}
+
+/// Integrate one impact of `law` at approach speed `impact_velocity` (m/s).
+pub fn solve(
+    law: &PaperLaw,
+    impact_velocity: f64,
+    settings: &Settings,
+) -> Result<Outcome, SolveError> {
+    let started = Instant::now();
+    let v0 = impact_velocity;
+    let y_scale = law.elastic_peak(v0);
+    let t_scale = y_scale / v0;
+    let (n, eta) = (law.exponent, law.loss_coefficient);
+    let period = 4.0 * j_integral(n);
+    let method = settings.method;
+    if method == Method::Exact {
+        let figures = exact::paper_impact(law, v0);
+        return Ok(Outcome {
+            figures,
+            stats: Stats::default(),
+            wall_time: started.elapsed().as_secs_f64(),
+            timestep: None,
+            trajectory: Vec::new(),
+            crossing_speeds: Vec::new(),
+        });
+    }
+    let h = match settings.timestep {
+        Some(dt) => {
+            if let Some(limit) = stability_limit(method) {
+                let omega = angular_frequency(law, v0);
+                if omega * dt > limit {
+                    return Err(SolveError::Unstable {
+                        method: method.name(),
+                        timestep: dt,
+                        omega,
+                        omega_dt: omega * dt,
+                        limit,
+                        max_timestep: limit / omega,
+                    });
+                }
+            }
+            dt / t_scale
+        }
+        None => period / settings.steps_per_period as f64,
+    };
+    let bilateral = settings.contact == ContactKind::Bilateral;
+    let duration = settings.periods * period;
+    let mut scaled = match method {
+        Method::Rk4 | Method::Verlet => fixed_step(n, eta, h, method, bilateral, duration, settings)?,
+        Method::Rk4Event => {
+            let mut stepper = Rk4 { step: h };
+            phased(n, eta, &mut stepper, bilateral, duration, settings)?
+        }
+        Method::Dopri5 => {
+            let mut stepper = Dopri5::new(settings.rtol);
+            phased(n, eta, &mut stepper, bilateral, duration, settings)?
+        }
+        Method::Exact => unreachable!("handled above"),
+    };
+    let wall_time = started.elapsed().as_secs_f64();
+    let cor = scaled.cor;
+    let force_scale = law.stiffness * y_scale.powf(n);
+    let figures = ImpactFigures {
+        cor,
+        peak_deformation: scaled.peak * y_scale,
+        peak_force: scaled.peak_force * force_scale,
+        compression_time: scaled.compression_time * t_scale,
+        restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
+        contact_time: scaled.contact_time * t_scale,
+        absorbed_energy: 0.5 * law.mass * v0 * v0 * (1.0 - cor * cor),
+    };
+    let trajectory = scaled
+        .samples
+        .drain(..)
+        .map(|(t, y, v)| Sample {
+            t: t * t_scale,
+            y: y * y_scale,
+            v: v * v0,
+        })
+        .collect();
+    Ok(Outcome {
+        figures,
+        stats: scaled.stats,
+        wall_time,
+        timestep: method.is_fixed_step().then_some(h * t_scale),
+        trajectory,
+        crossing_speeds: scaled.crossing_speeds.iter().map(|s| s * v0).collect(),
+    })
+}
+
+/// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`;
+/// unilateral contact exerts nothing at `Y <= 0`.
+fn paper_acceleration(n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
+    if y == 0.0 || (!bilateral && y < 0.0) {
+        return 0.0;
+    }
+    let direction = if y * v > 0.0 {
+        1.0
+    } else if y * v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    };
+    -0.5 * (n + 1.0) * y.abs().powf(n) * y.signum() * (1.0 + eta * direction)
+}
+
+/// The paper's rk4 and velocity Verlet: a fixed step over the whole law, the contact end at the
+/// first step past zero approach.
+fn fixed_step(
+    n: f64,
+    eta: f64,
+    h: f64,
+    method: Method,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
+    let accel = |s: &State| paper_acceleration(n, eta, bilateral, s[0], s[1]);
+    let rhs = |s: &State| State::new(s[1], accel(s));
+    let force = |s: &State| -accel(s) / (0.5 * (n + 1.0));
+    let mut out = Scaled::default();
+    let mut y = State::new(0.0, 1.0);
+    let mut t = 0.0;
+    let mut a = accel(&y);
+    let mut first_end: Option<(f64, f64)> = None;
+    let mut turning: Option<f64> = None;
+    let record = settings.record;
+    if record {
+        out.samples.push((t, y[0], y[1]));
+    }
+    let mut steps = 0u64;
+    loop {
+        if steps > super::STEP_BUDGET {
+            return Err(SolveError::StepBudget {
+                method: method.name(),
+                steps,
+            });
+        }
+        let previous = y;
+        match method {
+            Method::Rk4 => {
+                let fy = rhs(&y);
+                y = rk4_step(&rhs, &y, &fy, h);
+                out.stats.rhs_evaluations += 4;
+            }
+            _ => {
+                let half = y[1] + 0.5 * h * a;
+                let position = y[0] + h * half;
+                a = accel(&State::new(position, half));
+                y = State::new(position, half + 0.5 * h * a);
+                out.stats.rhs_evaluations += 1;
+            }
+        }
+        t += h;
+        steps += 1;
+        if record {
+            out.samples.push((t, y[0], y[1]));
+        }
+        if first_end.is_none() {
+            out.peak = out.peak.max(y[0]);
+            out.peak_force = out.peak_force.max(force(&y));
+            if turning.is_none() && y[1] <= 0.0 {
+                // The grid point of largest approach.
+                turning = Some(if previous[0] >= y[0] { t - h } else { t });
+            }
+        }
+        if previous[0] * y[0] < 0.0 || (previous[0] > 0.0 && y[0] == 0.0) {
+            if first_end.is_none() {
+                first_end = Some((t, y[1].abs()));
+            }
+            out.crossing_speeds.push(y[1].abs());
+            if !bilateral {
+                break;
+            }
+        }
+        if bilateral && first_end.is_some() && t >= duration {
+            break;
+        }
+    }
+    out.stats.steps = steps;
+    let (end, speed) = first_end.expect("loop ends only after the first contact end");
+    out.cor = speed;
+    out.contact_time = end;
+    out.compression_time = turning.unwrap_or(end);
+    if !bilateral {
+        out.crossing_speeds.clear();
+    }
+    Ok(out)
+}
+
+/// rk4-event and dopri5: each phase with its own smooth law (loading `1+η`, unloading `1-η`),
+/// the turning point located on the step, the non-smooth ends by the contact series.
+fn phased(
+    n: f64,
+    eta: f64,
+    stepper: &mut dyn Stepper,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
+    let series = ContactSeries::new(n);
+    let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
+    let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
+    let load = move |s: &State| State::new(s[1], -k_load * s[0].max(0.0).powf(n));
+    let unload = move |s: &State| State::new(s[1], -k_unload * s[0].max(0.0).powf(n));
+    let rate = |s: &State| s[1];
+    let approach = |s: &State| s[0];
+    let mut out = Scaled::default();
+    let record = settings.record;
+    let (mut t, mut speed, mut sign) = (0.0f64, 1.0f64, 1.0f64);
+    let mut samples = Vec::new();
+    loop {
+        // Bilateral half-cycles after the first mirror the first: the law is odd in y.
+        let mut observe = |time: f64, s: &State| {
+            if record {
+                samples.push((time, sign * s[0], sign * s[1]));
+            }
+        };
+        observe(t, &State::new(0.0, speed));
+        // The series carries the start over a stretch fixed in τ, not in steps: the first
+        // step of the method must begin where y^n is smooth on the scale of any step.
+        let s0 = series.reach(k_load, speed);
+        let (y0, v0) = series.advance(k_load, speed, s0);
+        let start = State::new(y0, v0);
+        out.stats.steps += 1;
+        observe(t + s0, &start);
+        let turn = march(
+            &load,
+            start,
+            t + s0,
+            stepper,
+            &[&rate],
+            None,
+            &mut out.stats,
+            &mut observe,
+        )?;
+        let peak = turn.state[0];
+        let end = march(
+            &unload,
+            State::new(peak, 0.0),
+            turn.time,
+            stepper,
+            &[&approach],
+            Some(SeriesEnd {
+                series: &series,
+                k: k_unload,
+            }),
+            &mut out.stats,
+            &mut observe,
+        )?;
+        let exit_speed = -end.state[1];
+        if out.crossing_speeds.is_empty() {
+            out.cor = exit_speed;
+            out.peak = peak;
+            out.peak_force = (1.0 + eta) * peak.powf(n);
+            out.compression_time = turn.time;
+            out.contact_time = end.time;
+        }
+        out.crossing_speeds.push(exit_speed);
+        t = end.time;
+        speed = exit_speed;
+        sign = -sign;
+        if !bilateral || t >= duration {
+            break;
+        }
+    }
+    out.samples = samples;
+    if !bilateral {
+        out.crossing_speeds.clear();
+    }
+    Ok(out)
+}
+
+/// The closed-form figures, for comparison with a run.
+pub fn exact_figures(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
+    exact::paper_impact(law, impact_velocity)
+}
