@@ -267,7 +267,7 @@ impl CodeDriver for Lammps {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let plan = Self::plan(setup).map_err(|reason| self.unsupported(setup, reason))?;
-        if setup.steps == 0 || !(setup.timestep > 0.0) {
+        if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
             return Err(self.unsupported(setup, "no steps or no positive timestep".into()));
         }
         let s = setup.sphere;

@@ -1,0 +1,347 @@
+//! The LAMMPS driver: its parser on a recorded run, its damping compensation, and live runs of
+//! the installed `lmp` for the three canonical impacts.
+//!
+//! The live tests run the real binary; without it they fail (they do not skip), because a
+//! harness that silently stops comparing is worse than one that says it cannot.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use millimpact::codes::lammps::{
+    self, Lammps, exact_hertz_alpha, parse_loop_time, parse_trajectory, parse_version, tsuji_alpha,
+    tsuji_input_for_alpha,
+};
+use millimpact::codes::{
+    CodeDriver, CodeRun, CodeSetup, CodeSphere, RunOptions, TrajectoryMetrics, run_code,
+    trajectory_metrics,
+};
+use millimpact::law::DashpotLaw;
+use millimpact::scene::SceneKind;
+use millimpact::solve::dashpot::{StepScheme, step_trajectory};
+
+/// The paper's η = 0.35 gives this COR: sqrt((1-η)/(1+η)) = 0.69389 (the brief's "0.6944"
+/// is this value rounded loosely).
+fn e_paper() -> f64 {
+    (0.65f64 / 1.35).sqrt()
+}
+
+const RADIUS: f64 = 0.02;
+const DENSITY: f64 = 7800.0;
+const YOUNG: f64 = 2.0e11;
+const POISSON: f64 = 0.3;
+const V0: f64 = 2.0;
+
+/// Which of the canonical impacts.
+#[derive(Clone, Copy, Debug)]
+enum Case {
+    /// Ball on an elastic steel plate.
+    BallPlate,
+    /// Ball on a rigid plate.
+    BallRigidPlate,
+    /// Two equal balls.
+    BallBall,
+    /// Rod end on a rigid plate.
+    RodEnd,
+}
+
+fn ball() -> CodeSphere {
+    CodeSphere {
+        radius: RADIUS,
+        density: DENSITY,
+        mass: 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY,
+        youngs_modulus: YOUNG,
+        poisson_ratio: Some(POISSON),
+    }
+}
+
+/// The Hertz contact time `2.86827 (M²/(R* E*² v0))^(1/5)` or the linear `π sqrt(M/k)`.
+fn elastic_contact_time(setup: &CodeSetup) -> f64 {
+    match (setup.effective_modulus, setup.effective_radius) {
+        (Some(e_star), Some(r_star)) => {
+            let m = setup.reduced_mass;
+            2.86827 * (m * m / (r_star * e_star * e_star * setup.impact_velocity)).powf(0.2)
+        }
+        _ => PI * (setup.reduced_mass / setup.stiffness).sqrt(),
+    }
+}
+
+/// A case from the brief's numbers, at target COR `e`, with Δt = (elastic contact time)/1000
+/// and a run 1.25 contact times long (the damped contacts last at most 1.1 of it).
+fn setup(case: Case, e: f64) -> CodeSetup {
+    let b = ball();
+    let compliance = (1.0 - POISSON * POISSON) / YOUNG;
+    let (scene, sphere, other, plate, e_star, r_star, mass) = match case {
+        Case::BallPlate => (
+            SceneKind::BallPlate,
+            b,
+            None,
+            Some((YOUNG, POISSON)),
+            Some(1.0 / (2.0 * compliance)),
+            Some(RADIUS),
+            b.mass,
+        ),
+        Case::BallRigidPlate => (
+            SceneKind::BallPlate,
+            b,
+            None,
+            None,
+            Some(1.0 / compliance),
+            Some(RADIUS),
+            b.mass,
+        ),
+        Case::BallBall => (
+            SceneKind::BallBall,
+            b,
+            Some(b),
+            None,
+            Some(1.0 / (2.0 * compliance)),
+            Some(RADIUS / 2.0),
+            b.mass / 2.0,
+        ),
+        Case::RodEnd => {
+            let (d, length) = (0.03, 0.5);
+            let mass = DENSITY * PI * d * d / 4.0 * length;
+            let r = d / 2.0;
+            let rod = CodeSphere {
+                radius: r,
+                density: mass / (4.0 / 3.0 * PI * r.powi(3)),
+                mass,
+                youngs_modulus: YOUNG,
+                poisson_ratio: None,
+            };
+            (SceneKind::RodEnd, rod, None, None, None, None, mass)
+        }
+    };
+    let (stiffness, exponent) = match (e_star, r_star) {
+        (Some(es), Some(rs)) => (4.0 / 3.0 * es * rs.sqrt(), 1.5),
+        _ => (PI * 0.03 * 0.03 * YOUNG / (4.0 * 0.25), 1.0),
+    };
+    let mut s = CodeSetup {
+        case_name: format!("{case:?}").to_lowercase(),
+        scene,
+        sphere,
+        other_sphere: other,
+        plate_material: plate,
+        effective_modulus: e_star,
+        effective_radius: r_star,
+        reduced_mass: mass,
+        stiffness,
+        exponent,
+        impact_velocity: V0,
+        target_restitution: e,
+        timestep: 1.0,
+        steps: 1250,
+    };
+    s.timestep = elastic_contact_time(&s) / 1000.0;
+    s
+}
+
+/// Run the installed LAMMPS; a missing binary or a failed run fails the test with the reason.
+fn run(setup: &CodeSetup) -> (CodeRun, TrajectoryMetrics) {
+    let run = run_code(&Lammps, setup, &RunOptions::default()).unwrap_or_else(|err| {
+        panic!("LAMMPS run of {} failed: {err}", setup.case_name);
+    });
+    let metrics = trajectory_metrics(&run.trajectory)
+        .unwrap_or_else(|err| panic!("{}: {err}", setup.case_name));
+    println!(
+        "{} e={} ({}): COR {:.6}, peak {:.6e} m, contact {:.6e} s, wall {:.2} s, loop {:?} s",
+        setup.case_name,
+        setup.target_restitution,
+        run.code_version,
+        metrics.cor,
+        metrics.peak_deformation,
+        metrics.contact_time,
+        run.wall_time,
+        run.loop_time
+    );
+    (run, metrics)
+}
+
+/// The driver's law, stepped the way LAMMPS steps it, at the code's own step.
+fn law_metrics(setup: &CodeSetup) -> TrajectoryMetrics {
+    let law = Lammps.law(setup);
+    let t = step_trajectory(
+        &law,
+        setup.impact_velocity,
+        setup.timestep,
+        setup.steps,
+        StepScheme::VelocityVerlet,
+    );
+    trajectory_metrics(&t).expect("the law's contact ends within the run")
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+// ---- offline tests ----------------------------------------------------------------------
+
+#[test]
+fn parses_recorded_sample() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/lammps");
+    let text = std::fs::read_to_string(dir.join("ball_plate_trajectory.txt")).unwrap();
+    let log = std::fs::read_to_string(dir.join("ball_plate_screen.txt")).unwrap();
+    let t = parse_trajectory(&text).unwrap();
+    // 60 steps and the setup row.
+    assert_eq!(t.time.len(), 61);
+    assert_eq!(t.time[0], 0.0);
+    assert_eq!(t.approach_velocity[0], 2.0);
+    assert_eq!(t.normal_force[0], 0.0);
+    assert!(t.overlap[0] < 0.0 && t.overlap[0] > -1e-13, "start gap");
+    assert_eq!(
+        parse_version(&log).as_deref(),
+        Some("29 Sep 2021 - Update 2")
+    );
+    let loop_time = parse_loop_time(&log).unwrap();
+    assert!(loop_time > 0.0 && loop_time < 1.0);
+    // The sample is ball_plate (elastic plate) at e = 0.6944 with Δt = t_c/40: the figures
+    // below are what the recorded run gave, and what the law stepped at that Δt gives.
+    let m = trajectory_metrics(&t).unwrap();
+    let mut s = setup(Case::BallPlate, e_paper());
+    s.timestep = elastic_contact_time(&s) / 40.0;
+    s.steps = 60;
+    let law = law_metrics(&s);
+    assert!(relative(m.peak_deformation, law.peak_deformation) < 1e-6);
+    assert!((m.cor - law.cor).abs() < 1e-6);
+    assert!(relative(m.contact_time, law.contact_time) < 1e-6);
+}
+
+#[test]
+fn parser_rejects_short_rows() {
+    assert!(parse_trajectory("# title\n0 0 2\n").is_err());
+    assert!(parse_trajectory("0 0 2 x\n").is_err());
+    assert_eq!(parse_version("no banner"), None);
+}
+
+#[test]
+fn tsuji_fit_lacks_sqrt2_and_is_inverted_exactly() {
+    // The fit is the exact √5 β(e) divided by √2 to within 1 % over the useful range: the
+    // factor the LAMMPS docs say was missing in earlier versions.
+    for e in [0.5, 0.6, e_paper(), 0.8, 0.9] {
+        let ratio = tsuji_alpha(e) * 2f64.sqrt() / exact_hertz_alpha(e);
+        assert!((ratio - 1.0).abs() < 1e-2, "e = {e}: ratio {ratio}");
+    }
+    for e in [0.05, 0.2, 0.5, e_paper(), 0.9, 0.99] {
+        let alpha = exact_hertz_alpha(e);
+        let e_in = tsuji_input_for_alpha(alpha).unwrap();
+        assert!(relative(tsuji_alpha(e_in), alpha) < 1e-12, "e = {e}");
+    }
+    assert_eq!(tsuji_input_for_alpha(100.0), None);
+    assert_eq!(tsuji_input_for_alpha(0.0), None);
+}
+
+#[test]
+fn render_uses_effective_values_and_no_clamp() {
+    for case in [Case::BallPlate, Case::BallRigidPlate, Case::BallBall] {
+        let s = setup(case, e_paper());
+        let input = Lammps.render(&s).unwrap();
+        assert!(input.text.contains("damping tsuji"));
+        assert!(!input.text.contains("limit_damping"));
+        assert!(!input.text.contains("{{"));
+        let plan = Lammps::plan(&s).unwrap();
+        // ν = 0 and E = 2E* in the input: the code's E* is the case's.
+        let args: Vec<&str> = plan.model_args.split_whitespace().collect();
+        assert_eq!(args[0], "hertz/material");
+        let modulus: f64 = args[1].parse().unwrap();
+        assert!(relative(modulus, 2.0 * s.effective_modulus.unwrap()) < 1e-14);
+        assert_eq!(args[3], "0", "ν");
+        assert!(relative(plan.law.stiffness, s.stiffness) < 1e-14);
+        assert!(relative(plan.law.mass, s.reduced_mass) < 1e-14);
+        let wanted = DashpotLaw::damped_hertz(s.reduced_mass, s.stiffness, e_paper());
+        assert!(relative(plan.law.damping, wanted.damping) < 1e-12);
+    }
+    let rod = setup(Case::RodEnd, e_paper());
+    let plan = Lammps::plan(&rod).unwrap();
+    assert!(plan.model_args.starts_with("hooke "));
+    assert!(plan.model_args.ends_with("damping velocity"));
+    assert_eq!(
+        plan.law,
+        DashpotLaw::linear(rod.reduced_mass, rod.stiffness, e_paper())
+    );
+    let elastic = Lammps::plan(&setup(Case::BallBall, 1.0)).unwrap();
+    assert_eq!(elastic.law.damping, 0.0);
+    assert!(elastic.model_args.ends_with(" 0 0 damping velocity"));
+    assert_eq!(lammps::START_GAP, 1e-12);
+}
+
+// ---- live tests: the installed lmp ------------------------------------------------------
+
+/// COR within 0.01 of the target, and the driver's law reproducing the run: peak overlap,
+/// COR and contact time to 1e-6 (the brief asks 1e-3 for the peak; the agreement is 1e-8).
+fn check_damped(case: Case, e: f64) {
+    let s = setup(case, e);
+    let (_, m) = run(&s);
+    assert!(
+        (m.cor - e).abs() < 0.01,
+        "{case:?}: COR {} for target {e}",
+        m.cor
+    );
+    let law = law_metrics(&s);
+    assert!(
+        relative(m.peak_deformation, law.peak_deformation) < 1e-6,
+        "{case:?}: peak {} vs law {}",
+        m.peak_deformation,
+        law.peak_deformation
+    );
+    assert!((m.cor - law.cor).abs() < 1e-6, "{case:?}: COR vs law");
+    assert!(
+        relative(m.contact_time, law.contact_time) < 1e-6,
+        "{case:?}: contact time vs law"
+    );
+}
+
+/// The elastic run: COR 1 and the contact time of Hertz (or of the linear spring) within one
+/// step, and the peak of the law.
+fn check_elastic(case: Case) {
+    let s = setup(case, 1.0);
+    let (_, m) = run(&s);
+    assert!((m.cor - 1.0).abs() < 1e-6, "{case:?}: COR {}", m.cor);
+    let theory = elastic_contact_time(&s);
+    assert!(
+        (m.contact_time - theory).abs() < s.timestep,
+        "{case:?}: contact {} vs theory {theory}, step {}",
+        m.contact_time,
+        s.timestep
+    );
+    let law = law_metrics(&s);
+    assert!(relative(m.peak_deformation, law.peak_deformation) < 1e-6);
+}
+
+#[test]
+fn live_ball_plate() {
+    check_damped(Case::BallPlate, e_paper());
+    check_damped(Case::BallPlate, 0.5);
+    check_elastic(Case::BallPlate);
+}
+
+#[test]
+fn live_ball_rigid_plate() {
+    check_damped(Case::BallRigidPlate, e_paper());
+    check_elastic(Case::BallRigidPlate);
+}
+
+#[test]
+fn live_ball_ball() {
+    check_damped(Case::BallBall, e_paper());
+    check_damped(Case::BallBall, 0.5);
+    check_elastic(Case::BallBall);
+}
+
+#[test]
+fn live_rod_end() {
+    check_damped(Case::RodEnd, e_paper());
+    check_damped(Case::RodEnd, 0.5);
+    check_elastic(Case::RodEnd);
+}
+
+#[test]
+fn live_reports_version_and_loop_time() {
+    let (run, _) = run(&setup(Case::BallPlate, e_paper()));
+    assert_eq!(run.code_version, "29 Sep 2021 - Update 2");
+    assert!(run.loop_time.is_some_and(|t| t > 0.0));
+    assert_eq!(
+        run.trajectory.time.len(),
+        1251,
+        "one row per step and the setup row"
+    );
+}
