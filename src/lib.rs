@@ -2,8 +2,16 @@
 //! (dissipative force = η × gradient of the elastic energy), against exact closed forms and
 //! the DEM codes LIGGGHTS, YADE and LAMMPS.
 
+pub mod app;
+pub mod case;
+pub mod cli;
 pub mod codes;
+pub mod compare;
 pub mod law;
+pub mod precision;
 pub mod scene;
 pub mod exact;
 pub mod solve;
+pub mod stability;
+pub mod references;
+pub mod report;

@@ -1,0 +1,387 @@
+//! Case files: a TOML description of one impact, read strictly.
+//!
+//! A scene takes only what it needs: a key or table the scene does not use is an error, and so
+//! is every value outside its physical range. Each error is one line naming the file, the key,
+//! the value and what is allowed.
+
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+use toml::{Table, Value};
+
+use crate::exact;
+use crate::law::PaperLaw;
+use crate::scene::{Ball, Material, Plate, Rod, Scene, SceneKind, StiffnessConvention};
+use crate::solve::paper::ContactKind;
+
+/// A rejected case file.
+#[derive(Debug, Error, Clone, PartialEq)]
+#[error("{file}: {key} = {value}: {allowed}")]
+pub struct CaseError {
+    /// The file.
+    pub file: String,
+    /// The key, dotted with its table (`ball.radius`), or `(file)` for the file as a whole.
+    pub key: String,
+    /// The offending value as written, or `(missing)`.
+    pub value: String,
+    /// What is allowed.
+    pub allowed: String,
+}
+
+/// One validated case.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Case {
+    /// The case's name: its file stem.
+    pub name: String,
+    /// Where it was read from.
+    pub path: PathBuf,
+    /// Bodies and materials.
+    pub scene: Scene,
+    /// Normal approach speed `v0`, m/s (relative speed for ball_ball).
+    pub impact_velocity: f64,
+    /// Loss coefficient `η` (given, or derived from a given restitution).
+    pub loss_coefficient: f64,
+    /// How the ball stiffness is computed.
+    pub stiffness: StiffnessConvention,
+    /// Unilateral or bilateral contact.
+    pub contact: ContactKind,
+}
+
+impl Case {
+    /// The paper's law for this case.
+    pub fn law(&self) -> PaperLaw {
+        PaperLaw {
+            mass: self.scene.reduced_mass(),
+            stiffness: self.scene.stiffness(self.stiffness),
+            exponent: self.scene.exponent(),
+            loss_coefficient: self.loss_coefficient,
+        }
+    }
+
+    /// The target COR `e(η)`.
+    pub fn restitution(&self) -> f64 {
+        exact::restitution(self.loss_coefficient)
+    }
+
+    /// The same case at another loss coefficient.
+    pub fn with_loss_coefficient(&self, loss_coefficient: f64) -> Case {
+        Case {
+            loss_coefficient,
+            ..self.clone()
+        }
+    }
+
+    /// Read and validate a case file.
+    pub fn load(path: &Path) -> Result<Case, CaseError> {
+        let file = path.display().to_string();
+        let fail = |key: &str, value: &str, allowed: &str| CaseError {
+            file: file.clone(),
+            key: key.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        };
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| fail("(file)", "(unreadable)", &format!("cannot read it: {e}")))?;
+        let table: Table = text.parse().map_err(|e: toml::de::Error| {
+            let message = e.message().replace('\n', " ");
+            fail("(file)", "(not TOML)", &format!("invalid TOML: {message}"))
+        })?;
+        let name = path
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "case".to_string());
+        Reader { file: &file }.case(&table, name, path)
+    }
+}
+
+struct Reader<'a> {
+    file: &'a str,
+}
+
+const TOP_KEYS: [&str; 6] = [
+    "scene",
+    "impact_velocity",
+    "loss_coefficient",
+    "restitution",
+    "stiffness",
+    "contact",
+];
+
+impl Reader<'_> {
+    fn error(&self, key: &str, value: &str, allowed: &str) -> CaseError {
+        CaseError {
+            file: self.file.to_string(),
+            key: key.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+
+    fn case(&self, t: &Table, name: String, path: &Path) -> Result<Case, CaseError> {
+        let scene_name = match t.get("scene") {
+            None => {
+                return Err(self.error(
+                    "scene",
+                    "(missing)",
+                    "required: \"ball_plate\", \"ball_ball\" or \"rod_end\"",
+                ));
+            }
+            Some(Value::String(s)) => s.as_str(),
+            Some(v) => {
+                return Err(self.error(
+                    "scene",
+                    &v.to_string(),
+                    "must be \"ball_plate\", \"ball_ball\" or \"rod_end\"",
+                ));
+            }
+        };
+        let kind = match scene_name {
+            "ball_plate" => SceneKind::BallPlate,
+            "ball_ball" => SceneKind::BallBall,
+            "rod_end" => SceneKind::RodEnd,
+            other => {
+                return Err(self.error(
+                    "scene",
+                    &format!("\"{other}\""),
+                    "unknown scene; allowed: \"ball_plate\", \"ball_ball\", \"rod_end\"",
+                ));
+            }
+        };
+        let tables: &[&str] = match kind {
+            SceneKind::BallPlate => &["ball", "plate"],
+            SceneKind::BallBall => &["ball", "other_ball"],
+            SceneKind::RodEnd => &["rod"],
+        };
+        for (key, value) in t {
+            let known_table = ["ball", "plate", "other_ball", "rod"].contains(&key.as_str());
+            if known_table && !tables.contains(&key.as_str()) {
+                return Err(self.error(
+                    &format!("[{key}]"),
+                    "(table)",
+                    &format!(
+                        "not used by scene \"{scene_name}\", which takes {}",
+                        tables
+                            .iter()
+                            .map(|t| format!("[{t}]"))
+                            .collect::<Vec<_>>()
+                            .join(" and ")
+                    ),
+                ));
+            }
+            if key == "stiffness" && kind == SceneKind::RodEnd {
+                return Err(self.error(
+                    key,
+                    &value.to_string(),
+                    "not used by scene \"rod_end\" (its stiffness is the rod's, π D² E / (4H))",
+                ));
+            }
+            if !known_table && !TOP_KEYS.contains(&key.as_str()) {
+                return Err(self.error(
+                    key,
+                    &value.to_string(),
+                    &format!("unknown key; allowed at top level: {}", TOP_KEYS.join(", ")),
+                ));
+            }
+        }
+        let impact_velocity = self.positive(t, "", "impact_velocity")?;
+        let loss_coefficient = match (t.get("loss_coefficient"), t.get("restitution")) {
+            (Some(_), Some(_)) => {
+                return Err(self.error(
+                    "loss_coefficient",
+                    &t["loss_coefficient"].to_string(),
+                    "give exactly one of loss_coefficient and restitution, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(self.error(
+                    "loss_coefficient",
+                    "(missing)",
+                    "give exactly one of loss_coefficient (η in [0, 1)) and restitution (e in (0, 1])",
+                ));
+            }
+            (Some(_), None) => {
+                let eta = self.number(t, "", "loss_coefficient")?;
+                if !(0.0..1.0).contains(&eta) {
+                    return Err(self.error(
+                        "loss_coefficient",
+                        &eta.to_string(),
+                        "must be in [0, 1): η = 1 never separates, η < 0 creates energy",
+                    ));
+                }
+                eta
+            }
+            (None, Some(_)) => {
+                let e = self.number(t, "", "restitution")?;
+                if !(e > 0.0 && e <= 1.0) {
+                    return Err(self.error("restitution", &e.to_string(), "must be in (0, 1]"));
+                }
+                exact::loss_coefficient(e)
+            }
+        };
+        let stiffness = match t.get("stiffness") {
+            None => StiffnessConvention::Hertz,
+            Some(Value::String(s)) if s == "hertz" => StiffnessConvention::Hertz,
+            Some(Value::String(s)) if s == "paper" => StiffnessConvention::Paper,
+            Some(v) => {
+                return Err(self.error(
+                    "stiffness",
+                    &v.to_string(),
+                    "must be \"hertz\" or \"paper\"",
+                ));
+            }
+        };
+        let contact = match t.get("contact") {
+            None => ContactKind::Unilateral,
+            Some(Value::String(s)) if s == "unilateral" => ContactKind::Unilateral,
+            Some(Value::String(s)) if s == "bilateral" => ContactKind::Bilateral,
+            Some(v) => {
+                return Err(self.error(
+                    "contact",
+                    &v.to_string(),
+                    "must be \"unilateral\" or \"bilateral\"",
+                ));
+            }
+        };
+        let scene = match kind {
+            SceneKind::BallPlate => Scene::BallPlate {
+                ball: self.ball(t, "ball", None)?,
+                plate: self.plate(t)?,
+            },
+            SceneKind::BallBall => {
+                let ball = self.ball(t, "ball", None)?;
+                let other = match t.get("other_ball") {
+                    None => ball,
+                    Some(_) => self.ball(t, "other_ball", Some(&ball))?,
+                };
+                Scene::BallBall { ball, other }
+            }
+            SceneKind::RodEnd => Scene::RodEnd { rod: self.rod(t)? },
+        };
+        Ok(Case {
+            name,
+            path: path.to_path_buf(),
+            scene,
+            impact_velocity,
+            loss_coefficient,
+            stiffness,
+            contact,
+        })
+    }
+
+    fn table<'t>(&self, t: &'t Table, name: &str) -> Result<&'t Table, CaseError> {
+        match t.get(name) {
+            Some(Value::Table(table)) => Ok(table),
+            Some(v) => Err(self.error(name, &v.to_string(), "must be a table")),
+            None => Err(self.error(&format!("[{name}]"), "(missing)", "required by this scene")),
+        }
+    }
+
+    fn only_keys(&self, t: &Table, table: &str, allowed: &[&str]) -> Result<(), CaseError> {
+        for (key, value) in t {
+            if !allowed.contains(&key.as_str()) {
+                return Err(self.error(
+                    &format!("{table}.{key}"),
+                    &value.to_string(),
+                    &format!("unknown or unused key; [{table}] takes {}", allowed.join(", ")),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn number(&self, t: &Table, table: &str, key: &str) -> Result<f64, CaseError> {
+        let full = if table.is_empty() {
+            key.to_string()
+        } else {
+            format!("{table}.{key}")
+        };
+        let x = match t.get(key) {
+            Some(Value::Float(x)) => *x,
+            Some(Value::Integer(i)) => *i as f64,
+            Some(v) => return Err(self.error(&full, &v.to_string(), "must be a number")),
+            None => return Err(self.error(&full, "(missing)", "required")),
+        };
+        if !x.is_finite() {
+            return Err(self.error(&full, &x.to_string(), "must be finite"));
+        }
+        Ok(x)
+    }
+
+    fn positive(&self, t: &Table, table: &str, key: &str) -> Result<f64, CaseError> {
+        let x = self.number(t, table, key)?;
+        if x <= 0.0 {
+            let full = if table.is_empty() {
+                key.to_string()
+            } else {
+                format!("{table}.{key}")
+            };
+            return Err(self.error(&full, &x.to_string(), "must be a finite number > 0"));
+        }
+        Ok(x)
+    }
+
+    fn poisson(&self, t: &Table, table: &str) -> Result<f64, CaseError> {
+        let nu = self.number(t, table, "poisson_ratio")?;
+        if !(nu > -1.0 && nu < 0.5) {
+            return Err(self.error(
+                &format!("{table}.poisson_ratio"),
+                &nu.to_string(),
+                "must be in (-1, 0.5)",
+            ));
+        }
+        Ok(nu)
+    }
+
+    fn ball(&self, t: &Table, name: &str, defaults: Option<&Ball>) -> Result<Ball, CaseError> {
+        let table = self.table(t, name)?;
+        let keys = ["radius", "density", "youngs_modulus", "poisson_ratio"];
+        self.only_keys(table, name, &keys)?;
+        let pick = |key: &str, fallback: Option<f64>| -> Result<f64, CaseError> {
+            match (table.get(key), fallback) {
+                (None, Some(x)) => Ok(x),
+                _ if key == "poisson_ratio" => self.poisson(table, name),
+                _ => self.positive(table, name, key),
+            }
+        };
+        Ok(Ball {
+            radius: pick("radius", defaults.map(|b| b.radius))?,
+            density: pick("density", defaults.map(|b| b.density))?,
+            material: Material {
+                youngs_modulus: pick(
+                    "youngs_modulus",
+                    defaults.map(|b| b.material.youngs_modulus),
+                )?,
+                poisson_ratio: pick("poisson_ratio", defaults.map(|b| b.material.poisson_ratio))?,
+            },
+        })
+    }
+
+    fn plate(&self, t: &Table) -> Result<Plate, CaseError> {
+        let table = self.table(t, "plate")?;
+        let rigid = match table.get("rigid") {
+            None => false,
+            Some(Value::Boolean(b)) => *b,
+            Some(v) => return Err(self.error("plate.rigid", &v.to_string(), "must be true or false")),
+        };
+        if rigid {
+            self.only_keys(table, "plate", &["rigid"])?;
+            return Ok(Plate::Rigid);
+        }
+        self.only_keys(table, "plate", &["rigid", "youngs_modulus", "poisson_ratio"])?;
+        Ok(Plate::Elastic(Material {
+            youngs_modulus: self.positive(table, "plate", "youngs_modulus")?,
+            poisson_ratio: self.poisson(table, "plate")?,
+        }))
+    }
+
+    fn rod(&self, t: &Table) -> Result<Rod, CaseError> {
+        let table = self.table(t, "rod")?;
+        self.only_keys(table, "rod", &["diameter", "length", "density", "youngs_modulus"])?;
+        Ok(Rod {
+            diameter: self.positive(table, "rod", "diameter")?,
+            length: self.positive(table, "rod", "length")?,
+            density: self.positive(table, "rod", "density")?,
+            youngs_modulus: self.positive(table, "rod", "youngs_modulus")?,
+        })
+    }
+}
