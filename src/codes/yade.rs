@@ -94,6 +94,9 @@ pub fn clamped_linear_damping_ratio(restitution: f64) -> Option<f64> {
     if target >= 2.0 {
         return None;
     }
+    if target == 0.0 {
+        return Some(0.0);
+    }
     let mut hi = 1.0;
     while g(hi) < target {
         hi *= 2.0;

@@ -1,0 +1,494 @@
+//! The YADE driver: parser and law on a recorded run, and live runs of the installed
+//! `yade` (2023.02a) for the three canonical impacts. The live tests fail, not skip, when the
+//! binary is missing.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use millimpact::codes::yade::{
+    RIGID_WALL_MODULUS, Yade, clamped_linear_damping_ratio, parse_trajectory,
+    thornton_damping_ratio,
+};
+use millimpact::codes::{
+    CodeDriver, CodeRun, CodeSetup, CodeSphere, RunOptions, TrajectoryMetrics, run_code,
+    trajectory_metrics,
+};
+use millimpact::law::DashpotLaw;
+use millimpact::scene::SceneKind;
+use millimpact::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
+
+const RADIUS: f64 = 0.02;
+const DENSITY: f64 = 7800.0;
+const YOUNG: f64 = 2.0e11;
+const POISSON: f64 = 0.3;
+const IMPACT_VELOCITY: f64 = 2.0;
+const ROD_DIAMETER: f64 = 0.03;
+const ROD_LENGTH: f64 = 0.5;
+/// `sqrt((1-η)/(1+η))` at the paper's η = 0.35.
+const TARGET: f64 = 0.6944;
+/// Steps per contact time in the live runs (the crate's default step).
+const STEPS_PER_CONTACT: f64 = 1000.0;
+/// Run length in contact times: the damped, clamped contacts last a few per cent longer than
+/// the elastic one.
+const RUN_LENGTH: f64 = 1.25;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Plate {
+    Steel,
+    Rigid,
+}
+
+fn steel_ball() -> CodeSphere {
+    CodeSphere {
+        radius: RADIUS,
+        density: DENSITY,
+        mass: 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY,
+        youngs_modulus: YOUNG,
+        poisson_ratio: Some(POISSON),
+    }
+}
+
+/// Hertz elastic contact time `2.86827 (M² / (R* E*² v0))^(1/5)`.
+fn hertz_contact_time(mass: f64, radius: f64, modulus: f64, velocity: f64) -> f64 {
+    2.86827 * (mass * mass / (radius * modulus * modulus * velocity)).powf(0.2)
+}
+
+/// The canonical case `scene` at restitution `e`, stepped at (contact time) / `per_contact`.
+fn setup_at(scene: SceneKind, e: f64, plate: Plate, per_contact: f64) -> CodeSetup {
+    let ball = steel_ball();
+    let compliance = (1.0 - POISSON * POISSON) / YOUNG;
+    let (sphere, other, plate_material, modulus, radius, mass, stiffness, exponent, contact) =
+        match scene {
+            SceneKind::BallPlate => {
+                let (plate_material, modulus) = match plate {
+                    Plate::Steel => (Some((YOUNG, POISSON)), 1.0 / (2.0 * compliance)),
+                    Plate::Rigid => (None, 1.0 / compliance),
+                };
+                let k = 4.0 / 3.0 * modulus * RADIUS.sqrt();
+                let tc = hertz_contact_time(ball.mass, RADIUS, modulus, IMPACT_VELOCITY);
+                (
+                    ball,
+                    None,
+                    plate_material,
+                    Some(modulus),
+                    Some(RADIUS),
+                    ball.mass,
+                    k,
+                    1.5,
+                    tc,
+                )
+            }
+            SceneKind::BallBall => {
+                let modulus = 1.0 / (2.0 * compliance);
+                let (radius, mass) = (RADIUS / 2.0, ball.mass / 2.0);
+                let k = 4.0 / 3.0 * modulus * radius.sqrt();
+                let tc = hertz_contact_time(mass, radius, modulus, IMPACT_VELOCITY);
+                (
+                    ball,
+                    Some(ball),
+                    None,
+                    Some(modulus),
+                    Some(radius),
+                    mass,
+                    k,
+                    1.5,
+                    tc,
+                )
+            }
+            SceneKind::RodEnd => {
+                let area = PI * ROD_DIAMETER * ROD_DIAMETER / 4.0;
+                let mass = DENSITY * area * ROD_LENGTH;
+                let k = area * YOUNG / (ROD_LENGTH / 2.0);
+                let r = ROD_DIAMETER / 2.0;
+                let sphere = CodeSphere {
+                    radius: r,
+                    density: mass / (4.0 / 3.0 * PI * r.powi(3)),
+                    mass,
+                    youngs_modulus: YOUNG,
+                    poisson_ratio: None,
+                };
+                let tc = PI * (mass / k).sqrt();
+                (sphere, None, None, None, None, mass, k, 1.0, tc)
+            }
+        };
+    CodeSetup {
+        case_name: format!("{}_{e}", scene.name()),
+        scene,
+        sphere,
+        other_sphere: other,
+        plate_material,
+        effective_modulus: modulus,
+        effective_radius: radius,
+        reduced_mass: mass,
+        stiffness,
+        exponent,
+        impact_velocity: IMPACT_VELOCITY,
+        target_restitution: e,
+        timestep: contact / per_contact,
+        steps: (RUN_LENGTH * per_contact).round() as u64,
+    }
+}
+
+fn setup(scene: SceneKind, e: f64, plate: Plate) -> CodeSetup {
+    setup_at(scene, e, plate, STEPS_PER_CONTACT)
+}
+
+/// The elastic contact time of the setup's own law: Hertz or `π sqrt(M/k)`.
+fn elastic_contact_time(s: &CodeSetup) -> f64 {
+    match (s.effective_modulus, s.effective_radius) {
+        (Some(modulus), Some(radius)) => {
+            hertz_contact_time(s.reduced_mass, radius, modulus, s.impact_velocity)
+        }
+        _ => PI * (s.reduced_mass / s.stiffness).sqrt(),
+    }
+}
+
+/// The number after `key=` on the script's `MILLIMPACT phys` line.
+fn logged_phys(log: &str, key: &str) -> f64 {
+    let line = log
+        .lines()
+        .find(|l| l.starts_with("MILLIMPACT phys"))
+        .expect("the script logs the contact's physics");
+    let field = line
+        .split_whitespace()
+        .find_map(|f| f.strip_prefix(&format!("{key}=")))
+        .unwrap_or_else(|| panic!("no {key} in `{line}`"));
+    field.parse().unwrap()
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// `law()` stepped the way YADE steps (leap-frog) at the run's step.
+fn stepped_law(s: &CodeSetup) -> TrajectoryMetrics {
+    let law = Yade.law(s);
+    let t = step_trajectory(
+        &law,
+        s.impact_velocity,
+        s.timestep,
+        s.steps,
+        StepScheme::LeapFrog,
+    );
+    trajectory_metrics(&t).expect("the stepped law ends its contact within the run")
+}
+
+fn run_live(s: &CodeSetup) -> (CodeRun, TrajectoryMetrics) {
+    let run = run_code(&Yade, s, &RunOptions::default()).unwrap_or_else(|e| {
+        panic!(
+            "live YADE run of {} failed (this test needs the installed `yade` 2023.02a on PATH): {e}",
+            s.case_name
+        )
+    });
+    let metrics = trajectory_metrics(&run.trajectory)
+        .unwrap_or_else(|e| panic!("{}: {e}\nlog:\n{}", s.case_name, run.log));
+    (run, metrics)
+}
+
+/// The checks every live run must pass; returns the metrics for case-specific checks.
+fn check_live(s: &CodeSetup) -> TrajectoryMetrics {
+    let (run, m) = run_live(s);
+    assert_eq!(run.code_version, "2023.02a", "{}", s.case_name);
+    assert!(run.loop_time.is_some_and(|t| t > 0.0), "{}", s.case_name);
+    // One row per iteration, plus the state after the last one (out of contact).
+    assert_eq!(
+        run.trajectory.time.len() as u64,
+        s.steps + 1,
+        "{}",
+        s.case_name
+    );
+    // YADE accumulates its clock step by step, so the last time is `steps × timestep` only to
+    // rounding; the iteration count is exact.
+    assert!(relative(*run.trajectory.time.last().unwrap(), s.duration()) < 1e-12);
+    assert!(
+        run.log
+            .contains(&format!("MILLIMPACT iterations={} ", s.steps)),
+        "{}: ran exactly `steps` iterations",
+        s.case_name
+    );
+
+    // The contact's constants as YADE built them are the ones law() reports.
+    let law = Yade.law(s);
+    match s.scene {
+        SceneKind::RodEnd => {
+            assert!(relative(logged_phys(&run.log, "kn"), law.stiffness) < 1e-12);
+            if law.damping > 0.0 {
+                assert!(relative(logged_phys(&run.log, "cn"), law.damping) < 1e-12);
+            }
+        }
+        _ => {
+            assert!(relative(logged_phys(&run.log, "kno"), law.stiffness) < 1e-12);
+            let beta = thornton_damping_ratio(s.target_restitution);
+            assert_eq!(logged_phys(&run.log, "betan"), beta, "{}", s.case_name);
+        }
+    }
+
+    // Realised COR within 0.01 of what the code can realise (the target unless reported).
+    let expected = Yade.expected_restitution(s).unwrap_or(s.target_restitution);
+    assert!(
+        (m.cor - expected).abs() < 0.01,
+        "{}: COR {} vs {expected}",
+        s.case_name,
+        m.cor
+    );
+
+    // law() stepped by leap-frog reproduces the run: the brief asks 1e-3 on the peak overlap;
+    // the reproduction is exact to rounding, so hold it to 1e-9.
+    let stepped = stepped_law(s);
+    let peak_error = relative(m.peak_deformation, stepped.peak_deformation);
+    assert!(
+        peak_error < 1e-9,
+        "{}: peak overlap {} vs stepped law {} ({peak_error:e})",
+        s.case_name,
+        m.peak_deformation,
+        stepped.peak_deformation
+    );
+    assert!((m.cor - stepped.cor).abs() < 1e-9, "{}", s.case_name);
+    assert!(
+        (m.contact_time - stepped.contact_time).abs() < 1e-6 * s.timestep,
+        "{}",
+        s.case_name
+    );
+    eprintln!(
+        "{}: COR {:.6} (target {}), peak overlap {:.6e} m, contact time {:.6e} s, peak force {:.6e} N, wall {:.2} s, loop {:.4} s",
+        s.case_name,
+        m.cor,
+        s.target_restitution,
+        m.peak_deformation,
+        m.contact_time,
+        m.peak_force,
+        run.wall_time,
+        run.loop_time.unwrap_or(f64::NAN)
+    );
+    m
+}
+
+/// At e = 1: no damping, so the contact time is the elastic one, within the step.
+fn check_elastic_contact_time(s: &CodeSetup, m: &TrajectoryMetrics) {
+    let theory = elastic_contact_time(s);
+    assert!(
+        (m.contact_time - theory).abs() < s.timestep,
+        "{}: contact time {} vs elastic theory {theory} (step {})",
+        s.case_name,
+        m.contact_time,
+        s.timestep
+    );
+    assert!((m.cor - 1.0).abs() < 1e-6, "{}: COR {}", s.case_name, m.cor);
+}
+
+// ---------------------------------------------------------------- recorded sample, no binary
+
+const SAMPLE: &str = "tests/data/yade";
+
+/// The recorded run: steel ball on a steel plate, e = 0.6944, 40 steps per contact time.
+fn sample_setup() -> CodeSetup {
+    setup_at(SceneKind::BallPlate, TARGET, Plate::Steel, 40.0)
+}
+
+#[test]
+fn parses_the_recorded_run() {
+    let log = std::fs::read_to_string(Path::new(SAMPLE).join("log.txt")).unwrap();
+    let parsed = Yade
+        .parse(&sample_setup(), Path::new(SAMPLE), &log)
+        .unwrap();
+    assert_eq!(parsed.version.as_deref(), Some("2023.02a"));
+    assert!(parsed.loop_time.is_some_and(|t| t > 0.0 && t < 1.0));
+    let t = &parsed.trajectory;
+    assert_eq!(t.time.len(), 51);
+    assert_eq!(t.time[0], 0.0);
+    assert_eq!(t.approach_velocity[0], IMPACT_VELOCITY);
+    // One ulp of gap at t = 0.
+    assert!(t.overlap[0] <= 0.0 && t.overlap[0] > -1e-17);
+    assert_eq!(*t.normal_force.last().unwrap(), 0.0);
+    let m = trajectory_metrics(t).unwrap();
+    assert!((m.cor - TARGET).abs() < 0.01, "COR {}", m.cor);
+}
+
+#[test]
+fn recorded_run_is_the_law_stepped_by_leap_frog() {
+    let s = sample_setup();
+    let log = std::fs::read_to_string(Path::new(SAMPLE).join("log.txt")).unwrap();
+    let run = Yade.parse(&s, Path::new(SAMPLE), &log).unwrap().trajectory;
+    let timestep = run.time[1];
+    let law = Yade.law(&s);
+    assert_eq!(logged_phys(&log, "betan"), thornton_damping_ratio(TARGET));
+    assert!(relative(logged_phys(&log, "kno"), law.stiffness) < 1e-12);
+    let steps = run.time.len() as u64 - 1;
+    let stepped = step_trajectory(&law, IMPACT_VELOCITY, timestep, steps, StepScheme::LeapFrog);
+    // Row by row: the same positions and half-step velocities; YADE's force column is the
+    // force computed from that row's state, the stepper's the one of the step that led to it.
+    for k in 1..run.time.len() {
+        assert!(
+            (run.overlap[k] - stepped.overlap[k]).abs() < 1e-15,
+            "row {k}"
+        );
+        assert!(
+            (run.approach_velocity[k] - stepped.approach_velocity[k]).abs() < 1e-12,
+            "row {k}"
+        );
+        if k + 1 < run.time.len() {
+            assert!(
+                (run.normal_force[k] - stepped.normal_force[k + 1]).abs()
+                    < 1e-9 * run.normal_force[k].abs().max(1.0),
+                "row {k}"
+            );
+        }
+    }
+}
+
+#[test]
+fn parser_rejects_bad_files() {
+    assert!(parse_trajectory("").is_err());
+    assert!(parse_trajectory("time,overlap\n0,0\n").is_err());
+    let header = "iter,time,overlap,approach_velocity,normal_force\n";
+    assert!(parse_trajectory(&format!("{header}0,0,0,2\n")).is_err());
+    assert!(parse_trajectory(&format!("{header}0,0,x,2,0\n")).is_err());
+    let ok = parse_trajectory(&format!(
+        "{header}0,0.0,-0.0,2.0,-0.0\n1,1e-7,2e-7,2.0,5.5\n"
+    ))
+    .unwrap();
+    assert_eq!(ok.normal_force, vec![-0.0, 5.5]);
+}
+
+#[test]
+fn render_sets_the_scene_exactly() {
+    for scene in [SceneKind::BallPlate, SceneKind::BallBall, SceneKind::RodEnd] {
+        let s = setup(scene, TARGET, Plate::Rigid);
+        let input = Yade.render(&s).unwrap();
+        assert_eq!(input.args, ["-j1", "-n", "-x", "impact.py"]);
+        assert!(!input.text.contains("{{"));
+        assert!(input.text.contains("NewtonIntegrator(damping=0.0"));
+        assert!(input.text.contains("hertzian=True"));
+        assert!(input.text.contains(&format!("DT = {:e}\n", s.timestep)));
+        assert!(input.text.contains(&format!("STEPS = {}\n", s.steps)));
+        assert!(
+            input
+                .text
+                .contains(&format!("SCENE = \"{}\"", scene.name()))
+        );
+    }
+    let rigid = Yade
+        .render(&setup(SceneKind::BallPlate, 1.0, Plate::Rigid))
+        .unwrap();
+    assert!(
+        rigid
+            .text
+            .contains(&format!("WALL_E = {RIGID_WALL_MODULUS:e}\n"))
+    );
+    let ball_ball = Yade
+        .render(&setup(SceneKind::BallBall, 1.0, Plate::Rigid))
+        .unwrap();
+    assert!(ball_ball.text.contains("V1 = 1e0\n"));
+    assert!(ball_ball.text.contains("V2 = -1e0\n"));
+}
+
+#[test]
+fn render_refuses_what_yade_cannot_set_up() {
+    let mut s = setup(SceneKind::RodEnd, 0.1, Plate::Rigid);
+    assert!(
+        Yade.render(&s).is_err(),
+        "below exp(-2) for a clamped dashpot"
+    );
+    s.target_restitution = 1.2;
+    assert!(Yade.render(&s).is_err());
+    let mut b = setup(SceneKind::BallBall, TARGET, Plate::Rigid);
+    b.other_sphere = None;
+    assert!(Yade.render(&b).is_err());
+}
+
+#[test]
+fn law_uses_the_wall_radius_and_modulus_yade_uses() {
+    // Steel plate: E* = E / (2(1-ν²)); flat wall R* = R (1 - 1e-8).
+    let s = setup(SceneKind::BallPlate, TARGET, Plate::Steel);
+    let law = Yade.law(&s);
+    assert!(relative(law.stiffness, s.stiffness) < 1.1e-8);
+    assert!(relative(law.stiffness, s.stiffness) > 0.9e-8 / 2.0);
+    assert_eq!(law.mass, s.sphere.mass);
+    assert!(law.clamp_attractive);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
+    // Rigid plate: the wall of 1e30 Pa leaves E* = E/(1-ν²) to double precision.
+    let r = setup(SceneKind::BallPlate, TARGET, Plate::Rigid);
+    let k_rigid = Yade.law(&r).stiffness;
+    assert!(relative(k_rigid, r.stiffness) < 1.1e-8);
+    // Two balls: exact Hertz, reduced mass.
+    let b = setup(SceneKind::BallBall, TARGET, Plate::Rigid);
+    let law = Yade.law(&b);
+    assert!(relative(law.stiffness, b.stiffness) < 1e-15);
+    assert!(relative(law.mass, b.reduced_mass) < 1e-15);
+}
+
+#[test]
+fn thornton_fit_matches_what_yade_logged_and_realises_the_target_below_0_9() {
+    // YADE 2023.02a logged betan = 0.11438406927047043 for en = 0.6944.
+    assert_eq!(thornton_damping_ratio(TARGET), 0.11438406927047043);
+    assert_eq!(thornton_damping_ratio(1.0), 0.0);
+    for e in [0.3, 0.5, TARGET, 0.8, 0.9] {
+        let s = setup(SceneKind::BallPlate, e, Plate::Steel);
+        let cor = accurate_metrics(&Yade.law(&s), IMPACT_VELOCITY, 1e-10)
+            .unwrap()
+            .cor;
+        assert!((cor - e).abs() < 5e-4, "e = {e}: the fit realises {cor}");
+        assert_eq!(Yade.expected_restitution(&s), None);
+    }
+    // Towards 1 the fit fails (0.99 realises about 0.979): reported, not hidden.
+    let s = setup(SceneKind::BallPlate, 0.99, Plate::Steel);
+    let reported = Yade.expected_restitution(&s).expect("fit error above 1e-3");
+    assert!((reported - 0.979).abs() < 2e-3, "{reported}");
+}
+
+#[test]
+fn clamped_linear_dashpot_realises_the_target() {
+    assert_eq!(clamped_linear_damping_ratio(1.0), Some(0.0));
+    assert_eq!(clamped_linear_damping_ratio(0.1), None);
+    for e in [0.2, 0.5, TARGET, 0.95] {
+        let zeta = clamped_linear_damping_ratio(e).unwrap();
+        // More damping than the unclamped law needs for the same e.
+        assert!(zeta > DashpotLaw::damping_ratio(e));
+        let law = DashpotLaw {
+            mass: 1.0,
+            stiffness: 1.0,
+            exponent: 1.0,
+            damping: 2.0 * zeta,
+            damping_exponent: 0.0,
+            clamp_attractive: true,
+        };
+        let cor = accurate_metrics(&law, 1.0, 1e-11).unwrap().cor;
+        assert!((cor - e).abs() < 1e-7, "e = {e}: {cor}");
+    }
+}
+
+// ---------------------------------------------------------------- live runs of `yade`
+
+#[test]
+fn live_ball_plate() {
+    let m = check_live(&setup(SceneKind::BallPlate, TARGET, Plate::Steel));
+    assert!((m.cor - TARGET).abs() < 0.01);
+    let elastic = setup(SceneKind::BallPlate, 1.0, Plate::Steel);
+    check_elastic_contact_time(&elastic, &check_live(&elastic));
+    check_live(&setup(SceneKind::BallPlate, 0.5, Plate::Steel));
+}
+
+#[test]
+fn live_ball_rigid_plate() {
+    let elastic = setup(SceneKind::BallPlate, 1.0, Plate::Rigid);
+    check_elastic_contact_time(&elastic, &check_live(&elastic));
+    check_live(&setup(SceneKind::BallPlate, TARGET, Plate::Rigid));
+}
+
+#[test]
+fn live_ball_ball() {
+    let m = check_live(&setup(SceneKind::BallBall, TARGET, Plate::Rigid));
+    assert!((m.cor - TARGET).abs() < 0.01);
+    let elastic = setup(SceneKind::BallBall, 1.0, Plate::Rigid);
+    check_elastic_contact_time(&elastic, &check_live(&elastic));
+    check_live(&setup(SceneKind::BallBall, 0.5, Plate::Rigid));
+}
+
+#[test]
+fn live_rod_end() {
+    let m = check_live(&setup(SceneKind::RodEnd, TARGET, Plate::Rigid));
+    assert!((m.cor - TARGET).abs() < 0.01);
+    let elastic = setup(SceneKind::RodEnd, 1.0, Plate::Rigid);
+    check_elastic_contact_time(&elastic, &check_live(&elastic));
+    check_live(&setup(SceneKind::RodEnd, 0.5, Plate::Rigid));
+}
