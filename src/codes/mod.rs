@@ -13,8 +13,12 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use crate::case::Case;
+use crate::exact;
 use crate::law::DashpotLaw;
-use crate::scene::SceneKind;
+use crate::scene::{Ball, Plate, Scene, SceneKind};
+use crate::solve::SolveError;
+use crate::solve::dashpot::accurate_metrics;
 
 /// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -455,6 +459,100 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Strin
         peak_force,
         contact_time: end - start,
     })
+}
+
+/// Default number of steps per estimated contact time for a code's time step.
+pub const DEFAULT_STEPS_PER_CONTACT: u32 = 1000;
+
+/// The elastic contact time of the case's spring, s: Hertz's `2 J(1.5) δ_max / v0` for the
+/// balls, `π sqrt(M/k)` for the rod. It sets the codes' time step.
+pub fn elastic_contact_time(case: &Case) -> f64 {
+    match (case.scene.effective_modulus(), case.scene.effective_radius()) {
+        (Some(e), Some(r)) => {
+            exact::hertz_elastic(case.scene.reduced_mass(), e, r, case.impact_velocity)
+                .contact_time
+        }
+        _ => std::f64::consts::PI * (case.scene.reduced_mass() / case.scene.hertz_stiffness()).sqrt(),
+    }
+}
+
+fn code_sphere(ball: &Ball) -> CodeSphere {
+    CodeSphere {
+        radius: ball.radius,
+        density: ball.density,
+        mass: ball.mass(),
+        youngs_modulus: ball.material.youngs_modulus,
+        poisson_ratio: Some(ball.material.poisson_ratio),
+    }
+}
+
+/// The equivalent setup of `case` (physics.md §5) at time step `timestep` (s), with the run
+/// length left at zero: [`prepare`] sets it from the code's own law.
+pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
+    let scene = &case.scene;
+    let (sphere, other_sphere, plate_material) = match scene {
+        Scene::BallPlate { ball, plate } => (
+            code_sphere(ball),
+            None,
+            match plate {
+                Plate::Rigid => None,
+                Plate::Elastic(m) => Some((m.youngs_modulus, m.poisson_ratio)),
+            },
+        ),
+        Scene::BallBall { ball, other } => (code_sphere(ball), Some(code_sphere(other)), None),
+        Scene::RodEnd { rod } => {
+            // A sphere of the rod's mass, as wide as the rod.
+            let radius = rod.diameter / 2.0;
+            let volume = 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+            (
+                CodeSphere {
+                    radius,
+                    density: rod.mass() / volume,
+                    mass: rod.mass(),
+                    youngs_modulus: rod.youngs_modulus,
+                    poisson_ratio: None,
+                },
+                None,
+                None,
+            )
+        }
+    };
+    CodeSetup {
+        case_name: case.name.clone(),
+        scene: scene.kind(),
+        sphere,
+        other_sphere,
+        plate_material,
+        effective_modulus: scene.effective_modulus(),
+        effective_radius: scene.effective_radius(),
+        reduced_mass: scene.reduced_mass(),
+        stiffness: scene.hertz_stiffness(),
+        exponent: scene.exponent(),
+        impact_velocity: case.impact_velocity,
+        target_restitution: case.restitution(),
+        timestep,
+        steps: 0,
+    }
+}
+
+/// The setup of `case` for `driver`, its time step either given or the elastic contact time
+/// over `steps_per_contact`, and its run length the contact time of the code's own law (at
+/// zero step error) plus 5 % and three steps: enough to end the contact, no more.
+pub fn prepare(
+    driver: &dyn CodeDriver,
+    case: &Case,
+    steps_per_contact: Option<u32>,
+    timestep: Option<f64>,
+) -> Result<CodeSetup, SolveError> {
+    let dt = timestep.unwrap_or_else(|| {
+        elastic_contact_time(case)
+            / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
+    });
+    let mut setup = setup_for_case(case, dt);
+    let law = driver.law(&setup);
+    let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
+    setup.steps = (1.05 * contact / dt).ceil() as u64 + 3;
+    Ok(setup)
 }
 
 pub mod lammps;
