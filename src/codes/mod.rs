@@ -18,7 +18,7 @@ use crate::exact;
 use crate::law::DashpotLaw;
 use crate::scene::{Ball, Plate, Scene, SceneKind};
 use crate::solve::SolveError;
-use crate::solve::dashpot::accurate_metrics;
+use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -207,6 +207,10 @@ pub trait CodeDriver: Send + Sync {
     /// The contact law this code really integrates for `setup`, as measured on the installed
     /// version (effective radius and modulus, damping formula, clamp).
     fn law(&self, setup: &CodeSetup) -> DashpotLaw;
+    /// How the code advances a step (what velocity its damping sees).
+    fn step_scheme(&self) -> StepScheme {
+        StepScheme::VelocityVerlet
+    }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a
     /// missing factor); `None` when it realises the target.
     fn expected_restitution(&self, _setup: &CodeSetup) -> Option<f64> {
