@@ -215,7 +215,7 @@ impl CodeDriver for Yade {
             }
             _ => (0.0, 0.0),
         };
-        let num = |x: f64| exact_number(x);
+        let num = exact_number;
         let values = [
             ("scene", setup.scene.name().to_string()),
             ("timestep", num(setup.timestep)),
