@@ -101,10 +101,12 @@ pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, paper::O
 /// `millimpact run`.
 pub fn run(args: &RunArgs) -> Result<String> {
     let case = Case::load(&args.case)?;
-    if args.trajectory.is_some() && args.integration.method == Method::Exact {
+    if let Some(path) = &args.trajectory
+        && args.integration.method == Method::Exact
+    {
         return Err(argument(
             "--trajectory",
-            args.trajectory.as_ref().unwrap().display(),
+            path.display(),
             "the exact method has no time history; use rk4, rk4-event, dopri5 or verlet",
         ));
     }

@@ -33,7 +33,7 @@ use super::{
 };
 use crate::law::DashpotLaw;
 use crate::scene::SceneKind;
-use crate::solve::dashpot::accurate_metrics;
+use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
 const TEMPLATE: &str = include_str!("../../scripts/yade/impact.py");
@@ -300,6 +300,10 @@ impl CodeDriver for Yade {
                 }
             }
         }
+    }
+
+    fn step_scheme(&self) -> StepScheme {
+        StepScheme::LeapFrog
     }
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {

@@ -1,0 +1,160 @@
+//! Faults of the external codes: a missing binary, a crash, a time-out and unparsable output
+//! each give a clear error naming the code and keeping its log. A fake binary placed first on
+//! PATH plays the faulty code; everything else is real.
+
+use std::os::unix::fs::PermissionsExt;
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use tempfile::TempDir;
+
+fn fake_binary(dir: &Path, name: &str, script: &str) {
+    let path = dir.join(name);
+    std::fs::write(&path, format!("#!/bin/sh\n{script}\n")).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+}
+
+fn path_with(dir: &Path) -> String {
+    format!("{}:{}", dir.display(), std::env::var("PATH").unwrap_or_default())
+}
+
+fn millimpact() -> Command {
+    let mut cmd = Command::cargo_bin("millimpact").unwrap();
+    cmd.current_dir(env!("CARGO_MANIFEST_DIR"));
+    cmd
+}
+
+/// The log file named in an error message, which must exist.
+fn kept_log(stderr: &str) -> PathBuf {
+    let at = stderr.find("log kept in ").expect("the error names the kept log") + 12;
+    let path = PathBuf::from(stderr[at..].lines().next().unwrap().trim());
+    assert!(path.is_file(), "kept log {} exists", path.display());
+    path
+}
+
+#[test]
+fn missing_binary_names_the_code_and_the_binary() {
+    let empty = TempDir::new().unwrap();
+    for (code, binary) in [("liggghts", "liggghts"), ("yade", "yade"), ("lammps", "lmp")] {
+        let out = millimpact()
+            .env("PATH", empty.path())
+            .args(["reference", "--code", code, "cases/ball_plate.toml"])
+            .assert()
+            .code(1)
+            .get_output()
+            .clone();
+        let stderr = String::from_utf8(out.stderr).unwrap();
+        assert!(
+            stderr.contains(&format!("{code}: binary `{binary}` not found on PATH")),
+            "{stderr}"
+        );
+        assert_eq!(stderr.lines().count(), 1, "one line: {stderr}");
+    }
+}
+
+#[test]
+fn crash_keeps_the_log() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    fake_binary(bin.path(), "liggghts", "echo 'ERROR: segmentation fault in fix wall/gran'; exit 3");
+    let out = millimpact()
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args(["reference", "--code", "liggghts", "cases/ball_plate.toml"])
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("liggghts: exited with exit status: 3"), "{stderr}");
+    let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+    assert!(log.contains("segmentation fault"), "{log}");
+}
+
+#[test]
+fn time_out_kills_the_code_and_keeps_the_log() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    fake_binary(bin.path(), "lmp", "echo 'LAMMPS (fake) starting'; exec sleep 30");
+    let started = std::time::Instant::now();
+    let out = millimpact()
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args([
+            "reference",
+            "--code",
+            "lammps",
+            "cases/rod_end.toml",
+            "--timeout",
+            "1",
+        ])
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    assert!(started.elapsed().as_secs_f64() < 20.0, "the code was killed");
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains("lammps: killed after the time limit of 1 s"),
+        "{stderr}"
+    );
+    let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+    assert!(log.contains("LAMMPS (fake) starting"), "{log}");
+}
+
+#[test]
+fn unparsable_output_keeps_the_log() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    // Exits cleanly but writes no trajectory, only noise.
+    fake_binary(bin.path(), "yade", "echo 'Welcome to Yade (fake)'; echo 'garbage 1 2 x'");
+    let out = millimpact()
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args(["reference", "--code", "yade", "cases/ball_ball.toml"])
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(stderr.contains("yade: unparsable output"), "{stderr}");
+    let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+    assert!(log.contains("garbage 1 2 x"), "{log}");
+}
+
+#[test]
+fn a_failing_code_loses_nothing_the_others_computed() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    fake_binary(bin.path(), "lmp", "echo 'fake lammps dies'; exit 1");
+    millimpact()
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args(["compare", "--live", "cases/rod_end.toml"])
+        .assert()
+        .code(1)
+        .stdout(
+            predicate::str::contains("liggghts")
+                .and(predicate::str::contains("yade 2023"))
+                .and(predicate::str::contains("missing: lammps: lammps: exited")),
+        )
+        .stderr(predicate::str::contains("compare --live: lammps"));
+}
+
+#[test]
+fn a_fault_writes_no_reference_file() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    let store = TempDir::new().unwrap();
+    fake_binary(bin.path(), "liggghts", "exit 9");
+    millimpact()
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args(["reference", "--code", "liggghts", "cases/ball_plate.toml", "--save"])
+        .arg("--reference")
+        .arg(store.path())
+        .assert()
+        .code(1);
+    assert_eq!(std::fs::read_dir(store.path()).unwrap().count(), 0);
+}
