@@ -1,10 +1,710 @@
-//! `millimpact precision` (being written).
+//! `millimpact precision`: error against run time for each method and each DEM code, the
+//! work–precision picture of one impact.
+//!
+//! Each method is swept over its accuracy knob (steps per undamped period for the fixed-step
+//! methods, the relative tolerance for dopri5) and each DEM code over its time step. A point
+//! records the relative errors of COR, peak deformation and contact time, the right-hand-side
+//! (force) evaluations and the run time. The errors of a method are taken against the closed
+//! forms; those of a DEM code against that code's own law integrated at zero step error, so
+//! that a code's point measures its step error only, not the difference between its damped
+//! Hertz and the paper's law (that is `compare`'s business).
+//!
+//! Timing: a method's point is the median of `--repeats` timed batches after one warm-up run;
+//! a batch repeats the impact until it lasts about a millisecond, because one impact takes
+//! microseconds and the clock's resolution and the scheduler's noise are of that order. The
+//! errors come from the warm-up run, outside the timed part. A DEM code's point is the median
+//! process wall time (and the code's own loop time) of at most three runs after one warm-up
+//! run of the code.
 
-use anyhow::Result;
+mod plot;
 
-use crate::cli::PrecisionArgs;
+use std::collections::BTreeMap;
+use std::hint::black_box;
+use std::time::{Duration, Instant};
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+use crate::case::Case;
+use crate::cli::{CodeName, PrecisionArgs};
+use crate::codes::{self, RunOptions};
+use crate::exact;
+use crate::law::PaperLaw;
+use crate::report::{self, Format};
+use crate::solve::dashpot::accurate_metrics;
+use crate::solve::paper::{self, Settings};
+use crate::solve::{Method, Stats};
+
+/// Errors below this are at the rounding floor of double precision for these figures (a few
+/// hundred ulps of an O(1) quantity after thousands of steps): such points say nothing about
+/// the order and are left out of its fit.
+pub const ROUNDING_FLOOR: f64 = 1e-12;
+
+/// Fixed-step points coarser than this many steps per period are left out of the order fit:
+/// below it the leading error term does not yet dominate (the step is a sizeable fraction of
+/// the compression phase).
+pub const ASYMPTOTIC_STEPS_PER_PERIOD: f64 = 32.0;
+
+/// A batch of repeated impacts is timed for at least this long.
+const BATCH_TIME: Duration = Duration::from_millis(1);
+
+/// Largest number of timed runs of a DEM code per point (each run is ~0.4 s).
+pub const CODE_REPEATS: u32 = 3;
+
+/// One point of the work–precision diagram.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Point {
+    /// Method name (rk4, rk4-event, dopri5, verlet) or code name (liggghts, yade, lammps).
+    pub source: String,
+    /// What was swept: `steps_per_period`, `rtol` or `steps_per_contact`.
+    pub knob: &'static str,
+    /// The knob's value.
+    pub value: f64,
+    /// |relative error| of the COR.
+    pub cor_error: f64,
+    /// |relative error| of the peak deformation.
+    pub peak_deformation_error: f64,
+    /// |relative error| of the contact time.
+    pub contact_time_error: f64,
+    /// The largest of the three errors (what the diagram plots).
+    pub max_error: f64,
+    /// Right-hand-side (force) evaluations; a DEM code evaluates the force once per step.
+    pub rhs_evaluations: u64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Median run time of one impact, s (for a code, the process wall time).
+    pub time_s: f64,
+    /// A DEM code's own loop time, median, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub loop_time_s: Option<f64>,
+    /// The step in seconds (fixed-step methods and codes).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub timestep_s: Option<f64>,
+}
+
+/// Observed orders of one source, per quantity (`None` where fewer than three points lie in
+/// the asymptotic range).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct QuantityOrders {
+    /// Of the COR.
+    pub cor: Option<f64>,
+    /// Of the peak deformation.
+    pub peak_deformation: Option<f64>,
+    /// Of the contact time.
+    pub contact_time: Option<f64>,
+}
+
+/// The two cost targets of the issue, measured in one run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Targets {
+    /// The cheapest method point with COR error ≤ 1e-10: `(source, knob value, time_s)`.
+    pub best_at_1e_10: Option<(String, f64, f64)>,
+    /// The cheapest DEM-code point: `(source, knob value, time_s)`.
+    pub fastest_code: Option<(String, f64, f64)>,
+    /// `best_at_1e_10` time over `fastest_code` time.
+    pub cost_ratio: Option<f64>,
+    /// Whether that ratio is at most 1/10,000.
+    pub cost_ratio_met: Option<bool>,
+    /// The smallest COR error any method reached: `(source, knob value, error)`.
+    pub best_cor_error: Option<(String, f64, f64)>,
+    /// Whether it is at most 1e-12.
+    pub cor_1e_12_met: Option<bool>,
+}
+
+/// Everything `millimpact precision` reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PrecisionReport {
+    /// Case name.
+    pub case: String,
+    /// Every point, by source then knob.
+    pub points: Vec<Point>,
+    /// The observed order of each fixed-step method and each code: that of the contact time,
+    /// the slowest-converging figure (see [`ORDER_NOTES`]).
+    pub orders: BTreeMap<String, f64>,
+    /// The observed order per quantity.
+    pub orders_by_quantity: BTreeMap<String, QuantityOrders>,
+    /// dopri5: slope of log(error) against log(rtol) (1 means the error is proportional to
+    /// the tolerance).
+    pub tolerance_slopes: BTreeMap<String, QuantityOrders>,
+    /// The cost targets.
+    pub targets: Targets,
+    /// Why the orders are what they are.
+    pub notes: Vec<&'static str>,
+}
+
+/// Why each method converges at the order it does; printed with every report.
+pub const ORDER_NOTES: [&str; 5] = [
+    "rk4-event: the contact time converges at order 4, RK4's own order: the turning point and \
+     the contact end are located on the step, and series cover the non-smooth y^n at the ends.",
+    "rk4-event: COR and peak deformation converge at order 5 (superconvergence): both are fixed \
+     by the energy, at the turning point (peak) and at exit (COR), and RK4's energy error on an \
+     oscillator is O(h^6) per step (its stability function matches exp(iz) to z^4 and |R(iz)|^2 \
+     = 1 - z^6/72 + z^8/576), so O(h^5) over a phase; the phase (time) error is only O(h^4).",
+    "rk4 (the paper's): the contact ends at the first step past y = 0 with no event location, \
+     so the exit time is late by up to one step (order 1 in contact time, a staircase in N) and \
+     the exit velocity is read up to one step after separation; the sign(ẏ) switch at the \
+     turning point falls inside a step, where the force jumps by 2ηCy^n and RK4's stages \
+     straddle it. Its COR error therefore depends on where the grid falls relative to the \
+     turning point and exit: erratic, with no clean order.",
+    "verlet: second order at best (the symplectic half kick, energy O(h^2)); the half-step \
+     velocity switches the damping sign at the wrong instant and the contact end is the first \
+     step past zero, so its contact time converges at order 1, like the paper's rk4.",
+    "dopri5 and the codes: dopri5's error follows its tolerance (slope ≈ 1 in log rtol); a DEM \
+     code's error is that of its velocity-Verlet or leap-frog step against its own law.",
+];
+
+/// Steps per period for the fixed-step sweeps: 19 values from 8 to 20000, geometric.
+pub fn steps_per_period_sweep() -> Vec<u32> {
+    let (lo, hi, count) = (8.0f64, 20000.0f64, 19);
+    (0..count)
+        .map(|k| (lo * (hi / lo).powf(k as f64 / (count - 1) as f64)).round() as u32)
+        .collect()
+}
+
+/// Relative tolerances for the dopri5 sweep: 1e-3 to 1e-14, one per decade.
+pub fn rtol_sweep() -> Vec<f64> {
+    (3..=14).map(|k| 10f64.powi(-k)).collect()
+}
+
+/// Steps per (elastic) contact time for a DEM code: five values from 20 to 2000, geometric.
+pub fn code_steps_sweep() -> Vec<u32> {
+    vec![20, 63, 200, 632, 2000]
+}
+
+fn relative(value: f64, reference: f64) -> f64 {
+    ((value - reference) / reference).abs()
+}
+
+fn median(values: &mut [f64]) -> f64 {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+/// One point of `method` on `law` at speed `v0` with `settings`: errors from a warm-up run,
+/// then the median of `repeats` timed batches.
+pub fn method_point(
+    law: &PaperLaw,
+    v0: f64,
+    settings: &Settings,
+    knob: &'static str,
+    value: f64,
+    repeats: u32,
+) -> Result<Point> {
+    let exact = exact::paper_impact(law, v0);
+    let started = Instant::now();
+    let warm = paper::solve(law, v0, settings)
+        .with_context(|| format!("{} at {knob} = {value}", settings.method.name()))?;
+    let single = started.elapsed().max(Duration::from_nanos(50));
+    let batch = (BATCH_TIME.as_secs_f64() / single.as_secs_f64()).ceil() as u32;
+    let batch = batch.clamp(1, 100_000);
+    let mut times: Vec<f64> = (0..repeats.max(1))
+        .map(|_| {
+            let t0 = Instant::now();
+            for _ in 0..batch {
+                // The result is not needed, only the work: keep the optimiser from dropping it.
+                let _ = black_box(paper::solve(black_box(law), black_box(v0), settings));
+            }
+            t0.elapsed().as_secs_f64() / batch as f64
+        })
+        .collect();
+    let f = &warm.figures;
+    let errors = [
+        relative(f.cor, exact.cor),
+        relative(f.peak_deformation, exact.peak_deformation),
+        relative(f.contact_time, exact.contact_time),
+    ];
+    let Stats {
+        steps,
+        rhs_evaluations,
+        ..
+    } = warm.stats;
+    Ok(Point {
+        source: settings.method.name().to_string(),
+        knob,
+        value,
+        cor_error: errors[0],
+        peak_deformation_error: errors[1],
+        contact_time_error: errors[2],
+        max_error: errors.iter().cloned().fold(0.0, f64::max),
+        rhs_evaluations,
+        steps,
+        time_s: median(&mut times),
+        loop_time_s: None,
+        timestep_s: warm.timestep,
+    })
+}
+
+/// The sweep of one method on `case`.
+pub fn method_sweep(case: &Case, method: Method, repeats: u32) -> Result<Vec<Point>> {
+    let law = case.law();
+    let base = Settings {
+        method,
+        contact: case.contact,
+        ..Settings::default()
+    };
+    match method {
+        Method::Dopri5 => rtol_sweep()
+            .into_iter()
+            .map(|rtol| {
+                let s = Settings { rtol, ..base };
+                method_point(&law, case.impact_velocity, &s, "rtol", rtol, repeats)
+            })
+            .collect(),
+        Method::Exact => anyhow::bail!("precision: the exact method has no knob to sweep"),
+        _ => steps_per_period_sweep()
+            .into_iter()
+            .map(|n| {
+                let s = Settings {
+                    steps_per_period: n,
+                    ..base
+                };
+                method_point(
+                    &law,
+                    case.impact_velocity,
+                    &s,
+                    "steps_per_period",
+                    n as f64,
+                    repeats,
+                )
+            })
+            .collect(),
+    }
+}
+
+/// The sweep of one DEM code on `case` over `steps_per_contact`, `repeats` timed runs per point
+/// (at most [`CODE_REPEATS`]) after one warm-up run of the code. A missing binary, a crash or
+/// an unparsable output is an error.
+pub fn code_sweep(
+    case: &Case,
+    code: CodeName,
+    steps_per_contact: &[u32],
+    repeats: u32,
+) -> Result<Vec<Point>> {
+    let driver =
+        codes::driver(code.name()).with_context(|| format!("no driver for {}", code.name()))?;
+    let options = RunOptions::default();
+    let repeats = repeats.clamp(1, CODE_REPEATS);
+    let mut points = Vec::new();
+    let mut warmed = false;
+    for &spc in steps_per_contact {
+        let setup = codes::prepare(driver.as_ref(), case, Some(spc), None)
+            .with_context(|| format!("{}: setting up {} steps per contact", code.name(), spc))?;
+        let reference = accurate_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
+            .with_context(|| format!("{}: its own law at zero step error", code.name()))?;
+        if !warmed {
+            // The first start of a code pays for loading its libraries from disk.
+            codes::run_code(driver.as_ref(), &setup, &options)?;
+            warmed = true;
+        }
+        let mut walls = Vec::new();
+        let mut loops = Vec::new();
+        let mut last = None;
+        for _ in 0..repeats {
+            let run = codes::run_code(driver.as_ref(), &setup, &options)?;
+            walls.push(run.wall_time);
+            if let Some(l) = run.loop_time {
+                loops.push(l);
+            }
+            last = Some(run);
+        }
+        let run = last.expect("at least one run");
+        let metrics = codes::trajectory_metrics(&run.trajectory)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", code.name()))?;
+        let errors = [
+            relative(metrics.cor, reference.cor),
+            relative(metrics.peak_deformation, reference.peak_deformation),
+            relative(metrics.contact_time, reference.contact_time),
+        ];
+        points.push(Point {
+            source: code.name().to_string(),
+            knob: "steps_per_contact",
+            value: spc as f64,
+            cor_error: errors[0],
+            peak_deformation_error: errors[1],
+            contact_time_error: errors[2],
+            max_error: errors.iter().cloned().fold(0.0, f64::max),
+            rhs_evaluations: setup.steps,
+            steps: setup.steps,
+            time_s: median(&mut walls),
+            loop_time_s: (!loops.is_empty()).then(|| median(&mut loops)),
+            timestep_s: Some(setup.timestep),
+        });
+    }
+    Ok(points)
+}
+
+/// Least-squares slope of `ln y` against `ln x`, over at least three points.
+pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = pairs
+        .iter()
+        .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+        .map(|(x, y)| (x.ln(), y.ln()))
+        .collect();
+    if logs.len() < 3 {
+        return None;
+    }
+    let n = logs.len() as f64;
+    let mx = logs.iter().map(|p| p.0).sum::<f64>() / n;
+    let my = logs.iter().map(|p| p.1).sum::<f64>() / n;
+    let sxy: f64 = logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    let sxx: f64 = logs.iter().map(|p| (p.0 - mx) * (p.0 - mx)).sum();
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// The observed orders of one source's points: the slope of log(error) against log(step),
+/// the step being `1/value` for steps per period or contact, over the points in the asymptotic
+/// range (error above [`ROUNDING_FLOOR`]; for a method, at least
+/// [`ASYMPTOTIC_STEPS_PER_PERIOD`] steps per period). For dopri5 the slope against `rtol`.
+pub fn observed_orders(points: &[Point]) -> QuantityOrders {
+    let usable =
+        |p: &&Point| p.knob != "steps_per_period" || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD;
+    let step = |p: &Point| {
+        if p.knob == "rtol" {
+            p.value
+        } else {
+            1.0 / p.value
+        }
+    };
+    let fit = |error: fn(&Point) -> f64| {
+        let pairs: Vec<(f64, f64)> = points
+            .iter()
+            .filter(usable)
+            .filter(|p| error(p) >= ROUNDING_FLOOR)
+            .map(|p| (step(p), error(p)))
+            .collect();
+        log_slope(&pairs)
+    };
+    QuantityOrders {
+        cor: fit(|p| p.cor_error),
+        peak_deformation: fit(|p| p.peak_deformation_error),
+        contact_time: fit(|p| p.contact_time_error),
+    }
+}
+
+fn targets(points: &[Point]) -> Targets {
+    let is_code = |p: &Point| p.knob == "steps_per_contact";
+    let cheapest = |it: &mut dyn Iterator<Item = &Point>| {
+        it.min_by(|a, b| a.time_s.total_cmp(&b.time_s))
+            .map(|p| (p.source.clone(), p.value, p.time_s))
+    };
+    let best_at_1e_10 = cheapest(
+        &mut points
+            .iter()
+            .filter(|p| !is_code(p) && p.cor_error <= 1e-10),
+    );
+    let fastest_code = cheapest(&mut points.iter().filter(|p| is_code(p)));
+    let cost_ratio = match (&best_at_1e_10, &fastest_code) {
+        (Some(b), Some(c)) => Some(b.2 / c.2),
+        _ => None,
+    };
+    let best_cor_error = points
+        .iter()
+        .filter(|p| !is_code(p))
+        .min_by(|a, b| a.cor_error.total_cmp(&b.cor_error))
+        .map(|p| (p.source.clone(), p.value, p.cor_error));
+    Targets {
+        cost_ratio_met: cost_ratio.map(|r| r <= 1e-4),
+        cor_1e_12_met: best_cor_error.as_ref().map(|b| b.2 <= 1e-12),
+        best_at_1e_10,
+        fastest_code,
+        cost_ratio,
+        best_cor_error,
+    }
+}
+
+/// Sweep `methods` and `codes` on `case` and assemble the report.
+pub fn precision_report(
+    case: &Case,
+    methods: &[Method],
+    code_names: &[CodeName],
+    repeats: u32,
+    code_steps: &[u32],
+) -> Result<PrecisionReport> {
+    let mut points = Vec::new();
+    for &method in methods {
+        points.extend(method_sweep(case, method, repeats)?);
+    }
+    for &code in code_names {
+        points.extend(code_sweep(case, code, code_steps, repeats)?);
+    }
+    let mut orders = BTreeMap::new();
+    let mut orders_by_quantity = BTreeMap::new();
+    let mut tolerance_slopes = BTreeMap::new();
+    let mut sources: Vec<&str> = points.iter().map(|p| p.source.as_str()).collect();
+    sources.dedup();
+    for source in sources {
+        let own: Vec<Point> = points
+            .iter()
+            .filter(|p| p.source == source)
+            .cloned()
+            .collect();
+        let q = observed_orders(&own);
+        if own[0].knob == "rtol" {
+            tolerance_slopes.insert(source.to_string(), q);
+            continue;
+        }
+        if let Some(order) = q.contact_time {
+            orders.insert(source.to_string(), order);
+        }
+        orders_by_quantity.insert(source.to_string(), q);
+    }
+    Ok(PrecisionReport {
+        case: case.name.clone(),
+        targets: targets(&points),
+        points,
+        orders,
+        orders_by_quantity,
+        tolerance_slopes,
+        notes: ORDER_NOTES.to_vec(),
+    })
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.map_or_else(|| "n/a".to_string(), |v| format!("{v:.2}"))
+}
+
+fn knob_text(p: &Point) -> String {
+    match p.knob {
+        "rtol" => format!("rtol {:.0e}", p.value),
+        "steps_per_period" => format!("{} /period", p.value),
+        _ => format!("{} /contact", p.value),
+    }
+}
+
+const HEADERS: [&str; 9] = [
+    "source",
+    "knob",
+    "COR error",
+    "peak error",
+    "contact-time error",
+    "rhs evals",
+    "time",
+    "code loop time",
+    "step (s)",
+];
+
+fn rows(report: &PrecisionReport) -> Vec<Vec<String>> {
+    report
+        .points
+        .iter()
+        .map(|p| {
+            vec![
+                p.source.clone(),
+                knob_text(p),
+                format!("{:.2e}", p.cor_error),
+                format!("{:.2e}", p.peak_deformation_error),
+                format!("{:.2e}", p.contact_time_error),
+                p.rhs_evaluations.to_string(),
+                report::seconds(p.time_s),
+                p.loop_time_s.map_or_else(String::new, report::seconds),
+                p.timestep_s
+                    .map_or_else(String::new, |s| format!("{s:.3e}")),
+            ]
+        })
+        .collect()
+}
+
+fn order_rows(report: &PrecisionReport) -> Vec<Vec<String>> {
+    let mut out: Vec<Vec<String>> = report
+        .orders_by_quantity
+        .iter()
+        .map(|(source, q)| {
+            vec![
+                source.clone(),
+                "log step".to_string(),
+                opt(q.cor),
+                opt(q.peak_deformation),
+                opt(q.contact_time),
+                opt(report.orders.get(source).copied()),
+            ]
+        })
+        .collect();
+    for (source, q) in &report.tolerance_slopes {
+        out.push(vec![
+            source.clone(),
+            "log rtol".to_string(),
+            opt(q.cor),
+            opt(q.peak_deformation),
+            opt(q.contact_time),
+            String::new(),
+        ]);
+    }
+    out
+}
+
+const ORDER_HEADERS: [&str; 6] = [
+    "source",
+    "slope against",
+    "COR",
+    "peak",
+    "contact time",
+    "order (contact time)",
+];
+
+fn target_lines(t: &Targets) -> Vec<String> {
+    let mut lines = Vec::new();
+    match (&t.best_at_1e_10, &t.fastest_code, t.cost_ratio) {
+        (Some(b), Some(c), Some(r)) => lines.push(format!(
+            "cost: cheapest impact at COR error ≤ 1e-10 is {} at {} ({}); fastest DEM-code run is \
+             {} at {} steps/contact ({}); ratio {:.2e} (target ≤ 1e-4: {})",
+            b.0,
+            b.1,
+            report::seconds(b.2),
+            c.0,
+            c.1,
+            report::seconds(c.2),
+            r,
+            if r <= 1e-4 { "met" } else { "NOT met" }
+        )),
+        (Some(b), _, _) => lines.push(format!(
+            "cost: cheapest impact at COR error ≤ 1e-10 is {} at {} ({}); no DEM code swept",
+            b.0,
+            b.1,
+            report::seconds(b.2)
+        )),
+        _ => lines.push("cost: no method reached COR error ≤ 1e-10".to_string()),
+    }
+    if let Some(b) = &t.best_cor_error {
+        lines.push(format!(
+            "best COR error: {:.2e} by {} at {} (target ≤ 1e-12: {})",
+            b.2,
+            b.0,
+            b.1,
+            if b.2 <= 1e-12 { "met" } else { "NOT met" }
+        ));
+    }
+    lines
+}
+
+impl PrecisionReport {
+    /// The report as a Markdown document: points, orders, targets and notes.
+    pub fn markdown(&self) -> String {
+        let mut text = format!("### Work–precision, case {}\n\n", self.case);
+        text += &report::markdown_table(&HEADERS, &rows(self));
+        text += "\nObserved orders (slope of log error):\n\n";
+        text += &report::markdown_table(&ORDER_HEADERS, &order_rows(self));
+        text += "\n";
+        for line in target_lines(&self.targets) {
+            text += &format!("- {line}\n");
+        }
+        text += "\n";
+        for note in &self.notes {
+            text += &format!("- {note}\n");
+        }
+        text
+    }
+
+    /// The report as aligned tables for people.
+    pub fn table(&self) -> String {
+        let mut t = report::new_table(&HEADERS);
+        for row in rows(self) {
+            t.add_row(row);
+        }
+        let mut o = report::new_table(&ORDER_HEADERS);
+        for row in order_rows(self) {
+            o.add_row(row);
+        }
+        let mut text = format!(
+            "work–precision, case {}\n{t}\nobserved orders\n{o}\n",
+            self.case
+        );
+        for line in target_lines(&self.targets) {
+            text += &format!("{line}\n");
+        }
+        for note in &self.notes {
+            text += &format!("- {note}\n");
+        }
+        text
+    }
+}
 
 /// Run `millimpact precision`.
-pub fn precision_command(_args: &PrecisionArgs) -> Result<String> {
-    anyhow::bail!("precision: not available yet")
+pub fn precision_command(args: &PrecisionArgs) -> Result<String> {
+    let case = Case::load(&args.case)?;
+    if args.repeats == 0 {
+        return Err(crate::app::UserError::Argument {
+            option: "--repeats".to_string(),
+            value: "0".to_string(),
+            allowed: "must be at least 1".to_string(),
+        }
+        .into());
+    }
+    let methods: Vec<Method> = if args.methods.is_empty() {
+        vec![
+            Method::Rk4,
+            Method::Rk4Event,
+            Method::Dopri5,
+            Method::Verlet,
+        ]
+    } else {
+        args.methods.clone()
+    };
+    if methods.contains(&Method::Exact) {
+        return Err(crate::app::UserError::Argument {
+            option: "--methods".to_string(),
+            value: "exact".to_string(),
+            allowed: "rk4, rk4-event, dopri5 or verlet: the closed forms have no error to sweep"
+                .to_string(),
+        }
+        .into());
+    }
+    let report = precision_report(
+        &case,
+        &methods,
+        &args.codes,
+        args.repeats,
+        &code_steps_sweep(),
+    )?;
+    if let Some(path) = &args.plot {
+        let svg = plot::work_precision_svg(&report)?;
+        report::write_atomic(path, svg.as_bytes())
+            .with_context(|| format!("writing the diagram to {}", path.display()))?;
+    }
+    Ok(match args.format {
+        Format::Table => report.table(),
+        Format::Json => serde_json::to_string_pretty(&report)? + "\n",
+        Format::Csv => report::csv_string(&csv_rows(&report))?,
+        Format::Markdown => report.markdown(),
+    })
+}
+
+/// A point as one flat CSV row.
+#[derive(Serialize)]
+struct CsvRow<'a> {
+    source: &'a str,
+    knob: &'a str,
+    value: f64,
+    cor_error: f64,
+    peak_deformation_error: f64,
+    contact_time_error: f64,
+    rhs_evaluations: u64,
+    steps: u64,
+    time_s: f64,
+    loop_time_s: Option<f64>,
+    timestep_s: Option<f64>,
+}
+
+fn csv_rows(report: &PrecisionReport) -> Vec<CsvRow<'_>> {
+    report
+        .points
+        .iter()
+        .map(|p| CsvRow {
+            source: &p.source,
+            knob: p.knob,
+            value: p.value,
+            cor_error: p.cor_error,
+            peak_deformation_error: p.peak_deformation_error,
+            contact_time_error: p.contact_time_error,
+            rhs_evaluations: p.rhs_evaluations,
+            steps: p.steps,
+            time_s: p.time_s,
+            loop_time_s: p.loop_time_s,
+            timestep_s: p.timestep_s,
+        })
+        .collect()
 }

@@ -1,0 +1,93 @@
+//! The work–precision diagram as SVG: error (x, log) against run time (y, log), one line per
+//! method or code, in the manner of the SciML benchmarks.
+
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+
+use super::PrecisionReport;
+
+/// Errors are drawn no lower than this (an exact zero has no place on a log axis).
+const SMALLEST_ERROR: f64 = 1e-17;
+
+/// Render `report` as an SVG document.
+pub fn work_precision_svg(report: &PrecisionReport) -> Result<String> {
+    let mut sources: Vec<&str> = report.points.iter().map(|p| p.source.as_str()).collect();
+    sources.dedup();
+    let series: Vec<(&str, Vec<(f64, f64)>)> = sources
+        .iter()
+        .map(|s| {
+            let points = report
+                .points
+                .iter()
+                .filter(|p| p.source == *s)
+                .map(|p| (p.max_error.max(SMALLEST_ERROR), p.time_s))
+                .collect();
+            (*s, points)
+        })
+        .collect();
+    let all = series.iter().flat_map(|(_, p)| p.iter());
+    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in all {
+        x_lo = x_lo.min(x);
+        x_hi = x_hi.max(x);
+        y_lo = y_lo.min(y);
+        y_hi = y_hi.max(y);
+    }
+    if series.is_empty() || !(x_lo > 0.0 && y_lo > 0.0) {
+        return Err(anyhow!("no points to plot"));
+    }
+    // Whole decades around the data, so that the ticks fall on powers of ten.
+    let decade_below = |v: f64| 10f64.powf(v.log10().floor());
+    let decade_above =
+        |v: f64| 10f64.powf(v.log10().ceil() + if v.log10().fract() == 0.0 { 1.0 } else { 0.0 });
+    let x_range = decade_below(x_lo)..decade_above(x_hi);
+    let y_range = decade_below(y_lo)..decade_above(y_hi);
+
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (960, 640)).into_drawing_area();
+        let fail = |e: &dyn std::fmt::Display| anyhow!("drawing the diagram: {e}");
+        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!("Work–precision, case {}", report.case),
+                ("sans-serif", 22),
+            )
+            .margin(20)
+            .x_label_area_size(55)
+            .y_label_area_size(80)
+            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("largest relative error of COR, peak deformation, contact time")
+            .y_desc("run time of one impact (s)")
+            .x_label_formatter(&|x| format!("{x:.0e}"))
+            .y_label_formatter(&|y| format!("{y:.0e}"))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        for (i, (name, points)) in series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
+                .map_err(|e| fail(&e))?
+                .label(*name)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
+                });
+            chart
+                .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
+                .map_err(|e| fail(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 16))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        root.present().map_err(|e| fail(&e))?;
+    }
+    Ok(svg)
+}
