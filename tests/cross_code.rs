@@ -1,0 +1,134 @@
+//! Cross-code checks against the installed LIGGGHTS, YADE and LAMMPS (installed by
+//! scripts/install-dem-codes.sh; a missing code fails these tests, it does not skip them).
+//!
+//! For every code and canonical case, live: the realised COR is the target (or the code's
+//! documented value), the code's own law stepped as the code steps reproduces its peak, the
+//! unexplained remainder against the paper's law is below 1e-3, the elastic contact time is
+//! Hertz's (or the linear spring's) within the step error, and the live run reproduces the
+//! stored reference in reference/.
+
+use std::path::Path;
+use std::time::Duration;
+
+use millimpact::case::Case;
+use millimpact::codes::{self, CodeDriver};
+use millimpact::compare::elastic_figures;
+use millimpact::references::{
+    self, COR_TOLERANCE, EMULATION_TOLERANCE, REMAINDER_TOLERANCE, ReferenceRecord,
+};
+
+const CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
+const TIMEOUT: Duration = Duration::from_secs(300);
+
+fn case(name: &str) -> Case {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("cases/{name}.toml"));
+    Case::load(&path).unwrap()
+}
+
+fn live(driver: &dyn CodeDriver, case: &Case) -> ReferenceRecord {
+    references::run_reference(driver, case, None, None, TIMEOUT).unwrap_or_else(|e| {
+        panic!(
+            "{} on {}: {e:#} (the DEM codes must be installed: bash scripts/install-dem-codes.sh)",
+            driver.name(),
+            case.name
+        )
+    })
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+#[test]
+fn each_code_realises_the_target_and_its_own_law() {
+    for driver in codes::all_drivers() {
+        for name in CASES {
+            let r = live(driver.as_ref(), &case(name));
+            let who = format!("{} on {name}", r.code);
+            assert!(
+                (r.cor - r.cor_target()).abs() <= COR_TOLERANCE,
+                "{who}: COR {} vs target {}",
+                r.cor,
+                r.cor_target()
+            );
+            assert!(
+                relative(r.peak_deformation, r.law_at_step.peak_deformation) <= EMULATION_TOLERANCE,
+                "{who}: peak {} vs own law stepped {}",
+                r.peak_deformation,
+                r.law_at_step.peak_deformation
+            );
+            let remainder = r.attribution().remainder;
+            for (what, value) in [
+                ("COR", remainder.cor),
+                ("peak", remainder.peak_deformation),
+                ("contact time", remainder.contact_time),
+            ] {
+                assert!(
+                    value.abs() <= REMAINDER_TOLERANCE,
+                    "{who}: unexplained remainder of the {what} {value:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn elastic_contact_time_is_hertz_within_the_step() {
+    for driver in codes::all_drivers() {
+        for name in CASES {
+            let elastic = case(name).with_loss_coefficient(0.0);
+            let r = live(driver.as_ref(), &elastic);
+            let (_, theory) = elastic_figures(&elastic);
+            assert!(
+                (r.contact_time - theory).abs() <= r.timestep,
+                "{} on {name}: elastic contact time {} vs theory {} (step {})",
+                r.code,
+                r.contact_time,
+                theory,
+                r.timestep
+            );
+            assert!((r.cor - 1.0).abs() <= 1e-6, "{}: elastic COR {}", r.code, r.cor);
+        }
+    }
+}
+
+#[test]
+fn a_live_run_reproduces_the_stored_reference() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+    for driver in codes::all_drivers() {
+        for name in CASES {
+            let c = case(name);
+            let stored = references::find_stored(&folder, driver.name(), name, c.loss_coefficient)
+                .unwrap()
+                .unwrap_or_else(|| panic!("no stored {} {name}", driver.name()));
+            let now = live(driver.as_ref(), &c);
+            assert_eq!(now.input_sha256, stored.input_sha256, "same input");
+            for (what, a, b) in [
+                ("COR", now.cor, stored.cor),
+                ("peak", now.peak_deformation, stored.peak_deformation),
+                ("contact time", now.contact_time, stored.contact_time),
+            ] {
+                assert!(
+                    relative(a, b) <= 1e-9,
+                    "{} on {name}: {what} now {a} vs stored {b}",
+                    driver.name()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn stored_references_cover_every_code_case_and_the_elastic_case() {
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+    for driver in codes::all_drivers() {
+        for name in CASES {
+            let file =
+                references::load(&references::reference_path(&folder, driver.name(), name))
+                    .unwrap();
+            let etas: Vec<f64> = file.runs.iter().map(|r| r.loss_coefficient).collect();
+            assert!(etas.len() >= 2, "{} {name}: {etas:?}", driver.name());
+            assert!(etas.contains(&0.0), "{} {name}: no elastic run", driver.name());
+        }
+    }
+}
