@@ -59,7 +59,11 @@ pub fn settings(args: &IntegrationArgs, case: &Case, record: bool) -> Result<Set
     }
     if let Some(dt) = args.timestep {
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(argument("--timestep", dt, "must be a finite number > 0 (seconds)"));
+            return Err(argument(
+                "--timestep",
+                dt,
+                "must be a finite number > 0 (seconds)",
+            ));
         }
         if !args.method.is_fixed_step() {
             return Err(argument(
@@ -70,7 +74,11 @@ pub fn settings(args: &IntegrationArgs, case: &Case, record: bool) -> Result<Set
         }
     }
     if !(args.periods.is_finite() && args.periods > 0.0) {
-        return Err(argument("--periods", args.periods, "must be a finite number > 0"));
+        return Err(argument(
+            "--periods",
+            args.periods,
+            "must be a finite number > 0",
+        ));
     }
     Ok(Settings {
         method: args.method,
@@ -85,16 +93,15 @@ pub fn settings(args: &IntegrationArgs, case: &Case, record: bool) -> Result<Set
 
 /// Integrate `case` with `settings` and report against the closed forms.
 pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, paper::Outcome)> {
-    let outcome = paper::solve(&case.law(), case.impact_velocity, settings).map_err(|e| {
-        match e {
+    let outcome =
+        paper::solve(&case.law(), case.impact_velocity, settings).map_err(|e| match e {
             SolveError::Unstable { .. } => anyhow::Error::from(UserError::Unsolvable {
                 case: case.path.display().to_string(),
                 source: e,
             }),
             other => anyhow::Error::from(other)
                 .context(format!("{}: integration failed", case.path.display())),
-        }
-    })?;
+        })?;
     Ok((RunReport::new(case, settings.method, &outcome), outcome))
 }
 
@@ -119,7 +126,15 @@ pub fn run(args: &RunArgs) -> Result<String> {
         Format::Markdown => {
             let row = report.row();
             report::markdown_table(
-                &["case", "method", "η", "COR", "COR error", "peak (m)", "contact time (s)"],
+                &[
+                    "case",
+                    "method",
+                    "η",
+                    "COR",
+                    "COR error",
+                    "peak (m)",
+                    "contact time (s)",
+                ],
                 &[vec![
                     row.case,
                     row.method.to_string(),
@@ -145,7 +160,9 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>> {
     let allowed = "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0";
     let parts: Vec<&str> = text.split(':').collect();
     let numbers: Option<Vec<f64>> = parts.iter().map(|p| p.trim().parse().ok()).collect();
-    let Some([start, stop, step]) = numbers.as_deref().and_then(|v| <[f64; 3]>::try_from(v).ok())
+    let Some([start, stop, step]) = numbers
+        .as_deref()
+        .and_then(|v| <[f64; 3]>::try_from(v).ok())
     else {
         return Err(argument("--loss-coefficient", text, allowed));
     };
@@ -155,7 +172,11 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>> {
     }
     let count = ((stop - start) / step + 1e-9).floor() as usize + 1;
     if count > 100_000 {
-        return Err(argument("--loss-coefficient", text, "at most 100000 values"));
+        return Err(argument(
+            "--loss-coefficient",
+            text,
+            "at most 100000 values",
+        ));
     }
     Ok((0..count).map(|i| start + i as f64 * step).collect())
 }
@@ -227,13 +248,23 @@ pub struct VerifyRow {
 /// The case files in `dir`, sorted by name.
 pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| argument("--cases", dir.display(), &format!("cannot read the folder: {e}")))?
+        .map_err(|e| {
+            argument(
+                "--cases",
+                dir.display(),
+                &format!("cannot read the folder: {e}"),
+            )
+        })?
         .filter_map(|entry| entry.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
     if files.is_empty() {
-        return Err(argument("--cases", dir.display(), "holds no .toml case files"));
+        return Err(argument(
+            "--cases",
+            dir.display(),
+            "holds no .toml case files",
+        ));
     }
     Ok(files)
 }
@@ -275,7 +306,10 @@ pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>> {
 /// `millimpact verify`.
 pub fn verify(args: &VerifyArgs) -> Result<String> {
     let mut rows = verify_cases(&args.cases)?;
-    rows.extend(crate::references::verify_rows(&args.reference, &args.cases)?);
+    rows.extend(crate::references::verify_rows(
+        &args.reference,
+        &args.cases,
+    )?);
     let failed = rows.iter().filter(|r| !r.pass).count();
     let text = match args.format {
         Format::Json => serde_json::to_string_pretty(&rows)? + "\n",
@@ -347,7 +381,11 @@ pub fn verify(args: &VerifyArgs) -> Result<String> {
     };
     if failed > 0 {
         print!("{text}");
-        return Err(CheckFailed(format!("verify: {failed} of {} checks disagree", rows.len())).into());
+        return Err(CheckFailed(format!(
+            "verify: {failed} of {} checks disagree",
+            rows.len()
+        ))
+        .into());
     }
     Ok(text)
 }

@@ -282,7 +282,10 @@ impl Reader<'_> {
                 return Err(self.error(
                     &format!("{table}.{key}"),
                     &value.to_string(),
-                    &format!("unknown or unused key; [{table}] takes {}", allowed.join(", ")),
+                    &format!(
+                        "unknown or unused key; [{table}] takes {}",
+                        allowed.join(", ")
+                    ),
                 ));
             }
         }
@@ -361,13 +364,19 @@ impl Reader<'_> {
         let rigid = match table.get("rigid") {
             None => false,
             Some(Value::Boolean(b)) => *b,
-            Some(v) => return Err(self.error("plate.rigid", &v.to_string(), "must be true or false")),
+            Some(v) => {
+                return Err(self.error("plate.rigid", &v.to_string(), "must be true or false"));
+            }
         };
         if rigid {
             self.only_keys(table, "plate", &["rigid"])?;
             return Ok(Plate::Rigid);
         }
-        self.only_keys(table, "plate", &["rigid", "youngs_modulus", "poisson_ratio"])?;
+        self.only_keys(
+            table,
+            "plate",
+            &["rigid", "youngs_modulus", "poisson_ratio"],
+        )?;
         Ok(Plate::Elastic(Material {
             youngs_modulus: self.positive(table, "plate", "youngs_modulus")?,
             poisson_ratio: self.poisson(table, "plate")?,
@@ -376,7 +385,11 @@ impl Reader<'_> {
 
     fn rod(&self, t: &Table) -> Result<Rod, CaseError> {
         let table = self.table(t, "rod")?;
-        self.only_keys(table, "rod", &["diameter", "length", "density", "youngs_modulus"])?;
+        self.only_keys(
+            table,
+            "rod",
+            &["diameter", "length", "density", "youngs_modulus"],
+        )?;
         Ok(Rod {
             diameter: self.positive(table, "rod", "diameter")?,
             length: self.positive(table, "rod", "length")?,

@@ -119,7 +119,10 @@ impl Baseline {
 pub fn elastic_figures(case: &Case) -> (f64, f64) {
     let m = case.scene.reduced_mass();
     let v0 = case.impact_velocity;
-    match (case.scene.effective_modulus(), case.scene.effective_radius()) {
+    match (
+        case.scene.effective_modulus(),
+        case.scene.effective_radius(),
+    ) {
         (Some(e), Some(r)) => {
             let h = exact::hertz_elastic(m, e, r, v0);
             (h.peak_deformation, h.contact_time)
@@ -244,7 +247,12 @@ pub fn compare_case(
 }
 
 fn short_version(version: &str) -> String {
-    version.split(',').next().unwrap_or(version).trim().to_string()
+    version
+        .split(',')
+        .next()
+        .unwrap_or(version)
+        .trim()
+        .to_string()
 }
 
 /// Run `millimpact compare`.
@@ -369,7 +377,11 @@ fn render(comparisons: &[CaseComparison], format: Format, live: bool) -> Result<
                     c.case,
                     c.loss_coefficient,
                     exact::restitution(c.loss_coefficient),
-                    if live { ", codes run now" } else { ", stored references" }
+                    if live {
+                        ", codes run now"
+                    } else {
+                        ", stored references"
+                    }
                 );
                 let rows: Vec<Vec<String>> = c.rows.iter().map(cells).collect();
                 let attr: Vec<Vec<String>> = c.attribution.iter().map(attribution_cells).collect();
@@ -388,7 +400,8 @@ fn render(comparisons: &[CaseComparison], format: Format, live: bool) -> Result<
                     for r in attr {
                         a.add_row(r);
                     }
-                    text += &format!("{title}\n{t}\ndifference from the paper's law, split:\n{a}\n");
+                    text +=
+                        &format!("{title}\n{t}\ndifference from the paper's law, split:\n{a}\n");
                 }
                 for m in &c.missing {
                     text += &format!("missing: {m}\n");

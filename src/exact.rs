@@ -78,8 +78,8 @@ pub fn hertz_elastic(
     impact_velocity: f64,
 ) -> HertzElastic {
     let v0 = impact_velocity;
-    let peak = (15.0 * mass * v0 * v0 / (16.0 * effective_modulus * effective_radius.sqrt()))
-        .powf(0.4);
+    let peak =
+        (15.0 * mass * v0 * v0 / (16.0 * effective_modulus * effective_radius.sqrt())).powf(0.4);
     HertzElastic {
         peak_deformation: peak,
         contact_time: 2.0 * j_integral(1.5) * peak / v0,
@@ -93,7 +93,11 @@ mod tests {
 
     #[test]
     fn j_integral_known_values() {
-        assert_relative_eq!(j_integral(1.0), std::f64::consts::FRAC_PI_2, max_relative = 1e-15);
+        assert_relative_eq!(
+            j_integral(1.0),
+            std::f64::consts::FRAC_PI_2,
+            max_relative = 1e-15
+        );
         assert_relative_eq!(j_integral(1.5), 1.4716376, max_relative = 1e-7);
     }
 

@@ -313,7 +313,8 @@ pub fn verify_rows(folder: &Path, _cases: &Path) -> Result<Vec<VerifyRow>> {
             );
             let now = trajectory_metrics(&stepped)
                 .map_err(|reason| anyhow::anyhow!("{}: {reason}", path.display()))?;
-            let peak_error = (record.peak_deformation - now.peak_deformation) / now.peak_deformation;
+            let peak_error =
+                (record.peak_deformation - now.peak_deformation) / now.peak_deformation;
             let time_error = (record.contact_time - now.contact_time) / now.contact_time;
             let cor_error = record.cor - record.cor_target();
             let remainder = record.attribution().remainder;

@@ -120,12 +120,7 @@ impl RunReport {
             case.scene.effective_modulus(),
             case.scene.effective_radius(),
         ) {
-            (Some(e), Some(r)) => Some(exact::hertz_elastic(
-                law.mass,
-                e,
-                r,
-                case.impact_velocity,
-            )),
+            (Some(e), Some(r)) => Some(exact::hertz_elastic(law.mass, e, r, case.impact_velocity)),
             _ => None,
         };
         let Stats {
@@ -239,7 +234,11 @@ impl RunReport {
             t.add_row(vec![
                 name.to_string(),
                 sci(run),
-                if exact.is_nan() { "".into() } else { sci(exact) },
+                if exact.is_nan() {
+                    "".into()
+                } else {
+                    sci(exact)
+                },
                 error.map(|e| format!("{e:+.2e}")).unwrap_or_default(),
             ]);
         }
@@ -273,7 +272,10 @@ impl RunReport {
         }
         if !self.crossing_speeds.is_empty() {
             let speeds: Vec<String> = self.crossing_speeds.iter().map(|s| sci(*s)).collect();
-            text += &format!("speeds through zero approach (m/s): {}\n", speeds.join(", "));
+            text += &format!(
+                "speeds through zero approach (m/s): {}\n",
+                speeds.join(", ")
+            );
         }
         text
     }

@@ -16,7 +16,11 @@ fn fake_binary(dir: &Path, name: &str, script: &str) {
 }
 
 fn path_with(dir: &Path) -> String {
-    format!("{}:{}", dir.display(), std::env::var("PATH").unwrap_or_default())
+    format!(
+        "{}:{}",
+        dir.display(),
+        std::env::var("PATH").unwrap_or_default()
+    )
 }
 
 fn millimpact() -> Command {
@@ -27,7 +31,10 @@ fn millimpact() -> Command {
 
 /// The log file named in an error message, which must exist.
 fn kept_log(stderr: &str) -> PathBuf {
-    let at = stderr.find("log kept in ").expect("the error names the kept log") + 12;
+    let at = stderr
+        .find("log kept in ")
+        .expect("the error names the kept log")
+        + 12;
     let path = PathBuf::from(stderr[at..].lines().next().unwrap().trim());
     assert!(path.is_file(), "kept log {} exists", path.display());
     path
@@ -36,7 +43,11 @@ fn kept_log(stderr: &str) -> PathBuf {
 #[test]
 fn missing_binary_names_the_code_and_the_binary() {
     let empty = TempDir::new().unwrap();
-    for (code, binary) in [("liggghts", "liggghts"), ("yade", "yade"), ("lammps", "lmp")] {
+    for (code, binary) in [
+        ("liggghts", "liggghts"),
+        ("yade", "yade"),
+        ("lammps", "lmp"),
+    ] {
         let out = millimpact()
             .env("PATH", empty.path())
             .args(["reference", "--code", code, "cases/ball_plate.toml"])
@@ -57,7 +68,11 @@ fn missing_binary_names_the_code_and_the_binary() {
 fn crash_keeps_the_log() {
     let bin = TempDir::new().unwrap();
     let scratch = TempDir::new().unwrap();
-    fake_binary(bin.path(), "liggghts", "echo 'ERROR: segmentation fault in fix wall/gran'; exit 3");
+    fake_binary(
+        bin.path(),
+        "liggghts",
+        "echo 'ERROR: segmentation fault in fix wall/gran'; exit 3",
+    );
     let out = millimpact()
         .env("PATH", path_with(bin.path()))
         .env("TMPDIR", scratch.path())
@@ -67,7 +82,10 @@ fn crash_keeps_the_log() {
         .get_output()
         .clone();
     let stderr = String::from_utf8(out.stderr).unwrap();
-    assert!(stderr.contains("liggghts: exited with exit status: 3"), "{stderr}");
+    assert!(
+        stderr.contains("liggghts: exited with exit status: 3"),
+        "{stderr}"
+    );
     let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
     assert!(log.contains("segmentation fault"), "{log}");
 }
@@ -76,7 +94,11 @@ fn crash_keeps_the_log() {
 fn time_out_kills_the_code_and_keeps_the_log() {
     let bin = TempDir::new().unwrap();
     let scratch = TempDir::new().unwrap();
-    fake_binary(bin.path(), "lmp", "echo 'LAMMPS (fake) starting'; exec sleep 30");
+    fake_binary(
+        bin.path(),
+        "lmp",
+        "echo 'LAMMPS (fake) starting'; exec sleep 30",
+    );
     let started = std::time::Instant::now();
     let out = millimpact()
         .env("PATH", path_with(bin.path()))
@@ -93,7 +115,10 @@ fn time_out_kills_the_code_and_keeps_the_log() {
         .code(1)
         .get_output()
         .clone();
-    assert!(started.elapsed().as_secs_f64() < 20.0, "the code was killed");
+    assert!(
+        started.elapsed().as_secs_f64() < 20.0,
+        "the code was killed"
+    );
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert!(
         stderr.contains("lammps: killed after the time limit of 1 s"),
@@ -108,7 +133,11 @@ fn unparsable_output_keeps_the_log() {
     let bin = TempDir::new().unwrap();
     let scratch = TempDir::new().unwrap();
     // Exits cleanly but writes no trajectory, only noise.
-    fake_binary(bin.path(), "yade", "echo 'Welcome to Yade (fake)'; echo 'garbage 1 2 x'");
+    fake_binary(
+        bin.path(),
+        "yade",
+        "echo 'Welcome to Yade (fake)'; echo 'garbage 1 2 x'",
+    );
     let out = millimpact()
         .env("PATH", path_with(bin.path()))
         .env("TMPDIR", scratch.path())
@@ -151,7 +180,13 @@ fn a_fault_writes_no_reference_file() {
     millimpact()
         .env("PATH", path_with(bin.path()))
         .env("TMPDIR", scratch.path())
-        .args(["reference", "--code", "liggghts", "cases/ball_plate.toml", "--save"])
+        .args([
+            "reference",
+            "--code",
+            "liggghts",
+            "cases/ball_plate.toml",
+            "--save",
+        ])
         .arg("--reference")
         .arg(store.path())
         .assert()

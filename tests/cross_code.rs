@@ -87,7 +87,12 @@ fn elastic_contact_time_is_hertz_within_the_step() {
                 theory,
                 r.timestep
             );
-            assert!((r.cor - 1.0).abs() <= 1e-6, "{}: elastic COR {}", r.code, r.cor);
+            assert!(
+                (r.cor - 1.0).abs() <= 1e-6,
+                "{}: elastic COR {}",
+                r.code,
+                r.cor
+            );
         }
     }
 }
@@ -123,12 +128,15 @@ fn stored_references_cover_every_code_case_and_the_elastic_case() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
     for driver in codes::all_drivers() {
         for name in CASES {
-            let file =
-                references::load(&references::reference_path(&folder, driver.name(), name))
-                    .unwrap();
+            let file = references::load(&references::reference_path(&folder, driver.name(), name))
+                .unwrap();
             let etas: Vec<f64> = file.runs.iter().map(|r| r.loss_coefficient).collect();
             assert!(etas.len() >= 2, "{} {name}: {etas:?}", driver.name());
-            assert!(etas.contains(&0.0), "{} {name}: no elastic run", driver.name());
+            assert!(
+                etas.contains(&0.0),
+                "{} {name}: no elastic run",
+                driver.name()
+            );
         }
     }
 }

@@ -135,7 +135,9 @@ pub struct RenderedInput {
 #[derive(Debug, Error)]
 pub enum CodeError {
     /// The binary is not on PATH.
-    #[error("{code}: binary `{binary}` not found on PATH (install it with scripts/install-dem-codes.sh)")]
+    #[error(
+        "{code}: binary `{binary}` not found on PATH (install it with scripts/install-dem-codes.sh)"
+    )]
     MissingBinary {
         /// Code name.
         code: String,
@@ -471,12 +473,16 @@ pub const DEFAULT_STEPS_PER_CONTACT: u32 = 1000;
 /// The elastic contact time of the case's spring, s: Hertz's `2 J(1.5) δ_max / v0` for the
 /// balls, `π sqrt(M/k)` for the rod. It sets the codes' time step.
 pub fn elastic_contact_time(case: &Case) -> f64 {
-    match (case.scene.effective_modulus(), case.scene.effective_radius()) {
+    match (
+        case.scene.effective_modulus(),
+        case.scene.effective_radius(),
+    ) {
         (Some(e), Some(r)) => {
-            exact::hertz_elastic(case.scene.reduced_mass(), e, r, case.impact_velocity)
-                .contact_time
+            exact::hertz_elastic(case.scene.reduced_mass(), e, r, case.impact_velocity).contact_time
         }
-        _ => std::f64::consts::PI * (case.scene.reduced_mass() / case.scene.hertz_stiffness()).sqrt(),
+        _ => {
+            std::f64::consts::PI * (case.scene.reduced_mass() / case.scene.hertz_stiffness()).sqrt()
+        }
     }
 }
 
@@ -549,8 +555,7 @@ pub fn prepare(
     timestep: Option<f64>,
 ) -> Result<CodeSetup, SolveError> {
     let dt = timestep.unwrap_or_else(|| {
-        elastic_contact_time(case)
-            / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
+        elastic_contact_time(case) / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
     });
     let mut setup = setup_for_case(case, dt);
     let law = driver.law(&setup);

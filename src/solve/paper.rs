@@ -159,7 +159,9 @@ pub fn solve(
     let bilateral = settings.contact == ContactKind::Bilateral;
     let duration = settings.periods * period;
     let mut scaled = match method {
-        Method::Rk4 | Method::Verlet => fixed_step(n, eta, h, method, bilateral, duration, settings)?,
+        Method::Rk4 | Method::Verlet => {
+            fixed_step(n, eta, h, method, bilateral, duration, settings)?
+        }
         Method::Rk4Event => {
             let mut stepper = Rk4 { step: h };
             phased(n, eta, &mut stepper, bilateral, duration, settings)?

@@ -22,8 +22,7 @@ pub struct Attempt {
 /// A one-step method together with its step-size policy.
 pub trait Stepper {
     /// Attempt one step of size `h` from `y`, where `fy = f(y)` is already known.
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64)
-    -> Attempt;
+    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt;
     /// The step to try first in a new phase.
     fn first_step(&self) -> f64;
     /// The step to try after an attempt of size `h` with error norm `error`.
@@ -38,13 +37,7 @@ pub struct Rk4 {
 }
 
 impl Stepper for Rk4 {
-    fn attempt(
-        &mut self,
-        rhs: &dyn Fn(&State) -> State,
-        y: &State,
-        fy: &State,
-        h: f64,
-    ) -> Attempt {
+    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
         Attempt {
             state: rk4_step(rhs, y, fy, h),
             error: 0.0,
@@ -119,13 +112,7 @@ const E6: f64 = 22.0 / 525.0;
 const E7: f64 = -1.0 / 40.0;
 
 impl Stepper for Dopri5 {
-    fn attempt(
-        &mut self,
-        rhs: &dyn Fn(&State) -> State,
-        y: &State,
-        fy: &State,
-        h: f64,
-    ) -> Attempt {
+    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
         let k1 = *fy;
         let k2 = rhs(&(y + h * (A21 * k1)));
         let k3 = rhs(&(y + h * (A31 * k1 + A32 * k2)));
