@@ -372,10 +372,14 @@ pub fn verify(args: &VerifyArgs) -> Result<String> {
                 format!("{t}\n")
             };
             format!(
-                "{table}{} checks, {} passed, {} failed\n",
+                "{table}{} checks, {} passed, {} failed\n\
+                 reproduce a method row: millimpact run {}/CASE.toml --method METHOD --format json\n\
+                 reproduce a stored row: the `command` field of {}/CODE/CASE.json\n",
                 rows.len(),
                 rows.len() - failed,
-                failed
+                failed,
+                args.cases.display(),
+                args.reference.display()
             )
         }
     };

@@ -71,6 +71,8 @@ pub struct CodeAttribution {
 pub struct CaseComparison {
     /// Case name.
     pub case: String,
+    /// The case file.
+    pub path: String,
     /// η.
     pub loss_coefficient: f64,
     /// The rows, one per source.
@@ -239,6 +241,7 @@ pub fn compare_case(
     ));
     Ok(CaseComparison {
         case: case.name.clone(),
+        path: case.path.display().to_string(),
         loss_coefficient: case.loss_coefficient,
         rows,
         attribution,
@@ -408,8 +411,10 @@ fn render(comparisons: &[CaseComparison], format: Format, live: bool) -> Result<
                 }
                 text.push('\n');
             }
+            let cases: Vec<String> = comparisons.iter().map(|c| c.path.clone()).collect();
             text += &format!(
-                "reproduce: millimpact compare{} --format {}\n",
+                "reproduce: millimpact compare {}{} --format {}\n",
+                cases.join(" "),
                 if live { " --live" } else { "" },
                 match format {
                     Format::Markdown => "markdown",
