@@ -1,10 +1,722 @@
-//! `millimpact stability` (being written).
+//! `millimpact stability`: a built-in grid of stiff and extreme cases by every integrating
+//! method, and the stability limit of the fixed-step methods at a step given in seconds.
+//!
+//! The grid spans E from 1e5 to 1e15 Pa, R from 1e-6 to 1 m, v0 from 1e-8 to 1e3 m/s, η from 0
+//! to 0.999999, ball–ball mass ratios down to 1e-6 and rod aspect ratios (length/diameter)
+//! from 1 to 1000. Many of these are physically absurd (a 1 m ball of E = 1e5 Pa at 1 km/s
+//! "deforms" by metres): the point is the arithmetic, which must not care, since every method
+//! integrates the dimensionless form of physics.md §3.
+//!
+//! What passes:
+//!
+//! - rk4-event and dopri5 (`pass`): the run ends, every figure is finite, the COR is in
+//!   [0, 1], and the relative errors of COR, peak deformation and contact time are all at most
+//!   1e-9. Any failure here makes the command exit 1.
+//! - rk4 (the paper's) and verlet (`pass`): the run ends within a work bound fixed in advance
+//!   from the exact contact time, and every figure is finite. Their COR is *not* guaranteed to
+//!   be in [0, 1] nor accurate: at η near 1 the sign(ẏ) switch is evaluated inside a step
+//!   (verlet with the half-step velocity), so the tiny restitution force is applied with the
+//!   wrong sign over part of a step and the COR error can exceed 100 % of a COR that is itself
+//!   ~1e-3. Their accuracy is a separate flag, `accurate`, against the tolerance `verify`
+//!   states for them (1e-3 on COR and peak, one step on the contact time).
+//! - η → 1: every run, by every method, must end in bounded work with the COR near 0.
+
+use std::time::Instant;
 
 use anyhow::Result;
+use serde::Serialize;
 
+use crate::app::{self, CheckFailed};
+use crate::case::Case;
 use crate::cli::StabilityArgs;
+use crate::exact;
+use crate::report::{self, Format, RunReport};
+use crate::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
+use crate::solve::paper::{self, ContactKind, Settings};
+use crate::solve::steppers::{State, rk4_step};
+use crate::solve::{Method, SolveError};
 
-/// Run `millimpact stability`.
-pub fn stability_command(_args: &StabilityArgs) -> Result<String> {
-    anyhow::bail!("stability: not available yet")
+/// The methods the grid runs, in report order.
+pub const METHODS: [Method; 4] = [
+    Method::Rk4,
+    Method::Rk4Event,
+    Method::Dopri5,
+    Method::Verlet,
+];
+
+/// The error rk4-event and dopri5 must meet on every grid case.
+pub const ACCURATE_TOLERANCE: f64 = 1e-9;
+
+/// The largest loss coefficient of the grid.
+pub const ETA_MAX: f64 = 0.999999;
+
+/// One case of the grid, with the parameters it was built from.
+#[derive(Clone, Debug)]
+pub struct GridCase {
+    /// Which part of the grid it belongs to.
+    pub family: &'static str,
+    /// The case.
+    pub case: Case,
+    /// Young's modulus of the (first) body, Pa.
+    pub youngs_modulus: f64,
+    /// Ball radius or rod diameter, m.
+    pub size: f64,
+    /// ball_ball: m2/m1.
+    pub mass_ratio: Option<f64>,
+    /// rod_end: length/diameter.
+    pub aspect_ratio: Option<f64>,
+}
+
+fn material(e: f64) -> Material {
+    Material {
+        youngs_modulus: e,
+        poisson_ratio: 0.3,
+    }
+}
+
+fn ball(radius: f64, density: f64, e: f64) -> Ball {
+    Ball {
+        radius,
+        density,
+        material: material(e),
+    }
+}
+
+fn make_case(name: String, scene: Scene, v0: f64, eta: f64) -> Case {
+    Case {
+        path: format!("(grid)/{name}").into(),
+        name,
+        scene,
+        impact_velocity: v0,
+        loss_coefficient: eta,
+        stiffness: StiffnessConvention::Hertz,
+        contact: ContactKind::Unilateral,
+    }
+}
+
+/// The built-in grid.
+pub fn grid() -> Vec<GridCase> {
+    let mut out = Vec::new();
+    const STEEL: f64 = 7800.0;
+    // Dimensional extremes of a ball on a plate of its own material.
+    for e in [1e5, 1e10, 1e15] {
+        for r in [1e-6, 1e-3, 1.0] {
+            for v0 in [1e-8, 1e-2, 1e3] {
+                for eta in [0.0, 0.35, ETA_MAX] {
+                    let b = ball(r, STEEL, e);
+                    let scene = Scene::BallPlate {
+                        ball: b,
+                        plate: Plate::Elastic(material(e)),
+                    };
+                    out.push(GridCase {
+                        family: "ball_plate extremes",
+                        case: make_case(
+                            format!("bp E{e:e} R{r:e} v{v0:e} eta{eta}"),
+                            scene,
+                            v0,
+                            eta,
+                        ),
+                        youngs_modulus: e,
+                        size: r,
+                        mass_ratio: None,
+                        aspect_ratio: None,
+                    });
+                }
+            }
+        }
+    }
+    // η from 0 to 1 on the three scenes at canonical sizes.
+    let etas = [
+        0.0, 1e-12, 1e-9, 1e-6, 1e-3, 0.1, 0.35, 0.5, 0.9, 0.99, 0.999, 0.99999, ETA_MAX,
+    ];
+    for eta in etas {
+        let steel = ball(0.02, STEEL, 2e11);
+        let rod = Rod {
+            diameter: 0.03,
+            length: 0.5,
+            density: STEEL,
+            youngs_modulus: 2e11,
+        };
+        let scenes = [
+            (
+                "rigid",
+                Scene::BallPlate {
+                    ball: steel,
+                    plate: Plate::Rigid,
+                },
+            ),
+            (
+                "balls",
+                Scene::BallBall {
+                    ball: steel,
+                    other: steel,
+                },
+            ),
+            ("rod", Scene::RodEnd { rod }),
+        ];
+        for (label, scene) in scenes {
+            let (mass_ratio, aspect_ratio) = match label {
+                "balls" => (Some(1.0), None),
+                "rod" => (None, Some(rod.length / rod.diameter)),
+                _ => (None, None),
+            };
+            out.push(GridCase {
+                family: "loss coefficient",
+                case: make_case(format!("{label} eta{eta}"), scene, 2.0, eta),
+                youngs_modulus: 2e11,
+                size: if label == "rod" { 0.03 } else { 0.02 },
+                mass_ratio,
+                aspect_ratio,
+            });
+        }
+    }
+    // Ball on ball, the second ever lighter: by density, and by radius (m ∝ R³).
+    let ratios: [(&str, f64); 6] = [
+        ("density", 1.0),
+        ("density", 1e-2),
+        ("density", 1e-4),
+        ("density", 1e-6),
+        ("radius", 1e-3),
+        ("radius", 1e-6),
+    ];
+    for (how, ratio) in ratios {
+        for v0 in [1e-8, 1.0, 1e3] {
+            for eta in [0.0, 0.35, ETA_MAX] {
+                let first = ball(0.02, STEEL, 2e11);
+                let other = if how == "density" {
+                    ball(0.02, STEEL * ratio, 2e11)
+                } else {
+                    ball(0.02 * ratio.cbrt(), STEEL, 2e11)
+                };
+                let scene = Scene::BallBall { ball: first, other };
+                out.push(GridCase {
+                    family: "ball_ball mass ratio",
+                    case: make_case(
+                        format!("bb {how} m2/m1 {ratio:e} v{v0:e} eta{eta}"),
+                        scene,
+                        v0,
+                        eta,
+                    ),
+                    youngs_modulus: 2e11,
+                    size: 0.02,
+                    mass_ratio: Some(other.mass() / first.mass()),
+                    aspect_ratio: None,
+                });
+            }
+        }
+    }
+    // Rods from squat to slender, soft to stiff.
+    for aspect in [1.0, 10.0, 100.0, 1000.0] {
+        for e in [1e5, 1e10, 1e15] {
+            for v0 in [1e-8, 1.0, 1e3] {
+                for eta in [0.0, 0.35, ETA_MAX] {
+                    let rod = Rod {
+                        diameter: 0.03,
+                        length: 0.03 * aspect,
+                        density: STEEL,
+                        youngs_modulus: e,
+                    };
+                    out.push(GridCase {
+                        family: "rod aspect ratio",
+                        case: make_case(
+                            format!("rod L/D{aspect} E{e:e} v{v0:e} eta{eta}"),
+                            Scene::RodEnd { rod },
+                            v0,
+                            eta,
+                        ),
+                        youngs_modulus: e,
+                        size: 0.03,
+                        mass_ratio: None,
+                        aspect_ratio: Some(aspect),
+                    });
+                }
+            }
+        }
+    }
+    out
+}
+
+/// One grid case by one method.
+#[derive(Clone, Debug, Serialize)]
+pub struct CaseResult {
+    /// Case label.
+    pub case: String,
+    /// Part of the grid.
+    pub family: &'static str,
+    /// Scene.
+    pub scene: &'static str,
+    /// Method.
+    pub method: &'static str,
+    /// Young's modulus, Pa.
+    pub youngs_modulus: f64,
+    /// Ball radius or rod diameter, m.
+    pub size: f64,
+    /// Impact speed, m/s.
+    pub impact_velocity: f64,
+    /// Loss coefficient.
+    pub loss_coefficient: f64,
+    /// ball_ball: m2/m1.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_ratio: Option<f64>,
+    /// rod_end: length/diameter.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub aspect_ratio: Option<f64>,
+    /// The run's COR (NaN if it failed).
+    pub cor: f64,
+    /// The closed-form COR.
+    pub cor_exact: f64,
+    /// |relative error| of the COR.
+    pub cor_error: f64,
+    /// |relative error| of the peak deformation.
+    pub peak_deformation_error: f64,
+    /// |relative error| of the contact time.
+    pub contact_time_error: f64,
+    /// Accepted steps.
+    pub steps: u64,
+    /// Right-hand-side evaluations.
+    pub rhs_evaluations: u64,
+    /// Every figure is finite.
+    pub finite: bool,
+    /// The COR is in [0, 1].
+    pub cor_in_range: bool,
+    /// The run ended within the work bound (see [`work_bound`]).
+    pub bounded_work: bool,
+    /// Within the method's stated tolerance (1e-9 for rk4-event and dopri5; `verify`'s 1e-3
+    /// and one step for rk4 and verlet).
+    pub accurate: bool,
+    /// The method's pass criterion (see the module documentation).
+    pub pass: bool,
+    /// Why the run failed, if it did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
+}
+
+/// The most steps a run of `method` may take on a contact of exact duration `contact_time`
+/// (s) at fixed step `timestep` (s): twice the steps the exact contact needs, plus the event
+/// and series steps; for dopri5, a fixed 10⁵ (it takes ~10³ at rtol 1e-12 on any case).
+pub fn work_bound(method: Method, contact_time: f64, timestep: Option<f64>) -> u64 {
+    match (method, timestep) {
+        (Method::Dopri5, _) | (_, None) => 100_000,
+        (_, Some(h)) => (2.0 * contact_time / h).ceil() as u64 + 100,
+    }
+}
+
+/// Run one grid case by one method at the solver's defaults (1000 steps per period, rtol
+/// 1e-12).
+pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
+    let case = &grid_case.case;
+    let law = case.law();
+    let v0 = case.impact_velocity;
+    let exact_figures = exact::paper_impact(&law, v0);
+    let settings = Settings {
+        method,
+        contact: case.contact,
+        ..Settings::default()
+    };
+    let mut result = CaseResult {
+        case: case.name.clone(),
+        family: grid_case.family,
+        scene: case.scene.kind().name(),
+        method: method.name(),
+        youngs_modulus: grid_case.youngs_modulus,
+        size: grid_case.size,
+        impact_velocity: v0,
+        loss_coefficient: case.loss_coefficient,
+        mass_ratio: grid_case.mass_ratio,
+        aspect_ratio: grid_case.aspect_ratio,
+        cor: f64::NAN,
+        cor_exact: exact_figures.cor,
+        cor_error: f64::NAN,
+        peak_deformation_error: f64::NAN,
+        contact_time_error: f64::NAN,
+        steps: 0,
+        rhs_evaluations: 0,
+        finite: false,
+        cor_in_range: false,
+        bounded_work: false,
+        accurate: false,
+        pass: false,
+        error: None,
+    };
+    let outcome = match paper::solve(&law, v0, &settings) {
+        Ok(outcome) => outcome,
+        Err(e) => {
+            result.error = Some(e.to_string());
+            return result;
+        }
+    };
+    let f = &outcome.figures;
+    let run_report = RunReport::new(case, method, &outcome);
+    result.cor = f.cor;
+    result.cor_error = run_report.error.cor.abs();
+    result.peak_deformation_error = run_report.error.peak_deformation.abs();
+    result.contact_time_error = run_report.error.contact_time.abs();
+    result.steps = outcome.stats.steps;
+    result.rhs_evaluations = outcome.stats.rhs_evaluations;
+    result.finite = [
+        f.cor,
+        f.peak_deformation,
+        f.peak_force,
+        f.compression_time,
+        f.restitution_time,
+        f.contact_time,
+        f.absorbed_energy,
+        result.cor_error,
+        result.peak_deformation_error,
+        result.contact_time_error,
+    ]
+    .iter()
+    .all(|x| x.is_finite());
+    result.cor_in_range = (0.0..=1.0).contains(&f.cor);
+    result.bounded_work =
+        outcome.stats.steps <= work_bound(method, exact_figures.contact_time, outcome.timestep);
+    let tolerance = app::tolerance(method, &run_report);
+    result.accurate = result.finite
+        && result.cor_error <= tolerance.cor
+        && result.peak_deformation_error <= tolerance.peak_deformation
+        && result.contact_time_error <= tolerance.contact_time;
+    result.pass = match method {
+        Method::Rk4Event | Method::Dopri5 | Method::Exact => {
+            result.finite
+                && result.cor_in_range
+                && result.bounded_work
+                && result.cor_error <= ACCURATE_TOLERANCE
+                && result.peak_deformation_error <= ACCURATE_TOLERANCE
+                && result.contact_time_error <= ACCURATE_TOLERANCE
+        }
+        Method::Rk4 | Method::Verlet => result.finite && result.bounded_work,
+    };
+    result
+}
+
+/// Every grid case by every method in [`METHODS`], on two threads (the machine is shared).
+pub fn run_grid() -> Vec<CaseResult> {
+    let jobs: Vec<(GridCase, Method)> = grid()
+        .into_iter()
+        .flat_map(|g| METHODS.map(|m| (g.clone(), m)))
+        .collect();
+    let threads = 2usize;
+    let mut slots: Vec<Option<CaseResult>> = vec![None; jobs.len()];
+    std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|k| {
+                let jobs = &jobs;
+                scope.spawn(move || {
+                    (k..jobs.len())
+                        .step_by(threads)
+                        .map(|i| (i, run_one(&jobs[i].0, jobs[i].1)))
+                        .collect::<Vec<_>>()
+                })
+            })
+            .collect();
+        for handle in handles {
+            for (i, result) in handle.join().expect("a grid worker panicked") {
+                slots[i] = Some(result);
+            }
+        }
+    });
+    slots
+        .into_iter()
+        .map(|r| r.expect("every job ran"))
+        .collect()
+}
+
+/// The stability check of a fixed-step method at a step in seconds, just below or just above
+/// its limit.
+#[derive(Clone, Debug, Serialize)]
+pub struct LimitCheck {
+    /// Method.
+    pub method: &'static str,
+    /// The method's limit on `ω Δt`.
+    pub limit: f64,
+    /// The `ω Δt` tried.
+    pub omega_dt: f64,
+    /// What `paper::solve` did with that step on the bilateral, undamped rod (n = 1):
+    /// "ran" or "refused: ...".
+    pub solver: String,
+    /// `paper::solve` ran: the largest speed at a zero crossing over the run, over `v0`.
+    pub solver_max_crossing_speed: Option<f64>,
+    /// The method's own step map on `y'' = -ω² y`: the largest `|(ωy, v)|` over the last tenth
+    /// of [`LIMIT_STEPS`] steps over that over the first tenth.
+    pub growth: f64,
+    /// Whether the growth is bounded (at most 1.5).
+    pub bounded: bool,
+}
+
+/// Steps of the direct check of the step map (about 400 periods at `ω Δt` near the limit).
+pub const LIMIT_STEPS: usize = 1000;
+
+/// How far below and above the limit the checks step, relative.
+pub const LIMIT_MARGIN: f64 = 0.01;
+
+/// Growth of the largest `|(y, v)|` of `method`'s fixed-step map on `y'' = -y` at step `z`
+/// (so `ω Δt = z`), the last tenth of [`LIMIT_STEPS`] over the first tenth. RK4 is the
+/// crate's own step; Verlet is the solver's kick–drift–kick.
+pub fn step_map_growth(method: Method, z: f64) -> f64 {
+    let rhs = |s: &State| State::new(s[1], -s[0]);
+    let mut s = State::new(0.0, 1.0);
+    let tenth = LIMIT_STEPS / 10;
+    let (mut first, mut last) = (0.0f64, 0.0f64);
+    for k in 0..LIMIT_STEPS {
+        s = match method {
+            Method::Verlet => {
+                let half = s[1] - 0.5 * z * s[0];
+                let y = s[0] + z * half;
+                State::new(y, half - 0.5 * z * y)
+            }
+            _ => rk4_step(&rhs, &s, &rhs(&s), z),
+        };
+        let size = s.norm();
+        if k < tenth {
+            first = first.max(size);
+        }
+        if k >= LIMIT_STEPS - tenth {
+            last = last.max(size);
+        }
+    }
+    last / first
+}
+
+/// The stability-limit checks: rk4 and verlet, just below and just above their limits, on the
+/// bilateral undamped linear contact (whose eigenvalues `±iω` lie on the imaginary axis, so the
+/// limit is where each method's stability region meets that axis: `2√2` for RK4, 2 for
+/// Verlet).
+pub fn limit_checks() -> Vec<LimitCheck> {
+    let rod = Rod {
+        diameter: 0.03,
+        length: 0.5,
+        density: 7800.0,
+        youngs_modulus: 2e11,
+    };
+    let mut case = make_case("rod bilateral".to_string(), Scene::RodEnd { rod }, 2.0, 0.0);
+    case.contact = ContactKind::Bilateral;
+    let law = case.law();
+    let omega = paper::angular_frequency(&law, case.impact_velocity);
+    let mut out = Vec::new();
+    for method in [Method::Rk4, Method::Verlet] {
+        let limit = paper::stability_limit(method).expect("a fixed-step method");
+        for factor in [1.0 - LIMIT_MARGIN, 1.0 + LIMIT_MARGIN] {
+            let z = factor * limit;
+            let settings = Settings {
+                method,
+                timestep: Some(z / omega),
+                contact: ContactKind::Bilateral,
+                periods: 100.0,
+                ..Settings::default()
+            };
+            let (solver, solver_max_crossing_speed) =
+                match paper::solve(&law, case.impact_velocity, &settings) {
+                    Ok(outcome) => (
+                        "ran".to_string(),
+                        Some(
+                            outcome.crossing_speeds.iter().cloned().fold(0.0, f64::max)
+                                / case.impact_velocity,
+                        ),
+                    ),
+                    Err(e @ SolveError::Unstable { .. }) => (format!("refused: {e}"), None),
+                    Err(e) => (format!("failed: {e}"), None),
+                };
+            let growth = step_map_growth(method, z);
+            out.push(LimitCheck {
+                method: method.name(),
+                limit,
+                omega_dt: z,
+                solver,
+                solver_max_crossing_speed,
+                growth,
+                bounded: growth.is_finite() && growth <= 1.5,
+            });
+        }
+    }
+    out
+}
+
+/// Per-method totals of the grid.
+#[derive(Clone, Debug, Serialize)]
+pub struct MethodSummary {
+    /// Method.
+    pub method: &'static str,
+    /// Cases run.
+    pub cases: usize,
+    /// Cases that pass.
+    pub passed: usize,
+    /// Cases within the method's stated tolerance.
+    pub accurate: usize,
+    /// Cases with the COR in [0, 1].
+    pub cor_in_range: usize,
+    /// Largest COR error (relative) over the grid.
+    pub max_cor_error: f64,
+    /// Largest peak-deformation error.
+    pub max_peak_deformation_error: f64,
+    /// Largest contact-time error.
+    pub max_contact_time_error: f64,
+    /// Most steps in one case.
+    pub max_steps: u64,
+    /// At η = [`ETA_MAX`]: the largest COR (the exact one is 7.07e-4).
+    pub max_cor_at_eta_max: f64,
+}
+
+/// Everything `millimpact stability` reports.
+#[derive(Clone, Debug, Serialize)]
+pub struct StabilityReport {
+    /// Every case by every method.
+    pub cases: Vec<CaseResult>,
+    /// Totals per method.
+    pub summary: Vec<MethodSummary>,
+    /// The fixed-step stability limits, just below and just above.
+    pub stability_limits: Vec<LimitCheck>,
+    /// Wall time of the whole grid, s.
+    pub wall_time_s: f64,
+}
+
+/// Run the grid and the limit checks.
+pub fn stability_report() -> StabilityReport {
+    let started = Instant::now();
+    let cases = run_grid();
+    let summary = METHODS
+        .iter()
+        .map(|m| {
+            let own: Vec<&CaseResult> = cases.iter().filter(|c| c.method == m.name()).collect();
+            let max = |f: fn(&CaseResult) -> f64| own.iter().map(|c| f(c)).fold(0.0, f64::max);
+            MethodSummary {
+                method: m.name(),
+                cases: own.len(),
+                passed: own.iter().filter(|c| c.pass).count(),
+                accurate: own.iter().filter(|c| c.accurate).count(),
+                cor_in_range: own.iter().filter(|c| c.cor_in_range).count(),
+                max_cor_error: max(|c| c.cor_error),
+                max_peak_deformation_error: max(|c| c.peak_deformation_error),
+                max_contact_time_error: max(|c| c.contact_time_error),
+                max_steps: own.iter().map(|c| c.steps).max().unwrap_or(0),
+                max_cor_at_eta_max: own
+                    .iter()
+                    .filter(|c| c.loss_coefficient == ETA_MAX)
+                    .map(|c| c.cor)
+                    .fold(0.0, f64::max),
+            }
+        })
+        .collect();
+    StabilityReport {
+        cases,
+        summary,
+        stability_limits: limit_checks(),
+        wall_time_s: started.elapsed().as_secs_f64(),
+    }
+}
+
+impl StabilityReport {
+    /// The rk4-event and dopri5 cases that fail.
+    pub fn accurate_method_failures(&self) -> Vec<&CaseResult> {
+        self.cases
+            .iter()
+            .filter(|c| (c.method == "rk4-event" || c.method == "dopri5") && !c.pass)
+            .collect()
+    }
+
+    /// The report as tables for people.
+    pub fn table(&self) -> String {
+        let mut t = report::new_table(&[
+            "method",
+            "cases",
+            "pass",
+            "accurate",
+            "COR in [0,1]",
+            "max COR err",
+            "max peak err",
+            "max time err",
+            "max steps",
+            "max COR at η=0.999999",
+        ]);
+        for s in &self.summary {
+            t.add_row(vec![
+                s.method.to_string(),
+                s.cases.to_string(),
+                s.passed.to_string(),
+                s.accurate.to_string(),
+                s.cor_in_range.to_string(),
+                format!("{:.2e}", s.max_cor_error),
+                format!("{:.2e}", s.max_peak_deformation_error),
+                format!("{:.2e}", s.max_contact_time_error),
+                s.max_steps.to_string(),
+                format!("{:.3e}", s.max_cor_at_eta_max),
+            ]);
+        }
+        let mut l = report::new_table(&[
+            "method",
+            "limit ω·Δt",
+            "ω·Δt tried",
+            "paper::solve",
+            "max crossing speed / v0",
+            "step-map growth",
+            "bounded",
+        ]);
+        for c in &self.stability_limits {
+            l.add_row(vec![
+                c.method.to_string(),
+                format!("{:.6}", c.limit),
+                format!("{:.6}", c.omega_dt),
+                if c.solver.starts_with("refused") {
+                    "refused (Unstable)".to_string()
+                } else {
+                    c.solver.clone()
+                },
+                c.solver_max_crossing_speed
+                    .map_or_else(String::new, |s| format!("{s:.6}")),
+                format!("{:.3e}", c.growth),
+                c.bounded.to_string(),
+            ]);
+        }
+        let mut text = format!(
+            "stability grid: {} cases × {} methods in {:.2} s\n{t}\n",
+            self.cases.len() / METHODS.len(),
+            METHODS.len(),
+            self.wall_time_s
+        );
+        text += "pass: rk4-event and dopri5 — finite, COR in [0,1], every error ≤ 1e-9; rk4 and \
+                 verlet — finite figures in bounded work (their accuracy is `accurate`: 1e-3 on \
+                 COR and peak, one step on the contact time; near η = 1 their COR is not \
+                 guaranteed, since the sign(ẏ) switch falls inside a step)\n\n";
+        text += &format!(
+            "fixed step in seconds at the stability limit (bilateral undamped rod)\n{l}\n"
+        );
+        let failures = self.accurate_method_failures();
+        if failures.is_empty() {
+            text += "every rk4-event and dopri5 case passes\n";
+        } else {
+            let mut f =
+                report::new_table(&["case", "method", "COR err", "peak err", "time err", "error"]);
+            for c in failures {
+                f.add_row(vec![
+                    c.case.clone(),
+                    c.method.to_string(),
+                    format!("{:.2e}", c.cor_error),
+                    format!("{:.2e}", c.peak_deformation_error),
+                    format!("{:.2e}", c.contact_time_error),
+                    c.error.clone().unwrap_or_default(),
+                ]);
+            }
+            text += &format!("FAILING rk4-event and dopri5 cases\n{f}\n");
+        }
+        text
+    }
+}
+
+/// Run `millimpact stability`; exit 1 (after printing the report) if any rk4-event or dopri5
+/// case fails.
+pub fn stability_command(args: &StabilityArgs) -> Result<String> {
+    let report = stability_report();
+    let text = match args.format {
+        Format::Json => serde_json::to_string_pretty(&report)? + "\n",
+        Format::Table | Format::Markdown => report.table(),
+        Format::Csv => report::csv_string(&report.cases)?,
+    };
+    let failures = report.accurate_method_failures().len();
+    if failures > 0 {
+        print!("{text}");
+        return Err(CheckFailed(format!(
+            "stability: {failures} rk4-event or dopri5 case(s) fail"
+        ))
+        .into());
+    }
+    Ok(text)
 }
