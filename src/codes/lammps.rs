@@ -210,30 +210,7 @@ impl Lammps {
 /// Read `fix print`'s trajectory: comment lines start with `#`, then `time overlap approach
 /// force` per row.
 pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, String> {
-    let mut t = CodeTrajectory::default();
-    for (number, line) in text.lines().enumerate() {
-        let line = line.trim();
-        if line.is_empty() || line.starts_with('#') {
-            continue;
-        }
-        let values: Vec<f64> = line
-            .split_whitespace()
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .map_err(|err| format!("trajectory line {}: {err}: {line}", number + 1))?;
-        let [time, overlap, approach, force] = values[..] else {
-            return Err(format!(
-                "trajectory line {}: {} columns, 4 expected",
-                number + 1,
-                values.len()
-            ));
-        };
-        t.time.push(time);
-        t.overlap.push(overlap);
-        t.approach_velocity.push(approach);
-        t.normal_force.push(force);
-    }
-    Ok(t)
+    super::parse_columns(text, "trajectory")
 }
 
 /// The version LAMMPS prints on its first line, `LAMMPS (29 Sep 2021 - Update 2)`.

@@ -14,8 +14,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::{
-    CodeDriver, CodeError, CodeSetup, CodeTrajectory, ParsedRun, RenderedInput, exact_number,
-    fill_template,
+    CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput, exact_number, fill_template,
 };
 use crate::law::DashpotLaw;
 use crate::scene::SceneKind;
@@ -321,28 +320,7 @@ impl CodeDriver for Liggghts {
 /// Each trajectory row is `time overlap approach_velocity normal_force`; the log gives the
 /// version (first line, `LIGGGHTS (Version …)`) and the `Loop time of` figure.
 pub fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, String> {
-    let mut out = CodeTrajectory::default();
-    for (number, line) in trajectory.lines().enumerate() {
-        if line.trim().is_empty() {
-            continue;
-        }
-        let values: Vec<f64> = line
-            .split_whitespace()
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .map_err(|e| format!("{TRAJECTORY_FILE} line {}: {e}: {line:?}", number + 1))?;
-        let [t, overlap, approach, force] = values[..] else {
-            return Err(format!(
-                "{TRAJECTORY_FILE} line {}: expected 4 columns, found {}",
-                number + 1,
-                values.len()
-            ));
-        };
-        out.time.push(t);
-        out.overlap.push(overlap);
-        out.approach_velocity.push(approach);
-        out.normal_force.push(force);
-    }
+    let out = super::parse_columns(trajectory, TRAJECTORY_FILE)?;
     if out.time.is_empty() {
         return Err(format!("{TRAJECTORY_FILE} is empty"));
     }

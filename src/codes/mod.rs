@@ -386,6 +386,36 @@ fn check_trajectory(t: &CodeTrajectory) -> Result<(), String> {
     Ok(())
 }
 
+/// Read a trajectory written as whitespace-separated columns `time overlap approach_velocity
+/// normal_force`, one row per line; blank lines and `#` comments are skipped. `file` names the
+/// file in error messages.
+pub fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, String> {
+    let mut out = CodeTrajectory::default();
+    for (number, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let values: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .map_err(|e| format!("{file} line {}: {e}: {line:?}", number + 1))?;
+        let [t, overlap, approach, force] = values[..] else {
+            return Err(format!(
+                "{file} line {}: expected 4 columns, found {}",
+                number + 1,
+                values.len()
+            ));
+        };
+        out.time.push(t);
+        out.overlap.push(overlap);
+        out.approach_velocity.push(approach);
+        out.normal_force.push(force);
+    }
+    Ok(out)
+}
+
 /// Replace every `{{key}}` in `template` by its value; an unreplaced placeholder is an error.
 pub fn fill_template(template: &str, values: &[(&str, String)]) -> Result<String, String> {
     let mut text = template.to_string();
