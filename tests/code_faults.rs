@@ -29,6 +29,20 @@ fn millimpact() -> Command {
     cmd
 }
 
+/// Run millimpact with `bin` first on PATH and scratch directories under `scratch`; expect exit
+/// code 1 and return the standard error.
+fn failing_run(bin: &Path, scratch: &Path, args: &[&str]) -> String {
+    let out = millimpact()
+        .env("PATH", path_with(bin))
+        .env("TMPDIR", scratch)
+        .args(args)
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    String::from_utf8(out.stderr).unwrap()
+}
+
 /// The log file named in an error message, which must exist.
 fn kept_log(stderr: &str) -> PathBuf {
     let at = stderr
@@ -73,15 +87,11 @@ fn crash_keeps_the_log() {
         "liggghts",
         "echo 'ERROR: segmentation fault in fix wall/gran'; exit 3",
     );
-    let out = millimpact()
-        .env("PATH", path_with(bin.path()))
-        .env("TMPDIR", scratch.path())
-        .args(["reference", "--code", "liggghts", "cases/ball_plate.toml"])
-        .assert()
-        .code(1)
-        .get_output()
-        .clone();
-    let stderr = String::from_utf8(out.stderr).unwrap();
+    let stderr = failing_run(
+        bin.path(),
+        scratch.path(),
+        &["reference", "--code", "liggghts", "cases/ball_plate.toml"],
+    );
     assert!(
         stderr.contains("liggghts: exited with exit status: 3"),
         "{stderr}"
@@ -138,15 +148,11 @@ fn unparsable_output_keeps_the_log() {
         "yade",
         "echo 'Welcome to Yade (fake)'; echo 'garbage 1 2 x'",
     );
-    let out = millimpact()
-        .env("PATH", path_with(bin.path()))
-        .env("TMPDIR", scratch.path())
-        .args(["reference", "--code", "yade", "cases/ball_ball.toml"])
-        .assert()
-        .code(1)
-        .get_output()
-        .clone();
-    let stderr = String::from_utf8(out.stderr).unwrap();
+    let stderr = failing_run(
+        bin.path(),
+        scratch.path(),
+        &["reference", "--code", "yade", "cases/ball_ball.toml"],
+    );
     assert!(stderr.contains("yade: unparsable output"), "{stderr}");
     let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
     assert!(log.contains("garbage 1 2 x"), "{log}");
