@@ -28,8 +28,20 @@ pub enum UserError {
         /// What is allowed.
         allowed: String,
     },
+    /// A command-line value is invalid for the case it is applied to.
+    #[error("{case}: {option} = {value}: {allowed}")]
+    CaseArgument {
+        /// The case file.
+        case: String,
+        /// The option.
+        option: String,
+        /// Its value.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
     /// The integration cannot be done as asked (a step beyond the stability limit).
-    #[error("{case}: {source}")]
+    #[error("{case}: --timestep: {source}")]
     Unsolvable {
         /// The case file.
         case: String,
@@ -52,8 +64,22 @@ fn argument(option: &str, value: impl ToString, allowed: &str) -> anyhow::Error 
     .into()
 }
 
+/// An invalid option value, named together with the case file it was applied to.
+fn case_argument(case: &Case, option: &str, value: impl ToString, allowed: &str) -> anyhow::Error {
+    UserError::CaseArgument {
+        case: case.path.display().to_string(),
+        option: option.to_string(),
+        value: value.to_string(),
+        allowed: allowed.to_string(),
+    }
+    .into()
+}
+
 /// Validate the integration options and turn them into solver settings.
 pub fn settings(args: &IntegrationArgs, case: &Case, record: bool) -> Result<Settings> {
+    let argument = |option: &str, value: f64, allowed: &str| {
+        case_argument(case, option, value, allowed)
+    };
     if !(args.rtol > 0.0 && args.rtol < 1.0) {
         return Err(argument("--rtol", args.rtol, "must be in (0, 1)"));
     }
@@ -184,7 +210,15 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>> {
 /// `millimpact sweep`.
 pub fn sweep(args: &SweepArgs) -> Result<String> {
     let case = Case::load(&args.case)?;
-    let values = parse_range(&args.loss_coefficient)?;
+    let values = parse_range(&args.loss_coefficient).map_err(|e| match e.downcast::<UserError>() {
+        Ok(UserError::Argument {
+            option,
+            value,
+            allowed,
+        }) => case_argument(&case, &option, value, &allowed),
+        Ok(other) => other.into(),
+        Err(other) => other,
+    })?;
     let mut rows = Vec::with_capacity(values.len());
     for eta in values {
         let at = case.with_loss_coefficient(eta);

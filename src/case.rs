@@ -84,7 +84,16 @@ impl Case {
             .map_err(|e| fail("(file)", "(unreadable)", &format!("cannot read it: {e}")))?;
         let table: Table = text.parse().map_err(|e: toml::de::Error| {
             let message = e.message().replace('\n', " ");
-            fail("(file)", "(not TOML)", &format!("invalid TOML: {message}"))
+            let place = match e.span() {
+                Some(span) => {
+                    let before = &text[..span.start.min(text.len())];
+                    let line = before.matches('\n').count() + 1;
+                    let column = before.chars().rev().take_while(|c| *c != '\n').count() + 1;
+                    format!(" at line {line}, column {column}")
+                }
+                None => String::new(),
+            };
+            fail("(file)", "(not TOML)", &format!("invalid TOML{place}: {message}"))
         })?;
         let name = path
             .file_stem()
@@ -215,7 +224,17 @@ impl Reader<'_> {
                 if !(e > 0.0 && e <= 1.0) {
                     return Err(self.error("restitution", &e.to_string(), "must be in (0, 1]"));
                 }
-                exact::loss_coefficient(e)
+                let eta = exact::loss_coefficient(e);
+                if eta >= 1.0 {
+                    // e² below half an ulp of 1 makes η = (1 - e²)/(1 + e²) exactly 1: the
+                    // bodies would never separate and no integration would end.
+                    return Err(self.error(
+                        "restitution",
+                        &e.to_string(),
+                        "must be in (0, 1] and at least about 1.1e-8 (a smaller e gives η = 1 in double precision: the bodies never separate)",
+                    ));
+                }
+                eta
             }
         };
         let stiffness = match t.get("stiffness") {

@@ -244,6 +244,7 @@ fn fixed_step(
         out.samples.push((t, y[0], y[1]));
     }
     let mut steps = 0u64;
+    let mut side = 1.0f64;
     loop {
         if steps > super::STEP_BUDGET {
             return Err(SolveError::StepBudget {
@@ -279,7 +280,12 @@ fn fixed_step(
                 turning = Some(if previous[0] >= y[0] { t - h } else { t });
             }
         }
-        if previous[0] * y[0] < 0.0 || (previous[0] > 0.0 && y[0] == 0.0) {
+        // A passage through zero approach: the state has left the side it was on. The side
+        // starts as compression (ẏ(0) > 0), so a first step that lands at y < 0 (a step as long
+        // as the contact) ends the contact too, instead of flying on forever.
+        let crossed = if side > 0.0 { y[0] <= 0.0 } else { y[0] > 0.0 };
+        if crossed {
+            side = -side;
             if first_end.is_none() {
                 first_end = Some((t, y[1].abs()));
             }
