@@ -70,6 +70,9 @@ pub struct RunReport {
     pub mass: f64,
     /// Contact stiffness C, N/m^n.
     pub stiffness: f64,
+    /// How C was computed for a ball scene: "hertz" (`(4/3) E* sqrt(R*)`) or "paper" (the
+    /// paper's printed `a E sqrt(R) / (1 - ν²)`); "rod" for the rod's `π D² E / (4H)`.
+    pub stiffness_convention: &'static str,
     /// Exponent n.
     pub exponent: f64,
     /// COR.
@@ -140,6 +143,11 @@ impl RunReport {
             impact_velocity: case.impact_velocity,
             mass: law.mass,
             stiffness: law.stiffness,
+            stiffness_convention: match (case.scene.kind(), case.stiffness) {
+                (crate::scene::SceneKind::RodEnd, _) => "rod",
+                (_, crate::scene::StiffnessConvention::Hertz) => "hertz",
+                (_, crate::scene::StiffnessConvention::Paper) => "paper",
+            },
             exponent: law.exponent,
             cor: f.cor,
             peak_deformation: f.peak_deformation,
@@ -263,6 +271,9 @@ impl RunReport {
             text += &format!(", Δt = {} s", sci(dt));
         }
         text.push('\n');
+        if self.stiffness_convention == "paper" {
+            text += "stiffness: the paper's printed coefficient a E sqrt(R) / (1 - ν²), not Hertz's (4/3) E* sqrt(R*)\n";
+        }
         if let Some(h) = &self.hertz_elastic {
             text += &format!(
                 "elastic Hertz: peak deformation {} m, contact time {} s\n",
