@@ -90,15 +90,46 @@ pub fn accurate_metrics(
     };
     let rhs = move |s: &State| State::new(s[1], -k * force(s));
     let mut stats = super::Stats::default();
-    let mut peak = 0.0f64;
-    let mut peak_force = 0.0f64;
-    let mut observe = |_t: f64, s: &State| {
-        peak = peak.max(s[0]);
-        peak_force = peak_force.max(force(s));
-    };
-    // The first step is short: the dashpot term grows like y^m from zero.
-    let start = State::new(0.0, 1.0);
+    let mut observe = |_t: f64, _s: &State| {};
     let mut stepper = Dopri5::new(rtol);
+    // The largest force comes before the turning point (the dashpot pushes while the bodies
+    // approach), where dF/dτ = n Y^(n-1) V + d (m Y^(m-1) V² + Y^m A) vanishes; the largest
+    // overlap is at V = 0. Both are located, not read off the steps.
+    let force_rate = move |s: &State| -> f64 {
+        let (y, v) = (s[0], s[1]);
+        if y <= 0.0 {
+            return 1.0;
+        }
+        let a = -k * force(s);
+        n * y.powf(n - 1.0) * v + d * (m * y.powf(m - 1.0) * v * v + y.powf(m) * a)
+    };
+    let rate = |s: &State| s[1];
+    let top = march(
+        &rhs,
+        State::new(0.0, 1.0),
+        0.0,
+        &mut stepper,
+        &[&force_rate, &rate],
+        None,
+        &mut stats,
+        &mut observe,
+    )?;
+    let peak_force = force(&top.state);
+    let turn = if top.event == 0 && top.state[1] > 0.0 {
+        march(
+            &rhs,
+            top.state,
+            top.time,
+            &mut stepper,
+            &[&rate],
+            None,
+            &mut stats,
+            &mut observe,
+        )?
+    } else {
+        top
+    };
+    let peak = turn.state[0];
     let event_exit = |s: &State| s[0];
     let end = if clamp {
         // Separation is final once the force would attract, since it stays attractive while the
@@ -109,8 +140,8 @@ pub fn accurate_metrics(
         };
         let crossing = march(
             &rhs,
-            start,
-            0.0,
+            turn.state,
+            turn.time,
             &mut stepper,
             &[&event_force, &event_exit],
             None,
@@ -123,8 +154,8 @@ pub fn accurate_metrics(
     } else {
         let crossing = march(
             &rhs,
-            start,
-            0.0,
+            turn.state,
+            turn.time,
             &mut stepper,
             &[&event_exit],
             None,
