@@ -101,7 +101,13 @@ pub fn accurate_metrics(
             return 1.0;
         }
         let a = -k * force(s);
-        n * y.powf(n - 1.0) * v + d * (m * y.powf(m - 1.0) * v * v + y.powf(m) * a)
+        // A linear dashpot (m = 0) has no y^(m-1) term, which would be 0 · ∞ at tiny y.
+        let dashpot_growth = if m == 0.0 {
+            0.0
+        } else {
+            m * y.powf(m - 1.0) * v * v
+        };
+        n * y.powf(n - 1.0) * v + d * (dashpot_growth + y.powf(m) * a)
     };
     let rate = |s: &State| s[1];
     let top = march(

@@ -255,8 +255,8 @@ fn locate(
         if g_hi == 0.0 || hi - lo <= 4.0 * f64::EPSILON * hi {
             break;
         }
-        let theta = ((lo * g_hi - hi * g_lo) / (g_hi - g_lo)).clamp(lo, hi);
-        let theta = if theta <= lo || theta >= hi {
+        let theta = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+        let theta = if !theta.is_finite() || theta <= lo || theta >= hi {
             0.5 * (lo + hi)
         } else {
             theta

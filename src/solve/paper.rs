@@ -163,7 +163,7 @@ pub fn solve(
             fixed_step(n, eta, h, method, bilateral, duration, settings)?
         }
         Method::Rk4Event => {
-            let mut stepper = Rk4 { step: h };
+            let mut stepper = Rk4::new(h);
             phased(n, eta, &mut stepper, bilateral, duration, settings)?
         }
         Method::Dopri5 => {
@@ -345,6 +345,7 @@ fn phased(
         let start = State::new(y0, v0);
         out.stats.steps += 1;
         observe(t + s0, &start);
+        stepper.set_phase_time_scale(1.0);
         let turn = march(
             &load,
             start,
@@ -356,6 +357,10 @@ fn phased(
             &mut observe,
         )?;
         let peak = turn.state[0];
+        // Unloading is slower by sqrt(k_load / k_unload) (the same peak, a softer spring): a
+        // fixed step stays the same fraction of the phase's own period, so the work stays
+        // bounded as η → 1 instead of growing like 1/e.
+        stepper.set_phase_time_scale((k_load / k_unload).sqrt());
         let end = march(
             &unload,
             State::new(peak, 0.0),

@@ -27,13 +27,28 @@ pub trait Stepper {
     fn first_step(&self) -> f64;
     /// The step to try after an attempt of size `h` with error norm `error`.
     fn next_step(&self, h: f64, error: f64) -> f64;
+    /// Tell a fixed-step method that the coming phase is `factor` times slower than the one
+    /// its step was chosen for (adaptive methods find that out by themselves).
+    fn set_phase_time_scale(&mut self, _factor: f64) {}
 }
 
 /// Classical fourth-order Runge–Kutta at a fixed step.
 #[derive(Clone, Copy, Debug)]
 pub struct Rk4 {
-    /// The step.
+    /// The step in the phase at hand.
     pub step: f64,
+    /// The step chosen for the loading phase.
+    pub base_step: f64,
+}
+
+impl Rk4 {
+    /// RK4 at step `h`.
+    pub fn new(h: f64) -> Self {
+        Rk4 {
+            step: h,
+            base_step: h,
+        }
+    }
 }
 
 impl Stepper for Rk4 {
@@ -50,6 +65,9 @@ impl Stepper for Rk4 {
     }
     fn next_step(&self, _h: f64, _error: f64) -> f64 {
         self.step
+    }
+    fn set_phase_time_scale(&mut self, factor: f64) {
+        self.step = self.base_step * factor;
     }
 }
 
