@@ -77,9 +77,8 @@ fn case_argument(case: &Case, option: &str, value: impl ToString, allowed: &str)
 
 /// Validate the integration options and turn them into solver settings.
 pub fn settings(args: &IntegrationArgs, case: &Case, record: bool) -> Result<Settings> {
-    let argument = |option: &str, value: f64, allowed: &str| {
-        case_argument(case, option, value, allowed)
-    };
+    let argument =
+        |option: &str, value: f64, allowed: &str| case_argument(case, option, value, allowed);
     if !(args.rtol > 0.0 && args.rtol < 1.0) {
         return Err(argument("--rtol", args.rtol, "must be in (0, 1)"));
     }
@@ -210,15 +209,16 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>> {
 /// `millimpact sweep`.
 pub fn sweep(args: &SweepArgs) -> Result<String> {
     let case = Case::load(&args.case)?;
-    let values = parse_range(&args.loss_coefficient).map_err(|e| match e.downcast::<UserError>() {
-        Ok(UserError::Argument {
-            option,
-            value,
-            allowed,
-        }) => case_argument(&case, &option, value, &allowed),
-        Ok(other) => other.into(),
-        Err(other) => other,
-    })?;
+    let values =
+        parse_range(&args.loss_coefficient).map_err(|e| match e.downcast::<UserError>() {
+            Ok(UserError::Argument {
+                option,
+                value,
+                allowed,
+            }) => case_argument(&case, &option, value, &allowed),
+            Ok(other) => other.into(),
+            Err(other) => other,
+        })?;
     let mut rows = Vec::with_capacity(values.len());
     for eta in values {
         let at = case.with_loss_coefficient(eta);

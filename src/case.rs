@@ -93,7 +93,11 @@ impl Case {
                 }
                 None => String::new(),
             };
-            fail("(file)", "(not TOML)", &format!("invalid TOML{place}: {message}"))
+            fail(
+                "(file)",
+                "(not TOML)",
+                &format!("invalid TOML{place}: {message}"),
+            )
         })?;
         let name = path
             .file_stem()
