@@ -430,7 +430,12 @@ pub fn trajectory_csv(case: &Case, samples: &[Sample]) -> anyhow::Result<String>
                 0.0
             };
             let direction = (s.y * s.v).signum();
-            let dissipative = law.loss_coefficient * elastic * direction;
+            // Out of contact there is no force at all (not a negative zero).
+            let dissipative = if elastic == 0.0 {
+                0.0
+            } else {
+                law.loss_coefficient * elastic * direction
+            };
             let potential = if in_contact {
                 law.stiffness * s.y.abs().powf(law.exponent + 1.0) / (law.exponent + 1.0)
             } else {

@@ -82,6 +82,9 @@ pub struct Outcome {
     pub crossing_speeds: Vec<f64>,
 }
 
+/// Trajectory samples drawn from each stretch the contact series carries.
+const SERIES_SAMPLES: usize = 16;
+
 /// Dimensionless result.
 #[derive(Default)]
 struct Scaled {
@@ -344,6 +347,14 @@ fn phased(
         let (y0, v0) = series.advance(k_load, speed, s0);
         let start = State::new(y0, v0);
         out.stats.steps += 1;
+        if record {
+            // The series is exact over its stretch: sample it so the trajectory has no gap.
+            for i in 1..SERIES_SAMPLES {
+                let s = s0 * i as f64 / SERIES_SAMPLES as f64;
+                let (y, v) = series.advance(k_load, speed, s);
+                observe(t + s, &State::new(y, v));
+            }
+        }
         observe(t + s0, &start);
         stepper.set_phase_time_scale(1.0);
         let turn = march(
@@ -375,6 +386,18 @@ fn phased(
             &mut observe,
         )?;
         let exit_speed = -end.state[1];
+        if record && samples.len() >= 2 {
+            // Fill the series' stretch before the exit, backwards from it, likewise.
+            let exit = samples.pop().expect("the exit was recorded");
+            let last_step = samples.last().expect("a step before the exit").0;
+            let span = end.time - last_step;
+            for i in (1..SERIES_SAMPLES).rev() {
+                let s = span * i as f64 / SERIES_SAMPLES as f64;
+                let (y, rate) = series.advance(k_unload, exit_speed, s);
+                samples.push((end.time - s, sign * y, -sign * rate));
+            }
+            samples.push(exit);
+        }
         if out.crossing_speeds.is_empty() {
             out.cor = exit_speed;
             out.peak = peak;
