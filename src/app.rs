@@ -427,3 +427,31 @@ pub fn verify(args: &VerifyArgs) -> Result<String> {
     }
     Ok(text)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn range_includes_its_stop() {
+        let v = parse_range("0:0.9:0.1").unwrap();
+        assert_eq!(v.len(), 10);
+        assert!((v[9] - 0.9).abs() < 1e-12);
+        assert_eq!(parse_range("0.35:0.35:0.1").unwrap(), vec![0.35]);
+    }
+
+    #[test]
+    fn range_refuses_what_is_not_allowed() {
+        for bad in [
+            "0:1:0.1",
+            "0.5:0.1:0.1",
+            "0:0.5:0",
+            "-0.1:0.5:0.1",
+            "0:0.5",
+            "a:b:c",
+            "0:nan:0.1",
+        ] {
+            assert!(parse_range(bad).is_err(), "{bad}");
+        }
+    }
+}

@@ -476,3 +476,44 @@ pub fn record_table(r: &ReferenceRecord) -> String {
     );
     text
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_split_adds_up_to_the_total() {
+        let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+        let files = stored_files(&folder).unwrap();
+        assert!(!files.is_empty(), "stored references exist");
+        for path in files {
+            for r in load(&path).unwrap().runs {
+                let a = r.attribution();
+                for (total, parts) in [
+                    (
+                        a.total.cor,
+                        a.model.cor + a.integration.cor + a.remainder.cor,
+                    ),
+                    (
+                        a.total.peak_deformation,
+                        a.model.peak_deformation
+                            + a.integration.peak_deformation
+                            + a.remainder.peak_deformation,
+                    ),
+                    (
+                        a.total.contact_time,
+                        a.model.contact_time
+                            + a.integration.contact_time
+                            + a.remainder.contact_time,
+                    ),
+                ] {
+                    assert!(
+                        (total - parts).abs() < 1e-14,
+                        "{}: {total} vs {parts}",
+                        path.display()
+                    );
+                }
+            }
+        }
+    }
+}

@@ -611,3 +611,57 @@ pub fn all_drivers() -> Vec<Box<dyn CodeDriver>> {
 pub fn driver(name: &str) -> Option<Box<dyn CodeDriver>> {
     all_drivers().into_iter().find(|d| d.name() == name)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fill_template_replaces_and_refuses_leftovers() {
+        let filled = fill_template("a {{x}} b {{y}}", &[("x", "1".into()), ("y", "2".into())]);
+        assert_eq!(filled.unwrap(), "a 1 b 2");
+        let err = fill_template("a {{x}} b {{z}}", &[("x", "1".into())]).unwrap_err();
+        assert!(err.contains("{{z}}"), "{err}");
+    }
+
+    #[test]
+    fn parse_columns_reads_rows_and_names_bad_lines() {
+        let t = parse_columns("# t d v f\n0 0 2 0\n\n1e-7 2e-7 1.9 5\n", "traj").unwrap();
+        assert_eq!(t.time, vec![0.0, 1e-7]);
+        assert_eq!(t.normal_force, vec![0.0, 5.0]);
+        let err = parse_columns("0 0 2\n", "traj").unwrap_err();
+        assert!(
+            err.contains("traj line 1") && err.contains("4 columns"),
+            "{err}"
+        );
+        assert!(parse_columns("0 0 x 1\n", "traj").is_err());
+    }
+
+    #[test]
+    fn trajectory_metrics_interpolates_the_zero_crossings() {
+        // Overlap rises from -1 to 3 and falls to -1: zero crossings at t = 0.25 and t = 3.75.
+        let t = CodeTrajectory {
+            time: vec![0.0, 1.0, 2.0, 3.0, 4.0],
+            overlap: vec![-1.0, 3.0, 4.0, 3.0, -1.0],
+            approach_velocity: vec![2.0, 1.0, 0.0, -1.0, -1.5],
+            normal_force: vec![0.0, 10.0, 20.0, 10.0, 0.0],
+        };
+        let m = trajectory_metrics(&t).unwrap();
+        assert_eq!(m.contact_time, 3.5);
+        assert_eq!(m.cor, 0.75);
+        assert_eq!(m.peak_deformation, 4.0);
+        assert_eq!(m.peak_force, 20.0);
+    }
+
+    #[test]
+    fn trajectory_metrics_refuses_an_unfinished_contact() {
+        let t = CodeTrajectory {
+            time: vec![0.0, 1.0, 2.0],
+            overlap: vec![0.0, 1.0, 2.0],
+            approach_velocity: vec![1.0, 1.0, 1.0],
+            normal_force: vec![],
+        };
+        let err = trajectory_metrics(&t).unwrap_err();
+        assert!(err.contains("had not ended"), "{err}");
+    }
+}

@@ -286,3 +286,68 @@ fn locate(
     }
     best
 }
+
+#[cfg(test)]
+mod tests {
+    use super::steppers::{Dopri5, Rk4};
+    use super::*;
+
+    /// Free flight `y = 1 - t`: the root of `y` is at `t = 1` whatever the step.
+    #[test]
+    fn march_locates_an_event_inside_a_step() {
+        let rhs = |s: &State| State::new(s[1], 0.0);
+        let event = |s: &State| s[0];
+        for h in [0.3, 0.07] {
+            let mut stepper = Rk4::new(h);
+            let mut stats = Stats::default();
+            let crossing = march(
+                &rhs,
+                State::new(1.0, -1.0),
+                0.0,
+                &mut stepper,
+                &[&event],
+                None,
+                &mut stats,
+                &mut |_, _| {},
+            )
+            .unwrap();
+            assert!((crossing.time - 1.0).abs() < 1e-14, "{}", crossing.time);
+            assert_eq!(crossing.event, 0);
+        }
+    }
+
+    /// The harmonic oscillator from rest at 1 turns (v = 0 → y extreme) at t = π exactly.
+    #[test]
+    fn adaptive_march_finds_the_turning_point_of_an_oscillator() {
+        let rhs = |s: &State| State::new(s[1], -s[0]);
+        let rate = |s: &State| s[1];
+        let mut stepper = Dopri5::new(1e-12);
+        let mut stats = Stats::default();
+        let crossing = march(
+            &rhs,
+            State::new(0.0, 1.0),
+            0.0,
+            &mut stepper,
+            &[&rate],
+            None,
+            &mut stats,
+            &mut |_, _| {},
+        )
+        .unwrap();
+        assert!((crossing.time - std::f64::consts::FRAC_PI_2).abs() < 1e-11);
+        assert!((crossing.state[0] - 1.0).abs() < 1e-11);
+        assert!(stats.rhs_evaluations > 0 && stats.steps > 0);
+    }
+
+    #[test]
+    fn rk4_local_error_is_fifth_order() {
+        let rhs = |s: &State| State::new(s[1], -s[0]);
+        let error = |h: f64| {
+            let y = State::new(0.0, 1.0);
+            let next = steppers::rk4_step(&rhs, &y, &rhs(&y), h);
+            (next[0] - h.sin()).abs()
+        };
+        let ratio = error(0.1) / error(0.05);
+        assert!((ratio.log2() - 5.0).abs() < 0.1, "{}", ratio.log2());
+    }
+}
