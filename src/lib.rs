@@ -2,6 +2,8 @@
 //! (dissipative force = η × gradient of the elastic energy), against exact closed forms and
 //! the DEM codes LIGGGHTS, YADE and LAMMPS.
 
+#![warn(missing_docs)]
+
 pub mod app;
 pub mod case;
 pub mod cli;
