@@ -146,7 +146,7 @@ pub struct ReferenceArgs {
     /// Output format (table or json).
     #[arg(long, value_enum, default_value = "table")]
     pub format: Format,
-    /// Store the result, with provenance, in reference/<code>/<case>.json.
+    /// Store the result, with provenance, in `reference/<code>/<case>.json`.
     #[arg(long)]
     pub save: bool,
     /// Folder of stored references.

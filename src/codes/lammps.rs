@@ -4,7 +4,7 @@
 //! What this build really does, as measured (reference/lammps/CONVENTIONS.md has the runs):
 //!
 //! * `fix nve/sphere` is velocity Verlet and the contact force is computed between the two half
-//!   kicks, so the dashpot sees the half-step velocity ([`StepScheme::VelocityVerlet`] of
+//!   kicks, so the dashpot sees the half-step velocity ([`StepScheme::VelocityVerlet`](crate::solve::dashpot::StepScheme::VelocityVerlet) of
 //!   `solve::dashpot`).
 //! * `fix wall/gran … hertz/material E d ν` uses `E* = E / (2(1-ν))` (not `E/(2(1-ν²))`), the
 //!   pair style `E* = E / (2(1-ν²))`. The driver passes `ν = 0` and `E = 2E*`, which both read
