@@ -145,7 +145,11 @@ pub fn run(args: &RunArgs) -> Result<String> {
     let settings = settings(&args.integration, &case, args.trajectory.is_some())?;
     let (report, outcome) = run_case(&case, &settings)?;
     let text = match args.format {
-        Format::Table => report.table(),
+        Format::Table => format!(
+            "{}reproduce: millimpact run {}\n",
+            report.table(),
+            reproduce_arguments(&args.case, &args.integration)
+        ),
         Format::Json => serde_json::to_string_pretty(&report)? + "\n",
         Format::Csv => report::csv_string(&[report.row()])?,
         Format::Markdown => {
@@ -178,6 +182,18 @@ pub fn run(args: &RunArgs) -> Result<String> {
             .with_context(|| format!("writing the trajectory to {}", path.display()))?;
     }
     Ok(text)
+}
+
+/// The arguments that repeat a run: the case and the settings that shaped it.
+fn reproduce_arguments(case: &Path, args: &IntegrationArgs) -> String {
+    let mut text = format!("{} --method {}", case.display(), args.method.name());
+    match (args.method, args.timestep) {
+        (_, Some(dt)) => text += &format!(" --timestep {dt:e}"),
+        (Method::Dopri5, None) => text += &format!(" --rtol {:e}", args.rtol),
+        (Method::Exact, None) => {}
+        (_, None) => text += &format!(" --steps-per-period {}", args.steps_per_period),
+    }
+    text
 }
 
 /// Parse `START:STOP:STEP` into the values of η it names, STOP included.
