@@ -502,6 +502,17 @@ pub fn precision_report(
         orders_by_quantity.insert(source.to_string(), q);
         envelopes.insert(source.to_string(), envelope_orders(&own));
     }
+    // Only the notes about the sources swept: a note's first word names its method, or it
+    // is about the DEM codes.
+    let notes = ORDER_NOTES
+        .iter()
+        .filter(|note| {
+            let about = note.split([' ', ':']).next().unwrap_or("");
+            points.iter().any(|p| p.source == about)
+                || (about == "DEM" && points.iter().any(|p| p.knob == "steps_per_contact"))
+        })
+        .copied()
+        .collect();
     Ok(PrecisionReport {
         case: case.name.clone(),
         targets: targets(&points),
@@ -510,7 +521,7 @@ pub fn precision_report(
         orders_by_quantity,
         envelope_orders: envelopes,
         tolerance_slopes,
-        notes: ORDER_NOTES.to_vec(),
+        notes,
     })
 }
 
