@@ -241,6 +241,11 @@ pub fn sweep(args: &SweepArgs) -> Result<String> {
         let settings = settings(&args.integration, &at, false)?;
         rows.push(run_case(&at, &settings)?.0.row());
     }
+    if let Some(path) = &args.plot {
+        let svg = crate::figures::restitution_svg(&case.name, &rows)?;
+        report::write_atomic(path, svg.as_bytes())
+            .with_context(|| format!("writing the figure to {}", path.display()))?;
+    }
     report::csv_string(&rows)
 }
 

@@ -82,6 +82,9 @@ pub struct SweepArgs {
     /// Range of η as START:STOP:STEP, STOP included, all in [0, 1).
     #[arg(long)]
     pub loss_coefficient: String,
+    /// Also draw COR against η, with the closed form, to this SVG file.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
     /// Integration settings.
     #[command(flatten)]
     pub integration: IntegrationArgs,

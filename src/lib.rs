@@ -10,6 +10,7 @@ pub mod cli;
 pub mod codes;
 pub mod compare;
 pub mod exact;
+pub mod figures;
 pub mod law;
 pub mod precision;
 pub mod references;

@@ -385,6 +385,36 @@ fn sweep_gives_the_cor_curve() {
 }
 
 #[test]
+fn sweep_draws_the_figure_only_when_it_succeeds() {
+    let dir = TempDir::new().unwrap();
+    let figure = dir.path().join("figure3.svg");
+    stdout(
+        millimpact()
+            .arg("sweep")
+            .arg(case_path("rod_end"))
+            .args(["--loss-coefficient", "0:0.9:0.3", "--plot"])
+            .arg(&figure),
+    );
+    let svg = std::fs::read_to_string(&figure).unwrap();
+    assert!(
+        svg.starts_with("<svg") && svg.contains("loss coefficient"),
+        "{svg:.200}"
+    );
+    // Four points drawn (η = 0, 0.3, 0.6, 0.9), one more in the legend.
+    assert_eq!(svg.matches("<circle").count(), 5, "{svg:.400}");
+
+    let refused = dir.path().join("refused.svg");
+    millimpact()
+        .arg("sweep")
+        .arg(case_path("rod_end"))
+        .args(["--loss-coefficient", "0:1:0.1", "--plot"])
+        .arg(&refused)
+        .assert()
+        .code(2);
+    assert!(!refused.exists());
+}
+
+#[test]
 fn verify_passes_on_the_shipped_cases() {
     let text = stdout(millimpact().args(["verify", "--format", "json"]));
     let rows: Vec<Value> = serde_json::from_str(&text).unwrap();

@@ -1,0 +1,72 @@
+//! The paper's Figure 3 as SVG: the COR against the loss coefficient, by a method and exactly.
+
+use anyhow::{Result, anyhow};
+use plotters::prelude::*;
+
+use crate::exact;
+use crate::report::SweepRow;
+
+/// Render a sweep: the method's COR at each η (points), the closed form `sqrt((1-η)/(1+η))`
+/// (line) and the small-η approximation `1 - η` (thin line) it bends away from.
+pub fn restitution_svg(case: &str, rows: &[SweepRow]) -> Result<String> {
+    let method = rows
+        .first()
+        .map(|r| r.method)
+        .ok_or(anyhow!("no points to plot"))?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (800, 600)).into_drawing_area();
+        let fail = |e: &dyn std::fmt::Display| anyhow!("drawing the figure: {e}");
+        root.fill(&WHITE).map_err(|e| fail(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                format!("COR against loss coefficient, case {case}"),
+                ("sans-serif", 22),
+            )
+            .margin(20)
+            .x_label_area_size(50)
+            .y_label_area_size(60)
+            .build_cartesian_2d(0f64..1f64, 0f64..1.05f64)
+            .map_err(|e| fail(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("loss coefficient η")
+            .y_desc("coefficient of restitution e")
+            .draw()
+            .map_err(|e| fail(&e))?;
+        let exact_curve = (0..=400).map(|i| {
+            let eta = 0.9999 * i as f64 / 400.0;
+            (eta, exact::restitution(eta))
+        });
+        let blue = BLUE.stroke_width(2);
+        chart
+            .draw_series(LineSeries::new(exact_curve, blue))
+            .map_err(|e| fail(&e))?
+            .label("exact: sqrt((1-η)/(1+η))")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], blue));
+        let grey = BLACK.mix(0.4).stroke_width(1);
+        chart
+            .draw_series(LineSeries::new([(0.0, 1.0), (1.0, 0.0)], grey))
+            .map_err(|e| fail(&e))?
+            .label("1 - η (small η)")
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], grey));
+        chart
+            .draw_series(
+                rows.iter()
+                    .map(|r| Circle::new((r.loss_coefficient, r.cor), 4, RED.filled())),
+            )
+            .map_err(|e| fail(&e))?
+            .label(format!("{method}"))
+            .legend(|(x, y)| Circle::new((x + 12, y), 4, RED.filled()));
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::LowerLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 16))
+            .draw()
+            .map_err(|e| fail(&e))?;
+        root.present().map_err(|e| fail(&e))?;
+    }
+    Ok(svg)
+}
