@@ -56,7 +56,7 @@ pub fn restitution_svg(case: &str, rows: &[SweepRow]) -> Result<String> {
                     .map(|r| Circle::new((r.loss_coefficient, r.cor), 4, RED.filled())),
             )
             .map_err(|e| fail(&e))?
-            .label(format!("{method}"))
+            .label(method)
             .legend(|(x, y)| Circle::new((x + 12, y), 4, RED.filled()));
         chart
             .configure_series_labels()
