@@ -4,7 +4,6 @@
 //! The live tests run the real binary; without it they fail (they do not skip), because a
 //! harness that silently stops comparing is worse than one that says it cannot.
 
-use std::f64::consts::PI;
 use std::path::Path;
 
 use millimpact::codes::lammps::{
@@ -12,128 +11,19 @@ use millimpact::codes::lammps::{
     tsuji_input_for_alpha,
 };
 use millimpact::codes::{
-    CodeDriver, CodeRun, CodeSetup, CodeSphere, RunOptions, TrajectoryMetrics, run_code,
-    trajectory_metrics,
+    CodeDriver, CodeRun, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
 };
 use millimpact::law::DashpotLaw;
-use millimpact::scene::SceneKind;
 use millimpact::solve::dashpot::{StepScheme, step_trajectory};
 
-/// The paper's η = 0.35 gives this COR: sqrt((1-η)/(1+η)) = 0.69389 (the brief's "0.6944"
-/// is this value rounded loosely).
-fn e_paper() -> f64 {
-    (0.65f64 / 1.35).sqrt()
-}
+mod common;
 
-const RADIUS: f64 = 0.02;
-const DENSITY: f64 = 7800.0;
-const YOUNG: f64 = 2.0e11;
-const POISSON: f64 = 0.3;
-const V0: f64 = 2.0;
+use common::codes::{Canonical as Case, code_setup, e_paper, elastic_contact_time};
 
-/// Which of the canonical impacts.
-#[derive(Clone, Copy, Debug)]
-enum Case {
-    /// Ball on an elastic steel plate.
-    BallPlate,
-    /// Ball on a rigid plate.
-    BallRigidPlate,
-    /// Two equal balls.
-    BallBall,
-    /// Rod end on a rigid plate.
-    RodEnd,
-}
-
-fn ball() -> CodeSphere {
-    CodeSphere {
-        radius: RADIUS,
-        density: DENSITY,
-        mass: 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY,
-        youngs_modulus: YOUNG,
-        poisson_ratio: Some(POISSON),
-    }
-}
-
-/// The Hertz contact time `2.86827 (M²/(R* E*² v0))^(1/5)` or the linear `π sqrt(M/k)`.
-fn elastic_contact_time(setup: &CodeSetup) -> f64 {
-    match (setup.effective_modulus, setup.effective_radius) {
-        (Some(e_star), Some(r_star)) => {
-            let m = setup.reduced_mass;
-            2.86827 * (m * m / (r_star * e_star * e_star * setup.impact_velocity)).powf(0.2)
-        }
-        _ => PI * (setup.reduced_mass / setup.stiffness).sqrt(),
-    }
-}
-
-/// A case from the brief's numbers, at target COR `e`, with Δt = (elastic contact time)/1000
-/// and a run 1.25 contact times long (the damped contacts last at most 1.1 of it).
+/// A canonical case at target COR `e`, with Δt = (elastic contact time)/1000 and a run 1.25
+/// contact times long (the damped contacts last at most 1.1 of it).
 fn setup(case: Case, e: f64) -> CodeSetup {
-    let b = ball();
-    let compliance = (1.0 - POISSON * POISSON) / YOUNG;
-    let (scene, sphere, other, plate, e_star, r_star, mass) = match case {
-        Case::BallPlate => (
-            SceneKind::BallPlate,
-            b,
-            None,
-            Some((YOUNG, POISSON)),
-            Some(1.0 / (2.0 * compliance)),
-            Some(RADIUS),
-            b.mass,
-        ),
-        Case::BallRigidPlate => (
-            SceneKind::BallPlate,
-            b,
-            None,
-            None,
-            Some(1.0 / compliance),
-            Some(RADIUS),
-            b.mass,
-        ),
-        Case::BallBall => (
-            SceneKind::BallBall,
-            b,
-            Some(b),
-            None,
-            Some(1.0 / (2.0 * compliance)),
-            Some(RADIUS / 2.0),
-            b.mass / 2.0,
-        ),
-        Case::RodEnd => {
-            let (d, length) = (0.03, 0.5);
-            let mass = DENSITY * PI * d * d / 4.0 * length;
-            let r = d / 2.0;
-            let rod = CodeSphere {
-                radius: r,
-                density: mass / (4.0 / 3.0 * PI * r.powi(3)),
-                mass,
-                youngs_modulus: YOUNG,
-                poisson_ratio: None,
-            };
-            (SceneKind::RodEnd, rod, None, None, None, None, mass)
-        }
-    };
-    let (stiffness, exponent) = match (e_star, r_star) {
-        (Some(es), Some(rs)) => (4.0 / 3.0 * es * rs.sqrt(), 1.5),
-        _ => (PI * 0.03 * 0.03 * YOUNG / (4.0 * 0.25), 1.0),
-    };
-    let mut s = CodeSetup {
-        case_name: format!("{case:?}").to_lowercase(),
-        scene,
-        sphere,
-        other_sphere: other,
-        plate_material: plate,
-        effective_modulus: e_star,
-        effective_radius: r_star,
-        reduced_mass: mass,
-        stiffness,
-        exponent,
-        impact_velocity: V0,
-        target_restitution: e,
-        timestep: 1.0,
-        steps: 1250,
-    };
-    s.timestep = elastic_contact_time(&s) / 1000.0;
-    s
+    code_setup(case, e, 1000.0, 1.25)
 }
 
 /// Run the installed LAMMPS; a missing binary or a failed run fails the test with the reason.

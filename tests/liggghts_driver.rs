@@ -3,154 +3,34 @@
 //!
 //! The live tests FAIL (not skip) when `liggghts` is not on PATH.
 
-use std::f64::consts::PI;
-
 use millimpact::codes::liggghts::{self, Liggghts};
 use millimpact::codes::{
-    CodeDriver, CodeError, CodeRun, CodeSetup, CodeSphere, RunOptions, find_on_path, run_code,
+    CodeDriver, CodeError, CodeRun, CodeSetup, RunOptions, find_on_path, run_code,
     trajectory_metrics,
 };
 use millimpact::law::DashpotLaw;
 use millimpact::scene::SceneKind;
 use millimpact::solve::dashpot::{StepScheme, step_trajectory};
 
-/// The paper's steel case: η = 0.35, e = sqrt((1-η)/(1+η)) = 0.693889 (the brief's
-/// "0.6944" is this value misrounded).
-fn e_target() -> f64 {
-    (0.65f64 / 1.35).sqrt()
-}
-const RADIUS: f64 = 0.02;
-const DENSITY: f64 = 7800.0;
-const MODULUS: f64 = 2.0e11;
-const POISSON: f64 = 0.3;
-const V0: f64 = 2.0;
-const ROD_DIAMETER: f64 = 0.03;
-const ROD_LENGTH: f64 = 0.5;
+mod common;
+
+use common::codes::{Canonical, code_setup, e_paper as e_target, elastic_contact_time};
+
 /// Steps per elastic contact time, and how far past it the run goes (damping lengthens the
 /// contact: by 9 % for damped Hertz at e = 0.5).
 const STEPS_PER_CONTACT: f64 = 1000.0;
 const RUN_PAST_CONTACT: f64 = 1.15;
 
-fn steel_ball() -> CodeSphere {
-    CodeSphere {
-        radius: RADIUS,
-        density: DENSITY,
-        mass: 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY,
-        youngs_modulus: MODULUS,
-        poisson_ratio: Some(POISSON),
-    }
-}
-
-/// Elastic Hertz contact time `2.86827 (M²/(R* E*² v0))^(1/5)`, s.
-fn hertz_contact_time(mass: f64, radius: f64, modulus: f64, v0: f64) -> f64 {
-    2.86827 * (mass * mass / (radius * modulus * modulus * v0)).powf(0.2)
-}
-
-fn finish(mut setup: CodeSetup, contact_time: f64) -> CodeSetup {
-    setup.timestep = contact_time / STEPS_PER_CONTACT;
-    setup.steps = (RUN_PAST_CONTACT * STEPS_PER_CONTACT).ceil() as u64;
-    setup
-}
-
-/// The canonical case `scene` at restitution `e`, built from the brief's numbers. For the
-/// plate, `rigid` chooses a rigid plate (`E* = E/(1-ν²)`) over a steel one.
+/// The canonical case `scene` at restitution `e`; for the plate, `rigid` chooses a rigid plate
+/// over a steel one.
 fn canonical(scene: SceneKind, e: f64, rigid: bool) -> CodeSetup {
-    let ball = steel_ball();
-    let compliance = (1.0 - POISSON * POISSON) / MODULUS;
-    match scene {
-        SceneKind::BallPlate => {
-            let modulus = if rigid {
-                1.0 / compliance
-            } else {
-                1.0 / (2.0 * compliance)
-            };
-            let setup = CodeSetup {
-                case_name: if rigid {
-                    "ball_rigid_plate"
-                } else {
-                    "ball_plate"
-                }
-                .into(),
-                scene,
-                sphere: ball,
-                other_sphere: None,
-                plate_material: (!rigid).then_some((MODULUS, POISSON)),
-                effective_modulus: Some(modulus),
-                effective_radius: Some(RADIUS),
-                reduced_mass: ball.mass,
-                stiffness: 4.0 / 3.0 * modulus * RADIUS.sqrt(),
-                exponent: 1.5,
-                impact_velocity: V0,
-                target_restitution: e,
-                timestep: 0.0,
-                steps: 0,
-            };
-            finish(setup, hertz_contact_time(ball.mass, RADIUS, modulus, V0))
-        }
-        SceneKind::BallBall => {
-            let modulus = 1.0 / (2.0 * compliance);
-            let (radius, mass) = (RADIUS / 2.0, ball.mass / 2.0);
-            let setup = CodeSetup {
-                case_name: "ball_ball".into(),
-                scene,
-                sphere: ball,
-                other_sphere: Some(ball),
-                plate_material: None,
-                effective_modulus: Some(modulus),
-                effective_radius: Some(radius),
-                reduced_mass: mass,
-                stiffness: 4.0 / 3.0 * modulus * radius.sqrt(),
-                exponent: 1.5,
-                impact_velocity: V0,
-                target_restitution: e,
-                timestep: 0.0,
-                steps: 0,
-            };
-            finish(setup, hertz_contact_time(mass, radius, modulus, V0))
-        }
-        SceneKind::RodEnd => {
-            let area = PI * ROD_DIAMETER * ROD_DIAMETER / 4.0;
-            let mass = area * ROD_LENGTH * DENSITY;
-            let stiffness = area * MODULUS / (ROD_LENGTH / 2.0);
-            let r = ROD_DIAMETER / 2.0;
-            let setup = CodeSetup {
-                case_name: "rod_end".into(),
-                scene,
-                sphere: CodeSphere {
-                    radius: r,
-                    density: mass / (4.0 / 3.0 * PI * r.powi(3)),
-                    mass,
-                    youngs_modulus: MODULUS,
-                    poisson_ratio: None,
-                },
-                other_sphere: None,
-                plate_material: None,
-                effective_modulus: None,
-                effective_radius: None,
-                reduced_mass: mass,
-                stiffness,
-                exponent: 1.0,
-                impact_velocity: V0,
-                target_restitution: e,
-                timestep: 0.0,
-                steps: 0,
-            };
-            finish(setup, PI * (mass / stiffness).sqrt())
-        }
-    }
-}
-
-/// The elastic contact time theory gives for `setup`: Hertz, or half a period of the spring.
-fn elastic_contact_time(setup: &CodeSetup) -> f64 {
-    match setup.scene {
-        SceneKind::RodEnd => PI * (setup.reduced_mass / setup.stiffness).sqrt(),
-        _ => hertz_contact_time(
-            setup.reduced_mass,
-            setup.effective_radius.unwrap(),
-            setup.effective_modulus.unwrap(),
-            setup.impact_velocity,
-        ),
-    }
+    let which = match (scene, rigid) {
+        (SceneKind::BallPlate, false) => Canonical::BallPlate,
+        (SceneKind::BallPlate, true) => Canonical::BallRigidPlate,
+        (SceneKind::BallBall, _) => Canonical::BallBall,
+        (SceneKind::RodEnd, _) => Canonical::RodEnd,
+    };
+    code_setup(which, e, STEPS_PER_CONTACT, RUN_PAST_CONTACT)
 }
 
 fn run(setup: &CodeSetup) -> CodeRun {

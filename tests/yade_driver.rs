@@ -2,7 +2,6 @@
 //! `yade` (2023.02a) for the three canonical impacts. The live tests fail, not skip, when the
 //! binary is missing.
 
-use std::f64::consts::PI;
 use std::path::Path;
 
 use millimpact::codes::yade::{
@@ -10,21 +9,17 @@ use millimpact::codes::yade::{
     parse_trajectory, thornton_damping_ratio,
 };
 use millimpact::codes::{
-    CodeDriver, CodeRun, CodeSetup, CodeSphere, RunOptions, TrajectoryMetrics, run_code,
-    trajectory_metrics,
+    CodeDriver, CodeRun, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
 };
 use millimpact::law::DashpotLaw;
 use millimpact::scene::SceneKind;
 use millimpact::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
 
-const RADIUS: f64 = 0.02;
-const DENSITY: f64 = 7800.0;
-const YOUNG: f64 = 2.0e11;
-const POISSON: f64 = 0.3;
-const IMPACT_VELOCITY: f64 = 2.0;
-const ROD_DIAMETER: f64 = 0.03;
-const ROD_LENGTH: f64 = 0.5;
-/// `sqrt((1-η)/(1+η))` at the paper's η = 0.35.
+mod common;
+
+use common::codes::{Canonical, IMPACT_VELOCITY, code_setup, elastic_contact_time};
+
+/// The paper's target, as given to the recorded sample (`e_paper()` rounded to 0.6944).
 const TARGET: f64 = 0.6944;
 /// Steps per contact time in the live runs (the crate's default step).
 const STEPS_PER_CONTACT: f64 = 1000.0;
@@ -38,109 +33,19 @@ enum Plate {
     Rigid,
 }
 
-fn steel_ball() -> CodeSphere {
-    CodeSphere {
-        radius: RADIUS,
-        density: DENSITY,
-        mass: 4.0 / 3.0 * PI * RADIUS.powi(3) * DENSITY,
-        youngs_modulus: YOUNG,
-        poisson_ratio: Some(POISSON),
-    }
-}
-
-/// Hertz elastic contact time `2.86827 (M² / (R* E*² v0))^(1/5)`.
-fn hertz_contact_time(mass: f64, radius: f64, modulus: f64, velocity: f64) -> f64 {
-    2.86827 * (mass * mass / (radius * modulus * modulus * velocity)).powf(0.2)
-}
-
 /// The canonical case `scene` at restitution `e`, stepped at (contact time) / `per_contact`.
 fn setup_at(scene: SceneKind, e: f64, plate: Plate, per_contact: f64) -> CodeSetup {
-    let ball = steel_ball();
-    let compliance = (1.0 - POISSON * POISSON) / YOUNG;
-    let (sphere, other, plate_material, modulus, radius, mass, stiffness, exponent, contact) =
-        match scene {
-            SceneKind::BallPlate => {
-                let (plate_material, modulus) = match plate {
-                    Plate::Steel => (Some((YOUNG, POISSON)), 1.0 / (2.0 * compliance)),
-                    Plate::Rigid => (None, 1.0 / compliance),
-                };
-                let k = 4.0 / 3.0 * modulus * RADIUS.sqrt();
-                let tc = hertz_contact_time(ball.mass, RADIUS, modulus, IMPACT_VELOCITY);
-                (
-                    ball,
-                    None,
-                    plate_material,
-                    Some(modulus),
-                    Some(RADIUS),
-                    ball.mass,
-                    k,
-                    1.5,
-                    tc,
-                )
-            }
-            SceneKind::BallBall => {
-                let modulus = 1.0 / (2.0 * compliance);
-                let (radius, mass) = (RADIUS / 2.0, ball.mass / 2.0);
-                let k = 4.0 / 3.0 * modulus * radius.sqrt();
-                let tc = hertz_contact_time(mass, radius, modulus, IMPACT_VELOCITY);
-                (
-                    ball,
-                    Some(ball),
-                    None,
-                    Some(modulus),
-                    Some(radius),
-                    mass,
-                    k,
-                    1.5,
-                    tc,
-                )
-            }
-            SceneKind::RodEnd => {
-                let area = PI * ROD_DIAMETER * ROD_DIAMETER / 4.0;
-                let mass = DENSITY * area * ROD_LENGTH;
-                let k = area * YOUNG / (ROD_LENGTH / 2.0);
-                let r = ROD_DIAMETER / 2.0;
-                let sphere = CodeSphere {
-                    radius: r,
-                    density: mass / (4.0 / 3.0 * PI * r.powi(3)),
-                    mass,
-                    youngs_modulus: YOUNG,
-                    poisson_ratio: None,
-                };
-                let tc = PI * (mass / k).sqrt();
-                (sphere, None, None, None, None, mass, k, 1.0, tc)
-            }
-        };
-    CodeSetup {
-        case_name: format!("{}_{e}", scene.name()),
-        scene,
-        sphere,
-        other_sphere: other,
-        plate_material,
-        effective_modulus: modulus,
-        effective_radius: radius,
-        reduced_mass: mass,
-        stiffness,
-        exponent,
-        impact_velocity: IMPACT_VELOCITY,
-        target_restitution: e,
-        timestep: contact / per_contact,
-        steps: (RUN_LENGTH * per_contact).round() as u64,
-    }
+    let which = match (scene, plate) {
+        (SceneKind::BallPlate, Plate::Steel) => Canonical::BallPlate,
+        (SceneKind::BallPlate, Plate::Rigid) => Canonical::BallRigidPlate,
+        (SceneKind::BallBall, _) => Canonical::BallBall,
+        (SceneKind::RodEnd, _) => Canonical::RodEnd,
+    };
+    code_setup(which, e, per_contact, RUN_LENGTH)
 }
 
 fn setup(scene: SceneKind, e: f64, plate: Plate) -> CodeSetup {
     setup_at(scene, e, plate, STEPS_PER_CONTACT)
-}
-
-/// The elastic contact time of the setup's own law: Hertz or `π sqrt(M/k)`.
-fn elastic_contact_time(s: &CodeSetup) -> f64 {
-    match (s.effective_modulus, s.effective_radius) {
-        (Some(modulus), Some(radius)) => {
-            hertz_contact_time(s.reduced_mass, radius, modulus, s.impact_velocity)
-        }
-        _ => PI * (s.reduced_mass / s.stiffness).sqrt(),
-    }
 }
 
 /// The number after `key=` on the script's `MILLIMPACT phys` line.
