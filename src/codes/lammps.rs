@@ -99,31 +99,11 @@ pub struct ContactPlan {
 }
 
 impl Lammps {
-    /// The effective radius the code uses: the sphere's radius at a flat wall,
-    /// `R1 R2 / (R1 + R2)` for two spheres.
-    pub fn code_effective_radius(setup: &CodeSetup) -> f64 {
-        let r1 = setup.sphere.radius;
-        match setup.other_sphere {
-            Some(o) => r1 * o.radius / (r1 + o.radius),
-            None => r1,
-        }
-    }
-
-    /// The mass the code's dashpot and the relative motion see: the sphere's mass at a wall
-    /// (the wall is immovable), `m1 m2 / (m1 + m2)` for two spheres.
-    pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
-        let m1 = setup.sphere.mass;
-        match setup.other_sphere {
-            Some(o) => m1 * o.mass / (m1 + o.mass),
-            None => m1,
-        }
-    }
-
     /// Choose the model arguments for `setup` and the law they make the code integrate.
     pub fn plan(setup: &CodeSetup) -> Result<ContactPlan, String> {
         let k = setup.stiffness;
         let e = setup.target_restitution;
-        let mass = Self::code_effective_mass(setup);
+        let mass = setup.pair_mass();
         if !(k > 0.0 && k.is_finite()) {
             return Err(format!("stiffness {k} is not positive"));
         }
@@ -134,7 +114,7 @@ impl Lammps {
         if setup.exponent == 1.5 {
             // hertz/material with ν = 0 and E = 2E* gives E* on a wall and between two
             // spheres alike, and k = (4/3) E* sqrt(R*) with the code's own R*.
-            let r_star = Self::code_effective_radius(setup);
+            let r_star = setup.pair_radius();
             let e_star = 0.75 * k / r_star.sqrt();
             let code_k = 4.0 / 3.0 * e_star * r_star.sqrt();
             let modulus = exact_number(2.0 * e_star);

@@ -73,16 +73,6 @@ pub fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
     Some(1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2))
 }
 
-/// The effective radius LIGGGHTS uses, m: the sphere's own radius at a wall,
-/// `R1 R2/(R1+R2)` between two spheres.
-pub fn code_effective_radius(setup: &CodeSetup) -> f64 {
-    let r1 = setup.sphere.radius;
-    match setup.other_sphere {
-        Some(o) => r1 * o.radius / (r1 + o.radius),
-        None => r1,
-    }
-}
-
 /// The mass the contact sees, kg: the sphere's own mass at a wall (the wall is immovable),
 /// the reduced mass between two spheres.
 pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
@@ -306,7 +296,7 @@ impl CodeDriver for Liggghts {
             }
             SceneKind::BallPlate | SceneKind::BallBall => {
                 let stiffness = match code_effective_modulus(setup) {
-                    Some(modulus) => 4.0 / 3.0 * modulus * code_effective_radius(setup).sqrt(),
+                    Some(modulus) => 4.0 / 3.0 * modulus * setup.pair_radius().sqrt(),
                     None => setup.stiffness,
                 };
                 DashpotLaw::damped_hertz(mass, stiffness, setup.target_restitution)

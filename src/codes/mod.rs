@@ -89,6 +89,26 @@ impl CodeSetup {
         }
     }
 
+    /// The contact radius of the pair, m: the sphere's own at a flat wall (the wall's radius
+    /// is infinite), `R1 R2 / (R1 + R2)` between two spheres.
+    pub fn pair_radius(&self) -> f64 {
+        let r1 = self.sphere.radius;
+        match self.other_sphere {
+            Some(o) => r1 * o.radius / (r1 + o.radius),
+            None => r1,
+        }
+    }
+
+    /// The mass of the relative motion, kg: the sphere's own at a wall (the wall does not
+    /// move), `m1 m2 / (m1 + m2)` between two spheres, from the given masses.
+    pub fn pair_mass(&self) -> f64 {
+        let m1 = self.sphere.mass;
+        match self.other_sphere {
+            Some(o) => m1 * o.mass / (m1 + o.mass),
+            None => m1,
+        }
+    }
+
     /// Simulated duration, s.
     pub fn duration(&self) -> f64 {
         self.timestep * self.steps as f64
