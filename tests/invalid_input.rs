@@ -600,3 +600,29 @@ fn case_text(c: &millimpact::case::Case, name: &str) -> String {
     }
     out
 }
+
+#[test]
+fn command_line_usage_errors_are_one_line_too() {
+    let dir = TempDir::new().unwrap();
+    let case = case_path("ball_plate");
+    let case = case.to_str().unwrap();
+    rejected(
+        dir.path(),
+        &["run", case, "--method", "rk5"],
+        &[
+            "'rk5'",
+            "--method",
+            "possible values: rk4, rk4-event, dopri5, verlet, exact",
+        ],
+    );
+    rejected(
+        dir.path(),
+        &["run", case, "--rtol", "tight"],
+        &["'tight'", "--rtol"],
+    );
+    rejected(
+        dir.path(),
+        &["run", case, "--steps-per-period", "2"],
+        &["'2'", "--steps-per-period"],
+    );
+}
