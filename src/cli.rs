@@ -146,6 +146,11 @@ pub struct ReferenceArgs {
     /// Kill the code after this many seconds.
     #[arg(long, default_value_t = 300.0)]
     pub timeout: f64,
+    /// Let the code cut off attractive contact force (LIGGGHTS limitForce on, LAMMPS
+    /// limit_damping; YADE always does): the COR then rises above the target, to the clamped
+    /// law's, which is reported as the expected COR.
+    #[arg(long)]
+    pub clamp: bool,
     /// Output format (table or json).
     #[arg(long, value_enum, default_value = "table")]
     pub format: Format,

@@ -178,7 +178,7 @@ pub fn compare_case(
     let mut missing = Vec::new();
     for driver in codes::all_drivers() {
         let record: Option<ReferenceRecord> = if live {
-            match references::run_reference(driver.as_ref(), case, None, None, timeout) {
+            match references::run_reference(driver.as_ref(), case, None, None, false, timeout) {
                 Ok(r) => Some(r),
                 Err(e) => {
                     missing.push(format!("{}: {e:#}", driver.name()));

@@ -310,7 +310,7 @@ pub fn code_sweep(
     let mut points = Vec::new();
     let mut warmed = false;
     for &spc in steps_per_contact {
-        let setup = codes::prepare(driver.as_ref(), case, Some(spc), None)
+        let setup = codes::prepare(driver.as_ref(), case, Some(spc), None, false)
             .with_context(|| format!("{}: setting up {} steps per contact", code.name(), spc))?;
         let reference = accurate_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
             .with_context(|| format!("{}: its own law at zero step error", code.name()))?;

@@ -155,9 +155,10 @@ pub fn run_reference(
     case: &Case,
     steps_per_contact: Option<u32>,
     timestep: Option<f64>,
+    clamp_attractive: bool,
     timeout: Duration,
 ) -> Result<ReferenceRecord> {
-    let setup = codes::prepare(driver, case, steps_per_contact, timestep)
+    let setup = codes::prepare(driver, case, steps_per_contact, timestep, clamp_attractive)
         .with_context(|| format!("{}: sizing the run from the code's law", driver.name()))?;
     let options = RunOptions {
         timeout,
@@ -188,6 +189,9 @@ pub fn run_reference(
         (_, Some(dt)) => command += &format!(" --timestep {dt:e}"),
         (Some(n), None) => command += &format!(" --steps-per-contact {n}"),
         (None, None) => {}
+    }
+    if clamp_attractive {
+        command += " --clamp";
     }
     Ok(ReferenceRecord {
         code: driver.name().to_string(),
@@ -383,12 +387,22 @@ pub fn reference_command(args: &ReferenceArgs) -> Result<String> {
         }
         .into());
     }
+    if args.clamp && args.save {
+        return Err(UserError::Argument {
+            option: "--save".into(),
+            value: "with --clamp".into(),
+            allowed: "reference/ stores the equivalent setups only; run --clamp without --save"
+                .into(),
+        }
+        .into());
+    }
     let driver = codes::driver(args.code.name()).expect("every CodeName has a driver");
     let record = run_reference(
         driver.as_ref(),
         &case,
         args.steps_per_contact,
         args.timestep,
+        args.clamp,
         Duration::from_secs_f64(args.timeout),
     )?;
     let mut text = match args.format {

@@ -26,7 +26,7 @@ fn case(name: &str) -> Case {
 }
 
 fn live(driver: &dyn CodeDriver, case: &Case) -> ReferenceRecord {
-    references::run_reference(driver, case, None, None, TIMEOUT).unwrap_or_else(|e| {
+    references::run_reference(driver, case, None, None, false, TIMEOUT).unwrap_or_else(|e| {
         panic!(
             "{} on {}: {e:#} (the DEM codes must be installed: bash scripts/install-dem-codes.sh)",
             driver.name(),
@@ -136,6 +136,43 @@ fn stored_references_cover_every_code_case_and_the_elastic_case() {
                 etas.contains(&0.0),
                 "{} {name}: no elastic run",
                 driver.name()
+            );
+        }
+    }
+}
+
+/// With the codes' cut-off of attractive force on (LIGGGHTS `limitForce on`, LAMMPS
+/// `limit_damping`), the COR rises above the target to what the clamped law predicts
+/// (Schwager & Pöschel's effect), and the clamped law still explains the run. YADE's laws are
+/// clamped anyway, and its driver compensates, so it stays at the target.
+#[test]
+fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
+    for driver in codes::all_drivers() {
+        for name in ["ball_plate", "rod_end"] {
+            let c = case(name);
+            let r = references::run_reference(driver.as_ref(), &c, None, None, true, TIMEOUT)
+                .unwrap_or_else(|e| panic!("{} on {name}: {e:#}", driver.name()));
+            let who = format!("{} on {name}, clamped", r.code);
+            assert!(r.law.clamp_attractive, "{who}: the law is clamped");
+            let target = c.restitution();
+            match r.code.as_str() {
+                "yade" => assert_eq!(r.expected_restitution, None, "{who}"),
+                _ => {
+                    let raised = r.expected_restitution.expect("a clamped COR is reported");
+                    assert!(raised > target + 0.01, "{who}: clamped COR {raised}");
+                }
+            }
+            assert!(
+                (r.cor - r.cor_target()).abs() <= 1e-3,
+                "{who}: COR {} vs expected {}",
+                r.cor,
+                r.cor_target()
+            );
+            let remainder = r.attribution().remainder;
+            assert!(
+                remainder.cor.abs() <= REMAINDER_TOLERANCE
+                    && remainder.peak_deformation.abs() <= REMAINDER_TOLERANCE,
+                "{who}: remainder {remainder:?}"
             );
         }
     }

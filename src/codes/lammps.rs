@@ -232,6 +232,14 @@ impl CodeDriver for Lammps {
         let (v1, v2) = setup.centre_of_mass_velocities();
         let mut values = vec![
             ("contact", plan.model_args.clone()),
+            (
+                "limit_damping",
+                if setup.clamp_attractive {
+                    "limit_damping".to_string()
+                } else {
+                    String::new()
+                },
+            ),
             ("timestep", exact_number(setup.timestep)),
             ("steps", setup.steps.to_string()),
         ];
@@ -296,6 +304,7 @@ impl CodeDriver for Lammps {
 
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {
         match Self::plan(setup) {
+            Ok(plan) if setup.clamp_attractive => plan.law.clamped(),
             Ok(plan) => plan.law,
             // A setup the driver refuses to render has no run to describe; the damped Hertz
             // law for the target is the nearest statement of intent.

@@ -135,8 +135,9 @@ impl Liggghts {
     }
 
     /// `(model, settings, per-type property lines)` for the scene's contact law.
-    fn contact_model(&self, setup: &CodeSetup) -> (&'static str, &'static str, String) {
+    fn contact_model(&self, setup: &CodeSetup) -> (&'static str, String, String) {
         let e = exact_number(setup.target_restitution);
+        let limit_force = if setup.clamp_attractive { "on" } else { "off" };
         let pair = |name: &str, value: &str| {
             format!(
                 "fix {name:<22} all property/global {name} peratomtypepair 2 {value} {value} {value} {value}"
@@ -154,7 +155,7 @@ impl Liggghts {
                 ];
                 (
                     "hooke/stiffness",
-                    "absolute_damping on tangential_damping off limitForce off",
+                    format!("absolute_damping on tangential_damping off limitForce {limit_force}"),
                     lines.join("\n"),
                 )
             }
@@ -177,7 +178,7 @@ impl Liggghts {
                 ];
                 (
                     "hertz",
-                    "tangential_damping off limitForce off",
+                    format!("tangential_damping off limitForce {limit_force}"),
                     lines.join("\n"),
                 )
             }
@@ -287,10 +288,11 @@ impl CodeDriver for Liggghts {
     }
 
     /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and
-    /// damping; the force is not clamped (`limitForce off`, its default, confirmed by run).
+    /// damping; the force is not clamped (`limitForce off`, its default, confirmed by run)
+    /// unless the setup asks for `limitForce on`.
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {
         let mass = code_effective_mass(setup);
-        match setup.scene {
+        let law = match setup.scene {
             SceneKind::RodEnd => {
                 DashpotLaw::linear(mass, setup.stiffness, setup.target_restitution)
             }
@@ -301,6 +303,11 @@ impl CodeDriver for Liggghts {
                 };
                 DashpotLaw::damped_hertz(mass, stiffness, setup.target_restitution)
             }
+        };
+        if setup.clamp_attractive {
+            law.clamped()
+        } else {
+            law
         }
     }
 }

@@ -70,6 +70,12 @@ pub struct CodeSetup {
     pub timestep: f64,
     /// Number of steps to run: enough to end the contact, no more.
     pub steps: u64,
+    /// Ask the code to cut the contact force off at zero instead of letting the dashpot
+    /// attract (LIGGGHTS `limitForce on`, LAMMPS `limit_damping`; YADE's laws always do). The
+    /// code then realises the clamped law's COR, not the target: its
+    /// [`CodeDriver::expected_restitution`].
+    #[serde(default)]
+    pub clamp_attractive: bool,
 }
 
 impl CodeSetup {
@@ -234,9 +240,17 @@ pub trait CodeDriver: Send + Sync {
         StepScheme::VelocityVerlet
     }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a
-    /// missing factor); `None` when it realises the target.
-    fn expected_restitution(&self, _setup: &CodeSetup) -> Option<f64> {
-        None
+    /// missing factor); `None` when it realises the target. By default: the COR of the
+    /// code's own law when that law is clamped at the setup's request, since a clamp cuts
+    /// the attractive tail the target's damping was computed with.
+    fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
+        let law = self.law(setup);
+        if !(setup.clamp_attractive && law.clamp_attractive) {
+            return None;
+        }
+        accurate_metrics(&law, setup.impact_velocity, 1e-12)
+            .ok()
+            .map(|m| m.cor)
     }
 }
 
@@ -592,6 +606,7 @@ pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
         target_restitution: case.restitution(),
         timestep,
         steps: 0,
+        clamp_attractive: false,
     }
 }
 
@@ -603,11 +618,13 @@ pub fn prepare(
     case: &Case,
     steps_per_contact: Option<u32>,
     timestep: Option<f64>,
+    clamp_attractive: bool,
 ) -> Result<CodeSetup, SolveError> {
     let dt = timestep.unwrap_or_else(|| {
         elastic_contact_time(case) / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
     });
     let mut setup = setup_for_case(case, dt);
+    setup.clamp_attractive = clamp_attractive;
     let law = driver.law(&setup);
     let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
     setup.steps = (1.05 * contact / dt).ceil() as u64 + 3;

@@ -153,6 +153,7 @@ pub fn code_setup(which: Canonical, e: f64, per_contact: f64, run_length: f64) -
         target_restitution: e,
         timestep: 0.0,
         steps: (run_length * per_contact).round() as u64,
+        clamp_attractive: false,
     };
     setup.timestep = elastic_contact_time(&setup) / per_contact;
     setup
