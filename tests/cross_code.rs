@@ -10,6 +10,9 @@
 use std::path::Path;
 use std::time::Duration;
 
+mod common;
+
+use common::codes::relative;
 use millimpact::case::Case;
 use millimpact::codes::{self, CodeDriver};
 use millimpact::compare::elastic_figures;
@@ -33,10 +36,6 @@ fn live(driver: &dyn CodeDriver, case: &Case) -> ReferenceRecord {
             case.name
         )
     })
-}
-
-fn relative(a: f64, b: f64) -> f64 {
-    ((a - b) / b).abs()
 }
 
 #[test]

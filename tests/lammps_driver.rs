@@ -14,11 +14,12 @@ use millimpact::codes::{
     CodeDriver, CodeRun, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
 };
 use millimpact::law::DashpotLaw;
-use millimpact::solve::dashpot::{StepScheme, step_trajectory};
 
 mod common;
 
-use common::codes::{Canonical as Case, code_setup, e_paper, elastic_contact_time};
+use common::codes::{
+    Canonical as Case, code_setup, e_paper, elastic_contact_time, relative, stepped_law,
+};
 
 /// A canonical case at target COR `e`, with Δt = (elastic contact time)/1000 and a run 1.25
 /// contact times long (the damped contacts last at most 1.1 of it).
@@ -47,23 +48,6 @@ fn run(setup: &CodeSetup) -> (CodeRun, TrajectoryMetrics) {
     (run, metrics)
 }
 
-/// The driver's law, stepped the way LAMMPS steps it, at the code's own step.
-fn law_metrics(setup: &CodeSetup) -> TrajectoryMetrics {
-    let law = Lammps.law(setup);
-    let t = step_trajectory(
-        &law,
-        setup.impact_velocity,
-        setup.timestep,
-        setup.steps,
-        StepScheme::VelocityVerlet,
-    );
-    trajectory_metrics(&t).expect("the law's contact ends within the run")
-}
-
-fn relative(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
-}
-
 // ---- offline tests ----------------------------------------------------------------------
 
 #[test]
@@ -90,7 +74,7 @@ fn parses_recorded_sample() {
     let mut s = setup(Case::BallPlate, e_paper());
     s.timestep = elastic_contact_time(&s) / 40.0;
     s.steps = 60;
-    let law = law_metrics(&s);
+    let law = stepped_law(&Lammps, &s);
     assert!(relative(m.peak_deformation, law.peak_deformation) < 1e-9);
     assert!((m.cor - law.cor).abs() < 1e-9);
     assert!(relative(m.contact_time, law.contact_time) < 1e-9);
@@ -166,7 +150,7 @@ fn check_damped(case: Case, e: f64) {
         "{case:?}: COR {} for target {e}",
         m.cor
     );
-    let law = law_metrics(&s);
+    let law = stepped_law(&Lammps, &s);
     assert!(
         relative(m.peak_deformation, law.peak_deformation) < 1e-9,
         "{case:?}: peak {} vs law {}",
@@ -193,7 +177,7 @@ fn check_elastic(case: Case) {
         m.contact_time,
         s.timestep
     );
-    let law = law_metrics(&s);
+    let law = stepped_law(&Lammps, &s);
     assert!(relative(m.peak_deformation, law.peak_deformation) < 1e-9);
 }
 

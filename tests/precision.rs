@@ -151,40 +151,28 @@ fn json_has_the_documented_shape_and_the_plot_is_an_svg() {
 
 #[test]
 fn markdown_and_csv_render() {
-    let out = millimpact()
-        .args([
-            "precision",
-            "cases/rod_end.toml",
-            "--methods",
-            "dopri5",
-            "--repeats",
-            "1",
-        ])
-        .args(["--format", "markdown"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let text = String::from_utf8(out).unwrap();
-    assert!(text.contains("| source | knob |"));
-    let out = millimpact()
-        .args([
-            "precision",
-            "cases/rod_end.toml",
-            "--methods",
-            "dopri5",
-            "--repeats",
-            "1",
-        ])
-        .args(["--format", "csv"])
-        .assert()
-        .success()
-        .get_output()
-        .stdout
-        .clone();
-    let text = String::from_utf8(out).unwrap();
-    assert!(text.starts_with("source,knob,value,cor_error"));
+    for (format, opening) in [
+        ("markdown", "| source | knob |"),
+        ("csv", "source,knob,value,cor_error"),
+    ] {
+        let out = millimpact()
+            .args([
+                "precision",
+                "cases/rod_end.toml",
+                "--methods",
+                "dopri5",
+                "--repeats",
+                "1",
+            ])
+            .args(["--format", format])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone();
+        let text = String::from_utf8(out).unwrap();
+        assert!(text.contains(opening), "{format}: {text:.300}");
+    }
 }
 
 /// The LAMMPS path, live: five time steps, one run each after a warm-up. A missing `lmp`

@@ -17,7 +17,9 @@ use millimpact::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
 
 mod common;
 
-use common::codes::{Canonical, IMPACT_VELOCITY, code_setup, elastic_contact_time};
+use common::codes::{
+    Canonical, IMPACT_VELOCITY, code_setup, elastic_contact_time, relative, stepped_law,
+};
 
 /// The paper's target, as given to the recorded sample (`e_paper()` rounded to 0.6944).
 const TARGET: f64 = 0.6944;
@@ -59,23 +61,6 @@ fn logged_phys(log: &str, key: &str) -> f64 {
         .find_map(|f| f.strip_prefix(&format!("{key}=")))
         .unwrap_or_else(|| panic!("no {key} in `{line}`"));
     field.parse().unwrap()
-}
-
-fn relative(a: f64, b: f64) -> f64 {
-    (a - b).abs() / b.abs()
-}
-
-/// `law()` stepped the way YADE steps (leap-frog) at the run's step.
-fn stepped_law(s: &CodeSetup) -> TrajectoryMetrics {
-    let law = Yade.law(s);
-    let t = step_trajectory(
-        &law,
-        s.impact_velocity,
-        s.timestep,
-        s.steps,
-        StepScheme::LeapFrog,
-    );
-    trajectory_metrics(&t).expect("the stepped law ends its contact within the run")
 }
 
 fn run_live(s: &CodeSetup) -> (CodeRun, TrajectoryMetrics) {
@@ -140,7 +125,7 @@ fn check_live(s: &CodeSetup) -> TrajectoryMetrics {
 
     // law() stepped by leap-frog reproduces the run: the brief asks 1e-3 on the peak overlap;
     // the reproduction is exact to rounding, so hold it to 1e-9.
-    let stepped = stepped_law(s);
+    let stepped = stepped_law(&Yade, s);
     let peak_error = relative(m.peak_deformation, stepped.peak_deformation);
     assert!(
         peak_error < 1e-9,

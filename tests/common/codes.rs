@@ -158,3 +158,23 @@ pub fn code_setup(which: Canonical, e: f64, per_contact: f64, run_length: f64) -
     setup.timestep = elastic_contact_time(&setup) / per_contact;
     setup
 }
+
+/// `|a - b| / |b|`.
+pub fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+/// The driver's own law stepped the way its code steps, at the setup's step and length.
+pub fn stepped_law(
+    driver: &dyn millimpact::codes::CodeDriver,
+    setup: &CodeSetup,
+) -> millimpact::codes::TrajectoryMetrics {
+    let t = millimpact::solve::dashpot::step_trajectory(
+        &driver.law(setup),
+        setup.impact_velocity,
+        setup.timestep,
+        setup.steps,
+        driver.step_scheme(),
+    );
+    millimpact::codes::trajectory_metrics(&t).expect("the stepped law ends its contact")
+}
