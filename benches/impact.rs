@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use millimpact::case::Case;
+use millimpact::model::case::Case;
 use millimpact::solve::Method;
 use millimpact::solve::paper::{self, Settings};
 

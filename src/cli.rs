@@ -1,14 +1,18 @@
-//! Command-line definitions (clap only; the work is done in [`crate::app`]).
+//! Command-line definitions (clap only). The choices of `--method`, `--code` and `--format`
+//! come from the registries that own them; values are checked by typed parsers here, so that
+//! a bad value is refused before any work, in one line.
 
 use std::path::PathBuf;
 
+use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 
-use crate::report::Format;
+use crate::codes::CodeName;
+use crate::output::Format;
 use crate::solve::Method;
 
 /// millimpact: checks the contact law of grinding bodies against exact closed forms and
-/// against LIGGGHTS, YADE and LAMMPS.
+/// against the DEM codes LIGGGHTS, YADE and LAMMPS.
 #[derive(Debug, Parser)]
 #[command(name = "millimpact", version, about)]
 pub struct Cli {
@@ -27,7 +31,7 @@ pub enum Command {
     /// Every case in cases/ by every method against the closed forms, and the stored DEM-code
     /// references; exit 1 if anything disagrees beyond its stated tolerance.
     Verify(VerifyArgs),
-    /// Run one case in a DEM code (LIGGGHTS, YADE or LAMMPS) on the equivalent setup.
+    /// Run one case in a DEM code on the equivalent setup.
     Reference(ReferenceArgs),
     /// Each case by each source (paper law, DEM codes, their own laws, elastic Hertz), side by
     /// side, with the differences attributed to model and integration.
@@ -38,21 +42,52 @@ pub enum Command {
     Stability(StabilityArgs),
 }
 
+fn method_parser() -> impl TypedValueParser<Value = Method> {
+    PossibleValuesParser::new(Method::names())
+        .map(|name| Method::from_name(&name).expect("a listed method"))
+}
+
+fn code_parser() -> impl TypedValueParser<Value = CodeName> {
+    PossibleValuesParser::new(CodeName::names())
+        .map(|name| CodeName::from_name(&name).expect("a listed code"))
+}
+
+fn format_parser() -> impl TypedValueParser<Value = Format> {
+    PossibleValuesParser::new(Format::ALL.map(Format::name))
+        .map(|name| Format::from_name(&name).expect("a listed format"))
+}
+
+/// Largest time limit for an external code, s (a day): beyond it a run is not a check.
+pub const MAX_TIMEOUT: f64 = 86_400.0;
+
+/// A time limit in seconds: finite, above zero, at most [`MAX_TIMEOUT`].
+fn parse_timeout(text: &str) -> Result<f64, String> {
+    let seconds: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number of seconds"))?;
+    if seconds.is_finite() && seconds > 0.0 && seconds <= MAX_TIMEOUT {
+        Ok(seconds)
+    } else {
+        Err(format!("must be a number of seconds in (0, {MAX_TIMEOUT}]"))
+    }
+}
+
 /// Integration settings shared by the commands that integrate.
 #[derive(Debug, Args, Clone)]
 pub struct IntegrationArgs {
     /// Integration method.
-    #[arg(long, value_enum, default_value = "rk4-event")]
+    #[arg(long, value_parser = method_parser(), default_value = "rk4-event")]
     pub method: Method,
-    /// Fixed-step methods: steps per undamped oscillation period.
-    #[arg(long, default_value_t = 1000, value_parser = clap::value_parser!(u32).range(4..))]
-    pub steps_per_period: u32,
+    /// Fixed-step methods: steps per undamped oscillation period [default: 1000].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(4..=100_000_000))]
+    pub steps_per_period: Option<u32>,
     /// Fixed-step methods: the step in seconds instead (checked against the stability limit).
-    #[arg(long)]
+    #[arg(long, conflicts_with = "steps_per_period")]
     pub timestep: Option<f64>,
-    /// Adaptive method: relative tolerance.
-    #[arg(long, default_value_t = 1e-12)]
-    pub rtol: f64,
+    /// Adaptive method: relative tolerance [default: 1e-12].
+    #[arg(long)]
+    pub rtol: Option<f64>,
     /// Bilateral contact: undamped periods to follow.
     #[arg(long, default_value_t = 3.0)]
     pub periods: f64,
@@ -67,7 +102,7 @@ pub struct RunArgs {
     #[command(flatten)]
     pub integration: IntegrationArgs,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
     /// Write the trajectory (t, y, ẏ, forces, energy) to this CSV file.
     #[arg(long)]
@@ -88,6 +123,9 @@ pub struct SweepArgs {
     /// Integration settings.
     #[command(flatten)]
     pub integration: IntegrationArgs,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "csv")]
+    pub format: Format,
 }
 
 /// `millimpact verify`.
@@ -100,37 +138,15 @@ pub struct VerifyArgs {
     #[arg(long, default_value = "reference")]
     pub reference: PathBuf,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
-}
-
-/// The DEM codes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum CodeName {
-    /// LIGGGHTS-PUBLIC.
-    Liggghts,
-    /// YADE.
-    Yade,
-    /// LAMMPS (GRANULAR package).
-    Lammps,
-}
-
-impl CodeName {
-    /// The driver name.
-    pub fn name(self) -> &'static str {
-        match self {
-            CodeName::Liggghts => "liggghts",
-            CodeName::Yade => "yade",
-            CodeName::Lammps => "lammps",
-        }
-    }
 }
 
 /// `millimpact reference`.
 #[derive(Debug, Args)]
 pub struct ReferenceArgs {
     /// Which code.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = code_parser())]
     pub code: CodeName,
     /// The case file (TOML).
     pub case: PathBuf,
@@ -144,15 +160,15 @@ pub struct ReferenceArgs {
     #[arg(long)]
     pub loss_coefficient: Option<f64>,
     /// Kill the code after this many seconds.
-    #[arg(long, default_value_t = 300.0)]
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
     /// Let the code cut off attractive contact force (LIGGGHTS limitForce on, LAMMPS
     /// limit_damping; YADE always does): the COR then rises above the target, to the clamped
     /// law's, which is reported as the expected COR.
     #[arg(long)]
     pub clamp: bool,
-    /// Output format (table or json).
-    #[arg(long, value_enum, default_value = "table")]
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
     /// Store the result, with provenance, in `reference/<code>/<case>.json`.
     #[arg(long)]
@@ -171,13 +187,13 @@ pub struct CompareArgs {
     #[arg(long)]
     pub live: bool,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
     /// Folder of stored references.
     #[arg(long, default_value = "reference")]
     pub reference: PathBuf,
     /// Kill a code after this many seconds (with --live).
-    #[arg(long, default_value_t = 300.0)]
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
 }
 
@@ -186,27 +202,27 @@ pub struct CompareArgs {
 pub struct PrecisionArgs {
     /// The case file (TOML).
     pub case: PathBuf,
-    /// Methods to sweep (default: rk4, rk4-event, dopri5, verlet).
-    #[arg(long, value_enum, num_args = 1.., value_delimiter = ',')]
+    /// Methods to sweep (default: every integrating method).
+    #[arg(long, value_parser = method_parser(), num_args = 1.., value_delimiter = ',')]
     pub methods: Vec<Method>,
     /// DEM codes to sweep over their time step (default: none).
-    #[arg(long, value_enum, num_args = 1.., value_delimiter = ',')]
+    #[arg(long, value_parser = code_parser(), num_args = 1.., value_delimiter = ',')]
     pub codes: Vec<CodeName>,
     /// Output format.
-    #[arg(long, value_enum, default_value = "table")]
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
     /// Write the work–precision diagram here (SVG).
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Timed repetitions per point (the median is reported).
-    #[arg(long, default_value_t = 7)]
+    #[arg(long, default_value_t = 7, value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub repeats: u32,
 }
 
 /// `millimpact stability`.
 #[derive(Debug, Args)]
 pub struct StabilityArgs {
-    /// Output format (table or json).
-    #[arg(long, value_enum, default_value = "table")]
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
 }

@@ -1,20 +1,17 @@
-//! millimpact: a validation harness for the contact law of grinding bodies
-//! (dissipative force = η × gradient of the elastic energy), against exact closed forms and
-//! the DEM codes LIGGGHTS, YADE and LAMMPS.
+//! millimpact: a validation harness for the contact law of grinding bodies (dissipative force
+//! = η × gradient of the elastic energy), against exact closed forms and the DEM codes
+//! LIGGGHTS, YADE and LAMMPS.
+//!
+//! Layers point one way: [`model`] ← [`solve`] ← [`codes`] ← [`analysis`] ← commands;
+//! [`output`] and [`error`] know nothing of the commands, and clap lives in [`cli`] alone.
 
 #![warn(missing_docs)]
 
-pub mod app;
-pub mod case;
+pub mod analysis;
 pub mod cli;
 pub mod codes;
-pub mod compare;
-pub mod exact;
-pub mod figures;
-pub mod law;
-pub mod precision;
-pub mod references;
-pub mod report;
-pub mod scene;
+pub mod commands;
+pub mod error;
+pub mod model;
+pub mod output;
 pub mod solve;
-pub mod stability;

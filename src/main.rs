@@ -1,9 +1,10 @@
+use std::io::Write;
 use std::process::ExitCode;
 
 use clap::Parser;
-use millimpact::app::{self, CheckFailed, UserError};
-use millimpact::case::CaseError;
-use millimpact::cli::{Cli, Command};
+use millimpact::cli::Cli;
+use millimpact::commands;
+use millimpact::error::exit_code;
 
 /// Parse the command line; a usage error is reported on one line (exit 2), like every other
 /// bad input, while help and version print as clap lays them out.
@@ -33,35 +34,44 @@ fn parse() -> Result<Cli, ExitCode> {
     }
 }
 
+/// Write the command's text; a closed pipe or a full disk is one line and exit 1, not a panic.
+fn print(text: &str) -> Result<(), std::io::Error> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()
+}
+
 fn main() -> ExitCode {
     let cli = match parse() {
         Ok(cli) => cli,
         Err(code) => return code,
     };
-    let result = match &cli.command {
-        Command::Run(args) => app::run(args),
-        Command::Sweep(args) => app::sweep(args),
-        Command::Verify(args) => app::verify(args),
-        Command::Reference(args) => millimpact::references::reference_command(args),
-        Command::Compare(args) => millimpact::compare::compare_command(args),
-        Command::Precision(args) => millimpact::precision::precision_command(args),
-        Command::Stability(args) => millimpact::stability::stability_command(args),
-    };
-    match result {
-        Ok(text) => {
-            print!("{text}");
-            ExitCode::SUCCESS
+    match commands::dispatch(&cli.command) {
+        Ok(output) => {
+            if let Err(error) = print(&output.text) {
+                if error.kind() == std::io::ErrorKind::BrokenPipe {
+                    // The reader has gone (`| head`): what it read is what it wanted.
+                    return ExitCode::from(141);
+                }
+                eprintln!("error: writing standard output: {error}");
+                return ExitCode::from(1);
+            }
+            match output.failure {
+                Some(failure) => {
+                    eprintln!("error: {failure}");
+                    ExitCode::from(1)
+                }
+                None => ExitCode::SUCCESS,
+            }
         }
         Err(error) => {
-            let user_error = error.downcast_ref::<UserError>().is_some()
-                || error.downcast_ref::<CaseError>().is_some();
-            if error.downcast_ref::<CheckFailed>().is_some() || !user_error {
-                eprintln!("error: {error:#}");
-                ExitCode::from(1)
-            } else {
+            let code = exit_code(&error);
+            if code == 2 {
                 eprintln!("error: {error}");
-                ExitCode::from(2)
+            } else {
+                eprintln!("error: {error:#}");
             }
+            ExitCode::from(code)
         }
     }
 }

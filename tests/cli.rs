@@ -172,12 +172,22 @@ fn run_in_every_format() {
             .arg(&case)
             .args(["--format", "markdown"]),
     );
+    // The same table as the table format, in Markdown: a heading, the figures, the notes.
     let lines: Vec<&str> = md.lines().collect();
-    assert_eq!(lines.len(), 3, "{md}");
-    assert!(lines[0].starts_with("| case | method |"));
-    assert!(lines[1].starts_with("|---|"));
-    assert!(lines[2].starts_with("| ball_plate | rk4-event | 0.35 |"));
-    assert!(lines[2].contains(&format!("{cor:.6e}")));
+    assert!(
+        lines[0].starts_with("### ball_plate (ball_plate, unilateral): method rk4-event"),
+        "{md}"
+    );
+    assert_eq!(
+        lines[2], "| figure | run | exact | relative error |",
+        "{md}"
+    );
+    assert!(lines[3].starts_with("|---|"));
+    assert!(
+        lines[4].starts_with(&format!("| COR | {cor:.6e} |")),
+        "{md}"
+    );
+    assert!(md.contains("reproduce: millimpact run"), "{md}");
 }
 
 /// stiffness = "paper" for two equal balls: peak deformation and contact time larger by
@@ -417,12 +427,13 @@ fn sweep_draws_the_figure_only_when_it_succeeds() {
 #[test]
 fn verify_passes_on_the_shipped_cases() {
     let text = stdout(millimpact().args(["verify", "--format", "json"]));
-    let rows: Vec<Value> = serde_json::from_str(&text).unwrap();
+    let report: Value = serde_json::from_str(&text).unwrap();
+    let rows = report["rows"].as_array().unwrap();
     for name in CASES {
         for method in ["rk4", "rk4-event", "dopri5", "verlet"] {
             assert!(
                 rows.iter()
-                    .any(|r| r["case"] == name && r["method"] == method && r["pass"] == true),
+                    .any(|r| r["case"] == name && r["source"] == method && r["pass"] == true),
                 "{name} {method} not verified"
             );
         }
@@ -460,10 +471,11 @@ fn verify_fails_on_a_case_that_disagrees() {
     );
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(stderr.contains("disagree"), "{stderr}");
-    let rows: Vec<Value> = serde_json::from_slice(&output.stdout).unwrap();
+    let report: Value = serde_json::from_slice(&output.stdout).unwrap();
+    let rows = report["rows"].as_array().unwrap();
     let pass = |method: &str| {
         rows.iter()
-            .find(|r| r["case"] == "rod_near_one" && r["method"] == method)
+            .find(|r| r["case"] == "rod_near_one" && r["source"] == method)
             .unwrap_or_else(|| panic!("no {method} row"))["pass"]
             .as_bool()
             .unwrap()

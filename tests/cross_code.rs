@@ -13,12 +13,10 @@ use std::time::Duration;
 mod common;
 
 use common::codes::relative;
-use millimpact::case::Case;
-use millimpact::codes::{self, CodeDriver};
-use millimpact::compare::elastic_figures;
-use millimpact::references::{
-    self, COR_TOLERANCE, EMULATION_TOLERANCE, REMAINDER_TOLERANCE, ReferenceRecord,
-};
+use millimpact::analysis::store::{self as references, ReferenceOptions, ReferenceRecord};
+use millimpact::analysis::verify::{COR_TOLERANCE, EMULATION_TOLERANCE, REMAINDER_TOLERANCE};
+use millimpact::codes::CodeName;
+use millimpact::model::case::Case;
 
 const CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
 const TIMEOUT: Duration = Duration::from_secs(300);
@@ -28,8 +26,16 @@ fn case(name: &str) -> Case {
     Case::load(&path).unwrap()
 }
 
-fn live(driver: &dyn CodeDriver, case: &Case) -> ReferenceRecord {
-    references::run_reference(driver, case, None, None, false, TIMEOUT).unwrap_or_else(|e| {
+fn options(clamp_attractive: bool) -> ReferenceOptions {
+    ReferenceOptions {
+        clamp_attractive,
+        timeout: TIMEOUT,
+        ..ReferenceOptions::default()
+    }
+}
+
+fn live(driver: CodeName, case: &Case) -> ReferenceRecord {
+    references::run_reference(driver, case, &options(false)).unwrap_or_else(|e| {
         panic!(
             "{} on {}: {e:#} (the DEM codes must be installed: bash scripts/install-dem-codes.sh)",
             driver.name(),
@@ -40,9 +46,9 @@ fn live(driver: &dyn CodeDriver, case: &Case) -> ReferenceRecord {
 
 #[test]
 fn each_code_realises_the_target_and_its_own_law() {
-    for driver in codes::all_drivers() {
+    for &driver in CodeName::ALL {
         for name in CASES {
-            let r = live(driver.as_ref(), &case(name));
+            let r = live(driver, &case(name));
             let who = format!("{} on {name}", r.code);
             assert!(
                 (r.cor - r.cor_target()).abs() <= COR_TOLERANCE,
@@ -73,11 +79,14 @@ fn each_code_realises_the_target_and_its_own_law() {
 
 #[test]
 fn elastic_contact_time_is_hertz_within_the_step() {
-    for driver in codes::all_drivers() {
+    for &driver in CodeName::ALL {
         for name in CASES {
             let elastic = case(name).with_loss_coefficient(0.0);
-            let r = live(driver.as_ref(), &elastic);
-            let (_, theory) = elastic_figures(&elastic);
+            let r = live(driver, &elastic);
+            let theory = elastic
+                .scene
+                .elastic_contact(elastic.impact_velocity)
+                .contact_time;
             assert!(
                 (r.contact_time - theory).abs() <= r.timestep,
                 "{} on {name}: elastic contact time {} vs theory {} (step {})",
@@ -99,13 +108,13 @@ fn elastic_contact_time_is_hertz_within_the_step() {
 #[test]
 fn a_live_run_reproduces_the_stored_reference() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
-    for driver in codes::all_drivers() {
+    for &driver in CodeName::ALL {
         for name in CASES {
             let c = case(name);
-            let stored = references::find_stored(&folder, driver.name(), name, c.loss_coefficient)
+            let stored = references::find_stored(&folder, driver, name, c.loss_coefficient)
                 .unwrap()
                 .unwrap_or_else(|| panic!("no stored {} {name}", driver.name()));
-            let now = live(driver.as_ref(), &c);
+            let now = live(driver, &c);
             assert_eq!(now.input_sha256, stored.input_sha256, "same input");
             for (what, a, b) in [
                 ("COR", now.cor, stored.cor),
@@ -125,10 +134,10 @@ fn a_live_run_reproduces_the_stored_reference() {
 #[test]
 fn stored_references_cover_every_code_case_and_the_elastic_case() {
     let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
-    for driver in codes::all_drivers() {
+    for &driver in CodeName::ALL {
         for name in CASES {
-            let file = references::load(&references::reference_path(&folder, driver.name(), name))
-                .unwrap();
+            let file =
+                references::load(&references::reference_path(&folder, driver, name)).unwrap();
             let etas: Vec<f64> = file.runs.iter().map(|r| r.loss_coefficient).collect();
             assert!(etas.len() >= 2, "{} {name}: {etas:?}", driver.name());
             assert!(
@@ -146,16 +155,16 @@ fn stored_references_cover_every_code_case_and_the_elastic_case() {
 /// clamped anyway, and its driver compensates, so it stays at the target.
 #[test]
 fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
-    for driver in codes::all_drivers() {
+    for &driver in CodeName::ALL {
         for name in ["ball_plate", "rod_end"] {
             let c = case(name);
-            let r = references::run_reference(driver.as_ref(), &c, None, None, true, TIMEOUT)
+            let r = references::run_reference(driver, &c, &options(true))
                 .unwrap_or_else(|e| panic!("{} on {name}: {e:#}", driver.name()));
             let who = format!("{} on {name}, clamped", r.code);
             assert!(r.law.clamp_attractive, "{who}: the law is clamped");
             let target = c.restitution();
-            match r.code.as_str() {
-                "yade" => assert_eq!(r.expected_restitution, None, "{who}"),
+            match r.code {
+                CodeName::Yade => assert_eq!(r.expected_restitution, None, "{who}"),
                 _ => {
                     let raised = r.expected_restitution.expect("a clamped COR is reported");
                     assert!(raised > target + 0.01, "{who}: clamped COR {raised}");

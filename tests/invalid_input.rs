@@ -106,7 +106,7 @@ fn bad_case(name: &str, text: &str, key: &str, value: &str, allowed: &str) {
         &[&file, &format!("{key} = {value}: "), allowed],
     );
     // The same text is what the library reports.
-    let error = millimpact::case::Case::load(&path).unwrap_err();
+    let error = millimpact::model::case::Case::load(&path).unwrap_err();
     assert_eq!(error.key, key);
     assert_eq!(error.value, value);
     assert!(line.ends_with(&error.to_string()), "{line} vs {error}");
@@ -127,7 +127,7 @@ fn the_templates_are_valid() {
         ("ball_ball", BALL_BALL),
     ] {
         let path = write(dir.path(), &format!("{name}.toml"), text);
-        millimpact::case::Case::load(&path).unwrap();
+        millimpact::model::case::Case::load(&path).unwrap();
     }
 }
 
@@ -554,7 +554,7 @@ fn stability_limits_are_where_the_methods_turn_unstable() {
     assert!(verlet_gain(verlet * 0.999) <= 1.0 && verlet_gain(verlet * 1.001) > 1.0);
 
     let mut c = shipped("rod_end_bilateral").with_loss_coefficient(0.0);
-    c.contact = paper::ContactKind::Bilateral;
+    c.contact = millimpact::model::case::ContactKind::Bilateral;
     let law = c.law();
     let omega = angular_frequency(&law, c.impact_velocity);
     for method in [Method::Rk4, Method::Verlet] {
@@ -587,7 +587,7 @@ fn stability_limits_are_where_the_methods_turn_unstable() {
 }
 
 /// The TOML text of a case made from a shipped one at another η.
-fn case_text(c: &millimpact::case::Case, name: &str) -> String {
+fn case_text(c: &millimpact::model::case::Case, name: &str) -> String {
     let text = std::fs::read_to_string(case_path(name)).unwrap();
     let mut out = String::new();
     for line in text.lines() {

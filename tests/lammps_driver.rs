@@ -10,10 +10,9 @@ use millimpact::codes::lammps::{
     self, Lammps, exact_hertz_alpha, parse_loop_time, parse_trajectory, parse_version, tsuji_alpha,
     tsuji_input_for_alpha,
 };
-use millimpact::codes::{
-    CodeDriver, CodeRun, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
-};
-use millimpact::law::DashpotLaw;
+use millimpact::codes::{CodeDriver, CodeRun, CodeSetup, RunOptions, run_code};
+use millimpact::model::law::DashpotLaw;
+use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
 
 mod common;
 

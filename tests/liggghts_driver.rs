@@ -4,12 +4,11 @@
 //! The live tests FAIL (not skip) when `liggghts` is not on PATH.
 
 use millimpact::codes::liggghts::{self, Liggghts};
-use millimpact::codes::{
-    CodeDriver, CodeError, CodeRun, CodeSetup, RunOptions, find_on_path, run_code,
-    trajectory_metrics,
-};
-use millimpact::law::DashpotLaw;
-use millimpact::scene::SceneKind;
+use millimpact::codes::runner::find_on_path;
+use millimpact::codes::{CodeDriver, CodeError, CodeRun, CodeSetup, RunOptions, run_code};
+use millimpact::model::law::DashpotLaw;
+use millimpact::model::scene::SceneKind;
+use millimpact::model::trajectory::trajectory_metrics;
 use millimpact::solve::dashpot::{StepScheme, step_trajectory};
 
 mod common;
@@ -86,7 +85,9 @@ fn parser_reads_the_recorded_sample() {
 
 #[test]
 fn parser_rejects_a_short_row() {
-    let err = liggghts::parse_output("0 0 2 0\n1e-7 2e-7 1.99\n", SAMPLE_LOG).unwrap_err();
+    let err = liggghts::parse_output("0 0 2 0\n1e-7 2e-7 1.99\n", SAMPLE_LOG)
+        .unwrap_err()
+        .to_string();
     assert!(err.contains("expected 4 columns"), "{err}");
     assert!(liggghts::parse_output("", SAMPLE_LOG).is_err());
     assert_eq!(liggghts::loop_time("no loop here"), None);

@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 
 use assert_cmd::Command;
-use millimpact::case::Case;
-use millimpact::precision::{self, Point};
+use millimpact::analysis::precision::{self, Point};
+use millimpact::model::case::Case;
 use millimpact::solve::Method;
 use serde_json::Value;
 

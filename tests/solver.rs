@@ -6,11 +6,12 @@
 mod common;
 
 use common::{assert_rel, case, scenes, shipped};
-use millimpact::case::Case;
-use millimpact::exact::{self, hertz_elastic, j_integral, paper_impact};
-use millimpact::scene::{Plate, Scene};
+use millimpact::model::case::Case;
+use millimpact::model::case::ContactKind;
+use millimpact::model::exact::{self, hertz_elastic, j_integral, paper_impact};
+use millimpact::model::scene::{Plate, Scene};
 use millimpact::solve::Method;
-use millimpact::solve::paper::{self, ContactKind, Outcome, Settings};
+use millimpact::solve::paper::{self, Outcome, Settings};
 use proptest::prelude::*;
 
 const ETAS: [f64; 6] = [0.0, 0.01, 0.35, 0.7, 0.95, 0.99];
@@ -302,7 +303,7 @@ fn paper_stiffness_for_equal_balls_is_softer_by_root_two() {
     };
     assert_eq!(p, Plate::Elastic(ball.material));
     let mut paper_plate = plate.clone();
-    paper_plate.stiffness = millimpact::scene::StiffnessConvention::Paper;
+    paper_plate.stiffness = millimpact::model::scene::StiffnessConvention::Paper;
     assert_rel(
         "paper a = 2/3 on a like plate",
         paper_plate.law().stiffness,

@@ -3,10 +3,11 @@
 use std::path::PathBuf;
 
 use assert_cmd::Command;
-use millimpact::case::Case;
-use millimpact::solve::paper::{self, ContactKind, Settings};
+use millimpact::analysis::stability::{self, ETA_MAX};
+use millimpact::model::case::Case;
+use millimpact::model::case::ContactKind;
+use millimpact::solve::paper::{self, Settings};
 use millimpact::solve::{Method, SolveError};
-use millimpact::stability::{self, ETA_MAX};
 use serde_json::Value;
 
 fn root() -> PathBuf {
@@ -127,6 +128,6 @@ fn limit_checks_report_both_sides() {
     for c in &checks {
         let below = c.omega_dt < c.limit;
         assert_eq!(c.bounded, below, "{c:?}");
-        assert_eq!(c.solver == "ran", below, "{c:?}");
+        assert_eq!(c.solver == stability::SolverVerdict::Ran, below, "{c:?}");
     }
 }

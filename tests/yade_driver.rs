@@ -8,11 +8,10 @@ use millimpact::codes::yade::{
     RIGID_WALL_MODULUS, Yade, clamped_linear_damping_ratio, hertz_input_restitution,
     parse_trajectory, thornton_damping_ratio,
 };
-use millimpact::codes::{
-    CodeDriver, CodeRun, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
-};
-use millimpact::law::DashpotLaw;
-use millimpact::scene::SceneKind;
+use millimpact::codes::{CodeDriver, CodeRun, CodeSetup, RunOptions, run_code};
+use millimpact::model::law::DashpotLaw;
+use millimpact::model::scene::SceneKind;
+use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
 use millimpact::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
 
 mod common;

@@ -19,11 +19,12 @@
 
 use std::path::Path;
 
-use super::{
-    CodeDriver, CodeError, CodeSetup, CodeTrajectory, ParsedRun, RenderedInput, exact_number,
-    fill_template,
-};
-use crate::law::DashpotLaw;
+use super::parse::{ParseError, parse_columns};
+use super::template::{exact_number, fill_template};
+use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::SpringModel;
+use crate::model::trajectory::CodeTrajectory;
 
 const WALL_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_pair.in");
@@ -100,18 +101,21 @@ pub struct ContactPlan {
 
 impl Lammps {
     /// Choose the model arguments for `setup` and the law they make the code integrate.
-    pub fn plan(setup: &CodeSetup) -> Result<ContactPlan, String> {
+    pub fn plan(setup: &CodeSetup) -> Result<ContactPlan, CodeError> {
+        let refuse = |reason: String| Lammps.unsupported(setup, reason);
         let k = setup.stiffness;
         let e = setup.target_restitution;
         let mass = setup.pair_mass();
         if !(k > 0.0 && k.is_finite()) {
-            return Err(format!("stiffness {k} is not positive"));
+            return Err(refuse(format!("stiffness {k} is not positive")));
         }
         if !(e > 0.0 && e <= 1.0) {
-            return Err(format!("target restitution {e} is outside (0, 1]"));
+            return Err(refuse(format!(
+                "target restitution {e} is outside (0, 1]"
+            )));
         }
         let elastic = e >= 1.0;
-        if setup.exponent == 1.5 {
+        if setup.spring() == SpringModel::Hertz {
             // hertz/material with ν = 0 and E = 2E* gives E* on a wall and between two
             // spheres alike, and k = (4/3) E* sqrt(R*) with the code's own R*.
             let r_star = setup.pair_radius();
@@ -134,7 +138,9 @@ impl Lammps {
             }
             let alpha = exact_hertz_alpha(e);
             let e_in = tsuji_input_for_alpha(alpha).ok_or_else(|| {
-                format!("no tsuji input realises e = {e} (α = {alpha} outside the fit's range)")
+                refuse(format!(
+                    "no tsuji input realises e = {e} (α = {alpha} outside the fit's range)"
+                ))
             })?;
             Ok(ContactPlan {
                 model_args: format!(
@@ -151,7 +157,7 @@ impl Lammps {
                 },
                 tsuji_input: Some(e_in),
             })
-        } else if setup.exponent == 1.0 {
+        } else {
             // hooke: F = k δ + c δ̇ with `damping velocity`, both given directly.
             let law = DashpotLaw {
                 damping: if elastic {
@@ -170,11 +176,6 @@ impl Lammps {
                 law,
                 tsuji_input: None,
             })
-        } else {
-            Err(format!(
-                "spring exponent {} is neither 1.5 (Hertz) nor 1 (linear)",
-                setup.exponent
-            ))
         }
     }
 
@@ -189,8 +190,8 @@ impl Lammps {
 
 /// Read `fix print`'s trajectory: comment lines start with `#`, then `time overlap approach
 /// force` per row.
-pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, String> {
-    super::parse_columns(text, "trajectory")
+pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
+    parse_columns(text, TRAJECTORY_FILE)
 }
 
 /// The version LAMMPS prints on its first line, `LAMMPS (29 Sep 2021 - Update 2)`.
@@ -223,7 +224,7 @@ impl CodeDriver for Lammps {
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        let plan = Self::plan(setup).map_err(|reason| self.unsupported(setup, reason))?;
+        let plan = Self::plan(setup)?;
         if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
             return Err(self.unsupported(setup, "no steps or no positive timestep".into()));
         }
@@ -276,7 +277,7 @@ impl CodeDriver for Lammps {
                 fill_template(PAIR_TEMPLATE, &values)
             }
         }
-        .map_err(|reason| self.unsupported(setup, reason))?;
+        .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: INPUT_FILE.into(),
             text,
@@ -288,10 +289,15 @@ impl CodeDriver for Lammps {
         })
     }
 
-    fn parse(&self, _setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, String> {
+    fn parse(
+        &self,
+        _setup: &CodeSetup,
+        workdir: &Path,
+        log: &str,
+    ) -> Result<ParsedRun, ParseError> {
         let path = workdir.join(TRAJECTORY_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|err| format!("reading {}: {err}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
         let trajectory = parse_trajectory(&text)?;
         // The screen output normally holds both lines; the log file is the fallback.
         let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();

@@ -13,11 +13,11 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use super::{
-    CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput, exact_number, fill_template,
-};
-use crate::law::DashpotLaw;
-use crate::scene::SceneKind;
+use super::parse::{ParseError, parse_columns};
+use super::template::{exact_number, fill_template};
+use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{SceneKind, reduced_mass};
 
 const TEMPLATE: &str = include_str!("../../scripts/liggghts/impact.in");
 const INPUT_FILE: &str = "impact.in";
@@ -77,13 +77,10 @@ pub fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
 /// the reduced mass between two spheres.
 pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
     let m1 = code_mass(setup.sphere.radius, setup.sphere.density);
-    match setup.other_sphere {
-        Some(o) => {
-            let m2 = code_mass(o.radius, o.density);
-            m1 * m2 / (m1 + m2)
-        }
-        None => m1,
-    }
+    let m2 = setup
+        .other_sphere
+        .map_or(f64::INFINITY, |o| code_mass(o.radius, o.density));
+    reduced_mass(m1, m2)
 }
 
 /// The LIGGGHTS-PUBLIC 3.8.0 driver.
@@ -255,7 +252,8 @@ impl CodeDriver for Liggghts {
             ("steps", setup.steps.to_string()),
         ];
         let text =
-            fill_template(TEMPLATE, &values).map_err(|reason| self.unsupported(setup, reason))?;
+            fill_template(TEMPLATE, &values)
+                .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: INPUT_FILE.to_string(),
             text,
@@ -266,23 +264,31 @@ impl CodeDriver for Liggghts {
         })
     }
 
-    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, String> {
+    fn parse(
+        &self,
+        setup: &CodeSetup,
+        workdir: &Path,
+        log: &str,
+    ) -> Result<ParsedRun, ParseError> {
         let path = workdir.join(TRAJECTORY_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
         let parsed = parse_output(&text, log)?;
         let rows = parsed.trajectory.time.len() as u64;
         if rows != setup.steps + 1 {
-            return Err(format!(
-                "{TRAJECTORY_FILE} has {rows} rows, expected {} (the initial state and {} steps)",
-                setup.steps + 1,
-                setup.steps
-            ));
+            return Err(ParseError::RowCount {
+                file: TRAJECTORY_FILE.to_string(),
+                rows,
+                expected: setup.steps + 1,
+            });
         }
         if let Some(ran) = loop_steps(log)
             && ran != setup.steps
         {
-            return Err(format!("LIGGGHTS ran {ran} steps, {} asked", setup.steps));
+            return Err(ParseError::StepCount {
+                ran,
+                asked: setup.steps,
+            });
         }
         Ok(parsed)
     }
@@ -316,10 +322,12 @@ impl CodeDriver for Liggghts {
 ///
 /// Each trajectory row is `time overlap approach_velocity normal_force`; the log gives the
 /// version (first line, `LIGGGHTS (Version …)`) and the `Loop time of` figure.
-pub fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, String> {
-    let out = super::parse_columns(trajectory, TRAJECTORY_FILE)?;
+pub fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, ParseError> {
+    let out = parse_columns(trajectory, TRAJECTORY_FILE)?;
     if out.time.is_empty() {
-        return Err(format!("{TRAJECTORY_FILE} is empty"));
+        return Err(ParseError::Empty {
+            file: TRAJECTORY_FILE.to_string(),
+        });
     }
     Ok(ParsedRun {
         trajectory: out,

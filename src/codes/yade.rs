@@ -27,12 +27,12 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use super::{
-    CodeDriver, CodeError, CodeSetup, CodeTrajectory, ParsedRun, RenderedInput, exact_number,
-    fill_template,
-};
-use crate::law::DashpotLaw;
-use crate::scene::SceneKind;
+use super::parse::ParseError;
+use super::template::{exact_number, fill_template};
+use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{SceneKind, pair_radius};
+use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
@@ -185,17 +185,12 @@ fn hertz_parameters(setup: &CodeSetup) -> (f64, f64) {
         (SceneKind::BallBall, Some(other)) => other.radius,
         _ => HERTZIAN_WALL_RADIUS_FACTOR * r1,
     };
-    (modulus, r1 * r2 / (r1 + r2))
+    (modulus, pair_radius(r1, r2))
 }
 
 /// The mass the dashpot sees: the reduced mass of two balls, the moving body's at a wall.
 fn dynamic_mass(setup: &CodeSetup) -> f64 {
-    match (setup.scene, setup.other_sphere) {
-        (SceneKind::BallBall, Some(other)) => {
-            setup.sphere.mass * other.mass / (setup.sphere.mass + other.mass)
-        }
-        _ => setup.sphere.mass,
-    }
+    setup.pair_mass()
 }
 
 impl Yade {
@@ -290,7 +285,8 @@ impl CodeDriver for Yade {
             ("linear_damping", num(linear_damping)),
         ];
         let text =
-            fill_template(TEMPLATE, &values).map_err(|reason| self.unsupported(setup, reason))?;
+            fill_template(TEMPLATE, &values)
+                .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: SCRIPT.to_string(),
             text,
@@ -298,16 +294,23 @@ impl CodeDriver for Yade {
         })
     }
 
-    fn parse(&self, _setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, String> {
+    fn parse(
+        &self,
+        _setup: &CodeSetup,
+        workdir: &Path,
+        log: &str,
+    ) -> Result<ParsedRun, ParseError> {
         let path = workdir.join(TRAJECTORY_FILE);
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let text =
+            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
             loop_time: log_value(log, "loop_time=")
                 .map(|v| {
-                    v.parse::<f64>()
-                        .map_err(|e| format!("bad loop_time `{v}`: {e}"))
+                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
+                        field: "loop_time",
+                        value: v.to_string(),
+                    })
                 })
                 .transpose()?,
             version: log_value(log, "version=").map(str::to_string).or_else(|| {
@@ -378,15 +381,21 @@ fn log_value<'a>(log: &'a str, key: &str) -> Option<&'a str> {
 }
 
 /// Parse the script's `trajectory.csv`: header `iter,time,overlap,approach_velocity,normal_force`.
-pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, String> {
+pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
     let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header = lines.next().ok_or("trajectory file is empty")?;
+    let header = lines.next().ok_or_else(|| ParseError::Empty {
+        file: TRAJECTORY_FILE.to_string(),
+    })?;
     let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    let find = |name: &str| {
+    let find = |name: &'static str| {
         columns
             .iter()
             .position(|c| *c == name)
-            .ok_or(format!("trajectory header lacks `{name}`: {header}"))
+            .ok_or_else(|| ParseError::MissingColumn {
+                file: TRAJECTORY_FILE.to_string(),
+                column: name,
+                header: header.to_string(),
+            })
     };
     let (it, iy, iv, iff) = (
         find("time")?,
@@ -398,17 +407,20 @@ pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, String> {
     for (row, line) in lines.enumerate() {
         let fields: Vec<&str> = line.split(',').map(str::trim).collect();
         if fields.len() != columns.len() {
-            return Err(format!(
-                "trajectory row {} has {} fields, header has {}",
-                row + 1,
-                fields.len(),
-                columns.len()
-            ));
+            return Err(ParseError::Row {
+                file: TRAJECTORY_FILE.to_string(),
+                line: row + 2,
+                reason: format!("{} fields, header has {}", fields.len(), columns.len()),
+            });
         }
         let value = |i: usize| {
             fields[i]
                 .parse::<f64>()
-                .map_err(|e| format!("trajectory row {}: `{}`: {e}", row + 1, fields[i]))
+                .map_err(|e| ParseError::Row {
+                    file: TRAJECTORY_FILE.to_string(),
+                    line: row + 2,
+                    reason: format!("`{}`: {e}", fields[i]),
+                })
         };
         t.time.push(value(it)?);
         t.overlap.push(value(iy)?);

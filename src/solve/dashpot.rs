@@ -6,8 +6,8 @@ use serde::{Deserialize, Serialize};
 
 use super::steppers::{Dopri5, State};
 use super::{SolveError, march};
-use crate::codes::{CodeTrajectory, TrajectoryMetrics};
-use crate::law::DashpotLaw;
+use crate::model::law::DashpotLaw;
+use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics};
 
 /// How a DEM code advances one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

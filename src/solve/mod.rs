@@ -7,6 +7,7 @@
 //! scale of the case.
 
 pub mod dashpot;
+pub mod method;
 pub mod paper;
 pub mod series;
 pub mod steppers;
@@ -14,54 +15,9 @@ pub mod steppers;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+pub use method::{Knob, Method, MethodDescriptor, Stepping, ToleranceRule};
 use series::ContactSeries;
 use steppers::{State, Stepper};
-
-/// The integration methods, as named on the command line and in reports.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "kebab-case")]
-pub enum Method {
-    /// The paper's method: classical RK4 at a fixed step `T/N`, contact end at the first step
-    /// with `y < 0`, no event location.
-    Rk4,
-    /// RK4 at a fixed step with the turning point and the contact end located and the
-    /// integration restarted there; series start and end over the non-smooth `y^n`.
-    Rk4Event,
-    /// Dormand–Prince 5(4) with error control, the same event location and series treatment.
-    Dopri5,
-    /// Velocity Verlet at a fixed step, as DEM codes step (the damping sees the half-step
-    /// velocity); contact end at the first step with `y < 0`.
-    Verlet,
-    /// The closed forms.
-    Exact,
-}
-
-impl Method {
-    /// Every method, in report order.
-    pub const ALL: [Method; 5] = [
-        Method::Rk4,
-        Method::Rk4Event,
-        Method::Dopri5,
-        Method::Verlet,
-        Method::Exact,
-    ];
-
-    /// The name used on the command line and in reports.
-    pub fn name(self) -> &'static str {
-        match self {
-            Method::Rk4 => "rk4",
-            Method::Rk4Event => "rk4-event",
-            Method::Dopri5 => "dopri5",
-            Method::Verlet => "verlet",
-            Method::Exact => "exact",
-        }
-    }
-
-    /// Whether the method steps at a fixed step set by steps per period.
-    pub fn is_fixed_step(self) -> bool {
-        matches!(self, Method::Rk4 | Method::Rk4Event | Method::Verlet)
-    }
-}
 
 /// A failure of the integration itself (not of the input).
 #[derive(Debug, Error, PartialEq)]

@@ -7,19 +7,9 @@ use serde::{Deserialize, Serialize};
 use super::series::ContactSeries;
 use super::steppers::{Dopri5, Rk4, State, Stepper, rk4_step};
 use super::{Method, SeriesEnd, SolveError, Stats, march};
-use crate::exact::{self, ImpactFigures, j_integral};
-use crate::law::PaperLaw;
-
-/// One-sided (physical impact) or two-sided (paper Eq. 14) contact.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
-#[serde(rename_all = "snake_case")]
-pub enum ContactKind {
-    /// The bodies separate when the approach returns to zero.
-    #[default]
-    Unilateral,
-    /// The spring also pulls: a decaying oscillation through zero.
-    Bilateral,
-}
+use crate::model::case::ContactKind;
+use crate::model::exact::{self, ImpactFigures, j_integral};
+use crate::model::law::PaperLaw;
 
 /// How to integrate.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -98,14 +88,9 @@ struct Scaled {
     crossing_speeds: Vec<f64>,
 }
 
-/// The stability limit of a fixed-step method on an undamped oscillator, as `ω Δt`: RK4's
-/// region meets the imaginary axis at `2√2`; velocity Verlet's at 2.
+/// The stability limit of a fixed-step method on an undamped oscillator, as `ω Δt`.
 pub fn stability_limit(method: Method) -> Option<f64> {
-    match method {
-        Method::Rk4 | Method::Rk4Event => Some(2.0 * std::f64::consts::SQRT_2),
-        Method::Verlet => Some(2.0),
-        _ => None,
-    }
+    method.stability_limit()
 }
 
 /// The contact's largest angular frequency, rad/s: that of the loading stiffness linearised at
@@ -129,7 +114,7 @@ pub fn solve(
     let (n, eta) = (law.exponent, law.loss_coefficient);
     let period = 4.0 * j_integral(n);
     let method = settings.method;
-    if method == Method::Exact {
+    if !method.integrates() {
         let figures = exact::paper_impact(law, v0);
         return Ok(Outcome {
             figures,

@@ -165,3 +165,11 @@ impl Stepper for Dopri5 {
         h * factor
     }
 }
+
+/// One velocity-Verlet step (half kick, drift, half kick) of `y'' = accel(y)` for a force that
+/// depends on the position only.
+pub fn verlet_step(accel: &dyn Fn(f64) -> f64, s: &State, h: f64) -> State {
+    let half = s[1] + 0.5 * h * accel(s[0]);
+    let y = s[0] + h * half;
+    State::new(y, half + 0.5 * h * accel(y))
+}

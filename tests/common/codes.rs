@@ -5,7 +5,7 @@
 use std::f64::consts::PI;
 
 use millimpact::codes::{CodeSetup, CodeSphere};
-use millimpact::scene::SceneKind;
+use millimpact::model::scene::SceneKind;
 
 /// Ball radius, m.
 pub const RADIUS: f64 = 0.02;
@@ -168,7 +168,7 @@ pub fn relative(a: f64, b: f64) -> f64 {
 pub fn stepped_law(
     driver: &dyn millimpact::codes::CodeDriver,
     setup: &CodeSetup,
-) -> millimpact::codes::TrajectoryMetrics {
+) -> millimpact::model::trajectory::TrajectoryMetrics {
     let t = millimpact::solve::dashpot::step_trajectory(
         &driver.law(setup),
         setup.impact_velocity,
@@ -176,5 +176,5 @@ pub fn stepped_law(
         setup.steps,
         driver.step_scheme(),
     );
-    millimpact::codes::trajectory_metrics(&t).expect("the stepped law ends its contact")
+    millimpact::model::trajectory::trajectory_metrics(&t).expect("the stepped law ends its contact")
 }

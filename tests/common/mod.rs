@@ -3,9 +3,9 @@
 
 use std::path::{Path, PathBuf};
 
-use millimpact::case::Case;
-use millimpact::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
-use millimpact::solve::paper::ContactKind;
+use millimpact::model::case::Case;
+use millimpact::model::case::ContactKind;
+use millimpact::model::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
 
 /// The crate's root folder.
 pub fn root() -> PathBuf {

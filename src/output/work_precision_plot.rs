@@ -1,28 +1,30 @@
 //! The work–precision diagram as SVG: error (x, log) against run time (y, log), one line per
 //! method or code, in the manner of the SciML benchmarks.
 
-use anyhow::{Result, anyhow};
-use plotters::prelude::*;
-
-use super::PrecisionReport;
-
-/// Errors are drawn no lower than this (an exact zero has no place on a log axis).
+/// Errors are drawn no lower than this.
 const SMALLEST_ERROR: f64 = 1e-17;
 
-/// Render `report` as an SVG document.
-pub fn work_precision_svg(report: &PrecisionReport) -> Result<String> {
-    let mut sources: Vec<&str> = report.points.iter().map(|p| p.source.as_str()).collect();
-    sources.dedup();
-    let series: Vec<(&str, Vec<(f64, f64)>)> = sources
+use plotters::prelude::*;
+
+use super::OutputError;
+
+/// Render the work–precision diagram of `case`: one series per source, each point
+/// `(largest relative error, run time in s)`; errors are drawn no lower than 1e-17 (an exact
+/// zero has no place on a log axis).
+pub fn work_precision_svg(
+    case: &str,
+    series: &[(String, Vec<(f64, f64)>)],
+) -> Result<String, OutputError> {
+    let series: Vec<(&str, Vec<(f64, f64)>)> = series
         .iter()
-        .map(|s| {
-            let points = report
-                .points
-                .iter()
-                .filter(|p| p.source == *s)
-                .map(|p| (p.max_error.max(SMALLEST_ERROR), p.time_s))
-                .collect();
-            (*s, points)
+        .map(|(name, points)| {
+            (
+                name.as_str(),
+                points
+                    .iter()
+                    .map(|&(error, time)| (error.max(SMALLEST_ERROR), time))
+                    .collect(),
+            )
         })
         .collect();
     let all = series.iter().flat_map(|(_, p)| p.iter());
@@ -34,7 +36,10 @@ pub fn work_precision_svg(report: &PrecisionReport) -> Result<String> {
         y_hi = y_hi.max(y);
     }
     if series.is_empty() || !(x_lo > 0.0 && y_lo > 0.0) {
-        return Err(anyhow!("no points to plot"));
+        return Err(OutputError::Plot {
+            figure: "work-precision",
+            reason: "no points to plot".into(),
+        });
     }
     // Whole decades around the data, so that the ticks fall on powers of ten.
     let decade_below = |v: f64| 10f64.powf(v.log10().floor());
@@ -46,13 +51,13 @@ pub fn work_precision_svg(report: &PrecisionReport) -> Result<String> {
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (960, 640)).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| anyhow!("drawing the diagram: {e}");
+        let fail = |e: &dyn std::fmt::Display| OutputError::Plot {
+            figure: "work-precision",
+            reason: e.to_string(),
+        };
         root.fill(&WHITE).map_err(|e| fail(&e))?;
         let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!("Work–precision, case {}", report.case),
-                ("sans-serif", 22),
-            )
+            .caption(format!("Work–precision, case {case}"), ("sans-serif", 22))
             .margin(20)
             .x_label_area_size(55)
             .y_label_area_size(80)

@@ -14,35 +14,28 @@ use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use crate::app::{Tolerance, UserError, VerifyRow};
-use crate::case::Case;
-use crate::cli::ReferenceArgs;
-use crate::codes::{
-    self, CodeDriver, CodeSetup, RunOptions, TrajectoryMetrics, run_code, trajectory_metrics,
-};
-use crate::exact::{self, ImpactFigures};
-use crate::law::DashpotLaw;
-use crate::report::{self, Format};
+use super::tolerance::Differences;
+use crate::codes::{self, CodeName, CodeSetup, RunOptions, run_code};
+use crate::model::case::Case;
+use crate::model::exact::{self, ImpactFigures};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::SceneKind;
+use crate::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
+use crate::output::files::write_atomic;
+use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
-
-/// Tolerance on a code's realised COR against its target (or documented value), absolute.
-pub const COR_TOLERANCE: f64 = 0.01;
-/// Tolerance on a code's peak deformation against its own law stepped as it steps, relative.
-pub const EMULATION_TOLERANCE: f64 = 1e-3;
-/// Bound on the unexplained remainder against the paper's law, relative.
-pub const REMAINDER_TOLERANCE: f64 = 1e-3;
 
 /// One run of one code on one case at one η.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceRecord {
-    /// Code name.
-    pub code: String,
+    /// The code.
+    pub code: CodeName,
     /// Version string as the code printed it.
     pub code_version: String,
     /// Case name.
     pub case: String,
-    /// Scene name.
-    pub scene: String,
+    /// The scene.
+    pub scene: SceneKind,
     /// η of the paper's law this run is equivalent to.
     pub loss_coefficient: f64,
     /// The COR asked of the code, `e(η)`.
@@ -88,10 +81,10 @@ pub struct ReferenceRecord {
 }
 
 /// The file `reference/<code>/<case>.json`: the runs of one code on one case, one per η.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceFile {
-    /// Code name.
-    pub code: String,
+    /// The code.
+    pub code: CodeName,
     /// Case name.
     pub case: String,
     /// The runs, sorted by η.
@@ -99,15 +92,7 @@ pub struct ReferenceFile {
 }
 
 /// Relative differences of one source against another.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Split {
-    /// Of the COR.
-    pub cor: f64,
-    /// Of the peak deformation.
-    pub peak_deformation: f64,
-    /// Of the contact time.
-    pub contact_time: f64,
-}
+pub type Split = Differences;
 
 /// A code's difference from the paper's law, split into its parts (each relative to the
 /// paper's law).
@@ -149,24 +134,51 @@ impl ReferenceRecord {
     }
 }
 
-/// Run `case` in `driver`'s code and assemble the record.
+/// How to run a code for a reference.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceOptions {
+    /// Steps per elastic contact time (the default step when no `timestep` is given).
+    pub steps_per_contact: Option<u32>,
+    /// The code's time step, s, instead.
+    pub timestep: Option<f64>,
+    /// Let the code cut off attractive force.
+    pub clamp_attractive: bool,
+    /// Kill the code after this long.
+    pub timeout: Duration,
+}
+
+impl Default for ReferenceOptions {
+    fn default() -> Self {
+        ReferenceOptions {
+            steps_per_contact: None,
+            timestep: None,
+            clamp_attractive: false,
+            timeout: Duration::from_secs(300),
+        }
+    }
+}
+
+/// Run `case` in `code` and assemble the record.
 pub fn run_reference(
-    driver: &dyn CodeDriver,
+    code: CodeName,
     case: &Case,
-    steps_per_contact: Option<u32>,
-    timestep: Option<f64>,
-    clamp_attractive: bool,
-    timeout: Duration,
+    options: &ReferenceOptions,
 ) -> Result<ReferenceRecord> {
-    let setup = codes::prepare(driver, case, steps_per_contact, timestep, clamp_attractive)
-        .with_context(|| format!("{}: sizing the run from the code's law", driver.name()))?;
-    let options = RunOptions {
-        timeout,
+    let driver = code.driver();
+    let setup = codes::prepare(
+        driver,
+        case,
+        options.steps_per_contact,
+        options.timestep,
+        options.clamp_attractive,
+    )
+    .with_context(|| format!("{code}: sizing the run from the code's law"))?;
+    let run_options = RunOptions {
+        timeout: options.timeout,
         ..RunOptions::default()
     };
-    let run = run_code(driver, &setup, &options)?;
-    let metrics = trajectory_metrics(&run.trajectory)
-        .map_err(|reason| anyhow::anyhow!("{}: {reason}", driver.name()))?;
+    let run = run_code(driver, &setup, &run_options)?;
+    let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
     let law = driver.law(&setup);
     let scheme = driver.step_scheme();
     let stepped = step_trajectory(
@@ -176,28 +188,27 @@ pub fn run_reference(
         setup.steps,
         scheme,
     );
-    let law_at_step = trajectory_metrics(&stepped)
-        .map_err(|reason| anyhow::anyhow!("{}: own law stepped: {reason}", driver.name()))?;
+    let law_at_step =
+        trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
     let law_exact = accurate_metrics(&law, setup.impact_velocity, 1e-13)?;
     let mut command = format!(
-        "millimpact reference --code {} {} --loss-coefficient {}",
-        driver.name(),
+        "millimpact reference --code {code} {} --loss-coefficient {}",
         case.path.display(),
         case.loss_coefficient
     );
-    match (steps_per_contact, timestep) {
+    match (options.steps_per_contact, options.timestep) {
         (_, Some(dt)) => command += &format!(" --timestep {dt:e}"),
         (Some(n), None) => command += &format!(" --steps-per-contact {n}"),
         (None, None) => {}
     }
-    if clamp_attractive {
+    if options.clamp_attractive {
         command += " --clamp";
     }
     Ok(ReferenceRecord {
-        code: driver.name().to_string(),
+        code,
         code_version: run.code_version,
         case: case.name.clone(),
-        scene: case.scene.kind().name().to_string(),
+        scene: case.scene.kind(),
         loss_coefficient: case.loss_coefficient,
         target_restitution: setup.target_restitution,
         expected_restitution: driver.expected_restitution(&setup),
@@ -227,8 +238,8 @@ fn hex(bytes: &[u8]) -> String {
 }
 
 /// Where the runs of `code` on `case` are stored.
-pub fn reference_path(folder: &Path, code: &str, case: &str) -> PathBuf {
-    folder.join(code).join(format!("{case}.json"))
+pub fn reference_path(folder: &Path, code: CodeName, case: &str) -> PathBuf {
+    folder.join(code.name()).join(format!("{case}.json"))
 }
 
 /// Read a stored reference file.
@@ -240,12 +251,12 @@ pub fn load(path: &Path) -> Result<ReferenceFile> {
 
 /// Store `record`, replacing a stored run of the same η.
 pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
-    let path = reference_path(folder, &record.code, &record.case);
+    let path = reference_path(folder, record.code, &record.case);
     let mut file = if path.exists() {
         load(&path)?
     } else {
         ReferenceFile {
-            code: record.code.clone(),
+            code: record.code,
             case: record.case.clone(),
             runs: Vec::new(),
         }
@@ -256,8 +267,7 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
     file.runs
         .sort_by(|a, b| a.loss_coefficient.total_cmp(&b.loss_coefficient));
     let text = serde_json::to_string_pretty(&file)? + "\n";
-    report::write_atomic(&path, text.as_bytes())
-        .with_context(|| format!("writing {}", path.display()))?;
+    write_atomic(&path, text.as_bytes()).with_context(|| format!("writing {}", path.display()))?;
     Ok(path)
 }
 
@@ -267,7 +277,7 @@ pub fn stored_files(folder: &Path) -> Result<Vec<PathBuf>> {
     if !folder.is_dir() {
         return Ok(files);
     }
-    for code in codes::all_drivers() {
+    for code in CodeName::ALL {
         let dir = folder.join(code.name());
         let Ok(entries) = std::fs::read_dir(&dir) else {
             continue;
@@ -286,7 +296,7 @@ pub fn stored_files(folder: &Path) -> Result<Vec<PathBuf>> {
 /// The stored run of `code` on `case` at η, if any.
 pub fn find_stored(
     folder: &Path,
-    code: &str,
+    code: CodeName,
     case: &str,
     loss_coefficient: f64,
 ) -> Result<Option<ReferenceRecord>> {
@@ -300,195 +310,140 @@ pub fn find_stored(
         .find(|r| (r.loss_coefficient - loss_coefficient).abs() <= 1e-12))
 }
 
-/// The checks `verify` makes of every stored run: the realised COR against its target, the
-/// code's peak against its own law stepped now by this build (so a change in the emulation or
-/// the law shows), and the remainder against the paper's law.
-pub fn verify_rows(folder: &Path, _cases: &Path) -> Result<Vec<VerifyRow>> {
-    let mut rows = Vec::new();
-    for path in stored_files(folder)? {
-        let file = load(&path)?;
-        for record in &file.runs {
-            let stepped = step_trajectory(
-                &record.law,
-                record.setup.impact_velocity,
-                record.timestep,
-                record.steps,
-                record.step_scheme,
-            );
-            let now = trajectory_metrics(&stepped)
-                .map_err(|reason| anyhow::anyhow!("{}: {reason}", path.display()))?;
-            let peak_error =
-                (record.peak_deformation - now.peak_deformation) / now.peak_deformation;
-            let time_error = (record.contact_time - now.contact_time) / now.contact_time;
-            let cor_error = record.cor - record.cor_target();
-            let remainder = record.attribution().remainder;
-            let step_share = record.timestep / now.contact_time;
-            let tolerance = Tolerance {
-                cor: COR_TOLERANCE,
-                peak_deformation: EMULATION_TOLERANCE,
-                contact_time: step_share,
-            };
-            let remainder_ok = remainder.cor.abs() <= REMAINDER_TOLERANCE
-                && remainder.peak_deformation.abs() <= REMAINDER_TOLERANCE;
-            rows.push(VerifyRow {
-                case: format!("{} η={}", record.case, record.loss_coefficient),
-                method: format!("{} (stored)", record.code),
-                cor_error,
-                peak_deformation_error: peak_error,
-                contact_time_error: time_error,
-                tolerance,
-                pass: cor_error.abs() <= tolerance.cor
-                    && peak_error.abs() <= tolerance.peak_deformation
-                    && time_error.abs() <= tolerance.contact_time
-                    && remainder_ok,
-            });
-        }
-    }
-    Ok(rows)
+/// One record as a CSV row: its figures and the split of its COR difference from the paper's
+/// law.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RecordRow {
+    /// The code.
+    pub code: CodeName,
+    /// Version string.
+    pub code_version: String,
+    /// Case name.
+    pub case: String,
+    /// η.
+    pub loss_coefficient: f64,
+    /// The COR asked of the code.
+    pub target_restitution: f64,
+    /// Time step, s.
+    pub timestep: f64,
+    /// COR.
+    pub cor: f64,
+    /// Peak overlap, m.
+    pub peak_deformation: f64,
+    /// Peak normal force, N.
+    pub peak_force: f64,
+    /// Contact time by overlap, s.
+    pub contact_time: f64,
+    /// Relative COR difference from the paper's law: the model's part.
+    pub model_cor: f64,
+    /// The integration's part.
+    pub integration_cor: f64,
+    /// What nothing explains.
+    pub remainder_cor: f64,
+    /// Process wall time, s.
+    pub wall_time: f64,
 }
 
-/// Run `millimpact reference`.
-pub fn reference_command(args: &ReferenceArgs) -> Result<String> {
-    let mut case = Case::load(&args.case)?;
-    if let Some(eta) = args.loss_coefficient {
-        if !(0.0..1.0).contains(&eta) {
-            return Err(UserError::Argument {
-                option: "--loss-coefficient".into(),
-                value: eta.to_string(),
-                allowed: "must be in [0, 1)".into(),
-            }
-            .into());
-        }
-        case = case.with_loss_coefficient(eta);
-    }
-    if let Some(dt) = args.timestep
-        && !(dt.is_finite() && dt > 0.0)
-    {
-        return Err(UserError::Argument {
-            option: "--timestep".into(),
-            value: dt.to_string(),
-            allowed: "must be a finite number > 0 (seconds)".into(),
-        }
-        .into());
-    }
-    if let Some(0) = args.steps_per_contact {
-        return Err(UserError::Argument {
-            option: "--steps-per-contact".into(),
-            value: "0".into(),
-            allowed: "must be at least 1".into(),
-        }
-        .into());
-    }
-    if !(args.timeout.is_finite() && args.timeout > 0.0) {
-        return Err(UserError::Argument {
-            option: "--timeout".into(),
-            value: args.timeout.to_string(),
-            allowed: "must be a finite number of seconds > 0".into(),
-        }
-        .into());
-    }
-    if args.clamp && args.save {
-        return Err(UserError::Argument {
-            option: "--save".into(),
-            value: "with --clamp".into(),
-            allowed: "reference/ stores the equivalent setups only; run --clamp without --save"
-                .into(),
-        }
-        .into());
-    }
-    let driver = codes::driver(args.code.name()).expect("every CodeName has a driver");
-    let record = run_reference(
-        driver.as_ref(),
-        &case,
-        args.steps_per_contact,
-        args.timestep,
-        args.clamp,
-        Duration::from_secs_f64(args.timeout),
-    )?;
-    let mut text = match args.format {
-        Format::Json => serde_json::to_string_pretty(&record)? + "\n",
-        _ => record_table(&record),
-    };
-    if args.save {
-        let path = save(&args.reference, &record)?;
-        if args.format != Format::Json {
-            text += &format!("stored in {}\n", path.display());
-        }
-    }
-    Ok(text)
-}
+impl Summary for ReferenceRecord {
+    type Record = RecordRow;
 
-/// A run of a code as a table for people.
-pub fn record_table(r: &ReferenceRecord) -> String {
-    let mut t = report::new_table(&[
-        "source",
-        "COR",
-        "peak deformation (m)",
-        "peak force (N)",
-        "contact time (s)",
-    ]);
-    let sci = report::sci;
-    t.add_row(vec![
-        format!("{} {}", r.code, r.code_version),
-        sci(r.cor),
-        sci(r.peak_deformation),
-        sci(r.peak_force),
-        sci(r.contact_time),
-    ]);
-    for (name, m) in [
-        ("own law, stepped as the code", &r.law_at_step),
-        ("own law, exact", &r.law_exact),
-    ] {
-        t.add_row(vec![
-            name.to_string(),
-            sci(m.cor),
-            sci(m.peak_deformation),
-            sci(m.peak_force),
-            sci(m.contact_time),
+    fn records(&self) -> Vec<RecordRow> {
+        let a = self.attribution();
+        vec![RecordRow {
+            code: self.code,
+            code_version: self.code_version.clone(),
+            case: self.case.clone(),
+            loss_coefficient: self.loss_coefficient,
+            target_restitution: self.target_restitution,
+            timestep: self.timestep,
+            cor: self.cor,
+            peak_deformation: self.peak_deformation,
+            peak_force: self.peak_force,
+            contact_time: self.contact_time,
+            model_cor: a.model.cor,
+            integration_cor: a.integration.cor,
+            remainder_cor: a.remainder.cor,
+            wall_time: self.wall_time,
+        }]
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let r = self;
+        let mut t = Section::new(
+            Some(format!(
+                "{} on {} (η = {}, target COR {:.6}{}), Δt = {} s, {} steps",
+                r.code,
+                r.case,
+                r.loss_coefficient,
+                r.target_restitution,
+                r.expected_restitution
+                    .map(|e| format!(", realisable {e:.6}"))
+                    .unwrap_or_default(),
+                sci(r.timestep),
+                r.steps
+            )),
+            &[
+                "source",
+                "COR",
+                "peak deformation (m)",
+                "peak force (N)",
+                "contact time (s)",
+            ],
+        );
+        t.rows.push(vec![
+            format!("{} {}", r.code, r.code_version),
+            sci(r.cor),
+            sci(r.peak_deformation),
+            sci(r.peak_force),
+            sci(r.contact_time),
         ]);
+        for (name, m) in [
+            ("own law, stepped as the code", &r.law_at_step),
+            ("own law, exact", &r.law_exact),
+        ] {
+            t.rows.push(vec![
+                name.to_string(),
+                sci(m.cor),
+                sci(m.peak_deformation),
+                sci(m.peak_force),
+                sci(m.contact_time),
+            ]);
+        }
+        let p = &r.paper_exact;
+        t.rows.push(vec![
+            "paper's law, exact".to_string(),
+            sci(p.cor),
+            sci(p.peak_deformation),
+            sci(p.peak_force),
+            sci(p.contact_time),
+        ]);
+        let a = r.attribution();
+        let split = |s: &Split| {
+            format!(
+                "{} / {} / {}",
+                signed(s.cor),
+                signed(s.peak_deformation),
+                signed(s.contact_time)
+            )
+        };
+        t.notes = vec![
+            format!(
+                "difference from the paper's law (COR / peak / contact time): model {}, integration {}, remainder {}",
+                split(&a.model),
+                split(&a.integration),
+                split(&a.remainder)
+            ),
+            format!(
+                "wall time {}{}",
+                seconds(r.wall_time),
+                r.loop_time
+                    .map(|l| format!(", the code's loop time {}", seconds(l)))
+                    .unwrap_or_default()
+            ),
+            format!("reproduce: {}", r.command),
+        ];
+        vec![t]
     }
-    let p = &r.paper_exact;
-    t.add_row(vec![
-        "paper's law, exact".to_string(),
-        sci(p.cor),
-        sci(p.peak_deformation),
-        sci(p.peak_force),
-        sci(p.contact_time),
-    ]);
-    let a = r.attribution();
-    let mut text = format!(
-        "{} on {} (η = {}, target COR {:.6}{}), Δt = {} s, {} steps\n{t}\n",
-        r.code,
-        r.case,
-        r.loss_coefficient,
-        r.target_restitution,
-        r.expected_restitution
-            .map(|e| format!(", realisable {e:.6}"))
-            .unwrap_or_default(),
-        sci(r.timestep),
-        r.steps
-    );
-    text += &format!(
-        "difference from the paper's law (COR / peak / contact time): model {:+.2e} / {:+.2e} / {:+.2e}, integration {:+.2e} / {:+.2e} / {:+.2e}, remainder {:+.2e} / {:+.2e} / {:+.2e}\n",
-        a.model.cor,
-        a.model.peak_deformation,
-        a.model.contact_time,
-        a.integration.cor,
-        a.integration.peak_deformation,
-        a.integration.contact_time,
-        a.remainder.cor,
-        a.remainder.peak_deformation,
-        a.remainder.contact_time
-    );
-    text += &format!(
-        "wall time {}{}\nreproduce: {}\n",
-        report::seconds(r.wall_time),
-        r.loop_time
-            .map(|l| format!(", the code's loop time {}", report::seconds(l)))
-            .unwrap_or_default(),
-        r.command
-    );
-    text
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::law::PaperLaw;
+use crate::model::law::PaperLaw;
 
 /// `J(n) = ∫0^1 (1 - u^(n+1))^(-1/2) du = sqrt(π) Γ(1 + 1/(n+1)) / Γ(1/2 + 1/(n+1))`:
 /// a quarter period of the undamped oscillation in units of `y_max / v0`.

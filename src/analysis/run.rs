@@ -1,29 +1,14 @@
 //! What a run reports, and the text forms it is printed in (table, JSON, CSV, Markdown).
 //! Field names are a contract with the tools that read them: extend, do not rename.
 
-use std::io::Write;
-use std::path::Path;
-
-use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde::Serialize;
 
-use crate::case::Case;
-use crate::exact::{self, HertzElastic, ImpactFigures};
-use crate::solve::paper::{Outcome, Sample};
-use crate::solve::{Method, Stats};
-
-/// Output format of a command.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-pub enum Format {
-    /// An aligned table for people.
-    Table,
-    /// One JSON document.
-    Json,
-    /// CSV with a header row.
-    Csv,
-    /// A Markdown table.
-    Markdown,
-}
+use crate::error::UserError;
+use crate::model::case::{Case, ContactKind};
+use crate::model::exact::{self, HertzElastic, ImpactFigures};
+use crate::output::{Section, Summary, sci, seconds, signed};
+use crate::solve::paper::{self, Outcome, Sample, Settings};
+use crate::solve::{Knob, Method, SolveError, Stats};
 
 /// The closed-form figures a run is compared with.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -136,17 +121,17 @@ impl RunReport {
             scene: case.scene.kind().name(),
             method: method.name(),
             contact: match case.contact {
-                crate::solve::paper::ContactKind::Unilateral => "unilateral",
-                crate::solve::paper::ContactKind::Bilateral => "bilateral",
+                crate::model::case::ContactKind::Unilateral => "unilateral",
+                crate::model::case::ContactKind::Bilateral => "bilateral",
             },
             loss_coefficient: law.loss_coefficient,
             impact_velocity: case.impact_velocity,
             mass: law.mass,
             stiffness: law.stiffness,
             stiffness_convention: match (case.scene.kind(), case.stiffness) {
-                (crate::scene::SceneKind::RodEnd, _) => "rod",
-                (_, crate::scene::StiffnessConvention::Hertz) => "hertz",
-                (_, crate::scene::StiffnessConvention::Paper) => "paper",
+                (crate::model::scene::SceneKind::RodEnd, _) => "rod",
+                (_, crate::model::scene::StiffnessConvention::Hertz) => "hertz",
+                (_, crate::model::scene::StiffnessConvention::Paper) => "paper",
             },
             exponent: law.exponent,
             cor: f.cor,
@@ -202,9 +187,22 @@ impl RunReport {
         }
     }
 
-    /// The human table.
-    pub fn table(&self) -> String {
-        let mut t = new_table(&["figure", "run", "exact", "relative error"]);
+    /// The human table: the run beside the closed forms, then the work and the notes.
+    pub fn sections(&self) -> Vec<Section> {
+        let mut t = Section::new(
+            Some(format!(
+                "{} ({}, {}): method {}, η = {}, M = {} kg, C = {}, n = {}",
+                self.case,
+                self.scene,
+                self.contact,
+                self.method,
+                self.loss_coefficient,
+                sci(self.mass),
+                sci(self.stiffness),
+                self.exponent
+            )),
+            &["figure", "run", "exact", "relative error"],
+        );
         let rows: [(&str, f64, f64, Option<f64>); 6] = [
             ("COR", self.cor, self.exact.cor, Some(self.error.cor)),
             (
@@ -239,7 +237,7 @@ impl RunReport {
             ),
         ];
         for (name, run, exact, error) in rows {
-            t.add_row(vec![
+            t.rows.push(vec![
                 name.to_string(),
                 sci(run),
                 if exact.is_nan() {
@@ -247,21 +245,10 @@ impl RunReport {
                 } else {
                     sci(exact)
                 },
-                error.map(|e| format!("{e:+.2e}")).unwrap_or_default(),
+                error.map(signed).unwrap_or_default(),
             ]);
         }
         let mut text = format!(
-            "{} ({}, {}): method {}, η = {}, M = {} kg, C = {}, n = {}\n{t}\n",
-            self.case,
-            self.scene,
-            self.contact,
-            self.method,
-            self.loss_coefficient,
-            sci(self.mass),
-            sci(self.stiffness),
-            self.exponent
-        );
-        text += &format!(
             "steps {}, rhs evaluations {}, wall time {}",
             self.steps,
             self.rhs_evaluations,
@@ -270,25 +257,26 @@ impl RunReport {
         if let Some(dt) = self.timestep {
             text += &format!(", Δt = {} s", sci(dt));
         }
-        text.push('\n');
+        let mut notes = vec![text];
         if self.stiffness_convention == "paper" {
-            text += "stiffness: the paper's printed coefficient a E sqrt(R) / (1 - ν²), not Hertz's (4/3) E* sqrt(R*)\n";
+            notes.push("stiffness: the paper's printed coefficient a E sqrt(R) / (1 - ν²), not Hertz's (4/3) E* sqrt(R*)".to_string());
         }
         if let Some(h) = &self.hertz_elastic {
-            text += &format!(
-                "elastic Hertz: peak deformation {} m, contact time {} s\n",
+            notes.push(format!(
+                "elastic Hertz: peak deformation {} m, contact time {} s",
                 sci(h.peak_deformation),
                 sci(h.contact_time)
-            );
+            ));
         }
         if !self.crossing_speeds.is_empty() {
             let speeds: Vec<String> = self.crossing_speeds.iter().map(|s| sci(*s)).collect();
-            text += &format!(
-                "speeds through zero approach (m/s): {}\n",
+            notes.push(format!(
+                "speeds through zero approach (m/s): {}",
                 speeds.join(", ")
-            );
+            ));
         }
-        text
+        t.notes = notes;
+        vec![t]
     }
 }
 
@@ -335,92 +323,30 @@ pub struct SweepRow {
     pub wall_time: f64,
 }
 
-/// A table in the crate's style.
-pub fn new_table(headers: &[&str]) -> Table {
-    let mut t = Table::new();
-    t.load_style(UTF8_FULL_CONDENSED);
-    t.set_header(headers.to_vec());
-    t
-}
-
-/// A table in Markdown.
-pub fn markdown_table(headers: &[&str], rows: &[Vec<String>]) -> String {
-    let mut text = format!("| {} |\n", headers.join(" | "));
-    text += &format!("|{}\n", "---|".repeat(headers.len()));
-    for row in rows {
-        text += &format!("| {} |\n", row.join(" | "));
-    }
-    text
-}
-
-/// Seven significant digits in scientific form.
-pub fn sci(x: f64) -> String {
-    if x.is_nan() {
-        "n/a".to_string()
-    } else {
-        format!("{x:.6e}")
-    }
-}
-
-/// A duration in convenient units.
-pub fn seconds(s: f64) -> String {
-    if s >= 1.0 {
-        format!("{s:.3} s")
-    } else if s >= 1e-3 {
-        format!("{:.3} ms", s * 1e3)
-    } else {
-        format!("{:.2} µs", s * 1e6)
-    }
-}
-
-/// Serialise rows as CSV with a header.
-pub fn csv_string<T: Serialize>(rows: &[T]) -> anyhow::Result<String> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
-    for row in rows {
-        writer.serialize(row)?;
-    }
-    Ok(String::from_utf8(writer.into_inner()?)?)
-}
-
-/// Write `bytes` to `path` atomically: a temporary file beside it, renamed into place.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let dir = match path.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
-    std::fs::create_dir_all(dir)?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
-    tmp.write_all(bytes)?;
-    tmp.as_file().sync_all()?;
-    // A temporary file is private (0600); a result is for everyone who may read the folder.
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        tmp.as_file()
-            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
-    }
-    tmp.persist(path).map_err(|e| e.error)?;
-    Ok(())
-}
-
 /// One row of a trajectory file.
-#[derive(Serialize)]
-struct TrajectoryRow {
-    t: f64,
-    y: f64,
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TrajectoryRow {
+    /// Time, s.
+    pub t: f64,
+    /// Approach, m.
+    pub y: f64,
+    /// Approach rate, m/s.
     #[serde(rename = "y_dot")]
-    v: f64,
-    elastic_force: f64,
-    dissipative_force: f64,
-    energy: f64,
+    pub v: f64,
+    /// Elastic force, N.
+    pub elastic_force: f64,
+    /// Dissipative force, N.
+    pub dissipative_force: f64,
+    /// Mechanical energy (kinetic plus elastic), J.
+    pub energy: f64,
 }
 
-/// The trajectory as CSV: time (s), approach (m), approach rate (m/s), elastic force (N),
+/// The trajectory as rows: time (s), approach (m), approach rate (m/s), elastic force (N),
 /// dissipative force (N) and mechanical energy (J, kinetic plus elastic).
-pub fn trajectory_csv(case: &Case, samples: &[Sample]) -> anyhow::Result<String> {
+pub fn trajectory_rows(case: &Case, samples: &[Sample]) -> Vec<TrajectoryRow> {
     let law = case.law();
-    let bilateral = case.contact == crate::solve::paper::ContactKind::Bilateral;
-    let rows: Vec<TrajectoryRow> = samples
+    let bilateral = case.contact == ContactKind::Bilateral;
+    samples
         .iter()
         .map(|s| {
             let in_contact = s.y > 0.0 || (bilateral && s.y != 0.0);
@@ -450,6 +376,150 @@ pub fn trajectory_csv(case: &Case, samples: &[Sample]) -> anyhow::Result<String>
                 energy: 0.5 * law.mass * s.v * s.v + potential,
             }
         })
-        .collect();
-    csv_string(&rows)
+        .collect()
+}
+
+impl Summary for RunReport {
+    type Record = SweepRow;
+
+    fn records(&self) -> Vec<SweepRow> {
+        vec![self.row()]
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        RunReport::sections(self)
+    }
+}
+
+/// Integration options as a user gives them: a method and at most the knob that method has.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntegrationOptions {
+    /// The method.
+    pub method: Method,
+    /// Fixed-step methods: steps per undamped period (default 1000).
+    pub steps_per_period: Option<u32>,
+    /// Fixed-step methods: a step in seconds instead.
+    pub timestep: Option<f64>,
+    /// Adaptive methods: relative tolerance (default 1e-12).
+    pub rtol: Option<f64>,
+    /// Bilateral contact: undamped periods to follow.
+    pub periods: f64,
+}
+
+impl Default for IntegrationOptions {
+    fn default() -> Self {
+        let settings = Settings::default();
+        IntegrationOptions {
+            method: settings.method,
+            steps_per_period: None,
+            timestep: None,
+            rtol: None,
+            periods: settings.periods,
+        }
+    }
+}
+
+impl IntegrationOptions {
+    /// Validate the options for `case` and turn them into solver settings; a knob the method
+    /// does not have is refused, not ignored.
+    pub fn settings(&self, case: &Case, record: bool) -> Result<Settings, UserError> {
+        let refuse = |option: &str, value: String, allowed: String| UserError::CaseArgument {
+            case: case.path.display().to_string(),
+            option: option.to_string(),
+            value,
+            allowed,
+        };
+        let defaults = Settings::default();
+        let method = self.method;
+        let knob = method.descriptor().knob;
+        if let Some(n) = self.steps_per_period
+            && knob != Knob::StepsPerPeriod
+        {
+            return Err(refuse(
+                "--steps-per-period",
+                n.to_string(),
+                format!("{method} has no steps per period; it applies to the fixed-step methods"),
+            ));
+        }
+        if let Some(rtol) = self.rtol {
+            if knob != Knob::Rtol {
+                return Err(refuse(
+                    "--rtol",
+                    rtol.to_string(),
+                    format!("{method} has no tolerance; it applies to the adaptive methods"),
+                ));
+            }
+            if !(rtol > 0.0 && rtol < 1.0) {
+                return Err(refuse(
+                    "--rtol",
+                    rtol.to_string(),
+                    "must be in (0, 1)".into(),
+                ));
+            }
+        }
+        if let Some(dt) = self.timestep {
+            if !(dt.is_finite() && dt > 0.0) {
+                return Err(refuse(
+                    "--timestep",
+                    dt.to_string(),
+                    "must be a finite number > 0 (seconds)".into(),
+                ));
+            }
+            if !method.is_fixed_step() {
+                return Err(refuse(
+                    "--timestep",
+                    dt.to_string(),
+                    "applies to the fixed-step methods rk4, rk4-event and verlet only".into(),
+                ));
+            }
+        }
+        if !(self.periods.is_finite() && self.periods > 0.0) {
+            return Err(refuse(
+                "--periods",
+                self.periods.to_string(),
+                "must be a finite number > 0".into(),
+            ));
+        }
+        Ok(Settings {
+            method,
+            steps_per_period: self.steps_per_period.unwrap_or(defaults.steps_per_period),
+            timestep: self.timestep,
+            rtol: self.rtol.unwrap_or(defaults.rtol),
+            contact: case.contact,
+            periods: self.periods,
+            record,
+        })
+    }
+}
+
+/// The arguments that repeat a run of `case` with `settings`.
+pub fn reproduce_arguments(case: &Case, settings: &Settings) -> String {
+    let method = settings.method;
+    let mut text = format!("{} --method {method}", case.path.display());
+    match (method.descriptor().knob, settings.timestep) {
+        (_, Some(dt)) => text += &format!(" --timestep {dt:e}"),
+        (Knob::Rtol, None) => text += &format!(" --rtol {:e}", settings.rtol),
+        (Knob::StepsPerPeriod, None) => {
+            text += &format!(" --steps-per-period {}", settings.steps_per_period)
+        }
+        (Knob::None, None) => {}
+    }
+    if case.contact == ContactKind::Bilateral {
+        text += &format!(" --periods {}", settings.periods);
+    }
+    text
+}
+
+/// Integrate `case` with `settings` and report against the closed forms.
+pub fn run_case(case: &Case, settings: &Settings) -> anyhow::Result<(RunReport, Outcome)> {
+    let outcome =
+        paper::solve(&case.law(), case.impact_velocity, settings).map_err(|e| match e {
+            SolveError::Unstable { .. } => anyhow::Error::from(UserError::Unsolvable {
+                case: case.path.display().to_string(),
+                source: e,
+            }),
+            other => anyhow::Error::from(other)
+                .context(format!("{}: integration failed", case.path.display())),
+        })?;
+    Ok((RunReport::new(case, settings.method, &outcome), outcome))
 }

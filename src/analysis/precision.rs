@@ -16,8 +16,6 @@
 //! process wall time (and the code's own loop time) of at most three runs after one warm-up
 //! run of the code.
 
-mod plot;
-
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -25,15 +23,16 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use crate::case::Case;
-use crate::cli::{CodeName, PrecisionArgs};
-use crate::codes::{self, RunOptions};
-use crate::exact;
-use crate::law::PaperLaw;
-use crate::report::{self, Format};
+use super::source::Source;
+use crate::codes::{self, CodeName, RunOptions};
+use crate::model::case::Case;
+use crate::model::exact;
+use crate::model::law::PaperLaw;
+use crate::model::trajectory::trajectory_metrics;
+use crate::output::{Section, Summary, seconds};
 use crate::solve::dashpot::accurate_metrics;
 use crate::solve::paper::{self, Settings};
-use crate::solve::{Method, Stats};
+use crate::solve::{Knob, Method, Stats};
 
 /// Errors below this are at the rounding floor of double precision for these figures (a few
 /// hundred ulps of an O(1) quantity after thousands of steps): such points say nothing about
@@ -54,10 +53,10 @@ pub const CODE_REPEATS: u32 = 3;
 /// One point of the work–precision diagram.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Point {
-    /// Method name (rk4, rk4-event, dopri5, verlet) or code name (liggghts, yade, lammps).
-    pub source: String,
-    /// What was swept: `steps_per_period`, `rtol` or `steps_per_contact`.
-    pub knob: &'static str,
+    /// The method or code.
+    pub source: Source,
+    /// What was swept.
+    pub knob: SweepKnob,
     /// The knob's value.
     pub value: f64,
     /// |relative error| of the COR.
@@ -94,30 +93,72 @@ pub struct QuantityOrders {
     pub contact_time: Option<f64>,
 }
 
-/// How a knob value reads in a sentence.
-fn knob_value(source: &str, value: f64) -> String {
-    if source == "dopri5" {
-        format!("rtol {value:.0e}")
-    } else if ["liggghts", "yade", "lammps"].contains(&source) {
-        format!("{value} steps/contact")
-    } else {
-        format!("{value} steps/period")
+/// What a work–precision sweep varies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SweepKnob {
+    /// A fixed-step method's steps per undamped period.
+    StepsPerPeriod,
+    /// An adaptive method's relative tolerance.
+    Rtol,
+    /// A DEM code's steps per elastic contact time.
+    StepsPerContact,
+}
+
+impl SweepKnob {
+    /// How a value of this knob reads in a sentence.
+    pub fn sentence(self, value: f64) -> String {
+        match self {
+            SweepKnob::Rtol => format!("rtol {value:.0e}"),
+            SweepKnob::StepsPerContact => format!("{value} steps/contact"),
+            SweepKnob::StepsPerPeriod => format!("{value} steps/period"),
+        }
     }
+
+    /// How a value of this knob reads in a table cell.
+    pub fn cell(self, value: f64) -> String {
+        match self {
+            SweepKnob::Rtol => format!("rtol {value:.0e}"),
+            SweepKnob::StepsPerPeriod => format!("{value} /period"),
+            SweepKnob::StepsPerContact => format!("{value} /contact"),
+        }
+    }
+
+    /// The knob's step: `1/value` for steps, the tolerance itself for rtol.
+    fn step(self, value: f64) -> f64 {
+        match self {
+            SweepKnob::Rtol => value,
+            SweepKnob::StepsPerPeriod | SweepKnob::StepsPerContact => 1.0 / value,
+        }
+    }
+}
+
+/// A point named by its source and knob value, as the targets quote it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct NamedPoint {
+    /// The method or code.
+    pub source: Source,
+    /// What was swept.
+    pub knob: SweepKnob,
+    /// The knob's value.
+    pub value: f64,
+    /// The quoted figure: a time (s) or an error.
+    pub figure: f64,
 }
 
 /// The two cost targets of the issue, measured in one run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Targets {
-    /// The cheapest method point with COR error ≤ 1e-10: `(source, knob value, time_s)`.
-    pub best_at_1e_10: Option<(String, f64, f64)>,
-    /// The cheapest DEM-code point: `(source, knob value, time_s)`.
-    pub fastest_code: Option<(String, f64, f64)>,
+    /// The cheapest method point with COR error ≤ 1e-10 (figure: time, s).
+    pub best_at_1e_10: Option<NamedPoint>,
+    /// The cheapest DEM-code point (figure: time, s).
+    pub fastest_code: Option<NamedPoint>,
     /// `best_at_1e_10` time over `fastest_code` time.
     pub cost_ratio: Option<f64>,
     /// Whether that ratio is at most 1/10,000.
     pub cost_ratio_met: Option<bool>,
-    /// The smallest COR error any method reached: `(source, knob value, error)`.
-    pub best_cor_error: Option<(String, f64, f64)>,
+    /// The smallest COR error any method reached (figure: the error).
+    pub best_cor_error: Option<NamedPoint>,
     /// Whether it is at most 1e-12.
     pub cor_1e_12_met: Option<bool>,
 }
@@ -143,32 +184,61 @@ pub struct PrecisionReport {
     pub targets: Targets,
     /// Why the orders are what they are.
     pub notes: Vec<&'static str>,
+    /// The command that reproduces the report.
+    pub command: String,
 }
 
-/// Why each method converges at the order it does; printed with every report.
-pub const ORDER_NOTES: [&str; 6] = [
-    "rk4-event: the contact time converges at order 4, RK4's own order: the turning point and \
+/// What a note about orders is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NoteSubject {
+    /// One method.
+    Method(Method),
+    /// Every DEM code.
+    Codes,
+}
+
+/// Why each method converges at the order it does; printed with the reports that sweep it.
+pub const ORDER_NOTES: [(NoteSubject, &str); 6] = [
+    (
+        NoteSubject::Method(Method::Rk4Event),
+        "rk4-event: the contact time converges at order 4, RK4's own order: the turning point and \
      the contact end are located on the step, and series cover the non-smooth y^n at the ends.",
-    "rk4-event: COR and peak deformation converge at order 5 (superconvergence): both are fixed \
+    ),
+    (
+        NoteSubject::Method(Method::Rk4Event),
+        "rk4-event: COR and peak deformation converge at order 5 (superconvergence): both are fixed \
      by the energy, at the turning point (peak) and at exit (COR), and RK4's energy error on an \
      oscillator is O(h^6) per step (its stability function matches exp(iz) to z^4 and |R(iz)|^2 \
      = 1 - z^6/72 + z^8/576), so O(h^5) over a phase; the phase (time) error is only O(h^4).",
-    "rk4 (the paper's): the contact ends at the first step past y = 0 with no event location, \
+    ),
+    (
+        NoteSubject::Method(Method::Rk4),
+        "rk4 (the paper's): the contact ends at the first step past y = 0 with no event location, \
      so the exit time is late by a fraction of a step that depends on where the grid falls: a \
      staircase in N whose bound (the error envelope) is order 1, and whose least-squares fit is \
      lower still, dragged down by lucky alignments. The sign(ẏ) switch at the turning point \
      falls inside a step, where the force jumps by 2ηCy^n and RK4's stages straddle it, and the \
      exit velocity is taken from the step past zero: its COR error jumps by an order of \
      magnitude between neighbouring N (erratic), trending at about order 2 at best.",
-    "verlet: second order at best (the symplectic half kick, energy O(h^2)); the half-step \
+    ),
+    (
+        NoteSubject::Method(Method::Verlet),
+        "verlet: second order at best (the symplectic half kick, energy O(h^2)); the half-step \
      velocity switches the damping sign at the wrong instant and the contact end is the first \
      step past zero, so its contact time converges at order 1, like the paper's rk4.",
-    "dopri5: its error follows its tolerance (slope ≈ 1 in log rtol), the mark of a well-tuned \
+    ),
+    (
+        NoteSubject::Method(Method::Dopri5),
+        "dopri5: its error follows its tolerance (slope ≈ 1 in log rtol), the mark of a well-tuned \
      controller; its order is not a slope against a fixed step.",
-    "DEM codes (errors against each code's own damped law at zero step error): order 1 in \
+    ),
+    (
+        NoteSubject::Codes,
+        "DEM codes (errors against each code's own damped law at zero step error): order 1 in \
      peak deformation and contact time, because velocity Verlet and leap-frog evaluate the \
      dashpot c y^m ẏ with the velocity of the half step, which lags by h/2 (a first-order \
      error in a velocity-dependent force); their cost is dominated by starting the process.",
+    ),
 ];
 
 /// Steps per period for the fixed-step sweeps: 19 values from 8 to 20000, geometric.
@@ -209,14 +279,14 @@ pub fn method_point(
     law: &PaperLaw,
     v0: f64,
     settings: &Settings,
-    knob: &'static str,
+    knob: SweepKnob,
     value: f64,
     repeats: u32,
 ) -> Result<Point> {
     let exact = exact::paper_impact(law, v0);
     let started = Instant::now();
     let warm = paper::solve(law, v0, settings)
-        .with_context(|| format!("{} at {knob} = {value}", settings.method.name()))?;
+        .with_context(|| format!("{} at {}", settings.method, knob.sentence(value)))?;
     let single = started.elapsed().max(Duration::from_nanos(50));
     let batch = (BATCH_TIME.as_secs_f64() / single.as_secs_f64()).ceil() as u32;
     let batch = batch.clamp(1, 100_000);
@@ -242,7 +312,7 @@ pub fn method_point(
         ..
     } = warm.stats;
     Ok(Point {
-        source: settings.method.name().to_string(),
+        source: Source::Method(settings.method),
         knob,
         value,
         cor_error: errors[0],
@@ -265,16 +335,23 @@ pub fn method_sweep(case: &Case, method: Method, repeats: u32) -> Result<Vec<Poi
         contact: case.contact,
         ..Settings::default()
     };
-    match method {
-        Method::Dopri5 => rtol_sweep()
+    match method.descriptor().knob {
+        Knob::Rtol => rtol_sweep()
             .into_iter()
             .map(|rtol| {
                 let s = Settings { rtol, ..base };
-                method_point(&law, case.impact_velocity, &s, "rtol", rtol, repeats)
+                method_point(
+                    &law,
+                    case.impact_velocity,
+                    &s,
+                    SweepKnob::Rtol,
+                    rtol,
+                    repeats,
+                )
             })
             .collect(),
-        Method::Exact => anyhow::bail!("precision: the exact method has no knob to sweep"),
-        _ => steps_per_period_sweep()
+        Knob::None => anyhow::bail!("precision: {method} has no knob to sweep"),
+        Knob::StepsPerPeriod => steps_per_period_sweep()
             .into_iter()
             .map(|n| {
                 let s = Settings {
@@ -285,7 +362,7 @@ pub fn method_sweep(case: &Case, method: Method, repeats: u32) -> Result<Vec<Poi
                     &law,
                     case.impact_velocity,
                     &s,
-                    "steps_per_period",
+                    SweepKnob::StepsPerPeriod,
                     n as f64,
                     repeats,
                 )
@@ -303,27 +380,26 @@ pub fn code_sweep(
     steps_per_contact: &[u32],
     repeats: u32,
 ) -> Result<Vec<Point>> {
-    let driver =
-        codes::driver(code.name()).with_context(|| format!("no driver for {}", code.name()))?;
+    let driver = code.driver();
     let options = RunOptions::default();
     let repeats = repeats.clamp(1, CODE_REPEATS);
     let mut points = Vec::new();
     let mut warmed = false;
     for &spc in steps_per_contact {
-        let setup = codes::prepare(driver.as_ref(), case, Some(spc), None, false)
+        let setup = codes::prepare(driver, case, Some(spc), None, false)
             .with_context(|| format!("{}: setting up {} steps per contact", code.name(), spc))?;
         let reference = accurate_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
             .with_context(|| format!("{}: its own law at zero step error", code.name()))?;
         if !warmed {
             // The first start of a code pays for loading its libraries from disk.
-            codes::run_code(driver.as_ref(), &setup, &options)?;
+            codes::run_code(driver, &setup, &options)?;
             warmed = true;
         }
         let mut walls = Vec::new();
         let mut loops = Vec::new();
         let mut last = None;
         for _ in 0..repeats {
-            let run = codes::run_code(driver.as_ref(), &setup, &options)?;
+            let run = codes::run_code(driver, &setup, &options)?;
             walls.push(run.wall_time);
             if let Some(l) = run.loop_time {
                 loops.push(l);
@@ -331,16 +407,15 @@ pub fn code_sweep(
             last = Some(run);
         }
         let run = last.expect("at least one run");
-        let metrics = codes::trajectory_metrics(&run.trajectory)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", code.name()))?;
+        let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
         let errors = [
             relative(metrics.cor, reference.cor),
             relative(metrics.peak_deformation, reference.peak_deformation),
             relative(metrics.contact_time, reference.contact_time),
         ];
         points.push(Point {
-            source: code.name().to_string(),
-            knob: "steps_per_contact",
+            source: Source::Code(code),
+            knob: SweepKnob::StepsPerContact,
             value: spc as f64,
             cor_error: errors[0],
             peak_deformation_error: errors[1],
@@ -380,14 +455,8 @@ pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
 /// [`ASYMPTOTIC_STEPS_PER_PERIOD`] steps per period). For dopri5 the slope against `rtol`.
 pub fn observed_orders(points: &[Point]) -> QuantityOrders {
     let usable =
-        |p: &&Point| p.knob != "steps_per_period" || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD;
-    let step = |p: &Point| {
-        if p.knob == "rtol" {
-            p.value
-        } else {
-            1.0 / p.value
-        }
-    };
+        |p: &&Point| p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD;
+    let step = |p: &Point| p.knob.step(p.value);
     let fit = |error: fn(&Point) -> f64| {
         let pairs: Vec<(f64, f64)> = points
             .iter()
@@ -415,7 +484,7 @@ pub fn envelope_orders(points: &[Point]) -> QuantityOrders {
     let mut sorted: Vec<Point> = points.to_vec();
     // Finest first: steps per period or contact descending, rtol ascending.
     sorted.sort_by(|a, b| {
-        if a.knob == "rtol" {
+        if a.knob == SweepKnob::Rtol {
             a.value.total_cmp(&b.value)
         } else {
             b.value.total_cmp(&a.value)
@@ -434,10 +503,16 @@ pub fn envelope_orders(points: &[Point]) -> QuantityOrders {
 }
 
 fn targets(points: &[Point]) -> Targets {
-    let is_code = |p: &Point| p.knob == "steps_per_contact";
+    let is_code = |p: &Point| matches!(p.source, Source::Code(_));
+    let named = |p: &Point, figure: f64| NamedPoint {
+        source: p.source,
+        knob: p.knob,
+        value: p.value,
+        figure,
+    };
     let cheapest = |it: &mut dyn Iterator<Item = &Point>| {
         it.min_by(|a, b| a.time_s.total_cmp(&b.time_s))
-            .map(|p| (p.source.clone(), p.value, p.time_s))
+            .map(|p| named(p, p.time_s))
     };
     let best_at_1e_10 = cheapest(
         &mut points
@@ -446,17 +521,17 @@ fn targets(points: &[Point]) -> Targets {
     );
     let fastest_code = cheapest(&mut points.iter().filter(|p| is_code(p)));
     let cost_ratio = match (&best_at_1e_10, &fastest_code) {
-        (Some(b), Some(c)) => Some(b.2 / c.2),
+        (Some(b), Some(c)) => Some(b.figure / c.figure),
         _ => None,
     };
     let best_cor_error = points
         .iter()
         .filter(|p| !is_code(p))
         .min_by(|a, b| a.cor_error.total_cmp(&b.cor_error))
-        .map(|p| (p.source.clone(), p.value, p.cor_error));
+        .map(|p| named(p, p.cor_error));
     Targets {
         cost_ratio_met: cost_ratio.map(|r| r <= 1e-4),
-        cor_1e_12_met: best_cor_error.as_ref().map(|b| b.2 <= 1e-12),
+        cor_1e_12_met: best_cor_error.as_ref().map(|b| b.figure <= 1e-12),
         best_at_1e_10,
         fastest_code,
         cost_ratio,
@@ -483,7 +558,7 @@ pub fn precision_report(
     let mut orders_by_quantity = BTreeMap::new();
     let mut tolerance_slopes = BTreeMap::new();
     let mut envelopes = BTreeMap::new();
-    let mut sources: Vec<&str> = points.iter().map(|p| p.source.as_str()).collect();
+    let mut sources: Vec<Source> = points.iter().map(|p| p.source).collect();
     sources.dedup();
     for source in sources {
         let own: Vec<Point> = points
@@ -492,7 +567,8 @@ pub fn precision_report(
             .cloned()
             .collect();
         let q = observed_orders(&own);
-        if own[0].knob == "rtol" {
+        let source = source.name();
+        if own[0].knob == SweepKnob::Rtol {
             tolerance_slopes.insert(source.to_string(), q);
             continue;
         }
@@ -502,17 +578,27 @@ pub fn precision_report(
         orders_by_quantity.insert(source.to_string(), q);
         envelopes.insert(source.to_string(), envelope_orders(&own));
     }
-    // Only the notes about the sources swept: a note's first word names its method, or it
-    // is about the DEM codes.
+    // Only the notes about the sources swept.
     let notes = ORDER_NOTES
         .iter()
-        .filter(|note| {
-            let about = note.split([' ', ':']).next().unwrap_or("");
-            points.iter().any(|p| p.source == about)
-                || (about == "DEM" && points.iter().any(|p| p.knob == "steps_per_contact"))
+        .filter(|(subject, _)| {
+            points.iter().any(|p| match (subject, p.source) {
+                (NoteSubject::Method(m), Source::Method(swept)) => *m == swept,
+                (NoteSubject::Codes, Source::Code(_)) => true,
+                _ => false,
+            })
         })
-        .copied()
+        .map(|(_, note)| *note)
         .collect();
+    let mut command = format!("millimpact precision {}", case.path.display());
+    if !methods.is_empty() {
+        let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+        command += &format!(" --methods {}", names.join(","));
+    }
+    if !code_names.is_empty() {
+        let names: Vec<&str> = code_names.iter().map(|c| c.name()).collect();
+        command += &format!(" --codes {}", names.join(","));
+    }
     Ok(PrecisionReport {
         case: case.name.clone(),
         targets: targets(&points),
@@ -522,19 +608,12 @@ pub fn precision_report(
         envelope_orders: envelopes,
         tolerance_slopes,
         notes,
+        command,
     })
 }
 
 fn opt(x: Option<f64>) -> String {
     x.map_or_else(|| "n/a".to_string(), |v| format!("{v:.2}"))
-}
-
-fn knob_text(p: &Point) -> String {
-    match p.knob {
-        "rtol" => format!("rtol {:.0e}", p.value),
-        "steps_per_period" => format!("{} /period", p.value),
-        _ => format!("{} /contact", p.value),
-    }
 }
 
 const HEADERS: [&str; 9] = [
@@ -555,14 +634,14 @@ fn rows(report: &PrecisionReport) -> Vec<Vec<String>> {
         .iter()
         .map(|p| {
             vec![
-                p.source.clone(),
-                knob_text(p),
+                p.source.to_string(),
+                p.knob.cell(p.value),
                 format!("{:.2e}", p.cor_error),
                 format!("{:.2e}", p.peak_deformation_error),
                 format!("{:.2e}", p.contact_time_error),
                 p.rhs_evaluations.to_string(),
-                report::seconds(p.time_s),
-                p.loop_time_s.map_or_else(String::new, report::seconds),
+                seconds(p.time_s),
+                p.loop_time_s.map_or_else(String::new, seconds),
                 p.timestep_s
                     .map_or_else(String::new, |s| format!("{s:.3e}")),
             ]
@@ -628,159 +707,125 @@ fn target_lines(t: &Targets) -> Vec<String> {
         (Some(b), Some(c), Some(r)) => lines.push(format!(
             "cost: cheapest impact at COR error ≤ 1e-10 is {} at {} ({}); fastest DEM-code run is \
              {} at {} ({}); ratio {:.2e} (target ≤ 1e-4: {})",
-            b.0,
-            knob_value(&b.0, b.1),
-            report::seconds(b.2),
-            c.0,
-            knob_value(&c.0, c.1),
-            report::seconds(c.2),
+            b.source,
+            b.knob.sentence(b.value),
+            seconds(b.figure),
+            c.source,
+            c.knob.sentence(c.value),
+            seconds(c.figure),
             r,
             if r <= 1e-4 { "met" } else { "NOT met" }
         )),
         (Some(b), _, _) => lines.push(format!(
             "cost: cheapest impact at COR error ≤ 1e-10 is {} at {} ({}); no DEM code swept",
-            b.0,
-            knob_value(&b.0, b.1),
-            report::seconds(b.2)
+            b.source,
+            b.knob.sentence(b.value),
+            seconds(b.figure)
         )),
         _ => lines.push("cost: no method reached COR error ≤ 1e-10".to_string()),
     }
     if let Some(b) = &t.best_cor_error {
         lines.push(format!(
             "best COR error: {:.2e} by {} at {} (target ≤ 1e-12: {})",
-            b.2,
-            b.0,
-            knob_value(&b.0, b.1),
-            if b.2 <= 1e-12 { "met" } else { "NOT met" }
+            b.figure,
+            b.source,
+            b.knob.sentence(b.value),
+            if b.figure <= 1e-12 { "met" } else { "NOT met" }
         ));
     }
     lines
 }
 
-impl PrecisionReport {
-    /// The report as a Markdown document: points, orders, targets and notes.
-    pub fn markdown(&self) -> String {
-        let mut text = format!("### Work–precision, case {}\n\n", self.case);
-        text += &report::markdown_table(&HEADERS, &rows(self));
-        text += "\nObserved orders (slope of log error):\n\n";
-        text += &report::markdown_table(&ORDER_HEADERS, &order_rows(self));
-        text += "\n";
-        for line in target_lines(&self.targets) {
-            text += &format!("- {line}\n");
-        }
-        text += "\n";
-        for note in &self.notes {
-            text += &format!("- {note}\n");
-        }
-        text
-    }
-
-    /// The report as aligned tables for people.
-    pub fn table(&self) -> String {
-        let mut t = report::new_table(&HEADERS);
-        for row in rows(self) {
-            t.add_row(row);
-        }
-        let mut o = report::new_table(&ORDER_HEADERS);
-        for row in order_rows(self) {
-            o.add_row(row);
-        }
-        let mut text = format!(
-            "work–precision, case {}\n{t}\nobserved orders\n{o}\n",
-            self.case
-        );
-        for line in target_lines(&self.targets) {
-            text += &format!("{line}\n");
-        }
-        for note in &self.notes {
-            text += &format!("- {note}\n");
-        }
-        text
-    }
-}
-
-/// Run `millimpact precision`.
-pub fn precision_command(args: &PrecisionArgs) -> Result<String> {
-    let case = Case::load(&args.case)?;
-    if args.repeats == 0 {
-        return Err(crate::app::UserError::Argument {
-            option: "--repeats".to_string(),
-            value: "0".to_string(),
-            allowed: "must be at least 1".to_string(),
-        }
-        .into());
-    }
-    let methods: Vec<Method> = if args.methods.is_empty() {
-        vec![
-            Method::Rk4,
-            Method::Rk4Event,
-            Method::Dopri5,
-            Method::Verlet,
-        ]
-    } else {
-        args.methods.clone()
-    };
-    if methods.contains(&Method::Exact) {
-        return Err(crate::app::UserError::Argument {
-            option: "--methods".to_string(),
-            value: "exact".to_string(),
-            allowed: "rk4, rk4-event, dopri5 or verlet: the closed forms have no error to sweep"
-                .to_string(),
-        }
-        .into());
-    }
-    let report = precision_report(
-        &case,
-        &methods,
-        &args.codes,
-        args.repeats,
-        &code_steps_sweep(),
-    )?;
-    if let Some(path) = &args.plot {
-        let svg = plot::work_precision_svg(&report)?;
-        report::write_atomic(path, svg.as_bytes())
-            .with_context(|| format!("writing the diagram to {}", path.display()))?;
-    }
-    Ok(match args.format {
-        Format::Table => report.table(),
-        Format::Json => serde_json::to_string_pretty(&report)? + "\n",
-        Format::Csv => report::csv_string(&csv_rows(&report))?,
-        Format::Markdown => report.markdown(),
-    })
-}
-
 /// A point as one flat CSV row.
-#[derive(Serialize)]
-struct CsvRow<'a> {
-    source: &'a str,
-    knob: &'a str,
-    value: f64,
-    cor_error: f64,
-    peak_deformation_error: f64,
-    contact_time_error: f64,
-    rhs_evaluations: u64,
-    steps: u64,
-    time_s: f64,
-    loop_time_s: Option<f64>,
-    timestep_s: Option<f64>,
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct PointRecord {
+    /// The method or code.
+    pub source: Source,
+    /// What was swept.
+    pub knob: SweepKnob,
+    /// The knob's value.
+    pub value: f64,
+    /// Relative COR error.
+    pub cor_error: f64,
+    /// Relative peak deformation error.
+    pub peak_deformation_error: f64,
+    /// Relative contact time error.
+    pub contact_time_error: f64,
+    /// Right-hand-side (force) evaluations.
+    pub rhs_evaluations: u64,
+    /// Steps.
+    pub steps: u64,
+    /// Median run time, s.
+    pub time_s: f64,
+    /// A code's own loop time, s.
+    pub loop_time_s: Option<f64>,
+    /// The fixed step, s.
+    pub timestep_s: Option<f64>,
 }
 
-fn csv_rows(report: &PrecisionReport) -> Vec<CsvRow<'_>> {
-    report
-        .points
-        .iter()
-        .map(|p| CsvRow {
-            source: &p.source,
-            knob: p.knob,
-            value: p.value,
-            cor_error: p.cor_error,
-            peak_deformation_error: p.peak_deformation_error,
-            contact_time_error: p.contact_time_error,
-            rhs_evaluations: p.rhs_evaluations,
-            steps: p.steps,
-            time_s: p.time_s,
-            loop_time_s: p.loop_time_s,
-            timestep_s: p.timestep_s,
-        })
-        .collect()
+impl PrecisionReport {
+    /// The points of each source as `(largest relative error, run time in s)`, in sweep order:
+    /// the series of the work–precision diagram.
+    pub fn series(&self) -> Vec<(String, Vec<(f64, f64)>)> {
+        let mut sources: Vec<Source> = self.points.iter().map(|p| p.source).collect();
+        sources.dedup();
+        sources
+            .into_iter()
+            .map(|source| {
+                let points = self
+                    .points
+                    .iter()
+                    .filter(|p| p.source == source)
+                    .map(|p| (p.max_error, p.time_s))
+                    .collect();
+                (source.to_string(), points)
+            })
+            .collect()
+    }
+}
+
+impl Summary for PrecisionReport {
+    type Record = PointRecord;
+
+    fn records(&self) -> Vec<PointRecord> {
+        self.points
+            .iter()
+            .map(|p| PointRecord {
+                source: p.source,
+                knob: p.knob,
+                value: p.value,
+                cor_error: p.cor_error,
+                peak_deformation_error: p.peak_deformation_error,
+                contact_time_error: p.contact_time_error,
+                rhs_evaluations: p.rhs_evaluations,
+                steps: p.steps,
+                time_s: p.time_s,
+                loop_time_s: p.loop_time_s,
+                timestep_s: p.timestep_s,
+            })
+            .collect()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let mut points = Section::new(
+            Some(format!("Work–precision, case {}", self.case)),
+            &HEADERS,
+        );
+        points.rows = rows(self);
+        let mut orders = Section::new(
+            Some("Observed orders (slope of log error)".to_string()),
+            &ORDER_HEADERS,
+        );
+        orders.rows = order_rows(self);
+        orders.notes = target_lines(&self.targets)
+            .into_iter()
+            .chain(self.notes.iter().map(|n| n.to_string()))
+            .map(|line| format!("- {line}"))
+            .collect();
+        vec![points, orders]
+    }
+
+    fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: {}", self.command)]
+    }
 }

@@ -9,10 +9,22 @@ use std::path::{Path, PathBuf};
 use thiserror::Error;
 use toml::{Table, Value};
 
-use crate::exact;
-use crate::law::PaperLaw;
-use crate::scene::{Ball, Material, Plate, Rod, Scene, SceneKind, StiffnessConvention};
-use crate::solve::paper::ContactKind;
+use serde::{Deserialize, Serialize};
+
+use crate::model::exact;
+use crate::model::law::PaperLaw;
+use crate::model::scene::{Ball, Material, Plate, Rod, Scene, SceneKind, StiffnessConvention};
+
+/// One-sided (physical impact) or two-sided (paper Eq. 14) contact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactKind {
+    /// The bodies separate when the approach returns to zero.
+    #[default]
+    Unilateral,
+    /// The spring also pulls: a decaying oscillation through zero.
+    Bilateral,
+}
 
 /// A rejected case file.
 #[derive(Debug, Error, Clone, PartialEq)]

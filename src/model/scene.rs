@@ -15,6 +15,14 @@ pub enum SceneKind {
 }
 
 impl SceneKind {
+    /// The elastic force model of this impact.
+    pub fn spring(self) -> SpringModel {
+        match self {
+            SceneKind::RodEnd => SpringModel::Linear,
+            SceneKind::BallPlate | SceneKind::BallBall => SpringModel::Hertz,
+        }
+    }
+
     /// The name used in case files and reports.
     pub fn name(self) -> &'static str {
         match self {
@@ -22,6 +30,46 @@ impl SceneKind {
             SceneKind::BallBall => "ball_ball",
             SceneKind::RodEnd => "rod_end",
         }
+    }
+}
+
+/// The elastic force model of a contact: which power of the overlap the spring follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpringModel {
+    /// Hertz, `k δ^1.5` (the balls).
+    Hertz,
+    /// Linear, `k δ` (the rod's end).
+    Linear,
+}
+
+impl SpringModel {
+    /// The exponent `n` of the elastic force.
+    pub fn exponent(self) -> f64 {
+        match self {
+            SpringModel::Hertz => 1.5,
+            SpringModel::Linear => 1.0,
+        }
+    }
+}
+
+/// The mass of the relative motion of two bodies, kg: `m1 m2 / (m1 + m2)` (the one home of
+/// this formula; a massive body is `f64::INFINITY` and gives `m1`).
+pub fn reduced_mass(m1: f64, m2: f64) -> f64 {
+    if m2.is_infinite() {
+        m1
+    } else {
+        m1 * m2 / (m1 + m2)
+    }
+}
+
+/// The contact radius of two spheres, m: `R1 R2 / (R1 + R2)` (a flat wall is
+/// `f64::INFINITY` and gives `R1`).
+pub fn pair_radius(r1: f64, r2: f64) -> f64 {
+    if r2.is_infinite() {
+        r1
+    } else {
+        r1 * r2 / (r1 + r2)
     }
 }
 
@@ -142,22 +190,21 @@ impl Scene {
         }
     }
 
+    /// The elastic force model.
+    pub fn spring(&self) -> SpringModel {
+        self.kind().spring()
+    }
+
     /// Exponent `n` of the elastic force.
     pub fn exponent(&self) -> f64 {
-        match self {
-            Scene::RodEnd { .. } => 1.0,
-            _ => 1.5,
-        }
+        self.spring().exponent()
     }
 
     /// Reduced mass `M`, kg (the plate is massive).
     pub fn reduced_mass(&self) -> f64 {
         match self {
             Scene::BallPlate { ball, .. } => ball.mass(),
-            Scene::BallBall { ball, other } => {
-                let (m1, m2) = (ball.mass(), other.mass());
-                m1 * m2 / (m1 + m2)
-            }
+            Scene::BallBall { ball, other } => reduced_mass(ball.mass(), other.mass()),
             Scene::RodEnd { rod } => rod.mass(),
         }
     }
@@ -183,9 +230,7 @@ impl Scene {
     pub fn effective_radius(&self) -> Option<f64> {
         match self {
             Scene::BallPlate { ball, .. } => Some(ball.radius),
-            Scene::BallBall { ball, other } => {
-                Some(ball.radius * other.radius / (ball.radius + other.radius))
-            }
+            Scene::BallBall { ball, other } => Some(pair_radius(ball.radius, other.radius)),
             Scene::RodEnd { .. } => None,
         }
     }
@@ -214,6 +259,40 @@ impl Scene {
             },
         }
     }
+}
+
+impl Scene {
+    /// The elastic contact of the scene's own spring at approach speed `impact_velocity`
+    /// (m/s): Hertz's for the balls, the linear spring's for the rod. It is the yardstick of
+    /// the codes' time steps and of the "vs elastic" comparison.
+    pub fn elastic_contact(&self, impact_velocity: f64) -> ElasticContact {
+        let mass = self.reduced_mass();
+        match (self.effective_modulus(), self.effective_radius()) {
+            (Some(modulus), Some(radius)) => {
+                let h = crate::model::exact::hertz_elastic(mass, modulus, radius, impact_velocity);
+                ElasticContact {
+                    peak_deformation: h.peak_deformation,
+                    contact_time: h.contact_time,
+                }
+            }
+            _ => {
+                let omega_inverse = (mass / self.hertz_stiffness()).sqrt();
+                ElasticContact {
+                    peak_deformation: impact_velocity * omega_inverse,
+                    contact_time: std::f64::consts::PI * omega_inverse,
+                }
+            }
+        }
+    }
+}
+
+/// The elastic (undamped) contact of a scene's spring.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ElasticContact {
+    /// Peak deformation, m.
+    pub peak_deformation: f64,
+    /// Contact time, s.
+    pub contact_time: f64,
 }
 
 fn paper_ball_stiffness(a: f64, ball: &Ball) -> f64 {

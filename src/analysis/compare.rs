@@ -8,13 +8,11 @@ use std::time::Duration;
 use anyhow::Result;
 use serde::Serialize;
 
-use crate::app::CheckFailed;
-use crate::case::Case;
-use crate::cli::CompareArgs;
-use crate::codes;
-use crate::exact;
-use crate::references::{self, Attribution, ReferenceRecord};
-use crate::report::{self, Format};
+use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord, Split};
+use crate::codes::CodeName;
+use crate::model::case::Case;
+use crate::model::exact;
+use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::Method;
 use crate::solve::paper::{self, Settings};
 
@@ -55,8 +53,8 @@ pub struct SourceRow {
 /// A code's attribution for one case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct CodeAttribution {
-    /// Code name.
-    pub code: String,
+    /// The code.
+    pub code: CodeName,
     /// Code version.
     pub code_version: String,
     /// Time step, s.
@@ -116,26 +114,6 @@ impl Baseline {
     }
 }
 
-/// The elastic contact of the case's spring: Hertz for the balls, the linear spring for the
-/// rod; `(peak deformation, contact time)` in m and s.
-pub fn elastic_figures(case: &Case) -> (f64, f64) {
-    let m = case.scene.reduced_mass();
-    let v0 = case.impact_velocity;
-    match (
-        case.scene.effective_modulus(),
-        case.scene.effective_radius(),
-    ) {
-        (Some(e), Some(r)) => {
-            let h = exact::hertz_elastic(m, e, r, v0);
-            (h.peak_deformation, h.contact_time)
-        }
-        _ => {
-            let k = case.scene.hertz_stiffness();
-            (v0 * (m / k).sqrt(), std::f64::consts::PI * (m / k).sqrt())
-        }
-    }
-}
-
 /// Compare one case; `live` runs the codes, otherwise the stored references are read.
 pub fn compare_case(
     case: &Case,
@@ -146,7 +124,8 @@ pub fn compare_case(
     let law = case.law();
     let v0 = case.impact_velocity;
     let exact = exact::paper_impact(&law, v0);
-    let elastic = elastic_figures(case);
+    let contact = case.scene.elastic_contact(v0);
+    let elastic = (contact.peak_deformation, contact.contact_time);
     let base = Baseline {
         paper: (exact.cor, exact.peak_deformation, exact.contact_time),
         elastic,
@@ -176,28 +155,25 @@ pub fn compare_case(
     ));
     let mut attribution = Vec::new();
     let mut missing = Vec::new();
-    for driver in codes::all_drivers() {
+    for &code in CodeName::ALL {
         let record: Option<ReferenceRecord> = if live {
-            match references::run_reference(driver.as_ref(), case, None, None, false, timeout) {
+            let options = ReferenceOptions {
+                timeout,
+                ..ReferenceOptions::default()
+            };
+            match store::run_reference(code, case, &options) {
                 Ok(r) => Some(r),
                 Err(e) => {
-                    missing.push(format!("{}: {e:#}", driver.name()));
+                    missing.push(format!("{code}: {e:#}"));
                     None
                 }
             }
         } else {
-            let found = references::find_stored(
-                reference,
-                driver.name(),
-                &case.name,
-                case.loss_coefficient,
-            )?;
+            let found = store::find_stored(reference, code, &case.name, case.loss_coefficient)?;
             if found.is_none() {
                 missing.push(format!(
-                    "{}: no stored run at η = {} (make one: millimpact reference --code {} {} --save)",
-                    driver.name(),
+                    "{code}: no stored run at η = {} (make one: millimpact reference --code {code} {} --save)",
                     case.loss_coefficient,
-                    driver.name(),
                     case.path.display()
                 ));
             }
@@ -221,7 +197,7 @@ pub fn compare_case(
             None,
         ));
         attribution.push(CodeAttribution {
-            code: r.code.clone(),
+            code: r.code,
             code_version: r.code_version.clone(),
             timestep: r.timestep,
             attribution: r.attribution(),
@@ -258,34 +234,57 @@ fn short_version(version: &str) -> String {
         .to_string()
 }
 
-/// Run `millimpact compare`.
-pub fn compare_command(args: &CompareArgs) -> Result<String> {
-    let paths: Vec<PathBuf> = if args.cases.is_empty() {
-        CANONICAL_CASES.iter().map(PathBuf::from).collect()
-    } else {
-        args.cases.clone()
-    };
-    let cases = paths
+/// How to compare.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CompareOptions {
+    /// Run the codes now instead of reading stored references.
+    pub live: bool,
+    /// Folder of stored references.
+    pub reference: PathBuf,
+    /// Kill a code after this long (live runs).
+    pub timeout: Duration,
+}
+
+impl Default for CompareOptions {
+    fn default() -> Self {
+        CompareOptions {
+            live: false,
+            reference: PathBuf::from("reference"),
+            timeout: Duration::from_secs(300),
+        }
+    }
+}
+
+/// Everything `compare` reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CompareReport {
+    /// Whether the codes ran now.
+    pub live: bool,
+    /// One comparison per case.
+    pub cases: Vec<CaseComparison>,
+}
+
+impl CompareReport {
+    /// The codes that were asked to run and did not, with why (live runs only).
+    pub fn failures(&self) -> Vec<String> {
+        if self.live {
+            self.cases.iter().flat_map(|c| c.missing.clone()).collect()
+        } else {
+            Vec::new()
+        }
+    }
+}
+
+/// Compare `cases`.
+pub fn compare(cases: &[Case], options: &CompareOptions) -> Result<CompareReport> {
+    let cases = cases
         .iter()
-        .map(|p| Case::load(p))
-        .collect::<Result<Vec<_>, _>>()?;
-    let timeout = Duration::from_secs_f64(args.timeout.max(1.0));
-    let mut comparisons = Vec::new();
-    for case in &cases {
-        comparisons.push(compare_case(case, args.live, &args.reference, timeout)?);
-    }
-    let text = render(&comparisons, args.format, args.live)?;
-    let failures: Vec<&String> = if args.live {
-        comparisons.iter().flat_map(|c| &c.missing).collect()
-    } else {
-        Vec::new()
-    };
-    if !failures.is_empty() {
-        print!("{text}");
-        let list: Vec<String> = failures.iter().map(|s| s.to_string()).collect();
-        return Err(CheckFailed(format!("compare --live: {}", list.join("; "))).into());
-    }
-    Ok(text)
+        .map(|case| compare_case(case, options.live, &options.reference, options.timeout))
+        .collect::<Result<_>>()?;
+    Ok(CompareReport {
+        live: options.live,
+        cases,
+    })
 }
 
 const HEADERS: [&str; 10] = [
@@ -302,34 +301,36 @@ const HEADERS: [&str; 10] = [
 ];
 
 fn cells(row: &SourceRow) -> Vec<String> {
-    let sci = report::sci;
     vec![
         row.source.clone(),
         format!("{:.6}", row.cor),
         sci(row.peak_deformation),
         sci(row.peak_force),
         sci(row.contact_time),
-        row.run_time.map(report::seconds).unwrap_or_default(),
-        format!("{:+.2e}", row.cor_vs_paper),
-        format!("{:+.2e}", row.peak_deformation_vs_paper),
-        format!("{:+.2e}", row.contact_time_vs_paper),
+        row.run_time.map(seconds).unwrap_or_default(),
+        signed(row.cor_vs_paper),
+        signed(row.peak_deformation_vs_paper),
+        signed(row.contact_time_vs_paper),
         format!(
-            "{:+.2e} / {:+.2e}",
-            row.peak_deformation_vs_elastic, row.contact_time_vs_elastic
+            "{} / {}",
+            signed(row.peak_deformation_vs_elastic),
+            signed(row.contact_time_vs_elastic)
         ),
     ]
 }
 
 fn attribution_cells(a: &CodeAttribution) -> Vec<String> {
-    let s = |x: &references::Split| {
+    let s = |x: &Split| {
         format!(
-            "{:+.2e} / {:+.2e} / {:+.2e}",
-            x.cor, x.peak_deformation, x.contact_time
+            "{} / {} / {}",
+            signed(x.cor),
+            signed(x.peak_deformation),
+            signed(x.contact_time)
         )
     };
     vec![
-        a.code.clone(),
-        report::sci(a.timestep),
+        a.code.to_string(),
+        sci(a.timestep),
         s(&a.attribution.total),
         s(&a.attribution.model),
         s(&a.attribution.integration),
@@ -346,82 +347,102 @@ const ATTRIBUTION_HEADERS: [&str; 6] = [
     "remainder",
 ];
 
-fn render(comparisons: &[CaseComparison], format: Format, live: bool) -> Result<String> {
-    match format {
-        Format::Json => Ok(serde_json::to_string_pretty(&serde_json::json!({
-            "live": live,
-            "cases": comparisons,
-        }))? + "\n"),
-        Format::Csv => {
-            #[derive(Serialize)]
-            struct Flat<'a> {
-                case: &'a str,
-                loss_coefficient: f64,
-                #[serde(flatten)]
-                row: &'a SourceRow,
-            }
-            let mut writer = csv::Writer::from_writer(Vec::new());
-            for c in comparisons {
-                for row in &c.rows {
-                    writer.serialize(Flat {
-                        case: &c.case,
-                        loss_coefficient: c.loss_coefficient,
-                        row,
-                    })?;
-                }
-            }
-            Ok(String::from_utf8(writer.into_inner()?)?)
-        }
-        Format::Table | Format::Markdown => {
-            let mut text = String::new();
-            for c in comparisons {
-                let title = format!(
+/// One source for one case as a CSV row.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CompareRecord {
+    /// Case name.
+    pub case: String,
+    /// η.
+    pub loss_coefficient: f64,
+    /// What produced the figures.
+    pub source: String,
+    /// COR.
+    pub cor: f64,
+    /// Peak deformation, m.
+    pub peak_deformation: f64,
+    /// Peak force, N.
+    pub peak_force: f64,
+    /// Contact time, s.
+    pub contact_time: f64,
+    /// Run time, s (empty for closed forms).
+    pub run_time: Option<f64>,
+    /// Relative difference of the COR from the paper's law.
+    pub cor_vs_paper: f64,
+    /// Relative difference of the peak deformation from the paper's law.
+    pub peak_deformation_vs_paper: f64,
+    /// Relative difference of the contact time from the paper's law.
+    pub contact_time_vs_paper: f64,
+    /// Relative difference of the peak deformation from the elastic contact.
+    pub peak_deformation_vs_elastic: f64,
+    /// Relative difference of the contact time from the elastic contact.
+    pub contact_time_vs_elastic: f64,
+}
+
+impl Summary for CompareReport {
+    type Record = CompareRecord;
+
+    fn records(&self) -> Vec<CompareRecord> {
+        self.cases
+            .iter()
+            .flat_map(|c| {
+                c.rows.iter().map(|r| CompareRecord {
+                    case: c.case.clone(),
+                    loss_coefficient: c.loss_coefficient,
+                    source: r.source.clone(),
+                    cor: r.cor,
+                    peak_deformation: r.peak_deformation,
+                    peak_force: r.peak_force,
+                    contact_time: r.contact_time,
+                    run_time: r.run_time,
+                    cor_vs_paper: r.cor_vs_paper,
+                    peak_deformation_vs_paper: r.peak_deformation_vs_paper,
+                    contact_time_vs_paper: r.contact_time_vs_paper,
+                    peak_deformation_vs_elastic: r.peak_deformation_vs_elastic,
+                    contact_time_vs_elastic: r.contact_time_vs_elastic,
+                })
+            })
+            .collect()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let mut sections = Vec::new();
+        for c in &self.cases {
+            let mut figures = Section::new(
+                Some(format!(
                     "{} (η = {}, e = {:.6}){}",
                     c.case,
                     c.loss_coefficient,
                     exact::restitution(c.loss_coefficient),
-                    if live {
+                    if self.live {
                         ", codes run now"
                     } else {
                         ", stored references"
                     }
-                );
-                let rows: Vec<Vec<String>> = c.rows.iter().map(cells).collect();
-                let attr: Vec<Vec<String>> = c.attribution.iter().map(attribution_cells).collect();
-                if format == Format::Markdown {
-                    text += &format!("### {title}\n\n");
-                    text += &report::markdown_table(&HEADERS, &rows);
-                    text += "\nDifference from the paper's law, split (relative to the paper's law):\n\n";
-                    text += &report::markdown_table(&ATTRIBUTION_HEADERS, &attr);
-                    text.push('\n');
-                } else {
-                    let mut t = report::new_table(&HEADERS);
-                    for r in rows {
-                        t.add_row(r);
-                    }
-                    let mut a = report::new_table(&ATTRIBUTION_HEADERS);
-                    for r in attr {
-                        a.add_row(r);
-                    }
-                    text +=
-                        &format!("{title}\n{t}\ndifference from the paper's law, split:\n{a}\n");
-                }
-                for m in &c.missing {
-                    text += &format!("missing: {m}\n");
-                }
-                text.push('\n');
-            }
-            let cases: Vec<String> = comparisons.iter().map(|c| c.path.clone()).collect();
-            text += &format!(
-                "reproduce: millimpact compare {}{} --format {}\n",
-                cases.join(" "),
-                if live { " --live" } else { "" },
-                match format {
-                    Format::Markdown => "markdown",
-                    _ => "table",
-                }
+                )),
+                &HEADERS,
             );
-            Ok(text)
+            figures.rows = c.rows.iter().map(cells).collect();
+            let mut split = Section::new(
+                Some(format!(
+                    "{}: difference from the paper's law, split (relative to the paper's law)",
+                    c.case
+                )),
+                &ATTRIBUTION_HEADERS,
+            );
+            split.rows = c.attribution.iter().map(attribution_cells).collect();
+            split.notes = c.missing.iter().map(|m| format!("missing: {m}")).collect();
+            sections.push(figures);
+            sections.push(split);
         }
+        sections
+    }
+
+    fn footer(&self) -> Vec<String> {
+        let cases: Vec<String> = self.cases.iter().map(|c| c.path.clone()).collect();
+        vec![format!(
+            "reproduce: millimpact compare {}{}",
+            cases.join(" "),
+            if self.live { " --live" } else { "" },
+        )]
     }
 }

@@ -23,17 +23,16 @@
 
 use std::time::Instant;
 
-use anyhow::Result;
 use serde::Serialize;
 
-use crate::app::{self, CheckFailed};
-use crate::case::Case;
-use crate::cli::StabilityArgs;
-use crate::exact;
-use crate::report::{self, Format, RunReport};
-use crate::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
-use crate::solve::paper::{self, ContactKind, Settings};
-use crate::solve::steppers::{State, rk4_step};
+use super::run::RunReport;
+use super::tolerance::{Differences, Tolerance};
+use crate::model::case::{Case, ContactKind};
+use crate::model::exact;
+use crate::model::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
+use crate::output::{Section, Summary};
+use crate::solve::paper::{self, Settings};
+use crate::solve::steppers::{State, rk4_step, verlet_step};
 use crate::solve::{Method, SolveError};
 
 /// The methods the grid runs, in report order.
@@ -246,7 +245,7 @@ pub struct CaseResult {
     /// Scene.
     pub scene: &'static str,
     /// Method.
-    pub method: &'static str,
+    pub method: Method,
     /// Young's modulus, Pa.
     pub youngs_modulus: f64,
     /// Ball radius or rod diameter, m.
@@ -256,10 +255,8 @@ pub struct CaseResult {
     /// Loss coefficient.
     pub loss_coefficient: f64,
     /// ball_ball: m2/m1.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mass_ratio: Option<f64>,
     /// rod_end: length/diameter.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub aspect_ratio: Option<f64>,
     /// The run's COR (NaN if it failed).
     pub cor: f64,
@@ -287,7 +284,6 @@ pub struct CaseResult {
     /// The method's pass criterion (see the module documentation).
     pub pass: bool,
     /// Why the run failed, if it did.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub error: Option<String>,
 }
 
@@ -317,7 +313,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         case: case.name.clone(),
         family: grid_case.family,
         scene: case.scene.kind().name(),
-        method: method.name(),
+        method,
         youngs_modulus: grid_case.youngs_modulus,
         size: grid_case.size,
         impact_velocity: v0,
@@ -370,21 +366,26 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
     result.cor_in_range = (0.0..=1.0).contains(&f.cor);
     result.bounded_work =
         outcome.stats.steps <= work_bound(method, exact_figures.contact_time, outcome.timestep);
-    let tolerance = app::tolerance(method, &run_report);
-    result.accurate = result.finite
-        && result.cor_error <= tolerance.cor
-        && result.peak_deformation_error <= tolerance.peak_deformation
-        && result.contact_time_error <= tolerance.contact_time;
-    result.pass = match method {
-        Method::Rk4Event | Method::Dopri5 | Method::Exact => {
-            result.finite
-                && result.cor_in_range
-                && result.bounded_work
-                && result.cor_error <= ACCURATE_TOLERANCE
-                && result.peak_deformation_error <= ACCURATE_TOLERANCE
-                && result.contact_time_error <= ACCURATE_TOLERANCE
-        }
-        Method::Rk4 | Method::Verlet => result.finite && result.bounded_work,
+    let differences = Differences {
+        cor: result.cor_error,
+        peak_deformation: result.peak_deformation_error,
+        contact_time: result.contact_time_error,
+    };
+    let tolerance =
+        Tolerance::for_method(method, run_report.timestep, run_report.exact.contact_time);
+    result.accurate = result.finite && tolerance.admits(&differences);
+    let accurate_everywhere = Tolerance {
+        cor: ACCURATE_TOLERANCE,
+        peak_deformation: ACCURATE_TOLERANCE,
+        contact_time: ACCURATE_TOLERANCE,
+    };
+    result.pass = if method.held_accurate() {
+        result.finite
+            && result.cor_in_range
+            && result.bounded_work
+            && accurate_everywhere.admits(&differences)
+    } else {
+        result.finite && result.bounded_work
     };
     result
 }
@@ -421,19 +422,40 @@ pub fn run_grid() -> Vec<CaseResult> {
         .collect()
 }
 
+/// What the solver did with a step in seconds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(tag = "verdict", content = "reason", rename_all = "snake_case")]
+pub enum SolverVerdict {
+    /// It integrated.
+    Ran,
+    /// It refused the step as beyond the stability limit.
+    Refused(String),
+    /// It failed otherwise.
+    Failed(String),
+}
+
+impl std::fmt::Display for SolverVerdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SolverVerdict::Ran => f.write_str("ran"),
+            SolverVerdict::Refused(_) => f.write_str("refused (Unstable)"),
+            SolverVerdict::Failed(reason) => write!(f, "failed: {reason}"),
+        }
+    }
+}
+
 /// The stability check of a fixed-step method at a step in seconds, just below or just above
 /// its limit.
 #[derive(Clone, Debug, Serialize)]
 pub struct LimitCheck {
     /// Method.
-    pub method: &'static str,
+    pub method: Method,
     /// The method's limit on `ω Δt`.
     pub limit: f64,
     /// The `ω Δt` tried.
     pub omega_dt: f64,
-    /// What `paper::solve` did with that step on the bilateral, undamped rod (n = 1):
-    /// "ran" or "refused: ...".
-    pub solver: String,
+    /// What `paper::solve` did with that step on the bilateral, undamped rod (n = 1).
+    pub solver: SolverVerdict,
     /// `paper::solve` ran: the largest speed at a zero crossing over the run, over `v0`.
     pub solver_max_crossing_speed: Option<f64>,
     /// The method's own step map on `y'' = -ω² y`: the largest `|(ωy, v)|` over the last tenth
@@ -459,11 +481,7 @@ pub fn step_map_growth(method: Method, z: f64) -> f64 {
     let (mut first, mut last) = (0.0f64, 0.0f64);
     for k in 0..LIMIT_STEPS {
         s = match method {
-            Method::Verlet => {
-                let half = s[1] - 0.5 * z * s[0];
-                let y = s[0] + z * half;
-                State::new(y, half - 0.5 * z * y)
-            }
+            Method::Verlet => verlet_step(&|y| -y, &s, z),
             _ => rk4_step(&rhs, &s, &rhs(&s), z),
         };
         let size = s.norm();
@@ -507,18 +525,20 @@ pub fn limit_checks() -> Vec<LimitCheck> {
             let (solver, solver_max_crossing_speed) =
                 match paper::solve(&law, case.impact_velocity, &settings) {
                     Ok(outcome) => (
-                        "ran".to_string(),
+                        SolverVerdict::Ran,
                         Some(
                             outcome.crossing_speeds.iter().cloned().fold(0.0, f64::max)
                                 / case.impact_velocity,
                         ),
                     ),
-                    Err(e @ SolveError::Unstable { .. }) => (format!("refused: {e}"), None),
-                    Err(e) => (format!("failed: {e}"), None),
+                    Err(e @ SolveError::Unstable { .. }) => {
+                        (SolverVerdict::Refused(e.to_string()), None)
+                    }
+                    Err(e) => (SolverVerdict::Failed(e.to_string()), None),
                 };
             let growth = step_map_growth(method, z);
             out.push(LimitCheck {
-                method: method.name(),
+                method,
                 limit,
                 omega_dt: z,
                 solver,
@@ -535,7 +555,7 @@ pub fn limit_checks() -> Vec<LimitCheck> {
 #[derive(Clone, Debug, Serialize)]
 pub struct MethodSummary {
     /// Method.
-    pub method: &'static str,
+    pub method: Method,
     /// Cases run.
     pub cases: usize,
     /// Cases that pass.
@@ -576,10 +596,10 @@ pub fn stability_report() -> StabilityReport {
     let summary = METHODS
         .iter()
         .map(|m| {
-            let own: Vec<&CaseResult> = cases.iter().filter(|c| c.method == m.name()).collect();
+            let own: Vec<&CaseResult> = cases.iter().filter(|c| c.method == *m).collect();
             let max = |f: fn(&CaseResult) -> f64| own.iter().map(|c| f(c)).fold(0.0, f64::max);
             MethodSummary {
-                method: m.name(),
+                method: *m,
                 cases: own.len(),
                 passed: own.iter().filter(|c| c.pass).count(),
                 accurate: own.iter().filter(|c| c.accurate).count(),
@@ -605,30 +625,45 @@ pub fn stability_report() -> StabilityReport {
 }
 
 impl StabilityReport {
-    /// The rk4-event and dopri5 cases that fail.
+    /// The cases that fail of the methods held accurate everywhere (rk4-event, dopri5).
     pub fn accurate_method_failures(&self) -> Vec<&CaseResult> {
         self.cases
             .iter()
-            .filter(|c| (c.method == "rk4-event" || c.method == "dopri5") && !c.pass)
+            .filter(|c| c.method.held_accurate() && !c.pass)
             .collect()
     }
+}
 
-    /// The report as tables for people.
-    pub fn table(&self) -> String {
-        let mut t = report::new_table(&[
-            "method",
-            "cases",
-            "pass",
-            "accurate",
-            "COR in [0,1]",
-            "max COR err",
-            "max peak err",
-            "max time err",
-            "max steps",
-            "max COR at η=0.999999",
-        ]);
+impl Summary for StabilityReport {
+    type Record = CaseResult;
+
+    fn records(&self) -> Vec<CaseResult> {
+        self.cases.clone()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let mut t = Section::new(
+            Some(format!(
+                "stability grid: {} cases × {} methods in {:.2} s",
+                self.cases.len() / METHODS.len(),
+                METHODS.len(),
+                self.wall_time_s
+            )),
+            &[
+                "method",
+                "cases",
+                "pass",
+                "accurate",
+                "COR in [0,1]",
+                "max COR err",
+                "max peak err",
+                "max time err",
+                "max steps",
+                "max COR at η=0.999999",
+            ],
+        );
         for s in &self.summary {
-            t.add_row(vec![
+            t.rows.push(vec![
                 s.method.to_string(),
                 s.cases.to_string(),
                 s.passed.to_string(),
@@ -641,82 +676,65 @@ impl StabilityReport {
                 format!("{:.3e}", s.max_cor_at_eta_max),
             ]);
         }
-        let mut l = report::new_table(&[
-            "method",
-            "limit ω·Δt",
-            "ω·Δt tried",
-            "paper::solve",
-            "max crossing speed / v0",
-            "step-map growth",
-            "bounded",
-        ]);
+        t.notes.push(
+            "pass: rk4-event and dopri5 — finite, COR in [0,1], every error ≤ 1e-9; rk4 and \
+             verlet — finite figures in bounded work (their accuracy is `accurate`: 1e-3 on \
+             COR and peak, one step on the contact time; near η = 1 their COR is not \
+             guaranteed, since the sign(ẏ) switch falls inside a step)"
+                .to_string(),
+        );
+        let mut l = Section::new(
+            Some(
+                "fixed step in seconds at the stability limit (bilateral undamped rod)".to_string(),
+            ),
+            &[
+                "method",
+                "limit ω·Δt",
+                "ω·Δt tried",
+                "paper::solve",
+                "max crossing speed / v0",
+                "step-map growth",
+                "bounded",
+            ],
+        );
         for c in &self.stability_limits {
-            l.add_row(vec![
+            l.rows.push(vec![
                 c.method.to_string(),
                 format!("{:.6}", c.limit),
                 format!("{:.6}", c.omega_dt),
-                if c.solver.starts_with("refused") {
-                    "refused (Unstable)".to_string()
-                } else {
-                    c.solver.clone()
-                },
+                c.solver.to_string(),
                 c.solver_max_crossing_speed
                     .map_or_else(String::new, |s| format!("{s:.6}")),
                 format!("{:.3e}", c.growth),
                 c.bounded.to_string(),
             ]);
         }
-        let mut text = format!(
-            "stability grid: {} cases × {} methods in {:.2} s\n{t}\n",
-            self.cases.len() / METHODS.len(),
-            METHODS.len(),
-            self.wall_time_s
-        );
-        text += "pass: rk4-event and dopri5 — finite, COR in [0,1], every error ≤ 1e-9; rk4 and \
-                 verlet — finite figures in bounded work (their accuracy is `accurate`: 1e-3 on \
-                 COR and peak, one step on the contact time; near η = 1 their COR is not \
-                 guaranteed, since the sign(ẏ) switch falls inside a step)\n\n";
-        text += &format!(
-            "fixed step in seconds at the stability limit (bilateral undamped rod)\n{l}\n"
-        );
         let failures = self.accurate_method_failures();
-        if failures.is_empty() {
-            text += "every rk4-event and dopri5 case passes\n";
-        } else {
-            let mut f =
-                report::new_table(&["case", "method", "COR err", "peak err", "time err", "error"]);
-            for c in failures {
-                f.add_row(vec![
-                    c.case.clone(),
-                    c.method.to_string(),
-                    format!("{:.2e}", c.cor_error),
-                    format!("{:.2e}", c.peak_deformation_error),
-                    format!("{:.2e}", c.contact_time_error),
-                    c.error.clone().unwrap_or_default(),
-                ]);
-            }
-            text += &format!("FAILING rk4-event and dopri5 cases\n{f}\n");
+        let mut f = Section::new(
+            Some(if failures.is_empty() {
+                "every rk4-event and dopri5 case passes".to_string()
+            } else {
+                "FAILING rk4-event and dopri5 cases".to_string()
+            }),
+            &["case", "method", "COR err", "peak err", "time err", "error"],
+        );
+        for c in failures {
+            f.rows.push(vec![
+                c.case.clone(),
+                c.method.to_string(),
+                format!("{:.2e}", c.cor_error),
+                format!("{:.2e}", c.peak_deformation_error),
+                format!("{:.2e}", c.contact_time_error),
+                c.error.clone().unwrap_or_default(),
+            ]);
         }
-        text
+        if f.rows.is_empty() {
+            f.headers.clear();
+        }
+        vec![t, l, f]
     }
-}
 
-/// Run `millimpact stability`; exit 1 (after printing the report) if any rk4-event or dopri5
-/// case fails.
-pub fn stability_command(args: &StabilityArgs) -> Result<String> {
-    let report = stability_report();
-    let text = match args.format {
-        Format::Json => serde_json::to_string_pretty(&report)? + "\n",
-        Format::Table | Format::Markdown => report.table(),
-        Format::Csv => report::csv_string(&report.cases)?,
-    };
-    let failures = report.accurate_method_failures().len();
-    if failures > 0 {
-        print!("{text}");
-        return Err(CheckFailed(format!(
-            "stability: {failures} rk4-event or dopri5 case(s) fail"
-        ))
-        .into());
+    fn footer(&self) -> Vec<String> {
+        vec!["reproduce: millimpact stability".to_string()]
     }
-    Ok(text)
 }

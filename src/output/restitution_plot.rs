@@ -1,22 +1,32 @@
 //! The paper's Figure 3 as SVG: the COR against the loss coefficient, by a method and exactly.
 
-use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 
-use crate::exact;
-use crate::report::SweepRow;
+use super::OutputError;
 
 /// Render a sweep: the method's COR at each η (points), the closed form `sqrt((1-η)/(1+η))`
 /// (line) and the small-η approximation `1 - η` (thin line) it bends away from.
-pub fn restitution_svg(case: &str, rows: &[SweepRow]) -> Result<String> {
-    let method = rows
-        .first()
-        .map(|r| r.method)
-        .ok_or(anyhow!("no points to plot"))?;
+///
+/// `points` are `(η, COR)` by `method`; `exact` is the closed form `e(η)`.
+pub fn restitution_svg(
+    case: &str,
+    method: &str,
+    points: &[(f64, f64)],
+    exact: &dyn Fn(f64) -> f64,
+) -> Result<String, OutputError> {
+    if points.is_empty() {
+        return Err(OutputError::Plot {
+            figure: "restitution",
+            reason: "no points to plot".into(),
+        });
+    }
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (800, 600)).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| anyhow!("drawing the figure: {e}");
+        let fail = |e: &dyn std::fmt::Display| OutputError::Plot {
+            figure: "restitution",
+            reason: e.to_string(),
+        };
         root.fill(&WHITE).map_err(|e| fail(&e))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
@@ -36,7 +46,7 @@ pub fn restitution_svg(case: &str, rows: &[SweepRow]) -> Result<String> {
             .map_err(|e| fail(&e))?;
         let exact_curve = (0..=400).map(|i| {
             let eta = 0.9999 * i as f64 / 400.0;
-            (eta, exact::restitution(eta))
+            (eta, exact(eta))
         });
         let blue = BLUE.stroke_width(2);
         chart
@@ -52,8 +62,9 @@ pub fn restitution_svg(case: &str, rows: &[SweepRow]) -> Result<String> {
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], grey));
         chart
             .draw_series(
-                rows.iter()
-                    .map(|r| Circle::new((r.loss_coefficient, r.cor), 4, RED.filled())),
+                points
+                    .iter()
+                    .map(|&(eta, cor)| Circle::new((eta, cor), 4, RED.filled())),
             )
             .map_err(|e| fail(&e))?
             .label(method)

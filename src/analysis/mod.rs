@@ -1,0 +1,13 @@
+//! What the harness concludes: runs against the closed forms, the reference store and its
+//! verification, the attribution of each code's difference, and the comparison, precision,
+//! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
+
+pub mod compare;
+pub mod precision;
+pub mod run;
+pub mod source;
+pub mod stability;
+pub mod store;
+pub mod sweep;
+pub mod tolerance;
+pub mod verify;

@@ -1,0 +1,46 @@
+//! What produced a figure: one of our methods, or a DEM code (run now or stored).
+
+use serde::{Serialize, Serializer};
+
+use crate::codes::CodeName;
+use crate::solve::Method;
+
+/// A source of impact figures.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Source {
+    /// One of the harness's methods.
+    Method(Method),
+    /// A DEM code.
+    Code(CodeName),
+}
+
+impl Source {
+    /// Its name: the method's or the code's.
+    pub fn name(self) -> &'static str {
+        match self {
+            Source::Method(m) => m.name(),
+            Source::Code(c) => c.name(),
+        }
+    }
+
+    /// `method` or `code`.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Source::Method(_) => "method",
+            Source::Code(_) => "code",
+        }
+    }
+}
+
+impl std::fmt::Display for Source {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Serialised as its name: method and code names are distinct.
+impl Serialize for Source {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.name())
+    }
+}

@@ -1,0 +1,128 @@
+//! Reading a code's output back: the errors a parser reports and the column reader the
+//! LIGGGHTS and LAMMPS drivers share.
+
+use std::path::PathBuf;
+
+use thiserror::Error;
+
+use crate::model::trajectory::{CodeTrajectory, TrajectoryError};
+
+/// Output of a code that cannot be read as the run asked.
+#[derive(Debug, Error)]
+pub enum ParseError {
+    /// A file the run should have written cannot be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file the run wrote is empty.
+    #[error("{file} is empty")]
+    Empty {
+        /// The file.
+        file: String,
+    },
+    /// A row that is not what the format says.
+    #[error("{file} line {line}: {reason}")]
+    Row {
+        /// The file.
+        file: String,
+        /// Line number, from 1.
+        line: usize,
+        /// What is wrong with it, with the text.
+        reason: String,
+    },
+    /// A column the header should name is missing.
+    #[error("{file}: header lacks `{column}`: {header}")]
+    MissingColumn {
+        /// The file.
+        file: String,
+        /// The column.
+        column: &'static str,
+        /// The header as written.
+        header: String,
+    },
+    /// The trajectory has a different number of rows than the steps asked for.
+    #[error("{file} has {rows} rows, expected {expected} (the initial state and every step)")]
+    RowCount {
+        /// The file.
+        file: String,
+        /// Rows found.
+        rows: u64,
+        /// Rows expected.
+        expected: u64,
+    },
+    /// The code ran a different number of steps than asked.
+    #[error("the code ran {ran} steps, {asked} asked")]
+    StepCount {
+        /// Steps the code reports.
+        ran: u64,
+        /// Steps asked.
+        asked: u64,
+    },
+    /// A reported value is not a number.
+    #[error("bad {field} `{value}`")]
+    BadValue {
+        /// Which value.
+        field: &'static str,
+        /// As written.
+        value: String,
+    },
+    /// The trajectory cannot give an impact's figures.
+    #[error(transparent)]
+    Trajectory(#[from] TrajectoryError),
+}
+
+/// Read a trajectory written as whitespace-separated columns `time overlap approach_velocity
+/// normal_force`, one row per line; blank lines and `#` comments are skipped. `file` names the
+/// file in error messages.
+pub fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, ParseError> {
+    let mut out = CodeTrajectory::default();
+    for (number, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let row_error = |reason: String| ParseError::Row {
+            file: file.to_string(),
+            line: number + 1,
+            reason,
+        };
+        let values: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .map_err(|e| row_error(format!("{e}: {line:?}")))?;
+        let [t, overlap, approach, force] = values[..] else {
+            return Err(row_error(format!(
+                "expected 4 columns, found {}",
+                values.len()
+            )));
+        };
+        out.time.push(t);
+        out.overlap.push(overlap);
+        out.approach_velocity.push(approach);
+        out.normal_force.push(force);
+    }
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parse_columns_reads_rows_and_names_bad_lines() {
+        let t = parse_columns("# t d v f\n0 0 2 0\n\n1e-7 2e-7 1.9 5\n", "traj").unwrap();
+        assert_eq!(t.time, vec![0.0, 1e-7]);
+        assert_eq!(t.normal_force, vec![0.0, 5.0]);
+        let err = parse_columns("0 0 2\n", "traj").unwrap_err().to_string();
+        assert!(
+            err.contains("traj line 1") && err.contains("4 columns"),
+            "{err}"
+        );
+        assert!(parse_columns("0 0 x 1\n", "traj").is_err());
+    }
+}

@@ -1,0 +1,230 @@
+//! Running an installed code: a scratch directory, a time limit, the log kept on any fault.
+
+use std::io::Read;
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use thiserror::Error;
+
+use super::CodeDriver;
+use super::parse::ParseError;
+use super::setup::CodeSetup;
+use crate::model::trajectory::{CodeTrajectory, check_trajectory};
+
+/// A fault of an external code. Each variant names the code and, where there is one, where
+/// its log was kept.
+#[derive(Debug, Error)]
+pub enum CodeError {
+    /// The binary is not on PATH.
+    #[error(
+        "{code}: binary `{binary}` not found on PATH (install it with scripts/install-dem-codes.sh)"
+    )]
+    MissingBinary {
+        /// Code name.
+        code: String,
+        /// Binary name.
+        binary: String,
+    },
+    /// The code exited with a failure status.
+    #[error("{code}: exited with {status}; log kept in {}", log.display())]
+    Crashed {
+        /// Code name.
+        code: String,
+        /// Exit status as text.
+        status: String,
+        /// The kept log file.
+        log: PathBuf,
+    },
+    /// The code ran past its time limit and was killed.
+    #[error("{code}: killed after the time limit of {seconds} s; log kept in {}", log.display())]
+    TimedOut {
+        /// Code name.
+        code: String,
+        /// The limit, s.
+        seconds: f64,
+        /// The kept log file.
+        log: PathBuf,
+    },
+    /// The code's output could not be read.
+    #[error("{code}: unparsable output: {reason}; log kept in {}", log.display())]
+    Unparsable {
+        /// Code name.
+        code: String,
+        /// What was wrong.
+        reason: ParseError,
+        /// The kept log file.
+        log: PathBuf,
+    },
+    /// The case cannot be set up in this code.
+    #[error("{code}: cannot set up {case}: {reason}")]
+    Unsupported {
+        /// Code name.
+        code: String,
+        /// Case name.
+        case: String,
+        /// Why.
+        reason: String,
+    },
+    /// Scratch-directory or process I/O failed.
+    #[error("{code}: {context}: {source}")]
+    Io {
+        /// Code name.
+        code: String,
+        /// What was being done.
+        context: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+}
+
+/// A finished run of an external code.
+#[derive(Clone, Debug)]
+pub struct CodeRun {
+    /// Code name.
+    pub code: String,
+    /// Version string as the code printed it.
+    pub code_version: String,
+    /// The exact input it ran.
+    pub input: String,
+    /// The trajectory.
+    pub trajectory: CodeTrajectory,
+    /// Process wall time, s.
+    pub wall_time: f64,
+    /// The code's own loop time, s, where reported.
+    pub loop_time: Option<f64>,
+    /// The combined stdout and stderr.
+    pub log: String,
+}
+
+/// Time limit and scratch location for [`run_code`].
+#[derive(Clone, Debug)]
+pub struct RunOptions {
+    /// Kill the code after this long.
+    pub timeout: Duration,
+    /// Parent directory for scratch directories (the system temp dir by default).
+    pub scratch_parent: Option<PathBuf>,
+}
+
+impl Default for RunOptions {
+    fn default() -> Self {
+        RunOptions {
+            timeout: Duration::from_secs(120),
+            scratch_parent: None,
+        }
+    }
+}
+
+/// Whether `binary` is an executable on PATH.
+pub fn find_on_path(binary: &str) -> Option<PathBuf> {
+    let path = std::env::var_os("PATH")?;
+    std::env::split_paths(&path)
+        .map(|dir| dir.join(binary))
+        .find(|candidate| candidate.is_file())
+}
+
+/// Render, run and parse one impact in `driver`'s code.
+///
+/// The scratch directory is removed after a good run and kept, with its `log.txt`, after any
+/// failure, so that the error can point at it.
+pub fn run_code(
+    driver: &dyn CodeDriver,
+    setup: &CodeSetup,
+    options: &RunOptions,
+) -> Result<CodeRun, CodeError> {
+    let code = driver.name().to_string();
+    let io_error = |context: &str| {
+        let code = code.clone();
+        let context = context.to_string();
+        move |source| CodeError::Io {
+            code,
+            context,
+            source,
+        }
+    };
+    let binary = find_on_path(driver.binary()).ok_or_else(|| CodeError::MissingBinary {
+        code: code.clone(),
+        binary: driver.binary().to_string(),
+    })?;
+    let input = driver.render(setup)?;
+    let parent = options
+        .scratch_parent
+        .clone()
+        .unwrap_or_else(std::env::temp_dir);
+    std::fs::create_dir_all(&parent).map_err(io_error("creating the scratch parent"))?;
+    let scratch = tempfile::Builder::new()
+        .prefix(&format!("millimpact-{}-{}-", code, setup.case_name))
+        .tempdir_in(&parent)
+        .map_err(io_error("creating a scratch directory"))?;
+    let workdir = scratch.path().to_path_buf();
+    std::fs::write(workdir.join(&input.file_name), &input.text)
+        .map_err(io_error("writing the input"))?;
+    let log_path = workdir.join("log.txt");
+    let log_file = std::fs::File::create(&log_path).map_err(io_error("creating the log"))?;
+    let log_err = log_file
+        .try_clone()
+        .map_err(io_error("duplicating the log handle"))?;
+
+    let started = Instant::now();
+    let mut child = Command::new(&binary)
+        .args(&input.args)
+        .current_dir(&workdir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::from(log_file))
+        .stderr(Stdio::from(log_err))
+        .spawn()
+        .map_err(io_error("starting the code"))?;
+    let status = wait_timeout::ChildExt::wait_timeout(&mut child, options.timeout)
+        .map_err(io_error("waiting for the code"))?;
+    let wall_time = started.elapsed().as_secs_f64();
+    let keep = |scratch: tempfile::TempDir| scratch.keep().join("log.txt");
+    let status = match status {
+        Some(status) => status,
+        None => {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(CodeError::TimedOut {
+                code,
+                seconds: options.timeout.as_secs_f64(),
+                log: keep(scratch),
+            });
+        }
+    };
+    let mut log = String::new();
+    std::fs::File::open(&log_path)
+        .and_then(|mut f| f.read_to_string(&mut log))
+        .map_err(io_error("reading the log"))?;
+    if !status.success() {
+        return Err(CodeError::Crashed {
+            code,
+            status: status.to_string(),
+            log: keep(scratch),
+        });
+    }
+    let parsed = match driver.parse(setup, &workdir, &log) {
+        Ok(parsed) => parsed,
+        Err(reason) => {
+            return Err(CodeError::Unparsable {
+                code,
+                reason,
+                log: keep(scratch),
+            });
+        }
+    };
+    if let Err(reason) = check_trajectory(&parsed.trajectory) {
+        return Err(CodeError::Unparsable {
+            code,
+            reason: reason.into(),
+            log: keep(scratch),
+        });
+    }
+    Ok(CodeRun {
+        code,
+        code_version: parsed.version.unwrap_or_else(|| "unknown".to_string()),
+        input: input.text,
+        trajectory: parsed.trajectory,
+        wall_time,
+        loop_time: parsed.loop_time,
+        log,
+    })
+}

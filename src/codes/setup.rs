@@ -1,0 +1,206 @@
+//! The equivalent setup of a case in a DEM code (physics.md §5): the bodies, their materials,
+//! the partner of the impact, the time step and the run length.
+
+use serde::{Deserialize, Serialize};
+
+use super::CodeDriver;
+use crate::model::case::Case;
+use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
+use crate::solve::SolveError;
+use crate::solve::dashpot::accurate_metrics;
+
+/// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CodeSphere {
+    /// Radius, m.
+    pub radius: f64,
+    /// Density, kg/m³ (for the rod's sphere, chosen so that its mass is the rod's).
+    pub density: f64,
+    /// Mass, kg.
+    pub mass: f64,
+    /// Young's modulus, Pa.
+    pub youngs_modulus: f64,
+    /// Poisson's ratio; `None` for the rod (its linear model has none).
+    pub poisson_ratio: Option<f64>,
+}
+
+/// Everything a DEM code needs for one normal impact, in SI units.
+///
+/// At `t = 0` the bodies touch (zero overlap) and approach at `impact_velocity`. Gravity,
+/// friction and rotation are off. For `ball_ball` the driver chooses the frame (for instance
+/// the centre-of-mass frame); only the relative normal motion is compared.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CodeSetup {
+    /// Case name (the case file's stem).
+    pub case_name: String,
+    /// Which impact.
+    pub scene: SceneKind,
+    /// The moving sphere.
+    pub sphere: CodeSphere,
+    /// The second sphere for `ball_ball`; `None` when the other body is a plate.
+    pub other_sphere: Option<CodeSphere>,
+    /// The plate's material `(E, ν)` for `ball_plate`; `None` for a rigid plate (and rod_end).
+    pub plate_material: Option<(f64, f64)>,
+    /// Effective modulus `E*`, Pa (ball scenes).
+    pub effective_modulus: Option<f64>,
+    /// Effective radius `R*`, m (ball scenes).
+    pub effective_radius: Option<f64>,
+    /// Reduced mass `M`, kg.
+    pub reduced_mass: f64,
+    /// Spring constant: Hertz `k = (4/3) E* sqrt(R*)`, N/m^1.5, or linear `k`, N/m (rod_end).
+    pub stiffness: f64,
+    /// Exponent of the spring: 1.5 (Hertz) or 1 (linear).
+    pub exponent: f64,
+    /// Normal approach speed at contact, m/s (relative speed for ball_ball).
+    pub impact_velocity: f64,
+    /// The coefficient of restitution the code's damping is asked to realise.
+    pub target_restitution: f64,
+    /// Time step, s.
+    pub timestep: f64,
+    /// Number of steps to run: enough to end the contact, no more.
+    pub steps: u64,
+    /// Ask the code to cut the contact force off at zero instead of letting the dashpot
+    /// attract (LIGGGHTS `limitForce on`, LAMMPS `limit_damping`; YADE's laws always do). The
+    /// code then realises the clamped law's COR, not the target: its
+    /// [`CodeDriver::expected_restitution`].
+    #[serde(default)]
+    pub clamp_attractive: bool,
+}
+
+impl CodeSetup {
+    /// Velocities `(v1, v2)` along the line of centres, m/s, of the two bodies in the
+    /// centre-of-mass frame (body 1 moves towards body 2 with positive speed). For a plate the
+    /// second body is at rest and `v1 = impact_velocity`.
+    pub fn centre_of_mass_velocities(&self) -> (f64, f64) {
+        match self.other_sphere {
+            Some(other) => {
+                let total = self.sphere.mass + other.mass;
+                (
+                    self.impact_velocity * other.mass / total,
+                    -self.impact_velocity * self.sphere.mass / total,
+                )
+            }
+            None => (self.impact_velocity, 0.0),
+        }
+    }
+
+    /// The contact radius of the pair, m: the sphere's own at a flat wall (the wall's radius
+    /// is infinite), `R1 R2 / (R1 + R2)` between two spheres.
+    pub fn pair_radius(&self) -> f64 {
+        pair_radius(
+            self.sphere.radius,
+            self.other_sphere.map_or(f64::INFINITY, |o| o.radius),
+        )
+    }
+
+    /// The mass of the relative motion, kg: the sphere's own at a wall (the wall does not
+    /// move), `m1 m2 / (m1 + m2)` between two spheres, from the given masses.
+    pub fn pair_mass(&self) -> f64 {
+        reduced_mass(
+            self.sphere.mass,
+            self.other_sphere.map_or(f64::INFINITY, |o| o.mass),
+        )
+    }
+
+    /// The spring model the code must use.
+    pub fn spring(&self) -> SpringModel {
+        self.scene.spring()
+    }
+
+    /// Simulated duration, s.
+    pub fn duration(&self) -> f64 {
+        self.timestep * self.steps as f64
+    }
+}
+
+/// Default number of steps per estimated contact time for a code's time step.
+pub const DEFAULT_STEPS_PER_CONTACT: u32 = 1000;
+
+/// The elastic contact time of the case's spring, s: Hertz's `2 J(1.5) δ_max / v0` for the
+/// balls, `π sqrt(M/k)` for the rod. It sets the codes' time step.
+pub fn elastic_contact_time(case: &Case) -> f64 {
+    case.scene
+        .elastic_contact(case.impact_velocity)
+        .contact_time
+}
+
+fn code_sphere(ball: &Ball) -> CodeSphere {
+    CodeSphere {
+        radius: ball.radius,
+        density: ball.density,
+        mass: ball.mass(),
+        youngs_modulus: ball.material.youngs_modulus,
+        poisson_ratio: Some(ball.material.poisson_ratio),
+    }
+}
+
+/// The equivalent setup of `case` (physics.md §5) at time step `timestep` (s), with the run
+/// length left at zero: [`prepare`] sets it from the code's own law.
+pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
+    let scene = &case.scene;
+    let (sphere, other_sphere, plate_material) = match scene {
+        Scene::BallPlate { ball, plate } => (
+            code_sphere(ball),
+            None,
+            match plate {
+                Plate::Rigid => None,
+                Plate::Elastic(m) => Some((m.youngs_modulus, m.poisson_ratio)),
+            },
+        ),
+        Scene::BallBall { ball, other } => (code_sphere(ball), Some(code_sphere(other)), None),
+        Scene::RodEnd { rod } => {
+            // A sphere of the rod's mass, as wide as the rod.
+            let radius = rod.diameter / 2.0;
+            let volume = 4.0 / 3.0 * std::f64::consts::PI * radius.powi(3);
+            (
+                CodeSphere {
+                    radius,
+                    density: rod.mass() / volume,
+                    mass: rod.mass(),
+                    youngs_modulus: rod.youngs_modulus,
+                    poisson_ratio: None,
+                },
+                None,
+                None,
+            )
+        }
+    };
+    CodeSetup {
+        case_name: case.name.clone(),
+        scene: scene.kind(),
+        sphere,
+        other_sphere,
+        plate_material,
+        effective_modulus: scene.effective_modulus(),
+        effective_radius: scene.effective_radius(),
+        reduced_mass: scene.reduced_mass(),
+        stiffness: scene.hertz_stiffness(),
+        exponent: scene.exponent(),
+        impact_velocity: case.impact_velocity,
+        target_restitution: case.restitution(),
+        timestep,
+        steps: 0,
+        clamp_attractive: false,
+    }
+}
+
+/// The setup of `case` for `driver`, its time step either given or the elastic contact time
+/// over `steps_per_contact`, and its run length the contact time of the code's own law (at
+/// zero step error) plus 5 % and three steps: enough to end the contact, no more.
+pub fn prepare(
+    driver: &dyn CodeDriver,
+    case: &Case,
+    steps_per_contact: Option<u32>,
+    timestep: Option<f64>,
+    clamp_attractive: bool,
+) -> Result<CodeSetup, SolveError> {
+    let dt = timestep.unwrap_or_else(|| {
+        elastic_contact_time(case) / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
+    });
+    let mut setup = setup_for_case(case, dt);
+    setup.clamp_attractive = clamp_attractive;
+    let law = driver.law(&setup);
+    let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
+    setup.steps = (1.05 * contact / dt).ceil() as u64 + 3;
+    Ok(setup)
+}

@@ -1,0 +1,55 @@
+//! One file per subcommand: validated arguments → the library → an exporter. A command
+//! returns its text and, for a check, its verdict; only `main` prints and exits.
+
+mod compare;
+mod precision;
+mod reference;
+mod run;
+mod stability;
+mod sweep;
+mod verify;
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+
+use crate::cli::Command;
+use crate::error::CheckFailed;
+use crate::output::files::write_atomic;
+
+/// What a command hands back to `main`: the text for standard output, and whether a check it
+/// ran disagreed (the text is printed either way).
+#[derive(Debug)]
+pub struct CommandOutput {
+    /// Standard output.
+    pub text: String,
+    /// The disagreement, if a check failed (exit 1).
+    pub failure: Option<CheckFailed>,
+}
+
+impl CommandOutput {
+    fn passed(text: String) -> Self {
+        CommandOutput {
+            text,
+            failure: None,
+        }
+    }
+}
+
+/// Run one parsed command.
+pub fn dispatch(command: &Command) -> Result<CommandOutput> {
+    match command {
+        Command::Run(args) => run::run(args),
+        Command::Sweep(args) => sweep::sweep(args),
+        Command::Verify(args) => verify::verify(args),
+        Command::Reference(args) => reference::reference(args),
+        Command::Compare(args) => compare::compare(args),
+        Command::Precision(args) => precision::precision(args),
+        Command::Stability(args) => stability::stability(args),
+    }
+}
+
+/// Write a file a command was asked for (`what` names it in the error).
+fn write_output(path: &Path, bytes: &[u8], what: &str) -> Result<()> {
+    write_atomic(path, bytes).with_context(|| format!("writing the {what} to {}", path.display()))
+}

@@ -1,0 +1,45 @@
+//! `millimpact precision`.
+
+use anyhow::Result;
+
+use super::{CommandOutput, write_output};
+use crate::analysis::precision::{code_steps_sweep, precision_report};
+use crate::cli::PrecisionArgs;
+use crate::error::UserError;
+use crate::model::case::Case;
+use crate::output::export;
+use crate::output::work_precision_plot::work_precision_svg;
+use crate::solve::Method;
+
+pub(super) fn precision(args: &PrecisionArgs) -> Result<CommandOutput> {
+    let case = Case::load(&args.case)?;
+    let methods: Vec<Method> = if args.methods.is_empty() {
+        Method::ALL
+            .iter()
+            .copied()
+            .filter(|m| m.integrates())
+            .collect()
+    } else {
+        args.methods.clone()
+    };
+    if let Some(closed) = methods.iter().find(|m| !m.integrates()) {
+        return Err(UserError::argument(
+            "--methods",
+            closed,
+            "an integrating method: the closed forms have no error to sweep",
+        )
+        .into());
+    }
+    let report = precision_report(
+        &case,
+        &methods,
+        &args.codes,
+        args.repeats,
+        &code_steps_sweep(),
+    )?;
+    if let Some(path) = &args.plot {
+        let svg = work_precision_svg(&report.case, &report.series())?;
+        write_output(path, svg.as_bytes(), "diagram")?;
+    }
+    Ok(CommandOutput::passed(export(&report, args.format)?))
+}

@@ -1,0 +1,55 @@
+//! `millimpact reference`.
+
+use std::time::Duration;
+
+use anyhow::Result;
+
+use super::CommandOutput;
+use crate::analysis::store::{ReferenceOptions, run_reference, save};
+use crate::cli::ReferenceArgs;
+use crate::error::UserError;
+use crate::model::case::Case;
+use crate::output::{Format, export};
+
+pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
+    let mut case = Case::load(&args.case)?;
+    if let Some(eta) = args.loss_coefficient {
+        if !(0.0..1.0).contains(&eta) {
+            return Err(UserError::argument("--loss-coefficient", eta, "must be in [0, 1)").into());
+        }
+        case = case.with_loss_coefficient(eta);
+    }
+    if let Some(dt) = args.timestep
+        && !(dt.is_finite() && dt > 0.0)
+    {
+        return Err(
+            UserError::argument("--timestep", dt, "must be a finite number > 0 (seconds)").into(),
+        );
+    }
+    if let Some(0) = args.steps_per_contact {
+        return Err(UserError::argument("--steps-per-contact", 0, "must be at least 1").into());
+    }
+    if args.clamp && args.save {
+        return Err(UserError::argument(
+            "--save",
+            "with --clamp",
+            "reference/ stores the equivalent setups only; run --clamp without --save",
+        )
+        .into());
+    }
+    let options = ReferenceOptions {
+        steps_per_contact: args.steps_per_contact,
+        timestep: args.timestep,
+        clamp_attractive: args.clamp,
+        timeout: Duration::from_secs_f64(args.timeout),
+    };
+    let record = run_reference(args.code, &case, &options)?;
+    let mut text = export(&record, args.format)?;
+    if args.save {
+        let path = save(&args.reference, &record)?;
+        if matches!(args.format, Format::Table | Format::Markdown) {
+            text += &format!("stored in {}\n", path.display());
+        }
+    }
+    Ok(CommandOutput::passed(text))
+}

@@ -1,0 +1,79 @@
+//! `millimpact run`.
+
+use anyhow::Result;
+use serde::Serialize;
+
+use super::{CommandOutput, write_output};
+use crate::analysis::run::{
+    IntegrationOptions, RunReport, SweepRow, reproduce_arguments, run_case, trajectory_rows,
+};
+use crate::cli::{IntegrationArgs, RunArgs};
+use crate::error::UserError;
+use crate::model::case::Case;
+use crate::output::{Section, Summary, csv_string, export};
+
+/// The integration options the arguments name.
+pub(super) fn integration_options(args: &IntegrationArgs) -> IntegrationOptions {
+    IntegrationOptions {
+        method: args.method,
+        steps_per_period: args.steps_per_period,
+        timestep: args.timestep,
+        rtol: args.rtol,
+        periods: args.periods,
+    }
+}
+
+/// A run with the command that reproduces it.
+#[derive(Serialize)]
+struct RunSummary {
+    #[serde(flatten)]
+    report: RunReport,
+    #[serde(skip)]
+    reproduce: String,
+}
+
+impl Summary for RunSummary {
+    type Record = SweepRow;
+
+    fn records(&self) -> Vec<SweepRow> {
+        self.report.records()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        self.report.sections()
+    }
+
+    fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: millimpact run {}", self.reproduce)]
+    }
+}
+
+pub(super) fn run(args: &RunArgs) -> Result<CommandOutput> {
+    let case = Case::load(&args.case)?;
+    let options = integration_options(&args.integration);
+    if let Some(path) = &args.trajectory
+        && !options.method.integrates()
+    {
+        return Err(UserError::argument(
+            "--trajectory",
+            path.display(),
+            format!(
+                "the {} method has no time history; use an integrating method",
+                options.method
+            ),
+        )
+        .into());
+    }
+    let settings = options.settings(&case, args.trajectory.is_some())?;
+    let (report, outcome) = run_case(&case, &settings)?;
+    let summary = RunSummary {
+        report,
+        reproduce: reproduce_arguments(&case, &settings),
+    };
+    let text = export(&summary, args.format)?;
+    if let Some(path) = &args.trajectory {
+        let csv = csv_string(&trajectory_rows(&case, &outcome.trajectory))?;
+        write_output(path, csv.as_bytes(), "trajectory")?;
+    }
+    Ok(CommandOutput::passed(text))
+}

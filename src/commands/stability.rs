@@ -1,0 +1,22 @@
+//! `millimpact stability`.
+
+use anyhow::Result;
+
+use super::CommandOutput;
+use crate::analysis::stability::stability_report;
+use crate::cli::StabilityArgs;
+use crate::error::CheckFailed;
+use crate::output::export;
+
+pub(super) fn stability(args: &StabilityArgs) -> Result<CommandOutput> {
+    let report = stability_report();
+    let failures = report.accurate_method_failures().len();
+    Ok(CommandOutput {
+        text: export(&report, args.format)?,
+        failure: (failures > 0).then(|| {
+            CheckFailed(format!(
+                "stability: {failures} rk4-event or dopri5 case(s) fail"
+            ))
+        }),
+    })
+}

@@ -1,0 +1,23 @@
+//! `millimpact verify`.
+
+use anyhow::Result;
+
+use super::CommandOutput;
+use crate::analysis::verify::verify as verify_all;
+use crate::cli::VerifyArgs;
+use crate::error::CheckFailed;
+use crate::output::export;
+
+pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
+    let report = verify_all(&args.cases, &args.reference)?;
+    let failed = report.failed();
+    Ok(CommandOutput {
+        text: export(&report, args.format)?,
+        failure: (failed > 0).then(|| {
+            CheckFailed(format!(
+                "verify: {failed} of {} checks disagree",
+                report.rows.len()
+            ))
+        }),
+    })
+}

@@ -1,0 +1,8 @@
+//! The physics: case files, scenes, the paper's law and the codes' laws, the closed forms, and
+//! the trajectories and figures every source is read into. No I/O but reading a case.
+
+pub mod case;
+pub mod exact;
+pub mod law;
+pub mod scene;
+pub mod trajectory;
