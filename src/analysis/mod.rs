@@ -3,6 +3,7 @@
 //! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
 
 pub mod compare;
+pub mod phase;
 pub mod precision;
 pub mod run;
 pub mod source;
