@@ -1,6 +1,7 @@
 //! One file per subcommand: validated arguments → the library → an exporter. A command
 //! returns its text and, for a check, its verdict; only `main` prints and exits.
 
+mod calibrate;
 mod compare;
 mod precision;
 mod reference;
@@ -46,6 +47,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Compare(args) => compare::compare(args),
         Command::Precision(args) => precision::precision(args),
         Command::Stability(args) => stability::stability(args),
+        Command::Calibrate(args) => calibrate::calibrate(args),
     }
 }
 
