@@ -43,6 +43,9 @@ pub enum Command {
     /// From a measured COR to η, the absorbed energy, and a card per DEM code with the
     /// settings that realise that COR.
     Calibrate(CalibrateArgs),
+    /// A self-contained report (index.html, index.md, and the CSV and JSON behind every
+    /// figure and table) from the stored references, or the codes run now.
+    Report(ReportArgs),
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {
@@ -280,4 +283,23 @@ pub struct CalibrateArgs {
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
+}
+
+/// `millimpact report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Case files (default: the canonical ones in cases/).
+    pub cases: Vec<PathBuf>,
+    /// Folder to write the report into.
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+    /// Run the codes now instead of reading reference/.
+    #[arg(long)]
+    pub live: bool,
+    /// Folder of stored references.
+    #[arg(long, default_value = "reference")]
+    pub reference: PathBuf,
+    /// Kill a code after this many seconds (with --live).
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
 }

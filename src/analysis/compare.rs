@@ -139,7 +139,6 @@ pub struct ModelPoint {
     /// The COR the code's law realises (exact integration).
     pub law_cor: f64,
     /// Own law exact − paper's law exact, relative to the paper's law.
-    #[serde(flatten)]
     pub offsets: Offsets,
     /// Relative difference of the compression time.
     pub compression_time: f64,

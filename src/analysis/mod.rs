@@ -6,6 +6,7 @@ pub mod calibrate;
 pub mod compare;
 pub mod phase;
 pub mod precision;
+pub mod report;
 pub mod run;
 pub mod source;
 pub mod stability;

@@ -5,6 +5,7 @@ mod calibrate;
 mod compare;
 mod precision;
 mod reference;
+mod report;
 mod run;
 mod stability;
 mod sweep;
@@ -48,6 +49,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Precision(args) => precision::precision(args),
         Command::Stability(args) => stability::stability(args),
         Command::Calibrate(args) => calibrate::calibrate(args),
+        Command::Report(args) => report::report(args),
     }
 }
 
