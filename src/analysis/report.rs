@@ -616,16 +616,35 @@ fn stability_map() -> Result<ReportFigure> {
     })
 }
 
-/// Build the report for `cases`.
-pub fn build_report(root: &Path, cases: &[Case], options: &ReportOptions) -> Result<Report> {
-    let compared = compare(
-        cases,
-        &CompareOptions {
-            live: options.live,
-            reference: options.reference.clone(),
-            timeout: options.timeout,
-        },
-    )?;
+/// Build the report for `cases`; `progress` is told each stage as it starts (one per case
+/// compared, then one per part).
+pub fn build_report(
+    root: &Path,
+    cases: &[Case],
+    options: &ReportOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Report> {
+    let compare_options = CompareOptions {
+        live: options.live,
+        reference: options.reference.clone(),
+        timeout: options.timeout,
+    };
+    let mut compared = compare(&[], &compare_options)?;
+    for case in cases {
+        progress(&format!(
+            "{}: {}",
+            case.name,
+            if options.live {
+                "running the codes"
+            } else {
+                "comparing"
+            }
+        ));
+        compared
+            .cases
+            .extend(compare(std::slice::from_ref(case), &compare_options)?.cases);
+    }
+    progress("the paper's figures");
     let paths: Vec<String> = cases.iter().map(|c| c.path.display().to_string()).collect();
     let compare_command = format!(
         "millimpact compare {}{}",
@@ -644,6 +663,7 @@ pub fn build_report(root: &Path, cases: &[Case], options: &ReportOptions) -> Res
         },
         tables: vec![],
     });
+    progress("force–overlap loops");
     let mut force = Vec::new();
     for case in cases {
         force.extend(force_figures(case)?);
@@ -674,6 +694,7 @@ pub fn build_report(root: &Path, cases: &[Case], options: &ReportOptions) -> Res
         figures: by_e,
         tables,
     });
+    progress("realised against requested COR");
     let (fig, table) = realised_vs_requested(root)?;
     parts.push(ReportPart {
         id: "conventions".into(),
@@ -686,7 +707,10 @@ pub fn build_report(root: &Path, cases: &[Case], options: &ReportOptions) -> Res
         id: "cost".into(),
         title: "Accuracy, cost and stability".into(),
         intro: "The integrators of the paper's law: error against run time, and a grid of stiff and extreme cases.".into(),
-        figures: vec![work_precision(root)?, stability_map()?],
+        figures: {
+            progress("work–precision and stability");
+            vec![work_precision(root)?, stability_map()?]
+        },
         tables: vec![],
     });
     let mut versions = std::collections::BTreeSet::new();

@@ -3,7 +3,10 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use std::io::IsTerminal;
+
 use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CommandOutput, write_output};
 use crate::analysis::compare::CANONICAL_CASES;
@@ -48,7 +51,28 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
         revision: revision(),
     };
-    let report = build_report(Path::new("."), &cases, &options)?;
+    // A progress bar on a terminal, none when output is piped or under CI.
+    let interactive =
+        std::io::stderr().is_terminal() && std::env::var_os("CI").is_none() && args.live;
+    let stages = cases.len() as u64 + 4;
+    let bar = interactive.then(|| {
+        let bar = ProgressBar::new(stages);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    });
+    let mut progress = |stage: &str| {
+        if let Some(bar) = &bar {
+            bar.set_message(stage.to_string());
+            bar.inc(1);
+        }
+    };
+    let report = build_report(Path::new("."), &cases, &options, &mut progress)?;
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
     let (html, md) = render_pages(&report)?;
     let out = &args.out;
     std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
