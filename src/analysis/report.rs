@@ -92,6 +92,9 @@ pub struct Report {
     /// Extra data files (JSON and CSV of whole summaries).
     #[serde(skip)]
     pub data: Vec<DataFile>,
+    /// Codes asked to run (`--live`) that did not, and why.
+    #[serde(skip)]
+    pub failures: Vec<String>,
 }
 
 /// How to build the report.
@@ -784,5 +787,6 @@ pub fn build_report(
         parts,
         appendix,
         data,
+        failures: compared.failures(),
     })
 }

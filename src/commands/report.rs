@@ -101,7 +101,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     write("index.html", &html)?;
     let figures: usize = report.parts.iter().map(|p| p.figures.len()).sum();
     let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
-    let missing: Vec<String> = Vec::new();
+    let missing = &report.failures;
     Ok(CommandOutput {
         text: format!(
             "report: {} ({} figures, {} tables, {} files)\n",
@@ -110,6 +110,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
             tables,
             written
         ),
-        failure: (!missing.is_empty()).then(|| CheckFailed(missing.join("; "))),
+        failure: (!missing.is_empty())
+            .then(|| CheckFailed(format!("report --live: {}", missing.join("; ")))),
     })
 }
