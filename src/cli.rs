@@ -40,6 +40,12 @@ pub enum Command {
     Precision(PrecisionArgs),
     /// A built-in grid of stiff and extreme cases by every method.
     Stability(StabilityArgs),
+    /// From a measured COR to η, the absorbed energy, and a card per DEM code with the
+    /// settings that realise that COR.
+    Calibrate(CalibrateArgs),
+    /// A self-contained report (index.html, index.md, and the CSV and JSON behind every
+    /// figure and table) from the stored references, or the codes run now.
+    Report(ReportArgs),
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {
@@ -225,4 +231,75 @@ pub struct StabilityArgs {
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
+}
+
+/// A COR: a number in (0, 1].
+fn parse_cor(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(e) if e > 0.0 && e <= 1.0 => Ok(e),
+        _ => Err(format!(
+            "`{text}` is not a COR; allowed: a number in (0, 1]"
+        )),
+    }
+}
+
+/// A measured COR range `A:B`, 0 < A < B <= 1.
+fn parse_cor_range(text: &str) -> Result<(f64, f64), String> {
+    let allowed = "allowed: A:B with 0 < A < B <= 1";
+    let (a, b) = text
+        .split_once(':')
+        .ok_or_else(|| format!("`{text}` is not a range; {allowed}"))?;
+    match (parse_cor(a), parse_cor(b)) {
+        (Ok(a), Ok(b)) if a < b => Ok((a, b)),
+        _ => Err(format!("`{text}`: {allowed}")),
+    }
+}
+
+/// A positive, finite number.
+fn parse_positive(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(x) if x > 0.0 && x.is_finite() => Ok(x),
+        _ => Err(format!("`{text}`: allowed: a positive number")),
+    }
+}
+
+/// `millimpact calibrate`.
+#[derive(Debug, Args)]
+pub struct CalibrateArgs {
+    /// The case file (TOML) [default: cases/ball_plate.toml].
+    pub case: Option<PathBuf>,
+    /// The COR to realise.
+    #[arg(long, value_parser = parse_cor, required_unless_present = "cor_range", conflicts_with = "cor_range")]
+    pub cor: Option<f64>,
+    /// A measured COR range `A:B`: cards for both ends.
+    #[arg(long, value_parser = parse_cor_range)]
+    pub cor_range: Option<(f64, f64)>,
+    /// The codes' time step, s, the cards predict for [default: elastic contact time / 1000].
+    #[arg(long, value_parser = parse_positive)]
+    pub timestep: Option<f64>,
+    /// Relative COR offset the recommended time step keeps.
+    #[arg(long, default_value = "1e-3", value_parser = parse_positive)]
+    pub tolerance: f64,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
+}
+
+/// `millimpact report`.
+#[derive(Debug, Args)]
+pub struct ReportArgs {
+    /// Case files (default: the canonical ones in cases/).
+    pub cases: Vec<PathBuf>,
+    /// Folder to write the report into.
+    #[arg(long, default_value = "report")]
+    pub out: PathBuf,
+    /// Run the codes now instead of reading reference/.
+    #[arg(long)]
+    pub live: bool,
+    /// Folder of stored references.
+    #[arg(long, default_value = "reference")]
+    pub reference: PathBuf,
+    /// Kill a code after this many seconds (with --live).
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
 }

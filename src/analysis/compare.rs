@@ -8,12 +8,15 @@ use std::time::Duration;
 use anyhow::Result;
 use serde::Serialize;
 
-use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord, Split};
-use crate::codes::CodeName;
+use super::phase::{self, DEFAULT_PHASES, Offsets, PhaseBand};
+use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord};
+use crate::codes::{CodeName, setup_for_case};
 use crate::model::case::Case;
-use crate::model::exact;
+use crate::model::exact::{self, ImpactFigures};
+use crate::model::trajectory::TrajectoryMetrics;
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::Method;
+use crate::solve::dashpot::accurate_metrics;
 use crate::solve::paper::{self, Settings};
 
 /// The canonical cases compared by default.
@@ -34,20 +37,49 @@ pub struct SourceRow {
     pub peak_deformation: f64,
     /// Peak force, N.
     pub peak_force: f64,
-    /// Contact time, s.
+    /// Contact time by overlap (first touch until the overlap returns to zero), s.
     pub contact_time: f64,
+    /// Contact time by force (first touch until the normal force first returns to zero), s;
+    /// NaN where the source does not give it (a stored code run keeps no trajectory).
+    pub force_contact_time: f64,
+    /// Compression time (first touch to the largest overlap), s; NaN where not given.
+    pub compression_time: f64,
+    /// Kinetic energy absorbed by the impact, J: `½ M v0² (1 − e²)`.
+    pub absorbed_energy: f64,
+    /// Absorbed energy as a fraction of the impact energy: `1 − e²`.
+    pub absorbed_fraction: f64,
     /// Run time, s (`None` for closed forms).
     pub run_time: Option<f64>,
     /// Relative difference of the COR from the paper's law.
     pub cor_vs_paper: f64,
     /// Relative difference of the peak deformation from the paper's law.
     pub peak_deformation_vs_paper: f64,
-    /// Relative difference of the contact time from the paper's law.
+    /// Relative difference of the peak force from the paper's law.
+    pub peak_force_vs_paper: f64,
+    /// Relative difference of the overlap contact time from the paper's law.
     pub contact_time_vs_paper: f64,
+    /// Relative difference of the force contact time from the paper's law's (which equals its
+    /// overlap contact time: its force is repulsive throughout the contact).
+    pub force_contact_time_vs_paper: f64,
+    /// Relative difference of the compression time from the paper's law.
+    pub compression_time_vs_paper: f64,
     /// Relative difference of the peak deformation from the elastic contact.
     pub peak_deformation_vs_elastic: f64,
     /// Relative difference of the contact time from the elastic contact.
     pub contact_time_vs_elastic: f64,
+}
+
+/// The paper's law's exact figures in the form a trajectory's are read: its force is
+/// repulsive all through the contact, so its force contact time is its overlap contact time.
+pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
+    TrajectoryMetrics {
+        cor: p.cor,
+        peak_deformation: p.peak_deformation,
+        peak_force: p.peak_force,
+        contact_time: p.contact_time,
+        force_contact_time: p.contact_time,
+        compression_time: p.compression_time,
+    }
 }
 
 /// A code's attribution for one case.
@@ -59,9 +91,16 @@ pub struct CodeAttribution {
     pub code_version: String,
     /// Time step, s.
     pub timestep: f64,
-    /// The split.
+    /// The split of the code's COR, peak deformation and overlap contact time.
     #[serde(flatten)]
     pub attribution: Attribution,
+    /// The model difference in every figure: own law exact − paper's law exact.
+    pub model_offsets: Offsets,
+    /// The integration offset of the stored run's start (own law stepped from touch − own
+    /// law exact): one point in `band`.
+    pub integration_offsets: Offsets,
+    /// The integration offset over the start phase.
+    pub band: PhaseBand,
 }
 
 /// Everything compared for one case.
@@ -79,39 +118,123 @@ pub struct CaseComparison {
     pub attribution: Vec<CodeAttribution>,
     /// Codes with no result, and why.
     pub missing: Vec<String>,
+    /// Each code's model difference from the paper's law as a function of e.
+    pub model_by_restitution: Vec<ModelPoint>,
+}
+
+/// The restitutions at which the model differences are tabulated.
+pub const RESTITUTIONS: [f64; 8] = [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95];
+
+/// One code's law against the paper's law at one COR, both exact.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ModelPoint {
+    /// Case name.
+    pub case: String,
+    /// The code whose law (as its driver sets it up) this is.
+    pub code: CodeName,
+    /// The COR asked for.
+    pub restitution: f64,
+    /// The paper's η for it.
+    pub loss_coefficient: f64,
+    /// The COR the code's law realises (exact integration).
+    pub law_cor: f64,
+    /// Own law exact − paper's law exact, relative to the paper's law.
+    pub offsets: Offsets,
+    /// Relative difference of the compression time.
+    pub compression_time: f64,
+}
+
+/// Each code's law, as its driver sets it up for `case` at each COR in `restitutions`,
+/// against the paper's law at the same COR, both integrated exactly.
+pub fn model_by_restitution(case: &Case, restitutions: &[f64]) -> Result<Vec<ModelPoint>> {
+    let mut points = Vec::new();
+    for &e in restitutions {
+        let at = case.with_loss_coefficient(exact::loss_coefficient(e));
+        let paper = exact::paper_impact(&at.law(), at.impact_velocity);
+        let p = paper_metrics(&paper);
+        let setup = setup_for_case(&at, 1.0);
+        for &code in CodeName::ALL {
+            let law = code.driver().law(&setup);
+            let m = accurate_metrics(&law, at.impact_velocity, 1e-12)?;
+            points.push(ModelPoint {
+                case: case.name.clone(),
+                code,
+                restitution: e,
+                loss_coefficient: at.loss_coefficient,
+                law_cor: m.cor,
+                offsets: Offsets::between(&m, &p, &paper),
+                compression_time: (m.compression_time - p.compression_time) / p.compression_time,
+            });
+        }
+    }
+    Ok(points)
 }
 
 struct Baseline {
-    paper: (f64, f64, f64),
+    paper: TrajectoryMetrics,
     elastic: (f64, f64),
+    impact_energy: f64,
 }
 
 impl Baseline {
-    #[allow(clippy::too_many_arguments)]
-    fn row(
-        &self,
-        source: String,
-        cor: f64,
-        peak: f64,
-        force: f64,
-        time: f64,
-        run_time: Option<f64>,
-    ) -> SourceRow {
+    fn row(&self, source: String, m: &TrajectoryMetrics, run_time: Option<f64>) -> SourceRow {
         let rel = |a: f64, b: f64| (a - b) / b;
+        let p = &self.paper;
+        let fraction = 1.0 - m.cor * m.cor;
         SourceRow {
             source,
-            cor,
-            peak_deformation: peak,
-            peak_force: force,
-            contact_time: time,
+            cor: m.cor,
+            peak_deformation: m.peak_deformation,
+            peak_force: m.peak_force,
+            contact_time: m.contact_time,
+            force_contact_time: m.force_contact_time,
+            compression_time: m.compression_time,
+            absorbed_energy: fraction * self.impact_energy,
+            absorbed_fraction: fraction,
             run_time,
-            cor_vs_paper: rel(cor, self.paper.0),
-            peak_deformation_vs_paper: rel(peak, self.paper.1),
-            contact_time_vs_paper: rel(time, self.paper.2),
-            peak_deformation_vs_elastic: rel(peak, self.elastic.0),
-            contact_time_vs_elastic: rel(time, self.elastic.1),
+            cor_vs_paper: rel(m.cor, p.cor),
+            peak_deformation_vs_paper: rel(m.peak_deformation, p.peak_deformation),
+            peak_force_vs_paper: rel(m.peak_force, p.peak_force),
+            contact_time_vs_paper: rel(m.contact_time, p.contact_time),
+            force_contact_time_vs_paper: rel(m.force_contact_time, p.force_contact_time),
+            compression_time_vs_paper: rel(m.compression_time, p.compression_time),
+            peak_deformation_vs_elastic: rel(m.peak_deformation, self.elastic.0),
+            contact_time_vs_elastic: rel(m.contact_time, self.elastic.1),
         }
     }
+}
+
+fn figures_metrics(f: &ImpactFigures, force_contact_time: f64) -> TrajectoryMetrics {
+    TrajectoryMetrics {
+        force_contact_time,
+        ..paper_metrics(f)
+    }
+}
+
+/// The attribution of a stored or live run, with the model difference in every figure and
+/// the integration offset as a band over the start phase. The code's own law is integrated
+/// again (exact and stepped) so that records stored before the force-based figures existed
+/// give them too.
+pub fn code_attribution(
+    r: &ReferenceRecord,
+) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics)> {
+    let own_exact = accurate_metrics(&r.law, r.setup.impact_velocity, 1e-13)?;
+    let own_stepped = phase::stepped_at_phase(r, 0.0)?;
+    let paper = paper_metrics(&r.paper_exact);
+    let band = phase::start_phase_band(r, &own_exact, DEFAULT_PHASES)?;
+    Ok((
+        CodeAttribution {
+            code: r.code,
+            code_version: r.code_version.clone(),
+            timestep: r.timestep,
+            attribution: r.attribution(),
+            model_offsets: Offsets::between(&own_exact, &paper, &r.paper_exact),
+            integration_offsets: Offsets::between(&own_stepped, &own_exact, &r.paper_exact),
+            band,
+        },
+        own_stepped,
+        own_exact,
+    ))
 }
 
 /// Compare one case; `live` runs the codes, otherwise the stored references are read.
@@ -127,30 +250,22 @@ pub fn compare_case(
     let contact = case.scene.elastic_contact(v0);
     let elastic = (contact.peak_deformation, contact.contact_time);
     let base = Baseline {
-        paper: (exact.cor, exact.peak_deformation, exact.contact_time),
+        paper: paper_metrics(&exact),
         elastic,
+        impact_energy: 0.5 * law.mass * v0 * v0,
     };
-    let mut rows = vec![base.row(
-        "paper law, exact".into(),
-        exact.cor,
-        exact.peak_deformation,
-        exact.peak_force,
-        exact.contact_time,
-        None,
-    )];
+    let mut rows = vec![base.row("paper law, exact".into(), &base.paper, None)];
     let settings = Settings {
         method: Method::Rk4,
         contact: case.contact,
         ..Settings::default()
     };
     let rk4 = paper::solve(&law, v0, &settings)?;
+    // The paper's force is repulsive all through the contact: by force as by overlap.
     let f = &rk4.figures;
     rows.push(base.row(
         "paper law, rk4 (paper's method)".into(),
-        f.cor,
-        f.peak_deformation,
-        f.peak_force,
-        f.contact_time,
+        &figures_metrics(f, f.contact_time),
         Some(rk4.wall_time),
     ));
     let mut attribution = Vec::new();
@@ -180,39 +295,43 @@ pub fn compare_case(
             found
         };
         let Some(r) = record else { continue };
+        let (split, own_stepped, own_exact) = code_attribution(&r)?;
+        let code_metrics = TrajectoryMetrics {
+            cor: r.cor,
+            peak_deformation: r.peak_deformation,
+            peak_force: r.peak_force,
+            contact_time: r.contact_time,
+            force_contact_time: f64::NAN,
+            compression_time: f64::NAN,
+        };
         rows.push(base.row(
             format!("{} {}", r.code, short_version(&r.code_version)),
-            r.cor,
-            r.peak_deformation,
-            r.peak_force,
-            r.contact_time,
+            &code_metrics,
             Some(r.wall_time),
         ));
         rows.push(base.row(
-            format!("{} law, exact", r.code),
-            r.law_exact.cor,
-            r.law_exact.peak_deformation,
-            r.law_exact.peak_force,
-            r.law_exact.contact_time,
+            format!("{} law, stepped as {}", r.code, r.code),
+            &own_stepped,
             None,
         ));
-        attribution.push(CodeAttribution {
-            code: r.code,
-            code_version: r.code_version.clone(),
-            timestep: r.timestep,
-            attribution: r.attribution(),
-        });
+        rows.push(base.row(format!("{} law, exact", r.code), &own_exact, None));
+        attribution.push(split);
     }
+    let elastic_metrics = TrajectoryMetrics {
+        cor: 1.0,
+        peak_deformation: elastic.0,
+        peak_force: f64::NAN,
+        contact_time: elastic.1,
+        force_contact_time: elastic.1,
+        compression_time: 0.5 * elastic.1,
+    };
     rows.push(base.row(
         if case.scene.effective_modulus().is_some() {
             "Hertz, elastic".into()
         } else {
             "linear spring, elastic".into()
         },
-        1.0,
-        elastic.0,
-        f64::NAN,
-        elastic.1,
+        &elastic_metrics,
         None,
     ));
     Ok(CaseComparison {
@@ -222,6 +341,7 @@ pub fn compare_case(
         rows,
         attribution,
         missing,
+        model_by_restitution: model_by_restitution(case, &RESTITUTIONS)?,
     })
 }
 
@@ -287,17 +407,19 @@ pub fn compare(cases: &[Case], options: &CompareOptions) -> Result<CompareReport
     })
 }
 
-const HEADERS: [&str; 10] = [
+const HEADERS: [&str; 12] = [
     "source",
     "COR",
     "peak (m)",
     "peak force (N)",
-    "contact time (s)",
+    "contact time, overlap (s)",
+    "contact time, force (s)",
+    "compression (s)",
+    "absorbed (J, share)",
     "run time",
     "ΔCOR vs paper",
-    "Δpeak vs paper",
-    "Δtime vs paper",
-    "Δpeak / Δtime vs elastic",
+    "Δpeak / Δforce vs paper",
+    "Δtime overlap / force vs paper",
 ];
 
 fn cells(row: &SourceRow) -> Vec<String> {
@@ -307,45 +429,91 @@ fn cells(row: &SourceRow) -> Vec<String> {
         sci(row.peak_deformation),
         sci(row.peak_force),
         sci(row.contact_time),
+        sci(row.force_contact_time),
+        sci(row.compression_time),
+        format!(
+            "{:.4} ({:.1} %)",
+            row.absorbed_energy,
+            100.0 * row.absorbed_fraction
+        ),
         row.run_time.map(seconds).unwrap_or_default(),
         signed(row.cor_vs_paper),
-        signed(row.peak_deformation_vs_paper),
-        signed(row.contact_time_vs_paper),
         format!(
             "{} / {}",
-            signed(row.peak_deformation_vs_elastic),
-            signed(row.contact_time_vs_elastic)
+            signed(row.peak_deformation_vs_paper),
+            signed_or_na(row.peak_force_vs_paper)
+        ),
+        format!(
+            "{} / {}",
+            signed(row.contact_time_vs_paper),
+            signed_or_na(row.force_contact_time_vs_paper)
         ),
     ]
 }
 
+fn signed_or_na(x: f64) -> String {
+    if x.is_nan() { "n/a".into() } else { signed(x) }
+}
+
+fn offsets_cell(o: &Offsets) -> String {
+    format!(
+        "{} / {} / {} / {} / {}",
+        signed(o.cor),
+        signed(o.peak_deformation),
+        signed(o.peak_force),
+        signed(o.contact_time),
+        signed(o.force_contact_time)
+    )
+}
+
 fn attribution_cells(a: &CodeAttribution) -> Vec<String> {
-    let s = |x: &Split| {
-        format!(
-            "{} / {} / {}",
-            signed(x.cor),
-            signed(x.peak_deformation),
-            signed(x.contact_time)
-        )
-    };
+    let band = |r: &phase::Range| format!("[{}, {}]", signed(r.min), signed(r.max));
     vec![
         a.code.to_string(),
         sci(a.timestep),
-        s(&a.attribution.total),
-        s(&a.attribution.model),
-        s(&a.attribution.integration),
-        s(&a.attribution.remainder),
+        offsets_cell(&a.model_offsets),
+        offsets_cell(&a.integration_offsets),
+        band(&a.band.cor),
+        band(&a.band.contact_time),
+        signed(a.attribution.remainder.cor),
     ]
 }
 
-const ATTRIBUTION_HEADERS: [&str; 6] = [
+const ATTRIBUTION_HEADERS: [&str; 7] = [
     "code",
     "Δt (s)",
-    "total (COR / peak / time)",
-    "model",
-    "integration",
-    "remainder",
+    "model (COR / peak / force / t overlap / t force)",
+    "integration at the stored start",
+    "integration band, COR",
+    "integration band, t overlap",
+    "remainder, COR",
 ];
+
+const BY_E_HEADERS: [&str; 9] = [
+    "e",
+    "η",
+    "code",
+    "law's COR",
+    "Δpeak",
+    "Δpeak force",
+    "Δt overlap",
+    "Δt force",
+    "Δt compression",
+];
+
+fn by_e_cells(p: &ModelPoint) -> Vec<String> {
+    vec![
+        format!("{}", p.restitution),
+        format!("{:.4}", p.loss_coefficient),
+        p.code.to_string(),
+        format!("{:.6}", p.law_cor),
+        signed(p.offsets.peak_deformation),
+        signed(p.offsets.peak_force),
+        signed(p.offsets.contact_time),
+        signed(p.offsets.force_contact_time),
+        signed(p.compression_time),
+    ]
+}
 
 /// One source for one case as a CSV row.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -362,16 +530,30 @@ pub struct CompareRecord {
     pub peak_deformation: f64,
     /// Peak force, N.
     pub peak_force: f64,
-    /// Contact time, s.
+    /// Contact time by overlap, s.
     pub contact_time: f64,
+    /// Contact time by force, s (empty where not given).
+    pub force_contact_time: f64,
+    /// Compression time, s.
+    pub compression_time: f64,
+    /// Absorbed energy, J.
+    pub absorbed_energy: f64,
+    /// Absorbed energy as a fraction of the impact energy.
+    pub absorbed_fraction: f64,
     /// Run time, s (empty for closed forms).
     pub run_time: Option<f64>,
     /// Relative difference of the COR from the paper's law.
     pub cor_vs_paper: f64,
     /// Relative difference of the peak deformation from the paper's law.
     pub peak_deformation_vs_paper: f64,
-    /// Relative difference of the contact time from the paper's law.
+    /// Relative difference of the peak force from the paper's law.
+    pub peak_force_vs_paper: f64,
+    /// Relative difference of the overlap contact time from the paper's law.
     pub contact_time_vs_paper: f64,
+    /// Relative difference of the force contact time from the paper's law.
+    pub force_contact_time_vs_paper: f64,
+    /// Relative difference of the compression time from the paper's law.
+    pub compression_time_vs_paper: f64,
     /// Relative difference of the peak deformation from the elastic contact.
     pub peak_deformation_vs_elastic: f64,
     /// Relative difference of the contact time from the elastic contact.
@@ -393,10 +575,17 @@ impl Summary for CompareReport {
                     peak_deformation: r.peak_deformation,
                     peak_force: r.peak_force,
                     contact_time: r.contact_time,
+                    force_contact_time: r.force_contact_time,
+                    compression_time: r.compression_time,
+                    absorbed_energy: r.absorbed_energy,
+                    absorbed_fraction: r.absorbed_fraction,
                     run_time: r.run_time,
                     cor_vs_paper: r.cor_vs_paper,
                     peak_deformation_vs_paper: r.peak_deformation_vs_paper,
+                    peak_force_vs_paper: r.peak_force_vs_paper,
                     contact_time_vs_paper: r.contact_time_vs_paper,
+                    force_contact_time_vs_paper: r.force_contact_time_vs_paper,
+                    compression_time_vs_paper: r.compression_time_vs_paper,
                     peak_deformation_vs_elastic: r.peak_deformation_vs_elastic,
                     contact_time_vs_elastic: r.contact_time_vs_elastic,
                 })
@@ -431,8 +620,25 @@ impl Summary for CompareReport {
             );
             split.rows = c.attribution.iter().map(attribution_cells).collect();
             split.notes = c.missing.iter().map(|m| format!("missing: {m}")).collect();
+            split.notes.push(format!(
+                "integration band: the own law stepped as the code steps, first contact swept over {} start phases within one step; the stored run's start is one point in it",
+                DEFAULT_PHASES
+            ));
+            figures.notes = vec![
+                "contact time by overlap: first touch until the overlap returns to zero (the figure quoted before); by force: until the normal force first returns to zero".into(),
+                "a stored code run keeps no trajectory: its force-based times are those of its own law stepped as it steps (the row below it), which reproduces the run to its remainder".into(),
+            ];
+            let mut by_e = Section::new(
+                Some(format!(
+                    "{}: each code's law against the paper's law at equal COR, both exact, as a function of e",
+                    c.case
+                )),
+                &BY_E_HEADERS,
+            );
+            by_e.rows = c.model_by_restitution.iter().map(by_e_cells).collect();
             sections.push(figures);
             sections.push(split);
+            sections.push(by_e);
         }
         sections
     }

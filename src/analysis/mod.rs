@@ -2,8 +2,11 @@
 //! verification, the attribution of each code's difference, and the comparison, precision,
 //! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
 
+pub mod calibrate;
 pub mod compare;
+pub mod phase;
 pub mod precision;
+pub mod report;
 pub mod run;
 pub mod source;
 pub mod stability;

@@ -74,6 +74,8 @@ pub struct RunReport {
     pub restitution_time: f64,
     /// Absorbed energy, J.
     pub absorbed_energy: f64,
+    /// Absorbed energy as a fraction of the impact energy `½ M v0²`: `1 − e²`.
+    pub absorbed_fraction: f64,
     /// Accepted steps.
     pub steps: u64,
     /// Right-hand-side evaluations.
@@ -141,6 +143,7 @@ impl RunReport {
             compression_time: f.compression_time,
             restitution_time: f.restitution_time,
             absorbed_energy: f.absorbed_energy,
+            absorbed_fraction: 1.0 - f.cor * f.cor,
             steps,
             rhs_evaluations,
             wall_time: outcome.wall_time,
@@ -181,6 +184,7 @@ impl RunReport {
             compression_time: self.compression_time,
             restitution_time: self.restitution_time,
             absorbed_energy: self.absorbed_energy,
+            absorbed_fraction: self.absorbed_fraction,
             steps: self.steps,
             rhs_evaluations: self.rhs_evaluations,
             wall_time: self.wall_time,
@@ -203,7 +207,7 @@ impl RunReport {
             )),
             &["figure", "run", "exact", "relative error"],
         );
-        let rows: [(&str, f64, f64, Option<f64>); 6] = [
+        let rows: [(&str, f64, f64, Option<f64>); 7] = [
             ("COR", self.cor, self.exact.cor, Some(self.error.cor)),
             (
                 "peak deformation (m)",
@@ -227,6 +231,12 @@ impl RunReport {
                 "absorbed energy (J)",
                 self.absorbed_energy,
                 self.exact.absorbed_energy,
+                None,
+            ),
+            (
+                "absorbed share of the impact energy",
+                self.absorbed_fraction,
+                1.0 - self.exact.cor * self.exact.cor,
                 None,
             ),
             (
@@ -315,6 +325,8 @@ pub struct SweepRow {
     pub restitution_time: f64,
     /// Absorbed energy, J.
     pub absorbed_energy: f64,
+    /// Absorbed energy as a fraction of the impact energy.
+    pub absorbed_fraction: f64,
     /// Steps.
     pub steps: u64,
     /// RHS evaluations.

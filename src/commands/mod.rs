@@ -1,9 +1,11 @@
 //! One file per subcommand: validated arguments → the library → an exporter. A command
 //! returns its text and, for a check, its verdict; only `main` prints and exits.
 
+mod calibrate;
 mod compare;
 mod precision;
 mod reference;
+mod report;
 mod run;
 mod stability;
 mod sweep;
@@ -46,6 +48,8 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Compare(args) => compare::compare(args),
         Command::Precision(args) => precision::precision(args),
         Command::Stability(args) => stability::stability(args),
+        Command::Calibrate(args) => calibrate::calibrate(args),
+        Command::Report(args) => report::report(args),
     }
 }
 

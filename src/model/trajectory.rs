@@ -66,15 +66,36 @@ pub struct TrajectoryMetrics {
     pub peak_deformation: f64,
     /// Largest normal force, N (NaN if the trajectory has no force column).
     pub peak_force: f64,
-    /// Contact duration, s, from the zero crossings of the overlap (linearly interpolated).
+    /// Contact duration by overlap, s: from first touch until the overlap returns to zero
+    /// (zero crossings of the overlap, linearly interpolated).
     pub contact_time: f64,
+    /// Contact duration by force, s: from first touch until the normal force first returns to
+    /// zero (NaN if the trajectory has no force column, or in a record stored without it).
+    #[serde(default = "not_stored", deserialize_with = "nan_if_null")]
+    pub force_contact_time: f64,
+    /// Compression time, s: from first touch to the largest overlap (the approach speed's zero
+    /// crossing; NaN in a record stored without it).
+    #[serde(default = "not_stored", deserialize_with = "nan_if_null")]
+    pub compression_time: f64,
 }
 
-/// Read COR, peak overlap, peak force and contact time from a trajectory.
+fn not_stored() -> f64 {
+    f64::NAN
+}
+
+/// JSON has no NaN: serde_json writes it as `null`, read back here as NaN.
+fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+}
+
+/// Read COR, peak overlap, peak force, both contact times and the compression time from a
+/// trajectory.
 ///
 /// The speed before contact is the first row's, the speed after is the first row past the
-/// contact (overlap ≤ 0 after having been positive), or the last row's if the contact has not
-/// ended, in which case the error says so.
+/// contact (overlap ≤ 0 after having been positive); a contact that has not ended by the last
+/// row is an error. The force-based end is the first row after touch whose force is ≤ 0 once
+/// the force has been positive, interpolated linearly to the zero; the end of compression is
+/// the approach speed's first zero crossing, interpolated the same way.
 pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, TrajectoryError> {
     check_trajectory(t)?;
     let first_in = t
@@ -87,12 +108,12 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
         .position(|&d| d <= 0.0)
         .map(|k| first_in + k)
         .ok_or(TrajectoryError::ContactNotEnded)?;
-    let crossing = |i: usize| -> f64 {
-        // Overlap changes sign between rows i-1 and i.
+    // The column changes sign between rows i-1 and i: the linearly interpolated zero.
+    let zero = |column: &[f64], i: usize| -> f64 {
         if i == 0 {
             return t.time[0];
         }
-        let (d0, d1) = (t.overlap[i - 1], t.overlap[i]);
+        let (d0, d1) = (column[i - 1], column[i]);
         let (t0, t1) = (t.time[i - 1], t.time[i]);
         if d1 == d0 {
             t1
@@ -100,8 +121,30 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
             t0 + (t1 - t0) * d0 / (d0 - d1)
         }
     };
+    let crossing = |i: usize| zero(&t.overlap, i);
     let start = crossing(first_in);
     let end = crossing(last_in);
+    let force_end = if t.normal_force.len() == t.time.len() {
+        let f = &t.normal_force;
+        f[first_in..=last_in]
+            .iter()
+            .position(|&x| x > 0.0)
+            .map(|k| first_in + k)
+            .and_then(|pushing| {
+                f[pushing..]
+                    .iter()
+                    .position(|&x| x <= 0.0)
+                    .map(|k| zero(f, pushing + k))
+            })
+            .unwrap_or(f64::NAN)
+    } else {
+        f64::NAN
+    };
+    let turn = t.approach_velocity[first_in..=last_in]
+        .iter()
+        .position(|&v| v <= 0.0)
+        .map(|k| zero(&t.approach_velocity, first_in + k))
+        .unwrap_or(f64::NAN);
     let v_in = t.approach_velocity[0];
     let v_out = -t.approach_velocity[last_in];
     let peak_deformation = t.overlap.iter().cloned().fold(f64::MIN, f64::max);
@@ -115,6 +158,8 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
         peak_deformation,
         peak_force,
         contact_time: end - start,
+        force_contact_time: force_end - start,
+        compression_time: turn - start,
     })
 }
 
@@ -136,6 +181,34 @@ mod tests {
         assert_eq!(m.cor, 0.75);
         assert_eq!(m.peak_deformation, 4.0);
         assert_eq!(m.peak_force, 20.0);
+        // Force zero at t = 4 (the last row), speed zero crossing at t = 2.
+        assert_eq!(m.force_contact_time, 3.75);
+        assert_eq!(m.compression_time, 1.75);
+    }
+
+    #[test]
+    fn the_force_based_end_is_where_the_force_first_reaches_zero() {
+        // The force turns attractive at t = 2.5 while the overlap closes at t = 3.5.
+        let t = CodeTrajectory {
+            time: vec![0.0, 1.0, 2.0, 3.0, 4.0],
+            overlap: vec![0.0, 2.0, 2.0, 1.0, -1.0],
+            approach_velocity: vec![2.0, 1.0, -1.0, -1.0, -1.0],
+            normal_force: vec![0.0, 10.0, 4.0, -4.0, 0.0],
+        };
+        let m = trajectory_metrics(&t).unwrap();
+        assert_eq!(m.contact_time, 3.5);
+        assert_eq!(m.force_contact_time, 2.5);
+        assert_eq!(m.compression_time, 1.5);
+    }
+
+    #[test]
+    fn records_stored_without_the_new_times_still_load() {
+        let old = r#"{"cor":0.7,"peak_deformation":1e-5,"peak_force":100.0,"contact_time":1e-4}"#;
+        let m: TrajectoryMetrics = serde_json::from_str(old).unwrap();
+        assert!(m.force_contact_time.is_nan() && m.compression_time.is_nan());
+        let back: TrajectoryMetrics =
+            serde_json::from_str(&serde_json::to_string(&m).unwrap()).unwrap();
+        assert!(back.force_contact_time.is_nan());
     }
 
     #[test]

@@ -5,7 +5,9 @@
 //! serde form, CSV its flat records (one header, rows of constant width), and the table and
 //! Markdown forms lay out the same [`Section`]s.
 
+pub mod chart;
 pub mod files;
+pub mod report_page;
 pub mod restitution_plot;
 pub mod work_precision_plot;
 

@@ -32,6 +32,20 @@ pub fn step_trajectory(
     steps: u64,
     scheme: StepScheme,
 ) -> CodeTrajectory {
+    step_trajectory_from(law, impact_velocity, timestep, steps, scheme, 0.0)
+}
+
+/// [`step_trajectory`] started `gap` (m) before touch instead of at touch: with
+/// `gap = φ v0 Δt`, `φ ∈ [0, 1)`, the first contact falls at the fraction `1 − φ` of a step
+/// (the start phase), the one thing a fixed-step run's figures depend on besides the step.
+pub fn step_trajectory_from(
+    law: &DashpotLaw,
+    impact_velocity: f64,
+    timestep: f64,
+    steps: u64,
+    scheme: StepScheme,
+    gap: f64,
+) -> CodeTrajectory {
     let capacity = steps as usize + 1;
     let mut out = CodeTrajectory {
         time: Vec::with_capacity(capacity),
@@ -39,7 +53,7 @@ pub fn step_trajectory(
         approach_velocity: Vec::with_capacity(capacity),
         normal_force: Vec::with_capacity(capacity),
     };
-    let (mut y, mut v, mut force) = (0.0, impact_velocity, 0.0);
+    let (mut y, mut v, mut force) = (-gap, impact_velocity, 0.0);
     let h = timestep;
     let inverse_mass = 1.0 / law.mass;
     let mut push = |k: u64, y: f64, v: f64, f: f64| {
@@ -69,8 +83,9 @@ pub fn step_trajectory(
 }
 
 /// Figures of `law`'s impact at speed `impact_velocity` (m/s), integrated with error control at
-/// relative tolerance `rtol` and with the contact end (or, with a clamp, the instant the force
-/// reaches zero) located on the step.
+/// relative tolerance `rtol`, with the largest force, the turning point (end of compression),
+/// the force's first return to zero (force-based contact end) and the overlap's return to zero
+/// (overlap-based contact end) located on the step as events.
 pub fn accurate_metrics(
     law: &DashpotLaw,
     impact_velocity: f64,
@@ -137,37 +152,42 @@ pub fn accurate_metrics(
     };
     let peak = turn.state[0];
     let event_exit = |s: &State| s[0];
+    // The force first returns to zero before the overlap closes: the dashpot cancels the spring
+    // while the bodies separate. Unclamped, the force then attracts until the overlap is zero;
+    // clamped, separation is final there, since the force would stay attractive while the
+    // overlap shrinks at constant speed, and the bodies fly apart until the overlap is zero.
+    let event_force = |s: &State| {
+        let y = s[0].max(0.0);
+        y.powf(n) + d * y.powf(m) * s[1]
+    };
+    let crossing = march(
+        &rhs,
+        turn.state,
+        turn.time,
+        &mut stepper,
+        &[&event_force, &event_exit],
+        None,
+        &mut stats,
+        &mut observe,
+    )?;
+    let force_end = crossing.time;
     let end = if clamp {
-        // Separation is final once the force would attract, since it stays attractive while the
-        // overlap shrinks at constant speed; the bodies then fly apart until the overlap is zero.
-        let event_force = |s: &State| {
-            let y = s[0].max(0.0);
-            y.powf(n) + d * y.powf(m) * s[1]
-        };
-        let crossing = march(
-            &rhs,
-            turn.state,
-            turn.time,
-            &mut stepper,
-            &[&event_force, &event_exit],
-            None,
-            &mut stats,
-            &mut observe,
-        )?;
         let (t, s) = (crossing.time, crossing.state);
         let free_flight = if s[0] > 0.0 { s[0] / -s[1] } else { 0.0 };
         (t + free_flight, s[1])
-    } else {
-        let crossing = march(
+    } else if crossing.event == 0 && crossing.state[0] > 0.0 {
+        let exit = march(
             &rhs,
-            turn.state,
-            turn.time,
+            crossing.state,
+            crossing.time,
             &mut stepper,
             &[&event_exit],
             None,
             &mut stats,
             &mut observe,
         )?;
+        (exit.time, exit.state[1])
+    } else {
         (crossing.time, crossing.state[1])
     };
     Ok(TrajectoryMetrics {
@@ -175,5 +195,7 @@ pub fn accurate_metrics(
         peak_deformation: peak * y_scale,
         peak_force: peak_force * law.stiffness * y_scale.powf(n),
         contact_time: end.0 * t_scale,
+        force_contact_time: force_end * t_scale,
+        compression_time: turn.time * t_scale,
     })
 }

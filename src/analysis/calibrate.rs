@@ -1,0 +1,422 @@
+//! `millimpact calibrate`: from a measured COR to the paper's η, the energy an impact absorbs,
+//! and a card per DEM code: the settings that realise that COR on the case, the COR the code
+//! will realise at a time step (its own law, stepped as it steps), the step that keeps the
+//! offset below a tolerance, and the traps the card avoids.
+
+use anyhow::{Context, Result};
+use serde::Serialize;
+
+use super::phase::Range;
+use crate::codes::{self, CodeName, setup::elastic_contact_time};
+use crate::model::case::Case;
+use crate::model::exact;
+use crate::model::law::DashpotLaw;
+use crate::model::scene::SceneKind;
+use crate::model::trajectory::trajectory_metrics;
+use crate::output::{Section, Summary, sci, signed};
+use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
+
+/// Start phases sampled when a card predicts a stepped COR.
+pub const CARD_PHASES: usize = 16;
+
+/// How to calibrate.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CalibrateOptions {
+    /// The CORs to realise (one, or the ends of a measured range).
+    pub restitutions: Vec<f64>,
+    /// The codes' time step, s (default: the elastic contact time / 1000, as the drivers run).
+    pub timestep: Option<f64>,
+    /// The largest relative COR offset from the target a card's time step may leave.
+    pub tolerance: f64,
+}
+
+/// One code's card for one COR.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Card {
+    /// The code.
+    pub code: CodeName,
+    /// The lines to type into the code, as the driver renders them for this case and COR.
+    pub settings: Vec<String>,
+    /// Why the code cannot realise the COR on this case, if it cannot.
+    pub unsupported: Option<String>,
+    /// The law the code integrates with those settings.
+    pub law: Option<DashpotLaw>,
+    /// That law's COR at zero step error.
+    pub law_cor: f64,
+    /// `law_cor − target`, relative to the target (a fit's residual where the code's damping
+    /// comes from a fit).
+    pub fit_error: f64,
+    /// The time step the prediction is for, s.
+    pub timestep: f64,
+    /// The COR the code will realise at that step, started at touch as the drivers start it.
+    pub realised_cor: f64,
+    /// Its range over where the first contact falls within a step.
+    pub realised_band: Range,
+    /// The largest time step (elastic contact time over a power of two of steps) whose COR
+    /// stays within the tolerance of the target over every start phase, s.
+    pub timestep_for_tolerance: Option<f64>,
+    /// Steps per elastic contact time at that step.
+    pub steps_per_contact: Option<u32>,
+    /// The traps the card avoids.
+    pub traps: Vec<String>,
+}
+
+/// Everything for one COR.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Target {
+    /// The COR asked for.
+    pub restitution: f64,
+    /// The paper's η that gives it: `(1 − e²)/(1 + e²)`.
+    pub loss_coefficient: f64,
+    /// Kinetic energy absorbed per impact, J.
+    pub absorbed_energy: f64,
+    /// Its share of the impact energy, `1 − e²`.
+    pub absorbed_fraction: f64,
+    /// One card per code.
+    pub cards: Vec<Card>,
+}
+
+/// What `calibrate` reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Calibration {
+    /// Case name.
+    pub case: String,
+    /// The case file.
+    pub path: String,
+    /// Impact energy `½ M v0²`, J.
+    pub impact_energy: f64,
+    /// The relative COR tolerance the cards' time steps keep.
+    pub tolerance: f64,
+    /// One entry per COR asked for.
+    pub targets: Vec<Target>,
+}
+
+/// The lines of a rendered input that set the contact law and the bodies' materials, by
+/// code: what a user who sets the code up by hand must type.
+fn setting_keys(code: CodeName, scene: SceneKind) -> &'static [&'static str] {
+    match (code.name(), scene) {
+        ("yade", SceneKind::RodEnd) => &["KN =", "CN =", "damping=", "ViscElMat("],
+        ("liggghts", _) => &[
+            "hard_particles",
+            "pair_style",
+            "wall/gran",
+            "youngsModulus",
+            "poissonsRatio",
+            "coefficientRestitution",
+            "property/global kn ",
+            "gamman_abs",
+        ],
+        ("yade", _) => &[
+            "EN =",
+            "WALL_E =",
+            "WALL_NU =",
+            "damping=",
+            "hertzian",
+            "MindlinPhys(",
+        ],
+        ("lammps", _) => &["pair_style", "pair_coeff", "wall/gran"],
+        _ => &[],
+    }
+}
+
+/// The traps a card avoids, by code and scene (reference/<code>/CONVENTIONS.md).
+fn traps(code: CodeName, scene: SceneKind, law: &DashpotLaw) -> Vec<String> {
+    let mut t = Vec::new();
+    let wall = scene == SceneKind::BallPlate;
+    match code.name() {
+        "liggghts" => {
+            if wall {
+                t.push("wall modulus: the wall's atom type's E and ν are mixed into E*: give the plate's own (a rigid plate: E = 1e30), and hard_particles yes for any E above 1e9 Pa".into());
+            }
+            t.push("limitForce off (the default): on cuts the attractive tail and raises the COR above the target (0.7128 for 0.6939)".into());
+            if scene == SceneKind::RodEnd {
+                t.push("rod: hooke/stiffness with absolute_damping on and gamman_abs from the linear dashpot's ζ(e); gamman is per mass".into());
+            }
+            t.push("touching counts as contact: start with a gap, or a linear dashpot pushes before the first step".into());
+        }
+        "yade" => {
+            t.push("numerical damping: NewtonIntegrator(damping=0.2) is the default; set damping=0 (else an elastic impact rebounds at 0.8165)".into());
+            if scene != SceneKind::RodEnd {
+                t.push("en is not the COR: Thornton's fit with the clamped law realises another e; give the inverted en (EN above), not e".into());
+                t.push("fit error: en cannot realise e between about 0.979 and 1".into());
+            }
+            if wall {
+                t.push("wall radius: Ig2_Wall_Sphere_ScGeom gives the wall the sphere's radius (R* = R/2) unless hertzian=True".into());
+                t.push("wall modulus: the wall's material is mixed into E*: give the plate's own (a rigid plate: E = 1e30)".into());
+            }
+            t.push(
+                "clamp: YADE's laws never attract; the damping is chosen for the clamped law"
+                    .into(),
+            );
+        }
+        "lammps" => {
+            if law.exponent == 1.5 {
+                t.push("damping tsuji takes e_in, not e: its fit is √2 short in this build, so e_in = e realises a higher COR (0.7734 for 0.6944); give the compensated e_in above".into());
+            }
+            if wall {
+                t.push("wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν)), not the plate's mix; give ν = 0 and E = 2E* of the pair".into());
+            }
+            t.push(
+                "limit_damping off (the default): on cuts the attractive tail and raises the COR"
+                    .into(),
+            );
+            t.push("touching counts as contact: start a hair away".into());
+        }
+        _ => {}
+    }
+    t
+}
+
+fn stepped_cor(
+    law: &DashpotLaw,
+    v0: f64,
+    dt: f64,
+    steps: u64,
+    scheme: StepScheme,
+    phi: f64,
+) -> f64 {
+    trajectory_metrics(&step_trajectory_from(
+        law,
+        v0,
+        dt,
+        steps,
+        scheme,
+        phi * v0 * dt,
+    ))
+    .map_or(f64::NAN, |m| m.cor)
+}
+
+fn band(law: &DashpotLaw, v0: f64, dt: f64, steps: u64, scheme: StepScheme) -> Range {
+    let cors: Vec<f64> = (0..CARD_PHASES)
+        .map(|k| stepped_cor(law, v0, dt, steps, scheme, k as f64 / CARD_PHASES as f64))
+        .collect();
+    Range {
+        min: cors.iter().cloned().fold(f64::INFINITY, f64::min),
+        max: cors.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+    }
+}
+
+/// The card of `code` for `case` (already at the COR's η).
+pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) -> Result<Card> {
+    let driver = code.driver();
+    let target = case.restitution();
+    let v0 = case.impact_velocity;
+    let setup = codes::prepare(driver, case, None, timestep, false)
+        .with_context(|| format!("{code}: sizing the run from the code's law"))?;
+    let law = driver.law(&setup);
+    let scheme = driver.step_scheme();
+    let (settings, unsupported) = match driver.render(&setup) {
+        Ok(input) => {
+            let keys = setting_keys(code, case.scene.kind());
+            let lines = input
+                .text
+                .lines()
+                .map(str::trim)
+                .filter(|l| !l.starts_with('#') && keys.iter().any(|k| l.contains(k)))
+                .map(String::from)
+                .collect();
+            (lines, None)
+        }
+        Err(e) => (Vec::new(), Some(e.to_string())),
+    };
+    let exact = accurate_metrics(&law, v0, 1e-12)?;
+    let steps_for = |dt: f64| (1.05 * exact.contact_time / dt).ceil() as u64 + 4;
+    let dt = setup.timestep;
+    let realised_cor = stepped_cor(&law, v0, dt, steps_for(dt), scheme, 0.0);
+    let realised_band = band(&law, v0, dt, steps_for(dt), scheme);
+    let tc = elastic_contact_time(case);
+    let within = |r: &Range| {
+        (r.min - target).abs() <= tolerance * target && (r.max - target).abs() <= tolerance * target
+    };
+    let mut found = None;
+    if unsupported.is_none() {
+        let mut n = 10u32;
+        while n <= 163_840 {
+            let h = tc / n as f64;
+            if within(&band(&law, v0, h, steps_for(h), scheme)) {
+                found = Some((h, n));
+                break;
+            }
+            n *= 2;
+        }
+    }
+    Ok(Card {
+        code,
+        settings,
+        unsupported,
+        law: Some(law),
+        law_cor: exact.cor,
+        fit_error: (exact.cor - target) / target,
+        timestep: dt,
+        realised_cor,
+        realised_band,
+        timestep_for_tolerance: found.map(|f| f.0),
+        steps_per_contact: found.map(|f| f.1),
+        traps: traps(code, case.scene.kind(), &law),
+    })
+}
+
+/// Calibrate `case` for every COR in the options.
+pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration> {
+    let law = case.law();
+    let v0 = case.impact_velocity;
+    let impact_energy = 0.5 * law.mass * v0 * v0;
+    let mut targets = Vec::new();
+    for &e in &options.restitutions {
+        let eta = exact::loss_coefficient(e);
+        let at = case.with_loss_coefficient(eta);
+        let cards = CodeName::ALL
+            .iter()
+            .map(|&code| card(code, &at, options.timestep, options.tolerance))
+            .collect::<Result<_>>()?;
+        targets.push(Target {
+            restitution: e,
+            loss_coefficient: eta,
+            absorbed_energy: impact_energy * (1.0 - e * e),
+            absorbed_fraction: 1.0 - e * e,
+            cards,
+        });
+    }
+    Ok(Calibration {
+        case: case.name.clone(),
+        path: case.path.display().to_string(),
+        impact_energy,
+        tolerance: options.tolerance,
+        targets,
+    })
+}
+
+/// One card as a CSV row.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CardRecord {
+    /// Case name.
+    pub case: String,
+    /// The COR asked for.
+    pub restitution: f64,
+    /// η.
+    pub loss_coefficient: f64,
+    /// Absorbed energy per impact, J.
+    pub absorbed_energy: f64,
+    /// Its share of the impact energy.
+    pub absorbed_fraction: f64,
+    /// The code.
+    pub code: CodeName,
+    /// The settings, joined by ` | `.
+    pub settings: String,
+    /// The law's COR at zero step error.
+    pub law_cor: f64,
+    /// Its relative residual from the target.
+    pub fit_error: f64,
+    /// The time step of the prediction, s.
+    pub timestep: f64,
+    /// The COR realised at that step.
+    pub realised_cor: f64,
+    /// Smallest over the start phase.
+    pub realised_cor_min: f64,
+    /// Largest over the start phase.
+    pub realised_cor_max: f64,
+    /// The step that keeps the offset within the tolerance, s.
+    pub timestep_for_tolerance: Option<f64>,
+    /// Steps per elastic contact time at that step.
+    pub steps_per_contact: Option<u32>,
+    /// Why the code cannot, if it cannot.
+    pub unsupported: Option<String>,
+}
+
+impl Summary for Calibration {
+    type Record = CardRecord;
+
+    fn records(&self) -> Vec<CardRecord> {
+        self.targets
+            .iter()
+            .flat_map(|t| {
+                t.cards.iter().map(|c| CardRecord {
+                    case: self.case.clone(),
+                    restitution: t.restitution,
+                    loss_coefficient: t.loss_coefficient,
+                    absorbed_energy: t.absorbed_energy,
+                    absorbed_fraction: t.absorbed_fraction,
+                    code: c.code,
+                    settings: c.settings.join(" | "),
+                    law_cor: c.law_cor,
+                    fit_error: c.fit_error,
+                    timestep: c.timestep,
+                    realised_cor: c.realised_cor,
+                    realised_cor_min: c.realised_band.min,
+                    realised_cor_max: c.realised_band.max,
+                    timestep_for_tolerance: c.timestep_for_tolerance,
+                    steps_per_contact: c.steps_per_contact,
+                    unsupported: c.unsupported.clone(),
+                })
+            })
+            .collect()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let mut out = Vec::new();
+        for t in &self.targets {
+            let mut s = Section::new(
+                Some(format!(
+                    "{}: COR {} → η = {:.6}; absorbed per impact {:.4} J = {:.1} % of the impact energy {:.4} J",
+                    self.case,
+                    t.restitution,
+                    t.loss_coefficient,
+                    t.absorbed_energy,
+                    100.0 * t.absorbed_fraction,
+                    self.impact_energy
+                )),
+                &[
+                    "code",
+                    "law's COR (fit error)",
+                    "Δt (s)",
+                    "COR realised at Δt [start-phase band]",
+                    &format!("Δt for |ΔCOR| ≤ {:e}", self.tolerance),
+                ],
+            );
+            for c in &t.cards {
+                s.rows.push(vec![
+                    c.code.to_string(),
+                    format!("{:.6} ({})", c.law_cor, signed(c.fit_error)),
+                    sci(c.timestep),
+                    format!(
+                        "{:.6} [{:.6}, {:.6}]",
+                        c.realised_cor, c.realised_band.min, c.realised_band.max
+                    ),
+                    match (c.timestep_for_tolerance, c.steps_per_contact) {
+                        (Some(h), Some(n)) => format!("{} ({n} steps per contact)", sci(h)),
+                        _ => "none found".into(),
+                    },
+                ]);
+            }
+            out.push(s);
+            for c in &t.cards {
+                let mut lines = vec![format!("{} card (COR {}):", c.code, t.restitution)];
+                if let Some(why) = &c.unsupported {
+                    lines.push(format!("  cannot: {why}"));
+                }
+                lines.extend(c.settings.iter().map(|l| format!("    {l}")));
+                lines.extend(c.traps.iter().map(|l| format!("  avoids: {l}")));
+                out.push(Section::text(lines));
+            }
+        }
+        out
+    }
+
+    fn footer(&self) -> Vec<String> {
+        let cors: Vec<String> = self
+            .targets
+            .iter()
+            .map(|t| t.restitution.to_string())
+            .collect();
+        vec![format!(
+            "reproduce: millimpact calibrate {} {} --tolerance {:e}",
+            if cors.len() == 1 {
+                format!("--cor {}", cors[0])
+            } else {
+                format!("--cor-range {}", cors.join(":"))
+            },
+            self.path,
+            self.tolerance
+        )]
+    }
+}

@@ -1,0 +1,792 @@
+//! `millimpact report`: the figures and tables of a self-contained report on model agreement,
+//! each with the data behind it and the command that reproduces it. From stored references it
+//! runs no DEM code.
+
+use std::path::Path;
+use std::time::Duration;
+
+use anyhow::Result;
+use serde::Serialize;
+
+use super::compare::{CompareOptions, compare};
+use super::precision::method_sweep;
+use super::stability::{METHODS, stability_report};
+use super::store;
+use crate::codes::{self, CodeName, lammps::tsuji_alpha, yade::thornton_damping_ratio};
+use crate::model::case::{Case, ContactKind};
+use crate::model::exact;
+use crate::model::law::DashpotLaw;
+use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
+use crate::output::{Section, Summary, csv_string};
+use crate::solve::Method;
+use crate::solve::dashpot::{accurate_metrics, step_trajectory};
+use crate::solve::paper::{self, Settings};
+
+/// One figure: the SVG, the data behind it as CSV, and how to reproduce it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReportFigure {
+    /// File stem (`<id>.svg`, `<id>.csv`).
+    pub id: String,
+    /// Title.
+    pub title: String,
+    /// What it shows.
+    pub caption: String,
+    /// The figure.
+    pub svg: String,
+    /// Its data.
+    pub csv: String,
+    /// The command that reproduces it.
+    pub command: String,
+}
+
+/// One table: formatted cells, the data behind it, and how to reproduce it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReportTable {
+    /// File stem (`<id>.csv`, `<id>.json`).
+    pub id: String,
+    /// Title.
+    pub title: String,
+    /// Column headers.
+    pub headers: Vec<String>,
+    /// Rows.
+    pub rows: Vec<Vec<String>>,
+    /// Notes under it.
+    pub notes: Vec<String>,
+    /// The command that reproduces it.
+    pub command: String,
+}
+
+/// A part of the report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReportPart {
+    /// Anchor.
+    pub id: String,
+    /// Heading.
+    pub title: String,
+    /// Text under the heading.
+    pub intro: String,
+    /// Figures.
+    pub figures: Vec<ReportFigure>,
+    /// Tables.
+    pub tables: Vec<ReportTable>,
+}
+
+/// Files written beside the pages: the data behind the tables, as the commands export them.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DataFile {
+    /// File name.
+    pub name: String,
+    /// Contents.
+    pub text: String,
+}
+
+/// The whole report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    /// Title.
+    pub title: String,
+    /// The parts.
+    pub parts: Vec<ReportPart>,
+    /// Appendix lines: versions, revision, date, reproduce commands.
+    pub appendix: Vec<String>,
+    /// Extra data files (JSON and CSV of whole summaries).
+    #[serde(skip)]
+    pub data: Vec<DataFile>,
+    /// Codes asked to run (`--live`) that did not, and why.
+    #[serde(skip)]
+    pub failures: Vec<String>,
+}
+
+/// How to build the report.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReportOptions {
+    /// Run the codes now.
+    pub live: bool,
+    /// Folder of stored references.
+    pub reference: std::path::PathBuf,
+    /// Time limit per code run (live).
+    pub timeout: Duration,
+    /// millimpact's git revision, if known.
+    pub revision: Option<String>,
+}
+
+fn rows_csv(header: &str, rows: impl Iterator<Item = String>) -> String {
+    let mut s = String::from(header);
+    s.push('\n');
+    for r in rows {
+        s.push_str(&r);
+        s.push('\n');
+    }
+    s
+}
+
+fn series_csv(x: &str, y: &str, series: &[Series]) -> String {
+    rows_csv(
+        &format!("series,{x},{y}"),
+        series.iter().flat_map(|s| {
+            s.points
+                .iter()
+                .map(move |(a, b)| format!("\"{}\",{a:e},{b:e}", s.name))
+        }),
+    )
+}
+
+fn figure(
+    id: &str,
+    chart: Chart,
+    caption: &str,
+    command: &str,
+    csv_names: (&str, &str),
+) -> Result<ReportFigure> {
+    Ok(ReportFigure {
+        id: id.to_string(),
+        title: chart.title.clone(),
+        caption: caption.to_string(),
+        svg: chart_svg(&chart, 960, 520)?,
+        csv: series_csv(csv_names.0, csv_names.1, &chart.series),
+        command: command.to_string(),
+    })
+}
+
+fn table_from(id: String, s: &Section, command: &str) -> ReportTable {
+    ReportTable {
+        id,
+        title: s.title.clone().unwrap_or_default(),
+        headers: s.headers.clone(),
+        rows: s.rows.clone(),
+        notes: s.notes.clone(),
+        command: command.to_string(),
+    }
+}
+
+/// The paper's Figure 2: the rod end at η = 0.35 with two-sided contact, displacement and
+/// velocity against time, beside the damped harmonic oscillator with the same loss per
+/// half-cycle.
+fn figure_2(root: &Path) -> Result<Vec<ReportFigure>> {
+    let case = Case::load(&root.join("cases/rod_end_bilateral.toml"))?;
+    let law = case.law();
+    let v0 = case.impact_velocity;
+    let settings = Settings {
+        method: Method::Rk4,
+        contact: ContactKind::Bilateral,
+        record: true,
+        periods: 3.0,
+        ..Settings::default()
+    };
+    let out = paper::solve(&law, v0, &settings)?;
+    let e = exact::restitution(law.loss_coefficient);
+    let zeta = DashpotLaw::damping_ratio(e);
+    let w0 = (law.stiffness / law.mass).sqrt();
+    let wd = w0 * (1.0 - zeta * zeta).sqrt();
+    let t_end = out.trajectory.last().map_or(0.0, |s| s.t);
+    let oscillator = |t: f64| {
+        let decay = (-zeta * w0 * t).exp();
+        (
+            v0 / wd * decay * (wd * t).sin(),
+            v0 * decay * ((wd * t).cos() - zeta * w0 / wd * (wd * t).sin()),
+        )
+    };
+    let grid: Vec<f64> = (0..=1500).map(|i| t_end * i as f64 / 1500.0).collect();
+    let ms = 1e3;
+    let um = 1e6;
+    let paper_y = out
+        .trajectory
+        .iter()
+        .map(|s| (s.t * ms, s.y * um))
+        .collect();
+    let paper_v = out.trajectory.iter().map(|s| (s.t * ms, s.v)).collect();
+    let osc_y = grid
+        .iter()
+        .map(|&t| (t * ms, oscillator(t).0 * um))
+        .collect();
+    let osc_v = grid.iter().map(|&t| (t * ms, oscillator(t).1)).collect();
+    let command = "millimpact run cases/rod_end_bilateral.toml --method rk4 --trajectory fig2.csv";
+    let caption = format!(
+        "Rod end on a rigid plate, η = {}, two-sided contact (paper Eq. 14), the paper's RK4 at T/1000; beside it the damped harmonic oscillator with the same undamped frequency and the same loss per half-cycle (ζ = {:.4}, speed ratio e = {:.4} per half-cycle). The paper's law decays linearly in amplitude ratio per half-cycle with a kinked velocity at each turning point; the oscillator's is smooth.",
+        law.loss_coefficient, zeta, e
+    );
+    Ok(vec![
+        figure(
+            "fig2-displacement",
+            Chart {
+                title: "Figure 2a: rod end displacement, η = 0.35".into(),
+                x_label: "time t (ms)".into(),
+                y_label: "approach y (µm)".into(),
+                series: vec![
+                    Series::new("paper's law, bilateral", paper_y, Style::Line),
+                    Series::new("damped oscillator, same loss", osc_y, Style::Thin),
+                ],
+            },
+            &caption,
+            command,
+            ("t_ms", "y_um"),
+        )?,
+        figure(
+            "fig2-velocity",
+            Chart {
+                title: "Figure 2b: rod end velocity, η = 0.35".into(),
+                x_label: "time t (ms)".into(),
+                y_label: "approach rate ẏ (m/s)".into(),
+                series: vec![
+                    Series::new("paper's law, bilateral", paper_v, Style::Line),
+                    Series::new("damped oscillator, same loss", osc_v, Style::Thin),
+                ],
+            },
+            &caption,
+            command,
+            ("t_ms", "v_m_per_s"),
+        )?,
+    ])
+}
+
+/// The paper's Figure 3: COR against η, rod (line) and ball (dots) by the paper's RK4, the
+/// closed form, and the small-η line 1 − η.
+fn figure_3(root: &Path) -> Result<ReportFigure> {
+    let etas: Vec<f64> = (0..=19).map(|i| 0.05 * i as f64).collect();
+    let mut series = Vec::new();
+    for (name, file, style) in [
+        ("rod end, rk4 (line)", "rod_end", Style::Line),
+        ("ball on plate, rk4 (dots)", "ball_plate", Style::Dots),
+    ] {
+        let case = Case::load(&root.join(format!("cases/{file}.toml")))?;
+        let mut pts = Vec::new();
+        for &eta in &etas {
+            let at = case.with_loss_coefficient(eta);
+            let settings = Settings {
+                method: Method::Rk4,
+                ..Settings::default()
+            };
+            pts.push((
+                eta,
+                paper::solve(&at.law(), at.impact_velocity, &settings)?
+                    .figures
+                    .cor,
+            ));
+        }
+        series.push(Series::new(name, pts, style));
+    }
+    let fine: Vec<f64> = (0..=200).map(|i| 0.95 * i as f64 / 200.0).collect();
+    series.push(Series::new(
+        "closed form √((1−η)/(1+η))",
+        fine.iter().map(|&h| (h, exact::restitution(h))).collect(),
+        Style::Thin,
+    ));
+    series.push(Series::new(
+        "small-η line 1 − η",
+        fine.iter().map(|&h| (h, 1.0 - h)).collect(),
+        Style::Thin,
+    ));
+    figure(
+        "fig3-cor-vs-eta",
+        Chart {
+            title: "Figure 3: COR against the loss coefficient".into(),
+            x_label: "loss coefficient η (–)".into(),
+            y_label: "coefficient of restitution e (–)".into(),
+            series,
+        },
+        "The rod (linear, n = 1) and the ball (Hertz, n = 1.5) give one curve: the COR depends on η alone. Numerical points by the paper's RK4 at T/1000; the closed form through them; the line 1 − η it bends away from as η grows.",
+        "millimpact sweep cases/rod_end.toml --loss-coefficient 0:0.95:0.05 --method rk4 (and cases/ball_plate.toml)",
+        ("eta", "cor"),
+    )
+}
+
+/// Force–overlap loops and force–time curves of the paper's law and each code's law.
+fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
+    let law = case.law();
+    let v0 = case.impact_velocity;
+    let settings = Settings {
+        method: Method::Rk4Event,
+        steps_per_period: 2000,
+        record: true,
+        ..Settings::default()
+    };
+    let out = paper::solve(&law, v0, &settings)?;
+    let (um, kn, us) = (1e6, 1e-3, 1e6);
+    let mut loops = vec![Series::new(
+        "paper's law",
+        out.trajectory
+            .iter()
+            .map(|s| (s.y * um, law.force(s.y, s.v) * kn))
+            .collect(),
+        Style::Line,
+    )];
+    let mut times = vec![Series::new(
+        "paper's law",
+        out.trajectory
+            .iter()
+            .map(|s| (s.t * us, law.force(s.y, s.v) * kn))
+            .collect(),
+        Style::Line,
+    )];
+    for &code in CodeName::ALL {
+        let driver = code.driver();
+        let setup = codes::prepare(driver, case, None, None, false)?;
+        let own = driver.law(&setup);
+        let t = step_trajectory(
+            &own,
+            setup.impact_velocity,
+            setup.timestep,
+            setup.steps,
+            driver.step_scheme(),
+        );
+        let end = t
+            .overlap
+            .iter()
+            .skip(1)
+            .position(|&y| y <= 0.0)
+            .map_or(t.time.len(), |k| k + 2);
+        let name = format!("{code} law, stepped as {code}");
+        loops.push(Series::new(
+            name.clone(),
+            (0..end)
+                .map(|i| (t.overlap[i] * um, t.normal_force[i] * kn))
+                .collect(),
+            if code == CodeName::Lammps {
+                Style::Thin
+            } else {
+                Style::Line
+            },
+        ));
+        times.push(Series::new(
+            name,
+            (0..end)
+                .map(|i| (t.time[i] * us, t.normal_force[i] * kn))
+                .collect(),
+            if code == CodeName::Lammps {
+                Style::Thin
+            } else {
+                Style::Line
+            },
+        ));
+    }
+    let n = &case.name;
+    let caption_loop = format!(
+        "{n}, η = {}: normal force against overlap. The paper's law loads along C(1+η)yⁿ and unloads along C(1−η)yⁿ with a jump at the turning point; the codes' viscoelastic laws at the same COR draw a rounded loop with a lower peak, and end with the force at or below zero while overlap is left. LIGGGHTS and LAMMPS run the same law (the lines coincide).",
+        case.loss_coefficient
+    );
+    let caption_time = format!(
+        "{n}, η = {}: normal force against time. The codes' force returns to zero well before the overlap closes (force-based contact end).",
+        case.loss_coefficient
+    );
+    let command = format!("millimpact compare cases/{n}.toml");
+    Ok(vec![
+        figure(
+            &format!("force-overlap-{n}"),
+            Chart {
+                title: format!("Force–overlap loop, {n}"),
+                x_label: "overlap y (µm)".into(),
+                y_label: "normal force F (kN)".into(),
+                series: loops,
+            },
+            &caption_loop,
+            &command,
+            ("overlap_um", "force_kN"),
+        )?,
+        figure(
+            &format!("force-time-{n}"),
+            Chart {
+                title: format!("Force against time, {n}"),
+                x_label: "time t (µs)".into(),
+                y_label: "normal force F (kN)".into(),
+                series: times,
+            },
+            &caption_time,
+            &command,
+            ("t_us", "force_kN"),
+        )?,
+    ])
+}
+
+/// The codes' model differences as functions of e (from the compare report's points).
+fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure> {
+    let mut series = Vec::new();
+    for &code in CodeName::ALL {
+        let pts: Vec<_> = c
+            .model_by_restitution
+            .iter()
+            .filter(|p| p.code == code)
+            .collect();
+        for (what, f) in [
+            (
+                "peak force",
+                (|p: &super::compare::ModelPoint| p.offsets.peak_force) as fn(&_) -> f64,
+            ),
+            ("contact time by force", |p| p.offsets.force_contact_time),
+            ("contact time by overlap", |p| p.offsets.contact_time),
+            ("peak deformation", |p| p.offsets.peak_deformation),
+        ] {
+            series.push(Series::new(
+                format!("{code}: {what}"),
+                pts.iter().map(|p| (p.restitution, 100.0 * f(p))).collect(),
+                if code == CodeName::Lammps {
+                    Style::Dots
+                } else {
+                    Style::Line
+                },
+            ));
+        }
+    }
+    figure(
+        &format!("model-by-e-{}", c.case),
+        Chart {
+            title: format!("Model difference from the paper's law, {}", c.case),
+            x_label: "coefficient of restitution e (–)".into(),
+            y_label: "code's law − paper's law (% of the paper's)".into(),
+            series,
+        },
+        "Each code's law, as its driver sets it for the COR, against the paper's law at the same COR, both integrated exactly. Peak force and force-based contact time differ most; all differences vanish as e → 1. LAMMPS (dots) runs the same law as LIGGGHTS.",
+        &format!("millimpact compare {} --format csv", c.path),
+        ("e", "difference_percent"),
+    )
+}
+
+/// The COR each code realises against the COR asked of it, as the drivers set the code up and
+/// as a user who takes each code's setting at its word would (LAMMPS `tsuji` with e_in = e,
+/// YADE `en = e`, the clamps on).
+fn realised_vs_requested(root: &Path) -> Result<(ReportFigure, ReportTable)> {
+    let case = Case::load(&root.join("cases/ball_plate.toml"))?;
+    let es: Vec<f64> = (0..=13).map(|i| 0.3 + 0.05 * i as f64).collect();
+    let mut series: Vec<Series> = Vec::new();
+    let mut add = |name: &str, style: Style, f: &dyn Fn(&Case) -> Result<f64>| -> Result<()> {
+        let mut pts = Vec::new();
+        for &e in &es {
+            let at = case.with_loss_coefficient(exact::loss_coefficient(e));
+            pts.push((e, f(&at)? - e));
+        }
+        series.push(Series::new(name, pts, style));
+        Ok(())
+    };
+    let cor_of =
+        |law: &DashpotLaw, v0: f64| -> Result<f64> { Ok(accurate_metrics(law, v0, 1e-11)?.cor) };
+    for &code in CodeName::ALL {
+        add(
+            &format!("{code}, as the driver sets it"),
+            Style::Dots,
+            &|at| {
+                let setup = codes::setup_for_case(at, 1.0);
+                cor_of(&code.driver().law(&setup), at.impact_velocity)
+            },
+        )?;
+    }
+    add("lammps, tsuji with e_in = e", Style::Line, &|at| {
+        let setup = codes::setup_for_case(at, 1.0);
+        let mut law = CodeName::Lammps.driver().law(&setup);
+        law.damping = tsuji_alpha(at.restitution()) * (law.mass * law.stiffness).sqrt();
+        cor_of(&law, at.impact_velocity)
+    })?;
+    add("yade, en = e", Style::Line, &|at| {
+        let setup = codes::setup_for_case(at, 1.0);
+        let mut law = CodeName::Yade.driver().law(&setup);
+        law.damping = 2.0
+            * thornton_damping_ratio(at.restitution())
+            * (1.5 * law.mass * law.stiffness).sqrt();
+        cor_of(&law, at.impact_velocity)
+    })?;
+    add("clamp on (limitForce, limit_damping)", Style::Line, &|at| {
+        let setup = codes::setup_for_case(at, 1.0);
+        cor_of(
+            &CodeName::Liggghts.driver().law(&setup).clamped(),
+            at.impact_velocity,
+        )
+    })?;
+    let command =
+        "millimpact report (figure realised-vs-requested; from the codes' laws, no code run)";
+    let mut headers = vec!["requested e".to_string()];
+    headers.extend(series.iter().map(|s| s.name.clone()));
+    let rows = es
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let mut r = vec![format!("{e:.2}")];
+            r.extend(series.iter().map(|s| format!("{:.6}", s.points[i].1 + e)));
+            r
+        })
+        .collect();
+    let fig = figure(
+        "realised-vs-requested",
+        Chart {
+            title: "Realised minus requested COR, ball on plate".into(),
+            x_label: "requested COR e (–)".into(),
+            y_label: "realised − requested COR (–)".into(),
+            series,
+        },
+        "From each code's own law integrated exactly (no code run). Dots: the codes as the drivers set them up (LAMMPS tsuji compensated, YADE en from the Thornton inversion, no clamp): on zero. Lines: as a user who takes each setting at its word would: LAMMPS tsuji with e_in = e realises a higher COR; YADE with en = e misses by the fit's error; a clamp (LIGGGHTS limitForce on, LAMMPS limit_damping) cuts the attractive tail and raises the COR.",
+        command,
+        ("requested_e", "realised_minus_requested"),
+    )?;
+    let table = ReportTable {
+        id: "realised-vs-requested-table".into(),
+        title: "Realised COR against requested, ball on plate (own laws, exact)".into(),
+        headers,
+        rows,
+        notes: vec![],
+        command: command.into(),
+    };
+    Ok((fig, table))
+}
+
+fn log10(x: f64) -> f64 {
+    x.max(1e-17).log10()
+}
+
+/// The work–precision diagram of the paper's-law methods on ball_plate (a methods-only run).
+fn work_precision(root: &Path) -> Result<ReportFigure> {
+    let case = Case::load(&root.join("cases/ball_plate.toml"))?;
+    let mut series = Vec::new();
+    for &m in Method::ALL.iter().filter(|m| m.integrates()) {
+        let points = method_sweep(&case, m, 3)?;
+        series.push(Series::new(
+            m.to_string(),
+            points
+                .iter()
+                .map(|p| (log10(p.max_error), log10(p.time_s)))
+                .collect(),
+            Style::Line,
+        ));
+    }
+    figure(
+        "work-precision",
+        Chart {
+            title: "Work–precision, ball on plate (this machine, now)".into(),
+            x_label: "log₁₀ largest relative error (COR, peak, contact time)".into(),
+            y_label: "log₁₀ run time of one impact (s)".into(),
+            series,
+        },
+        "Each method of the paper's law swept over its knob (steps per period, or rtol), error against the closed forms, median of 3 timed runs. The DEM codes' points are in reference/work-precision*.md (they take 0.35–1.3 s per run, almost all process start-up).",
+        "millimpact precision cases/ball_plate.toml --repeats 3",
+        ("log10_error", "log10_time_s"),
+    )
+}
+
+/// The stability grid as a map: one row per method, one cell per grid case.
+fn stability_map() -> Result<ReportFigure> {
+    let report = stability_report();
+    let classes = [
+        (
+            "accurate (within its tolerance)",
+            plotters::style::RGBColor(0, 150, 80),
+        ),
+        (
+            "bounded, finite, outside tolerance",
+            plotters::style::RGBColor(230, 160, 0),
+        ),
+        (
+            "fails its criterion",
+            plotters::style::RGBColor(210, 40, 30),
+        ),
+    ];
+    let rows: Vec<(String, Vec<usize>)> = METHODS
+        .iter()
+        .map(|&m| {
+            let cells = report
+                .cases
+                .iter()
+                .filter(|c| c.method == m)
+                .map(|c| match (c.pass, c.accurate) {
+                    (true, true) => 0,
+                    (true, false) => 1,
+                    _ => 2,
+                })
+                .collect();
+            (m.to_string(), cells)
+        })
+        .collect();
+    let n = rows.first().map_or(0, |r| r.1.len());
+    let svg = map_svg(
+        &format!("Stability grid: {n} cases by each method"),
+        "grid case, in the order of stability-map.csv",
+        &rows,
+        &classes,
+        960,
+        360,
+    )?;
+    let csv = rows_csv(
+        "case,family,method,cor_error,accurate,pass",
+        report.cases.iter().map(|c| {
+            format!(
+                "\"{}\",{},{},{:e},{},{}",
+                c.case, c.family, c.method, c.cor_error, c.accurate, c.pass
+            )
+        }),
+    );
+    Ok(ReportFigure {
+        id: "stability-map".into(),
+        title: "Stability grid".into(),
+        caption: "Every built-in stiff or extreme case (E 1e5–1e15 Pa, R 1e-6–1 m, v0 1e-8–1e3 m/s, η 0–0.999999, mass and aspect ratios) by each method: green within the method's stated tolerance, amber finite and bounded but outside it, red failing the method's criterion.".into(),
+        svg,
+        csv,
+        command: "millimpact stability --format json".into(),
+    })
+}
+
+/// Build the report for `cases`; `progress` is told each stage as it starts (one per case
+/// compared, then one per part).
+pub fn build_report(
+    root: &Path,
+    cases: &[Case],
+    options: &ReportOptions,
+    progress: &mut dyn FnMut(&str),
+) -> Result<Report> {
+    let compare_options = CompareOptions {
+        live: options.live,
+        reference: options.reference.clone(),
+        timeout: options.timeout,
+    };
+    let mut compared = compare(&[], &compare_options)?;
+    for case in cases {
+        progress(&format!(
+            "{}: {}",
+            case.name,
+            if options.live {
+                "running the codes"
+            } else {
+                "comparing"
+            }
+        ));
+        compared
+            .cases
+            .extend(compare(std::slice::from_ref(case), &compare_options)?.cases);
+    }
+    progress("the paper's figures");
+    let paths: Vec<String> = cases.iter().map(|c| c.path.display().to_string()).collect();
+    let compare_command = format!(
+        "millimpact compare {}{}",
+        paths.join(" "),
+        if options.live { " --live" } else { "" }
+    );
+    let mut parts = Vec::new();
+    parts.push(ReportPart {
+        id: "paper".into(),
+        title: "The paper's figures".into(),
+        intro: "The law F = C yⁿ (1 + η sign ẏ): its decaying two-sided oscillation (Figure 2) and its COR, which depends on η alone (Figure 3).".into(),
+        figures: {
+            let mut f = figure_2(root)?;
+            f.push(figure_3(root)?);
+            f
+        },
+        tables: vec![],
+    });
+    progress("force–overlap loops");
+    let mut force = Vec::new();
+    for case in cases {
+        force.extend(force_figures(case)?);
+    }
+    parts.push(ReportPart {
+        id: "models".into(),
+        title: "The model difference at a glance".into(),
+        intro: "At equal COR the codes' viscoelastic laws and the paper's hysteretic law draw different loops: lower peak force, and a force that ends before the overlap closes.".into(),
+        figures: force,
+        tables: vec![],
+    });
+    let sections = compared.sections();
+    let mut tables = Vec::new();
+    for (i, s) in sections.iter().enumerate() {
+        tables.push(table_from(format!("agreement-{i}"), s, &compare_command));
+    }
+    let mut by_e = Vec::new();
+    for c in &compared.cases {
+        by_e.push(model_by_e_figure(c)?);
+    }
+    parts.push(ReportPart {
+        id: "agreement".into(),
+        title: "Agreement: every figure, every source".into(),
+        intro: format!(
+            "From {}. Contact time by overlap (first touch until the overlap returns to zero; the figure quoted before) and by force (until the normal force first returns to zero). Each code's difference from the paper's law is split into model (own law exact − paper's law exact), integration (own law stepped − own law exact, given as a band over where the first contact falls within a step, with the stored run's start as a point in it) and a remainder (code − own law stepped).",
+            if options.live { "the installed codes, run now" } else { "the stored references" }
+        ),
+        figures: by_e,
+        tables,
+    });
+    progress("realised against requested COR");
+    let (fig, table) = realised_vs_requested(root)?;
+    parts.push(ReportPart {
+        id: "conventions".into(),
+        title: "Where each code's convention bites".into(),
+        intro: "The COR each code realises against the COR asked of it, set up as the drivers set it and as a user who takes each setting at its word would.".into(),
+        figures: vec![fig],
+        tables: vec![table],
+    });
+    parts.push(ReportPart {
+        id: "cost".into(),
+        title: "Accuracy, cost and stability".into(),
+        intro: "The integrators of the paper's law: error against run time, and a grid of stiff and extreme cases.".into(),
+        figures: {
+            progress("work–precision and stability");
+            vec![work_precision(root)?, stability_map()?]
+        },
+        tables: vec![],
+    });
+    let mut versions = std::collections::BTreeSet::new();
+    for path in store::stored_files(&options.reference)? {
+        for r in store::load(&path)?.runs {
+            versions.insert(format!("{}: {}", r.code, r.code_version));
+        }
+    }
+    let mut appendix = vec![
+        format!("millimpact {}", env!("CARGO_PKG_VERSION")),
+        format!(
+            "git revision: {}",
+            options.revision.clone().unwrap_or_else(|| "unknown".into())
+        ),
+        format!(
+            "date: {}",
+            chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Secs, true)
+        ),
+        format!(
+            "source of the code figures: {}",
+            if options.live {
+                "codes run now"
+            } else {
+                "stored references (reference/)"
+            }
+        ),
+    ];
+    appendix.extend(versions.into_iter().map(|v| format!("code version, {v}")));
+    appendix.push(format!(
+        "reproduce the whole report: millimpact report {}{}",
+        paths.join(" "),
+        if options.live { " --live" } else { "" }
+    ));
+    let data = vec![
+        DataFile {
+            name: "compare.json".into(),
+            text: serde_json::to_string_pretty(&compared)? + "\n",
+        },
+        DataFile {
+            name: "compare.csv".into(),
+            text: csv_string(&compared.records())?,
+        },
+        DataFile {
+            name: "model-by-e.csv".into(),
+            text: rows_csv(
+                "case,code,restitution,loss_coefficient,law_cor,peak_deformation,peak_force,contact_time,force_contact_time,compression_time",
+                compared
+                    .cases
+                    .iter()
+                    .flat_map(|c| c.model_by_restitution.iter())
+                    .map(|p| {
+                        format!(
+                            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
+                            p.case,
+                            p.code,
+                            p.restitution,
+                            p.loss_coefficient,
+                            p.law_cor,
+                            p.offsets.peak_deformation,
+                            p.offsets.peak_force,
+                            p.offsets.contact_time,
+                            p.offsets.force_contact_time,
+                            p.compression_time
+                        )
+                    }),
+            ),
+        },
+    ];
+    Ok(Report {
+        title: "millimpact: the paper's contact law against the DEM codes".into(),
+        parts,
+        appendix,
+        data,
+        failures: compared.failures(),
+    })
+}

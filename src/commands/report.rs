@@ -1,0 +1,116 @@
+//! `millimpact report`.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use std::io::IsTerminal;
+
+use anyhow::{Context, Result};
+use indicatif::{ProgressBar, ProgressStyle};
+
+use super::{CommandOutput, write_output};
+use crate::analysis::compare::CANONICAL_CASES;
+use crate::analysis::report::{ReportOptions, ReportTable, build_report};
+use crate::cli::ReportArgs;
+use crate::error::CheckFailed;
+use crate::model::case::Case;
+use crate::output::report_page::render_pages;
+
+fn table_csv(t: &ReportTable) -> Result<String> {
+    let mut w = csv::Writer::from_writer(Vec::new());
+    w.write_record(&t.headers)?;
+    for r in &t.rows {
+        w.write_record(r)?;
+    }
+    Ok(String::from_utf8(w.into_inner()?)?)
+}
+
+fn revision() -> Option<String> {
+    let out = std::process::Command::new("git")
+        .args(["rev-parse", "--short=12", "HEAD"])
+        .output()
+        .ok()?;
+    out.status
+        .success()
+        .then(|| String::from_utf8_lossy(&out.stdout).trim().to_string())
+}
+
+pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
+    let paths: Vec<PathBuf> = if args.cases.is_empty() {
+        CANONICAL_CASES.iter().map(PathBuf::from).collect()
+    } else {
+        args.cases.clone()
+    };
+    let cases = paths
+        .iter()
+        .map(|p| Case::load(p))
+        .collect::<Result<Vec<_>, _>>()?;
+    let options = ReportOptions {
+        live: args.live,
+        reference: args.reference.clone(),
+        timeout: Duration::from_secs_f64(args.timeout),
+        revision: revision(),
+    };
+    // A progress bar on a terminal, none when output is piped or under CI.
+    let interactive =
+        std::io::stderr().is_terminal() && std::env::var_os("CI").is_none() && args.live;
+    let stages = cases.len() as u64 + 4;
+    let bar = interactive.then(|| {
+        let bar = ProgressBar::new(stages);
+        bar.set_style(
+            ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+                .unwrap_or_else(|_| ProgressStyle::default_bar()),
+        );
+        bar
+    });
+    let mut progress = |stage: &str| {
+        if let Some(bar) = &bar {
+            bar.set_message(stage.to_string());
+            bar.inc(1);
+        }
+    };
+    let report = build_report(Path::new("."), &cases, &options, &mut progress)?;
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let (html, md) = render_pages(&report)?;
+    let out = &args.out;
+    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
+    let mut written = 0usize;
+    let mut write = |name: &str, text: &str| -> Result<()> {
+        written += 1;
+        write_output(&out.join(name), text.as_bytes(), "report")
+    };
+    for part in &report.parts {
+        for f in &part.figures {
+            write(&format!("{}.svg", f.id), &f.svg)?;
+            write(&format!("{}.csv", f.id), &f.csv)?;
+        }
+        for t in &part.tables {
+            write(&format!("{}.csv", t.id), &table_csv(t)?)?;
+            write(
+                &format!("{}.json", t.id),
+                &(serde_json::to_string_pretty(t)? + "\n"),
+            )?;
+        }
+    }
+    for d in &report.data {
+        write(&d.name, &d.text)?;
+    }
+    write("index.md", &md)?;
+    write("index.html", &html)?;
+    let figures: usize = report.parts.iter().map(|p| p.figures.len()).sum();
+    let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
+    let missing = &report.failures;
+    Ok(CommandOutput {
+        text: format!(
+            "report: {} ({} figures, {} tables, {} files)\n",
+            out.join("index.html").display(),
+            figures,
+            tables,
+            written
+        ),
+        failure: (!missing.is_empty())
+            .then(|| CheckFailed(format!("report --live: {}", missing.join("; ")))),
+    })
+}
