@@ -4,8 +4,7 @@ mod common;
 
 use std::path::Path;
 
-use assert_cmd::Command;
-use common::{assert_rel, case_path, root, write};
+use common::{assert_rel, case_path, millimpact, stdout, write};
 use serde_json::Value;
 use tempfile::TempDir;
 
@@ -18,23 +17,6 @@ const CASES: [&str; 7] = [
     "rod_end",
     "rod_end_bilateral",
 ];
-
-fn millimpact() -> Command {
-    let mut cmd = Command::cargo_bin("millimpact").unwrap();
-    cmd.current_dir(root());
-    cmd
-}
-
-fn stdout(cmd: &mut Command) -> String {
-    let output = cmd.output().unwrap();
-    assert!(
-        output.status.success(),
-        "exit {:?}: {}",
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout).unwrap()
-}
 
 fn run_json(case: &Path, method: &str) -> Value {
     let text = stdout(

@@ -4,8 +4,6 @@
 //! The live tests run the real binary; without it they fail (they do not skip), because a
 //! harness that silently stops comparing is worse than one that says it cannot.
 
-use std::path::Path;
-
 use millimpact::codes::lammps::{
     self, Lammps, exact_hertz_alpha, parse_loop_time, parse_trajectory, parse_version, tsuji_alpha,
     tsuji_input_for_alpha,
@@ -51,7 +49,7 @@ fn run(setup: &CodeSetup) -> (CodeRun, TrajectoryMetrics) {
 
 #[test]
 fn parses_recorded_sample() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/lammps");
+    let dir = common::root().join("tests/data/lammps");
     let text = std::fs::read_to_string(dir.join("ball_plate_trajectory.txt")).unwrap();
     let log = std::fs::read_to_string(dir.join("ball_plate_screen.txt")).unwrap();
     let t = parse_trajectory(&text).unwrap();
