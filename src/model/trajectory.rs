@@ -94,7 +94,8 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
         }
         let (d0, d1) = (t.overlap[i - 1], t.overlap[i]);
         let (t0, t1) = (t.time[i - 1], t.time[i]);
-        if d1 == d0 {
+        // Equal overlaps only when both are zero (the signs differ): no slope to interpolate.
+        if d0 - d1 == 0.0 {
             t1
         } else {
             t0 + (t1 - t0) * d0 / (d0 - d1)
@@ -122,6 +123,8 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
 mod tests {
     use super::*;
 
+    // Every value here is a small binary fraction, computed without rounding: exact.
+    #[allow(clippy::float_cmp)]
     #[test]
     fn trajectory_metrics_interpolates_the_zero_crossings() {
         // Overlap rises from -1 to 3 and falls to -1: zero crossings at t = 0.25 and t = 3.75.
