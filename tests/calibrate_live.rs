@@ -31,7 +31,11 @@ fn each_code_set_up_as_its_card_says_realises_the_predicted_cor() {
                 "{code}: the run's input has `{line}`"
             );
         }
-        assert_eq!(run.timestep, card.timestep, "{code}");
+        // The card's step is the one the run is given: the same number, not a near one.
+        #[allow(clippy::float_cmp)]
+        {
+            assert_eq!(run.timestep, card.timestep, "{code}");
+        }
         eprintln!(
             "{code} on {name}: card {:.9} [{:.9}, {:.9}], run {:.9}",
             card.realised_cor, card.realised_band.min, card.realised_band.max, run.cor

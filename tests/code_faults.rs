@@ -5,7 +5,9 @@
 use std::os::unix::fs::PermissionsExt;
 use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
+mod common;
+
+use common::millimpact;
 use predicates::prelude::*;
 use tempfile::TempDir;
 
@@ -21,12 +23,6 @@ fn path_with(dir: &Path) -> String {
         dir.display(),
         std::env::var("PATH").unwrap_or_default()
     )
-}
-
-fn millimpact() -> Command {
-    let mut cmd = Command::cargo_bin("millimpact").unwrap();
-    cmd.current_dir(env!("CARGO_MANIFEST_DIR"));
-    cmd
 }
 
 /// Run millimpact with `bin` first on PATH and scratch directories under `scratch`; expect exit

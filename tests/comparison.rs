@@ -78,13 +78,13 @@ fn the_paper_law_read_as_a_trajectory_gives_the_closed_forms() {
             m.peak_force,
             e.peak_force
         );
-        // The closed forms the comparison uses for the paper's law.
+        // The closed forms the comparison uses for the paper's law agree with the integration.
         let p = paper_metrics(&e);
-        assert_eq!(p.force_contact_time, p.contact_time);
-        assert_eq!(
-            p.peak_force,
-            law.stiffness * (1.0 + law.loss_coefficient) * e.peak_deformation.powf(law.exponent)
+        assert!(
+            rel(p.force_contact_time, m.force_contact_time) < tol,
+            "{name}"
         );
+        assert!(rel(p.peak_force, m.peak_force) < tol, "{name}");
     }
 }
 
@@ -103,7 +103,8 @@ fn rk4_reference(law: &DashpotLaw, v0: f64, h: f64) -> Reference {
     // touch), so that a step straddling the start or the end stays smooth; the crossing is
     // interpolated inside the step.
     let force = |y: f64, v: f64| {
-        let f = if law.exponent == 1.0 && law.damping_exponent == 0.0 {
+        let linear = law.exponent < 1.25 && law.damping_exponent.abs() < 1e-12;
+        let f = if linear {
             law.stiffness * y + law.damping * v
         } else {
             let y = y.max(0.0);
@@ -234,7 +235,11 @@ fn model_differences_shrink_towards_the_elastic_limit() {
             "{p:?}"
         );
     }
-    let at = |e: f64| points.iter().filter(move |p| p.restitution == e);
+    let at = |e: f64| {
+        points
+            .iter()
+            .filter(move |p| (p.restitution - e).abs() < 1e-12)
+    };
     for (lo, hi) in at(0.6).zip(at(0.95)) {
         assert!(hi.offsets.peak_force.abs() < lo.offsets.peak_force.abs());
         assert!(hi.offsets.contact_time.abs() < lo.offsets.contact_time.abs());

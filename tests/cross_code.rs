@@ -7,12 +7,12 @@
 //! Hertz's (or the linear spring's) within the step error, and the live run reproduces the
 //! stored reference in reference/.
 
-use std::path::Path;
 use std::time::Duration;
 
 mod common;
 
 use common::codes::relative;
+use common::shipped as case;
 use millimpact::analysis::store::{self as references, ReferenceOptions, ReferenceRecord};
 use millimpact::analysis::verify::{COR_TOLERANCE, EMULATION_TOLERANCE, REMAINDER_TOLERANCE};
 use millimpact::codes::CodeName;
@@ -20,11 +20,6 @@ use millimpact::model::case::Case;
 
 const CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
 const TIMEOUT: Duration = Duration::from_secs(300);
-
-fn case(name: &str) -> Case {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("cases/{name}.toml"));
-    Case::load(&path).unwrap()
-}
 
 fn options(clamp_attractive: bool) -> ReferenceOptions {
     ReferenceOptions {
@@ -107,7 +102,7 @@ fn elastic_contact_time_is_hertz_within_the_step() {
 
 #[test]
 fn a_live_run_reproduces_the_stored_reference() {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+    let folder = common::root().join("reference");
     for &driver in CodeName::ALL {
         for name in CASES {
             let c = case(name);
@@ -133,7 +128,7 @@ fn a_live_run_reproduces_the_stored_reference() {
 
 #[test]
 fn stored_references_cover_every_code_case_and_the_elastic_case() {
-    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
+    let folder = common::root().join("reference");
     for &driver in CodeName::ALL {
         for name in CASES {
             let file =

@@ -5,8 +5,7 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use assert_cmd::Command;
-use common::{case_path, shipped, write};
+use common::{case_path, millimpact, shipped, write};
 use millimpact::solve::Method;
 use millimpact::solve::paper::{self, Settings, angular_frequency, stability_limit};
 use tempfile::TempDir;
@@ -48,10 +47,6 @@ density = 7800.0
 youngs_modulus = 2.0e11
 poisson_ratio = 0.3
 "#;
-
-fn millimpact() -> Command {
-    Command::cargo_bin("millimpact").unwrap()
-}
 
 /// Replace exactly one occurrence of `from` in `text`.
 fn edit(text: &str, from: &str, to: &str) -> String {

@@ -56,6 +56,8 @@ const ALL_CASES: [(SceneKind, bool); 4] = [
 const SAMPLE_TRAJECTORY: &str = include_str!("data/liggghts/traj.txt");
 const SAMPLE_LOG: &str = include_str!("data/liggghts/log.txt");
 
+// The recorded first row is written exactly: t = 0, v = v0, F = 0.
+#[allow(clippy::float_cmp)]
 #[test]
 fn parser_reads_the_recorded_sample() {
     let parsed = liggghts::parse_output(SAMPLE_TRAJECTORY, SAMPLE_LOG).unwrap();

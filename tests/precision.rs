@@ -1,27 +1,12 @@
 //! `millimpact precision`: the observed orders, the documented JSON shape, the SVG, and one
 //! live DEM code to prove the code path (the codes are installed; a missing binary fails).
 
-use std::path::PathBuf;
+mod common;
 
-use assert_cmd::Command;
+use common::{millimpact, shipped as case};
 use millimpact::analysis::precision::{self, Point};
-use millimpact::model::case::Case;
 use millimpact::solve::Method;
 use serde_json::Value;
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-fn case(name: &str) -> Case {
-    Case::load(&root().join("cases").join(format!("{name}.toml"))).unwrap()
-}
-
-fn millimpact() -> Command {
-    let mut cmd = Command::cargo_bin("millimpact").unwrap();
-    cmd.current_dir(root());
-    cmd
-}
 
 fn run_json(args: &[&str]) -> Value {
     let out = millimpact()

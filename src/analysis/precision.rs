@@ -26,6 +26,7 @@ use serde::Serialize;
 use super::source::Source;
 use crate::codes::{self, CodeName, RunOptions};
 use crate::model::case::Case;
+use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::trajectory_metrics;
@@ -245,7 +246,11 @@ pub const ORDER_NOTES: [(NoteSubject, &str); 6] = [
 pub fn steps_per_period_sweep() -> Vec<u32> {
     let (lo, hi, count) = (8.0f64, 20000.0f64, 19);
     (0..count)
-        .map(|k| (lo * (hi / lo).powf(k as f64 / (count - 1) as f64)).round() as u32)
+        .map(|k| {
+            let n = round_count(lo * (hi / lo).powf(f64::from(k) / f64::from(count - 1)));
+            n.and_then(|n| u32::try_from(n).ok())
+                .expect("8 to 20000 steps per period")
+        })
         .collect()
 }
 
@@ -288,8 +293,10 @@ pub fn method_point(
     let warm = paper::solve(law, v0, settings)
         .with_context(|| format!("{} at {}", settings.method, knob.sentence(value)))?;
     let single = started.elapsed().max(Duration::from_nanos(50));
-    let batch = (BATCH_TIME.as_secs_f64() / single.as_secs_f64()).ceil() as u32;
-    let batch = batch.clamp(1, 100_000);
+    // A run faster than the clock resolves would ask for an unbounded batch: capped.
+    let batch = ceil_count(BATCH_TIME.as_secs_f64() / single.as_secs_f64())
+        .unwrap_or(u64::MAX)
+        .clamp(1, 100_000);
     let mut times: Vec<f64> = (0..repeats.max(1))
         .map(|_| {
             let t0 = Instant::now();

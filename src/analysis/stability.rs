@@ -28,6 +28,7 @@ use serde::Serialize;
 use super::run::RunReport;
 use super::tolerance::{Differences, Tolerance};
 use crate::model::case::{Case, ContactKind};
+use crate::model::count::ceil_count;
 use crate::model::exact;
 use crate::model::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
 use crate::output::{Section, Summary};
@@ -293,7 +294,10 @@ pub struct CaseResult {
 pub fn work_bound(method: Method, contact_time: f64, timestep: Option<f64>) -> u64 {
     match (method, timestep) {
         (Method::Dopri5, _) | (_, None) => 100_000,
-        (_, Some(h)) => (2.0 * contact_time / h).ceil() as u64 + 100,
+        // A step so small that the bound passes u64 is no bound at all.
+        (_, Some(h)) => {
+            ceil_count(2.0 * contact_time / h).map_or(u64::MAX, |n| n.saturating_add(100))
+        }
     }
 }
 

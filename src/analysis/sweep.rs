@@ -6,6 +6,7 @@ use serde::Serialize;
 use super::run::{IntegrationOptions, SweepRow, run_case};
 use crate::error::UserError;
 use crate::model::case::Case;
+use crate::model::count::round_count;
 use crate::output::{Section, Summary, sci, signed};
 
 /// Most values a sweep may have.
@@ -32,7 +33,9 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
     if !(count.is_finite() && count <= MAX_SWEEP_POINTS as f64) {
         return Err(refuse(&format!("at most {MAX_SWEEP_POINTS} values")));
     }
-    let count = count as usize;
+    let count = round_count(count)
+        .and_then(|n| usize::try_from(n).ok())
+        .ok_or_else(|| refuse(&format!("at most {MAX_SWEEP_POINTS} values")))?;
     Ok((0..count).map(|i| start + i as f64 * step).collect())
 }
 

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::CodeDriver;
 use crate::model::case::Case;
+use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
 use crate::solve::SolveError;
 use crate::solve::dashpot::accurate_metrics;
@@ -201,6 +202,7 @@ pub fn prepare(
     setup.clamp_attractive = clamp_attractive;
     let law = driver.law(&setup);
     let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
-    setup.steps = (1.05 * contact / dt).ceil() as u64 + 3;
+    // A step so small that the count passes u64 saturates: the run then meets its time limit.
+    setup.steps = ceil_count(1.05 * contact / dt).map_or(u64::MAX, |n| n.saturating_add(3));
     Ok(setup)
 }

@@ -64,6 +64,8 @@ pub struct Yade;
 /// Hertz–Mindlin law: Thornton, Cummins & Cleary, Powder Technol. 233 (2013) 30–46, Eq. (B6)
 /// `β = sqrt(1 / (1 - (1+e)² exp(α)) - 1)` with the polynomial fit (B7)
 /// `α = Σ h_i e^i` of their Table 2. `e = 1` gives exactly zero.
+// `e = 1` is compared exactly: it is the one input YADE special-cases (the fit does not vanish).
+#[allow(clippy::float_cmp)]
 pub fn thornton_damping_ratio(restitution: f64) -> f64 {
     const H: [f64; 10] = [
         -6.918798, -16.41105, 146.8049, -796.4559, 2928.711, -7206.864, 11494.29, -11342.18,
@@ -99,6 +101,8 @@ fn hertz_mindlin_cor(en: f64) -> f64 {
 /// damping as `en → 1` (β_n² tends to 2.06e-5, not 0; only `en = 1` itself gives 0), so
 /// restitutions between about 0.979 and 1 cannot be realised: `None` for them, and for any
 /// other target no `en` in (0, 1] reaches.
+// A target of exactly 1 is passed through exactly, as YADE's own `en = 1` special case.
+#[allow(clippy::float_cmp)]
 pub fn hertz_input_restitution(target: f64) -> Option<f64> {
     if !(target > 0.0 && target <= 1.0) {
         return None;

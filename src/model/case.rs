@@ -84,6 +84,17 @@ impl Case {
     }
 
     /// Read and validate a case file.
+    ///
+    /// ```
+    /// use millimpact::Case;
+    ///
+    /// let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rod_end.toml");
+    /// let case = Case::load(&path)?;
+    /// assert_eq!(case.name, "rod_end");
+    /// assert_eq!((case.impact_velocity, case.loss_coefficient), (2.0, 0.35));
+    /// assert_eq!(case.law().exponent, 1.0); // a rod's end: linear contact
+    /// # Ok::<(), millimpact::model::case::CaseError>(())
+    /// ```
     pub fn load(path: &Path) -> Result<Case, CaseError> {
         let file = path.display().to_string();
         let fail = |key: &str, value: &str, allowed: &str| CaseError {

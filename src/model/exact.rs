@@ -42,6 +42,22 @@ pub struct ImpactFigures {
 }
 
 /// The exact impact of the paper's law at approach speed `v0` (m/s).
+///
+/// For a linear spring (n = 1) the figures are those of a half oscillation, loading at
+/// ω = sqrt(C (1+η) / M) and unloading at sqrt(C (1-η) / M):
+///
+/// ```
+/// use millimpact::model::law::PaperLaw;
+/// use millimpact::paper_impact;
+///
+/// let law = PaperLaw { mass: 2.0, stiffness: 8.0, exponent: 1.0, loss_coefficient: 0.28 };
+/// let f = paper_impact(&law, 3.0);
+/// let (w_in, w_out) = ((8.0f64 * 1.28 / 2.0).sqrt(), (8.0f64 * 0.72 / 2.0).sqrt());
+/// let pi = std::f64::consts::PI;
+/// assert!((f.cor - (0.72f64 / 1.28).sqrt()).abs() < 1e-15);
+/// assert!((f.peak_deformation - 3.0 / w_in).abs() < 1e-14);
+/// assert!((f.contact_time - (pi / (2.0 * w_in) + pi / (2.0 * w_out))).abs() < 1e-14);
+/// ```
 pub fn paper_impact(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
     let (n, eta, v0) = (law.exponent, law.loss_coefficient, impact_velocity);
     let e = restitution(eta);

@@ -2,6 +2,7 @@
 //! the trajectories and figures every source is read into. No I/O but reading a case.
 
 pub mod case;
+pub mod count;
 pub mod exact;
 pub mod law;
 pub mod scene;

@@ -163,7 +163,7 @@ pub fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String, Outpu
         }
         for (i, s) in chart.series.iter().enumerate() {
             let colour = colour(i);
-            let y = 50 + 24 * i as i32;
+            let y = 50 + 24 * i32::try_from(i).unwrap_or(i32::MAX / 48);
             match s.style {
                 Style::Dots => legend
                     .draw(&Circle::new((22, y), 4, colour.filled()))
@@ -227,8 +227,12 @@ pub fn map_svg(
             .y_labels(rows.len() * 2 + 1)
             .y_label_formatter(&|v| {
                 let k = *v - 0.5;
-                if (k - k.round()).abs() < 1e-9 && k >= 0.0 {
-                    names.get(k.round() as usize).cloned().unwrap_or_default()
+                let at = names
+                    .iter()
+                    .enumerate()
+                    .find(|(j, _)| (k - *j as f64).abs() < 1e-9);
+                if let Some((_, name)) = at {
+                    name.clone()
                 } else {
                     String::new()
                 }
@@ -247,7 +251,7 @@ pub fn map_svg(
             .map_err(|e| fail(&e))?;
         }
         for (i, (name, colour)) in classes.iter().enumerate() {
-            let y = 50 + 24 * i as i32;
+            let y = 50 + 24 * i32::try_from(i).unwrap_or(i32::MAX / 48);
             legend
                 .draw(&Rectangle::new([(10, y - 7), (30, y + 7)], colour.filled()))
                 .map_err(|e| fail(&e))?;

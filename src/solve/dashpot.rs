@@ -46,7 +46,8 @@ pub fn step_trajectory_from(
     scheme: StepScheme,
     gap: f64,
 ) -> CodeTrajectory {
-    let capacity = steps as usize + 1;
+    // Only a hint: a count beyond memory is left to grow as the steps come.
+    let capacity = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
     let mut out = CodeTrajectory {
         time: Vec::with_capacity(capacity),
         overlap: Vec::with_capacity(capacity),

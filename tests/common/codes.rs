@@ -5,6 +5,7 @@
 use std::f64::consts::PI;
 
 use millimpact::codes::{CodeSetup, CodeSphere};
+use millimpact::model::count::round_count;
 use millimpact::model::scene::SceneKind;
 
 /// Ball radius, m.
@@ -152,7 +153,7 @@ pub fn code_setup(which: Canonical, e: f64, per_contact: f64, run_length: f64) -
         impact_velocity: IMPACT_VELOCITY,
         target_restitution: e,
         timestep: 0.0,
-        steps: (run_length * per_contact).round() as u64,
+        steps: round_count(run_length * per_contact).expect("a step count"),
         clamp_attractive: false,
     };
     setup.timestep = elastic_contact_time(&setup) / per_contact;

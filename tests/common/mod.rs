@@ -1,7 +1,10 @@
-//! Helpers shared by the solver, CLI and invalid-input tests.
+//! Helpers shared by every integration test: the crate's folders, the shipped cases, the
+//! binary, cases built in code, and relative comparisons.
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
 
 use millimpact::model::case::Case;
 use millimpact::model::case::ContactKind;
@@ -20,6 +23,26 @@ pub fn case_path(name: &str) -> PathBuf {
 /// A shipped case, loaded through the validating reader.
 pub fn shipped(name: &str) -> Case {
     Case::load(&case_path(name)).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
+/// The `millimpact` binary, run from the crate's root (so `cases/` and `reference/` resolve).
+pub fn millimpact() -> Command {
+    let mut cmd = Command::cargo_bin("millimpact").unwrap();
+    cmd.current_dir(root());
+    cmd
+}
+
+/// Run `cmd`, require exit 0, and return its standard output.
+#[track_caller]
+pub fn stdout(cmd: &mut Command) -> String {
+    let output = cmd.output().unwrap();
+    assert!(
+        output.status.success(),
+        "exit {:?}: {}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout).unwrap()
 }
 
 /// Steel: E = 200 GPa, ν = 0.3.
