@@ -137,29 +137,68 @@ pub struct SeriesEnd<'a> {
 /// Largest number of steps in one phase before the run is declared stuck.
 pub const STEP_BUDGET: u64 = 200_000_000;
 
+/// The values of the event functions at one state, kept on the stack for the few events a phase
+/// watches.
+enum EventValues {
+    Inline([f64; 4], usize),
+    Heap(Vec<f64>),
+}
+
+impl EventValues {
+    #[inline]
+    fn at(events: &[&dyn Fn(&State) -> f64], s: &State) -> Self {
+        if events.len() <= 4 {
+            let mut values = [0.0; 4];
+            for (value, g) in values.iter_mut().zip(events) {
+                *value = g(s);
+            }
+            EventValues::Inline(values, events.len())
+        } else {
+            EventValues::Heap(events.iter().map(|g| g(s)).collect())
+        }
+    }
+
+    #[inline]
+    fn as_slice(&self) -> &[f64] {
+        match self {
+            EventValues::Inline(values, len) => &values[..*len],
+            EventValues::Heap(values) => values,
+        }
+    }
+}
+
 /// Integrate `rhs` from `start` at time `t0` until one of `events` changes sign, locating that
 /// instant on the step (the root of the event along a step of the method itself, by the
 /// Illinois variant of regula falsi) and returning the state there. `observe` sees every
 /// accepted state, the event state last.
+///
+/// Generic over the right-hand side, the method and the observer so that each phase compiles to
+/// one loop with the law inlined into the method's stages; nothing is allocated per step.
 #[allow(clippy::too_many_arguments)]
-pub fn march(
-    rhs: &dyn Fn(&State) -> State,
+#[inline]
+pub fn march<R, S, O>(
+    rhs: &R,
     start: State,
     t0: f64,
-    stepper: &mut dyn Stepper,
+    stepper: &mut S,
     events: &[&dyn Fn(&State) -> f64],
     series_end: Option<SeriesEnd<'_>>,
     stats: &mut Stats,
-    observe: &mut dyn FnMut(f64, &State),
-) -> Result<Crossing, SolveError> {
+    observe: &mut O,
+) -> Result<Crossing, SolveError>
+where
+    R: Fn(&State) -> State + ?Sized,
+    S: Stepper,
+    O: FnMut(f64, &State) + ?Sized,
+{
+    let rhs = |s: &State| rhs(s);
     let mut y = start;
     let mut t = t0;
     let mut fy = rhs(&y);
     stats.rhs_evaluations += 1;
     let mut h = stepper.first_step();
     let mut phase_steps = 0u64;
-    let signs = |s: &State| -> Vec<f64> { events.iter().map(|g| g(s)).collect() };
-    let mut g_now = signs(&y);
+    let mut g_now = EventValues::at(events, &y);
     loop {
         if phase_steps > STEP_BUDGET {
             return Err(SolveError::StepBudget {
@@ -190,12 +229,13 @@ pub fn march(
                 event: 0,
             });
         }
-        let trial = stepper.attempt(rhs, &y, &fy, h);
+        let trial = stepper.attempt_with(&rhs, &y, &fy, h);
         stats.rhs_evaluations += trial.rhs_evaluations;
-        let g_next = signs(&trial.state);
+        let g_next = EventValues::at(events, &trial.state);
         let crossed = g_now
+            .as_slice()
             .iter()
-            .zip(&g_next)
+            .zip(g_next.as_slice())
             .position(|(a, b)| *a != 0.0 && (a.signum() != b.signum() || *b == 0.0));
 
         if trial.error > 1.0 || !trial.state.iter().all(|x| x.is_finite()) {
@@ -205,7 +245,8 @@ pub fn march(
         }
         if let Some(event) = crossed {
             let g = events[event];
-            let (theta, state) = locate(rhs, stepper, &y, &fy, h, g, g_now[event], stats);
+            let g_start = g_now.as_slice()[event];
+            let (theta, state) = locate(&rhs, stepper, &y, &fy, h, g, g_start, stats);
             stats.steps += 1;
             let time = t + theta * h;
             observe(time, &state);
@@ -231,9 +272,10 @@ pub fn march(
 /// The fraction `θ` of the step `h` from `y` at which `g` vanishes along the method's own
 /// step map, and the state there.
 #[allow(clippy::too_many_arguments)]
-fn locate(
-    rhs: &dyn Fn(&State) -> State,
-    stepper: &mut dyn Stepper,
+#[inline]
+fn locate<R: Fn(&State) -> State, S: Stepper>(
+    rhs: &R,
+    stepper: &mut S,
     y: &State,
     fy: &State,
     h: f64,
@@ -242,7 +284,7 @@ fn locate(
     stats: &mut Stats,
 ) -> (f64, State) {
     let mut step_to = |theta: f64| {
-        let attempt = stepper.attempt(rhs, y, fy, theta * h);
+        let attempt = stepper.attempt_with(rhs, y, fy, theta * h);
         stats.rhs_evaluations += attempt.rhs_evaluations;
         attempt.state
     };

@@ -317,7 +317,7 @@ fn fixed_step(
 fn phased(
     n: f64,
     eta: f64,
-    stepper: &mut dyn Stepper,
+    stepper: &mut impl Stepper,
     bilateral: bool,
     duration: f64,
     settings: &Settings,
