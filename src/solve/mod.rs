@@ -217,7 +217,7 @@ where
         // as the end is within the series' reach.
         if let Some(end) = series_end.as_ref()
             && y[1] < 0.0
-            && end.series.argument(end.k, -y[1], y[0] / -y[1]).abs() <= series::MAX_W
+            && end.series.within_reach_of_end(end.k, y[0], y[1], fy[1])
             && let Some((s, v)) = end.series.time_to_exit(end.k, y[0], y[1])
         {
             let state = State::new(0.0, -v);

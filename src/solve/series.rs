@@ -56,6 +56,35 @@ impl ContactSeries {
         -k * v.powf(self.n - 1.0) * s.powf(self.n + 1.0)
     }
 
+    /// Whether a state `(y, rate)`, `rate < 0`, of `y'' = -k y^n` is within the series' reach
+    /// of the contact end: `|w| <= MAX_W` for `w` = [`ContactSeries::argument`] at speed
+    /// `-rate` and time `y / -rate`, the test [`ContactSeries::time_to_exit`] starts from.
+    ///
+    /// `accel` is the acceleration the integrator already has at the state, `-k y^n` to
+    /// rounding. It gives the same `|w| = k y^(n+1) / rate²` to a few rounding errors without a
+    /// power, which settles every state clearly beyond the reach (all of a phase but its last
+    /// steps); the powers decide the rest, so the answer is always theirs. The shortcut is
+    /// taken only where neither form can overflow or underflow.
+    pub fn within_reach_of_end(&self, k: f64, y: f64, rate: f64, accel: f64) -> bool {
+        let v = -rate;
+        let moderate = |x: f64| (1e-30..=1e30).contains(&x);
+        if (0.0..=3.0).contains(&self.n) && moderate(k) && moderate(y) && moderate(v) {
+            let w = -accel * y / (v * v);
+            if w > MAX_W * (1.0 + 1e-6) && w <= 1e30 {
+                return false;
+            }
+        }
+        self.within_reach(k, v, y / v)
+    }
+
+    /// `|w| <= MAX_W` by the powers. Kept out of line: the optimiser may otherwise evaluate
+    /// the powers on every step, before the shortcut above has been tested.
+    #[cold]
+    #[inline(never)]
+    fn within_reach(&self, k: f64, v: f64, s: f64) -> bool {
+        self.argument(k, v, s).abs() <= MAX_W
+    }
+
     /// The longest time from contact at speed `v` over which the series may be used.
     pub fn reach(&self, k: f64, v: f64) -> f64 {
         (MAX_W / (k * v.powf(self.n - 1.0))).powf(1.0 / (self.n + 1.0))
@@ -70,6 +99,10 @@ impl ContactSeries {
     /// From a state `(y > 0, y' < 0)` approaching contact end under `y'' = -k y^n`, the time
     /// left until `y = 0` and the speed there, `(s, v)`; `None` if the state is too far from
     /// the end for the series.
+    ///
+    /// Out of line: inlined into an integrator's loop, its powers may be hoisted above the test
+    /// that decides whether it is called at all, and paid on every step.
+    #[inline(never)]
     pub fn time_to_exit(&self, k: f64, y: f64, rate: f64) -> Option<(f64, f64)> {
         if y <= 0.0 {
             return Some((0.0, -rate));
