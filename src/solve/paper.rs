@@ -292,10 +292,10 @@ fn fixed_step(
             if first_end.is_none() {
                 first_end = Some((t, y[1].abs()));
             }
-            out.crossing_speeds.push(y[1].abs());
             if !bilateral {
                 break;
             }
+            out.crossing_speeds.push(y[1].abs());
         }
         if bilateral && first_end.is_some() && t >= duration {
             break;
@@ -306,9 +306,6 @@ fn fixed_step(
     out.cor = speed;
     out.contact_time = end;
     out.compression_time = turning.unwrap_or(end);
-    if !bilateral {
-        out.crossing_speeds.clear();
-    }
     Ok(out)
 }
 
@@ -333,6 +330,7 @@ fn phased(
     let record = settings.record;
     let (mut t, mut speed, mut sign) = (0.0f64, 1.0f64, 1.0f64);
     let mut samples = Vec::new();
+    let mut first_contact = true;
     loop {
         // Bilateral half-cycles after the first mirror the first: the law is odd in y.
         let mut observe = |time: f64, s: &State| {
@@ -398,14 +396,17 @@ fn phased(
             }
             samples.push(exit);
         }
-        if out.crossing_speeds.is_empty() {
+        if first_contact {
             out.cor = exit_speed;
             out.peak = peak;
             out.peak_force = (1.0 + eta) * peak.powf(n);
             out.compression_time = turn.time;
             out.contact_time = end.time;
+            first_contact = false;
         }
-        out.crossing_speeds.push(exit_speed);
+        if bilateral {
+            out.crossing_speeds.push(exit_speed);
+        }
         t = end.time;
         speed = exit_speed;
         sign = -sign;
@@ -414,9 +415,6 @@ fn phased(
         }
     }
     out.samples = samples;
-    if !bilateral {
-        out.crossing_speeds.clear();
-    }
     Ok(out)
 }
 
