@@ -206,9 +206,62 @@ pub fn solve(
     })
 }
 
+/// `y^n` for `y >= 0`, in the cheapest exact-to-rounding form for the exponent: the right-hand
+/// side evaluates it at every stage, and `powf` costs several times the rest of a stage.
+trait Power: Copy {
+    fn of(self, y: f64) -> f64;
+}
+
+/// n = 1 (the rod): `y` itself, which is what `powf(y, 1)` returns.
+#[derive(Clone, Copy)]
+struct Linear;
+
+/// n = 1.5 (Hertz): `y √y`, two correctly rounded operations, within an ulp of `powf`.
+#[derive(Clone, Copy)]
+struct Hertz;
+
+/// Any other exponent: `powf`.
+#[derive(Clone, Copy)]
+struct AnyExponent(f64);
+
+impl Power for Linear {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y
+    }
+}
+
+impl Power for Hertz {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y * y.sqrt()
+    }
+}
+
+impl Power for AnyExponent {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y.powf(self.0)
+    }
+}
+
+/// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`.
+macro_rules! with_power {
+    ($n:expr, $f:ident($($args:expr),* $(,)?)) => {
+        if $n == 1.0 {
+            $f(Linear, $($args),*)
+        } else if $n == 1.5 {
+            $f(Hertz, $($args),*)
+        } else {
+            $f(AnyExponent($n), $($args),*)
+        }
+    };
+}
+
 /// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`;
 /// unilateral contact exerts nothing at `Y <= 0`.
-fn paper_acceleration(n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
+#[inline]
+fn paper_acceleration(power: impl Power, n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
     if y == 0.0 || (!bilateral && y < 0.0) {
         return 0.0;
     }
@@ -219,7 +272,7 @@ fn paper_acceleration(n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 
     } else {
         0.0
     };
-    -0.5 * (n + 1.0) * y.abs().powf(n) * y.signum() * (1.0 + eta * direction)
+    -0.5 * (n + 1.0) * power.of(y.abs()) * y.signum() * (1.0 + eta * direction)
 }
 
 /// The paper's rk4 and velocity Verlet: a fixed step over the whole law, the contact end at the
@@ -233,7 +286,24 @@ fn fixed_step(
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
-    let accel = |s: &State| paper_acceleration(n, eta, bilateral, s[0], s[1]);
+    with_power!(
+        n,
+        fixed_step_with(n, eta, h, method, bilateral, duration, settings)
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn fixed_step_with(
+    power: impl Power,
+    n: f64,
+    eta: f64,
+    h: f64,
+    method: Method,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
+    let accel = |s: &State| paper_acceleration(power, n, eta, bilateral, s[0], s[1]);
     let rhs = |s: &State| State::new(s[1], accel(s));
     let force = |s: &State| -accel(s) / (0.5 * (n + 1.0));
     let mut out = Scaled::default();
@@ -319,11 +389,26 @@ fn phased(
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
+    with_power!(
+        n,
+        phased_with(n, eta, stepper, bilateral, duration, settings)
+    )
+}
+
+fn phased_with(
+    power: impl Power,
+    n: f64,
+    eta: f64,
+    stepper: &mut impl Stepper,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
     let series = ContactSeries::new(n);
     let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
     let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
-    let load = move |s: &State| State::new(s[1], -k_load * s[0].max(0.0).powf(n));
-    let unload = move |s: &State| State::new(s[1], -k_unload * s[0].max(0.0).powf(n));
+    let load = move |s: &State| State::new(s[1], -k_load * power.of(s[0].max(0.0)));
+    let unload = move |s: &State| State::new(s[1], -k_unload * power.of(s[0].max(0.0)));
     let rate = |s: &State| s[1];
     let approach = |s: &State| s[0];
     let mut out = Scaled::default();
