@@ -137,33 +137,39 @@ pub struct SeriesEnd<'a> {
 /// Largest number of steps in one phase before the run is declared stuck.
 pub const STEP_BUDGET: u64 = 200_000_000;
 
-/// The values of the event functions at one state, kept on the stack for the few events a phase
-/// watches.
-enum EventValues {
-    Inline([f64; 4], usize),
-    Heap(Vec<f64>),
+/// The event functions a [`march`] watches: it stops where one of them changes sign.
+///
+/// An array of functions (`&[&rate]`; for functions of several types, `&[&a as &dyn Fn(&State)
+/// -> f64, &b]`) is checked with no allocation, and one of closures with no call through a
+/// pointer either. A slice of any length works too, at the cost of a vector per step.
+pub trait Events {
+    /// The values of every event function at one state.
+    type Values: AsRef<[f64]>;
+    /// Every event function at `s`.
+    fn values(&self, s: &State) -> Self::Values;
+    /// Event function `i` at `s`.
+    fn value(&self, i: usize, s: &State) -> f64;
 }
 
-impl EventValues {
+impl<G: Fn(&State) -> f64, const N: usize> Events for [G; N] {
+    type Values = [f64; N];
     #[inline]
-    fn at(events: &[&dyn Fn(&State) -> f64], s: &State) -> Self {
-        if events.len() <= 4 {
-            let mut values = [0.0; 4];
-            for (value, g) in values.iter_mut().zip(events) {
-                *value = g(s);
-            }
-            EventValues::Inline(values, events.len())
-        } else {
-            EventValues::Heap(events.iter().map(|g| g(s)).collect())
-        }
+    fn values(&self, s: &State) -> [f64; N] {
+        std::array::from_fn(|i| self[i](s))
     }
-
     #[inline]
-    fn as_slice(&self) -> &[f64] {
-        match self {
-            EventValues::Inline(values, len) => &values[..*len],
-            EventValues::Heap(values) => values,
-        }
+    fn value(&self, i: usize, s: &State) -> f64 {
+        self[i](s)
+    }
+}
+
+impl Events for [&dyn Fn(&State) -> f64] {
+    type Values = Vec<f64>;
+    fn values(&self, s: &State) -> Vec<f64> {
+        self.iter().map(|g| g(s)).collect()
+    }
+    fn value(&self, i: usize, s: &State) -> f64 {
+        self[i](s)
     }
 }
 
@@ -176,12 +182,12 @@ impl EventValues {
 /// one loop with the law inlined into the method's stages; nothing is allocated per step.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub fn march<R, S, O>(
+pub fn march<R, S, E, O>(
     rhs: &R,
     start: State,
     t0: f64,
     stepper: &mut S,
-    events: &[&dyn Fn(&State) -> f64],
+    events: &E,
     series_end: Option<SeriesEnd<'_>>,
     stats: &mut Stats,
     observe: &mut O,
@@ -189,6 +195,7 @@ pub fn march<R, S, O>(
 where
     R: Fn(&State) -> State + ?Sized,
     S: Stepper,
+    E: Events + ?Sized,
     O: FnMut(f64, &State) + ?Sized,
 {
     let rhs = |s: &State| rhs(s);
@@ -198,7 +205,7 @@ where
     stats.rhs_evaluations += 1;
     let mut h = stepper.first_step();
     let mut phase_steps = 0u64;
-    let mut g_now = EventValues::at(events, &y);
+    let mut g_now = events.values(&y);
     loop {
         if phase_steps > STEP_BUDGET {
             return Err(SolveError::StepBudget {
@@ -231,11 +238,11 @@ where
         }
         let trial = stepper.attempt_with(&rhs, &y, &fy, h);
         stats.rhs_evaluations += trial.rhs_evaluations;
-        let g_next = EventValues::at(events, &trial.state);
+        let g_next = events.values(&trial.state);
         let crossed = g_now
-            .as_slice()
+            .as_ref()
             .iter()
-            .zip(g_next.as_slice())
+            .zip(g_next.as_ref())
             .position(|(a, b)| *a != 0.0 && (a.signum() != b.signum() || *b == 0.0));
 
         if trial.error > 1.0 || !trial.state.iter().all(|x| x.is_finite()) {
@@ -244,8 +251,8 @@ where
             continue;
         }
         if let Some(event) = crossed {
-            let g = events[event];
-            let g_start = g_now.as_slice()[event];
+            let g = |s: &State| events.value(event, s);
+            let g_start = g_now.as_ref()[event];
             let (theta, state) = locate(&rhs, stepper, &y, &fy, h, g, g_start, stats);
             stats.steps += 1;
             let time = t + theta * h;
@@ -279,7 +286,7 @@ fn locate<R: Fn(&State) -> State, S: Stepper>(
     y: &State,
     fy: &State,
     h: f64,
-    g: &dyn Fn(&State) -> f64,
+    g: impl Fn(&State) -> f64,
     g_start: f64,
     stats: &mut Stats,
 ) -> (f64, State) {
