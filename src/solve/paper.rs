@@ -127,7 +127,7 @@ pub fn solve(
     let y_scale = law.elastic_peak(v0);
     let t_scale = y_scale / v0;
     let (n, eta) = (law.exponent, law.loss_coefficient);
-    let period = 4.0 * j_integral(n);
+    let period = 4.0 * j_integral_for(n);
     let method = settings.method;
     if method == Method::Exact {
         let figures = exact::paper_impact(law, v0);
@@ -203,6 +203,21 @@ pub fn solve(
         timestep: method.is_fixed_step().then_some(h * t_scale),
         trajectory,
         crossing_speeds: scaled.crossing_speeds.iter().map(|s| s * v0).collect(),
+    })
+}
+
+/// [`j_integral`] (two gamma functions), remembered per thread for the last exponent asked for.
+fn j_integral_for(n: f64) -> f64 {
+    thread_local! {
+        static LAST: std::cell::Cell<Option<(u64, f64)>> = const { std::cell::Cell::new(None) };
+    }
+    LAST.with(|last| match last.get() {
+        Some((bits, j)) if bits == n.to_bits() => j,
+        _ => {
+            let j = j_integral(n);
+            last.set(Some((n.to_bits(), j)));
+            j
+        }
     })
 }
 
@@ -404,7 +419,7 @@ fn phased_with(
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
-    let series = ContactSeries::new(n);
+    let series = ContactSeries::for_exponent(n);
     let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
     let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
     let load = move |s: &State| State::new(s[1], -k_load * power.of(s[0].max(0.0)));

@@ -7,6 +7,8 @@
 //! contact loses its order. The series is used over the first step of a phase that starts at
 //! `y = 0` and, backwards in time, over the last step of a phase that ends there.
 
+use std::cell::RefCell;
+
 /// Terms kept; with `|w| <= MAX_W` the truncation is far below rounding.
 const TERMS: usize = 14;
 /// Largest `|w|` at which the series is used.
@@ -41,6 +43,18 @@ impl ContactSeries {
             c[j + 1] = p[j] / ((q + 1.0) * q);
         }
         ContactSeries { n, c, p }
+    }
+
+    /// [`ContactSeries::new`], remembered per thread for the last exponent asked for: a sweep
+    /// or a benchmark would otherwise build the same coefficients for every impact.
+    pub fn for_exponent(n: f64) -> Self {
+        thread_local! {
+            static LAST: RefCell<Option<ContactSeries>> = const { RefCell::new(None) };
+        }
+        LAST.with_borrow_mut(|last| match last {
+            Some(series) if series.n.to_bits() == n.to_bits() => series.clone(),
+            _ => last.insert(ContactSeries::new(n)).clone(),
+        })
     }
 
     fn sums(&self, w: f64) -> (f64, f64) {
