@@ -79,26 +79,33 @@ impl ContactSeries {
     /// `accel` is the acceleration the integrator already has at the state, `-k y^n` to
     /// rounding. It gives the same `|w| = k y^(n+1) / rate²` to a few rounding errors without a
     /// power, which settles every state clearly beyond the reach (all of a phase but its last
-    /// steps); the powers decide the rest, so the answer is always theirs. The shortcut is
-    /// taken only where neither form can overflow or underflow.
+    /// steps) or clearly within it; the powers decide the states within 1e-6 of the edge, so
+    /// the answer is always theirs. The shortcut is taken only where neither form can overflow
+    /// or underflow.
     pub fn within_reach_of_end(&self, k: f64, y: f64, rate: f64, accel: f64) -> bool {
         let v = -rate;
         let moderate = |x: f64| (1e-30..=1e30).contains(&x);
-        if (0.0..=3.0).contains(&self.n) && moderate(k) && moderate(y) && moderate(v) {
+        let shortcut = (0.0..=3.0).contains(&self.n) && moderate(k) && moderate(y) && moderate(v);
+        if shortcut {
             let w = -accel * y / (v * v);
             if w > MAX_W * (1.0 + 1e-6) && w <= 1e30 {
                 return false;
             }
         }
-        self.within_reach(k, v, y / v)
+        self.near_or_within_reach(k, y, v, accel, shortcut)
     }
 
-    /// `|w| <= MAX_W` by the powers. Kept out of line: the optimiser may otherwise evaluate
-    /// the powers on every step, before the shortcut above has been tested.
+    /// The rest of [`ContactSeries::within_reach_of_end`], met once or twice a phase: clearly
+    /// within the reach by the acceleration, else `|w| <= MAX_W` by the powers. Kept out of
+    /// line: the optimiser may otherwise evaluate the powers on every step, before the
+    /// shortcut has been tested.
     #[cold]
     #[inline(never)]
-    fn within_reach(&self, k: f64, v: f64, s: f64) -> bool {
-        self.argument(k, v, s).abs() <= MAX_W
+    fn near_or_within_reach(&self, k: f64, y: f64, v: f64, accel: f64, shortcut: bool) -> bool {
+        if shortcut && (0.0..MAX_W * (1.0 - 1e-6)).contains(&(-accel * y / (v * v))) {
+            return true;
+        }
+        self.argument(k, v, y / v).abs() <= MAX_W
     }
 
     /// The longest time from contact at speed `v` over which the series may be used.
