@@ -273,10 +273,10 @@ macro_rules! with_power {
     };
 }
 
-/// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`;
-/// unilateral contact exerts nothing at `Y <= 0`.
+/// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`,
+/// given `p = |Y|^n`; unilateral contact exerts nothing at `Y <= 0`.
 #[inline]
-fn paper_acceleration(power: impl Power, n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
+fn paper_acceleration(p: f64, n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
     if y == 0.0 || (!bilateral && y < 0.0) {
         return 0.0;
     }
@@ -287,7 +287,7 @@ fn paper_acceleration(power: impl Power, n: f64, eta: f64, bilateral: bool, y: f
     } else {
         0.0
     };
-    -0.5 * (n + 1.0) * power.of(y.abs()) * y.signum() * (1.0 + eta * direction)
+    -0.5 * (n + 1.0) * p * y.signum() * (1.0 + eta * direction)
 }
 
 /// The paper's rk4 and velocity Verlet: a fixed step over the whole law, the contact end at the
@@ -318,13 +318,16 @@ fn fixed_step_with(
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
-    let accel = |s: &State| paper_acceleration(power, n, eta, bilateral, s[0], s[1]);
+    // The acceleration at `s` given `p = |s[0]|^n`, and without it.
+    let accel_with = |p: f64, s: &State| paper_acceleration(p, n, eta, bilateral, s[0], s[1]);
+    let accel = |s: &State| accel_with(power.of(s[0].abs()), s);
     let rhs = |s: &State| State::new(s[1], accel(s));
-    let force = |s: &State| -accel(s) / (0.5 * (n + 1.0));
+    let force = |acceleration: f64| -acceleration / (0.5 * (n + 1.0));
     let mut out = Scaled::default();
     let mut y = State::new(0.0, 1.0);
     let mut t = 0.0;
     let mut a = accel(&y);
+    let mut fy = rhs(&y);
     let mut first_end: Option<(f64, f64)> = None;
     let mut turning: Option<f64> = None;
     let record = settings.record;
@@ -341,20 +344,25 @@ fn fixed_step_with(
             });
         }
         let previous = y;
-        match method {
+        // The acceleration at the new state: rk4's first stage of the next step, computed now;
+        // Verlet's from the power its step has just taken.
+        let acceleration = match method {
             Method::Rk4 => {
-                let fy = rhs(&y);
                 y = rk4_step(&rhs, &y, &fy, h);
+                fy = rhs(&y);
                 out.stats.rhs_evaluations += 4;
+                fy[1]
             }
             _ => {
                 let half = y[1] + 0.5 * h * a;
                 let position = y[0] + h * half;
-                a = accel(&State::new(position, half));
+                let p = power.of(position.abs());
+                a = accel_with(p, &State::new(position, half));
                 y = State::new(position, half + 0.5 * h * a);
                 out.stats.rhs_evaluations += 1;
+                accel_with(p, &y)
             }
-        }
+        };
         t += h;
         steps += 1;
         if record {
@@ -362,7 +370,7 @@ fn fixed_step_with(
         }
         if first_end.is_none() {
             out.peak = out.peak.max(y[0]);
-            out.peak_force = out.peak_force.max(force(&y));
+            out.peak_force = out.peak_force.max(force(acceleration));
             if turning.is_none() && y[1] <= 0.0 {
                 // The grid point of largest approach.
                 turning = Some(if previous[0] >= y[0] { t - h } else { t });
