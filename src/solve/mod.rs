@@ -243,7 +243,7 @@ where
             .as_ref()
             .iter()
             .zip(g_next.as_ref())
-            .position(|(a, b)| *a != 0.0 && (a.signum() != b.signum() || *b == 0.0));
+            .position(|(&a, &b)| changes_sign(a, b));
 
         if trial.error > 1.0 || !trial.state.iter().all(|x| x.is_finite()) {
             stats.rejected += 1;
@@ -274,6 +274,15 @@ where
         observe(t, &y);
         h = stepper.next_step(h, trial.error);
     }
+}
+
+/// Whether an event function going from `a` to `b` has crossed zero: `a != 0` and
+/// `signum(a) != signum(b)` (a NaN on either side counts) or `b == 0`, with the signs compared
+/// as bits.
+#[inline]
+fn changes_sign(a: f64, b: f64) -> bool {
+    a != 0.0
+        && (a.is_sign_negative() != b.is_sign_negative() || a.is_nan() || b.is_nan() || b == 0.0)
 }
 
 /// The fraction `θ` of the step `h` from `y` at which `g` vanishes along the method's own
@@ -386,6 +395,30 @@ mod tests {
         assert!((crossing.time - std::f64::consts::FRAC_PI_2).abs() < 1e-11);
         assert!((crossing.state[0] - 1.0).abs() < 1e-11);
         assert!(stats.rhs_evaluations > 0 && stats.steps > 0);
+    }
+
+    /// The bitwise sign test is `a != 0 && (signum(a) != signum(b) || b == 0)` on every pair
+    /// of signed zeros, infinities, NaNs and ordinary values.
+    #[test]
+    fn sign_change_is_the_signum_test() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-310,
+            -1e-310,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for a in values {
+            for b in values {
+                let by_signum = a != 0.0 && (a.signum() != b.signum() || b == 0.0);
+                assert_eq!(changes_sign(a, b), by_signum, "{a} → {b}");
+            }
+        }
     }
 
     #[test]
