@@ -324,7 +324,8 @@ fn run_loop(spec: &str) {
     };
     let case = load(name);
     let method = Method::ALL
-        .into_iter()
+        .iter()
+        .copied()
         .find(|m| m.name() == method)
         .unwrap_or_else(|| panic!("unknown method {method}"));
     let mut settings = default_point(&case, method);
