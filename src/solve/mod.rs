@@ -93,29 +93,75 @@ pub struct SeriesEnd<'a> {
 /// Largest number of steps in one phase before the run is declared stuck.
 pub const STEP_BUDGET: u64 = 200_000_000;
 
+/// The event functions a [`march`] watches: it stops where one of them changes sign.
+///
+/// An array of functions (`&[&rate]`; for functions of several types, `&[&a as &dyn Fn(&State)
+/// -> f64, &b]`) is checked with no allocation, and one of closures with no call through a
+/// pointer either. A slice of any length works too, at the cost of a vector per step.
+pub trait Events {
+    /// The values of every event function at one state.
+    type Values: AsRef<[f64]>;
+    /// Every event function at `s`.
+    fn values(&self, s: &State) -> Self::Values;
+    /// Event function `i` at `s`.
+    fn value(&self, i: usize, s: &State) -> f64;
+}
+
+impl<G: Fn(&State) -> f64, const N: usize> Events for [G; N] {
+    type Values = [f64; N];
+    #[inline]
+    fn values(&self, s: &State) -> [f64; N] {
+        std::array::from_fn(|i| self[i](s))
+    }
+    #[inline]
+    fn value(&self, i: usize, s: &State) -> f64 {
+        self[i](s)
+    }
+}
+
+impl Events for [&dyn Fn(&State) -> f64] {
+    type Values = Vec<f64>;
+    fn values(&self, s: &State) -> Vec<f64> {
+        self.iter().map(|g| g(s)).collect()
+    }
+    fn value(&self, i: usize, s: &State) -> f64 {
+        self[i](s)
+    }
+}
+
 /// Integrate `rhs` from `start` at time `t0` until one of `events` changes sign, locating that
 /// instant on the step (the root of the event along a step of the method itself, by the
 /// Illinois variant of regula falsi) and returning the state there. `observe` sees every
 /// accepted state, the event state last.
+///
+/// Generic over the right-hand side, the method and the observer so that each phase compiles to
+/// one loop with the law inlined into the method's stages; nothing is allocated per step.
 #[allow(clippy::too_many_arguments)]
-pub fn march(
-    rhs: &dyn Fn(&State) -> State,
+#[inline]
+pub fn march<R, S, E, O>(
+    rhs: &R,
     start: State,
     t0: f64,
-    stepper: &mut dyn Stepper,
-    events: &[&dyn Fn(&State) -> f64],
+    stepper: &mut S,
+    events: &E,
     series_end: Option<SeriesEnd<'_>>,
     stats: &mut Stats,
-    observe: &mut dyn FnMut(f64, &State),
-) -> Result<Crossing, SolveError> {
+    observe: &mut O,
+) -> Result<Crossing, SolveError>
+where
+    R: Fn(&State) -> State + ?Sized,
+    S: Stepper,
+    E: Events + ?Sized,
+    O: FnMut(f64, &State) + ?Sized,
+{
+    let rhs = |s: &State| rhs(s);
     let mut y = start;
     let mut t = t0;
     let mut fy = rhs(&y);
     stats.rhs_evaluations += 1;
     let mut h = stepper.first_step();
     let mut phase_steps = 0u64;
-    let signs = |s: &State| -> Vec<f64> { events.iter().map(|g| g(s)).collect() };
-    let mut g_now = signs(&y);
+    let mut g_now = events.values(&y);
     loop {
         if phase_steps > STEP_BUDGET {
             return Err(SolveError::StepBudget {
@@ -134,7 +180,7 @@ pub fn march(
         // as the end is within the series' reach.
         if let Some(end) = series_end.as_ref()
             && y[1] < 0.0
-            && end.series.argument(end.k, -y[1], y[0] / -y[1]).abs() <= series::MAX_W
+            && end.series.within_reach_of_end(end.k, y[0], y[1], fy[1])
             && let Some((s, v)) = end.series.time_to_exit(end.k, y[0], y[1])
         {
             let state = State::new(0.0, -v);
@@ -146,13 +192,14 @@ pub fn march(
                 event: 0,
             });
         }
-        let trial = stepper.attempt(rhs, &y, &fy, h);
+        let trial = stepper.attempt_with(&rhs, &y, &fy, h);
         stats.rhs_evaluations += trial.rhs_evaluations;
-        let g_next = signs(&trial.state);
+        let g_next = events.values(&trial.state);
         let crossed = g_now
+            .as_ref()
             .iter()
-            .zip(&g_next)
-            .position(|(a, b)| *a != 0.0 && (a.signum() != b.signum() || *b == 0.0));
+            .zip(g_next.as_ref())
+            .position(|(&a, &b)| changes_sign(a, b));
 
         if trial.error > 1.0 || !trial.state.iter().all(|x| x.is_finite()) {
             stats.rejected += 1;
@@ -160,8 +207,9 @@ pub fn march(
             continue;
         }
         if let Some(event) = crossed {
-            let g = events[event];
-            let (theta, state) = locate(rhs, stepper, &y, &fy, h, g, g_now[event], stats);
+            let g = |s: &State| events.value(event, s);
+            let g_start = g_now.as_ref()[event];
+            let (theta, state) = locate(&rhs, stepper, &y, &fy, h, g, g_start, stats);
             stats.steps += 1;
             let time = t + theta * h;
             observe(time, &state);
@@ -184,21 +232,31 @@ pub fn march(
     }
 }
 
+/// Whether an event function going from `a` to `b` has crossed zero: `a != 0` and
+/// `signum(a) != signum(b)` (a NaN on either side counts) or `b == 0`, with the signs compared
+/// as bits.
+#[inline]
+fn changes_sign(a: f64, b: f64) -> bool {
+    a != 0.0
+        && (a.is_sign_negative() != b.is_sign_negative() || a.is_nan() || b.is_nan() || b == 0.0)
+}
+
 /// The fraction `θ` of the step `h` from `y` at which `g` vanishes along the method's own
 /// step map, and the state there.
 #[allow(clippy::too_many_arguments)]
-fn locate(
-    rhs: &dyn Fn(&State) -> State,
-    stepper: &mut dyn Stepper,
+#[inline]
+fn locate<R: Fn(&State) -> State, S: Stepper>(
+    rhs: &R,
+    stepper: &mut S,
     y: &State,
     fy: &State,
     h: f64,
-    g: &dyn Fn(&State) -> f64,
+    g: impl Fn(&State) -> f64,
     g_start: f64,
     stats: &mut Stats,
 ) -> (f64, State) {
     let mut step_to = |theta: f64| {
-        let attempt = stepper.attempt(rhs, y, fy, theta * h);
+        let attempt = stepper.attempt_with(rhs, y, fy, theta * h);
         stats.rhs_evaluations += attempt.rhs_evaluations;
         attempt.state
     };
@@ -293,6 +351,30 @@ mod tests {
         assert!((crossing.time - std::f64::consts::FRAC_PI_2).abs() < 1e-11);
         assert!((crossing.state[0] - 1.0).abs() < 1e-11);
         assert!(stats.rhs_evaluations > 0 && stats.steps > 0);
+    }
+
+    /// The bitwise sign test is `a != 0 && (signum(a) != signum(b) || b == 0)` on every pair
+    /// of signed zeros, infinities, NaNs and ordinary values.
+    #[test]
+    fn sign_change_is_the_signum_test() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-310,
+            -1e-310,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+        ];
+        for a in values {
+            for b in values {
+                let by_signum = a != 0.0 && (a.signum() != b.signum() || b == 0.0);
+                assert_eq!(changes_sign(a, b), by_signum, "{a} → {b}");
+            }
+        }
     }
 
     #[test]

@@ -132,7 +132,7 @@ pub fn solve(
     let y_scale = law.elastic_peak(v0);
     let t_scale = y_scale / v0;
     let (n, eta) = (law.exponent, law.loss_coefficient);
-    let period = 4.0 * j_integral(n);
+    let period = 4.0 * j_integral_for(n);
     let method = settings.method;
     if !method.integrates() {
         let figures = exact::paper_impact(law, v0);
@@ -211,9 +211,91 @@ pub fn solve(
     })
 }
 
-/// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`;
-/// unilateral contact exerts nothing at `Y <= 0`.
-fn paper_acceleration(n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
+/// [`j_integral`] (two gamma functions), remembered per thread for the last exponent asked for.
+fn j_integral_for(n: f64) -> f64 {
+    thread_local! {
+        static LAST: std::cell::Cell<Option<(u64, f64)>> = const { std::cell::Cell::new(None) };
+    }
+    LAST.with(|last| match last.get() {
+        Some((bits, j)) if bits == n.to_bits() => j,
+        _ => {
+            let j = j_integral(n);
+            last.set(Some((n.to_bits(), j)));
+            j
+        }
+    })
+}
+
+/// `y^n` for `y >= 0`, in the cheapest exact-to-rounding form for the exponent: the right-hand
+/// side evaluates it at every stage, and `powf` costs several times the rest of a stage.
+trait Power: Copy {
+    fn of(self, y: f64) -> f64;
+    /// `k y^n`.
+    #[inline]
+    fn times(self, k: f64, y: f64) -> f64 {
+        k * self.of(y)
+    }
+}
+
+/// n = 1 (the rod): `y` itself, which is what `powf(y, 1)` returns.
+#[derive(Clone, Copy)]
+struct Linear;
+
+/// n = 1.5 (Hertz): `y √y`, two correctly rounded operations, within an ulp of `powf`.
+#[derive(Clone, Copy)]
+struct Hertz;
+
+/// Any other exponent: `powf`.
+#[derive(Clone, Copy)]
+struct AnyExponent(f64);
+
+impl Power for Linear {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y
+    }
+}
+
+impl Power for Hertz {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y * y.sqrt()
+    }
+    /// `(k y) √y`: `k y` is ready while the square root is still being taken, one
+    /// multiplication fewer after it on the integrator's chain of dependent operations.
+    #[inline]
+    fn times(self, k: f64, y: f64) -> f64 {
+        (k * y) * y.sqrt()
+    }
+}
+
+impl Power for AnyExponent {
+    #[inline]
+    fn of(self, y: f64) -> f64 {
+        y.powf(self.0)
+    }
+}
+
+/// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
+/// exponents are the scenes' exact 1 and 1.5 (`SpringModel::exponent`), so exact comparison
+/// picks the specialised power; any other exponent takes the general one.
+macro_rules! with_power {
+    ($n:expr, $f:ident($($args:expr),* $(,)?)) => {
+        #[allow(clippy::float_cmp)]
+        if $n == 1.0 {
+            $f(Linear, $($args),*)
+        } else if $n == 1.5 {
+            $f(Hertz, $($args),*)
+        } else {
+            $f(AnyExponent($n), $($args),*)
+        }
+    };
+}
+
+/// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`,
+/// given `p = |Y|^n`; unilateral contact exerts nothing at `Y <= 0`.
+#[inline]
+fn paper_acceleration(p: f64, n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 {
     if y == 0.0 || (!bilateral && y < 0.0) {
         return 0.0;
     }
@@ -224,7 +306,7 @@ fn paper_acceleration(n: f64, eta: f64, bilateral: bool, y: f64, v: f64) -> f64 
     } else {
         0.0
     };
-    -0.5 * (n + 1.0) * y.abs().powf(n) * y.signum() * (1.0 + eta * direction)
+    -0.5 * (n + 1.0) * p * y.signum() * (1.0 + eta * direction)
 }
 
 /// The paper's rk4 and velocity Verlet: a fixed step over the whole law, the contact end at the
@@ -238,13 +320,33 @@ fn fixed_step(
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
-    let accel = |s: &State| paper_acceleration(n, eta, bilateral, s[0], s[1]);
+    with_power!(
+        n,
+        fixed_step_with(n, eta, h, method, bilateral, duration, settings)
+    )
+}
+
+#[allow(clippy::too_many_arguments)]
+fn fixed_step_with(
+    power: impl Power,
+    n: f64,
+    eta: f64,
+    h: f64,
+    method: Method,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
+    // The acceleration at `s` given `p = |s[0]|^n`, and without it.
+    let accel_with = |p: f64, s: &State| paper_acceleration(p, n, eta, bilateral, s[0], s[1]);
+    let accel = |s: &State| accel_with(power.of(s[0].abs()), s);
     let rhs = |s: &State| State::new(s[1], accel(s));
-    let force = |s: &State| -accel(s) / (0.5 * (n + 1.0));
+    let force = |acceleration: f64| -acceleration / (0.5 * (n + 1.0));
     let mut out = Scaled::default();
     let mut y = State::new(0.0, 1.0);
     let mut t = 0.0;
     let mut a = accel(&y);
+    let mut fy = rhs(&y);
     let mut first_end: Option<(f64, f64)> = None;
     let mut turning: Option<f64> = None;
     let record = settings.record;
@@ -261,20 +363,25 @@ fn fixed_step(
             });
         }
         let previous = y;
-        match method {
+        // The acceleration at the new state: rk4's first stage of the next step, computed now;
+        // Verlet's from the power its step has just taken.
+        let acceleration = match method {
             Method::Rk4 => {
-                let fy = rhs(&y);
                 y = rk4_step(&rhs, &y, &fy, h);
+                fy = rhs(&y);
                 out.stats.rhs_evaluations += 4;
+                fy[1]
             }
             _ => {
                 let half = y[1] + 0.5 * h * a;
                 let position = y[0] + h * half;
-                a = accel(&State::new(position, half));
+                let p = power.of(position.abs());
+                a = accel_with(p, &State::new(position, half));
                 y = State::new(position, half + 0.5 * h * a);
                 out.stats.rhs_evaluations += 1;
+                accel_with(p, &y)
             }
-        }
+        };
         t += h;
         steps += 1;
         if record {
@@ -282,7 +389,7 @@ fn fixed_step(
         }
         if first_end.is_none() {
             out.peak = out.peak.max(y[0]);
-            out.peak_force = out.peak_force.max(force(&y));
+            out.peak_force = out.peak_force.max(force(acceleration));
             if turning.is_none() && y[1] <= 0.0 {
                 // The grid point of largest approach.
                 turning = Some(if previous[0] >= y[0] { t - h } else { t });
@@ -297,10 +404,10 @@ fn fixed_step(
             if first_end.is_none() {
                 first_end = Some((t, y[1].abs()));
             }
-            out.crossing_speeds.push(y[1].abs());
             if !bilateral {
                 break;
             }
+            out.crossing_speeds.push(y[1].abs());
         }
         if bilateral && first_end.is_some() && t >= duration {
             break;
@@ -311,9 +418,6 @@ fn fixed_step(
     out.cor = speed;
     out.contact_time = end;
     out.compression_time = turning.unwrap_or(end);
-    if !bilateral {
-        out.crossing_speeds.clear();
-    }
     Ok(out)
 }
 
@@ -322,22 +426,38 @@ fn fixed_step(
 fn phased(
     n: f64,
     eta: f64,
-    stepper: &mut dyn Stepper,
+    stepper: &mut impl Stepper,
     bilateral: bool,
     duration: f64,
     settings: &Settings,
 ) -> Result<Scaled, SolveError> {
-    let series = ContactSeries::new(n);
+    with_power!(
+        n,
+        phased_with(n, eta, stepper, bilateral, duration, settings)
+    )
+}
+
+fn phased_with(
+    power: impl Power,
+    n: f64,
+    eta: f64,
+    stepper: &mut impl Stepper,
+    bilateral: bool,
+    duration: f64,
+    settings: &Settings,
+) -> Result<Scaled, SolveError> {
+    let series = ContactSeries::for_exponent(n);
     let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
     let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
-    let load = move |s: &State| State::new(s[1], -k_load * s[0].max(0.0).powf(n));
-    let unload = move |s: &State| State::new(s[1], -k_unload * s[0].max(0.0).powf(n));
+    let load = move |s: &State| State::new(s[1], power.times(-k_load, s[0].max(0.0)));
+    let unload = move |s: &State| State::new(s[1], power.times(-k_unload, s[0].max(0.0)));
     let rate = |s: &State| s[1];
     let approach = |s: &State| s[0];
     let mut out = Scaled::default();
     let record = settings.record;
     let (mut t, mut speed, mut sign) = (0.0f64, 1.0f64, 1.0f64);
     let mut samples = Vec::new();
+    let mut first_contact = true;
     loop {
         // Bilateral half-cycles after the first mirror the first: the law is odd in y.
         let mut observe = |time: f64, s: &State| {
@@ -403,14 +523,17 @@ fn phased(
             }
             samples.push(exit);
         }
-        if out.crossing_speeds.is_empty() {
+        if first_contact {
             out.cor = exit_speed;
             out.peak = peak;
             out.peak_force = (1.0 + eta) * peak.powf(n);
             out.compression_time = turn.time;
             out.contact_time = end.time;
+            first_contact = false;
         }
-        out.crossing_speeds.push(exit_speed);
+        if bilateral {
+            out.crossing_speeds.push(exit_speed);
+        }
         t = end.time;
         speed = exit_speed;
         sign = -sign;
@@ -419,9 +542,6 @@ fn phased(
         }
     }
     out.samples = samples;
-    if !bilateral {
-        out.crossing_speeds.clear();
-    }
     Ok(out)
 }
 

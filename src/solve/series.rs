@@ -7,6 +7,8 @@
 //! contact loses its order. The series is used over the first step of a phase that starts at
 //! `y = 0` and, backwards in time, over the last step of a phase that ends there.
 
+use std::cell::RefCell;
+
 /// Terms kept; with `|w| <= MAX_W` the truncation is far below rounding.
 const TERMS: usize = 14;
 /// Largest `|w|` at which the series is used.
@@ -17,6 +19,8 @@ pub const MAX_W: f64 = 0.2;
 pub struct ContactSeries {
     n: f64,
     c: [f64; TERMS],
+    /// Those of `P(w) = C(w)^n` (the last is not needed and left 0).
+    p: [f64; TERMS],
 }
 
 impl ContactSeries {
@@ -38,7 +42,19 @@ impl ContactSeries {
             let q = (j + 1) as f64 * (n + 1.0);
             c[j + 1] = p[j] / ((q + 1.0) * q);
         }
-        ContactSeries { n, c }
+        ContactSeries { n, c, p }
+    }
+
+    /// [`ContactSeries::new`], remembered per thread for the last exponent asked for: a sweep
+    /// or a benchmark would otherwise build the same coefficients for every impact.
+    pub fn for_exponent(n: f64) -> Self {
+        thread_local! {
+            static LAST: RefCell<Option<ContactSeries>> = const { RefCell::new(None) };
+        }
+        LAST.with_borrow_mut(|last| match last {
+            Some(series) if series.n.to_bits() == n.to_bits() => series.clone(),
+            _ => last.insert(ContactSeries::new(n)).clone(),
+        })
     }
 
     fn sums(&self, w: f64) -> (f64, f64) {
@@ -56,6 +72,42 @@ impl ContactSeries {
         -k * v.powf(self.n - 1.0) * s.powf(self.n + 1.0)
     }
 
+    /// Whether a state `(y, rate)`, `rate < 0`, of `y'' = -k y^n` is within the series' reach
+    /// of the contact end: `|w| <= MAX_W` for `w` = [`ContactSeries::argument`] at speed
+    /// `-rate` and time `y / -rate`, the test [`ContactSeries::time_to_exit`] starts from.
+    ///
+    /// `accel` is the acceleration the integrator already has at the state, `-k y^n` to
+    /// rounding. It gives the same `|w| = k y^(n+1) / rate²` to a few rounding errors without a
+    /// power, which settles every state clearly beyond the reach (all of a phase but its last
+    /// steps) or clearly within it; the powers decide the states within 1e-6 of the edge, so
+    /// the answer is always theirs. The shortcut is taken only where neither form can overflow
+    /// or underflow.
+    pub fn within_reach_of_end(&self, k: f64, y: f64, rate: f64, accel: f64) -> bool {
+        let v = -rate;
+        let moderate = |x: f64| (1e-30..=1e30).contains(&x);
+        let shortcut = (0.0..=3.0).contains(&self.n) && moderate(k) && moderate(y) && moderate(v);
+        if shortcut {
+            let w = -accel * y / (v * v);
+            if w > MAX_W * (1.0 + 1e-6) && w <= 1e30 {
+                return false;
+            }
+        }
+        self.near_or_within_reach(k, y, v, accel, shortcut)
+    }
+
+    /// The rest of [`ContactSeries::within_reach_of_end`], met once or twice a phase: clearly
+    /// within the reach by the acceleration, else `|w| <= MAX_W` by the powers. Kept out of
+    /// line: the optimiser may otherwise evaluate the powers on every step, before the
+    /// shortcut has been tested.
+    #[cold]
+    #[inline(never)]
+    fn near_or_within_reach(&self, k: f64, y: f64, v: f64, accel: f64, shortcut: bool) -> bool {
+        if shortcut && (0.0..MAX_W * (1.0 - 1e-6)).contains(&(-accel * y / (v * v))) {
+            return true;
+        }
+        self.argument(k, v, y / v).abs() <= MAX_W
+    }
+
     /// The longest time from contact at speed `v` over which the series may be used.
     pub fn reach(&self, k: f64, v: f64) -> f64 {
         (MAX_W / (k * v.powf(self.n - 1.0))).powf(1.0 / (self.n + 1.0))
@@ -70,6 +122,10 @@ impl ContactSeries {
     /// From a state `(y > 0, y' < 0)` approaching contact end under `y'' = -k y^n`, the time
     /// left until `y = 0` and the speed there, `(s, v)`; `None` if the state is too far from
     /// the end for the series.
+    ///
+    /// Out of line: inlined into an integrator's loop, its powers may be hoisted above the test
+    /// that decides whether it is called at all, and paid on every step.
+    #[inline(never)]
     pub fn time_to_exit(&self, k: f64, y: f64, rate: f64) -> Option<(f64, f64)> {
         if y <= 0.0 {
             return Some((0.0, -rate));
@@ -77,23 +133,46 @@ impl ContactSeries {
         if rate >= 0.0 {
             return None;
         }
-        let (mut v, mut s) = (-rate, y / -rate);
-        for _ in 0..100 {
-            let w = self.argument(k, v, s);
+        // With v = r / D(w) and s = y / (v C(w)) (r = -rate), w = -k v^(n-1) s^(n+1) becomes
+        // one equation in w alone, G(w) = w C(w)^(n+1) + q D(w)^2 = 0, q = k y^(n+1) / r^2,
+        // whose series C^(n+1) = C P needs no power. Newton's method from w = -q (the answer
+        // to first order) converges quadratically: once a step is below 1e-9 of w, the error
+        // left is below 1e-18 of it, and further steps would only chase rounding.
+        let r = -rate;
+        let q = -self.argument(k, r, y / r);
+        let mut w = -q;
+        for _ in 0..50 {
             if w.abs() > MAX_W || !w.is_finite() {
                 return None;
             }
-            let (big_c, big_d) = self.sums(w);
-            let v_new = -rate / big_d;
-            let s_new = y / (v_new * big_c);
-            let converged = (v_new - v).abs() <= 1e-16 * v && (s_new - s).abs() <= 1e-16 * s;
-            v = v_new;
-            s = s_new;
-            if converged {
-                return Some((s, v));
+            let ([c, dc], [d, dd], [p, dp]) = self.sums_with_slopes(w);
+            let g = w * c * p + q * d * d;
+            let slope = c * p + w * (dc * p + c * dp) + 2.0 * q * d * dd;
+            let step = g / slope;
+            w -= step;
+            if step.abs() <= 1e-9 * w.abs() {
+                break;
             }
         }
-        Some((s, v))
+        if w.abs() > MAX_W || !w.is_finite() {
+            return None;
+        }
+        let (big_c, big_d) = self.sums(w);
+        let v = r / big_d;
+        Some((y / (v * big_c), v))
+    }
+
+    /// `C`, `D` and `P` at `w`, each with its derivative in `w` (Horner's scheme).
+    fn sums_with_slopes(&self, w: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
+        let (mut c, mut d, mut p) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+        for j in (0..TERMS).rev() {
+            let dj = self.c[j] * (j as f64 * (self.n + 1.0) + 1.0);
+            for (sum, coefficient) in [(&mut c, self.c[j]), (&mut d, dj), (&mut p, self.p[j])] {
+                sum[1] = sum[1] * w + sum[0];
+                sum[0] = sum[0] * w + coefficient;
+            }
+        }
+        (c, d, p)
     }
 }
 
@@ -119,5 +198,28 @@ mod tests {
         let (s_found, v_found) = series.time_to_exit(k, y, -rate).unwrap();
         approx::assert_relative_eq!(s_found, s, max_relative = 1e-14);
         approx::assert_relative_eq!(v_found, v, max_relative = 1e-14);
+    }
+
+    /// Over most of the reach (beyond 0.8 of it the first guess |w| = k y^(n+1) / rate^2
+    /// exceeds the reach and `time_to_exit` declines), for linear, Hertz and a stiffer
+    /// exponent, across stiffness and speed: the exit found from a state the series advanced
+    /// to is that state's time and speed, to rounding.
+    #[test]
+    fn exit_inverts_advance_over_the_reach() {
+        for n in [1.0, 1.5, 2.5] {
+            let series = ContactSeries::new(n);
+            for k in [0.01, 0.3, 1.25, 1e3] {
+                for v in [1e-3, 0.7, 30.0] {
+                    let reach = series.reach(k, v);
+                    for i in 1..=40 {
+                        let s = reach * i as f64 / 50.0;
+                        let (y, rate) = series.advance(k, v, s);
+                        let (s_found, v_found) = series.time_to_exit(k, y, -rate).unwrap();
+                        approx::assert_relative_eq!(s_found, s, max_relative = 1e-15);
+                        approx::assert_relative_eq!(v_found, v, max_relative = 1e-15);
+                    }
+                }
+            }
+        }
     }
 }

@@ -23,6 +23,21 @@ pub struct Attempt {
 pub trait Stepper {
     /// Attempt one step of size `h` from `y`, where `fy = f(y)` is already known.
     fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt;
+    /// [`Stepper::attempt`] with the right-hand side's type known, so that a method can inline
+    /// it into its stages instead of calling it through a pointer; the same arithmetic.
+    #[inline]
+    fn attempt_with<F: Fn(&State) -> State>(
+        &mut self,
+        rhs: &F,
+        y: &State,
+        fy: &State,
+        h: f64,
+    ) -> Attempt
+    where
+        Self: Sized,
+    {
+        self.attempt(rhs, y, fy, h)
+    }
     /// The step to try first in a new phase.
     fn first_step(&self) -> f64;
     /// The step to try after an attempt of size `h` with error norm `error`.
@@ -51,14 +66,31 @@ impl Rk4 {
     }
 }
 
-impl Stepper for Rk4 {
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
+impl Rk4 {
+    #[inline]
+    fn step<F: Fn(&State) -> State + ?Sized>(rhs: &F, y: &State, fy: &State, h: f64) -> Attempt {
         Attempt {
             state: rk4_step(rhs, y, fy, h),
             error: 0.0,
             end_derivative: None,
             rhs_evaluations: 3,
         }
+    }
+}
+
+impl Stepper for Rk4 {
+    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
+        Rk4::step(rhs, y, fy, h)
+    }
+    #[inline]
+    fn attempt_with<F: Fn(&State) -> State>(
+        &mut self,
+        rhs: &F,
+        y: &State,
+        fy: &State,
+        h: f64,
+    ) -> Attempt {
+        Rk4::step(rhs, y, fy, h)
     }
     fn first_step(&self) -> f64 {
         self.step
@@ -72,7 +104,8 @@ impl Stepper for Rk4 {
 }
 
 /// One classical RK4 step (three new evaluations; `fy` is the first stage).
-pub fn rk4_step(rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> State {
+#[inline]
+pub fn rk4_step<F: Fn(&State) -> State + ?Sized>(rhs: &F, y: &State, fy: &State, h: f64) -> State {
     let k1 = *fy;
     let k2 = rhs(&(y + 0.5 * h * k1));
     let k3 = rhs(&(y + 0.5 * h * k2));
@@ -129,8 +162,15 @@ const E5: f64 = -17253.0 / 339200.0;
 const E6: f64 = 22.0 / 525.0;
 const E7: f64 = -1.0 / 40.0;
 
-impl Stepper for Dopri5 {
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
+impl Dopri5 {
+    #[inline]
+    fn step<F: Fn(&State) -> State + ?Sized>(
+        &self,
+        rhs: &F,
+        y: &State,
+        fy: &State,
+        h: f64,
+    ) -> Attempt {
         let k1 = *fy;
         let k2 = rhs(&(y + h * (A21 * k1)));
         let k3 = rhs(&(y + h * (A31 * k1 + A32 * k2)));
@@ -152,10 +192,27 @@ impl Stepper for Dopri5 {
             rhs_evaluations: 6,
         }
     }
+}
+
+impl Stepper for Dopri5 {
+    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
+        self.step(rhs, y, fy, h)
+    }
+    #[inline]
+    fn attempt_with<F: Fn(&State) -> State>(
+        &mut self,
+        rhs: &F,
+        y: &State,
+        fy: &State,
+        h: f64,
+    ) -> Attempt {
+        self.step(rhs, y, fy, h)
+    }
     fn first_step(&self) -> f64 {
         // About the step at which the local error of a smooth O(1) solution meets rtol.
         (0.1 * self.rtol.powf(0.2)).min(0.1)
     }
+    #[inline]
     fn next_step(&self, h: f64, error: f64) -> f64 {
         let factor = if error == 0.0 {
             5.0
