@@ -442,6 +442,8 @@ fn verify_fails_on_a_case_that_disagrees() {
     let text = text.replace("loss_coefficient = 0.35", "loss_coefficient = 0.999");
     assert!(text.contains("0.999"));
     write(&cases, "rod_near_one.toml", &text);
+    // An empty store: no canonical case here, so no stored record is expected.
+    std::fs::create_dir(dir.path().join("no_references")).unwrap();
     let output = millimpact()
         .arg("verify")
         .arg("--cases")

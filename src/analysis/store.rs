@@ -16,6 +16,7 @@ use sha2::{Digest, Sha256};
 
 use super::tolerance::Differences;
 use crate::codes::{self, CodeName, CodeSetup, RunOptions, run_code};
+use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
 use crate::model::law::DashpotLaw;
@@ -233,7 +234,8 @@ pub fn run_reference(
     })
 }
 
-fn hex(bytes: &[u8]) -> String {
+/// Bytes as lowercase hexadecimal (a SHA-256 digest as stored).
+pub fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
@@ -252,6 +254,19 @@ pub fn load(path: &Path) -> Result<ReferenceFile> {
 /// Store `record`, replacing a stored run of the same η.
 pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
     let path = reference_path(folder, record.code, &record.case);
+    let dir = path.parent().unwrap_or(folder);
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    // Saves of one record file are serialised across processes, and the file is read under the
+    // lock: two saves finishing together both land, neither replaces the other's run.
+    let lock_path = dir.join(format!(".{}.lock", record.case));
+    let lock = std::fs::OpenOptions::new()
+        .create(true)
+        .truncate(false)
+        .write(true)
+        .open(&lock_path)
+        .with_context(|| format!("opening the lock {}", lock_path.display()))?;
+    lock.lock()
+        .with_context(|| format!("locking {}", lock_path.display()))?;
     let mut file = if path.exists() {
         load(&path)?
     } else {
@@ -261,6 +276,22 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
             runs: Vec::new(),
         }
     };
+    if let Some(other) = file
+        .runs
+        .iter()
+        .find(|r| !same_bodies(&r.setup, &record.setup))
+    {
+        return Err(UserError::argument(
+            "--save",
+            path.display(),
+            format!(
+                "holds runs of another `{}` (other bodies, materials or speed; stored from `{}`); \
+                 store your case under another name, or in a folder of your own with --reference DIR",
+                record.case, other.command
+            ),
+        )
+        .into());
+    }
     file.runs
         .retain(|r| (r.loss_coefficient - record.loss_coefficient).abs() > 1e-12);
     file.runs.push(record.clone());
@@ -268,7 +299,20 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
         .sort_by(|a, b| a.loss_coefficient.total_cmp(&b.loss_coefficient));
     let text = serde_json::to_string_pretty(&file)? + "\n";
     write_atomic(&path, text.as_bytes()).with_context(|| format!("writing {}", path.display()))?;
+    drop(lock);
     Ok(path)
+}
+
+/// Whether two setups are of the same bodies, materials and speed (they may differ in η, the
+/// time step and the run length). Exact: both come from a case file's numbers by the same
+/// arithmetic.
+#[allow(clippy::float_cmp)]
+fn same_bodies(a: &CodeSetup, b: &CodeSetup) -> bool {
+    a.scene == b.scene
+        && a.sphere == b.sphere
+        && a.other_sphere == b.other_sphere
+        && a.plate_material == b.plate_material
+        && a.impact_velocity == b.impact_velocity
 }
 
 /// Every stored reference file under `folder`, sorted.

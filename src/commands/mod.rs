@@ -53,6 +53,14 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
     }
 }
 
+/// Refuse, before any work, an output path that is not a new or ordinary file, or that is one
+/// of the command's inputs (exit 2).
+fn check_output(option: &'static str, path: Option<&Path>, inputs: &[&Path]) -> Result<()> {
+    let Some(path) = path else { return Ok(()) };
+    crate::output::files::check_output_path(option, path, inputs)
+        .map_err(|e| crate::error::UserError::argument(option, path.display(), e.reason).into())
+}
+
 /// Write a file a command was asked for (`what` names it in the error).
 fn write_output(path: &Path, bytes: &[u8], what: &str) -> Result<()> {
     write_atomic(path, bytes).with_context(|| format!("writing the {what} to {}", path.display()))

@@ -2,7 +2,7 @@
 
 use anyhow::Result;
 
-use super::{CommandOutput, write_output};
+use super::{CommandOutput, check_output, write_output};
 use crate::analysis::precision::{code_steps_sweep, precision_report};
 use crate::cli::PrecisionArgs;
 use crate::error::UserError;
@@ -13,6 +13,7 @@ use crate::solve::Method;
 
 pub(super) fn precision(args: &PrecisionArgs) -> Result<CommandOutput> {
     let case = Case::load(&args.case)?;
+    check_output("--plot", args.plot.as_deref(), &[&args.case])?;
     let methods: Vec<Method> = if args.methods.is_empty() {
         Method::ALL
             .iter()

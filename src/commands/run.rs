@@ -3,7 +3,7 @@
 use anyhow::Result;
 use serde::Serialize;
 
-use super::{CommandOutput, write_output};
+use super::{CommandOutput, check_output, write_output};
 use crate::analysis::run::{
     IntegrationOptions, RunReport, SweepRow, reproduce_arguments, run_case, trajectory_rows,
 };
@@ -50,6 +50,7 @@ impl Summary for RunSummary {
 
 pub(super) fn run(args: &RunArgs) -> Result<CommandOutput> {
     let case = Case::load(&args.case)?;
+    check_output("--trajectory", args.trajectory.as_deref(), &[&args.case])?;
     let options = integration_options(&args.integration);
     if let Some(path) = &args.trajectory
         && !options.method.integrates()

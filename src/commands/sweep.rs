@@ -3,7 +3,7 @@
 use anyhow::Result;
 
 use super::run::integration_options;
-use super::{CommandOutput, write_output};
+use super::{CommandOutput, check_output, write_output};
 use crate::analysis::sweep::{parse_range, sweep as sweep_case};
 use crate::cli::SweepArgs;
 use crate::error::UserError;
@@ -14,6 +14,7 @@ use crate::output::restitution_plot::restitution_svg;
 
 pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
     let case = Case::load(&args.case)?;
+    check_output("--plot", args.plot.as_deref(), &[&args.case])?;
     let values = parse_range(&args.loss_coefficient).map_err(|e| match e {
         UserError::Argument {
             option,

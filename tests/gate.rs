@@ -1,0 +1,289 @@
+//! `verify` as a gate: a copy of the shipped cases and store passes, and each class of
+//! corruption of a stored record, of the store as a whole, or of a case fails it, by name.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{millimpact, root};
+use serde_json::Value;
+use tempfile::TempDir;
+
+/// A copy of `cases/` and `reference/` to corrupt.
+struct Copy {
+    dir: TempDir,
+}
+
+impl Copy {
+    fn new() -> Copy {
+        let dir = TempDir::new().unwrap();
+        for folder in ["cases", "reference"] {
+            copy_tree(&root().join(folder), &dir.path().join(folder));
+        }
+        Copy { dir }
+    }
+
+    fn cases(&self) -> PathBuf {
+        self.dir.path().join("cases")
+    }
+
+    fn reference(&self) -> PathBuf {
+        self.dir.path().join("reference")
+    }
+
+    /// Edit the stored record file of `code` on `case` as JSON.
+    fn edit(&self, code: &str, case: &str, change: impl FnOnce(&mut Value)) {
+        let path = self.reference().join(code).join(format!("{case}.json"));
+        let mut value: Value =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        change(&mut value);
+        std::fs::write(&path, serde_json::to_string_pretty(&value).unwrap()).unwrap();
+    }
+
+    /// `verify` on the copy: exit code, standard output, standard error.
+    fn verify(&self) -> (Option<i32>, String, String) {
+        let out = millimpact()
+            .arg("verify")
+            .arg("--cases")
+            .arg(self.cases())
+            .arg("--reference")
+            .arg(self.reference())
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    }
+
+    /// `verify` must fail with exit 1 and name `expected` in its output.
+    fn fails_naming(&self, expected: &str) {
+        let (code, stdout, stderr) = self.verify();
+        assert_eq!(code, Some(1), "{stdout}\n{stderr}");
+        assert!(stdout.contains(expected), "no `{expected}` in:\n{stdout}");
+    }
+}
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap().flatten() {
+        let target = to.join(entry.file_name());
+        if entry.path().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
+}
+
+/// The run at η = 0.35 of a record file.
+fn paper_run(value: &mut Value) -> &mut Value {
+    value["runs"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|r| r["loss_coefficient"] == 0.35)
+        .unwrap()
+}
+
+fn scale(value: &mut Value, factor: f64) {
+    *value = (value.as_f64().unwrap() * factor).into();
+}
+
+#[test]
+fn an_untouched_copy_passes() {
+    let copy = Copy::new();
+    let (code, stdout, stderr) = copy.verify();
+    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
+    assert!(stdout.contains(" 0 failed"), "{stdout}");
+}
+
+#[test]
+fn a_changed_figure_fails_the_own_law_check() {
+    let copy = Copy::new();
+    copy.edit("yade", "ball_plate", |v| {
+        scale(&mut paper_run(v)["cor"], 1.0 + 1e-6)
+    });
+    copy.fails_naming("FAIL yade ball_plate η=0.35");
+    let copy = Copy::new();
+    copy.edit("lammps", "rod_end", |v| {
+        scale(&mut paper_run(v)["peak_deformation"], 1.0 + 1e-8)
+    });
+    copy.fails_naming("FAIL lammps rod_end η=0.35");
+}
+
+#[test]
+fn a_changed_provenance_makes_the_record_stale() {
+    type Edit = fn(&mut Value);
+    let edits: [(&str, Edit); 7] = [
+        ("input_sha256", |v| {
+            paper_run(v)["input_sha256"] = "0".repeat(64).into()
+        }),
+        ("input", |v| {
+            let text = paper_run(v)["input"]
+                .as_str()
+                .unwrap()
+                .replace("run", "run ");
+            paper_run(v)["input"] = text.into();
+        }),
+        ("loss_coefficient", |v| {
+            paper_run(v)["loss_coefficient"] = 0.36.into()
+        }),
+        ("setup", |v| {
+            scale(&mut paper_run(v)["setup"]["sphere"]["radius"], 1.01)
+        }),
+        ("timestep", |v| {
+            scale(&mut paper_run(v)["setup"]["timestep"], 1.5);
+            scale(&mut paper_run(v)["timestep"], 1.5);
+        }),
+        ("law_exact", |v| {
+            scale(&mut paper_run(v)["law_exact"]["peak_force"], 1.001)
+        }),
+        ("paper_exact", |v| {
+            scale(&mut paper_run(v)["paper_exact"]["contact_time"], 1.001)
+        }),
+    ];
+    for (what, edit) in edits {
+        let copy = Copy::new();
+        copy.edit("liggghts", "ball_plate", edit);
+        let (code, stdout, _) = copy.verify();
+        assert_eq!(code, Some(1), "{what}: {stdout}");
+        assert!(
+            stdout.contains("FAIL liggghts ball_plate"),
+            "{what}: not named:\n{stdout}"
+        );
+    }
+}
+
+#[test]
+fn an_edited_case_makes_its_records_stale_and_names_the_command() {
+    let copy = Copy::new();
+    let path = copy.cases().join("ball_plate.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    std::fs::write(
+        &path,
+        text.replace("impact_velocity = 2.0", "impact_velocity = 2.5"),
+    )
+    .unwrap();
+    assert_ne!(
+        std::fs::read_to_string(&path).unwrap(),
+        text,
+        "the case was edited"
+    );
+    let (code, stdout, _) = copy.verify();
+    assert_eq!(code, Some(1), "{stdout}");
+    for codename in ["liggghts", "yade", "lammps"] {
+        assert!(
+            stdout.contains(&format!(
+                "regenerate: millimpact reference --code {codename} cases/ball_plate.toml"
+            )),
+            "{codename}: {stdout}"
+        );
+    }
+}
+
+#[test]
+fn the_store_must_be_whole() {
+    let copy = Copy::new();
+    copy.edit("lammps", "ball_ball", |v| {
+        v["runs"]
+            .as_array_mut()
+            .unwrap()
+            .retain(|r| r["loss_coefficient"] != 0.7)
+    });
+    copy.fails_naming("no stored run; make it: millimpact reference --code lammps");
+
+    let copy = Copy::new();
+    copy.edit("yade", "rod_end", |v| v["runs"] = Value::Array(Vec::new()));
+    copy.fails_naming("holds no runs");
+
+    let copy = Copy::new();
+    std::fs::write(copy.reference().join("lammps").join("foo.json"), "{}").unwrap();
+    copy.fails_naming("foo.json");
+
+    let copy = Copy::new();
+    std::fs::write(copy.reference().join("stray.json"), "{}").unwrap();
+    copy.fails_naming("stray.json");
+}
+
+#[test]
+fn a_reference_folder_that_does_not_exist_is_bad_input() {
+    let copy = Copy::new();
+    let out = millimpact()
+        .arg("verify")
+        .arg("--cases")
+        .arg(copy.cases())
+        .arg("--reference")
+        .arg(copy.dir.path().join("typo"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("--reference") && stderr.contains("typo"),
+        "{stderr}"
+    );
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+}
+
+/// Saves of the same code and case at different η, finishing together, all land: the store
+/// reads and writes a record file under a lock.
+#[test]
+fn concurrent_saves_lose_no_record() {
+    use millimpact::analysis::store::{load, reference_path, save};
+    use millimpact::codes::CodeName;
+    let stored = load(&reference_path(
+        &root().join("reference"),
+        CodeName::Lammps,
+        "ball_plate",
+    ))
+    .unwrap();
+    let template = stored.runs[0].clone();
+    for trial in 0..5 {
+        let dir = TempDir::new().unwrap();
+        let folder = dir.path().to_path_buf();
+        let handles: Vec<_> = (0..12)
+            .map(|k| {
+                let mut record = template.clone();
+                record.loss_coefficient = 0.01 * f64::from(k + 1);
+                let folder = folder.clone();
+                std::thread::spawn(move || save(&folder, &record).unwrap())
+            })
+            .collect();
+        for h in handles {
+            h.join().unwrap();
+        }
+        let file = load(&reference_path(&folder, CodeName::Lammps, "ball_plate")).unwrap();
+        assert_eq!(file.runs.len(), 12, "trial {trial}: runs lost");
+        let leftovers: Vec<_> = std::fs::read_dir(folder.join("lammps"))
+            .unwrap()
+            .flatten()
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n.ends_with(".tmp"))
+            .collect();
+        assert!(leftovers.is_empty(), "{leftovers:?}");
+    }
+}
+
+/// A save of another case under a stored case's name is refused, not merged into its record.
+#[test]
+fn a_save_of_other_bodies_under_a_stored_name_is_refused() {
+    use millimpact::analysis::store::{load, reference_path, save};
+    use millimpact::codes::CodeName;
+    let copy = Copy::new();
+    let path = reference_path(&copy.reference(), CodeName::Yade, "ball_plate");
+    let mut record = load(&path).unwrap().runs[0].clone();
+    record.setup.sphere.radius *= 1.5;
+    record.loss_coefficient = 0.5;
+    let error = save(&copy.reference(), &record).unwrap_err();
+    assert!(
+        format!("{error:#}").contains("holds runs of another"),
+        "{error:#}"
+    );
+    assert_eq!(
+        load(&path).unwrap().runs.len(),
+        3,
+        "the stored record is untouched"
+    );
+}
