@@ -2,8 +2,11 @@
 //! verification, the attribution of each code's difference, and the comparison, precision,
 //! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
 
+pub mod batch;
 pub mod compare;
+pub mod grid;
 pub mod precision;
+pub mod rows;
 pub mod run;
 pub mod source;
 pub mod stability;

@@ -2,6 +2,7 @@
 //! returns its text and, for a check, its verdict; only `main` prints and exits.
 
 mod compare;
+mod merge;
 mod precision;
 mod reference;
 mod run;
@@ -46,6 +47,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Compare(args) => compare::compare(args),
         Command::Precision(args) => precision::precision(args),
         Command::Stability(args) => stability::stability(args),
+        Command::Merge(args) => merge::merge(args),
     }
 }
 
