@@ -4,4 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
+bash scripts/install-sweep-tools.sh
 cargo test --release

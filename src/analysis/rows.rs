@@ -74,6 +74,32 @@ fn json_value(v: &str) -> String {
     }
 }
 
+/// A JSON object's members in their written order.
+struct Ordered(Vec<(String, serde_json::Value)>);
+
+impl<'de> serde::Deserialize<'de> for Ordered {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Ordered;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a JSON object")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Ordered, A::Error> {
+                let mut pairs = Vec::new();
+                while let Some(pair) = map.next_entry()? {
+                    pairs.push(pair);
+                }
+                Ok(Ordered(pairs))
+            }
+        }
+        d.deserialize_map(Visitor)
+    }
+}
+
 /// Rows read back: the columns and each row's cells (numbers in their written form).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Rows {
@@ -125,11 +151,13 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
             .enumerate()
             .filter(|(_, l)| !l.trim().is_empty())
         {
-            let object: serde_json::Map<String, serde_json::Value> = serde_json::from_str(line)
+            let Ordered(pairs) = serde_json::from_str(line)
                 .map_err(|e| bad(format!("line {}: not a JSON object: {e}", n + 1)))?;
             if rows.columns.is_empty() {
-                rows.columns = object.keys().cloned().collect();
+                rows.columns = pairs.iter().map(|(k, _)| k.clone()).collect();
             }
+            let object: std::collections::HashMap<String, serde_json::Value> =
+                pairs.into_iter().collect();
             let cells = rows
                 .columns
                 .iter()
