@@ -366,3 +366,73 @@ fn invalid_sweep_files_are_one_line_naming_file_key_value_and_what_is_allowed() 
         assert!(!out.exists(), "no partial output");
     }
 }
+
+/// Stops the single-node cluster however the test ends.
+struct Cluster(PathBuf);
+
+impl Drop for Cluster {
+    fn drop(&mut self) {
+        let _ = std::process::Command::new("bash")
+            .arg(root().join("scripts/slurm/local-cluster.sh"))
+            .arg("stop")
+            .arg(&self.0)
+            .status();
+    }
+}
+
+#[test]
+fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
+    if which("slurmctld").is_none() || which("munged").is_none() {
+        eprintln!(
+            "skipped: Slurm (slurm-wlm) or munge is not installed (scripts/test.sh installs them)"
+        );
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let cluster_dir = dir.path().join("cluster");
+    let started = std::process::Command::new("bash")
+        .arg(root().join("scripts/slurm/local-cluster.sh"))
+        .arg("start")
+        .arg(&cluster_dir)
+        .output()
+        .unwrap();
+    let _cluster = Cluster(cluster_dir.clone());
+    let said = String::from_utf8_lossy(&started.stdout).to_string();
+    if !started.status.success() {
+        eprintln!("skipped: a single-node Slurm cannot start here: {said}");
+        return;
+    }
+    let conf = cluster_dir.join("slurm.conf");
+    let file = grid_file(dir.path());
+    let whole = dir.path().join("whole.csv");
+    assert!(run_sweep(&file, &whole, &[]).status.success());
+    let outdir = dir.path().join("slurm-out");
+    let submitted = std::process::Command::new("bash")
+        .arg(root().join("scripts/slurm/sweep.sbatch"))
+        .arg(&file)
+        .arg(&outdir)
+        .arg("3")
+        .env("SLURM_CONF", &conf)
+        .env("MILLIMPACT", assert_cmd::cargo::cargo_bin("millimpact"))
+        .output()
+        .unwrap();
+    assert!(submitted.status.success(), "{submitted:?}");
+    let merged = outdir.join("sweep.csv");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !merged.exists() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
+    // The merge job writes its output atomically: once it exists it is whole.
+    assert!(
+        merged.exists(),
+        "the merge job did not finish; logs in {}",
+        outdir.display()
+    );
+    for k in 1..=3 {
+        assert_eq!(
+            rows_by_parameters(&outdir.join(format!("shard-{k}.csv"))).len(),
+            10
+        );
+    }
+    assert_eq!(rows_by_parameters(&merged), rows_by_parameters(&whole));
+}
