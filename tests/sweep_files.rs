@@ -436,3 +436,57 @@ fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
     }
     assert_eq!(rows_by_parameters(&merged), rows_by_parameters(&whole));
 }
+
+#[test]
+fn every_impact_of_a_lammps_batch_gives_the_figures_of_its_single_run() {
+    if which("lmp").is_none() {
+        eprintln!("skipped: lmp is not installed (scripts/install-dem-codes.sh installs it)");
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let file = dir.path().join("lammps.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.0, 0.1, 0.35, 0.5, 0.7, 0.9]\ncode = [\"lammps\"]\nsteps_per_contact = [200]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    let single = dir.path().join("single.csv");
+    let batched = dir.path().join("batched.csv");
+    let ran = |out: &Path, batch: &str| {
+        let result = millimpact()
+            .env("TMPDIR", dir.path())
+            .args(["sweep", "--jobs", "1", "--batch", batch])
+            .arg(&file)
+            .arg("--out")
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(result.status.success(), "{result:?}");
+        assert!(result.stderr.is_empty(), "no fallback: {result:?}");
+        rows_by_parameters(out)
+    };
+    let single = ran(&single, "1");
+    let batched = ran(&batched, "6");
+    assert_eq!(single.len(), 6);
+    for (key, one) in &single {
+        let many = &batched[key];
+        assert_eq!(one["status"], "ok", "{key:?}");
+        assert_eq!(one["batch"], "1");
+        assert_eq!(many["batch"], "6", "all six in one process");
+        for (column, value) in one {
+            if column == "batch" {
+                continue;
+            }
+            match (value.parse::<f64>(), many[column].parse::<f64>()) {
+                (Ok(a), Ok(b)) => assert!(
+                    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()),
+                    "{column}: single {a}, batched {b}"
+                ),
+                _ => assert_eq!(value, &many[column], "{column}"),
+            }
+        }
+    }
+}

@@ -869,6 +869,7 @@ pub fn run_grid(
     options: &GridOptions,
     stop: &AtomicBool,
     sink: &(dyn Fn(Vec<String>) + Sync),
+    note: &(dyn Fn(String) + Sync),
 ) -> anyhow::Result<()> {
     let (methods, codes): (Vec<&Point>, Vec<&Point>) = points
         .iter()
@@ -903,7 +904,7 @@ pub fn run_grid(
                         }
                         let i = next.fetch_add(1, Ordering::SeqCst);
                         let Some(item) = work.get(i) else { break };
-                        super::batch::run_item(sweep, item, options, stop, &emit);
+                        super::batch::run_item(sweep, item, options, stop, &emit, note);
                     }
                 });
             }

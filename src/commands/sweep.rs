@@ -211,7 +211,12 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
             bar.inc(1);
         }
     };
-    run_grid(sweep, &points, &options, &STOP, &sink)?;
+    let notes = Mutex::new(Vec::<String>::new());
+    let note = |text: String| notes.lock().unwrap_or_else(|e| e.into_inner()).push(text);
+    run_grid(sweep, &points, &options, &STOP, &sink, &note)?;
+    for text in notes.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        eprintln!("note: {text}");
+    }
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
