@@ -62,6 +62,7 @@ pub fn plan<'a>(
         match prepared {
             Some((case, setup))
                 if options.batch > 1
+                    && driver.max_batch() > 1
                     && driver.render_batch(std::slice::from_ref(&setup)).is_ok() =>
             {
                 groups
@@ -81,7 +82,11 @@ pub fn plan<'a>(
             .unwrap_or(1)
             .max(1);
         let by_bytes = (MAX_BATCH_BYTES / (80.0 * steps as f64)).max(1.0) as usize;
-        let cap = options.batch.min(by_bytes).max(1);
+        let cap = options
+            .batch
+            .min(by_bytes)
+            .min(code.driver().max_batch())
+            .max(1);
         let jobs = options.jobs.max(1);
         let size = items.len().div_ceil(jobs).clamp(1, cap);
         let mut items = items.into_iter().peekable();

@@ -312,6 +312,10 @@ impl CodeDriver for Lammps {
         super::lammps_batch::render_batch(setups)
     }
 
+    fn max_batch(&self) -> usize {
+        super::lammps_batch::MAX_BATCH
+    }
+
     fn parse_batch(
         &self,
         setups: &[CodeSetup],

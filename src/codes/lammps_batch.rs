@@ -14,6 +14,10 @@ use super::parse::ParseError;
 use super::template::exact_number;
 use super::{CodeSetup, ParsedRun, RenderedInput};
 
+/// Most impacts in one batch: LAMMPS allows 32 groups, `all` among them, and each sphere
+/// needs its own group for its own wall.
+pub const MAX_BATCH: usize = 31;
+
 /// The batch input file.
 pub const BATCH_INPUT_FILE: &str = "batch.in";
 
@@ -27,6 +31,12 @@ pub fn batch_refusal(setups: &[CodeSetup]) -> Option<String> {
     let Some(first) = setups.first() else {
         return Some("an empty batch".into());
     };
+    if setups.len() > MAX_BATCH {
+        return Some(format!(
+            "{} impacts: LAMMPS allows 32 groups, so a batch holds at most {MAX_BATCH}",
+            setups.len()
+        ));
+    }
     if let Some(s) = setups.iter().find(|s| s.other_sphere.is_some()) {
         return Some(format!(
             "{}: two-sphere scenes run alone (a batch holds sphere-on-wall impacts)",

@@ -73,6 +73,10 @@ pub trait CodeDriver: Send + Sync {
             self.name()
         ))
     }
+    /// Most impacts one batch input may hold (1: no batches).
+    fn max_batch(&self) -> usize {
+        1
+    }
     /// Parse a batch's runs in `workdir`, one result per setup, in order.
     fn parse_batch(
         &self,
