@@ -490,3 +490,75 @@ fn every_impact_of_a_lammps_batch_gives_the_figures_of_its_single_run() {
         }
     }
 }
+
+#[test]
+fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
+    if which("lmp").is_none() {
+        eprintln!("skipped: lmp is not installed (scripts/install-dem-codes.sh installs it)");
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let file = dir.path().join("slow.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = {{ start = 0.05, stop = 0.95, count = 10 }}\ncode = [\"lammps\"]\nsteps_per_contact = [100]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    let whole = dir.path().join("whole.csv");
+    let one_at_a_time = ["--jobs", "1", "--batch", "1"];
+    assert!(run_sweep(&file, &whole, &one_at_a_time).status.success());
+    let part = dir.path().join("part.csv");
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("millimpact"))
+        .current_dir(root())
+        .env_remove("CI")
+        .arg("sweep")
+        .arg(&file)
+        .arg("--out")
+        .arg(&part)
+        .args(one_at_a_time)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Interrupt once a few rows are in (one code process at a time, each a fraction of a
+    // second).
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::fs::read_to_string(&part)
+        .map(|t| t.lines().count())
+        .unwrap_or(0)
+        < 3
+        && std::time::Instant::now() < deadline
+    {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let interrupted = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(interrupted.success());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let kept = rows_by_parameters(&part);
+    if output.status.success() {
+        // The sweep ended before the signal arrived: nothing to resume.
+        assert_eq!(kept, rows_by_parameters(&whole));
+        return;
+    }
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    assert!(
+        kept.len() >= 2 && kept.len() < 10,
+        "{} rows kept",
+        kept.len()
+    );
+    assert!(
+        kept.values().all(|r| r["status"] == "ok"),
+        "only finished rows"
+    );
+    eprintln!("interrupted after {} of 10 rows", kept.len());
+    let resumed = run_sweep(&file, &part, &["--resume", "--jobs", "1", "--batch", "1"]);
+    assert!(resumed.status.success(), "{resumed:?}");
+    assert_eq!(rows_by_parameters(&part), rows_by_parameters(&whole));
+}
