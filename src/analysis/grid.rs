@@ -39,7 +39,7 @@ const SWEEP_KEYS: [&str; 2] = ["base", "axes"];
 /// Axes that choose sources and resolutions rather than case keys.
 const SOURCE_AXES: [&str; 4] = ["method", "code", "steps_per_period", "steps_per_contact"];
 /// Case keys an axis may name: top-level keys, and `table.key` for the body tables.
-const CASE_KEYS: [&str; 20] = [
+const CASE_KEYS: [&str; 21] = [
     "scene",
     "impact_velocity",
     "loss_coefficient",
@@ -60,9 +60,8 @@ const CASE_KEYS: [&str; 20] = [
     "rod.diameter",
     "rod.length",
     "rod.density",
+    "rod.youngs_modulus",
 ];
-/// `rod.youngs_modulus` too (kept apart to keep the list above readable).
-const MORE_CASE_KEYS: [&str; 1] = ["rod.youngs_modulus"];
 
 /// The figure columns of a row, after the parameters and before `status`.
 pub const FIGURES: [&str; 26] = [
@@ -362,13 +361,12 @@ impl SweepFile {
                         per_contact = counts;
                     }
                 }
-                k if CASE_KEYS.contains(&k) || MORE_CASE_KEYS.contains(&k) => axes.push(Axis {
+                k if CASE_KEYS.contains(&k) => axes.push(Axis {
                     key: key.clone(),
                     values,
                 }),
                 _ => {
                     let mut allowed: Vec<&str> = CASE_KEYS.to_vec();
-                    allowed.extend(MORE_CASE_KEYS);
                     allowed.extend(SOURCE_AXES);
                     return Err(fail(
                         &full,
