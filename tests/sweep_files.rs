@@ -439,16 +439,25 @@ fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
 
 #[test]
 fn every_impact_of_a_lammps_batch_gives_the_figures_of_its_single_run() {
-    if which("lmp").is_none() {
-        eprintln!("skipped: lmp is not installed (scripts/install-dem-codes.sh installs it)");
+    batch_equals_single_runs("lammps", "lmp");
+}
+
+#[test]
+fn every_impact_of_a_liggghts_batch_gives_the_figures_of_its_single_run() {
+    batch_equals_single_runs("liggghts", "liggghts");
+}
+
+fn batch_equals_single_runs(code: &str, binary: &str) {
+    if which(binary).is_none() {
+        eprintln!("skipped: {binary} is not installed (scripts/install-dem-codes.sh installs it)");
         return;
     }
     let dir = TempDir::new().unwrap();
-    let file = dir.path().join("lammps.toml");
+    let file = dir.path().join("batch.toml");
     std::fs::write(
         &file,
         format!(
-            "base = \"{}\"\n[axes]\nloss_coefficient = [0.0, 0.1, 0.35, 0.5, 0.7, 0.9]\ncode = [\"lammps\"]\nsteps_per_contact = [200]\n",
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.0, 0.1, 0.35, 0.5, 0.7, 0.9]\ncode = [\"{code}\"]\nsteps_per_contact = [200]\n",
             root().join("cases/ball_plate.toml").display()
         ),
     )

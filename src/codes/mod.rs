@@ -9,6 +9,7 @@
 
 pub mod batch;
 pub mod lammps_batch;
+pub mod liggghts_batch;
 pub mod parse;
 pub mod runner;
 pub mod setup;
