@@ -4,7 +4,7 @@
 //! runs, and the reason is noted.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context;
 
@@ -149,12 +149,12 @@ fn batch_figures(
 }
 
 /// Run one work item and hand each row to `emit`; reasons for falling back to single runs go
-/// to `note`.
+/// to `note`. Once `stop` is raised nothing falls back: what did not finish runs on resume.
 pub fn run_item(
     sweep: &SweepFile,
     item: &WorkItem<'_>,
     options: &GridOptions,
-    _stop: &AtomicBool,
+    stop: &AtomicBool,
     emit: &(dyn Fn(Vec<String>) + Sync),
     note: &(dyn Fn(String) + Sync),
 ) {
@@ -167,6 +167,8 @@ pub fn run_item(
                 ..RunOptions::default()
             };
             match run_batch(code.driver(), &setups, &run_options) {
+                // An interrupted batch's impacts run again on resume, not now.
+                Err(_) if stop.load(Ordering::SeqCst) => {}
                 Err(e) => {
                     note(format!(
                         "{code}: a batch of {} ran as single runs: {e}",
@@ -184,6 +186,7 @@ pub fn run_item(
                         });
                         match figures {
                             Ok(f) => emit(row(sweep, p, Ok(f.cells()))),
+                            Err(_) if stop.load(Ordering::SeqCst) => {}
                             Err(e) => {
                                 note(format!(
                                     "{code}: point {} of a batch ran alone: {e:#}{}",
