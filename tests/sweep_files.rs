@@ -447,6 +447,11 @@ fn every_impact_of_a_liggghts_batch_gives_the_figures_of_its_single_run() {
     batch_equals_single_runs("liggghts", "liggghts");
 }
 
+#[test]
+fn every_impact_of_a_yade_batch_gives_the_figures_of_its_single_run() {
+    batch_equals_single_runs("yade", "yade");
+}
+
 fn batch_equals_single_runs(code: &str, binary: &str) {
     if which(binary).is_none() {
         eprintln!("skipped: {binary} is not installed (scripts/install-dem-codes.sh installs it)");

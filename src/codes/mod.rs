@@ -14,6 +14,7 @@ pub mod parse;
 pub mod runner;
 pub mod setup;
 pub mod template;
+pub mod yade_batch;
 
 use std::path::Path;
 

@@ -321,6 +321,23 @@ impl CodeDriver for Yade {
         })
     }
 
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+        super::yade_batch::render_batch(setups)
+    }
+
+    fn max_batch(&self) -> usize {
+        super::yade_batch::MAX_BATCH
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        super::yade_batch::parse_batch(setups, workdir, log)
+    }
+
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {
         let mass = dynamic_mass(setup);
         match setup.scene {
