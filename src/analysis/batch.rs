@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::Context;
+use rayon::prelude::*;
 
 use super::grid::{CodeFigures, GridOptions, Point, Source, SweepFile, code_point, row};
 use crate::codes::batch::run_batch;
@@ -46,32 +47,42 @@ pub fn plan<'a>(
 ) -> Vec<WorkItem<'a>> {
     let mut work = Vec::new();
     let mut groups: BTreeMap<(CodeName, u64), Vec<Prepared<'a>>> = BTreeMap::new();
-    for &p in points {
+    // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
+    // done on the pool's threads, in point order.
+    let prepare_point = |p: &&'a Point| {
         let Source::Code {
             code,
             steps_per_contact,
         } = p.source
         else {
-            continue;
+            return None;
         };
         let driver = code.driver();
-        let prepared = sweep.case(p).ok().and_then(|case| {
-            let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
-            Some((case, setup))
-        });
+        if options.batch <= 1 || driver.max_batch() <= 1 {
+            return None;
+        }
+        let case = sweep.case(p).ok()?;
+        let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
+        // A point the code cannot run alone runs alone, where its error is reported.
+        driver
+            .render_batch(std::slice::from_ref(&setup))
+            .ok()
+            .map(|_| (code, case, setup))
+    };
+    let prepared: Vec<_> = match rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+    {
+        Ok(pool) => pool.install(|| points.par_iter().map(prepare_point).collect()),
+        Err(_) => points.iter().map(prepare_point).collect(),
+    };
+    for (&p, prepared) in points.iter().zip(prepared) {
         match prepared {
-            Some((case, setup))
-                if options.batch > 1
-                    && driver.max_batch() > 1
-                    && driver.render_batch(std::slice::from_ref(&setup)).is_ok() =>
-            {
-                groups
-                    .entry((code, setup.timestep.to_bits()))
-                    .or_default()
-                    .push((p, case, setup))
-            }
-            // Not batchable, or a point whose error its single run reports.
-            _ => work.push(WorkItem::Single(p)),
+            Some((code, case, setup)) => groups
+                .entry((code, setup.timestep.to_bits()))
+                .or_default()
+                .push((p, case, setup)),
+            None => work.push(WorkItem::Single(p)),
         }
     }
     for ((code, _), items) in groups {

@@ -100,6 +100,25 @@ fn hertz_mindlin_cor(en: f64) -> f64 {
 /// restitutions between about 0.979 and 1 cannot be realised: `None` for them, and for any
 /// other target no `en` in (0, 1] reaches.
 pub fn hertz_input_restitution(target: f64) -> Option<f64> {
+    // Each inversion integrates the law some sixty times, and a run asks for it several times
+    // (sizing, input, law, expected COR): remembered by target, a pure function's results.
+    type Memo = std::sync::Mutex<std::collections::HashMap<u64, Option<f64>>>;
+    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
+    let memo = MEMO.get_or_init(Default::default);
+    if let Some(&known) = memo.lock().ok().and_then(|m| m.get(&target.to_bits()).copied()).as_ref() {
+        return known;
+    }
+    let found = invert_hertz_fit(target);
+    if let Ok(mut m) = memo.lock() {
+        if m.len() >= 100_000 {
+            m.clear();
+        }
+        m.insert(target.to_bits(), found);
+    }
+    found
+}
+
+fn invert_hertz_fit(target: f64) -> Option<f64> {
     if !(target > 0.0 && target <= 1.0) {
         return None;
     }
