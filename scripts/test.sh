@@ -7,6 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
+bash scripts/install-sweep-tools.sh
 # Headless Chromium for the report test (opens index.html, fails on a console error).
 if ! command -v chromium >/dev/null 2>&1; then
     SUDO=""

@@ -26,7 +26,8 @@ pub struct Cli {
 pub enum Command {
     /// One impact of a case by one method, against the closed forms.
     Run(RunArgs),
-    /// One impact per loss coefficient over a range (the paper's Figure 3), CSV on stdout.
+    /// A grid sweep from a sweep file (rows as they finish), or one impact per loss
+    /// coefficient over a range (the paper's Figure 3).
     Sweep(SweepArgs),
     /// Every case in cases/ by every method against the closed forms, and the stored DEM-code
     /// references; exit 1 if anything disagrees beyond its stated tolerance.
@@ -46,6 +47,8 @@ pub enum Command {
     /// A self-contained report (index.html, index.md, and the CSV and JSON behind every
     /// figure and table) from the stored references, or the codes run now.
     Report(ReportArgs),
+    /// Join the shard outputs of one sweep into one file.
+    Merge(MergeArgs),
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {
@@ -118,20 +121,61 @@ pub struct RunArgs {
 /// `millimpact sweep`.
 #[derive(Debug, Args)]
 pub struct SweepArgs {
-    /// The case file (TOML); its own η or restitution is replaced by each swept value.
+    /// A sweep file (TOML with a base case and [axes]), or a case file swept over
+    /// --loss-coefficient.
     pub case: PathBuf,
-    /// Range of η as START:STOP:STEP, STOP included, all in [0, 1).
+    /// With a case file: range of η as START:STOP:STEP, STOP included, all in [0, 1).
     #[arg(long)]
-    pub loss_coefficient: String,
+    pub loss_coefficient: Option<String>,
     /// Also draw COR against η, with the closed form, to this SVG file.
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Integration settings.
     #[command(flatten)]
     pub integration: IntegrationArgs,
-    /// Output format.
-    #[arg(long, value_parser = format_parser(), default_value = "csv")]
-    pub format: Format,
+    /// Output format (a sweep file's rows: csv or jsonl).
+    #[arg(long, value_parser = PossibleValuesParser::new(["table", "json", "csv", "markdown", "jsonl"]), default_value = "csv")]
+    pub format: String,
+    /// Sweep file: append rows to this file as they finish (standard output otherwise).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Sweep file: skip the points already in --out (matched by their parameters).
+    #[arg(long, requires = "out")]
+    pub resume: bool,
+    /// Sweep file: worker threads for our methods and most live DEM-code processes
+    /// [default: the number of cores].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub jobs: Option<u32>,
+    /// Sweep file: run only the K-th of N deterministic slices of the grid (K/N, 1-based).
+    #[arg(long, value_parser = parse_shard)]
+    pub shard: Option<(usize, usize)>,
+    /// Sweep file: kill a DEM-code process after this many seconds.
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
+    /// Sweep file: most impacts per DEM-code process (1: one process per impact).
+    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub batch: u32,
+}
+
+/// `K/N` with 1 <= K <= N.
+fn parse_shard(text: &str) -> Result<(usize, usize), String> {
+    let parsed = text
+        .split_once('/')
+        .and_then(|(k, n)| Some((k.trim().parse().ok()?, n.trim().parse().ok()?)));
+    match parsed {
+        Some((k, n)) if k >= 1 && k <= n => Ok((k, n)),
+        _ => Err(format!("`{text}` is not K/N with 1 <= K <= N")),
+    }
+}
+
+/// `millimpact merge`.
+#[derive(Debug, Args)]
+pub struct MergeArgs {
+    /// The merged output.
+    pub out: PathBuf,
+    /// Shard outputs of one sweep (`sweep --shard K/N --out ...`).
+    #[arg(required = true)]
+    pub shards: Vec<PathBuf>,
 }
 
 /// `millimpact verify`.

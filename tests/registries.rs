@@ -69,13 +69,17 @@ fn format_choices_are_the_exporters() {
     assert_eq!(registry, ["table", "json", "csv", "markdown"]);
     for command in [
         "run",
-        "sweep",
         "verify",
         "reference",
         "compare",
         "precision",
         "stability",
+        "calibrate",
     ] {
         assert_eq!(choices(command, "--format"), registry, "{command} --format");
     }
+    // A sweep file's rows are streamed as they finish: JSON lines besides the exporters.
+    let mut streamed = registry.clone();
+    streamed.push("jsonl".to_string());
+    assert_eq!(choices("sweep", "--format"), streamed, "sweep --format");
 }

@@ -308,6 +308,23 @@ impl CodeDriver for Lammps {
         })
     }
 
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+        super::lammps_batch::render_batch(setups)
+    }
+
+    fn max_batch(&self) -> usize {
+        super::lammps_batch::MAX_BATCH
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        super::lammps_batch::parse_batch(setups, workdir, log)
+    }
+
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {
         match Self::plan(setup) {
             Ok(plan) if setup.clamp_attractive => plan.law.clamped(),

@@ -293,6 +293,23 @@ impl CodeDriver for Liggghts {
         Ok(parsed)
     }
 
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+        super::liggghts_batch::render_batch(setups)
+    }
+
+    fn max_batch(&self) -> usize {
+        super::liggghts_batch::MAX_BATCH
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        super::liggghts_batch::parse_batch(setups, workdir, log)
+    }
+
     /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and
     /// damping; the force is not clamped (`limitForce off`, its default, confirmed by run)
     /// unless the setup asks for `limitForce on`.

@@ -7,10 +7,14 @@
 //! capture, error reporting), and [`crate::model::trajectory::trajectory_metrics`] turns any
 //! code's trajectory into the same figures the solver reports.
 
+pub mod batch;
+pub mod lammps_batch;
+pub mod liggghts_batch;
 pub mod parse;
 pub mod runner;
 pub mod setup;
 pub mod template;
+pub mod yade_batch;
 
 use std::path::Path;
 
@@ -61,6 +65,36 @@ pub trait CodeDriver: Send + Sync {
     /// How the code advances a step (what velocity its damping sees).
     fn step_scheme(&self) -> StepScheme {
         StepScheme::VelocityVerlet
+    }
+    /// Render one input that runs the independent impacts of `setups` (one time step) in one
+    /// process, or say why this code cannot. By default a code runs one impact per process.
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+        let _ = setups;
+        Err(format!(
+            "{} runs one impact per process (no batch input)",
+            self.name()
+        ))
+    }
+    /// Most impacts one batch input may hold (1: no batches).
+    fn max_batch(&self) -> usize {
+        1
+    }
+    /// Parse a batch's runs in `workdir`, one result per setup, in order.
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        let _ = (workdir, log);
+        setups
+            .iter()
+            .map(|_| {
+                Err(ParseError::Empty {
+                    file: "(no batch output)".into(),
+                })
+            })
+            .collect()
     }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a
     /// missing factor); `None` when it realises the target. By default: the COR of the

@@ -104,10 +104,29 @@ fn hertz_mindlin_cor(en: f64) -> f64 {
 // A target of exactly 1 is passed through exactly, as YADE's own `en = 1` special case.
 #[allow(clippy::float_cmp)]
 pub fn hertz_input_restitution(target: f64) -> Option<f64> {
+    // Each inversion integrates the law some sixty times, and a run asks for it several times
+    // (sizing, input, law, expected COR): remembered by target, a pure function's results.
+    type Memo = std::sync::Mutex<std::collections::HashMap<u64, Option<f64>>>;
+    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
+    let memo = MEMO.get_or_init(Default::default);
+    if let Some(&known) = memo.lock().ok().and_then(|m| m.get(&target.to_bits()).copied()).as_ref() {
+        return known;
+    }
+    let found = invert_hertz_fit(target);
+    if let Ok(mut m) = memo.lock() {
+        if m.len() >= 100_000 {
+            m.clear();
+        }
+        m.insert(target.to_bits(), found);
+    }
+    found
+}
+
+fn invert_hertz_fit(target: f64) -> Option<f64> {
     if !(target > 0.0 && target <= 1.0) {
         return None;
     }
-    if target == 1.0 {
+    if target >= 1.0 {
         return Some(1.0);
     }
     let (mut lo, mut hi) = (1e-6, 1.0 - 1e-12);
@@ -323,6 +342,23 @@ impl CodeDriver for Yade {
                     .map(|v| v.trim().to_string())
             }),
         })
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+        super::yade_batch::render_batch(setups)
+    }
+
+    fn max_batch(&self) -> usize {
+        super::yade_batch::MAX_BATCH
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        super::yade_batch::parse_batch(setups, workdir, log)
     }
 
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {

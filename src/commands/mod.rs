@@ -3,6 +3,7 @@
 
 mod calibrate;
 mod compare;
+mod merge;
 mod precision;
 mod reference;
 mod report;
@@ -50,6 +51,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Stability(args) => stability::stability(args),
         Command::Calibrate(args) => calibrate::calibrate(args),
         Command::Report(args) => report::report(args),
+        Command::Merge(args) => merge::merge(args),
     }
 }
 

@@ -1,21 +1,50 @@
-//! `millimpact sweep`.
+//! `millimpact sweep`: a sweep file's grid (rows appended as they finish, resumable,
+//! shardable), or a case over a range of η.
 
-use anyhow::Result;
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use anyhow::{Context, Result};
 
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
+use crate::analysis::grid::{
+    GridOptions, Point, SweepFile, is_sweep_table, normal_cell, read_table, run_grid,
+};
+use crate::analysis::rows::{RowFormat, RowWriter, complete_lines, keys_of, parse_rows};
 use crate::analysis::sweep::{parse_range, sweep as sweep_case};
 use crate::cli::SweepArgs;
-use crate::error::UserError;
+use crate::error::{CheckFailed, UserError};
 use crate::model::case::Case;
 use crate::model::exact;
-use crate::output::export;
 use crate::output::restitution_plot::restitution_svg;
+use crate::output::{Format, export};
+
+/// Raised by Ctrl-C: no new point starts, finished rows are kept.
+static STOP: AtomicBool = AtomicBool::new(false);
 
 pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
+    if let Ok(table) = read_table(&args.case)
+        && is_sweep_table(&table)
+    {
+        let sweep = SweepFile::from_table(&args.case, &table)?;
+        return sweep_file(args, &sweep);
+    }
     let case = Case::load(&args.case)?;
     check_output("--plot", args.plot.as_deref(), &[&args.case])?;
-    let values = parse_range(&args.loss_coefficient).map_err(|e| match e {
+    let Some(range) = &args.loss_coefficient else {
+        return Err(UserError::CaseArgument {
+            case: case.path.display().to_string(),
+            option: "--loss-coefficient".into(),
+            value: "(missing)".into(),
+            allowed: "required with a case file (a sweep file has a base and [axes])".into(),
+        }
+        .into());
+    };
+    let values = parse_range(range).map_err(|e| match e {
         UserError::Argument {
             option,
             value,
@@ -28,12 +57,19 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         },
         other => other,
     })?;
+    let format = Format::from_name(&args.format).ok_or_else(|| {
+        UserError::argument(
+            "--format",
+            &args.format,
+            "jsonl is for sweep files; a case over --loss-coefficient takes table, json, csv or markdown",
+        )
+    })?;
     let options = integration_options(&args.integration);
     let mut report = sweep_case(&case, &values, &options)?;
     report.command = format!(
         "millimpact sweep {} --loss-coefficient {} --method {}",
         case.path.display(),
-        args.loss_coefficient,
+        range,
         options.method
     );
     if let Some(path) = &args.plot {
@@ -50,5 +86,185 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         )?;
         write_output(path, svg.as_bytes(), "figure")?;
     }
-    Ok(CommandOutput::passed(export(&report, args.format)?))
+    Ok(CommandOutput::passed(export(&report, format)?))
+}
+
+fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
+    let file = args.case.display().to_string();
+    let refuse = |option: &str, value: String| UserError::CaseArgument {
+        case: file.clone(),
+        option: option.into(),
+        value,
+        allowed: "not for a sweep file: give methods, codes and resolutions in its [axes]".into(),
+    };
+    let i = &args.integration;
+    if let Some(v) = &args.loss_coefficient {
+        return Err(refuse("--loss-coefficient", v.clone()));
+    }
+    if let Some(v) = &args.plot {
+        return Err(refuse("--plot", v.display().to_string()));
+    }
+    if let Some(v) = i.steps_per_period {
+        return Err(refuse("--steps-per-period", v.to_string()));
+    }
+    if let Some(v) = i.timestep {
+        return Err(refuse("--timestep", v.to_string()));
+    }
+    if let Some(v) = i.rtol {
+        return Err(refuse("--rtol", v.to_string()));
+    }
+    if i.method != crate::solve::Method::Rk4Event {
+        return Err(refuse("--method", i.method.to_string()));
+    }
+    Ok(())
+}
+
+fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
+    refuse_for_sweep_files(args)?;
+    let mut format = RowFormat::from_name(&args.format).ok_or_else(|| {
+        UserError::argument(
+            "--format",
+            &args.format,
+            "a sweep file's rows are csv or jsonl",
+        )
+    })?;
+    let columns = sweep.columns();
+    let mut points: Vec<Point> = sweep.points(args.shard);
+    let mut resume_rows = false;
+    let out: Box<dyn Write + Send> = match &args.out {
+        None => Box::new(std::io::BufWriter::new(std::io::stdout())),
+        Some(path) => {
+            let text = std::fs::read_to_string(path).unwrap_or_default();
+            if !text.is_empty() && !args.resume {
+                return Err(UserError::argument(
+                    "--out",
+                    path.display(),
+                    "the file exists and is not empty: give --resume to continue it, or remove it",
+                )
+                .into());
+            }
+            let complete = complete_lines(&text);
+            if args.resume && !complete.trim().is_empty() {
+                let file = path.display().to_string();
+                let rows = parse_rows(complete, &file)?;
+                if let Some(f) = rows.format {
+                    format = f;
+                }
+                let keys = keys_of(&rows, &sweep.key_columns(), &sweep.fingerprint, &file)?;
+                points.retain(|p| {
+                    let key: Vec<String> =
+                        sweep.key_cells(p).iter().map(|c| normal_cell(c)).collect();
+                    !keys.contains(&key)
+                });
+                resume_rows = true;
+            }
+            // A row cut off by a kill is dropped; the point runs again.
+            if complete.len() != text.len() {
+                std::fs::write(path, complete)
+                    .with_context(|| format!("truncating {}", path.display()))?;
+            }
+            let file = std::fs::OpenOptions::new()
+                .create(true)
+                .append(true)
+                .open(path)
+                .with_context(|| format!("opening {}", path.display()))?;
+            Box::new(std::io::BufWriter::new(file))
+        }
+    };
+    let has_codes = points
+        .iter()
+        .any(|p| matches!(p.source, crate::analysis::grid::Source::Code { .. }));
+    let flush_every = if has_codes {
+        Duration::ZERO
+    } else {
+        Duration::from_millis(50)
+    };
+    let writer = RowWriter::new(out, format, columns, resume_rows, flush_every)
+        .context("writing the sweep's rows")?;
+    let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    let options = GridOptions {
+        jobs,
+        timeout: Duration::from_secs_f64(args.timeout),
+        periods: args.integration.periods,
+        batch: args.batch as usize,
+    };
+    let bar = progress_bar(points.len() as u64);
+    let _ = ctrlc::set_handler(|| {
+        if STOP.swap(true, Ordering::SeqCst) {
+            // A second Ctrl-C: leave now.
+            std::process::exit(130);
+        }
+    });
+    let state = Mutex::new((writer, None::<std::io::Error>));
+    let sink = |row: Vec<String>| {
+        let mut guard = state.lock().unwrap_or_else(|e| e.into_inner());
+        if guard.1.is_none()
+            && let Err(e) = guard.0.write(&row)
+        {
+            guard.1 = Some(e);
+            STOP.store(true, Ordering::SeqCst);
+        }
+        if let Some(bar) = &bar {
+            bar.inc(1);
+        }
+    };
+    let notes = Mutex::new(Vec::<String>::new());
+    let note = |text: String| notes.lock().unwrap_or_else(|e| e.into_inner()).push(text);
+    run_grid(sweep, &points, &options, &STOP, &sink, &note)?;
+    for text in notes.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        eprintln!("note: {text}");
+    }
+    if let Some(bar) = &bar {
+        bar.finish_and_clear();
+    }
+    let (mut writer, error) = state.into_inner().unwrap_or_else(|e| e.into_inner());
+    let flushed = writer.flush();
+    if let Some(e) = error.or(flushed.err()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return Ok(CommandOutput::passed(String::new()));
+        }
+        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+    }
+    let place = args
+        .out
+        .as_deref()
+        .map(Path::display)
+        .map(|d| d.to_string())
+        .unwrap_or_else(|| "standard output".into());
+    if STOP.load(Ordering::SeqCst) {
+        return Ok(CommandOutput {
+            text: String::new(),
+            failure: Some(CheckFailed(format!(
+                "interrupted: {} rows written to {place}; continue with --resume",
+                writer.written
+            ))),
+        });
+    }
+    if writer.failed > 0 {
+        // A failed point is a row like any other: the sweep went on and its output is whole.
+        eprintln!(
+            "note: {} of {} points failed; their rows in {place} hold the errors",
+            writer.failed, writer.written
+        );
+    }
+    Ok(CommandOutput::passed(String::new()))
+}
+
+/// A progress bar with rate and ETA on a terminal; none when standard error is not one or
+/// `CI` is set.
+fn progress_bar(len: u64) -> Option<indicatif::ProgressBar> {
+    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) =
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} points  {per_sec}  ETA {eta}")
+    {
+        bar.set_style(style);
+    }
+    Some(bar)
 }

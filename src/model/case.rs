@@ -128,6 +128,17 @@ impl Case {
             .unwrap_or_else(|| "case".to_string());
         Reader { file: &file }.case(&table, name, path)
     }
+
+    /// Validate an already parsed case table as strictly as [`Case::load`]; errors name
+    /// `file`, and the case is called `name` with `path` as its origin.
+    pub fn from_table(
+        table: &Table,
+        file: &str,
+        name: &str,
+        path: &Path,
+    ) -> Result<Case, CaseError> {
+        Reader { file }.case(table, name.to_string(), path)
+    }
 }
 
 struct Reader<'a> {

@@ -1,0 +1,222 @@
+//! The code points of a sweep as work for the process pool: single runs, or batches of
+//! impacts run in one process where the code's driver can batch them (start-up paid once).
+//! A batch that cannot run, or an impact of it that cannot be read, falls back to single
+//! runs, and the reason is noted.
+
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use anyhow::Context;
+use rayon::prelude::*;
+
+use super::grid::{CodeFigures, GridOptions, Point, Source, SweepFile, code_point, row};
+use crate::codes::batch::run_batch;
+use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
+use crate::model::case::Case;
+use crate::model::exact;
+use crate::model::trajectory::trajectory_metrics;
+use crate::solve::dashpot::{accurate_metrics, step_trajectory};
+
+/// Most bytes of trajectory files one batch may write (about 80 bytes per step and impact).
+pub const MAX_BATCH_BYTES: f64 = 2e8;
+
+/// A code point with its case and setup.
+type Prepared<'a> = (&'a Point, Case, CodeSetup);
+
+/// One unit of work for the pool: one process.
+#[derive(Clone, Debug)]
+pub enum WorkItem<'a> {
+    /// A point run alone.
+    Single(&'a Point),
+    /// Points run together in one process of `code`.
+    Batch {
+        /// The code.
+        code: CodeName,
+        /// The points, their cases and setups.
+        items: Vec<Prepared<'a>>,
+    },
+}
+
+/// Split the code points into work items: points of one code and one time step go in
+/// batches of at most `options.batch` impacts (fewer when their trajectories would be
+/// large), spread so that every worker has one.
+pub fn plan<'a>(
+    sweep: &SweepFile,
+    points: &[&'a Point],
+    options: &GridOptions,
+) -> Vec<WorkItem<'a>> {
+    let mut work = Vec::new();
+    let mut groups: BTreeMap<(CodeName, u64), Vec<Prepared<'a>>> = BTreeMap::new();
+    // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
+    // done on the pool's threads, in point order.
+    let prepare_point = |p: &&'a Point| {
+        let Source::Code {
+            code,
+            steps_per_contact,
+        } = p.source
+        else {
+            return None;
+        };
+        let driver = code.driver();
+        if options.batch <= 1 || driver.max_batch() <= 1 {
+            return None;
+        }
+        let case = sweep.case(p).ok()?;
+        let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
+        // A point the code cannot run alone runs alone, where its error is reported.
+        driver
+            .render_batch(std::slice::from_ref(&setup))
+            .ok()
+            .map(|_| (code, case, setup))
+    };
+    let prepared: Vec<_> = match rayon::ThreadPoolBuilder::new()
+        .num_threads(options.jobs.max(1))
+        .build()
+    {
+        Ok(pool) => pool.install(|| points.par_iter().map(prepare_point).collect()),
+        Err(_) => points.iter().map(prepare_point).collect(),
+    };
+    for (&p, prepared) in points.iter().zip(prepared) {
+        match prepared {
+            Some((code, case, setup)) => groups
+                .entry((code, setup.timestep.to_bits()))
+                .or_default()
+                .push((p, case, setup)),
+            None => work.push(WorkItem::Single(p)),
+        }
+    }
+    for ((code, _), items) in groups {
+        let steps = items
+            .iter()
+            .map(|(_, _, s)| s.steps)
+            .max()
+            .unwrap_or(1)
+            .max(1);
+        let by_bytes =
+            crate::model::count::ceil_count((MAX_BATCH_BYTES / (80.0 * steps as f64)).max(1.0))
+                .and_then(|n| usize::try_from(n).ok())
+                .unwrap_or(1);
+        let cap = options
+            .batch
+            .min(by_bytes)
+            .min(code.driver().max_batch())
+            .max(1);
+        let jobs = options.jobs.max(1);
+        let size = items.len().div_ceil(jobs).clamp(1, cap);
+        let mut items = items.into_iter().peekable();
+        while items.peek().is_some() {
+            let chunk: Vec<_> = items.by_ref().take(size).collect();
+            if chunk.len() == 1 {
+                work.push(WorkItem::Single(chunk[0].0));
+            } else {
+                work.push(WorkItem::Batch { code, items: chunk });
+            }
+        }
+    }
+    work
+}
+
+/// The figures of one impact of a batch, read as `reference` reads a single run.
+fn batch_figures(
+    code: CodeName,
+    case: &Case,
+    setup: &CodeSetup,
+    run: &ParsedRun,
+    wall_time: f64,
+    batch: usize,
+) -> anyhow::Result<CodeFigures> {
+    let driver = code.driver();
+    let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
+    let law = driver.law(setup);
+    let stepped = step_trajectory(
+        &law,
+        setup.impact_velocity,
+        setup.timestep,
+        setup.steps,
+        driver.step_scheme(),
+    );
+    let at_step =
+        trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
+    let own_exact = accurate_metrics(&law, setup.impact_velocity, 1e-13)?;
+    let paper = case.law();
+    Ok(CodeFigures {
+        case: case.name.clone(),
+        law: (
+            paper.loss_coefficient,
+            paper.mass,
+            paper.stiffness,
+            paper.exponent,
+        ),
+        metrics,
+        cor_target: driver
+            .expected_restitution(setup)
+            .unwrap_or(setup.target_restitution),
+        paper_exact: exact::paper_impact(&paper, case.impact_velocity),
+        steps: setup.steps,
+        timestep: setup.timestep,
+        wall_time,
+        loop_time: run.loop_time,
+        own_law: (own_exact.cor, at_step.cor),
+        code_version: run.version.clone().unwrap_or_else(|| "unknown".to_string()),
+        batch,
+    })
+}
+
+/// Run one work item and hand each row to `emit`; reasons for falling back to single runs go
+/// to `note`. Once `stop` is raised nothing falls back: what did not finish runs on resume.
+pub fn run_item(
+    sweep: &SweepFile,
+    item: &WorkItem<'_>,
+    options: &GridOptions,
+    stop: &AtomicBool,
+    emit: &(dyn Fn(Vec<String>) + Sync),
+    note: &(dyn Fn(String) + Sync),
+) {
+    match item {
+        WorkItem::Single(p) => emit(code_point(sweep, p, options)),
+        WorkItem::Batch { code, items } => {
+            let setups: Vec<CodeSetup> = items.iter().map(|(_, _, s)| s.clone()).collect();
+            let run_options = RunOptions {
+                timeout: options.timeout,
+                ..RunOptions::default()
+            };
+            match run_batch(code.driver(), &setups, &run_options) {
+                // An interrupted batch's impacts run again on resume, not now.
+                Err(_) if stop.load(Ordering::SeqCst) => {}
+                Err(e) => {
+                    note(format!(
+                        "{code}: a batch of {} ran as single runs: {e}",
+                        items.len()
+                    ));
+                    for (p, _, _) in items {
+                        emit(code_point(sweep, p, options));
+                    }
+                }
+                Ok(batch) => {
+                    let n = items.len();
+                    for ((p, case, setup), run) in items.iter().zip(batch.runs) {
+                        let figures = run.map_err(anyhow::Error::from).and_then(|run| {
+                            batch_figures(*code, case, setup, &run, batch.wall_time / n as f64, n)
+                        });
+                        match figures {
+                            Ok(f) => emit(row(sweep, p, Ok(f.cells()))),
+                            Err(_) if stop.load(Ordering::SeqCst) => {}
+                            Err(e) => {
+                                note(format!(
+                                    "{code}: point {} of a batch ran alone: {e:#}{}",
+                                    p.index,
+                                    batch
+                                        .kept
+                                        .as_ref()
+                                        .map(|k| format!(" (batch kept in {})", k.display()))
+                                        .unwrap_or_default()
+                                ));
+                                emit(code_point(sweep, p, options));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}

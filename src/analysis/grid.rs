@@ -1,0 +1,919 @@
+//! Sweep files: a base case and grid axes over any case key, over methods and codes and over
+//! their step resolutions. Each point's case is the base case's TOML table edited at the
+//! point's keys and read by the strict case reader, so an invalid point fails with the same
+//! one-line error as a case file, in its row. Rows are flat: the point's parameters, every
+//! figure `run` and `reference` report, and a status (`ok` or the error).
+//!
+//! ```toml
+//! base = "../cases/ball_plate.toml"      # or an inline [base] table holding a case
+//! [axes]
+//! loss_coefficient = { start = 0.0, stop = 0.9, count = 10 }
+//! "ball.radius" = [0.01, 0.02]
+//! method = ["rk4-event"]
+//! steps_per_period = [400]
+//! code = ["lammps"]
+//! steps_per_contact = [200]
+//! ```
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use rayon::prelude::*;
+use sha2::{Digest, Sha256};
+use toml::{Table, Value};
+
+use super::run::{IntegrationOptions, RunReport, run_case};
+use super::store::{ReferenceOptions, ReferenceRecord, run_reference};
+use crate::codes::CodeName;
+use crate::model::case::{Case, CaseError};
+use crate::model::exact::ImpactFigures;
+use crate::model::trajectory::TrajectoryMetrics;
+use crate::solve::{Knob, Method};
+
+/// Most points a sweep file may name.
+pub const MAX_POINTS: usize = 10_000_000;
+
+/// The keys a sweep file may have at top level.
+const SWEEP_KEYS: [&str; 2] = ["base", "axes"];
+/// Axes that choose sources and resolutions rather than case keys.
+const SOURCE_AXES: [&str; 4] = ["method", "code", "steps_per_period", "steps_per_contact"];
+/// Case keys an axis may name: top-level keys, and `table.key` for the body tables.
+const CASE_KEYS: [&str; 21] = [
+    "scene",
+    "impact_velocity",
+    "loss_coefficient",
+    "restitution",
+    "stiffness",
+    "contact",
+    "ball.radius",
+    "ball.density",
+    "ball.youngs_modulus",
+    "ball.poisson_ratio",
+    "other_ball.radius",
+    "other_ball.density",
+    "other_ball.youngs_modulus",
+    "other_ball.poisson_ratio",
+    "plate.rigid",
+    "plate.youngs_modulus",
+    "plate.poisson_ratio",
+    "rod.diameter",
+    "rod.length",
+    "rod.density",
+    "rod.youngs_modulus",
+];
+
+/// The figure columns of a row, after the parameters and before `status`.
+pub const FIGURES: [&str; 26] = [
+    "case",
+    "eta",
+    "reduced_mass",
+    "contact_stiffness",
+    "exponent",
+    "cor",
+    "cor_target",
+    "cor_error",
+    "peak_deformation",
+    "peak_deformation_exact",
+    "peak_deformation_error",
+    "peak_force",
+    "peak_force_exact",
+    "contact_time",
+    "contact_time_exact",
+    "contact_time_error",
+    "compression_time",
+    "restitution_time",
+    "absorbed_energy",
+    "steps",
+    "rhs_evaluations",
+    "timestep",
+    "wall_time",
+    "loop_time",
+    "own_law_cor",
+    "own_law_stepped_cor",
+];
+/// Further figure columns (the code's identity and the batch a code point ran in).
+pub const MORE_FIGURES: [&str; 2] = ["code_version", "batch"];
+
+/// One grid axis over a case key.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Axis {
+    /// The dotted case key.
+    pub key: String,
+    /// Its values.
+    pub values: Vec<Value>,
+}
+
+/// Who computes a point: one of our methods, or a DEM code.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Source {
+    /// A method, with its steps per period where it has that knob.
+    Method {
+        /// The method.
+        method: Method,
+        /// Steps per undamped period (fixed-step methods).
+        steps_per_period: Option<u32>,
+    },
+    /// A DEM code, with its steps per contact.
+    Code {
+        /// The code.
+        code: CodeName,
+        /// Steps per elastic contact time.
+        steps_per_contact: Option<u32>,
+    },
+}
+
+/// A parsed sweep file.
+#[derive(Clone, Debug)]
+pub struct SweepFile {
+    /// Where it was read from.
+    pub path: PathBuf,
+    /// The base case table.
+    pub base: Table,
+    /// Name of the base case.
+    pub base_name: String,
+    /// Where the base case came from (its file, or the sweep file for an inline base).
+    pub base_path: PathBuf,
+    /// Axes over case keys, in key order.
+    pub axes: Vec<Axis>,
+    /// The sources, each with its resolution.
+    pub sources: Vec<Source>,
+    /// Hash of the normalised sweep file and base case: shards of one sweep share it.
+    pub fingerprint: String,
+}
+
+/// One point of the grid.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    /// Its index in the whole grid (row order of an unsharded sweep).
+    pub index: usize,
+    /// One value per case axis.
+    pub values: Vec<Value>,
+    /// Who computes it.
+    pub source: Source,
+}
+
+/// Whether `table` is a sweep file rather than a case.
+pub fn is_sweep_table(table: &Table) -> bool {
+    table.contains_key("axes") || table.contains_key("base")
+}
+
+fn parse_toml(path: &Path) -> Result<Table, CaseError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| CaseError {
+        file: file.clone(),
+        key: "(file)".into(),
+        value: "(unreadable)".into(),
+        allowed: format!("cannot read it: {e}"),
+    })?;
+    text.parse().map_err(|e: toml::de::Error| CaseError {
+        file,
+        key: "(file)".into(),
+        value: "(not TOML)".into(),
+        allowed: format!("invalid TOML: {}", e.message().replace('\n', " ")),
+    })
+}
+
+/// Read a file as TOML (for telling a sweep file from a case file).
+pub fn read_table(path: &Path) -> Result<Table, CaseError> {
+    parse_toml(path)
+}
+
+/// A number as written in a row: the shortest form that reads back exactly, plain for
+/// moderate magnitudes and with an exponent otherwise.
+pub fn number(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || (1e-4..1e15).contains(&a) || !x.is_finite() {
+        x.to_string()
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// A cell as written in a row: strings bare, numbers by [`number`].
+pub fn cell(value: &Value) -> String {
+    match value {
+        Value::String(s) => s.clone(),
+        Value::Float(x) => number(*x),
+        Value::Integer(i) => i.to_string(),
+        Value::Boolean(b) => b.to_string(),
+        other => other.to_string(),
+    }
+}
+
+/// The normal form of a parameter cell for matching rows: a number by its value.
+pub fn normal_cell(text: &str) -> String {
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() => number(x),
+        _ => text.to_string(),
+    }
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+impl SweepFile {
+    /// Read and validate a sweep file. Errors are one line naming the file, the key, the
+    /// value and what is allowed.
+    pub fn load(path: &Path) -> Result<SweepFile, CaseError> {
+        let table = parse_toml(path)?;
+        Self::from_table(path, &table)
+    }
+
+    /// Validate a parsed sweep file.
+    pub fn from_table(path: &Path, table: &Table) -> Result<SweepFile, CaseError> {
+        let file = path.display().to_string();
+        let fail = |key: &str, value: &str, allowed: &str| CaseError {
+            file: file.clone(),
+            key: key.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        };
+        for (key, value) in table {
+            if !SWEEP_KEYS.contains(&key.as_str()) {
+                return Err(fail(
+                    key,
+                    &value.to_string(),
+                    "unknown key; a sweep file takes base (a case file or table) and [axes]",
+                ));
+            }
+        }
+        let (base, base_name, base_path) = match table.get("base") {
+            None => {
+                return Err(fail(
+                    "base",
+                    "(missing)",
+                    "required: a case file path or a [base] table",
+                ));
+            }
+            Some(Value::String(s)) => {
+                let dir = path.parent().unwrap_or(Path::new(""));
+                let base_path = dir.join(s);
+                let base = parse_toml(&base_path).map_err(|e| {
+                    fail(
+                        "base",
+                        &format!("\"{s}\""),
+                        &format!("a case file relative to the sweep file's folder: {e}"),
+                    )
+                })?;
+                let name = base_path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "case".into());
+                (base, name, base_path)
+            }
+            Some(Value::Table(t)) => {
+                let name = path
+                    .file_stem()
+                    .map(|s| s.to_string_lossy().into_owned())
+                    .unwrap_or_else(|| "case".into());
+                (t.clone(), name, path.to_path_buf())
+            }
+            Some(v) => {
+                return Err(fail(
+                    "base",
+                    &v.to_string(),
+                    "must be a case file path or a [base] table",
+                ));
+            }
+        };
+        // The base must itself be a valid case.
+        Case::from_table(
+            &base,
+            &base_path.display().to_string(),
+            &base_name,
+            &base_path,
+        )?;
+        let axes_table = match table.get("axes") {
+            None => Table::new(),
+            Some(Value::Table(t)) => t.clone(),
+            Some(v) => {
+                return Err(fail(
+                    "axes",
+                    &v.to_string(),
+                    "must be a table of key = [values]",
+                ));
+            }
+        };
+        let mut axes = Vec::new();
+        let mut methods = Vec::new();
+        let mut codes = Vec::new();
+        let mut per_period: Vec<Option<u32>> = vec![None];
+        let mut per_contact: Vec<Option<u32>> = vec![None];
+        for (key, value) in &axes_table {
+            let full = format!("axes.{key}");
+            let values =
+                axis_values(value).map_err(|allowed| fail(&full, &value.to_string(), &allowed))?;
+            if values.is_empty() {
+                return Err(fail(
+                    &full,
+                    &value.to_string(),
+                    "an axis needs at least one value",
+                ));
+            }
+            match key.as_str() {
+                "method" => {
+                    for v in &values {
+                        let name = v.as_str().unwrap_or_default();
+                        let m = Method::from_name(name).ok_or_else(|| {
+                            fail(
+                                &full,
+                                &v.to_string(),
+                                &format!("a method name; allowed: {}", Method::names().join(", ")),
+                            )
+                        })?;
+                        methods.push(m);
+                    }
+                }
+                "code" => {
+                    for v in &values {
+                        let name = v.as_str().unwrap_or_default();
+                        let c = CodeName::from_name(name).ok_or_else(|| {
+                            fail(
+                                &full,
+                                &v.to_string(),
+                                &format!("a code name; allowed: {}", CodeName::names().join(", ")),
+                            )
+                        })?;
+                        codes.push(c);
+                    }
+                }
+                "steps_per_period" | "steps_per_contact" => {
+                    let mut counts = Vec::new();
+                    for v in &values {
+                        match v.as_integer() {
+                            Some(n) if (4..=100_000_000).contains(&n) => {
+                                counts.push(u32::try_from(n).ok())
+                            }
+                            _ => {
+                                return Err(fail(
+                                    &full,
+                                    &v.to_string(),
+                                    "whole numbers in [4, 100000000]",
+                                ));
+                            }
+                        }
+                    }
+                    if key == "steps_per_period" {
+                        per_period = counts;
+                    } else {
+                        per_contact = counts;
+                    }
+                }
+                k if CASE_KEYS.contains(&k) => axes.push(Axis {
+                    key: key.clone(),
+                    values,
+                }),
+                _ => {
+                    let mut allowed: Vec<&str> = CASE_KEYS.to_vec();
+                    allowed.extend(SOURCE_AXES);
+                    return Err(fail(
+                        &full,
+                        &value.to_string(),
+                        &format!("unknown axis; allowed: {}", allowed.join(", ")),
+                    ));
+                }
+            }
+        }
+        if methods.is_empty() && codes.is_empty() {
+            methods.push(Method::Rk4Event);
+        }
+        if per_period[0].is_some()
+            && !methods
+                .iter()
+                .any(|m| m.descriptor().knob == Knob::StepsPerPeriod)
+        {
+            return Err(fail(
+                "axes.steps_per_period",
+                &axes_table["steps_per_period"].to_string(),
+                "applies to fixed-step methods; the sweep has none",
+            ));
+        }
+        if per_contact[0].is_some() && codes.is_empty() {
+            return Err(fail(
+                "axes.steps_per_contact",
+                &axes_table["steps_per_contact"].to_string(),
+                "applies to codes; the sweep has none",
+            ));
+        }
+        let mut sources = Vec::new();
+        for &method in &methods {
+            if method.descriptor().knob == Knob::StepsPerPeriod {
+                for &n in &per_period {
+                    sources.push(Source::Method {
+                        method,
+                        steps_per_period: n,
+                    });
+                }
+            } else {
+                sources.push(Source::Method {
+                    method,
+                    steps_per_period: None,
+                });
+            }
+        }
+        for &code in &codes {
+            for &n in &per_contact {
+                sources.push(Source::Code {
+                    code,
+                    steps_per_contact: n,
+                });
+            }
+        }
+        let total = axes
+            .iter()
+            .try_fold(sources.len(), |n, a| n.checked_mul(a.values.len()));
+        if total.is_none_or(|n| n > MAX_POINTS) {
+            return Err(fail(
+                "axes",
+                "(grid)",
+                &format!("at most {MAX_POINTS} points"),
+            ));
+        }
+        // The fingerprint: the sweep's axes and base in normal form (keys sorted, values in
+        // TOML's own notation), so that formatting and comments do not change it.
+        let mut normal = Table::new();
+        normal.insert("axes".into(), Value::Table(axes_table));
+        normal.insert("base".into(), Value::Table(base.clone()));
+        let text = toml::to_string(&normal).unwrap_or_default();
+        let fingerprint = hex(&Sha256::digest(text.as_bytes()))[..16].to_string();
+        Ok(SweepFile {
+            path: path.to_path_buf(),
+            base,
+            base_name,
+            base_path,
+            axes,
+            sources,
+            fingerprint,
+        })
+    }
+
+    /// How many points the grid has.
+    pub fn len(&self) -> usize {
+        self.axes.iter().map(|a| a.values.len()).product::<usize>() * self.sources.len()
+    }
+
+    /// Whether the grid is empty (it never is: every axis has a value).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Point `index` (the last axis varies fastest, the source fastest of all).
+    pub fn point(&self, index: usize) -> Point {
+        let mut rest = index;
+        let source = self.sources[rest % self.sources.len()];
+        rest /= self.sources.len();
+        let mut values = vec![Value::Boolean(false); self.axes.len()];
+        for (i, axis) in self.axes.iter().enumerate().rev() {
+            values[i] = axis.values[rest % axis.values.len()].clone();
+            rest /= axis.values.len();
+        }
+        Point {
+            index,
+            values,
+            source,
+        }
+    }
+
+    /// The points of shard `k` of `n` (1-based; every n-th point from the k-th), or all.
+    pub fn points(&self, shard: Option<(usize, usize)>) -> Vec<Point> {
+        let (k, n) = shard.unwrap_or((1, 1));
+        (k - 1..self.len())
+            .step_by(n)
+            .map(|i| self.point(i))
+            .collect()
+    }
+
+    /// The columns of a row.
+    pub fn columns(&self) -> Vec<String> {
+        let mut c: Vec<String> = vec!["sweep".into(), "point".into()];
+        c.extend(self.axes.iter().map(|a| a.key.clone()));
+        c.extend(SOURCE_AXES.iter().map(|s| s.to_string()));
+        c.extend(FIGURES.iter().map(|s| s.to_string()));
+        c.extend(MORE_FIGURES.iter().map(|s| s.to_string()));
+        c.push("status".into());
+        c
+    }
+
+    /// The names of the parameter columns (what a row is matched by on resume).
+    pub fn key_columns(&self) -> Vec<String> {
+        let mut c: Vec<String> = self.axes.iter().map(|a| a.key.clone()).collect();
+        c.extend(SOURCE_AXES.iter().map(|s| s.to_string()));
+        c
+    }
+
+    /// The parameter cells of `point`, in [`SweepFile::key_columns`] order.
+    pub fn key_cells(&self, point: &Point) -> Vec<String> {
+        let mut cells: Vec<String> = point.values.iter().map(cell).collect();
+        let opt = |n: Option<u32>| n.map(|n| n.to_string()).unwrap_or_default();
+        match point.source {
+            Source::Method {
+                method,
+                steps_per_period,
+            } => cells.extend([
+                method.name().to_string(),
+                opt(steps_per_period),
+                String::new(),
+                String::new(),
+            ]),
+            Source::Code {
+                code,
+                steps_per_contact,
+            } => cells.extend([
+                String::new(),
+                String::new(),
+                code.name().to_string(),
+                opt(steps_per_contact),
+            ]),
+        }
+        cells
+    }
+
+    /// The case at `point`: the base table edited and read strictly.
+    pub fn case(&self, point: &Point) -> Result<Case, CaseError> {
+        let mut table = self.base.clone();
+        for (axis, value) in self.axes.iter().zip(&point.values) {
+            let (holder, key) = match axis.key.split_once('.') {
+                Some((t, k)) => {
+                    let entry = table
+                        .entry(t.to_string())
+                        .or_insert_with(|| Value::Table(Table::new()));
+                    match entry {
+                        Value::Table(inner) => (inner, k),
+                        _ => {
+                            return Err(CaseError {
+                                file: self.path.display().to_string(),
+                                key: t.to_string(),
+                                value: entry.to_string(),
+                                allowed: "must be a table".into(),
+                            });
+                        }
+                    }
+                }
+                None => (&mut table, axis.key.as_str()),
+            };
+            // η and e name one number: setting one replaces the other.
+            match key {
+                "loss_coefficient" => {
+                    holder.remove("restitution");
+                }
+                "restitution" => {
+                    holder.remove("loss_coefficient");
+                }
+                _ => {}
+            }
+            holder.insert(key.to_string(), value.clone());
+        }
+        let file = format!("{} (point {})", self.path.display(), point.index);
+        Case::from_table(&table, &file, &self.base_name, &self.base_path)
+    }
+}
+
+/// The values of one axis: a list, or `{ start, stop, step }` (stop included) or
+/// `{ start, stop, count }` (evenly spaced, both ends included).
+fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
+    let allowed =
+        "a list of values, or { start, stop, step } or { start, stop, count } with start <= stop";
+    match value {
+        Value::Array(items) => {
+            for item in items {
+                if matches!(item, Value::Array(_) | Value::Table(_) | Value::Datetime(_)) {
+                    return Err(format!(
+                        "{allowed}; values must be numbers, strings or booleans"
+                    ));
+                }
+            }
+            Ok(items.clone())
+        }
+        Value::Table(t) => {
+            for key in t.keys() {
+                if !["start", "stop", "step", "count"].contains(&key.as_str()) {
+                    return Err(allowed.into());
+                }
+            }
+            let num = |k: &str| {
+                t.get(k)
+                    .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
+            };
+            let (Some(start), Some(stop)) = (num("start"), num("stop")) else {
+                return Err(allowed.into());
+            };
+            if !(start.is_finite() && stop.is_finite() && start <= stop) {
+                return Err(allowed.into());
+            }
+            let values: Vec<f64> = match (num("step"), t.get("count").and_then(Value::as_integer)) {
+                (Some(step), None) => {
+                    if !(step.is_finite() && step > 0.0) {
+                        return Err(allowed.into());
+                    }
+                    let count = ((stop - start) / step + 1e-9).floor() + 1.0;
+                    if count.is_nan() || count > MAX_POINTS as f64 {
+                        return Err(format!("at most {MAX_POINTS} values"));
+                    }
+                    let count = crate::model::count::ceil_count(count)
+                        .and_then(|n| usize::try_from(n).ok())
+                        .ok_or_else(|| format!("at most {MAX_POINTS} values"))?;
+                    (0..count).map(|i| start + i as f64 * step).collect()
+                }
+                (None, Some(count)) => {
+                    #[allow(clippy::float_cmp)] // one point names one value: the same number twice
+                    let single_apart = count == 1 && start != stop;
+                    let most = i64::try_from(MAX_POINTS).unwrap_or(i64::MAX);
+                    if !(1..=most).contains(&count) || single_apart {
+                        return Err(format!(
+                            "count in [1, {MAX_POINTS}] (1 only when start = stop)"
+                        ));
+                    }
+                    if count == 1 {
+                        vec![start]
+                    } else {
+                        let h = (stop - start) / (count - 1) as f64;
+                        (0..count)
+                            .map(|i| {
+                                if i == count - 1 {
+                                    stop
+                                } else {
+                                    start + i as f64 * h
+                                }
+                            })
+                            .collect()
+                    }
+                }
+                _ => return Err(format!("{allowed}: exactly one of step and count")),
+            };
+            Ok(values.into_iter().map(Value::Float).collect())
+        }
+        _ => Err(allowed.into()),
+    }
+}
+
+fn num(x: f64) -> String {
+    if x.is_nan() { String::new() } else { number(x) }
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.map(num).unwrap_or_default()
+}
+
+fn relative(value: f64, reference: f64) -> f64 {
+    (value - reference) / reference
+}
+
+/// The figure cells of a method's run, in [`FIGURES`] then [`MORE_FIGURES`] order.
+pub fn method_figures(r: &RunReport) -> Vec<String> {
+    vec![
+        r.case.clone(),
+        num(r.loss_coefficient),
+        num(r.mass),
+        num(r.stiffness),
+        num(r.exponent),
+        num(r.cor),
+        num(r.exact.cor),
+        num(r.error.cor),
+        num(r.peak_deformation),
+        num(r.exact.peak_deformation),
+        num(r.error.peak_deformation),
+        num(r.peak_force),
+        num(r.exact.peak_force),
+        num(r.contact_time),
+        num(r.exact.contact_time),
+        num(r.error.contact_time),
+        num(r.compression_time),
+        num(r.restitution_time),
+        num(r.absorbed_energy),
+        r.steps.to_string(),
+        r.rhs_evaluations.to_string(),
+        opt(r.timestep),
+        num(r.wall_time),
+        String::new(),
+        String::new(),
+        String::new(),
+        String::new(),
+        String::new(),
+    ]
+}
+
+/// What a code point's row is made of, whether it ran alone or in a batch.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CodeFigures {
+    /// Case name.
+    pub case: String,
+    /// The case's law: η, reduced mass, stiffness, exponent.
+    pub law: (f64, f64, f64, f64),
+    /// The code's figures.
+    pub metrics: TrajectoryMetrics,
+    /// The COR the code should realise.
+    pub cor_target: f64,
+    /// The paper's law, exact.
+    pub paper_exact: ImpactFigures,
+    /// Steps run.
+    pub steps: u64,
+    /// Time step, s.
+    pub timestep: f64,
+    /// Wall time (a batch's divided among its impacts), s.
+    pub wall_time: f64,
+    /// The code's own loop time, s.
+    pub loop_time: Option<f64>,
+    /// The code's own law, exact and stepped.
+    pub own_law: (f64, f64),
+    /// Version string.
+    pub code_version: String,
+    /// Impacts in the process that ran it.
+    pub batch: usize,
+}
+
+impl CodeFigures {
+    /// The figures of a stored-style record of a single run.
+    pub fn from_record(case: &Case, r: &ReferenceRecord) -> CodeFigures {
+        let law = case.law();
+        CodeFigures {
+            case: r.case.clone(),
+            law: (law.loss_coefficient, law.mass, law.stiffness, law.exponent),
+            metrics: TrajectoryMetrics {
+                cor: r.cor,
+                peak_deformation: r.peak_deformation,
+                peak_force: r.peak_force,
+                contact_time: r.contact_time,
+                // A record keeps no trajectory to read these from.
+                force_contact_time: f64::NAN,
+                compression_time: f64::NAN,
+            },
+            cor_target: r.cor_target(),
+            paper_exact: r.paper_exact,
+            steps: r.steps,
+            timestep: r.timestep,
+            wall_time: r.wall_time,
+            loop_time: r.loop_time,
+            own_law: (r.law_exact.cor, r.law_at_step.cor),
+            code_version: r.code_version.clone(),
+            batch: 1,
+        }
+    }
+
+    /// The figure cells, in [`FIGURES`] then [`MORE_FIGURES`] order.
+    pub fn cells(&self) -> Vec<String> {
+        let m = &self.metrics;
+        let p = &self.paper_exact;
+        vec![
+            self.case.clone(),
+            num(self.law.0),
+            num(self.law.1),
+            num(self.law.2),
+            num(self.law.3),
+            num(m.cor),
+            num(self.cor_target),
+            num(relative(m.cor, self.cor_target)),
+            num(m.peak_deformation),
+            num(p.peak_deformation),
+            num(relative(m.peak_deformation, p.peak_deformation)),
+            num(m.peak_force),
+            num(p.peak_force),
+            num(m.contact_time),
+            num(p.contact_time),
+            num(relative(m.contact_time, p.contact_time)),
+            String::new(),
+            String::new(),
+            String::new(),
+            self.steps.to_string(),
+            String::new(),
+            num(self.timestep),
+            num(self.wall_time),
+            opt(self.loop_time),
+            num(self.own_law.0),
+            num(self.own_law.1),
+            self.code_version.clone(),
+            self.batch.to_string(),
+        ]
+    }
+}
+
+/// The row of `point`: its parameters, then `figures` (or empty figures), then the status.
+pub fn row(sweep: &SweepFile, point: &Point, figures: Result<Vec<String>, String>) -> Vec<String> {
+    let mut cells = vec![sweep.fingerprint.clone(), point.index.to_string()];
+    cells.extend(sweep.key_cells(point));
+    let blank = FIGURES.len() + MORE_FIGURES.len();
+    match figures {
+        Ok(f) => {
+            cells.extend(f);
+            cells.push("ok".into());
+        }
+        Err(e) => {
+            cells.extend(std::iter::repeat_n(String::new(), blank));
+            cells.push(e.replace(['\n', '\r'], " "));
+        }
+    }
+    cells
+}
+
+/// How to run a sweep.
+#[derive(Clone, Debug)]
+pub struct GridOptions {
+    /// Worker threads for our methods, and most live code processes.
+    pub jobs: usize,
+    /// Time limit of one code process.
+    pub timeout: Duration,
+    /// Bilateral contact: undamped periods to follow.
+    pub periods: f64,
+    /// Most impacts per code process (1: no batching).
+    pub batch: usize,
+}
+
+/// Evaluate one method point.
+pub fn method_point(sweep: &SweepFile, point: &Point, periods: f64) -> Vec<String> {
+    let Source::Method {
+        method,
+        steps_per_period,
+    } = point.source
+    else {
+        unreachable!("a method point")
+    };
+    let result = (|| -> anyhow::Result<Vec<String>> {
+        let case = sweep.case(point)?;
+        let options = IntegrationOptions {
+            method,
+            steps_per_period,
+            periods,
+            ..IntegrationOptions::default()
+        };
+        let settings = options.settings(&case, false)?;
+        Ok(method_figures(&run_case(&case, &settings)?.0))
+    })();
+    row(sweep, point, result.map_err(|e| format!("{e:#}")))
+}
+
+/// Evaluate one code point alone, with the fault containment of `reference`.
+pub fn code_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> Vec<String> {
+    let Source::Code {
+        code,
+        steps_per_contact,
+    } = point.source
+    else {
+        unreachable!("a code point")
+    };
+    let result = (|| -> anyhow::Result<Vec<String>> {
+        let case = sweep.case(point)?;
+        let reference = ReferenceOptions {
+            steps_per_contact,
+            timeout: options.timeout,
+            ..ReferenceOptions::default()
+        };
+        let record = run_reference(code, &case, &reference)?;
+        Ok(CodeFigures::from_record(&case, &record).cells())
+    })();
+    row(sweep, point, result.map_err(|e| format!("{e:#}")))
+}
+
+/// Run `points`: methods on `jobs` threads, then codes in a pool of at most `jobs` live
+/// processes (in batches where the code allows). Each finished row goes to `sink` at once;
+/// after `stop` is raised no new point starts, and a point that failed after it is dropped
+/// (its failure may be the interruption's), so that a resumed sweep runs it again.
+pub fn run_grid(
+    sweep: &SweepFile,
+    points: &[Point],
+    options: &GridOptions,
+    stop: &AtomicBool,
+    sink: &(dyn Fn(Vec<String>) + Sync),
+    note: &(dyn Fn(String) + Sync),
+) -> anyhow::Result<()> {
+    let (methods, codes): (Vec<&Point>, Vec<&Point>) = points
+        .iter()
+        .partition(|p| matches!(p.source, Source::Method { .. }));
+    let emit = |row: Vec<String>| {
+        let failed = row.last().is_some_and(|s| s != "ok");
+        if !(failed && stop.load(Ordering::SeqCst)) {
+            sink(row);
+        }
+    };
+    if !methods.is_empty() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(options.jobs.max(1))
+            .build()?;
+        pool.install(|| {
+            methods.par_iter().with_min_len(64).for_each(|p| {
+                if !stop.load(Ordering::Relaxed) {
+                    emit(method_point(sweep, p, options.periods));
+                }
+            })
+        });
+    }
+    if !codes.is_empty() {
+        let work = super::batch::plan(sweep, &codes, options);
+        let next = std::sync::atomic::AtomicUsize::new(0);
+        std::thread::scope(|scope| {
+            for _ in 0..options.jobs.max(1).min(work.len()) {
+                scope.spawn(|| {
+                    loop {
+                        if stop.load(Ordering::SeqCst) {
+                            break;
+                        }
+                        let i = next.fetch_add(1, Ordering::SeqCst);
+                        let Some(item) = work.get(i) else { break };
+                        super::batch::run_item(sweep, item, options, stop, &emit, note);
+                    }
+                });
+            }
+        });
+    }
+    Ok(())
+}

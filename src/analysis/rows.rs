@@ -1,0 +1,393 @@
+//! Sweep rows on disk: CSV or JSON lines, appended and flushed as they come; read back for
+//! `--resume` (rows matched by their parameters) and for `merge` (shards of one sweep).
+
+use std::collections::HashSet;
+use std::io::Write;
+use std::path::Path;
+
+use crate::error::UserError;
+
+/// How rows are written.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RowFormat {
+    /// Comma-separated values with a header line.
+    Csv,
+    /// One JSON object per line.
+    Jsonl,
+}
+
+impl RowFormat {
+    /// The format called `name` (`csv`, `jsonl`).
+    pub fn from_name(name: &str) -> Option<RowFormat> {
+        match name {
+            "csv" => Some(RowFormat::Csv),
+            "jsonl" => Some(RowFormat::Jsonl),
+            _ => None,
+        }
+    }
+}
+
+/// Lines of one row in `format` (the CSV header is [`header`]).
+pub fn encode(format: RowFormat, columns: &[String], cells: &[String]) -> String {
+    match format {
+        RowFormat::Csv => csv_line(cells),
+        RowFormat::Jsonl => {
+            let mut text = String::from("{");
+            for (i, (c, v)) in columns.iter().zip(cells).enumerate() {
+                if i > 0 {
+                    text.push(',');
+                }
+                text += &serde_json::to_string(c).unwrap_or_default();
+                text.push(':');
+                text += &json_value(v);
+            }
+            text + "}\n"
+        }
+    }
+}
+
+/// The header line (CSV only; JSON lines carry their keys).
+pub fn header(format: RowFormat, columns: &[String]) -> String {
+    match format {
+        RowFormat::Csv => csv_line(columns),
+        RowFormat::Jsonl => String::new(),
+    }
+}
+
+fn csv_line(cells: &[String]) -> String {
+    let mut w = csv::WriterBuilder::new()
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::new());
+    let _ = w.write_record(cells);
+    String::from_utf8(w.into_inner().unwrap_or_default()).unwrap_or_default()
+}
+
+fn json_value(v: &str) -> String {
+    if v.is_empty() {
+        return "null".into();
+    }
+    match v.parse::<f64>() {
+        Ok(x) if x.is_finite() && !v.starts_with('+') && !v.contains(['i', 'n', 'N']) => {
+            v.to_string()
+        }
+        _ => serde_json::to_string(v).unwrap_or_default(),
+    }
+}
+
+/// A JSON object's members in their written order.
+struct Ordered(Vec<(String, serde_json::Value)>);
+
+impl<'de> serde::Deserialize<'de> for Ordered {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct Visitor;
+        impl<'de> serde::de::Visitor<'de> for Visitor {
+            type Value = Ordered;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a JSON object")
+            }
+            fn visit_map<A: serde::de::MapAccess<'de>>(
+                self,
+                mut map: A,
+            ) -> Result<Ordered, A::Error> {
+                let mut pairs = Vec::new();
+                while let Some(pair) = map.next_entry()? {
+                    pairs.push(pair);
+                }
+                Ok(Ordered(pairs))
+            }
+        }
+        d.deserialize_map(Visitor)
+    }
+}
+
+/// Rows read back: the columns and each row's cells (numbers in their written form).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Rows {
+    /// Column names.
+    pub columns: Vec<String>,
+    /// Cells, one vector per row, in column order.
+    pub rows: Vec<Vec<String>>,
+    /// The format they were written in.
+    pub format: Option<RowFormat>,
+}
+
+impl Rows {
+    /// The index of column `name`.
+    pub fn column(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+}
+
+/// The complete lines of `text`: a last line without its newline is a row cut off while it
+/// was being written, and is left out.
+pub fn complete_lines(text: &str) -> &str {
+    match text.rfind('\n') {
+        Some(at) => &text[..=at],
+        None => "",
+    }
+}
+
+/// Read the rows of a sweep output (CSV or JSON lines, told apart by the first character).
+pub fn read_rows(path: &Path) -> anyhow::Result<Rows> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| anyhow::anyhow!("reading {}: {e}", path.display()))?;
+    parse_rows(complete_lines(&text), &path.display().to_string())
+}
+
+/// Parse rows from `text`; `file` names it in errors.
+pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
+    let bad = |what: String| UserError::argument(file, "(rows)", what);
+    let trimmed = text.trim_start();
+    if trimmed.is_empty() {
+        return Ok(Rows::default());
+    }
+    if trimmed.starts_with('{') {
+        let mut rows = Rows {
+            format: Some(RowFormat::Jsonl),
+            ..Rows::default()
+        };
+        for (n, line) in text
+            .lines()
+            .enumerate()
+            .filter(|(_, l)| !l.trim().is_empty())
+        {
+            let Ordered(pairs) = serde_json::from_str(line)
+                .map_err(|e| bad(format!("line {}: not a JSON object: {e}", n + 1)))?;
+            if rows.columns.is_empty() {
+                rows.columns = pairs.iter().map(|(k, _)| k.clone()).collect();
+            }
+            let object: std::collections::HashMap<String, serde_json::Value> =
+                pairs.into_iter().collect();
+            let cells = rows
+                .columns
+                .iter()
+                .map(|c| match object.get(c) {
+                    None | Some(serde_json::Value::Null) => String::new(),
+                    Some(serde_json::Value::String(s)) => s.clone(),
+                    Some(serde_json::Value::Number(x)) => x
+                        .as_f64()
+                        .filter(|_| !x.is_u64() && !x.is_i64())
+                        .map(super::grid::number)
+                        .unwrap_or_else(|| x.to_string()),
+                    Some(other) => other.to_string(),
+                })
+                .collect();
+            rows.rows.push(cells);
+        }
+        Ok(rows)
+    } else {
+        let mut reader = csv::ReaderBuilder::new().from_reader(text.as_bytes());
+        let columns: Vec<String> = reader
+            .headers()
+            .map_err(|e| bad(format!("not CSV: {e}")))?
+            .iter()
+            .map(String::from)
+            .collect();
+        let mut rows = Rows {
+            columns,
+            format: Some(RowFormat::Csv),
+            rows: Vec::new(),
+        };
+        for record in reader.records() {
+            let record = record.map_err(|e| bad(format!("not CSV: {e}")))?;
+            rows.rows.push(record.iter().map(String::from).collect());
+        }
+        Ok(rows)
+    }
+}
+
+/// The parameter keys of `rows` (cells of `key_columns`, numbers by value), checking that
+/// every row belongs to the sweep with `fingerprint`.
+pub fn keys_of(
+    rows: &Rows,
+    key_columns: &[String],
+    fingerprint: &str,
+    file: &str,
+) -> Result<HashSet<Vec<String>>, UserError> {
+    let refuse = |allowed: String| UserError::argument("--resume", file, allowed);
+    let sweep = rows.column("sweep").ok_or_else(|| {
+        refuse("the file has no `sweep` column: it is not a sweep's output".into())
+    })?;
+    let mut at = Vec::new();
+    for k in key_columns {
+        at.push(rows.column(k).ok_or_else(|| {
+            refuse(format!(
+                "the file has no `{k}` column: it is the output of another sweep"
+            ))
+        })?);
+    }
+    let mut keys = HashSet::new();
+    for r in &rows.rows {
+        if r.get(sweep).map(String::as_str) != Some(fingerprint) {
+            return Err(refuse(format!(
+                "holds rows of sweep {}, not of this sweep ({fingerprint})",
+                r.get(sweep).cloned().unwrap_or_default()
+            )));
+        }
+        keys.insert(
+            at.iter()
+                .map(|&i| super::grid::normal_cell(&r[i]))
+                .collect(),
+        );
+    }
+    Ok(keys)
+}
+
+/// Rows to a writer, flushed as they come (at most every `flush_every` for fast rows).
+pub struct RowWriter<W: Write> {
+    out: W,
+    format: RowFormat,
+    columns: Vec<String>,
+    last_flush: std::time::Instant,
+    flush_every: std::time::Duration,
+    /// Rows written.
+    pub written: usize,
+    /// Rows whose status is not `ok`.
+    pub failed: usize,
+}
+
+impl<W: Write> RowWriter<W> {
+    /// A writer of rows with `columns`; the CSV header is written unless `resume`.
+    pub fn new(
+        mut out: W,
+        format: RowFormat,
+        columns: Vec<String>,
+        resume: bool,
+        flush_every: std::time::Duration,
+    ) -> std::io::Result<Self> {
+        if !resume {
+            out.write_all(header(format, &columns).as_bytes())?;
+            out.flush()?;
+        }
+        Ok(RowWriter {
+            out,
+            format,
+            columns,
+            last_flush: std::time::Instant::now(),
+            flush_every,
+            written: 0,
+            failed: 0,
+        })
+    }
+
+    /// Append one row.
+    pub fn write(&mut self, cells: &[String]) -> std::io::Result<()> {
+        self.out
+            .write_all(encode(self.format, &self.columns, cells).as_bytes())?;
+        self.written += 1;
+        if cells.last().is_some_and(|s| s != "ok") {
+            self.failed += 1;
+        }
+        if self.last_flush.elapsed() >= self.flush_every {
+            self.out.flush()?;
+            self.last_flush = std::time::Instant::now();
+        }
+        Ok(())
+    }
+
+    /// Flush what is buffered.
+    pub fn flush(&mut self) -> std::io::Result<()> {
+        self.out.flush()
+    }
+}
+
+/// Join shard outputs: every shard must hold rows of one sweep (same columns and
+/// fingerprint); rows are sorted by point, a point given twice is kept once. Returns the
+/// joined text in the shards' format.
+pub fn merge(shards: &[&Path]) -> anyhow::Result<String> {
+    let mut joined: Option<Rows> = None;
+    let mut fingerprint: Option<(String, String)> = None;
+    let mut seen = HashSet::new();
+    for path in shards {
+        let file = path.display().to_string();
+        let rows = read_rows(path)?;
+        if rows.rows.is_empty() && rows.columns.is_empty() {
+            continue;
+        }
+        let sweep = rows.column("sweep").ok_or_else(|| {
+            UserError::argument("SHARDS", &file, "not a sweep's output (no `sweep` column)")
+        })?;
+        let point = rows.column("point").ok_or_else(|| {
+            UserError::argument("SHARDS", &file, "not a sweep's output (no `point` column)")
+        })?;
+        if let Some(first) = &joined
+            && (first.columns != rows.columns || first.format != rows.format)
+        {
+            return Err(UserError::argument(
+                "SHARDS",
+                &file,
+                "its columns or format differ from the first shard's: shards of different sweeps",
+            )
+            .into());
+        }
+        let target = joined.get_or_insert_with(|| Rows {
+            columns: rows.columns.clone(),
+            rows: Vec::new(),
+            format: rows.format,
+        });
+        for r in rows.rows {
+            let f = r[sweep].clone();
+            match &fingerprint {
+                None => fingerprint = Some((f, file.clone())),
+                Some((g, first)) if *g != f => {
+                    return Err(UserError::argument(
+                        "SHARDS",
+                        &file,
+                        format!(
+                            "holds rows of sweep {f}, {first} of sweep {g}: shards of different sweeps cannot be merged"
+                        ),
+                    )
+                    .into());
+                }
+                _ => {}
+            }
+            let index: usize = r[point].parse().map_err(|_| {
+                UserError::argument(
+                    "SHARDS",
+                    &file,
+                    format!("point `{}` is not a number", r[point]),
+                )
+            })?;
+            if seen.insert(index) {
+                target.rows.push(r);
+            }
+        }
+    }
+    let Some(mut rows) = joined else {
+        return Err(UserError::argument("SHARDS", "(all)", "no rows in any shard").into());
+    };
+    let point = rows.column("point").unwrap_or(1);
+    rows.rows
+        .sort_by_key(|r| r[point].parse::<usize>().unwrap_or(usize::MAX));
+    let format = rows.format.unwrap_or(RowFormat::Csv);
+    let mut text = header(format, &rows.columns);
+    for r in &rows.rows {
+        text += &encode(format, &rows.columns, r);
+    }
+    Ok(text)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_round_trip_in_both_formats() {
+        let columns: Vec<String> = ["sweep", "point", "x", "status"].map(String::from).to_vec();
+        let cells: Vec<String> = ["ab12", "3", "0.35", "file: a, b = \"c\": d"]
+            .map(String::from)
+            .to_vec();
+        for format in [RowFormat::Csv, RowFormat::Jsonl] {
+            let text = header(format, &columns) + &encode(format, &columns, &cells);
+            let rows = parse_rows(&text, "t").unwrap();
+            assert_eq!(rows.columns, columns);
+            assert_eq!(rows.rows, vec![cells.clone()]);
+        }
+    }
+
+    #[test]
+    fn a_cut_last_line_is_left_out() {
+        assert_eq!(complete_lines("a\nb\nc"), "a\nb\n");
+        assert_eq!(complete_lines("a"), "");
+    }
+}

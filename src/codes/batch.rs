@@ -1,0 +1,115 @@
+//! Running a batch of independent impacts in one process of a code: the same scratch
+//! directory, time limit and kept log as [`super::run_code`], one parse per impact.
+
+use std::path::PathBuf;
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+use super::runner::{RunOptions, find_on_path};
+use super::{CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun};
+use crate::model::trajectory::check_trajectory;
+
+/// A finished batch: one parsed run (or why not) per impact.
+#[derive(Debug)]
+pub struct BatchRun {
+    /// Per impact, in the order of the setups.
+    pub runs: Vec<Result<ParsedRun, ParseError>>,
+    /// Process wall time, s.
+    pub wall_time: f64,
+    /// The input it ran.
+    pub input: String,
+    /// Where the scratch directory was kept (when any impact failed to parse).
+    pub kept: Option<PathBuf>,
+}
+
+/// Render, run and parse `setups` in one process of `driver`'s code. A batch the driver
+/// cannot render is `Unsupported` with its reason; a crash or time-out fails the whole
+/// batch, with the log kept.
+pub fn run_batch(
+    driver: &dyn CodeDriver,
+    setups: &[CodeSetup],
+    options: &RunOptions,
+) -> Result<BatchRun, CodeError> {
+    let code = driver.name().to_string();
+    let io_error = |context: &str| {
+        let code = code.clone();
+        let context = context.to_string();
+        move |source| CodeError::Io {
+            code,
+            context,
+            source,
+        }
+    };
+    let input = driver
+        .render_batch(setups)
+        .map_err(|reason| CodeError::Unsupported {
+            code: code.clone(),
+            case: format!("a batch of {}", setups.len()),
+            reason,
+        })?;
+    let binary = find_on_path(driver.binary()).ok_or_else(|| CodeError::MissingBinary {
+        code: code.clone(),
+        binary: driver.binary().to_string(),
+    })?;
+    let parent = options
+        .scratch_parent
+        .clone()
+        .unwrap_or_else(std::env::temp_dir);
+    let scratch = tempfile::Builder::new()
+        .prefix(&format!("millimpact-{code}-batch-"))
+        .tempdir_in(&parent)
+        .map_err(io_error("creating a scratch directory"))?;
+    let workdir = scratch.path().to_path_buf();
+    std::fs::write(workdir.join(&input.file_name), &input.text)
+        .map_err(io_error("writing the input"))?;
+    let log_path = workdir.join("log.txt");
+    let log_file = std::fs::File::create(&log_path).map_err(io_error("creating the log"))?;
+    let log_err = log_file
+        .try_clone()
+        .map_err(io_error("duplicating the log handle"))?;
+    let started = Instant::now();
+    let mut child = Command::new(&binary)
+        .args(&input.args)
+        .current_dir(&workdir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::from(log_file))
+        .stderr(Stdio::from(log_err))
+        .spawn()
+        .map_err(io_error("starting the code"))?;
+    let status = wait_timeout::ChildExt::wait_timeout(&mut child, options.timeout)
+        .map_err(io_error("waiting for the code"))?;
+    let wall_time = started.elapsed().as_secs_f64();
+    let Some(status) = status else {
+        let _ = child.kill();
+        let _ = child.wait();
+        return Err(CodeError::TimedOut {
+            code,
+            seconds: options.timeout.as_secs_f64(),
+            log: scratch.keep().join("log.txt"),
+        });
+    };
+    let log = std::fs::read_to_string(&log_path).map_err(io_error("reading the log"))?;
+    if !status.success() {
+        return Err(CodeError::Crashed {
+            code,
+            status: status.to_string(),
+            log: scratch.keep().join("log.txt"),
+        });
+    }
+    let runs: Vec<Result<ParsedRun, ParseError>> = driver
+        .parse_batch(setups, &workdir, &log)
+        .into_iter()
+        .map(|run| {
+            let run = run?;
+            check_trajectory(&run.trajectory)?;
+            Ok(run)
+        })
+        .collect();
+    let kept = runs.iter().any(Result::is_err).then(|| scratch.keep());
+    Ok(BatchRun {
+        runs,
+        wall_time,
+        input: input.text,
+        kept,
+    })
+}

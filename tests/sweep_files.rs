@@ -1,0 +1,578 @@
+//! Sweep files: rows per point with a status, a failing point that does not stop the sweep,
+//! resume after an interruption, shards merged (via GNU parallel), and the bound on live
+//! code processes.
+
+use std::collections::BTreeMap;
+use std::os::unix::fs::PermissionsExt;
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use tempfile::TempDir;
+
+fn millimpact() -> Command {
+    let mut cmd = Command::cargo_bin("millimpact").unwrap();
+    cmd.current_dir(env!("CARGO_MANIFEST_DIR"));
+    cmd.env_remove("CI");
+    cmd
+}
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A sweep file over η and radius by two methods, with one invalid η.
+fn grid_file(dir: &Path) -> PathBuf {
+    let path = dir.join("grid.toml");
+    std::fs::write(
+        &path,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.0, 0.2, 0.35, 1.5, 0.6]\n\"ball.radius\" = [0.01, 0.03]\nmethod = [\"rk4-event\", \"dopri5\"]\nsteps_per_period = [200, 800]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    path
+}
+
+/// Rows of a CSV output keyed by their parameters (the columns up to `case`), each row's
+/// cells by column, the timing columns left out.
+fn rows_by_parameters(path: &Path) -> BTreeMap<Vec<String>, BTreeMap<String, String>> {
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let headers: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    let key_end = headers.iter().position(|h| h == "case").unwrap();
+    let mut out = BTreeMap::new();
+    for record in reader.records() {
+        let record = record.unwrap();
+        let cells: Vec<String> = record.iter().map(String::from).collect();
+        let key = cells[2..key_end].to_vec();
+        let figures = headers
+            .iter()
+            .zip(&cells)
+            .filter(|(h, _)| !["wall_time", "loop_time"].contains(&h.as_str()))
+            .map(|(h, c)| (h.clone(), c.clone()))
+            .collect();
+        assert!(out.insert(key, figures).is_none(), "a point appears once");
+    }
+    out
+}
+
+fn run_sweep(file: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    millimpact()
+        .arg("sweep")
+        .arg(file)
+        .arg("--out")
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn every_point_is_a_row_and_a_failing_point_does_not_stop_the_sweep() {
+    let dir = TempDir::new().unwrap();
+    let file = grid_file(dir.path());
+    let out = dir.path().join("all.csv");
+    let result = run_sweep(&file, &out, &[]);
+    assert!(result.status.success(), "{result:?}");
+    let rows = rows_by_parameters(&out);
+    // 5 η × 2 radii × (rk4-event at 2 resolutions + dopri5).
+    assert_eq!(rows.len(), 5 * 2 * 3);
+    let failed: Vec<_> = rows.values().filter(|r| r["status"] != "ok").collect();
+    assert_eq!(failed.len(), 2 * 3, "the η = 1.5 points");
+    for r in &failed {
+        assert_eq!(r["loss_coefficient"], "1.5");
+        assert!(
+            r["status"].contains("loss_coefficient = 1.5: must be in [0, 1)"),
+            "{}",
+            r["status"]
+        );
+    }
+    for r in rows.values().filter(|r| r["status"] == "ok") {
+        let error: f64 = r["cor_error"].parse().unwrap();
+        assert!(error.abs() < 1e-3, "{r:?}");
+        assert_eq!(r["eta"], r["loss_coefficient"]);
+    }
+    let stderr = String::from_utf8_lossy(&result.stderr);
+    assert!(stderr.contains("6 of 30 points failed"), "{stderr}");
+}
+
+#[test]
+fn an_interrupted_sweep_resumed_equals_the_uninterrupted_one() {
+    let dir = TempDir::new().unwrap();
+    let file = grid_file(dir.path());
+    for format in ["csv", "jsonl"] {
+        let full = dir.path().join(format!("full.{format}"));
+        assert!(
+            run_sweep(&file, &full, &["--format", format])
+                .status
+                .success()
+        );
+        let text = std::fs::read_to_string(&full).unwrap();
+        // Interrupted after 7 rows, the 8th cut mid-line.
+        let lines: Vec<&str> = text.lines().collect();
+        let head = if format == "csv" { 8 } else { 7 };
+        let cut = lines[..head].join("\n") + "\n" + &lines[head][..20];
+        let part = dir.path().join(format!("part.{format}"));
+        std::fs::write(&part, cut).unwrap();
+        // Without --resume the existing output is not overwritten.
+        let refused = run_sweep(&file, &part, &[]);
+        assert_eq!(refused.status.code(), Some(2));
+        let resumed = run_sweep(&file, &part, &["--resume"]);
+        assert!(resumed.status.success(), "{resumed:?}");
+        let resumed_text = std::fs::read_to_string(&part).unwrap();
+        assert_eq!(resumed_text.lines().count(), text.lines().count());
+        if format == "csv" {
+            assert_eq!(rows_by_parameters(&part), rows_by_parameters(&full));
+        } else {
+            let set = |t: &str| {
+                let mut v: Vec<serde_json::Value> = t
+                    .lines()
+                    .map(|l| {
+                        let mut v: serde_json::Value = serde_json::from_str(l).unwrap();
+                        v.as_object_mut().unwrap().remove("wall_time");
+                        v
+                    })
+                    .collect();
+                v.sort_by_key(|v| v["point"].as_u64());
+                v
+            };
+            assert_eq!(set(&resumed_text), set(&text));
+        }
+        // Resuming a complete output runs nothing more.
+        assert!(run_sweep(&file, &part, &["--resume"]).status.success());
+        assert_eq!(
+            std::fs::read_to_string(&part).unwrap().lines().count(),
+            text.lines().count()
+        );
+    }
+}
+
+#[test]
+fn resume_refuses_the_output_of_another_sweep() {
+    let dir = TempDir::new().unwrap();
+    let file = grid_file(dir.path());
+    let out = dir.path().join("out.csv");
+    assert!(run_sweep(&file, &out, &[]).status.success());
+    let other = dir.path().join("other.toml");
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("0.35", "0.36");
+    std::fs::write(&other, text).unwrap();
+    let refused = run_sweep(&other, &out, &["--resume"]);
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("not of this sweep"), "{stderr}");
+}
+
+#[test]
+fn three_shards_run_by_gnu_parallel_merge_into_the_unsharded_sweep() {
+    if which("parallel").is_none() {
+        eprintln!("skipped: GNU parallel is not installed (scripts/test.sh installs it)");
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let file = grid_file(dir.path());
+    let whole = dir.path().join("whole.csv");
+    assert!(run_sweep(&file, &whole, &[]).status.success());
+    let bin = assert_cmd::cargo::cargo_bin("millimpact");
+    let status = std::process::Command::new("parallel")
+        .current_dir(dir.path())
+        .args(["--will-cite", "--halt", "now,fail=1"])
+        .arg(format!(
+            "{} sweep {} --shard {{}}/3 --out shard{{}}.csv",
+            bin.display(),
+            file.display()
+        ))
+        .args([":::", "1", "2", "3"])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let merged = dir.path().join("merged.csv");
+    let shards: Vec<PathBuf> = (1..=3)
+        .map(|k| dir.path().join(format!("shard{k}.csv")))
+        .collect();
+    for s in &shards {
+        let n = rows_by_parameters(s).len();
+        assert!(n == 10, "each shard holds a third: {n}");
+    }
+    millimpact()
+        .arg("merge")
+        .arg(&merged)
+        .args(&shards)
+        .assert()
+        .success();
+    assert_eq!(rows_by_parameters(&merged), rows_by_parameters(&whole));
+    // The merged rows are in grid order.
+    let points: Vec<usize> = csv::Reader::from_path(&merged)
+        .unwrap()
+        .records()
+        .map(|r| r.unwrap()[1].parse().unwrap())
+        .collect();
+    assert_eq!(points, (0..30).collect::<Vec<_>>());
+    // A shard of another sweep is refused.
+    let other = dir.path().join("other.toml");
+    let text = std::fs::read_to_string(&file)
+        .unwrap()
+        .replace("0.35", "0.36");
+    std::fs::write(&other, text).unwrap();
+    let foreign = dir.path().join("foreign.csv");
+    assert!(
+        run_sweep(&other, &foreign, &["--shard", "3/3"])
+            .status
+            .success()
+    );
+    let refused = millimpact()
+        .arg("merge")
+        .arg(dir.path().join("bad.csv"))
+        .arg(&shards[0])
+        .arg(&shards[1])
+        .arg(&foreign)
+        .output()
+        .unwrap();
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("different sweeps"));
+    assert!(!dir.path().join("bad.csv").exists(), "no partial output");
+}
+
+fn which(binary: &str) -> Option<PathBuf> {
+    std::env::split_paths(&std::env::var_os("PATH")?)
+        .map(|d| d.join(binary))
+        .find(|p| p.is_file())
+}
+
+#[test]
+fn jobs_bounds_the_number_of_live_code_processes() {
+    let dir = TempDir::new().unwrap();
+    let bin = dir.path().join("bin");
+    std::fs::create_dir(&bin).unwrap();
+    let state = dir.path().join("state");
+    std::fs::create_dir(&state).unwrap();
+    std::fs::write(state.join("live"), "0").unwrap();
+    std::fs::write(state.join("max"), "0").unwrap();
+    // A fake LAMMPS that counts live instances under a lock, stays a while, and crashes.
+    let script = format!(
+        r#"#!/bin/sh
+d={d}
+(flock 9; n=$(($(cat $d/live) + 1)); echo $n > $d/live; [ $n -gt $(cat $d/max) ] && echo $n > $d/max) 9>$d/lock
+sleep 0.4
+(flock 9; echo $(($(cat $d/live) - 1)) > $d/live) 9>$d/lock
+echo "fake lmp crashed"
+exit 3
+"#,
+        d = state.display()
+    );
+    let lmp = bin.join("lmp");
+    std::fs::write(&lmp, script).unwrap();
+    std::fs::set_permissions(&lmp, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let file = dir.path().join("codes.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7]\ncode = [\"lammps\"]\nsteps_per_contact = [50]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    let path = format!(
+        "{}:{}",
+        bin.display(),
+        std::env::var("PATH").unwrap_or_default()
+    );
+    for jobs in [1usize, 3] {
+        std::fs::write(state.join("max"), "0").unwrap();
+        let out = dir.path().join(format!("jobs{jobs}.csv"));
+        let result = millimpact()
+            .env("PATH", &path)
+            .env("TMPDIR", dir.path())
+            .args(["sweep", "--batch", "1", "--jobs", &jobs.to_string()])
+            .arg(&file)
+            .arg("--out")
+            .arg(&out)
+            .output()
+            .unwrap();
+        assert!(result.status.success(), "{result:?}");
+        let most: usize = std::fs::read_to_string(state.join("max"))
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap();
+        assert!(most <= jobs, "{most} live processes with --jobs {jobs}");
+        if jobs > 1 {
+            assert!(most > 1, "the pool ran processes side by side ({most})");
+        }
+        // Every point crashed, each is a row naming the crash and its kept log.
+        let rows = rows_by_parameters(&out);
+        assert_eq!(rows.len(), 7);
+        for r in rows.values() {
+            assert!(
+                r["status"].contains("lammps: exited with"),
+                "{}",
+                r["status"]
+            );
+            let log = &r["status"][r["status"].find("log kept in ").unwrap() + 12..];
+            assert!(
+                std::fs::read_to_string(log.trim())
+                    .unwrap()
+                    .contains("fake lmp crashed")
+            );
+        }
+    }
+}
+
+#[test]
+fn invalid_sweep_files_are_one_line_naming_file_key_value_and_what_is_allowed() {
+    let dir = TempDir::new().unwrap();
+    let base = root().join("cases/ball_plate.toml");
+    let cases = [
+        (
+            "[axes]\n\"ball.colour\" = [1]\n",
+            "axes.ball.colour",
+            "unknown axis",
+        ),
+        (
+            "[axes]\nmethod = [\"rk45\"]\n",
+            "axes.method",
+            "allowed: rk4",
+        ),
+        (
+            "[axes]\nloss_coefficient = 0.3\n",
+            "axes.loss_coefficient",
+            "a list of values",
+        ),
+        (
+            "[axes]\nloss_coefficient = { start = 0.5, stop = 0.1, step = 0.1 }\n",
+            "axes.loss_coefficient",
+            "start <= stop",
+        ),
+        (
+            "[axes]\nsteps_per_contact = [100]\n",
+            "axes.steps_per_contact",
+            "codes",
+        ),
+        ("colour = 3\n[axes]\n", "colour", "unknown key"),
+    ];
+    for (body, key, allowed) in cases {
+        let file = dir.path().join("bad.toml");
+        std::fs::write(&file, format!("base = \"{}\"\n{body}", base.display())).unwrap();
+        let out = dir.path().join("never.csv");
+        let result = run_sweep(&file, &out, &[]);
+        assert_eq!(result.status.code(), Some(2), "{body}");
+        let stderr = String::from_utf8_lossy(&result.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(&file.display().to_string()), "{stderr}");
+        assert!(stderr.contains(&format!("{key} = ")), "{key}: {stderr}");
+        assert!(stderr.contains(allowed), "{allowed}: {stderr}");
+        assert!(!out.exists(), "no partial output");
+    }
+}
+
+/// Stops the single-node cluster however the test ends.
+struct Cluster(PathBuf);
+
+impl Drop for Cluster {
+    fn drop(&mut self) {
+        let _ = std::process::Command::new("bash")
+            .arg(root().join("scripts/slurm/local-cluster.sh"))
+            .arg("stop")
+            .arg(&self.0)
+            .status();
+    }
+}
+
+#[test]
+fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
+    if which("slurmctld").is_none() || which("munged").is_none() {
+        eprintln!(
+            "skipped: Slurm (slurm-wlm) or munge is not installed (scripts/test.sh installs them)"
+        );
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let cluster_dir = dir.path().join("cluster");
+    let started = std::process::Command::new("bash")
+        .arg(root().join("scripts/slurm/local-cluster.sh"))
+        .arg("start")
+        .arg(&cluster_dir)
+        .output()
+        .unwrap();
+    let _cluster = Cluster(cluster_dir.clone());
+    let said = String::from_utf8_lossy(&started.stdout).to_string();
+    if !started.status.success() {
+        eprintln!("skipped: a single-node Slurm cannot start here: {said}");
+        return;
+    }
+    let conf = cluster_dir.join("slurm.conf");
+    let file = grid_file(dir.path());
+    let whole = dir.path().join("whole.csv");
+    assert!(run_sweep(&file, &whole, &[]).status.success());
+    let outdir = dir.path().join("slurm-out");
+    let submitted = std::process::Command::new("bash")
+        .arg(root().join("scripts/slurm/sweep.sbatch"))
+        .arg(&file)
+        .arg(&outdir)
+        .arg("3")
+        .env("SLURM_CONF", &conf)
+        .env("MILLIMPACT", assert_cmd::cargo::cargo_bin("millimpact"))
+        .output()
+        .unwrap();
+    assert!(submitted.status.success(), "{submitted:?}");
+    let merged = outdir.join("sweep.csv");
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(120);
+    while !merged.exists() && std::time::Instant::now() < deadline {
+        std::thread::sleep(std::time::Duration::from_millis(200));
+    }
+    // The merge job writes its output atomically: once it exists it is whole.
+    assert!(
+        merged.exists(),
+        "the merge job did not finish; logs in {}",
+        outdir.display()
+    );
+    for k in 1..=3 {
+        assert_eq!(
+            rows_by_parameters(&outdir.join(format!("shard-{k}.csv"))).len(),
+            10
+        );
+    }
+    assert_eq!(rows_by_parameters(&merged), rows_by_parameters(&whole));
+}
+
+#[test]
+fn every_impact_of_a_lammps_batch_gives_the_figures_of_its_single_run() {
+    batch_equals_single_runs("lammps", "lmp");
+}
+
+#[test]
+fn every_impact_of_a_liggghts_batch_gives_the_figures_of_its_single_run() {
+    batch_equals_single_runs("liggghts", "liggghts");
+}
+
+#[test]
+fn every_impact_of_a_yade_batch_gives_the_figures_of_its_single_run() {
+    batch_equals_single_runs("yade", "yade");
+}
+
+fn batch_equals_single_runs(code: &str, binary: &str) {
+    if which(binary).is_none() {
+        eprintln!("skipped: {binary} is not installed (scripts/install-dem-codes.sh installs it)");
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let file = dir.path().join("batch.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.0, 0.1, 0.35, 0.5, 0.7, 0.9]\ncode = [\"{code}\"]\nsteps_per_contact = [200]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    let single = dir.path().join("single.csv");
+    let batched = dir.path().join("batched.csv");
+    let ran = |out: &Path, batch: &str| {
+        let result = millimpact()
+            .env("TMPDIR", dir.path())
+            .args(["sweep", "--jobs", "1", "--batch", batch])
+            .arg(&file)
+            .arg("--out")
+            .arg(out)
+            .output()
+            .unwrap();
+        assert!(result.status.success(), "{result:?}");
+        assert!(result.stderr.is_empty(), "no fallback: {result:?}");
+        rows_by_parameters(out)
+    };
+    let single = ran(&single, "1");
+    let batched = ran(&batched, "6");
+    assert_eq!(single.len(), 6);
+    for (key, one) in &single {
+        let many = &batched[key];
+        assert_eq!(one["status"], "ok", "{key:?}");
+        assert_eq!(one["batch"], "1");
+        assert_eq!(many["batch"], "6", "all six in one process");
+        for (column, value) in one {
+            if column == "batch" {
+                continue;
+            }
+            match (value.parse::<f64>(), many[column].parse::<f64>()) {
+                (Ok(a), Ok(b)) => assert!(
+                    (a - b).abs() <= 1e-12 * a.abs().max(b.abs()),
+                    "{column}: single {a}, batched {b}"
+                ),
+                _ => assert_eq!(value, &many[column], "{column}"),
+            }
+        }
+    }
+}
+
+#[test]
+fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
+    if which("lmp").is_none() {
+        eprintln!("skipped: lmp is not installed (scripts/install-dem-codes.sh installs it)");
+        return;
+    }
+    let dir = TempDir::new().unwrap();
+    let file = dir.path().join("slow.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = {{ start = 0.05, stop = 0.95, count = 10 }}\ncode = [\"lammps\"]\nsteps_per_contact = [100]\n",
+            root().join("cases/ball_plate.toml").display()
+        ),
+    )
+    .unwrap();
+    let whole = dir.path().join("whole.csv");
+    let one_at_a_time = ["--jobs", "1", "--batch", "1"];
+    assert!(run_sweep(&file, &whole, &one_at_a_time).status.success());
+    let part = dir.path().join("part.csv");
+    let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("millimpact"))
+        .current_dir(root())
+        .env_remove("CI")
+        .arg("sweep")
+        .arg(&file)
+        .arg("--out")
+        .arg(&part)
+        .args(one_at_a_time)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Interrupt once a few rows are in (one code process at a time, each a fraction of a
+    // second).
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
+    while std::fs::read_to_string(&part)
+        .map(|t| t.lines().count())
+        .unwrap_or(0)
+        < 3
+        && std::time::Instant::now() < deadline
+    {
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    let interrupted = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(interrupted.success());
+    let output = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let kept = rows_by_parameters(&part);
+    if output.status.success() {
+        // The sweep ended before the signal arrived: nothing to resume.
+        assert_eq!(kept, rows_by_parameters(&whole));
+        return;
+    }
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert!(stderr.contains("interrupted"), "{stderr}");
+    assert!(
+        kept.len() >= 2 && kept.len() < 10,
+        "{} rows kept",
+        kept.len()
+    );
+    assert!(
+        kept.values().all(|r| r["status"] == "ok"),
+        "only finished rows"
+    );
+    eprintln!("interrupted after {} of 10 rows", kept.len());
+    let resumed = run_sweep(&file, &part, &["--resume", "--jobs", "1", "--batch", "1"]);
+    assert!(resumed.status.success(), "{resumed:?}");
+    assert_eq!(rows_by_parameters(&part), rows_by_parameters(&whole));
+}
