@@ -46,6 +46,14 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(code) => return code,
     };
+    // Ctrl-C or SIGTERM ends the DEM codes running now (their whole process groups) and removes
+    // their scratch directories; a sweep installs its own handler, which keeps its finished rows.
+    if !matches!(cli.command, millimpact::cli::Command::Sweep(_)) {
+        let _ = ctrlc::set_handler(|| {
+            millimpact::codes::runner::stop_all_codes();
+            std::process::exit(130);
+        });
+    }
     match commands::dispatch(&cli.command) {
         Ok(output) => {
             if let Err(error) = print(&output.text) {

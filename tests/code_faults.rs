@@ -195,3 +195,99 @@ fn a_fault_writes_no_reference_file() {
         .code(1);
     assert_eq!(std::fs::read_dir(store.path()).unwrap().count(), 0);
 }
+
+/// Whether process `pid` still exists (a zombie counts as gone).
+fn alive(pid: i32) -> bool {
+    std::fs::read_to_string(format!("/proc/{pid}/stat"))
+        .map(|stat| !stat.contains(") Z "))
+        .unwrap_or(false)
+}
+
+#[test]
+fn a_time_out_ends_the_codes_whole_process_group() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    let pids = scratch.path().join("pids");
+    // The code starts a helper that ignores SIGTERM, then both hang.
+    fake_binary(
+        bin.path(),
+        "lmp",
+        &format!(
+            "sh -c 'trap \"\" TERM; echo $$ >> {p}; sleep 300' &\necho $$ >> {p}\nsleep 300",
+            p = pids.display()
+        ),
+    );
+    let stderr = failing_run(
+        bin.path(),
+        scratch.path(),
+        &[
+            "reference",
+            "--code",
+            "lammps",
+            "cases/ball_plate.toml",
+            "--timeout",
+            "1",
+        ],
+    );
+    assert!(stderr.contains("killed after the time limit"), "{stderr}");
+    kept_log(&stderr);
+    let started: Vec<i32> = std::fs::read_to_string(&pids)
+        .unwrap()
+        .lines()
+        .map(|l| l.trim().parse().unwrap())
+        .collect();
+    assert_eq!(started.len(), 2, "the code and its helper started");
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    for pid in started {
+        assert!(!alive(pid), "process {pid} outlived the run");
+    }
+}
+
+#[test]
+fn output_that_is_not_utf8_keeps_the_log_and_the_exit_status() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    fake_binary(
+        bin.path(),
+        "lmp",
+        "printf 'LAMMPS \\377\\376 broken\\n'\nexit 3",
+    );
+    let stderr = failing_run(
+        bin.path(),
+        scratch.path(),
+        &["reference", "--code", "lammps", "cases/ball_plate.toml"],
+    );
+    assert!(stderr.contains("exited with exit status: 3"), "{stderr}");
+    assert!(!stderr.contains("UTF-8"), "{stderr}");
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let log = std::fs::read(kept_log(&stderr)).unwrap();
+    assert!(
+        log.windows(2).any(|w| w == [0xff, 0xfe]),
+        "the bytes are kept as written"
+    );
+}
+
+#[test]
+fn an_oversized_log_is_kept_as_its_head_and_tail() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    // About 4 MB of output, then a failure.
+    fake_binary(
+        bin.path(),
+        "lmp",
+        "echo FIRST-LINE\nyes 'chatter chatter chatter chatter' | head -c 4000000\necho\necho LAST-LINE\nexit 1",
+    );
+    let stderr = failing_run(
+        bin.path(),
+        scratch.path(),
+        &["reference", "--code", "lammps", "cases/ball_plate.toml"],
+    );
+    let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+    assert!(
+        log.len() <= millimpact::codes::runner::MAX_LOG_BYTES + 200,
+        "{}",
+        log.len()
+    );
+    assert!(log.starts_with("FIRST-LINE") && log.trim_end().ends_with("LAST-LINE"));
+    assert!(log.contains("bytes of this log cut"), "the cut is said");
+}

@@ -621,3 +621,47 @@ fn command_line_usage_errors_are_one_line_too() {
         &["'2'", "--steps-per-period"],
     );
 }
+
+/// A case must be a regular file of a case's size, and its numbers must give representable
+/// derived quantities; each refusal is one line, exit 2, at once (no hang, no growth).
+#[test]
+fn unreadable_and_unrepresentable_cases_are_refused() {
+    let dir = tempfile::TempDir::new().unwrap();
+    let fifo = dir.path().join("fifo.toml");
+    assert!(
+        std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .unwrap()
+            .success()
+    );
+    let big = dir.path().join("big.toml");
+    std::fs::write(&big, "#".repeat(70_000)).unwrap();
+    let shipped = std::fs::read_to_string(common::case_path("ball_plate")).unwrap();
+    let huge = dir.path().join("huge.toml");
+    std::fs::write(&huge, shipped.replace("radius = 0.02", "radius = 1e308")).unwrap();
+    let light = dir.path().join("light.toml");
+    std::fs::write(
+        &light,
+        shipped.replace("density = 7800.0", "density = 1e-308"),
+    )
+    .unwrap();
+    for (path, expected) in [
+        (Path::new("/dev/zero"), "not a regular file"),
+        (fifo.as_path(), "not a regular file"),
+        (big.as_path(), "at most 65536 bytes"),
+        (huge.as_path(), "mass = inf"),
+        (light.as_path(), "mass = 3.35"),
+    ] {
+        let out = common::millimpact()
+            .arg("run")
+            .arg(path)
+            .timeout(std::time::Duration::from_secs(20))
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{}: {stderr}", path.display());
+        assert!(stderr.contains(expected), "{}: {stderr}", path.display());
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    }
+}

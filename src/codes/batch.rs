@@ -68,27 +68,26 @@ pub fn run_batch(
         .try_clone()
         .map_err(io_error("duplicating the log handle"))?;
     let started = Instant::now();
-    let mut child = Command::new(&binary)
+    let mut child = Command::new(&binary);
+    child
         .args(&input.args)
         .current_dir(&workdir)
         .stdin(Stdio::null())
         .stdout(Stdio::from(log_file))
-        .stderr(Stdio::from(log_err))
-        .spawn()
+        .stderr(Stdio::from(log_err));
+    let mut child = super::runner::spawn_contained(&mut child, &workdir)
         .map_err(io_error("starting the code"))?;
-    let status = wait_timeout::ChildExt::wait_timeout(&mut child, options.timeout)
+    let status = super::runner::wait_contained(&mut child, options.timeout)
         .map_err(io_error("waiting for the code"))?;
     let wall_time = started.elapsed().as_secs_f64();
     let Some(status) = status else {
-        let _ = child.kill();
-        let _ = child.wait();
         return Err(CodeError::TimedOut {
             code,
             seconds: options.timeout.as_secs_f64(),
             log: scratch.keep().join("log.txt"),
         });
     };
-    let log = std::fs::read_to_string(&log_path).map_err(io_error("reading the log"))?;
+    let log = super::runner::read_log(&log_path).map_err(io_error("reading the log"))?;
     if !status.success() {
         return Err(CodeError::Crashed {
             code,

@@ -1,8 +1,8 @@
 //! Running an installed code: a scratch directory, a time limit, the log kept on any fault.
 
-use std::io::Read;
-use std::path::PathBuf;
-use std::process::{Command, Stdio};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use thiserror::Error;
@@ -166,23 +166,21 @@ pub fn run_code(
         .map_err(io_error("duplicating the log handle"))?;
 
     let started = Instant::now();
-    let mut child = Command::new(&binary)
+    let mut child = Command::new(&binary);
+    child
         .args(&input.args)
         .current_dir(&workdir)
         .stdin(Stdio::null())
         .stdout(Stdio::from(log_file))
-        .stderr(Stdio::from(log_err))
-        .spawn()
-        .map_err(io_error("starting the code"))?;
-    let status = wait_timeout::ChildExt::wait_timeout(&mut child, options.timeout)
-        .map_err(io_error("waiting for the code"))?;
+        .stderr(Stdio::from(log_err));
+    let mut child = spawn_contained(&mut child, &workdir).map_err(io_error("starting the code"))?;
+    let status =
+        wait_contained(&mut child, options.timeout).map_err(io_error("waiting for the code"))?;
     let wall_time = started.elapsed().as_secs_f64();
     let keep = |scratch: tempfile::TempDir| scratch.keep().join("log.txt");
     let status = match status {
         Some(status) => status,
         None => {
-            let _ = child.kill();
-            let _ = child.wait();
             return Err(CodeError::TimedOut {
                 code,
                 seconds: options.timeout.as_secs_f64(),
@@ -190,10 +188,7 @@ pub fn run_code(
             });
         }
     };
-    let mut log = String::new();
-    std::fs::File::open(&log_path)
-        .and_then(|mut f| f.read_to_string(&mut log))
-        .map_err(io_error("reading the log"))?;
+    let log = read_log(&log_path).map_err(io_error("reading the log"))?;
     if !status.success() {
         return Err(CodeError::Crashed {
             code,
@@ -227,4 +222,84 @@ pub fn run_code(
         loop_time: parsed.loop_time,
         log,
     })
+}
+
+/// The process groups of the codes running now, with their scratch directories: what
+/// [`stop_all_codes`] ends when millimpact itself is stopped.
+static LIVE: Mutex<Vec<(i32, PathBuf)>> = Mutex::new(Vec::new());
+
+/// Start `command` in a process group of its own, so that the code and every process it starts
+/// can be ended together, and register it with its scratch directory `scratch`.
+pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
+    #[cfg(unix)]
+    std::os::unix::process::CommandExt::process_group(command, 0);
+    let child = command.spawn()?;
+    if let Ok(pid) = i32::try_from(child.id()) {
+        LIVE.lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .push((pid, scratch.to_path_buf()));
+    }
+    Ok(child)
+}
+
+/// Wait for a contained code at most `timeout`; past it, kill its whole process group (the code
+/// and any process it started, whatever signals they ignore) and return `None`.
+pub fn wait_contained(child: &mut Child, timeout: Duration) -> std::io::Result<Option<ExitStatus>> {
+    let status = wait_timeout::ChildExt::wait_timeout(child, timeout);
+    let pid = i32::try_from(child.id()).unwrap_or(0);
+    if !matches!(status, Ok(Some(_))) {
+        kill_group(pid);
+        let _ = child.kill();
+        let _ = child.wait();
+    }
+    // The group may hold processes the code left behind: they go with it.
+    kill_group(pid);
+    LIVE.lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .retain(|(p, _)| *p != pid);
+    status
+}
+
+fn kill_group(pid: i32) {
+    #[cfg(unix)]
+    if pid > 0 {
+        // SAFETY: kill(2) with a negative pid signals the process group; no memory is shared.
+        unsafe {
+            libc::kill(-pid, libc::SIGKILL);
+        }
+    }
+}
+
+/// End every code running now (their whole process groups) and remove their scratch
+/// directories: what a Ctrl-C or SIGTERM of millimpact does before it exits.
+pub fn stop_all_codes() {
+    let live = std::mem::take(&mut *LIVE.lock().unwrap_or_else(|e| e.into_inner()));
+    for (pid, scratch) in live {
+        kill_group(pid);
+        let _ = std::fs::remove_dir_all(scratch);
+    }
+}
+
+/// Most bytes of a code's log kept: its first and last halves, with a line saying what was cut.
+pub const MAX_LOG_BYTES: usize = 1 << 20;
+
+/// Read a code's log as text whatever bytes it holds (invalid UTF-8 is replaced, not an error),
+/// and cap the kept file at [`MAX_LOG_BYTES`], keeping its head and tail.
+pub fn read_log(path: &Path) -> std::io::Result<String> {
+    let bytes = std::fs::read(path)?;
+    if bytes.len() <= MAX_LOG_BYTES {
+        return Ok(String::from_utf8_lossy(&bytes).into_owned());
+    }
+    let half = MAX_LOG_BYTES / 2;
+    let mut kept = bytes[..half].to_vec();
+    kept.extend_from_slice(
+        format!(
+            "\n[millimpact: {} bytes of this log cut; the first and last {half} kept]\n",
+            bytes.len() - 2 * half
+        )
+        .as_bytes(),
+    );
+    kept.extend_from_slice(&bytes[bytes.len() - half..]);
+    std::fs::write(path, &kept)?;
+    Ok(String::from_utf8_lossy(&kept).into_owned())
 }

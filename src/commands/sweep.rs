@@ -194,6 +194,8 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     };
     let bar = progress_bar(points.len() as u64);
     let _ = ctrlc::set_handler(|| {
+        // The codes running now end at once; the rows already finished are kept.
+        crate::codes::runner::stop_all_codes();
         if STOP.swap(true, Ordering::SeqCst) {
             // A second Ctrl-C: leave now.
             std::process::exit(130);

@@ -26,6 +26,9 @@ pub enum ContactKind {
     Bilateral,
 }
 
+/// Largest case file read, bytes (a case is a few hundred).
+pub const MAX_CASE_BYTES: u64 = 64 * 1024;
+
 /// A rejected case file.
 #[derive(Debug, Error, Clone, PartialEq)]
 #[error("{file}: {key} = {value}: {allowed}")]
@@ -60,6 +63,48 @@ pub struct Case {
 }
 
 impl Case {
+    /// Refuse a case whose derived quantities (mass, stiffness, the elastic peak δ0, the time
+    /// scale δ0/v0, the force scale) cannot be represented in double precision: each valid
+    /// on its own, a radius of 1e308 or a density of 1e-308 still overflows or underflows
+    /// them, and the run would print inf or NaN. The error names the keys they come from.
+    fn check_representable(&self, file: &str) -> Result<(), CaseError> {
+        let keys = match self.scene.kind() {
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                "ball.radius, ball.density, ball.youngs_modulus, impact_velocity"
+            }
+            SceneKind::RodEnd => {
+                "rod.diameter, rod.length, rod.density, rod.youngs_modulus, impact_velocity"
+            }
+        };
+        let law = self.law();
+        let peak = law.elastic_peak(self.impact_velocity);
+        let quantities = [
+            ("mass", law.mass),
+            ("stiffness", law.stiffness),
+            ("elastic peak δ0", peak),
+            ("time scale δ0/v0", peak / self.impact_velocity),
+            (
+                "force scale C δ0^n",
+                law.stiffness * peak.powf(law.exponent),
+            ),
+            (
+                "impact energy",
+                0.5 * law.mass * self.impact_velocity.powi(2),
+            ),
+        ];
+        for (what, value) in quantities {
+            if !(value.is_normal() && value > 0.0) {
+                return Err(CaseError {
+                    file: file.to_string(),
+                    key: keys.to_string(),
+                    value: format!("{what} = {value:e}"),
+                    allowed: "values whose derived quantities are finite, positive numbers in double precision".to_string(),
+                });
+            }
+        }
+        Ok(())
+    }
+
     /// The paper's law for this case.
     pub fn law(&self) -> PaperLaw {
         PaperLaw {
@@ -103,6 +148,24 @@ impl Case {
             value: value.to_string(),
             allowed: allowed.to_string(),
         };
+        // A device or a FIFO would be read without end or block: only a regular file of a case's
+        // size is read.
+        let meta = std::fs::metadata(path)
+            .map_err(|e| fail("(file)", "(unreadable)", &format!("cannot read it: {e}")))?;
+        if !meta.is_file() {
+            return Err(fail(
+                "(file)",
+                "(not a regular file)",
+                "a case is a regular TOML file",
+            ));
+        }
+        if meta.len() > MAX_CASE_BYTES {
+            return Err(fail(
+                "(file)",
+                &format!("{} bytes", meta.len()),
+                &format!("a case file is at most {MAX_CASE_BYTES} bytes"),
+            ));
+        }
         let text = std::fs::read_to_string(path)
             .map_err(|e| fail("(file)", "(unreadable)", &format!("cannot read it: {e}")))?;
         let table: Table = text.parse().map_err(|e: toml::de::Error| {
@@ -314,7 +377,7 @@ impl Reader<'_> {
             }
             SceneKind::RodEnd => Scene::RodEnd { rod: self.rod(t)? },
         };
-        Ok(Case {
+        let case = Case {
             name,
             path: path.to_path_buf(),
             scene,
@@ -322,7 +385,9 @@ impl Reader<'_> {
             loss_coefficient,
             stiffness,
             contact,
-        })
+        };
+        case.check_representable(self.file)?;
+        Ok(case)
     }
 
     fn table<'t>(&self, t: &'t Table, name: &str) -> Result<&'t Table, CaseError> {
