@@ -620,6 +620,25 @@ fn command_line_usage_errors_are_one_line_too() {
         &["run", case, "--steps-per-period", "2"],
         &["'2'", "--steps-per-period"],
     );
+    // A bilateral run past 1000 periods is unbounded work, not a check.
+    rejected(
+        dir.path(),
+        &["run", case, "--periods", "1e9"],
+        &["'1e9'", "--periods", "(0, 1000]"],
+    );
+    // A code run at one step per contact reports a COR of 18.7: refused before any code starts.
+    rejected(
+        dir.path(),
+        &[
+            "reference",
+            "--code",
+            "lammps",
+            case,
+            "--steps-per-contact",
+            "1",
+        ],
+        &["'1'", "--steps-per-contact", "20"],
+    );
 }
 
 /// A case must be a regular file of a case's size, and its numbers must give representable

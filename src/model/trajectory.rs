@@ -19,6 +19,12 @@ pub enum TrajectoryError {
     /// A value is NaN or infinite.
     #[error("trajectory holds a non-finite value")]
     NonFinite,
+    /// Time does not increase from row to row (a file cut or mixed up).
+    #[error("trajectory time does not increase at row {row}")]
+    TimeNotIncreasing {
+        /// The row, from 0.
+        row: usize,
+    },
     /// The overlap never became positive.
     #[error("the bodies never touched")]
     NeverTouched,
@@ -53,6 +59,9 @@ pub fn check_trajectory(t: &CodeTrajectory) -> Result<(), TrajectoryError> {
     let all = t.time.iter().chain(&t.overlap).chain(&t.approach_velocity);
     if all.clone().any(|x| !x.is_finite()) {
         return Err(TrajectoryError::NonFinite);
+    }
+    if let Some(row) = t.time.windows(2).position(|w| w[1] <= w[0]) {
+        return Err(TrajectoryError::TimeNotIncreasing { row: row + 1 });
     }
     Ok(())
 }
@@ -187,6 +196,20 @@ mod tests {
         // Force zero at t = 4 (the last row), speed zero crossing at t = 2.
         assert_eq!(m.force_contact_time, 3.75);
         assert_eq!(m.compression_time, 1.75);
+    }
+
+    #[test]
+    fn a_trajectory_whose_time_does_not_increase_is_refused() {
+        let t = CodeTrajectory {
+            time: vec![0.0, 1.0, 1.0, 3.0, 4.0],
+            overlap: vec![-1.0, 3.0, 4.0, 3.0, -1.0],
+            approach_velocity: vec![2.0, 1.0, 0.0, -1.0, -1.5],
+            normal_force: vec![0.0, 10.0, 20.0, 10.0, 0.0],
+        };
+        assert!(matches!(
+            trajectory_metrics(&t),
+            Err(TrajectoryError::TimeNotIncreasing { row: 2 })
+        ));
     }
 
     #[test]
