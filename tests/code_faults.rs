@@ -74,6 +74,41 @@ fn missing_binary_names_the_code_and_the_binary() {
     }
 }
 
+/// A user's own build is named by `MILLIMPACT_<CODE>_BINARY`: a path that is not a file is
+/// refused with the variable named, and a file there is what runs (PATH is not consulted).
+#[test]
+fn a_build_named_by_its_variable_is_the_one_that_runs() {
+    let empty = TempDir::new().unwrap();
+    let out = millimpact()
+        .env("MILLIMPACT_LAMMPS_BINARY", empty.path().join("no-such-lmp"))
+        .args(["reference", "--code", "lammps", "cases/ball_plate.toml"])
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        stderr.contains("lammps: MILLIMPACT_LAMMPS_BINARY=")
+            && stderr.contains("no-such-lmp is not a file"),
+        "{stderr}"
+    );
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    fake_binary(bin.path(), "my-lmp", "echo 'my own lammps build'; exit 3");
+    let out = millimpact()
+        .env("MILLIMPACT_LAMMPS_BINARY", bin.path().join("my-lmp"))
+        .env("PATH", empty.path())
+        .env("TMPDIR", scratch.path())
+        .args(["reference", "--code", "lammps", "cases/ball_plate.toml"])
+        .assert()
+        .code(1)
+        .get_output()
+        .clone();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+    assert!(log.contains("my own lammps build"), "{log}");
+}
+
 #[test]
 fn crash_keeps_the_log() {
     let bin = TempDir::new().unwrap();

@@ -2,10 +2,10 @@
 //! directory, time limit and kept log as [`super::run_code`], one parse per impact.
 
 use std::path::PathBuf;
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::time::Instant;
 
-use super::runner::{RunOptions, find_on_path};
+use super::runner::RunOptions;
 use super::{CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun};
 use crate::model::trajectory::check_trajectory;
 
@@ -47,9 +47,9 @@ pub fn run_batch(
             case: format!("a batch of {}", setups.len()),
             reason,
         })?;
-    let binary = find_on_path(driver.binary()).ok_or_else(|| CodeError::MissingBinary {
+    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
         code: code.clone(),
-        binary: driver.binary().to_string(),
+        looked,
     })?;
     let parent = options
         .scratch_parent
@@ -68,7 +68,7 @@ pub fn run_batch(
         .try_clone()
         .map_err(io_error("duplicating the log handle"))?;
     let started = Instant::now();
-    let mut child = Command::new(&binary);
+    let mut child = executable.command();
     child
         .args(&input.args)
         .current_dir(&workdir)

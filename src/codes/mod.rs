@@ -16,7 +16,9 @@ pub mod setup;
 pub mod template;
 pub mod yade_batch;
 
-use std::path::Path;
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+use std::process::Command;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
@@ -49,12 +51,44 @@ pub struct RenderedInput {
     pub args: Vec<String>,
 }
 
-/// One external DEM code.
+/// How to start a build's executable: the program and the environment it needs.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Executable {
+    /// The program file.
+    pub program: PathBuf,
+    /// Variables set for it (a library path, a thread count).
+    pub env: Vec<(&'static str, OsString)>,
+}
+
+impl Executable {
+    /// A program that needs nothing set.
+    pub fn plain(program: PathBuf) -> Self {
+        Executable {
+            program,
+            env: Vec::new(),
+        }
+    }
+
+    /// A command that starts it.
+    pub fn command(&self) -> Command {
+        let mut command = Command::new(&self.program);
+        command.envs(self.env.iter().map(|(k, v)| (k, v)));
+        command
+    }
+}
+
+/// One external DEM code, as one build of it (a code with two builds has two entries).
 pub trait CodeDriver: Send + Sync {
     /// Short name, as on the command line and in `reference/<name>/`.
     fn name(&self) -> &'static str;
-    /// The executable looked up on PATH.
+    /// The executable's file name (looked up on PATH by the default [`CodeDriver::locate`]).
     fn binary(&self) -> &'static str;
+    /// Find the build's executable; `Err` says where it was looked for. By default the file in
+    /// `MILLIMPACT_<NAME>_BINARY` if set (a user's own build), else [`CodeDriver::binary`] on
+    /// PATH.
+    fn locate(&self) -> Result<Executable, String> {
+        runner::locate_override_or_path(self.name(), self.binary())
+    }
     /// Render the input deck for `setup` (from the template in `scripts/`).
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError>;
     /// Parse the run's files in `workdir` and its combined stdout/stderr `log`.

@@ -7,24 +7,22 @@ use std::time::{Duration, Instant};
 
 use thiserror::Error;
 
-use super::CodeDriver;
 use super::parse::ParseError;
 use super::setup::CodeSetup;
+use super::{CodeDriver, Executable};
 use crate::model::trajectory::{CodeTrajectory, check_trajectory};
 
 /// A fault of an external code. Each variant names the code and, where there is one, where
 /// its log was kept.
 #[derive(Debug, Error)]
 pub enum CodeError {
-    /// The binary is not on PATH.
-    #[error(
-        "{code}: binary `{binary}` not found on PATH (install it with scripts/install-dem-codes.sh)"
-    )]
+    /// The build's executable is not where it was looked for.
+    #[error("{code}: {looked} (install it with scripts/install-dem-codes.sh)")]
     MissingBinary {
         /// Code name.
         code: String,
-        /// Binary name.
-        binary: String,
+        /// Where it was looked for, and what was found there.
+        looked: String,
     },
     /// The code exited with a failure status.
     #[error("{code}: exited with {status}; log kept in {}", log.display())]
@@ -115,6 +113,40 @@ impl Default for RunOptions {
     }
 }
 
+/// Where the project-local codes installed from PyPI live: `MILLIMPACT_CODES_DIR`, else
+/// `.codes/` in the project (where `scripts/install-dem-codes.sh` puts them).
+pub fn codes_dir() -> PathBuf {
+    std::env::var_os("MILLIMPACT_CODES_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join(".codes"))
+}
+
+/// The environment variable that points a code at a user's own build: `MILLIMPACT_<NAME>_BINARY`
+/// (the name upper-cased, `-` as `_`; `MILLIMPACT_LAMMPS_2025_BINARY`, say).
+pub fn binary_override_variable(code: &str) -> String {
+    format!(
+        "MILLIMPACT_{}_BINARY",
+        code.to_ascii_uppercase().replace('-', "_")
+    )
+}
+
+/// The executable a build runs: the file named by its [`binary_override_variable`] if that is
+/// set, else `binary` on PATH; `Err` says where it was looked for.
+pub fn locate_override_or_path(code: &str, binary: &str) -> Result<Executable, String> {
+    let variable = binary_override_variable(code);
+    if let Some(path) = std::env::var_os(&variable) {
+        let path = PathBuf::from(path);
+        return if path.is_file() {
+            Ok(Executable::plain(path))
+        } else {
+            Err(format!("{variable}={} is not a file", path.display()))
+        };
+    }
+    find_on_path(binary)
+        .map(Executable::plain)
+        .ok_or_else(|| format!("binary `{binary}` not found on PATH"))
+}
+
 /// Whether `binary` is an executable on PATH.
 pub fn find_on_path(binary: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
@@ -142,9 +174,9 @@ pub fn run_code(
             source,
         }
     };
-    let binary = find_on_path(driver.binary()).ok_or_else(|| CodeError::MissingBinary {
+    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
         code: code.clone(),
-        binary: driver.binary().to_string(),
+        looked,
     })?;
     let input = driver.render(setup)?;
     let parent = options
@@ -166,7 +198,7 @@ pub fn run_code(
         .map_err(io_error("duplicating the log handle"))?;
 
     let started = Instant::now();
-    let mut child = Command::new(&binary);
+    let mut child = executable.command();
     child
         .args(&input.args)
         .current_dir(&workdir)
