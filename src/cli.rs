@@ -85,6 +85,21 @@ fn parse_periods(text: &str) -> Result<f64, String> {
     }
 }
 
+fn parse_rtol(text: &str) -> Result<f64, String> {
+    let rtol: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    let min = crate::analysis::run::MIN_RTOL;
+    if (min..1.0).contains(&rtol) {
+        Ok(rtol)
+    } else {
+        Err(format!(
+            "must be a relative tolerance in [{min:e}, 1) (the spacing of doubles near 1 and up)"
+        ))
+    }
+}
+
 /// Largest time limit for an external code, s (a day): beyond it a run is not a check.
 pub const MAX_TIMEOUT: f64 = 86_400.0;
 
@@ -108,13 +123,16 @@ pub struct IntegrationArgs {
     #[arg(long, value_parser = method_parser(), default_value = "rk4-event")]
     pub method: Method,
     /// Fixed-step methods: steps per undamped oscillation period [default: 1000].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(4..=100_000_000))]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(
+        i64::from(crate::analysis::run::MIN_STEPS_PER_PERIOD)
+            ..=i64::from(crate::analysis::run::MAX_STEPS_PER_PERIOD)
+    ))]
     pub steps_per_period: Option<u32>,
     /// Fixed-step methods: the step in seconds instead (checked against the stability limit).
     #[arg(long, conflicts_with = "steps_per_period")]
     pub timestep: Option<f64>,
-    /// Adaptive method: relative tolerance [default: 1e-12].
-    #[arg(long)]
+    /// Adaptive method: relative tolerance, in [2.2e-16, 1) [default: 1e-12].
+    #[arg(long, value_parser = parse_rtol)]
     pub rtol: Option<f64>,
     /// Bilateral contact: undamped periods to follow (at most 1000).
     #[arg(long, default_value_t = 3.0, value_parser = parse_periods)]

@@ -56,6 +56,9 @@ fn main() -> ExitCode {
     }
     match commands::dispatch(&cli.command) {
         Ok(output) => {
+            for warning in &output.warnings {
+                eprintln!("warning: {warning}");
+            }
             if let Err(error) = print(&output.text) {
                 if error.kind() == std::io::ErrorKind::BrokenPipe {
                     // The reader has gone (`| head`): what it read is what it wanted.

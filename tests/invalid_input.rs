@@ -684,3 +684,137 @@ fn unreadable_and_unrepresentable_cases_are_refused() {
         assert_eq!(stderr.lines().count(), 1, "{stderr}");
     }
 }
+
+/// One rule for each count and tolerance, in the library as on the command line: steps per
+/// period in 4..=1e8, a relative tolerance no finer than the spacing of doubles, a trajectory of
+/// at most 1e6 rows (checked before the run), and an output file's directory must exist.
+#[test]
+fn counts_tolerances_and_output_directories_are_bounded_before_any_work() {
+    let dir = TempDir::new().unwrap();
+    let case = case_path("ball_plate");
+    let case = case.to_str().unwrap();
+    rejected(
+        dir.path(),
+        &["run", case, "--method", "dopri5", "--rtol", "1e-300"],
+        &["'1e-300'", "--rtol", "[2.220446049250313e-16, 1)"],
+    );
+    rejected(
+        dir.path(),
+        &[
+            "run",
+            case,
+            "--method",
+            "rk4",
+            "--steps-per-period",
+            "100000000",
+        ],
+        &["--steps-per-period = 100000000", "1e6"],
+    );
+    rejected(
+        dir.path(),
+        &["run", case, "--method", "verlet", "--timestep", "1e-12"],
+        &["--timestep = 0.000000000001", "rows"],
+    );
+    // Without a trajectory the same fine step is only work, and is run.
+    millimpact()
+        .args([
+            "run",
+            case,
+            "--method",
+            "rk4",
+            "--steps-per-period",
+            "4000000",
+        ])
+        .assert()
+        .success();
+    let missing = dir.path().join("no-such-dir").join("t.csv");
+    let out = millimpact()
+        .args(["run", case, "--trajectory"])
+        .arg(&missing)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("its directory does not exist"), "{stderr}");
+    assert!(!dir.path().join("no-such-dir").exists());
+    // The library refuses what the command line refuses.
+    let c = common::shipped("ball_plate");
+    for options in [
+        millimpact::analysis::run::IntegrationOptions {
+            method: Method::Rk4,
+            steps_per_period: Some(1),
+            ..Default::default()
+        },
+        millimpact::analysis::run::IntegrationOptions {
+            method: Method::Dopri5,
+            rtol: Some(1e-300),
+            ..Default::default()
+        },
+    ] {
+        assert!(options.settings(&c, false).is_err(), "{options:?}");
+    }
+}
+
+/// A run outside its valid range says so on standard error and in the JSON, and still exits 0:
+/// Hertz beyond small strain, a stubby rod, and a fixed step so coarse that the COR leaves
+/// [0, 1].
+#[test]
+fn validity_warnings_go_to_stderr_and_the_json() {
+    let dir = TempDir::new().unwrap();
+    let soft = write(
+        dir.path(),
+        "soft.toml",
+        &edit(
+            BALL_PLATE,
+            "youngs_modulus = 2.0e11\npoisson_ratio = 0.3\n\n[plate]",
+            "youngs_modulus = 1.0e6\npoisson_ratio = 0.3\n\n[plate]",
+        ),
+    );
+    let stubby = write(
+        dir.path(),
+        "stubby.toml",
+        &edit(ROD, "length = 0.5", "length = 0.02"),
+    );
+    let steel = case_path("ball_plate");
+    for (path, extra, expected) in [
+        (&soft, &[][..], "beyond Hertz's small-strain range"),
+        (&stubby, &[][..], "needs a rod of at least 5 diameters"),
+        (
+            &steel,
+            &["--method", "verlet", "--timestep", "5.38e-5"][..],
+            "outside [0, 1]",
+        ),
+    ] {
+        let out = millimpact()
+            .arg("run")
+            .arg(path)
+            .args(extra)
+            .args(["--format", "json"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{stderr}");
+        assert!(
+            stderr.starts_with("warning: ") && stderr.contains(expected),
+            "{stderr}"
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let warnings = json["warnings"].as_array().unwrap();
+        assert_eq!(warnings.len(), 1, "{warnings:?}");
+        assert!(warnings[0].as_str().unwrap().contains(expected));
+    }
+    // The shipped cases are inside every range: no warning.
+    for name in ["ball_plate", "ball_ball", "rod_end"] {
+        let out = millimpact()
+            .arg("run")
+            .arg(case_path(name))
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        assert!(
+            out.stderr.is_empty(),
+            "{name}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}

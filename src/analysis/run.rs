@@ -94,6 +94,64 @@ pub struct RunReport {
     /// Bilateral contact: speed at each passage through zero approach, m/s.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub crossing_speeds: Vec<f64>,
+    /// Where the run leaves the range its model or method is valid in (see [`warnings`]);
+    /// a warning does not change the exit code.
+    pub warnings: Vec<String>,
+}
+
+/// Largest peak deformation, as a fraction of the effective radius R*, inside Hertz's
+/// small-strain range. Hertz theory assumes a contact radius `a = sqrt(R* δ)` small against R*;
+/// `a/R* ≤ 0.1` (Johnson, *Contact Mechanics*, 1985, §4.2 and §5.1, where the elastic
+/// half-space idealisation is taken to hold) is `δ/R* ≤ 0.01`.
+pub const HERTZ_MAX_STRAIN: f64 = 0.01;
+
+/// Smallest rod length in diameters for the rod-end law: the rod's spring `π D² E / (4H)` is a
+/// uniform bar in plane compression, which needs a slender rod (Saint-Venant: the end zone where
+/// the contact stress spreads over the section is about one diameter long).
+pub const ROD_MIN_SLENDERNESS: f64 = 5.0;
+
+/// The ways a run leaves its valid range: a peak deformation beyond Hertz's small-strain range
+/// ([`HERTZ_MAX_STRAIN`]), a rod too short for the bar spring ([`ROD_MIN_SLENDERNESS`]), and a
+/// fixed-step result outside what the law allows (COR outside [0, 1], energy created), which is
+/// the method's step error at a coarse step, not physics.
+pub fn warnings(case: &Case, method: Method, figures: &ImpactFigures) -> Vec<String> {
+    let mut out = Vec::new();
+    if let Some(radius) = case.scene.effective_radius() {
+        let strain = figures.peak_deformation / radius;
+        if strain > HERTZ_MAX_STRAIN {
+            out.push(format!(
+                "{}: peak deformation {:.3e} m is {:.3} of the effective radius {:.3e} m, beyond \
+                 Hertz's small-strain range (δ/R* ≤ {HERTZ_MAX_STRAIN}, contact radius ≤ 0.1 R*)",
+                case.path.display(),
+                figures.peak_deformation,
+                strain,
+                radius
+            ));
+        }
+    }
+    if let crate::model::scene::Scene::RodEnd { rod } = &case.scene {
+        let slenderness = rod.length / rod.diameter;
+        if slenderness < ROD_MIN_SLENDERNESS {
+            out.push(format!(
+                "{}: rod length {} m is {slenderness:.3} diameters; the rod-end law's bar spring \
+                 π D² E / (4H) needs a rod of at least {ROD_MIN_SLENDERNESS} diameters",
+                case.path.display(),
+                rod.length
+            ));
+        }
+    }
+    if !(0.0..=1.0).contains(&figures.cor) || figures.absorbed_energy < 0.0 {
+        out.push(format!(
+            "{}: {method} gives a COR of {} (absorbed energy {:.3e} J): outside [0, 1], the \
+             method's step error at this step exceeds the loss (the exact COR is {}); refine the \
+             step",
+            case.path.display(),
+            figures.cor,
+            figures.absorbed_energy,
+            exact::paper_impact(&case.law(), case.impact_velocity).cor
+        ));
+    }
+    out
 }
 
 fn relative(value: f64, reference: f64) -> f64 {
@@ -162,6 +220,7 @@ impl RunReport {
             },
             hertz_elastic,
             crossing_speeds: outcome.crossing_speeds.clone(),
+            warnings: warnings(case, method, f),
         }
     }
 
@@ -403,6 +462,21 @@ impl Summary for RunReport {
     }
 }
 
+/// Fewest steps per undamped period a fixed-step method is run at: below it RK4 gives a COR
+/// above 1 at η = 0 and the contact is one or two steps.
+pub const MIN_STEPS_PER_PERIOD: u32 = 4;
+
+/// Most steps per undamped period (about 5e7 steps in a contact, seconds of work).
+pub const MAX_STEPS_PER_PERIOD: u32 = 100_000_000;
+
+/// Smallest relative tolerance of the adaptive method: the spacing of doubles near 1 (below it a
+/// step can never meet the tolerance and the step size underflows).
+pub const MIN_RTOL: f64 = f64::EPSILON;
+
+/// Most rows a trajectory may have (about 200 MB of CSV): checked before the run, from the
+/// steps the method will take.
+pub const MAX_TRAJECTORY_ROWS: f64 = 1e6;
+
 /// Integration options as a user gives them: a method and at most the knob that method has.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct IntegrationOptions {
@@ -461,11 +535,11 @@ impl IntegrationOptions {
                     format!("{method} has no tolerance; it applies to the adaptive methods"),
                 ));
             }
-            if !(rtol > 0.0 && rtol < 1.0) {
+            if !(MIN_RTOL..1.0).contains(&rtol) {
                 return Err(refuse(
                     "--rtol",
                     rtol.to_string(),
-                    "must be in (0, 1)".into(),
+                    format!("must be in [{MIN_RTOL:e}, 1) (the spacing of doubles near 1 and up)"),
                 ));
             }
         }
@@ -492,15 +566,64 @@ impl IntegrationOptions {
                 "must be a finite number > 0".into(),
             ));
         }
+        if let Some(n) = self.steps_per_period
+            && !(MIN_STEPS_PER_PERIOD..=MAX_STEPS_PER_PERIOD).contains(&n)
+        {
+            return Err(refuse(
+                "--steps-per-period",
+                n.to_string(),
+                format!("must be in {MIN_STEPS_PER_PERIOD}..={MAX_STEPS_PER_PERIOD}"),
+            ));
+        }
+        let steps_per_period = self.steps_per_period.unwrap_or(defaults.steps_per_period);
+        if record && method.is_fixed_step() {
+            let rows = self.trajectory_rows_bound(case, steps_per_period);
+            if rows > MAX_TRAJECTORY_ROWS {
+                let (option, value) = match self.timestep {
+                    Some(dt) => ("--timestep", dt.to_string()),
+                    None => ("--steps-per-period", steps_per_period.to_string()),
+                };
+                return Err(refuse(
+                    option,
+                    value,
+                    format!(
+                        "with --trajectory this run would write about {rows:.2e} rows, more than \
+                         {MAX_TRAJECTORY_ROWS:e}; use a coarser step or no trajectory"
+                    ),
+                ));
+            }
+        }
         Ok(Settings {
             method,
-            steps_per_period: self.steps_per_period.unwrap_or(defaults.steps_per_period),
+            steps_per_period,
             timestep: self.timestep,
             rtol: self.rtol.unwrap_or(defaults.rtol),
             contact: case.contact,
             periods: self.periods,
             record,
         })
+    }
+}
+
+impl IntegrationOptions {
+    /// An upper estimate of the steps (trajectory rows) a fixed-step run takes: the loading
+    /// quarter-period and the unloading one, which lasts `1/sqrt(1 − η)` times longer at the
+    /// paper's unloading stiffness (RK4 with events steps it at its own period), or the
+    /// periods followed in bilateral contact.
+    fn trajectory_rows_bound(&self, case: &Case, steps_per_period: u32) -> f64 {
+        let law = case.law();
+        let period = 4.0 * exact::j_integral(law.exponent) * law.elastic_peak(case.impact_velocity)
+            / case.impact_velocity;
+        let per_period = match self.timestep {
+            Some(dt) => period / dt,
+            None => f64::from(steps_per_period),
+        };
+        let periods = match case.contact {
+            ContactKind::Bilateral => self.periods,
+            ContactKind::Unilateral if self.method == Method::Rk4Event => 1.0,
+            ContactKind::Unilateral => 0.5 + 0.25 / (1.0 - law.loss_coefficient).sqrt(),
+        };
+        per_period * periods
     }
 }
 

@@ -37,6 +37,7 @@ pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
     let report = compare_cases(&cases, &options)?;
     let failures = report.failures();
     Ok(CommandOutput {
+        warnings: Vec::new(),
         text: export(&report, args.format)?,
         failure: (!failures.is_empty())
             .then(|| CheckFailed(format!("compare --live: {}", failures.join("; ")))),

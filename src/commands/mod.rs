@@ -28,6 +28,8 @@ pub struct CommandOutput {
     pub text: String,
     /// The disagreement, if a check failed (exit 1).
     pub failure: Option<CheckFailed>,
+    /// Warnings for standard error (they do not change the exit code).
+    pub warnings: Vec<String>,
 }
 
 impl CommandOutput {
@@ -35,6 +37,7 @@ impl CommandOutput {
         CommandOutput {
             text,
             failure: None,
+            warnings: Vec::new(),
         }
     }
 }

@@ -103,6 +103,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
     let missing = &report.failures;
     Ok(CommandOutput {
+        warnings: Vec::new(),
         text: format!(
             "report: {} ({} figures, {} tables, {} files)\n",
             out.join("index.html").display(),

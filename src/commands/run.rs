@@ -67,6 +67,7 @@ pub(super) fn run(args: &RunArgs) -> Result<CommandOutput> {
     }
     let settings = options.settings(&case, args.trajectory.is_some())?;
     let (report, outcome) = run_case(&case, &settings)?;
+    let warnings = report.warnings.clone();
     let summary = RunSummary {
         report,
         reproduce: reproduce_arguments(&case, &settings),
@@ -76,5 +77,8 @@ pub(super) fn run(args: &RunArgs) -> Result<CommandOutput> {
         let csv = csv_string(&trajectory_rows(&case, &outcome.trajectory))?;
         write_output(path, csv.as_bytes(), "trajectory")?;
     }
-    Ok(CommandOutput::passed(text))
+    Ok(CommandOutput {
+        warnings,
+        ..CommandOutput::passed(text)
+    })
 }

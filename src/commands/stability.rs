@@ -12,6 +12,7 @@ pub(super) fn stability(args: &StabilityArgs) -> Result<CommandOutput> {
     let report = stability_report();
     let failures = report.accurate_method_failures().len();
     Ok(CommandOutput {
+        warnings: Vec::new(),
         text: export(&report, args.format)?,
         failure: (failures > 0).then(|| {
             CheckFailed(format!(

@@ -239,6 +239,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         .unwrap_or_else(|| "standard output".into());
     if STOP.load(Ordering::SeqCst) {
         return Ok(CommandOutput {
+            warnings: Vec::new(),
             text: String::new(),
             failure: Some(CheckFailed(format!(
                 "interrupted: {} rows written to {place}; continue with --resume",

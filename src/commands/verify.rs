@@ -12,6 +12,7 @@ pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
     let report = verify_all(&args.cases, &args.reference)?;
     let failed = report.failed();
     Ok(CommandOutput {
+        warnings: Vec::new(),
         text: export(&report, args.format)?,
         failure: (failed > 0).then(|| {
             CheckFailed(format!(

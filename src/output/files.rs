@@ -60,6 +60,17 @@ pub fn check_output_path(
         reason,
     };
     let Ok(meta) = std::fs::symlink_metadata(path) else {
+        // A mistyped directory is refused rather than made: the file would land where nobody
+        // looks for it.
+        let parent = path
+            .parent()
+            .filter(|p| !p.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        if !parent.is_dir() {
+            return Err(refuse(
+                "its directory does not exist (millimpact does not create it)",
+            ));
+        }
         return Ok(());
     };
     if meta.file_type().is_symlink() {
