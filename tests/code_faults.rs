@@ -326,3 +326,76 @@ fn an_oversized_log_is_kept_as_its_head_and_tail() {
     assert!(log.starts_with("FIRST-LINE") && log.trim_end().ends_with("LAST-LINE"));
     assert!(log.contains("bytes of this log cut"), "the cut is said");
 }
+
+/// A run cut short (here: a code that writes three rows and exits 0, as a full disk or a
+/// killed writer would leave it) is refused by its row count, with the log kept, however the
+/// rows it has look: whether the contact had ended in them or not.
+#[test]
+fn a_truncated_trajectory_is_refused_with_its_log() {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    for (label, rows) in [
+        (
+            "in contact",
+            "0 -1e-9 2 0\n1e-7 1e-7 2 5\n2e-7 2e-7 1.9 9\n",
+        ),
+        (
+            "after the contact",
+            "0 -1e-9 2 0\n1e-7 1e-7 2 5\n2e-7 -1e-7 -1.4 0\n",
+        ),
+    ] {
+        fake_binary(
+            bin.path(),
+            "lmp",
+            &format!(
+                "echo 'LAMMPS (fake, {label})'; printf '{}' > trajectory.txt",
+                rows.replace('\n', "\\n")
+            ),
+        );
+        let stderr = failing_run(
+            bin.path(),
+            scratch.path(),
+            &["reference", "--code", "lammps", "cases/ball_plate.toml"],
+        );
+        assert!(
+            stderr.contains("lammps: unparsable output: the trajectory has 3 rows, expected"),
+            "{label}: {stderr}"
+        );
+        let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
+        assert!(log.contains(label), "{log}");
+    }
+}
+
+/// A full disk under standard output is one line and exit 1; a reader that has gone (`| head`)
+/// ends the command quietly with 141, as a shell pipeline expects; neither panics.
+#[test]
+fn broken_pipes_and_full_disks_are_one_line_not_a_panic() {
+    let full = std::fs::OpenOptions::new()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_millimpact"))
+        .arg("verify")
+        .current_dir(common::root())
+        .stdout(full)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert_eq!(
+        stderr.trim(),
+        "error: writing standard output: No space left on device (os error 28)"
+    );
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_millimpact"))
+        .args(["stability", "--format", "json"])
+        .current_dir(common::root())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(141), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+}

@@ -96,6 +96,11 @@ pub trait CodeDriver: Send + Sync {
     /// The contact law this code really integrates for `setup`, as measured on the installed
     /// version (effective radius and modulus, damping formula, clamp).
     fn law(&self, setup: &CodeSetup) -> DashpotLaw;
+    /// Rows a complete trajectory of `setup` has (by default the initial state and one per
+    /// step): fewer is a truncated run, refused rather than read.
+    fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
+        setup.steps + 1
+    }
     /// How the code advances a step (what velocity its damping sees).
     fn step_scheme(&self) -> StepScheme {
         StepScheme::VelocityVerlet

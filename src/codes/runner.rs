@@ -238,6 +238,19 @@ pub fn run_code(
             });
         }
     };
+    let rows = parsed.trajectory.time.len() as u64;
+    let expected = driver.trajectory_rows(setup);
+    if rows != expected {
+        return Err(CodeError::Unparsable {
+            code,
+            reason: ParseError::RowCount {
+                file: "the trajectory".to_string(),
+                rows,
+                expected,
+            },
+            log: keep(scratch),
+        });
+    }
     if let Err(reason) = check_trajectory(&parsed.trajectory) {
         return Err(CodeError::Unparsable {
             code,
