@@ -104,6 +104,36 @@ proptest! {
         }
     }
 
+    /// Arbitrary text, and text made of a case file's own pieces in any order: the reader
+    /// answers with a case or one line, never a panic (multi-byte characters included, where an
+    /// error's line and column are counted).
+    #[test]
+    fn the_case_reader_never_panics_on_any_text(
+        text in prop_oneof![
+            any::<String>(),
+            proptest::collection::vec(
+                prop_oneof![
+                    Just("scene = \"ball_plate\"\n".to_string()),
+                    Just("[ball]\n".to_string()),
+                    Just("[plate]\n".to_string()),
+                    Just("radius = ".to_string()),
+                    Just("rigid = true\n".to_string()),
+                    Just("impact_velocity = 2.0\n".to_string()),
+                    Just("loss_coefficient = 0.35\n".to_string()),
+                    Just("δ = \"é\"\n".to_string()),
+                    "[0-9.e+-]{1,12}\n",
+                    "[a-z_\\[\\]=\" ]{1,12}",
+                ],
+                0..20,
+            )
+            .prop_map(|pieces| pieces.concat()),
+        ]
+    ) {
+        if let Err(e) = Case::parse(&text, std::path::Path::new("any.toml")) {
+            prop_assert!(!e.to_string().contains('\n'), "{e}");
+        }
+    }
+
     /// Case-shaped text with arbitrary numbers in every field: the reader accepts only what it
     /// can represent, and what it accepts integrates to a physical answer.
     #[test]

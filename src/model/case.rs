@@ -168,6 +168,19 @@ impl Case {
         }
         let text = std::fs::read_to_string(path)
             .map_err(|e| fail("(file)", "(unreadable)", &format!("cannot read it: {e}")))?;
+        Case::parse(&text, path)
+    }
+
+    /// Read a case from the text of its file at `path` (which names it in errors and gives its
+    /// name), as strictly as [`Case::load`].
+    pub fn parse(text: &str, path: &Path) -> Result<Case, CaseError> {
+        let file = path.display().to_string();
+        let fail = |key: &str, value: &str, allowed: &str| CaseError {
+            file: file.clone(),
+            key: key.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        };
         let table: Table = text.parse().map_err(|e: toml::de::Error| {
             let message = e.message().replace('\n', " ");
             let place = match e.span() {
