@@ -8,6 +8,7 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub mod damping;
 pub mod lammps_batch;
 pub mod liggghts_batch;
 pub mod parse;
