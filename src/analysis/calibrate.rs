@@ -176,7 +176,7 @@ fn traps(code: CodeName, scene: SceneKind) -> Vec<String> {
             t.push("Symplectic_Euler, not Forward_Euler: Forward_Euler gains energy (an elastic impact rebounds at 1.0056)".into());
             t.push("NeighbourSearchFrequency 1: the default 50 finds the wall contact only at step 48 (COR 0.711 for 0.694)".into());
             t.push(
-                "OMP_NUM_THREADS=1: the default two threads make a one-sphere run ten times slower"
+                "OMP_NUM_THREADS=1: the default two threads make a one-sphere loop 5–10× slower"
                     .into(),
             );
             if scene != SceneKind::RodEnd {

@@ -198,8 +198,8 @@ impl CodeDriver for Kratos {
     }
 
     /// The venv's python under [`codes_dir`] (or the python in `MILLIMPACT_KRATOS_BINARY`),
-    /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere run
-    /// about ten times slower.
+    /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
+    /// run's loop five to ten times slower.
     fn locate(&self) -> Result<Executable, String> {
         let variable = runner::binary_override_variable(self.name());
         let program = if std::env::var_os(&variable).is_some() {
@@ -226,7 +226,7 @@ impl CodeDriver for Kratos {
             .filter(|_| setup.scene == SceneKind::BallBall);
         let (restitution, linear_stiffness, damping_gamma) = match setup.scene {
             // The linear law's γ is set directly: Kratos' own bisection from a restitution
-            // stops at 1e-4 in γ and ignores the clamp.
+            // solves the same clamped closed form, but stops at 1e-4 in γ.
             SceneKind::RodEnd => (1.0, setup.stiffness, rod_damping_ratio(setup)),
             // A negative γ leaves the one Kratos derives from the restitution.
             _ => (input_restitution(setup), 0.0, -1.0),
