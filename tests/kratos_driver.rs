@@ -463,6 +463,35 @@ fn live_rod_end() {
     check_live(&setup(Canonical::RodEnd, 0.5));
 }
 
+/// With the default `NeighbourSearchFrequency` of 50 the wall contact is found only at step
+/// 48: every row that overlaps while the bodies still close must carry a repulsive force, from
+/// the first step on.
+#[test]
+fn the_contact_is_found_at_the_first_overlapping_step() {
+    for which in [Canonical::BallPlate, Canonical::BallBall, Canonical::RodEnd] {
+        let s = setup(which, TARGET);
+        let (run, _) = run_live(&s);
+        let t = &run.trajectory;
+        assert!(t.overlap[0] <= 0.0 && t.overlap[1] > 0.0, "{which:?}");
+        let closing = (1..t.time.len())
+            .take_while(|&k| t.approach_velocity[k] > 0.0)
+            .collect::<Vec<_>>();
+        assert!(
+            closing.len() > 100,
+            "{which:?}: {} closing rows",
+            closing.len()
+        );
+        for k in closing {
+            assert!(
+                t.overlap[k] > 0.0 && t.normal_force[k] > 0.0,
+                "{which:?} row {k}: overlap {} force {}",
+                t.overlap[k],
+                t.normal_force[k]
+            );
+        }
+    }
+}
+
 /// The files left in a scratch directory after the rendered script has run in it.
 fn files_after_a_run(s: &CodeSetup) -> Vec<String> {
     let input = Kratos.render(s).unwrap();
