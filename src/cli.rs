@@ -12,7 +12,7 @@ use crate::output::Format;
 use crate::solve::Method;
 
 /// millimpact: checks the contact law of grinding bodies against exact closed forms and
-/// against the DEM codes LIGGGHTS, YADE and LAMMPS.
+/// against the DEM codes LIGGGHTS, YADE, LAMMPS and Kratos.
 #[derive(Debug, Parser)]
 #[command(name = "millimpact", version, about)]
 pub struct Cli {

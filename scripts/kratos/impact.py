@@ -12,16 +12,16 @@
 #   either, CreateSphericParticle segfaults), then the spheres (creator_destructor
 #   .CreateSphericParticle) and, for a plate, a wall of two RigidFace3D3N triangles;
 # - NeighbourSearchFrequency 1 (default 50: the wall contact is found only at step 48);
-# - one OpenMP thread (default two: ~10x slower on this machine);
+# - one OpenMP thread (default two: a one-sphere loop 5-10x slower on this machine);
 # - no gravity, no friction, no rotation, no global damping, no output files;
-# - its own step loop (the stage's costs ~1.2 ms a step in Python).
+# - its own step loop (the stage's costs ~0.65 ms a step, ~90 % of it in Python).
 # Ball scenes: DEM_D_Hertz_viscous_Coulomb, F = k y^1.5 + 2 gamma sqrt(1.5 m* k) y^(1/4) ydot,
 # total normal force clamped at zero, k = (4/3) E* sqrt(R*) (E* mixed with the wall's E and nu,
 # R* = R at the wall), gamma from EN by Thornton's fit. rod_end: DEM_D_Linear_Custom_Constants,
 # F = k y + 2 gamma sqrt(m k) ydot, clamped at zero.
 import os
 
-# One thread: Kratos' default of two OpenMP threads makes a one-sphere run ~10x slower. This
+# One thread: Kratos' default of two OpenMP threads makes a one-sphere loop 5-10x slower. This
 # must be set before Kratos (and its OpenMP runtime) loads; the driver sets it too.
 os.environ["OMP_NUM_THREADS"] = "1"
 
@@ -278,7 +278,7 @@ strategy = solver.cplusplus_strategy
 walls = stage.rigid_face_model_part
 mesh_mover = solver.dem_fem_utils
 rows = []
-# The stage's own RunSolutionLoop costs ~1.2 ms a step, most of it in Python (two
+# The stage's own RunSolutionLoop costs ~0.65 ms a step, ~90 % of it in Python (two
 # `Parameters.keys()` calls a step, each listing the ~150 settings); this loop makes the same
 # C++ calls as sphere_strategy's AdvanceInTime, Predict, InitializeSolutionStep,
 # SolveSolutionStep and FinalizeSolutionStep (measured: the same trajectory to the last bit).

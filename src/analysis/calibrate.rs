@@ -115,6 +115,22 @@ fn setting_keys(code: CodeName, scene: SceneKind) -> &'static [&'static str] {
             "MindlinPhys(",
         ],
         ("lammps", _) => &["pair_style", "pair_coeff", "wall/gran"],
+        ("kratos", SceneKind::RodEnd) => &[
+            "KN =",
+            "GAMMA =",
+            "SCHEME = \"",
+            "\"NeighbourSearchFrequency\"",
+            "= \"DEM_D_Linear_Custom_Constants\"",
+            "K_NORMAL] =",
+        ],
+        ("kratos", _) => &[
+            "EN =",
+            "WALL_E =",
+            "WALL_NU =",
+            "SCHEME = \"",
+            "\"NeighbourSearchFrequency\"",
+            "= \"DEM_D_Hertz_viscous_Coulomb\"",
+        ],
         _ => &[],
     }
 }
@@ -161,6 +177,23 @@ fn traps(code: CodeName, scene: SceneKind) -> Vec<String> {
                     .into(),
             );
             t.push("touching counts as contact: start a hair away".into());
+        }
+        CodeName::Kratos => {
+            t.push("scheme: set the translational integration scheme (and the properties proxies) in the particles' properties before creating any particle, else CreateSphericParticle segfaults (exit 139, no message)".into());
+            t.push("Symplectic_Euler, not Forward_Euler: Forward_Euler gains energy (an elastic impact rebounds at 1.0056)".into());
+            t.push("NeighbourSearchFrequency 1: the default 50 finds the wall contact only at step 48 (COR 0.711 for 0.694)".into());
+            t.push(
+                "OMP_NUM_THREADS=1: the default two threads make a one-sphere loop 5–10× slower"
+                    .into(),
+            );
+            if scene != SceneKind::RodEnd {
+                t.push("COEFFICIENT_OF_RESTITUTION is not the COR: Thornton's fit with the clamped law realises another e; give the inverted en (EN above), as for YADE".into());
+            } else {
+                t.push("rod: DEM_D_Linear_Custom_Constants with K_NORMAL in the contact's sub-properties and DAMPING_GAMMA set to the clamped linear dashpot's ζ(e) after initialisation".into());
+            }
+            t.push(
+                "clamp: the laws never attract; the damping is chosen for the clamped law".into(),
+            );
         }
         // A code added to the registry has no measured traps to list yet.
         #[allow(unreachable_patterns)]

@@ -8,6 +8,7 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub mod damping;
 pub mod lammps_batch;
 pub mod liggghts_batch;
 pub mod parse;
@@ -184,6 +185,7 @@ code_registry! {
     Liggghts => liggghts::Liggghts,
     Yade => yade::Yade,
     Lammps => lammps::Lammps,
+    Kratos => kratos::Kratos,
 }
 
 impl CodeName {
@@ -233,12 +235,12 @@ mod tests {
 
     #[test]
     fn the_registry_lists_every_code_once_by_its_own_name() {
-        assert_eq!(CodeName::names(), ["liggghts", "yade", "lammps"]);
+        assert_eq!(CodeName::names(), ["liggghts", "yade", "lammps", "kratos"]);
         for &code in CodeName::ALL {
             assert_eq!(CodeName::from_name(code.name()), Some(code));
             let json = serde_json::to_string(&code).unwrap();
             assert_eq!(serde_json::from_str::<CodeName>(&json).unwrap(), code);
         }
-        assert!(serde_json::from_str::<CodeName>("\"kratos\"").is_err());
+        assert!(serde_json::from_str::<CodeName>("\"chrono\"").is_err());
     }
 }

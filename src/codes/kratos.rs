@@ -1,0 +1,490 @@
+//! The Kratos Multiphysics DEM driver (PyPI `KratosMultiphysics` and `KratosDEMApplication`
+//! 10.4.4, `.codes/kratos/bin/python impact.py`).
+//!
+//! The scene is built by the Python template `scripts/kratos/impact.py`: a `DEMAnalysisStage`
+//! whose model is made in the script (no mdpa or materials file), one sphere moving along an
+//! axis towards a second sphere or a wall of two `RigidFace3D3N` triangles, no gravity, no
+//! friction, no rotation, no global damping, no output files, and the script's own step loop
+//! of exactly `setup.steps` steps. It writes one row per step, aligned as YADE's rows.
+//!
+//! What the installed version really integrates, as measured (see
+//! `reference/kratos/CONVENTIONS.md` for the runs and numbers):
+//!
+//! - Ball scenes: `DEM_D_Hertz_viscous_Coulomb`: `F = k y^1.5 + 2 γ sqrt(1.5 M k) y^0.25 ẏ`,
+//!   `k = (4/3) E* sqrt(R*)`, `E*` mixed from both materials (the wall's own `E`, `ν` at a
+//!   wall), `R* = R` at a wall, the total normal force clamped at zero. `γ` comes from
+//!   `COEFFICIENT_OF_RESTITUTION` through Thornton's fit, with Kratos' cut-offs
+//!   ([`hertz_damping_gamma`]): the law YADE builds from its `en`, so the driver gives the same
+//!   compensated `en` ([`hertz_input_restitution`]). `M` is the reduced mass of two balls, the
+//!   ball's own at a wall; Kratos forms each mass from density and radius ([`particle_mass`]).
+//! - Rod end: `DEM_D_Linear_Custom_Constants` with `K_NORMAL` in the contact's sub-properties
+//!   and `DAMPING_GAMMA` set directly: `F = k y + 2 γ sqrt(M k) ẏ`, clamped at zero, `γ` the
+//!   damping ratio at which the clamped dashpot realises the target.
+//! - Stepping: the default `Symplectic_Euler` scheme is leap-frog (the force of step `n` sees
+//!   `x_n` and the velocity `v_{n-1/2}`); `Forward_Euler` gains energy and is not used.
+//!
+//! Settings without which the answer silently changes, each set by the template and checked by
+//! the tests: the integration scheme in the particles' properties (and the properties proxies)
+//! before any particle is created (else a segfault, exit 139), `NeighbourSearchFrequency` 1
+//! (the default 50 finds the wall contact late), one OpenMP thread ([`Kratos::locate`]), the
+//! state paired with the force it produced in each row.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+use super::damping::{
+    clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
+};
+use super::parse::ParseError;
+use super::runner::{self, codes_dir};
+use super::template::{exact_number, fill_template};
+use super::yade::{log_value, parse_trajectory};
+use super::{CodeDriver, CodeError, CodeSetup, Executable, ParsedRun, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{SceneKind, pair_radius};
+use crate::solve::dashpot::{StepScheme, accurate_metrics};
+
+/// The Python template of one impact.
+const TEMPLATE: &str = include_str!("../../scripts/kratos/impact.py");
+
+/// The name of the rendered script in the scratch directory.
+pub const SCRIPT: &str = "impact.py";
+
+/// The trajectory file the script writes.
+pub const TRAJECTORY_FILE: &str = "trajectory.csv";
+
+/// The files a run leaves in its scratch directory (besides the harness's `log.txt`): the
+/// script and its trajectory; Kratos writes nothing else when its output options are off.
+pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
+
+/// The python of the installed Kratos, under [`codes_dir`].
+pub const PYTHON: &str = "kratos/bin/python";
+
+/// The translational integration scheme: symplectic Euler, Kratos' leap-frog. `Forward_Euler`
+/// (the scheme of Kratos' own restitution test) gains energy: an elastic impact rebounds at
+/// 1.0056 with 1000 steps per contact.
+pub const SCHEME: &str = "Symplectic_Euler";
+
+/// Young's modulus of the wall that stands for a rigid plate, Pa: Kratos mixes the wall's `E`
+/// and `ν` into `E*`; at this value the wall's share of the compliance is below double
+/// precision.
+pub const RIGID_WALL_MODULUS: f64 = 1e30;
+
+/// How far the COR of [`CodeDriver::law`] may lie from the target before
+/// [`CodeDriver::expected_restitution`] reports it (Thornton's fit, as for YADE).
+pub const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
+
+/// Above this restitution Kratos' `GammaForHertzThornton` gives no damping at all.
+pub const UNDAMPED_ABOVE: f64 = 0.999;
+
+/// Below this restitution Kratos' `GammaForHertzThornton` uses this value instead.
+pub const LOWEST_RESTITUTION: f64 = 0.001;
+
+/// The Kratos DEM driver.
+pub struct Kratos;
+
+/// The damping ratio `γ` Kratos 10.4.4 derives from `COEFFICIENT_OF_RESTITUTION` for
+/// `DEM_D_Hertz_viscous_Coulomb` (`GammaForHertzThornton`): Thornton's fit, zero above
+/// [`UNDAMPED_ABOVE`], and the fit at [`LOWEST_RESTITUTION`] below that.
+pub fn hertz_damping_gamma(restitution: f64) -> f64 {
+    if restitution > UNDAMPED_ABOVE {
+        return 0.0;
+    }
+    thornton_damping_ratio(restitution.max(LOWEST_RESTITUTION))
+}
+
+/// The Kratos python in the codes' folder `dir`, or why there is none: the path looked at, how
+/// to install it there, and how to point at another.
+pub fn python_in(dir: &Path) -> Result<PathBuf, String> {
+    let path = dir.join(PYTHON);
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(format!(
+            "no Kratos python at {} (bash scripts/install-dem-codes.sh installs Kratos 10.4.4 \
+             there; MILLIMPACT_CODES_DIR moves the codes' folder, MILLIMPACT_KRATOS_BINARY \
+             names another python with KratosMultiphysics and KratosDEMApplication)",
+            path.display()
+        ))
+    }
+}
+
+/// A sphere's mass as Kratos forms it from density and radius, kg (it may differ from the
+/// case's `4/3 π R³ ρ` in the last bit).
+pub fn particle_mass(radius: f64, density: f64) -> f64 {
+    density * (4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius)
+}
+
+/// `E*` as `DEM_D_Hertz_viscous_Coulomb` forms it from two materials.
+fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+    e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
+}
+
+/// The second body's material `(E, ν)` in the ball scenes: the other ball, the plate, or the
+/// stand-in for a rigid plate.
+fn second_material(setup: &CodeSetup) -> (f64, f64) {
+    match (setup.scene, setup.other_sphere, setup.plate_material) {
+        (SceneKind::BallBall, Some(other), _) => {
+            (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
+        }
+        (_, _, Some(plate)) => plate,
+        _ => (RIGID_WALL_MODULUS, 0.0),
+    }
+}
+
+/// The mass the dashpot sees, from Kratos' own particle masses.
+fn dynamic_mass(setup: &CodeSetup) -> f64 {
+    let m1 = particle_mass(setup.sphere.radius, setup.sphere.density);
+    match (setup.scene, setup.other_sphere) {
+        (SceneKind::BallBall, Some(o)) => {
+            let m2 = particle_mass(o.radius, o.density);
+            1.0 / (1.0 / m1 + 1.0 / m2)
+        }
+        _ => m1,
+    }
+}
+
+/// The `COEFFICIENT_OF_RESTITUTION` the driver gives a ball scene's contact.
+fn input_restitution(setup: &CodeSetup) -> f64 {
+    hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
+}
+
+/// The rod's damping ratio (saturated for a restitution `render` refuses).
+fn rod_damping_ratio(setup: &CodeSetup) -> f64 {
+    clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0)
+}
+
+impl Kratos {
+    fn unsupported(&self, setup: &CodeSetup, reason: impl Into<String>) -> CodeError {
+        CodeError::Unsupported {
+            code: self.name().into(),
+            case: setup.case_name.clone(),
+            reason: reason.into(),
+        }
+    }
+
+    fn check(&self, setup: &CodeSetup) -> Result<(), CodeError> {
+        let e = setup.target_restitution;
+        if !(e > 0.0 && e <= 1.0) {
+            return Err(self.unsupported(setup, format!("restitution {e} outside (0, 1]")));
+        }
+        if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
+            return Err(self.unsupported(setup, "time step and step count must be positive"));
+        }
+        match setup.scene {
+            SceneKind::BallBall if setup.other_sphere.is_none() => {
+                Err(self.unsupported(setup, "ball_ball needs a second sphere"))
+            }
+            SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(self
+                .unsupported(
+                    setup,
+                    format!(
+                        "DEM_D_Linear_Custom_Constants clamps its force, and an underdamped \
+                         clamped linear dashpot cannot rebound with e = {e} < exp(-2)"
+                    ),
+                )),
+            _ => Ok(()),
+        }
+    }
+}
+
+impl CodeDriver for Kratos {
+    fn name(&self) -> &'static str {
+        "kratos"
+    }
+
+    fn binary(&self) -> &'static str {
+        "python"
+    }
+
+    /// The venv's python under [`codes_dir`] (or the python in `MILLIMPACT_KRATOS_BINARY`),
+    /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
+    /// run's loop five to ten times slower.
+    fn locate(&self) -> Result<Executable, String> {
+        let variable = runner::binary_override_variable(self.name());
+        let program = if std::env::var_os(&variable).is_some() {
+            runner::locate_override_or_path(self.name(), self.binary())?.program
+        } else {
+            python_in(&codes_dir())?
+        };
+        Ok(Executable {
+            program,
+            env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
+        })
+    }
+
+    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        self.check(setup)?;
+        let s = setup.sphere;
+        let (v1, v2) = setup.centre_of_mass_velocities();
+        let (wall_young, wall_poisson) = match setup.scene {
+            SceneKind::BallBall => (0.0, 0.0),
+            _ => second_material(setup),
+        };
+        let other = setup
+            .other_sphere
+            .filter(|_| setup.scene == SceneKind::BallBall);
+        let (restitution, linear_stiffness, damping_gamma) = match setup.scene {
+            // The linear law's γ is set directly: Kratos' own bisection from a restitution
+            // solves the same clamped closed form, but stops at 1e-4 in γ.
+            SceneKind::RodEnd => (1.0, setup.stiffness, rod_damping_ratio(setup)),
+            // A negative γ leaves the one Kratos derives from the restitution.
+            _ => (input_restitution(setup), 0.0, -1.0),
+        };
+        let num = exact_number;
+        let values = [
+            ("scene", setup.scene.name().to_string()),
+            ("timestep", num(setup.timestep)),
+            ("steps", setup.steps.to_string()),
+            ("radius", num(s.radius)),
+            ("mass", num(s.mass)),
+            ("density", num(s.density)),
+            ("young", num(s.youngs_modulus)),
+            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
+            ("velocity", num(v1)),
+            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
+            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
+            ("other_density", num(other.map_or(0.0, |o| o.density))),
+            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
+            (
+                "other_poisson",
+                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
+            ),
+            ("other_velocity", num(v2)),
+            ("wall_young", num(wall_young)),
+            ("wall_poisson", num(wall_poisson)),
+            ("restitution", num(restitution)),
+            ("linear_stiffness", num(linear_stiffness)),
+            ("damping_gamma", num(damping_gamma)),
+            ("scheme", SCHEME.to_string()),
+        ];
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+        Ok(RenderedInput {
+            file_name: SCRIPT.to_string(),
+            text,
+            args: vec![SCRIPT.to_string()],
+        })
+    }
+
+    fn parse(
+        &self,
+        setup: &CodeSetup,
+        workdir: &Path,
+        log: &str,
+    ) -> Result<ParsedRun, ParseError> {
+        let path = workdir.join(TRAJECTORY_FILE);
+        let text =
+            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+        if let Some(ran) = log_value(log, "iterations=") {
+            let ran = ran.parse::<u64>().map_err(|_| ParseError::BadValue {
+                field: "iterations",
+                value: ran.to_string(),
+            })?;
+            if ran != setup.steps {
+                return Err(ParseError::StepCount {
+                    ran,
+                    asked: setup.steps,
+                });
+            }
+        }
+        Ok(ParsedRun {
+            trajectory: parse_trajectory(&text)?,
+            loop_time: log_value(log, "loop_time=")
+                .map(|v| {
+                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
+                        field: "loop_time",
+                        value: v.to_string(),
+                    })
+                })
+                .transpose()?,
+            version: log_value(log, "version=").map(str::to_string),
+        })
+    }
+
+    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
+        let mass = dynamic_mass(setup);
+        match setup.scene {
+            SceneKind::RodEnd => DashpotLaw {
+                mass,
+                stiffness: setup.stiffness,
+                exponent: 1.0,
+                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
+                damping_exponent: 0.0,
+                clamp_attractive: true,
+            },
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                let s = setup.sphere;
+                let (e2, nu2) = second_material(setup);
+                let modulus =
+                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+                let radius = match (setup.scene, setup.other_sphere) {
+                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
+                    // RigidFace3D3N is flat: the sphere's own radius.
+                    _ => s.radius,
+                };
+                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
+                let gamma = hertz_damping_gamma(input_restitution(setup));
+                DashpotLaw {
+                    mass,
+                    stiffness,
+                    exponent: 1.5,
+                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
+                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
+                    damping_exponent: 0.25,
+                    clamp_attractive: true,
+                }
+            }
+        }
+    }
+
+    fn step_scheme(&self) -> StepScheme {
+        StepScheme::LeapFrog
+    }
+
+    fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
+        if setup.scene == SceneKind::RodEnd {
+            // γ is solved for the clamped law: it realises the target.
+            return None;
+        }
+        let law = self.law(setup);
+        let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
+            .ok()?
+            .cor;
+        ((cor - setup.target_restitution).abs() > RESTITUTION_FIT_TOLERANCE).then_some(cor)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::CodeSphere;
+
+    /// The recorded run in `tests/data/kratos`: a steel ball on a steel plate, target 0.6944,
+    /// 40 steps per elastic contact time, 50 steps.
+    const SAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/kratos");
+    const LOG: &str = include_str!("../../tests/data/kratos/log.txt");
+
+    fn sample_setup() -> CodeSetup {
+        let ball = CodeSphere {
+            radius: 0.02,
+            density: 7800.0,
+            mass: 4.0 / 3.0 * std::f64::consts::PI * 0.02f64.powi(3) * 7800.0,
+            youngs_modulus: 2e11,
+            poisson_ratio: Some(0.3),
+        };
+        CodeSetup {
+            case_name: "sample".into(),
+            scene: SceneKind::BallPlate,
+            sphere: ball,
+            other_sphere: None,
+            plate_material: Some((2e11, 0.3)),
+            effective_modulus: None,
+            effective_radius: None,
+            reduced_mass: ball.mass,
+            stiffness: 0.0,
+            exponent: 1.5,
+            impact_velocity: 2.0,
+            target_restitution: 0.6944,
+            timestep: 3.059_664_992_222_593_2e-6,
+            steps: 50,
+            clamp_attractive: false,
+        }
+    }
+
+    // The sample's rows are written with %r: t = 0 and v = v0 exactly.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn parses_the_recorded_run() {
+        let parsed = Kratos
+            .parse(&sample_setup(), Path::new(SAMPLE), LOG)
+            .unwrap();
+        assert_eq!(parsed.version.as_deref(), Some("10.4.4"));
+        assert!(parsed.loop_time.is_some_and(|t| t > 0.0 && t < 1.0));
+        let t = &parsed.trajectory;
+        assert_eq!(t.time.len(), 51);
+        assert_eq!((t.time[0], t.approach_velocity[0]), (0.0, 2.0));
+        // One ulp of gap at t = 0, no force.
+        assert!(t.overlap[0] <= 0.0 && t.overlap[0] > -1e-17);
+        assert_eq!(t.normal_force[0], 0.0);
+        // Contact from the first step on, and out of contact at the end.
+        assert!(t.overlap[1] > 0.0 && t.normal_force[1] > 0.0);
+        assert!(*t.overlap.last().unwrap() < 0.0);
+        assert_eq!(*t.normal_force.last().unwrap(), 0.0);
+    }
+
+    #[test]
+    fn a_run_of_another_length_is_refused() {
+        let mut s = sample_setup();
+        s.steps = 49;
+        match Kratos.parse(&s, Path::new(SAMPLE), LOG) {
+            Err(ParseError::StepCount { ran: 50, asked: 49 }) => {}
+            other => panic!("{other:?}"),
+        }
+        let bad = LOG.replace("iterations=50", "iterations=fifty");
+        assert!(matches!(
+            Kratos.parse(&sample_setup(), Path::new(SAMPLE), &bad),
+            Err(ParseError::BadValue {
+                field: "iterations",
+                ..
+            })
+        ));
+        let bad = LOG.replace("loop_time=", "loop_time=x");
+        assert!(matches!(
+            Kratos.parse(&sample_setup(), Path::new(SAMPLE), &bad),
+            Err(ParseError::BadValue {
+                field: "loop_time",
+                ..
+            })
+        ));
+    }
+
+    #[test]
+    fn a_run_without_its_trajectory_is_refused() {
+        let empty = tempfile::tempdir().unwrap();
+        let err = Kratos
+            .parse(&sample_setup(), empty.path(), LOG)
+            .unwrap_err();
+        assert!(matches!(err, ParseError::Read { .. }), "{err}");
+        assert!(err.to_string().contains(TRAJECTORY_FILE), "{err}");
+        std::fs::write(empty.path().join(TRAJECTORY_FILE), "").unwrap();
+        assert!(matches!(
+            Kratos.parse(&sample_setup(), empty.path(), LOG),
+            Err(ParseError::Empty { .. })
+        ));
+    }
+
+    #[test]
+    fn a_missing_install_says_where_it_looked_and_how_to_install() {
+        let empty = tempfile::tempdir().unwrap();
+        let err = python_in(empty.path()).unwrap_err();
+        assert!(err.contains(&empty.path().join(PYTHON).display().to_string()));
+        assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");
+        std::fs::create_dir_all(empty.path().join("kratos/bin")).unwrap();
+        std::fs::write(empty.path().join(PYTHON), "").unwrap();
+        assert_eq!(python_in(empty.path()).unwrap(), empty.path().join(PYTHON));
+    }
+
+    // Kratos' cut-offs are exact comparisons in its source.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn kratos_gamma_cut_offs() {
+        assert_eq!(hertz_damping_gamma(1.0), 0.0);
+        assert_eq!(hertz_damping_gamma(0.9995), 0.0);
+        assert_eq!(hertz_damping_gamma(0.999), thornton_damping_ratio(0.999));
+        assert_eq!(hertz_damping_gamma(0.0), thornton_damping_ratio(0.001));
+        // What 10.4.4 logged as DAMPING_GAMMA for COEFFICIENT_OF_RESTITUTION = the sample's en.
+        let logged: f64 = log_value(LOG, "damping_gamma=").unwrap().parse().unwrap();
+        let en = hertz_input_restitution(0.6944).unwrap();
+        assert_eq!(hertz_damping_gamma(en), logged);
+        // And the masses it formed from density and radius.
+        let mass: f64 = LOG
+            .lines()
+            .find_map(|l| l.strip_prefix("MILLIMPACT particle id=1 mass="))
+            .and_then(|rest| rest.split_whitespace().next())
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert_eq!(mass, particle_mass(0.02, 7800.0));
+    }
+}
