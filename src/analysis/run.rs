@@ -142,9 +142,9 @@ pub fn warnings(case: &Case, method: Method, figures: &ImpactFigures) -> Vec<Str
     }
     if !(0.0..=1.0).contains(&figures.cor) || figures.absorbed_energy < 0.0 {
         out.push(format!(
-            "{}: {method} gives a COR of {} (absorbed energy {:.3e} J): outside [0, 1], the \
-             method's step error at this step exceeds the loss (the exact COR is {}); refine the \
-             step",
+            "{}: {method} gives a COR of {} (absorbed energy {:.3e} J): outside [0, 1]: the \
+             method's step error at this step exceeds the loss (the exact COR is {}); a smaller \
+             step shrinks it",
             case.path.display(),
             figures.cor,
             figures.absorbed_energy,
