@@ -27,7 +27,14 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
         Some(path) if !path.is_file() => {
             return Err(UserError::argument("--binary", path.display(), "is not a file").into());
         }
-        Some(path) => Executable::plain(path.clone()),
+        // The probe runs in a scratch directory: a relative path must not be read from there.
+        Some(path) => Executable::plain(std::fs::canonicalize(path).map_err(|e| {
+            UserError::argument(
+                "--binary",
+                path.display(),
+                format!("cannot be resolved: {e}"),
+            )
+        })?),
         None => driver
             .locate()
             .map_err(|looked| anyhow::anyhow!("{}: {looked}", driver.name()))?,
