@@ -108,12 +108,30 @@ impl Conventions {
     };
 }
 
+/// A number that may be NaN, as JSON allows: `null` for NaN.
+mod nan_as_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if x.is_finite() {
+            s.serialize_f64(*x)
+        } else {
+            s.serialize_none()
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
+
 /// One measured number.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Measured {
     /// What it is.
     pub name: String,
-    /// Its value (SI).
+    /// Its value (SI; `null` in JSON when not a number).
+    #[serde(with = "nan_as_null")]
     pub value: f64,
 }
 
@@ -122,7 +140,8 @@ pub struct Measured {
 pub struct Hypothesis {
     /// The hypothesis, as the verdict names it.
     pub name: String,
-    /// The value it predicts (NaN when it predicts no number: a refused run).
+    /// The value it predicts (NaN, `null` in JSON, when it predicts no number: a refused run).
+    #[serde(with = "nan_as_null")]
     pub expected: f64,
     /// Whether the measurement matches it.
     pub matches: bool,
