@@ -430,7 +430,7 @@ pub fn run_probe(
     }
     let outcome = match std::fs::read_to_string(dir.join("trajectory.txt")) {
         Ok(t) => match parse_trajectory(&t) {
-            Ok(traj) if traj.time.len() > run.steps as usize => ProbeOutcome::Ran(traj),
+            Ok(traj) if traj.time.len() as u64 > run.steps => ProbeOutcome::Ran(traj),
             Ok(_) => ProbeOutcome::Refused("the trajectory is short".into()),
             Err(e) => ProbeOutcome::Refused(format!("unreadable trajectory: {e}")),
         },
