@@ -220,3 +220,22 @@ fn probe_refuses_a_code_without_a_probe_in_one_line() {
         .unwrap();
     assert_eq!(output.status.code(), Some(2));
 }
+
+/// A setup planned for one build's conventions is not run on a build that measures others:
+/// the input would not be the equivalent setup there.
+#[test]
+fn a_setup_planned_for_other_conventions_is_refused_before_the_run() {
+    use millimpact::codes::{RunOptions, prepare, run_code};
+    let case = common::shipped("ball_plate");
+    let mut setup = prepare(CodeName::Lammps2025.driver(), &case, None, None, false).unwrap();
+    assert_eq!(setup.conventions, Some(Conventions::JUL_2025));
+    setup.conventions = Some(Conventions::DEBIAN_2021);
+    let err = run_code(
+        CodeName::Lammps2025.driver(),
+        &setup,
+        &RunOptions::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("planned for the conventions"), "{err}");
+}

@@ -443,6 +443,13 @@ macro_rules! lammps_driver_methods {
             true
         }
 
+        fn planned_conventions(
+            &self,
+            setup: &$crate::codes::CodeSetup,
+        ) -> Option<$crate::codes::probe::Conventions> {
+            Some($build.conventions(setup))
+        }
+
         fn probe(
             &self,
             executable: &$crate::codes::Executable,

@@ -142,6 +142,12 @@ pub trait CodeDriver: Send + Sync {
         let _ = executable;
         None
     }
+    /// The conventions `setup` is planned with in this build (its own, else the build's
+    /// fallback); `None` for a code without probed conventions.
+    fn planned_conventions(&self, setup: &CodeSetup) -> Option<Conventions> {
+        let _ = setup;
+        None
+    }
     /// The conventions a live run of this build is set up with: its located executable's probe
     /// (once per process). `Ok(None)` for a code with no probe, or when the executable is not
     /// found (no run can follow; the driver's fallback conventions describe its law). `Err`
