@@ -149,16 +149,18 @@ pub trait CodeDriver: Send + Sync {
         None
     }
     /// The conventions a live run of this build is set up with: its located executable's probe
-    /// (once per process). `Ok(None)` for a code with no probe, or when the executable is not
-    /// found (no run can follow; the driver's fallback conventions describe its law). `Err`
-    /// when the build is there but its probe fails or is inconclusive.
+    /// (once per process). `Ok(None)` for a code with no probe, when the executable is not
+    /// found, or when it fails the probe's basic deck: no run of it can succeed then, and the
+    /// run reports why with its own log (the driver's fallback conventions describe its law
+    /// meanwhile). `Err` when the build runs but its probe is inconclusive.
     fn measured_conventions(&self) -> Result<Option<Conventions>, String> {
         let Ok(executable) = self.locate() else {
             return Ok(None);
         };
         match self.probe(&executable) {
-            None => Ok(None),
-            Some(report) => report?.conventions().map(Some),
+            None | Some(Err(_)) => Ok(None),
+            Some(Ok(report)) if !report.ran() => Ok(None),
+            Some(Ok(report)) => report.conventions().map(Some),
         }
     }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a

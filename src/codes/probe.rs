@@ -186,6 +186,13 @@ pub struct ProbeReport {
 }
 
 impl ProbeReport {
+    /// Whether the build ran the probe's first, basic deck (a wall with `damping velocity`,
+    /// which every GRANULAR build has). A build that does not is not probed further: its
+    /// conventions are unknown, and a run of it fails for the same reason, with its own log.
+    pub fn ran(&self) -> bool {
+        self.items.first().is_some_and(|i| !i.measured.is_empty())
+    }
+
     /// The conventions, or why the probe establishes none.
     pub fn conventions(&self) -> Result<Conventions, String> {
         self.conventions.ok_or_else(|| {
@@ -386,8 +393,9 @@ fn error_line(log: &str) -> String {
         .to_string()
 }
 
-/// Time limit of one probe run (a few steps: the time is start-up).
-pub const PROBE_TIMEOUT: Duration = Duration::from_secs(60);
+/// Time limit of one probe run: a one-step run is start-up alone (0.1 to 0.7 s here), so a
+/// build that takes this long is not running the deck; the probe stops there.
+pub const PROBE_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// Run one probe in a scratch directory; `Err` only when the build could not be started at
 /// all. Returns the outcome and the log.
@@ -658,10 +666,14 @@ pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, 
     let started = Instant::now();
     let mut outcomes = Vec::new();
     let mut version = None;
-    for run in probe_runs() {
-        let (outcome, log) = run_probe(executable, &run)?;
+    for (i, run) in probe_runs().iter().enumerate() {
+        let (outcome, log) = run_probe(executable, run)?;
         version = version.or_else(|| parse_version(&log));
+        let basic_failed = i == 0 && matches!(outcome, ProbeOutcome::Refused(_));
         outcomes.push(outcome);
+        if basic_failed {
+            break;
+        }
     }
     let (items, conventions) = judge_outcomes(&outcomes);
     Ok(ProbeReport {
@@ -675,17 +687,17 @@ pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, 
 }
 
 /// Probe results of this process, by executable.
-static CACHE: Mutex<Vec<(PathBuf, ProbeReport)>> = Mutex::new(Vec::new());
+static CACHE: Mutex<Vec<(String, PathBuf, ProbeReport)>> = Mutex::new(Vec::new());
 
 /// [`probe_lammps`], once per executable per process: a build does not change under a running
 /// process, and every run of it is sized and rendered from the same conventions.
 pub fn probe_lammps_cached(code: &str, executable: &Executable) -> Result<ProbeReport, String> {
     let key = executable.program.clone();
-    if let Some((_, r)) = CACHE
+    if let Some((_, _, r)) = CACHE
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .iter()
-        .find(|(p, _)| *p == key)
+        .find(|(c, p, _)| c == code && *p == key)
     {
         return Ok(r.clone());
     }
@@ -693,7 +705,7 @@ pub fn probe_lammps_cached(code: &str, executable: &Executable) -> Result<ProbeR
     CACHE
         .lock()
         .unwrap_or_else(|e| e.into_inner())
-        .push((key, report.clone()));
+        .push((code.to_string(), key, report.clone()));
     Ok(report)
 }
 
@@ -964,6 +976,29 @@ mod tests {
         outcomes[1] = ProbeOutcome::Refused("ERROR: Cannot open input".into());
         let (items, _) = judge_outcomes(&outcomes);
         assert_eq!(items[1].verdict, None);
+    }
+
+    #[test]
+    fn a_build_that_fails_the_basic_deck_did_not_run_the_probe() {
+        let (items, conventions) =
+            judge_outcomes(&[ProbeOutcome::Refused("ERROR: not LAMMPS".into())]);
+        let report = ProbeReport {
+            code: "lammps".into(),
+            program: "/fake/lmp".into(),
+            version: None,
+            items,
+            conventions,
+            wall_time: 0.0,
+        };
+        assert!(!report.ran());
+        assert!(report.conventions().unwrap_err().contains("not LAMMPS"));
+        let (items, conventions) = judge_outcomes(&synthetic(Conventions::DEBIAN_2021));
+        let report = ProbeReport {
+            items,
+            conventions,
+            ..report
+        };
+        assert!(report.ran());
     }
 
     #[test]

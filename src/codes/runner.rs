@@ -171,10 +171,14 @@ pub fn check_conventions(
     if planned.is_empty() {
         return Ok(());
     }
-    let measured = driver
-        .probe(executable)
-        .unwrap_or_else(|| Err("no probe".into()))
-        .and_then(|r| r.conventions())
+    // A build that cannot start or fails the probe's basic deck fails the run the same way,
+    // which then says why with its log: only a build that runs is held to its conventions.
+    let report = match driver.probe(executable) {
+        Some(Ok(report)) if report.ran() => report,
+        _ => return Ok(()),
+    };
+    let measured = report
+        .conventions()
         .map_err(|reason| CodeError::Unsupported {
             code: driver.name().into(),
             case: setups
