@@ -224,7 +224,7 @@ pub struct ProbeArgs {
     /// added).
     #[arg(long)]
     pub binary: Option<PathBuf>,
-    /// Output format (markdown gives the table kept in reference/<code>/CONVENTIONS.md).
+    /// Output format (markdown gives the table kept in `reference/<code>/CONVENTIONS.md`).
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
 }

@@ -274,7 +274,7 @@ fn a_time_out_ends_the_codes_whole_process_group() {
     // The probe's basic deck runs the build first (and is killed at its own limit), then the
     // impact: each start is the code and its helper, and none may outlive the run.
     assert!(
-        started.len() >= 2 && started.len() % 2 == 0,
+        started.len() >= 2 && started.len().is_multiple_of(2),
         "the code and its helper started: {started:?}"
     );
     std::thread::sleep(std::time::Duration::from_millis(200));

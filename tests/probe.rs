@@ -7,12 +7,12 @@
 
 mod common;
 
+use millimpact::analysis::probe::{conventions_markdown, generated_part};
 use millimpact::analysis::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
 use millimpact::codes::CodeName;
 use millimpact::codes::lammps::{exact_hertz_alpha, tsuji_alpha};
 use millimpact::codes::probe::{
-    Conventions, DampingVelocity, ProbeReport, TsujiFit, WallModulus, conventions_markdown,
-    generated_part, verdicts,
+    Conventions, DampingVelocity, ProbeReport, TsujiFit, WallModulus, verdicts,
 };
 
 fn probe(code: CodeName) -> ProbeReport {

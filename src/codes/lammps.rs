@@ -26,9 +26,10 @@
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
-use super::probe::{Conventions, DampingVelocity, ProbeReport, probe_lammps_cached};
+pub use super::conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
+use super::conventions::{Conventions, DampingVelocity};
 use super::template::{exact_number, fill_template};
-use super::{CodeDriver, CodeError, CodeSetup, Executable, ParsedRun, RenderedInput};
+use super::{CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::SpringModel;
 use crate::model::trajectory::CodeTrajectory;
@@ -72,48 +73,6 @@ pub const DEBIAN_2021: Build = Build {
     name: "lammps",
     fallback: Conventions::DEBIAN_2021,
 };
-
-/// Marshall's fit `α(e)` that this LAMMPS build uses for `damping tsuji`, as a function of the
-/// number `e_in` given in the input.
-pub fn tsuji_alpha(e_in: f64) -> f64 {
-    let e = e_in;
-    1.2728 - 4.2783 * e + 11.087 * e * e - 22.348 * e.powi(3) + 27.467 * e.powi(4)
-        - 18.022 * e.powi(5)
-        + 4.8218 * e.powi(6)
-}
-
-/// The number to give `damping tsuji` so that this build uses the damping ratio `alpha`:
-/// the root of `tsuji_alpha(e_in) = alpha` on [-1, 1], where the fit decreases monotonically
-/// from 89.3 to 0.0003. `None` outside that range.
-pub fn tsuji_input_for_alpha(alpha: f64) -> Option<f64> {
-    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
-    if !(tsuji_alpha(hi)..=tsuji_alpha(lo)).contains(&alpha) {
-        return None;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if tsuji_alpha(mid) > alpha {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    // The bracket ends are adjacent floats: take the one whose α is closer.
-    if (tsuji_alpha(lo) - alpha).abs() <= (tsuji_alpha(hi) - alpha).abs() {
-        Some(lo)
-    } else {
-        Some(hi)
-    }
-}
-
-/// The damping ratio that makes `F = k δ^1.5 + α sqrt(m* k) δ^(1/4) δ̇` realise restitution `e`
-/// without a clamp: `α = √5 β(e)`.
-pub fn exact_hertz_alpha(restitution: f64) -> f64 {
-    5f64.sqrt() * DashpotLaw::damping_ratio(restitution)
-}
 
 /// The contact model as the code is told it and as it then integrates it.
 #[derive(Clone, Debug, PartialEq)]
@@ -369,11 +328,6 @@ impl Build {
             ),
         }
     }
-
-    /// The probe of the build at `executable` (cached per executable).
-    pub fn probe(&self, executable: &Executable) -> Result<ProbeReport, String> {
-        probe_lammps_cached(self.name, executable)
-    }
 }
 
 /// Parse a single run's files in `workdir` (every build writes the same ones).
@@ -389,82 +343,4 @@ pub fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         loop_time: parse_loop_time(log).or_else(|| parse_loop_time(&file_log)),
         version: parse_version(log).or_else(|| parse_version(&file_log)),
     })
-}
-
-/// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
-/// (`binary` and `locate` are each driver's own).
-macro_rules! lammps_driver_methods {
-    ($build:expr) => {
-        fn name(&self) -> &'static str {
-            $build.name
-        }
-
-        fn render(
-            &self,
-            setup: &$crate::codes::CodeSetup,
-        ) -> Result<$crate::codes::RenderedInput, $crate::codes::CodeError> {
-            $build.render(setup)
-        }
-
-        fn parse(
-            &self,
-            _setup: &$crate::codes::CodeSetup,
-            workdir: &std::path::Path,
-            log: &str,
-        ) -> Result<$crate::codes::ParsedRun, $crate::codes::ParseError> {
-            $crate::codes::lammps::parse_run(workdir, log)
-        }
-
-        fn render_batch(
-            &self,
-            setups: &[$crate::codes::CodeSetup],
-        ) -> Result<$crate::codes::RenderedInput, String> {
-            $crate::codes::lammps_batch::render_batch(&$build, setups)
-        }
-
-        fn max_batch(&self) -> usize {
-            $crate::codes::lammps_batch::MAX_BATCH
-        }
-
-        fn parse_batch(
-            &self,
-            setups: &[$crate::codes::CodeSetup],
-            workdir: &std::path::Path,
-            log: &str,
-        ) -> Vec<Result<$crate::codes::ParsedRun, $crate::codes::ParseError>> {
-            $crate::codes::lammps_batch::parse_batch(setups, workdir, log)
-        }
-
-        fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::DashpotLaw {
-            $build.law(setup)
-        }
-
-        fn probes(&self) -> bool {
-            true
-        }
-
-        fn planned_conventions(
-            &self,
-            setup: &$crate::codes::CodeSetup,
-        ) -> Option<$crate::codes::probe::Conventions> {
-            Some($build.conventions(setup))
-        }
-
-        fn probe(
-            &self,
-            executable: &$crate::codes::Executable,
-        ) -> Option<Result<$crate::codes::probe::ProbeReport, String>> {
-            Some($build.probe(executable))
-        }
-    };
-}
-
-pub(crate) use lammps_driver_methods;
-
-impl CodeDriver for Lammps {
-    fn binary(&self) -> &'static str {
-        "lmp"
-    }
-
-    lammps_driver_methods!(DEBIAN_2021);
 }

@@ -14,8 +14,9 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use super::lammps::{Build, lammps_driver_methods};
-use super::probe::Conventions;
+use super::conventions::Conventions;
+use super::lammps::Build;
+use super::lammps_builds::lammps_driver_methods;
 use super::runner::{binary_override_variable, codes_dir};
 use super::{CodeDriver, Executable};
 

@@ -8,7 +8,9 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub mod conventions;
 pub mod lammps_batch;
+pub mod lammps_builds;
 pub mod liggghts_batch;
 pub mod parse;
 pub mod probe;
@@ -26,8 +28,9 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::model::law::DashpotLaw;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
+use conventions::Conventions;
 pub use parse::ParseError;
-use probe::{Conventions, ProbeReport};
+use probe::ProbeReport;
 pub use runner::{CodeError, CodeRun, RunOptions, run_code};
 pub use setup::{CodeSetup, CodeSphere, prepare, prepare_with, setup_for_case};
 

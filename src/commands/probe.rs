@@ -44,7 +44,7 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
         .unwrap_or_else(|| Err("no probe".into()))
         .map_err(|reason| anyhow::anyhow!("{}: {reason}", driver.name()))?;
     let text = if args.format == Format::Markdown {
-        crate::codes::probe::conventions_markdown(&report).map_err(anyhow::Error::msg)? + "\n"
+        crate::analysis::probe::conventions_markdown(&report).map_err(anyhow::Error::msg)? + "\n"
     } else {
         export(&report, args.format)?
     };
