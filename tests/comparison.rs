@@ -7,6 +7,7 @@ use std::path::Path;
 use millimpact::analysis::compare::{RESTITUTIONS, model_by_restitution, paper_metrics};
 use millimpact::analysis::phase::{self, DEFAULT_PHASES, start_phase_band};
 use millimpact::analysis::store;
+use millimpact::codes::CodeName;
 use millimpact::model::case::Case;
 use millimpact::model::exact;
 use millimpact::model::law::DashpotLaw;
@@ -223,7 +224,7 @@ fn case_rod() -> (DashpotLaw, f64) {
 #[test]
 fn model_differences_shrink_towards_the_elastic_limit() {
     let points = model_by_restitution(&case("ball_plate"), &RESTITUTIONS).unwrap();
-    assert_eq!(points.len(), RESTITUTIONS.len() * 3);
+    assert_eq!(points.len(), RESTITUTIONS.len() * CodeName::ALL.len());
     for p in &points {
         assert!((p.law_cor - p.restitution).abs() < 1e-3, "{p:?}");
         assert!(
