@@ -239,3 +239,18 @@ fn a_setup_planned_for_other_conventions_is_refused_before_the_run() {
     .to_string();
     assert!(err.contains("planned for the conventions"), "{err}");
 }
+
+/// A program that is not a LAMMPS build leaves every item open: the table says so and the
+/// command fails the check (exit 1), naming the first deck's failure.
+#[test]
+fn a_program_that_is_not_lammps_leaves_the_conventions_open() {
+    let output = common::millimpact()
+        .args(["probe", "--code", "lammps-2025", "--binary", "/bin/true"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(stdout.contains("did not run the basic deck"), "{stdout}");
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.contains("no trajectory"), "{stderr}");
+}

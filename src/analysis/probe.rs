@@ -110,7 +110,8 @@ impl Summary for ProbeReport {
                 "conventions: {}",
                 serde_json::to_string(c).unwrap_or_default()
             ),
-            None => "conventions: inconclusive; the driver refuses to run this build".into(),
+            None if !self.ran() => "conventions: unknown; the build did not run the basic deck, and a run of it fails the same way".into(),
+            None => "conventions: inconclusive; the drivers refuse to plan runs of this build".into(),
         });
         t.notes.push(format!(
             "probed {} in {:.2} s",

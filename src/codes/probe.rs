@@ -450,10 +450,9 @@ pub fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conv
     let runs = probe_runs();
     let mut items = Vec::new();
     let get = |i: usize| {
-        outcomes
-            .get(i)
-            .cloned()
-            .unwrap_or(ProbeOutcome::Refused("not run".into()))
+        outcomes.get(i).cloned().unwrap_or(ProbeOutcome::Refused(
+            "not run: the build failed the basic deck".into(),
+        ))
     };
 
     // Wall modulus: the elastic force at step 0, at rest, read as E*.

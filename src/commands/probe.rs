@@ -5,7 +5,7 @@ use anyhow::Result;
 use super::CommandOutput;
 use crate::cli::ProbeArgs;
 use crate::codes::{CodeName, Executable};
-use crate::error::UserError;
+use crate::error::{CheckFailed, UserError};
 use crate::output::{Format, export};
 
 pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
@@ -48,5 +48,10 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
     } else {
         export(&report, args.format)?
     };
-    Ok(CommandOutput::passed(text))
+    // The table is printed either way; a build whose conventions stay open is one the drivers
+    // will not plan for, which is a failed check (exit 1), not bad input.
+    Ok(CommandOutput {
+        text,
+        failure: report.conventions().err().map(CheckFailed),
+    })
 }
