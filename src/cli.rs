@@ -49,6 +49,9 @@ pub enum Command {
     Report(ReportArgs),
     /// Join the shard outputs of one sweep into one file.
     Merge(MergeArgs),
+    /// Measure a build's conventions with short probe runs (LAMMPS builds): each item with
+    /// the measured number, the value each hypothesis predicts, and the verdict.
+    Probe(ProbeArgs),
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {
@@ -225,6 +228,21 @@ pub struct VerifyArgs {
     #[arg(long, default_value = "reference")]
     pub reference: PathBuf,
     /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
+}
+
+/// `millimpact probe`.
+#[derive(Debug, Args)]
+pub struct ProbeArgs {
+    /// Which build.
+    #[arg(long, value_parser = code_parser())]
+    pub code: CodeName,
+    /// Probe this executable instead of the build's own (run as it is, with no environment
+    /// added).
+    #[arg(long)]
+    pub binary: Option<PathBuf>,
+    /// Output format (markdown gives the table kept in `reference/<code>/CONVENTIONS.md`).
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
 }

@@ -271,7 +271,12 @@ fn a_time_out_ends_the_codes_whole_process_group() {
         .lines()
         .map(|l| l.trim().parse().unwrap())
         .collect();
-    assert_eq!(started.len(), 2, "the code and its helper started");
+    // The probe's basic deck runs the build first (and is killed at its own limit), then the
+    // impact: each start is the code and its helper, and none may outlive the run.
+    assert!(
+        started.len() >= 2 && started.len().is_multiple_of(2),
+        "the code and its helper started: {started:?}"
+    );
     std::thread::sleep(std::time::Duration::from_millis(200));
     for pid in started {
         assert!(!alive(pid), "process {pid} outlived the run");

@@ -8,6 +8,7 @@ use millimpact::codes::lammps::{
     self, Lammps, exact_hertz_alpha, parse_loop_time, parse_trajectory, parse_version, tsuji_alpha,
     tsuji_input_for_alpha,
 };
+use millimpact::codes::template::exact_number;
 use millimpact::codes::{CodeDriver, CodeRun, CodeSetup, RunOptions, run_code};
 use millimpact::model::law::DashpotLaw;
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
@@ -79,6 +80,24 @@ fn parses_recorded_sample() {
     assert!(relative(m.contact_time, law.contact_time) < 1e-9);
 }
 
+/// The 2025 build writes the same files: its recorded run of the same sample (started touching,
+/// coeff_restitution) parses the same way, and its banner and loop time read.
+#[test]
+fn parses_the_2025_sample() {
+    let dir = common::root().join("tests/data/lammps-2025");
+    let text = std::fs::read_to_string(dir.join("ball_plate_trajectory.txt")).unwrap();
+    let log = std::fs::read_to_string(dir.join("ball_plate_screen.txt")).unwrap();
+    let t = parse_trajectory(&text).unwrap();
+    assert_eq!(t.time.len(), 61);
+    // Started exactly touching: overlap 0 at step 0.
+    assert!(t.overlap[0].abs() < 1e-18, "{}", t.overlap[0]);
+    assert_eq!(
+        parse_version(&log).as_deref(),
+        Some("22 Jul 2025 - Update 4")
+    );
+    assert!(parse_loop_time(&log).is_some_and(|l| l > 0.0));
+}
+
 #[test]
 fn parser_rejects_short_rows() {
     assert!(parse_trajectory("# title\n0 0 2\n").is_err());
@@ -146,6 +165,68 @@ fn render_uses_effective_values_and_no_clamp() {
             "{case:?}"
         );
     }
+}
+
+/// The plan follows the conventions the setup carries, not the build's name: the √2 of a
+/// build's tsuji fit, `coeff_restitution` where there is one, the start gap where touching is
+/// contact; a build whose dashpot sees the full-step velocity is refused.
+// The gaps are set, not computed: exactly 0, exactly START_GAP radii.
+#[allow(clippy::float_cmp)]
+#[test]
+fn the_plan_follows_the_measured_conventions() {
+    use millimpact::codes::lammps::DEBIAN_2021;
+    use millimpact::codes::lammps_2025::JUL_2025;
+    use millimpact::codes::probe::{Conventions, DampingVelocity, TsujiFit};
+    let e = e_paper();
+    let at = |c: Conventions| CodeSetup {
+        conventions: Some(c),
+        ..setup(Case::BallPlate, e)
+    };
+    // A record made before the probe plans as the Debian build measures.
+    let old = setup(Case::BallPlate, e);
+    assert_eq!(
+        Lammps.render(&old).unwrap(),
+        Lammps.render(&at(Conventions::DEBIAN_2021)).unwrap()
+    );
+    let sqrt2 = Conventions {
+        tsuji_fit: TsujiFit::Sqrt2Polynomial,
+        ..Conventions::DEBIAN_2021
+    };
+    let plain = DEBIAN_2021.plan(&at(Conventions::DEBIAN_2021)).unwrap();
+    let with_sqrt2 = DEBIAN_2021.plan(&at(sqrt2)).unwrap();
+    let (a, b) = (plain.tsuji_input.unwrap(), with_sqrt2.tsuji_input.unwrap());
+    assert!(relative(tsuji_alpha(a), exact_hertz_alpha(e)) < 1e-12);
+    assert!(relative(2f64.sqrt() * tsuji_alpha(b), exact_hertz_alpha(e)) < 1e-12);
+    assert!((a - b).abs() > 0.05, "the inputs differ: {a} vs {b}");
+    // Both laws are the damped-Hertz law for e.
+    assert!(relative(plain.law.damping, with_sqrt2.law.damping) < 1e-12);
+
+    let new = JUL_2025.plan(&at(Conventions::JUL_2025)).unwrap();
+    assert!(
+        new.model_args
+            .ends_with(&format!(" {} 0 damping coeff_restitution", exact_number(e))),
+        "{}",
+        new.model_args
+    );
+    assert!(relative(new.law.damping, plain.law.damping) < 1e-12);
+    // Touching: a gap of START_GAP radii where it is contact, none where it is not.
+    let s = at(Conventions::JUL_2025);
+    assert_eq!(JUL_2025.start_gap(&s), 0.0);
+    assert_eq!(
+        DEBIAN_2021.start_gap(&at(Conventions::DEBIAN_2021)),
+        lammps::START_GAP * s.sphere.radius
+    );
+    // coeff_restitution would run e = 0 and e > 1: the driver refuses them.
+    for bad in [0.0, 1.2] {
+        let mut s = at(Conventions::JUL_2025);
+        s.target_restitution = bad;
+        assert!(JUL_2025.plan(&s).is_err(), "e = {bad}");
+    }
+    let full = Conventions {
+        damping_velocity: DampingVelocity::FullStep,
+        ..Conventions::JUL_2025
+    };
+    assert!(JUL_2025.plan(&at(full)).is_err());
 }
 
 // ---- live tests: the installed lmp ------------------------------------------------------

@@ -54,8 +54,13 @@ fn method_choices_are_the_method_registry() {
 fn code_choices_are_the_code_registry() {
     let registry = names(CodeName::ALL.iter().map(|c| c.name()));
     assert_eq!(registry, names(CodeName::names()));
-    assert_eq!(registry, ["liggghts", "yade", "lammps", "kratos"]);
+    assert_eq!(
+        registry,
+        ["liggghts", "yade", "lammps", "lammps-2025", "kratos"]
+    );
     assert_eq!(choices("reference", "--code"), registry, "reference --code");
+    // probe offers every code and refuses those it does not cover, in one line.
+    assert_eq!(choices("probe", "--code"), registry, "probe --code");
     assert_eq!(
         choices("precision", "--codes"),
         registry,
@@ -75,6 +80,7 @@ fn format_choices_are_the_exporters() {
         "precision",
         "stability",
         "calibrate",
+        "probe",
     ] {
         assert_eq!(choices(command, "--format"), registry, "{command} --format");
     }

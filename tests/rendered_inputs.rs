@@ -71,7 +71,7 @@ fn yade_as_rendered_today(golden: &str, setup: &CodeSetup) -> String {
 /// The setups of the recorded samples, as their parser tests describe them: 40 steps per
 /// elastic contact time; LIGGGHTS a ball on a rigid plate at the paper's COR, run 1.15 contact
 /// times (46 steps); YADE a ball on a steel plate at COR 0.6944, run 1.25 (50 steps); LAMMPS a
-/// ball on a steel plate at the paper's COR, run 1.5 (60 steps).
+/// ball on a steel plate at the paper's COR, run 1.5 (60 steps), on both LAMMPS builds.
 #[test]
 fn recorded_sample_inputs_are_todays_rendering() {
     let mut liggghts = code_setup(Canonical::BallRigidPlate, e_paper(), 40.0, 1.15);
@@ -88,9 +88,17 @@ fn recorded_sample_inputs_are_todays_rendering() {
         (CodeName::Yade, yade, 50, "tests/data/yade/impact.py"),
         (
             CodeName::Lammps,
-            lammps,
+            lammps.clone(),
             60,
             "tests/data/lammps/ball_plate_input.in",
+        ),
+        // The same setup on the 2025 build, as it measures: coeff_restitution given e, and
+        // the sphere started touching (its wall does not count touching as contact).
+        (
+            CodeName::Lammps2025,
+            lammps,
+            60,
+            "tests/data/lammps-2025/ball_plate_input.in",
         ),
     ];
     let mut failures = Vec::new();

@@ -7,6 +7,7 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use super::phase::Range;
+use crate::codes::conventions::{Conventions, TsujiFit, WallModulus};
 use crate::codes::{self, CodeName, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;
@@ -114,7 +115,7 @@ fn setting_keys(code: CodeName, scene: SceneKind) -> &'static [&'static str] {
             "hertzian",
             "MindlinPhys(",
         ],
-        ("lammps", _) => &["pair_style", "pair_coeff", "wall/gran"],
+        ("lammps" | "lammps-2025", _) => &["pair_style", "pair_coeff", "wall/gran"],
         ("kratos", SceneKind::RodEnd) => &[
             "KN =",
             "GAMMA =",
@@ -136,7 +137,8 @@ fn setting_keys(code: CodeName, scene: SceneKind) -> &'static [&'static str] {
 }
 
 /// The traps a card avoids, by code and scene (reference/<code>/CONVENTIONS.md).
-fn traps(code: CodeName, scene: SceneKind) -> Vec<String> {
+fn traps(code: CodeName, setup: &codes::CodeSetup) -> Vec<String> {
+    let scene = setup.scene;
     let mut t = Vec::new();
     let wall = scene == SceneKind::BallPlate;
     match code {
@@ -165,18 +167,36 @@ fn traps(code: CodeName, scene: SceneKind) -> Vec<String> {
                     .into(),
             );
         }
-        CodeName::Lammps => {
+        CodeName::Lammps | CodeName::Lammps2025 => {
+            // The traps of the build as its probe found it (the setup's conventions), else as
+            // its build was measured.
+            let c = setup.conventions.unwrap_or(if code == CodeName::Lammps {
+                Conventions::DEBIAN_2021
+            } else {
+                Conventions::JUL_2025
+            });
             if scene.spring() == crate::model::scene::SpringModel::Hertz {
-                t.push("damping tsuji takes e_in, not e: its fit is √2 short in this build, so e_in = e realises a higher COR (0.7734 for 0.6944); give the compensated e_in above".into());
+                if c.coeff_restitution {
+                    t.push("damping coeff_restitution takes e itself, but runs e = 0 (NaN) and e > 1 (energy gain) without a word".into());
+                }
+                t.push(match c.tsuji_fit {
+                    TsujiFit::Polynomial => "damping tsuji takes e_in, not e: its fit is √2 short in this build, so e_in = e realises a higher COR (0.7734 for 0.6944)".into(),
+                    TsujiFit::Sqrt2Polynomial => "damping tsuji carries the √2 in this build: an e_in compensated for builds without it realises a lower COR (about 0.594 for 0.694)".into(),
+                });
             }
             if wall {
-                t.push("wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν)), not the plate's mix; give ν = 0 and E = 2E* of the pair".into());
+                t.push(match c.wall_modulus {
+                    WallModulus::HalfOverOneMinusNu => "wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν)) in this build, not the plate's mix; give ν = 0 and E = 2E* of the pair".into(),
+                    WallModulus::HalfOverOneMinusNuSquared => "wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν²)) (the particle's material on both sides), not the plate's mix; give ν = 0 and E = 2E* of the pair".into(),
+                });
             }
             t.push(
                 "limit_damping off (the default): on cuts the attractive tail and raises the COR"
                     .into(),
             );
-            t.push("touching counts as contact: start a hair away".into());
+            if c.touching_is_contact {
+                t.push("touching counts as contact: start a hair away".into());
+            }
         }
         CodeName::Kratos => {
             t.push("scheme: set the translational integration scheme (and the properties proxies) in the particles' properties before creating any particle, else CreateSphericParticle segfaults (exit 139, no message)".into());
@@ -291,7 +311,7 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
         realised_band,
         timestep_for_tolerance: found.map(|f| f.0),
         steps_per_contact: found.map(|f| f.1),
-        traps: traps(code, case.scene.kind()),
+        traps: traps(code, &setup),
     })
 }
 

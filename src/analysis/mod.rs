@@ -8,6 +8,7 @@ pub mod compare;
 pub mod grid;
 pub mod phase;
 pub mod precision;
+pub mod probe;
 pub mod report;
 pub mod rows;
 pub mod run;

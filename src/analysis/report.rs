@@ -341,7 +341,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
             (0..end)
                 .map(|i| (t.overlap[i] * um, t.normal_force[i] * kn))
                 .collect(),
-            if code == CodeName::Lammps {
+            if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
                 Style::Thin
             } else {
                 Style::Line
@@ -352,7 +352,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
             (0..end)
                 .map(|i| (t.time[i] * us, t.normal_force[i] * kn))
                 .collect(),
-            if code == CodeName::Lammps {
+            if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
                 Style::Thin
             } else {
                 Style::Line
@@ -418,7 +418,7 @@ fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure>
             series.push(Series::new(
                 format!("{code}: {what}"),
                 pts.iter().map(|p| (p.restitution, 100.0 * f(p))).collect(),
-                if code == CodeName::Lammps {
+                if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
                     Style::Dots
                 } else {
                     Style::Line

@@ -10,7 +10,7 @@ use super::run::run_case;
 use super::source::Source;
 use super::store::{ReferenceRecord, hex, load, stored_files};
 use super::tolerance::{Differences, Tolerance};
-use crate::codes::{CodeName, prepare};
+use crate::codes::{CodeName, prepare_with};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::exact;
@@ -235,12 +235,15 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
     };
     let driver = record.code.driver();
     let steps_per_contact = None;
-    match prepare(
+    // The record's own conventions (those its build was probed to have, or the build's
+    // measured ones for a record made before the probe): checkable without the binary.
+    match prepare_with(
         driver,
         &case,
         steps_per_contact,
         Some(record.timestep),
         record.setup.clamp_attractive,
+        record.setup.conventions,
     ) {
         Ok(mut now) => {
             // The step is the record's own; the rest of the setup must be the case's now.

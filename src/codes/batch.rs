@@ -51,6 +51,7 @@ pub fn run_batch(
         code: code.clone(),
         looked,
     })?;
+    super::runner::check_conventions(driver, &executable, setups)?;
     let parent = options
         .scratch_parent
         .clone()

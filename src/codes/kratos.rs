@@ -389,6 +389,7 @@ mod tests {
             timestep: 3.059_664_992_222_593_2e-6,
             steps: 50,
             clamp_attractive: false,
+            conventions: None,
         }
     }
 

