@@ -332,9 +332,9 @@ fn an_oversized_log_is_kept_as_its_head_and_tail() {
     assert!(log.contains("bytes of this log cut"), "the cut is said");
 }
 
-/// A run cut short (here: a code that writes three rows and exits 0, as a full disk or a
-/// killed writer would leave it) is refused by its row count, with the log kept, however the
-/// rows it has look: whether the contact had ended in them or not.
+/// A run cut short (here: a LIGGGHTS, which no probe runs before, that writes three rows and
+/// exits 0, as a full disk or a killed writer would leave it) is refused by its row count, with
+/// the log kept, however the rows it has look: whether the contact had ended in them or not.
 #[test]
 fn a_truncated_trajectory_is_refused_with_its_log() {
     let bin = TempDir::new().unwrap();
@@ -351,19 +351,19 @@ fn a_truncated_trajectory_is_refused_with_its_log() {
     ] {
         fake_binary(
             bin.path(),
-            "lmp",
+            "liggghts",
             &format!(
-                "echo 'LAMMPS (fake, {label})'; printf '{}' > trajectory.txt",
+                "echo 'LIGGGHTS (fake, {label})'; printf '{}' > traj.txt",
                 rows.replace('\n', "\\n")
             ),
         );
         let stderr = failing_run(
             bin.path(),
             scratch.path(),
-            &["reference", "--code", "lammps", "cases/ball_plate.toml"],
+            &["reference", "--code", "liggghts", "cases/ball_plate.toml"],
         );
         assert!(
-            stderr.contains("lammps: unparsable output: the trajectory has 3 rows, expected"),
+            stderr.contains("liggghts: unparsable output: the trajectory has 3 rows, expected"),
             "{label}: {stderr}"
         );
         let log = std::fs::read_to_string(kept_log(&stderr)).unwrap();
