@@ -49,10 +49,7 @@ fn main() -> ExitCode {
     // Ctrl-C or SIGTERM ends the DEM codes running now (their whole process groups) and removes
     // their scratch directories; a sweep installs its own handler, which keeps its finished rows.
     if !matches!(cli.command, millimpact::cli::Command::Sweep(_)) {
-        let _ = ctrlc::set_handler(|| {
-            millimpact::codes::runner::stop_all_codes();
-            std::process::exit(130);
-        });
+        let _ = ctrlc::set_handler(|| millimpact::codes::runner::stop_all_codes_and_exit(130));
     }
     match commands::dispatch(&cli.command) {
         Ok(output) => {

@@ -404,3 +404,97 @@ fn broken_pipes_and_full_disks_are_one_line_not_a_panic() {
     assert_eq!(out.status.code(), Some(141), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+/// Start `reference --code liggghts` with a fake LIGGGHTS that starts a helper ignoring SIGTERM
+/// and hangs; once both are up, stop millimpact with SIGTERM. Returns millimpact's exit code,
+/// its standard error, the code's and the helper's pids, and the scratch parent.
+fn stop_during_a_run(keep_scratch: bool) -> (Option<i32>, String, Vec<i32>, TempDir) {
+    let bin = TempDir::new().unwrap();
+    let scratch = TempDir::new().unwrap();
+    let pids = bin.path().join("pids");
+    fake_binary(
+        bin.path(),
+        "liggghts",
+        &format!(
+            "sh -c 'trap \"\" TERM; echo $$ >> {p}; sleep 300' &\necho $$ >> {p}\nsleep 300",
+            p = pids.display()
+        ),
+    );
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_millimpact"));
+    command
+        .current_dir(common::root())
+        .env("PATH", path_with(bin.path()))
+        .env("TMPDIR", scratch.path())
+        .args(["reference", "--code", "liggghts", "cases/ball_plate.toml"])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped());
+    if keep_scratch {
+        command.env("MILLIMPACT_KEEP_SCRATCH", "1");
+    } else {
+        command.env_remove("MILLIMPACT_KEEP_SCRATCH");
+    }
+    let child = command.spawn().unwrap();
+    let started = || {
+        std::fs::read_to_string(&pids)
+            .map(|t| t.lines().count())
+            .unwrap_or(0)
+    };
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+    while started() < 2 {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "the fake code never started"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // SAFETY: kill(2) on the child's pid; no memory is shared.
+    unsafe {
+        libc::kill(i32::try_from(child.id()).unwrap(), libc::SIGTERM);
+    }
+    let out = child.wait_with_output().unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(200));
+    let started: Vec<i32> = std::fs::read_to_string(&pids)
+        .unwrap()
+        .lines()
+        .map(|l| l.trim().parse().unwrap())
+        .collect();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        started,
+        scratch,
+    )
+}
+
+/// A SIGTERM (or Ctrl-C) of millimpact ends the code's whole process group, helpers that ignore
+/// SIGTERM included, and removes its scratch directory; `MILLIMPACT_KEEP_SCRATCH=1` keeps it
+/// and says where.
+#[test]
+fn stopping_millimpact_ends_the_code_and_its_scratch() {
+    let (code, stderr, started, scratch) = stop_during_a_run(false);
+    assert_eq!(code, Some(130), "{stderr}");
+    for pid in &started {
+        assert!(!alive(*pid), "process {pid} outlived millimpact");
+    }
+    let left: Vec<_> = std::fs::read_dir(scratch.path())
+        .unwrap()
+        .flatten()
+        .collect();
+    assert!(left.is_empty(), "scratch left behind: {left:?}");
+
+    let (code, stderr, started, scratch) = stop_during_a_run(true);
+    assert_eq!(code, Some(130), "{stderr}");
+    for pid in &started {
+        assert!(!alive(*pid), "process {pid} outlived millimpact");
+    }
+    let kept = stderr
+        .split("scratch kept in ")
+        .nth(1)
+        .map(|rest| PathBuf::from(rest.lines().next().unwrap().trim()))
+        .unwrap_or_else(|| panic!("no kept scratch named: {stderr}"));
+    assert!(
+        kept.starts_with(scratch.path()) && kept.is_dir(),
+        "{stderr}"
+    );
+    assert!(kept.join("impact.in").is_file() || std::fs::read_dir(&kept).unwrap().count() > 0);
+}

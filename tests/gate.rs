@@ -287,3 +287,29 @@ fn a_save_of_other_bodies_under_a_stored_name_is_refused() {
         "the stored record is untouched"
     );
 }
+
+/// What a save killed half way leaves behind (its hidden temporary file, half written, beside the
+/// record, and the record's lock file) is not read as a record: `verify` passes, and the next save
+/// of that record lands.
+#[test]
+fn a_killed_save_leaves_nothing_verify_trips_over() {
+    use millimpact::analysis::store::{load, reference_path, save};
+    use millimpact::codes::CodeName;
+    let copy = Copy::new();
+    let folder = copy.reference().join("lammps");
+    std::fs::write(
+        folder.join(".ball_plate.json.x7Qz2a.tmp"),
+        "{\"runs\": [{\"code\":",
+    )
+    .unwrap();
+    std::fs::write(folder.join(".ball_plate.lock"), "").unwrap();
+    let (code, stdout, stderr) = copy.verify();
+    assert_eq!(code, Some(0), "{stdout}\n{stderr}");
+
+    let path = reference_path(&copy.reference(), CodeName::Lammps, "ball_plate");
+    let stored = load(&path).unwrap();
+    let mut record = stored.runs[0].clone();
+    record.loss_coefficient = 0.5;
+    save(&copy.reference(), &record).unwrap();
+    assert_eq!(load(&path).unwrap().runs.len(), stored.runs.len() + 1);
+}

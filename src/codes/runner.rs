@@ -322,16 +322,31 @@ pub fn run_code(
 /// [`stop_all_codes`] ends when millimpact itself is stopped.
 static LIVE: Mutex<Vec<(i32, PathBuf)>> = Mutex::new(Vec::new());
 
+/// Set once millimpact is exiting on a stop: from then on no code starts, and a code that ends is
+/// not reported as failed (it was stopped), so that the stop's own clean-up and exit are what
+/// happen.
+static STOPPING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Wait, without return, for the stop in progress to exit the process.
+fn await_stop() -> ! {
+    loop {
+        std::thread::park();
+    }
+}
+
 /// Start `command` in a process group of its own, so that the code and every process it starts
 /// can be ended together, and register it with its scratch directory `scratch`.
 pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
     #[cfg(unix)]
     std::os::unix::process::CommandExt::process_group(command, 0);
+    let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+    if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
+        drop(live);
+        await_stop();
+    }
     let child = command.spawn()?;
     if let Ok(pid) = i32::try_from(child.id()) {
-        LIVE.lock()
-            .unwrap_or_else(|e| e.into_inner())
-            .push((pid, scratch.to_path_buf()));
+        live.push((pid, scratch.to_path_buf()));
     }
     Ok(child)
 }
@@ -340,6 +355,10 @@ pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result
 /// and any process it started, whatever signals they ignore) and return `None`.
 pub fn wait_contained(child: &mut Child, timeout: Duration) -> std::io::Result<Option<ExitStatus>> {
     let status = wait_timeout::ChildExt::wait_timeout(child, timeout);
+    if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
+        // The code ended because millimpact is being stopped: not a fault of the code to report.
+        await_stop();
+    }
     let pid = i32::try_from(child.id()).unwrap_or(0);
     if !matches!(status, Ok(Some(_))) {
         kill_group(pid);
@@ -364,13 +383,41 @@ fn kill_group(pid: i32) {
     }
 }
 
+/// The environment variable that keeps the scratch directories of codes stopped by a Ctrl-C or
+/// SIGTERM of millimpact (any value but empty or `0`), to read what a stopped run had written.
+pub const KEEP_SCRATCH_VARIABLE: &str = "MILLIMPACT_KEEP_SCRATCH";
+
 /// End every code running now (their whole process groups) and remove their scratch
-/// directories: what a Ctrl-C or SIGTERM of millimpact does before it exits.
+/// directories, or keep them (each named on standard error) when [`KEEP_SCRATCH_VARIABLE`] asks.
+/// The runs they belonged to end as failed runs; millimpact goes on (a sweep keeps its rows).
 pub fn stop_all_codes() {
-    let live = std::mem::take(&mut *LIVE.lock().unwrap_or_else(|e| e.into_inner()));
+    stop_codes(false);
+}
+
+/// Stop millimpact: no code starts from now on, every code running ends as [`stop_all_codes`]
+/// ends it (and is not reported as a failure of its own), and the process exits with `code`.
+/// What a Ctrl-C or SIGTERM of millimpact does.
+pub fn stop_all_codes_and_exit(code: i32) -> ! {
+    stop_codes(true);
+    std::process::exit(code);
+}
+
+fn stop_codes(exiting: bool) {
+    let keep = std::env::var_os(KEEP_SCRATCH_VARIABLE).is_some_and(|v| !v.is_empty() && v != "0");
+    let live = {
+        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
+        if exiting {
+            STOPPING.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+        std::mem::take(&mut *live)
+    };
     for (pid, scratch) in live {
         kill_group(pid);
-        let _ = std::fs::remove_dir_all(scratch);
+        if keep {
+            eprintln!("stopped: scratch kept in {}", scratch.display());
+        } else {
+            let _ = std::fs::remove_dir_all(scratch);
+        }
     }
 }
 

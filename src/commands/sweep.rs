@@ -195,11 +195,11 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     let bar = progress_bar(points.len() as u64);
     let _ = ctrlc::set_handler(|| {
         // The codes running now end at once; the rows already finished are kept.
-        crate::codes::runner::stop_all_codes();
         if STOP.swap(true, Ordering::SeqCst) {
             // A second Ctrl-C: leave now.
-            std::process::exit(130);
+            crate::codes::runner::stop_all_codes_and_exit(130);
         }
+        crate::codes::runner::stop_all_codes();
     });
     let state = Mutex::new((writer, None::<std::io::Error>));
     let sink = |row: Vec<String>| {
