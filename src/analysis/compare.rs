@@ -40,7 +40,7 @@ pub struct SourceRow {
     /// Contact time by overlap (first touch until the overlap returns to zero), s.
     pub contact_time: f64,
     /// Contact time by force (first touch until the normal force first returns to zero), s;
-    /// NaN where the source does not give it (a stored code run keeps no trajectory).
+    /// NaN where the source does not give it (a code run stored without it).
     pub force_contact_time: f64,
     /// Compression time (first touch to the largest overlap), s; NaN where not given.
     pub compression_time: f64,
@@ -301,8 +301,8 @@ pub fn compare_case(
             peak_deformation: r.peak_deformation,
             peak_force: r.peak_force,
             contact_time: r.contact_time,
-            force_contact_time: f64::NAN,
-            compression_time: f64::NAN,
+            force_contact_time: r.force_contact_time,
+            compression_time: r.compression_time,
         };
         rows.push(base.row(
             format!("{} {}", r.code, short_version(&r.code_version)),
@@ -626,8 +626,13 @@ impl Summary for CompareReport {
             ));
             figures.notes = vec![
                 "contact time by overlap: first touch until the overlap returns to zero (the figure quoted before); by force: until the normal force first returns to zero".into(),
-                "a stored code run keeps no trajectory: its force-based times are those of its own law stepped as it steps (the row below it), which reproduces the run to its remainder".into(),
             ];
+            if c.rows
+                .iter()
+                .any(|r| r.force_contact_time.is_nan() && r.run_time.is_some())
+            {
+                figures.notes.push("n/a: a code run stored without its force-based times (by an older millimpact); its own law stepped as it steps (the row below it) gives them, and reproduces the run to its remainder".into());
+            }
             let mut by_e = Section::new(
                 Some(format!(
                     "{}: each code's law against the paper's law at equal COR, both exact, as a function of e",

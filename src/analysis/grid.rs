@@ -735,9 +735,8 @@ impl CodeFigures {
                 peak_deformation: r.peak_deformation,
                 peak_force: r.peak_force,
                 contact_time: r.contact_time,
-                // A record keeps no trajectory to read these from.
-                force_contact_time: f64::NAN,
-                compression_time: f64::NAN,
+                force_contact_time: r.force_contact_time,
+                compression_time: r.compression_time,
             },
             cor_target: r.cor_target(),
             paper_exact: r.paper_exact,

@@ -53,8 +53,22 @@ pub struct ReferenceRecord {
     pub peak_deformation: f64,
     /// The code's peak normal force, N.
     pub peak_force: f64,
-    /// The code's contact time, s.
+    /// The code's contact time by overlap, s.
     pub contact_time: f64,
+    /// The code's contact time by force (first touch until the normal force first returns to
+    /// zero), s; NaN in a record stored without it.
+    #[serde(
+        default = "crate::model::trajectory::not_stored",
+        deserialize_with = "crate::model::trajectory::nan_if_null"
+    )]
+    pub force_contact_time: f64,
+    /// The code's compression time (first touch to the largest overlap), s; NaN in a record
+    /// stored without it.
+    #[serde(
+        default = "crate::model::trajectory::not_stored",
+        deserialize_with = "crate::model::trajectory::nan_if_null"
+    )]
+    pub compression_time: f64,
     /// Process wall time, s.
     pub wall_time: f64,
     /// The code's own loop time, s.
@@ -219,6 +233,8 @@ pub fn run_reference(
         peak_deformation: metrics.peak_deformation,
         peak_force: metrics.peak_force,
         contact_time: metrics.contact_time,
+        force_contact_time: metrics.force_contact_time,
+        compression_time: metrics.compression_time,
         wall_time: run.wall_time,
         loop_time: run.loop_time,
         law,

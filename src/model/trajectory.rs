@@ -88,12 +88,13 @@ pub struct TrajectoryMetrics {
     pub compression_time: f64,
 }
 
-fn not_stored() -> f64 {
+/// A figure a record was stored without: NaN.
+pub(crate) fn not_stored() -> f64 {
     f64::NAN
 }
 
 /// JSON has no NaN: serde_json writes it as `null`, read back here as NaN.
-fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+pub(crate) fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
     Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
 }
 

@@ -24,7 +24,9 @@ pub enum StepScheme {
 /// Step `law` from touching contact at approach speed `impact_velocity` (m/s) with a fixed
 /// `timestep` (s) for `steps` steps, the way a DEM code does. Row 0 is the initial state; row
 /// `k` is the state after `k` steps (for leap-frog the velocity is the half-step one, as the
-/// code reports it). The force column is the force computed in that step.
+/// code reports it). The force column is the force at that row's state, as the codes print it:
+/// for velocity Verlet the force computed in the step that led to the row, for leap-frog the
+/// one the next step kicks with (from the row's position and half-step velocity).
 pub fn step_trajectory(
     law: &DashpotLaw,
     impact_velocity: f64,
@@ -54,7 +56,11 @@ pub fn step_trajectory_from(
         approach_velocity: Vec::with_capacity(capacity),
         normal_force: Vec::with_capacity(capacity),
     };
-    let (mut y, mut v, mut force) = (-gap, impact_velocity, 0.0);
+    let (mut y, mut v) = (-gap, impact_velocity);
+    let mut force = match scheme {
+        StepScheme::VelocityVerlet => 0.0,
+        StepScheme::LeapFrog => law.force(y, v),
+    };
     let h = timestep;
     let inverse_mass = 1.0 / law.mass;
     let mut push = |k: u64, y: f64, v: f64, f: f64| {
@@ -73,9 +79,11 @@ pub fn step_trajectory_from(
                 v = half - 0.5 * h * force * inverse_mass;
             }
             StepScheme::LeapFrog => {
-                force = law.force(y, v);
+                // The force from the previous row's state kicks; the row then carries the force
+                // of its own state (a row's force column is never one step behind its overlap).
                 v -= h * force * inverse_mass;
                 y += h * v;
+                force = law.force(y, v);
             }
         }
         push(k, y, v, force);
