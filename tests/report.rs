@@ -71,6 +71,15 @@ fn the_report_opens_in_a_browser_with_every_figure() {
         }
         assert!(md.contains(&format!("({id}.svg)")), "index.md lacks {id}");
     }
+    // The work–precision diagram has a point for every registered code's stored run, beside the
+    // methods' sweeps.
+    let work_precision = std::fs::read_to_string(out.path().join("work-precision.csv")).unwrap();
+    for code in millimpact::codes::CodeName::names() {
+        assert!(
+            work_precision.contains(&format!("\"{code} (stored run)\"")),
+            "no {code} point in work-precision.csv"
+        );
+    }
     // Every local link resolves; nothing is fetched from the network.
     for link in html
         .split("href=\"")
