@@ -224,12 +224,8 @@ impl SweepFile {
     /// Validate a parsed sweep file.
     pub fn from_table(path: &Path, table: &Table) -> Result<SweepFile, CaseError> {
         let file = path.display().to_string();
-        let fail = |key: &str, value: &str, allowed: &str| CaseError {
-            file: file.clone(),
-            key: key.to_string(),
-            value: value.to_string(),
-            allowed: allowed.to_string(),
-        };
+        let fail =
+            |key: &str, value: &str, allowed: &str| CaseError::new(&file, key, value, allowed);
         for (key, value) in table {
             if !SWEEP_KEYS.contains(&key.as_str()) {
                 return Err(fail(

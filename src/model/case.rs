@@ -43,6 +43,18 @@ pub struct CaseError {
     pub allowed: String,
 }
 
+impl CaseError {
+    /// The rejection of `value` at `key` in `file`, with what is allowed.
+    pub fn new(file: &str, key: &str, value: &str, allowed: &str) -> CaseError {
+        CaseError {
+            file: file.to_string(),
+            key: key.to_string(),
+            value: value.to_string(),
+            allowed: allowed.to_string(),
+        }
+    }
+}
+
 /// One validated case.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Case {
@@ -142,12 +154,8 @@ impl Case {
     /// ```
     pub fn load(path: &Path) -> Result<Case, CaseError> {
         let file = path.display().to_string();
-        let fail = |key: &str, value: &str, allowed: &str| CaseError {
-            file: file.clone(),
-            key: key.to_string(),
-            value: value.to_string(),
-            allowed: allowed.to_string(),
-        };
+        let fail =
+            |key: &str, value: &str, allowed: &str| CaseError::new(&file, key, value, allowed);
         // A device or a FIFO would be read without end or block: only a regular file of a case's
         // size is read.
         let meta = std::fs::metadata(path)
@@ -175,12 +183,8 @@ impl Case {
     /// name), as strictly as [`Case::load`].
     pub fn parse(text: &str, path: &Path) -> Result<Case, CaseError> {
         let file = path.display().to_string();
-        let fail = |key: &str, value: &str, allowed: &str| CaseError {
-            file: file.clone(),
-            key: key.to_string(),
-            value: value.to_string(),
-            allowed: allowed.to_string(),
-        };
+        let fail =
+            |key: &str, value: &str, allowed: &str| CaseError::new(&file, key, value, allowed);
         let table: Table = text.parse().map_err(|e: toml::de::Error| {
             let message = e.message().replace('\n', " ");
             let place = match e.span() {
@@ -232,12 +236,7 @@ const TOP_KEYS: [&str; 6] = [
 
 impl Reader<'_> {
     fn error(&self, key: &str, value: &str, allowed: &str) -> CaseError {
-        CaseError {
-            file: self.file.to_string(),
-            key: key.to_string(),
-            value: value.to_string(),
-            allowed: allowed.to_string(),
-        }
+        CaseError::new(self.file, key, value, allowed)
     }
 
     fn case(&self, t: &Table, name: String, path: &Path) -> Result<Case, CaseError> {
