@@ -72,8 +72,8 @@ pub mod output;
 pub mod solve;
 
 pub use analysis::compare::{CompareOptions, CompareReport, compare};
+pub use analysis::store::verify::{VerifyReport, verify};
 pub use analysis::store::{ReferenceOptions, ReferenceRecord, find_stored, run_reference};
-pub use analysis::verify::{VerifyReport, verify};
 pub use codes::CodeName;
 pub use model::case::{Case, ContactKind};
 pub use model::exact::{ImpactFigures, paper_impact, restitution};

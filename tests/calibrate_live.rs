@@ -85,7 +85,7 @@ fn a_cards_step_is_the_largest_within_the_tolerance() {
             let at = case.with_loss_coefficient(t.loss_coefficient);
             let fine = card(card_at.code, &at, Some(h), tolerance).unwrap();
             let coarse = card(card_at.code, &at, Some(2.0 * h), tolerance).unwrap();
-            let off = |r: &millimpact::analysis::phase::Range| {
+            let off = |r: &millimpact::analysis::compare::phase::Range| {
                 (r.min - e).abs().max((r.max - e).abs()) / e
             };
             assert!(off(&fine.realised_band) <= tolerance, "{}", card_at.code);

@@ -4,8 +4,8 @@
 
 use std::path::Path;
 
+use millimpact::analysis::compare::phase::{self, DEFAULT_PHASES, start_phase_band};
 use millimpact::analysis::compare::{RESTITUTIONS, model_by_restitution, paper_metrics};
-use millimpact::analysis::phase::{self, DEFAULT_PHASES, start_phase_band};
 use millimpact::analysis::store;
 use millimpact::codes::CodeName;
 use millimpact::model::case::Case;

@@ -13,8 +13,8 @@ mod common;
 
 use common::codes::relative;
 use common::shipped as case;
+use millimpact::analysis::store::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
 use millimpact::analysis::store::{self as references, ReferenceOptions, ReferenceRecord};
-use millimpact::analysis::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
 use millimpact::codes::CodeName;
 use millimpact::model::case::Case;
 

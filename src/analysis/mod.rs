@@ -2,19 +2,14 @@
 //! verification, the attribution of each code's difference, and the comparison, precision,
 //! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
 
-pub mod batch;
 pub mod calibrate;
 pub mod compare;
-pub mod grid;
-pub mod phase;
 pub mod precision;
 pub mod probe;
 pub mod report;
-pub mod rows;
 pub mod run;
 pub mod source;
 pub mod stability;
 pub mod store;
 pub mod sweep;
 pub mod tolerance;
-pub mod verify;

@@ -44,3 +44,40 @@ impl Serialize for Source {
         serializer.serialize_str(self.name())
     }
 }
+
+/// The resolution a source runs at: the value of its precision knob.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Resolution {
+    /// Steps per undamped period (fixed-step methods).
+    StepsPerPeriod(u32),
+    /// Relative tolerance (adaptive methods).
+    Rtol(f64),
+    /// Steps per elastic contact time (DEM codes).
+    StepsPerContact(u32),
+}
+
+impl Resolution {
+    /// Steps per period, if that is the knob.
+    pub fn steps_per_period(resolution: Option<Resolution>) -> Option<u32> {
+        match resolution {
+            Some(Resolution::StepsPerPeriod(n)) => Some(n),
+            _ => None,
+        }
+    }
+
+    /// The relative tolerance, if that is the knob.
+    pub fn rtol(resolution: Option<Resolution>) -> Option<f64> {
+        match resolution {
+            Some(Resolution::Rtol(r)) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// Steps per contact, if that is the knob.
+    pub fn steps_per_contact(resolution: Option<Resolution>) -> Option<u32> {
+        match resolution {
+            Some(Resolution::StepsPerContact(n)) => Some(n),
+            _ => None,
+        }
+    }
+}

@@ -8,17 +8,11 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
-pub mod conventions;
 pub mod damping;
-pub mod lammps_batch;
-pub mod lammps_builds;
-pub mod liggghts_batch;
 pub mod parse;
-pub mod probe;
 pub mod runner;
 pub mod setup;
 pub mod template;
-pub mod yade_batch;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -29,9 +23,9 @@ use serde::{Deserialize, Deserializer, Serialize, Serializer};
 use crate::model::law::DashpotLaw;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
-use conventions::Conventions;
+use lammps::conventions::Conventions;
+use lammps::probe::ProbeReport;
 pub use parse::ParseError;
-use probe::ProbeReport;
 pub use runner::{CodeError, CodeRun, RunOptions, run_code};
 pub use setup::{CodeSetup, CodeSphere, prepare, prepare_with, setup_for_case};
 
@@ -187,30 +181,30 @@ pub trait CodeDriver: Send + Sync {
     }
 }
 
-/// The registry of codes: one line per code, `Variant => module::Driver`. It declares the
+/// The registry of codes: one line per code folder, `mod folder { Variant => Driver }`. It declares the
 /// driver's module, the [`CodeName`] variant and its dispatch, so that a new code is its driver
 /// file plus one line here.
 macro_rules! code_registry {
-    ($($variant:ident => $module:ident :: $driver:ident),+ $(,)?) => {
+    ($(mod $module:ident { $($variant:ident => $driver:ident),+ $(,)? }),+ $(,)?) => {
         $(pub mod $module;)+
 
         /// A DEM code the harness drives.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
         pub enum CodeName {
-            $(
-                #[doc = concat!("`", stringify!($module), "`")]
+            $($(
+                #[doc = concat!("`", stringify!($driver), "`, in `codes/", stringify!($module), "/`")]
                 $variant,
-            )+
+            )+)+
         }
 
         impl CodeName {
             /// Every code, in report order.
-            pub const ALL: &'static [CodeName] = &[$(CodeName::$variant),+];
+            pub const ALL: &'static [CodeName] = &[$($(CodeName::$variant),+),+];
 
             /// The code's driver.
             pub fn driver(self) -> &'static dyn CodeDriver {
                 match self {
-                    $(CodeName::$variant => &$module::$driver,)+
+                    $($(CodeName::$variant => &$module::$driver,)+)+
                 }
             }
         }
@@ -218,11 +212,10 @@ macro_rules! code_registry {
 }
 
 code_registry! {
-    Liggghts => liggghts::Liggghts,
-    Yade => yade::Yade,
-    Lammps => lammps::Lammps,
-    Lammps2025 => lammps_2025::Lammps2025,
-    Kratos => kratos::Kratos,
+    mod liggghts { Liggghts => Liggghts },
+    mod yade { Yade => Yade },
+    mod lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
+    mod kratos { Kratos => Kratos },
 }
 
 impl CodeName {

@@ -3,7 +3,7 @@
 use anyhow::Result;
 
 use super::{CommandOutput, write_output};
-use crate::analysis::rows::merge as merge_rows;
+use crate::analysis::sweep::rows::merge as merge_rows;
 use crate::cli::MergeArgs;
 
 pub(super) fn merge(args: &MergeArgs) -> Result<CommandOutput> {

@@ -11,11 +11,13 @@ use anyhow::{Context, Result};
 
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
-use crate::analysis::grid::{
-    GridOptions, Point, SweepFile, is_sweep_table, normal_cell, read_table, run_grid,
-};
-use crate::analysis::rows::{RowFormat, RowWriter, complete_lines, keys_of, parse_rows};
-use crate::analysis::sweep::{parse_range, sweep as sweep_case};
+use crate::analysis::source::Source;
+use crate::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
+use crate::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
+use crate::analysis::sweep::point::GridOptions;
+use crate::analysis::sweep::row::SweepRow;
+use crate::analysis::sweep::rows::{RowFormat, RowWriter, complete_lines, keys_of, parse_rows};
+use crate::analysis::sweep::run_grid;
 use crate::cli::SweepArgs;
 use crate::error::{CheckFailed, UserError};
 use crate::model::case::Case;
@@ -151,11 +153,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
                     format = f;
                 }
                 let keys = keys_of(&rows, &sweep.key_columns(), &sweep.fingerprint, &file)?;
-                points.retain(|p| {
-                    let key: Vec<String> =
-                        sweep.key_cells(p).iter().map(|c| normal_cell(c)).collect();
-                    !keys.contains(&key)
-                });
+                points.retain(|p| !keys.contains(&sweep.key_cells(p)));
                 resume_rows = true;
             }
             // A row cut off by a kill is dropped; the point runs again.
@@ -173,13 +171,13 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     };
     let has_codes = points
         .iter()
-        .any(|p| matches!(p.source, crate::analysis::grid::Source::Code { .. }));
+        .any(|p| matches!(p.source.source, Source::Code(_)));
     let flush_every = if has_codes {
         Duration::ZERO
     } else {
         Duration::from_millis(50)
     };
-    let writer = RowWriter::new(out, format, columns, resume_rows, flush_every)
+    let writer = RowWriter::new(out, format, &columns, resume_rows, flush_every)
         .context("writing the sweep's rows")?;
     let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
         std::thread::available_parallelism()
@@ -202,7 +200,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         crate::codes::runner::stop_all_codes();
     });
     let state = Mutex::new((writer, None::<std::io::Error>));
-    let sink = |row: Vec<String>| {
+    let sink = |row: SweepRow| {
         let mut guard = state.lock().unwrap_or_else(|e| e.into_inner());
         if guard.1.is_none()
             && let Err(e) = guard.0.write(&row)

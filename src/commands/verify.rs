@@ -3,7 +3,7 @@
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::verify::verify as verify_all;
+use crate::analysis::store::verify::verify as verify_all;
 use crate::cli::VerifyArgs;
 use crate::error::CheckFailed;
 use crate::output::export;

@@ -10,6 +10,8 @@
 //! into `E*`; the second ball is atom 2. What the installed version really does, and the
 //! measurements behind each choice here, are in `reference/liggghts/CONVENTIONS.md`.
 
+pub mod batch;
+
 use std::f64::consts::PI;
 use std::path::Path;
 
@@ -19,7 +21,7 @@ use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, reduced_mass};
 
-const TEMPLATE: &str = include_str!("../../scripts/liggghts/impact.in");
+const TEMPLATE: &str = include_str!("impact.in");
 const INPUT_FILE: &str = "impact.in";
 /// The trajectory file the template writes (one row per step, plus the initial state).
 pub const TRAJECTORY_FILE: &str = "traj.txt";
@@ -286,11 +288,11 @@ impl CodeDriver for Liggghts {
     }
 
     fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        super::liggghts_batch::render_batch(setups)
+        batch::render_batch(setups)
     }
 
     fn max_batch(&self) -> usize {
-        super::liggghts_batch::MAX_BATCH
+        batch::MAX_BATCH
     }
 
     fn parse_batch(
@@ -299,7 +301,7 @@ impl CodeDriver for Liggghts {
         workdir: &Path,
         log: &str,
     ) -> Vec<Result<ParsedRun, ParseError>> {
-        super::liggghts_batch::parse_batch(setups, workdir, log)
+        batch::parse_batch(setups, workdir, log)
     }
 
     /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and

@@ -7,6 +7,8 @@
 //! (own law exact − paper law exact), an integration error (own law stepped − own law exact)
 //! and a remainder (code − own law stepped) that nothing explains.
 
+pub mod verify;
+
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 

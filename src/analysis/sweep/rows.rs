@@ -5,6 +5,7 @@ use std::collections::HashSet;
 use std::io::Write;
 use std::path::Path;
 
+use super::row::SweepRow;
 use crate::error::UserError;
 
 /// How rows are written.
@@ -167,7 +168,7 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
                     Some(serde_json::Value::Number(x)) => x
                         .as_f64()
                         .filter(|_| !x.is_u64() && !x.is_i64())
-                        .map(super::grid::number)
+                        .map(crate::analysis::sweep::grid::number)
                         .unwrap_or_else(|| x.to_string()),
                     Some(other) => other.to_string(),
                 })
@@ -226,18 +227,22 @@ pub fn keys_of(
         }
         keys.insert(
             at.iter()
-                .map(|&i| super::grid::normal_cell(&r[i]))
+                .map(|&i| crate::analysis::sweep::grid::normal_cell(&r[i]))
                 .collect(),
         );
     }
     Ok(keys)
 }
 
+/// Where rows go, in their format.
+enum RowSink<W: Write> {
+    Csv(csv::Writer<W>),
+    Jsonl(W),
+}
+
 /// Rows to a writer, flushed as they come (at most every `flush_every` for fast rows).
 pub struct RowWriter<W: Write> {
-    out: W,
-    format: RowFormat,
-    columns: Vec<String>,
+    sink: RowSink<W>,
     last_flush: std::time::Instant,
     flush_every: std::time::Duration,
     /// Rows written.
@@ -251,18 +256,29 @@ impl<W: Write> RowWriter<W> {
     pub fn new(
         mut out: W,
         format: RowFormat,
-        columns: Vec<String>,
+        columns: &[String],
         resume: bool,
         flush_every: std::time::Duration,
     ) -> std::io::Result<Self> {
-        if !resume {
-            out.write_all(header(format, &columns).as_bytes())?;
-            out.flush()?;
-        }
+        let sink = match format {
+            RowFormat::Csv => {
+                let mut writer = csv::WriterBuilder::new()
+                    .has_headers(false)
+                    .terminator(csv::Terminator::Any(b'\n'))
+                    .from_writer(out);
+                if !resume {
+                    writer.write_record(columns)?;
+                    writer.flush()?;
+                }
+                RowSink::Csv(writer)
+            }
+            RowFormat::Jsonl => {
+                out.flush()?;
+                RowSink::Jsonl(out)
+            }
+        };
         Ok(RowWriter {
-            out,
-            format,
-            columns,
+            sink,
             last_flush: std::time::Instant::now(),
             flush_every,
             written: 0,
@@ -271,15 +287,17 @@ impl<W: Write> RowWriter<W> {
     }
 
     /// Append one row.
-    pub fn write(&mut self, cells: &[String]) -> std::io::Result<()> {
-        self.out
-            .write_all(encode(self.format, &self.columns, cells).as_bytes())?;
+    pub fn write(&mut self, row: &SweepRow) -> std::io::Result<()> {
+        match &mut self.sink {
+            RowSink::Csv(writer) => row.write_csv(writer)?,
+            RowSink::Jsonl(out) => row.write_json_line(out)?,
+        }
         self.written += 1;
-        if cells.last().is_some_and(|s| s != "ok") {
+        if !row.status.is_ok() {
             self.failed += 1;
         }
         if self.last_flush.elapsed() >= self.flush_every {
-            self.out.flush()?;
+            self.flush()?;
             self.last_flush = std::time::Instant::now();
         }
         Ok(())
@@ -287,7 +305,10 @@ impl<W: Write> RowWriter<W> {
 
     /// Flush what is buffered.
     pub fn flush(&mut self) -> std::io::Result<()> {
-        self.out.flush()
+        match &mut self.sink {
+            RowSink::Csv(writer) => writer.flush(),
+            RowSink::Jsonl(out) => out.flush(),
+        }
     }
 }
 

@@ -6,10 +6,10 @@
 
 use std::path::Path;
 
-use super::parse::ParseError;
-use super::template::exact_number;
-use super::yade::{RIGID_WALL_MODULUS, Yade, hertz_input_restitution, parse_trajectory};
-use super::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::parse::ParseError;
+use crate::codes::template::exact_number;
+use crate::codes::yade::{RIGID_WALL_MODULUS, Yade, hertz_input_restitution, parse_trajectory};
+use crate::codes::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -135,7 +135,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
         .fold(0.0f64, f64::max);
     let (wall_e, wall_nu) = plate(first);
     let text = format!(
-        "# millimpact: independent sphere-on-plate impacts in one YADE run (src/codes/yade_batch.rs).\nimport math\nimport time\n\nimport yade\nfrom yade import utils\n\nDT = {}\nSPACING = {}\nWALL_E = {}\nWALL_NU = {}\n# (steps, radius, mass, density, E, nu, velocity, en)\nIMPACTS = [\n{impacts}]\n{SCRIPT}",
+        "# millimpact: independent sphere-on-plate impacts in one YADE run (src/codes/yade/batch.rs).\nimport math\nimport time\n\nimport yade\nfrom yade import utils\n\nDT = {}\nSPACING = {}\nWALL_E = {}\nWALL_NU = {}\n# (steps, radius, mass, density, E, nu, velocity, en)\nIMPACTS = [\n{impacts}]\n{SCRIPT}",
         num(first.timestep),
         num(8.0 * largest),
         num(wall_e),

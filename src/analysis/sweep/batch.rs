@@ -9,7 +9,10 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use anyhow::Context;
 use rayon::prelude::*;
 
-use super::grid::{CodeFigures, GridOptions, Point, Source, SweepFile, code_point, row};
+use super::grid::{Point, SweepFile};
+use super::point::{GridOptions, single_point};
+use super::row::{CodeFigures, PointFigures, SweepRow};
+use crate::analysis::source::{Resolution, Source};
 use crate::codes::batch::run_batch;
 use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
 use crate::model::case::Case;
@@ -50,13 +53,10 @@ pub fn plan<'a>(
     // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
     // done on the pool's threads, in point order.
     let prepare_point = |p: &&'a Point| {
-        let Source::Code {
-            code,
-            steps_per_contact,
-        } = p.source
-        else {
+        let Source::Code(code) = p.source.source else {
             return None;
         };
+        let steps_per_contact = Resolution::steps_per_contact(p.source.resolution);
         let driver = code.driver();
         if options.batch <= 1 || driver.max_batch() <= 1 {
             return None;
@@ -141,12 +141,10 @@ fn batch_figures(
     let paper = case.law();
     Ok(CodeFigures {
         case: case.name.clone(),
-        law: (
-            paper.loss_coefficient,
-            paper.mass,
-            paper.stiffness,
-            paper.exponent,
-        ),
+        loss_coefficient: paper.loss_coefficient,
+        reduced_mass: paper.mass,
+        contact_stiffness: paper.stiffness,
+        exponent: paper.exponent,
         metrics,
         cor_target: driver
             .expected_restitution(setup)
@@ -156,7 +154,8 @@ fn batch_figures(
         timestep: setup.timestep,
         wall_time,
         loop_time: run.loop_time,
-        own_law: (own_exact.cor, at_step.cor),
+        own_law_cor: own_exact.cor,
+        own_law_stepped_cor: at_step.cor,
         code_version: run.version.clone().unwrap_or_else(|| "unknown".to_string()),
         batch,
     })
@@ -169,11 +168,11 @@ pub fn run_item(
     item: &WorkItem<'_>,
     options: &GridOptions,
     stop: &AtomicBool,
-    emit: &(dyn Fn(Vec<String>) + Sync),
+    emit: &(dyn Fn(SweepRow) + Sync),
     note: &(dyn Fn(String) + Sync),
 ) {
     match item {
-        WorkItem::Single(p) => emit(code_point(sweep, p, options)),
+        WorkItem::Single(p) => emit(single_point(sweep, p, options)),
         WorkItem::Batch { code, items } => {
             let setups: Vec<CodeSetup> = items.iter().map(|(_, _, s)| s.clone()).collect();
             let run_options = RunOptions {
@@ -189,7 +188,7 @@ pub fn run_item(
                         items.len()
                     ));
                     for (p, _, _) in items {
-                        emit(code_point(sweep, p, options));
+                        emit(single_point(sweep, p, options));
                     }
                 }
                 Ok(batch) => {
@@ -199,7 +198,7 @@ pub fn run_item(
                             batch_figures(*code, case, setup, &run, batch.wall_time / n as f64, n)
                         });
                         match figures {
-                            Ok(f) => emit(row(sweep, p, Ok(f.cells()))),
+                            Ok(f) => emit(sweep.outcome_row(p, Ok(PointFigures::of_code(&f)))),
                             Err(_) if stop.load(Ordering::SeqCst) => {}
                             Err(e) => {
                                 note(format!(
@@ -211,7 +210,7 @@ pub fn run_item(
                                         .map(|k| format!(" (batch kept in {})", k.display()))
                                         .unwrap_or_default()
                                 ));
-                                emit(code_point(sweep, p, options));
+                                emit(single_point(sweep, p, options));
                             }
                         }
                     }

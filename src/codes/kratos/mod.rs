@@ -29,6 +29,8 @@
 //! (the default 50 finds the wall contact late), one OpenMP thread ([`Kratos::locate`]), the
 //! state paired with the force it produced in each row.
 
+
+
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
@@ -38,14 +40,14 @@ use super::damping::{
 use super::parse::ParseError;
 use super::runner::{self, codes_dir};
 use super::template::{exact_number, fill_template};
-use super::yade::{log_value, parse_trajectory};
+use crate::codes::yade::{log_value, parse_trajectory};
 use super::{CodeDriver, CodeError, CodeSetup, Executable, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
-const TEMPLATE: &str = include_str!("../../scripts/kratos/impact.py");
+const TEMPLATE: &str = include_str!("impact.py");
 
 /// The name of the rendered script in the scratch directory.
 pub const SCRIPT: &str = "impact.py";
@@ -363,7 +365,7 @@ mod tests {
     /// The recorded run in `tests/data/kratos`: a steel ball on a steel plate, target 0.6944,
     /// 40 steps per elastic contact time, 50 steps.
     const SAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/kratos");
-    const LOG: &str = include_str!("../../tests/data/kratos/log.txt");
+    const LOG: &str = include_str!("../../../tests/data/kratos/log.txt");
 
     fn sample_setup() -> CodeSetup {
         let ball = CodeSphere {

@@ -17,12 +17,12 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
-use super::Executable;
-pub use super::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
-use super::conventions::{exact_hertz_alpha, tsuji_alpha};
-use super::lammps::{WALL_TEMPLATE, parse_trajectory, parse_version};
-use super::runner::{read_log, spawn_contained, wait_contained};
-use super::template::{exact_number, fill_template};
+use crate::codes::Executable;
+pub use crate::codes::lammps::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
+use crate::codes::lammps::conventions::{exact_hertz_alpha, tsuji_alpha};
+use crate::codes::lammps::{WALL_TEMPLATE, parse_trajectory, parse_version};
+use crate::codes::runner::{read_log, spawn_contained, wait_contained};
+use crate::codes::template::{exact_number, fill_template};
 use crate::model::trajectory::CodeTrajectory;
 
 /// A number that may be NaN, as JSON allows: `null` for NaN.

@@ -16,19 +16,15 @@
 //! ```
 
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::time::Duration;
 
-use rayon::prelude::*;
 use sha2::{Digest, Sha256};
 use toml::{Table, Value};
 
-use super::run::{IntegrationOptions, RunReport, run_case};
-use super::store::{ReferenceOptions, ReferenceRecord, run_reference};
+use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
+use crate::analysis::run::MIN_RTOL;
+pub use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
 use crate::model::case::{Case, CaseError};
-use crate::model::exact::ImpactFigures;
-use crate::model::trajectory::TrajectoryMetrics;
 use crate::solve::{Knob, Method};
 
 /// Most points a sweep file may name.
@@ -37,7 +33,13 @@ pub const MAX_POINTS: usize = 10_000_000;
 /// The keys a sweep file may have at top level.
 const SWEEP_KEYS: [&str; 2] = ["base", "axes"];
 /// Axes that choose sources and resolutions rather than case keys.
-const SOURCE_AXES: [&str; 4] = ["method", "code", "steps_per_period", "steps_per_contact"];
+const SOURCE_AXES: [&str; 5] = [
+    "method",
+    "code",
+    "steps_per_period",
+    "rtol",
+    "steps_per_contact",
+];
 /// Case keys an axis may name: top-level keys, and `table.key` for the body tables.
 const CASE_KEYS: [&str; 21] = [
     "scene",
@@ -63,38 +65,6 @@ const CASE_KEYS: [&str; 21] = [
     "rod.youngs_modulus",
 ];
 
-/// The figure columns of a row, after the parameters and before `status`.
-pub const FIGURES: [&str; 26] = [
-    "case",
-    "eta",
-    "reduced_mass",
-    "contact_stiffness",
-    "exponent",
-    "cor",
-    "cor_target",
-    "cor_error",
-    "peak_deformation",
-    "peak_deformation_exact",
-    "peak_deformation_error",
-    "peak_force",
-    "peak_force_exact",
-    "contact_time",
-    "contact_time_exact",
-    "contact_time_error",
-    "compression_time",
-    "restitution_time",
-    "absorbed_energy",
-    "steps",
-    "rhs_evaluations",
-    "timestep",
-    "wall_time",
-    "loop_time",
-    "own_law_cor",
-    "own_law_stepped_cor",
-];
-/// Further figure columns (the code's identity and the batch a code point ran in).
-pub const MORE_FIGURES: [&str; 2] = ["code_version", "batch"];
-
 /// One grid axis over a case key.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Axis {
@@ -104,23 +74,14 @@ pub struct Axis {
     pub values: Vec<Value>,
 }
 
-/// Who computes a point: one of our methods, or a DEM code.
+/// A source with the resolution it runs at; `None` for its default (or a method without a
+/// knob).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Source {
-    /// A method, with its steps per period where it has that knob.
-    Method {
-        /// The method.
-        method: Method,
-        /// Steps per undamped period (fixed-step methods).
-        steps_per_period: Option<u32>,
-    },
-    /// A DEM code, with its steps per contact.
-    Code {
-        /// The code.
-        code: CodeName,
-        /// Steps per elastic contact time.
-        steps_per_contact: Option<u32>,
-    },
+pub struct ResolvedSource {
+    /// The method or code.
+    pub source: Source,
+    /// Its resolution.
+    pub resolution: Option<Resolution>,
 }
 
 /// A parsed sweep file.
@@ -137,7 +98,7 @@ pub struct SweepFile {
     /// Axes over case keys, in key order.
     pub axes: Vec<Axis>,
     /// The sources, each with its resolution.
-    pub sources: Vec<Source>,
+    pub sources: Vec<ResolvedSource>,
     /// Hash of the normalised sweep file and base case: shards of one sweep share it.
     pub fingerprint: String,
 }
@@ -149,8 +110,8 @@ pub struct Point {
     pub index: usize,
     /// One value per case axis.
     pub values: Vec<Value>,
-    /// Who computes it.
-    pub source: Source,
+    /// Who computes it, at which resolution.
+    pub source: ResolvedSource,
 }
 
 /// Whether `table` is a sweep file rather than a case.
@@ -297,6 +258,7 @@ impl SweepFile {
         let mut codes = Vec::new();
         let mut per_period: Vec<Option<u32>> = vec![None];
         let mut per_contact: Vec<Option<u32>> = vec![None];
+        let mut tolerances: Vec<Option<f64>> = vec![None];
         for (key, value) in &axes_table {
             let full = format!("axes.{key}");
             let values =
@@ -334,6 +296,22 @@ impl SweepFile {
                         })?;
                         codes.push(c);
                     }
+                }
+                "rtol" => {
+                    let mut rtols = Vec::new();
+                    for v in &values {
+                        match v.as_float() {
+                            Some(r) if (MIN_RTOL..1.0).contains(&r) => rtols.push(Some(r)),
+                            _ => {
+                                return Err(fail(
+                                    &full,
+                                    &v.to_string(),
+                                    &format!("numbers in [{MIN_RTOL:e}, 1) (adaptive methods)"),
+                                ));
+                            }
+                        }
+                    }
+                    tolerances = rtols;
                 }
                 "steps_per_period" | "steps_per_contact" => {
                     let mut counts = Vec::new();
@@ -386,6 +364,13 @@ impl SweepFile {
                 "applies to fixed-step methods; the sweep has none",
             ));
         }
+        if tolerances[0].is_some() && !methods.iter().any(|m| m.descriptor().knob == Knob::Rtol) {
+            return Err(fail(
+                "axes.rtol",
+                &axes_table["rtol"].to_string(),
+                "applies to adaptive methods; the sweep has none",
+            ));
+        }
         if per_contact[0].is_some() && codes.is_empty() {
             return Err(fail(
                 "axes.steps_per_contact",
@@ -395,25 +380,26 @@ impl SweepFile {
         }
         let mut sources = Vec::new();
         for &method in &methods {
-            if method.descriptor().knob == Knob::StepsPerPeriod {
-                for &n in &per_period {
-                    sources.push(Source::Method {
-                        method,
-                        steps_per_period: n,
-                    });
-                }
-            } else {
-                sources.push(Source::Method {
-                    method,
-                    steps_per_period: None,
+            let resolutions: Vec<Option<Resolution>> = match method.descriptor().knob {
+                Knob::StepsPerPeriod => per_period
+                    .iter()
+                    .map(|n| n.map(Resolution::StepsPerPeriod))
+                    .collect(),
+                Knob::Rtol => tolerances.iter().map(|r| r.map(Resolution::Rtol)).collect(),
+                Knob::None => vec![None],
+            };
+            for resolution in resolutions {
+                sources.push(ResolvedSource {
+                    source: Source::Method(method),
+                    resolution,
                 });
             }
         }
         for &code in &codes {
             for &n in &per_contact {
-                sources.push(Source::Code {
-                    code,
-                    steps_per_contact: n,
+                sources.push(ResolvedSource {
+                    source: Source::Code(code),
+                    resolution: n.map(Resolution::StepsPerContact),
                 });
             }
         }
@@ -481,49 +467,70 @@ impl SweepFile {
             .collect()
     }
 
+    /// The keys of the case axes, in axis order.
+    pub fn axis_keys(&self) -> Vec<String> {
+        self.axes.iter().map(|a| a.key.clone()).collect()
+    }
+
     /// The columns of a row.
     pub fn columns(&self) -> Vec<String> {
-        let mut c: Vec<String> = vec!["sweep".into(), "point".into()];
-        c.extend(self.axes.iter().map(|a| a.key.clone()));
-        c.extend(SOURCE_AXES.iter().map(|s| s.to_string()));
-        c.extend(FIGURES.iter().map(|s| s.to_string()));
-        c.extend(MORE_FIGURES.iter().map(|s| s.to_string()));
-        c.push("status".into());
-        c
+        super::row::columns(&self.axis_keys())
     }
 
     /// The names of the parameter columns (what a row is matched by on resume).
     pub fn key_columns(&self) -> Vec<String> {
-        let mut c: Vec<String> = self.axes.iter().map(|a| a.key.clone()).collect();
-        c.extend(SOURCE_AXES.iter().map(|s| s.to_string()));
-        c
+        super::row::key_columns(&self.axis_keys())
     }
 
-    /// The parameter cells of `point`, in [`SweepFile::key_columns`] order.
+    /// The row of `point` with `figures` and `status`.
+    pub fn row(&self, point: &Point, figures: PointFigures, status: RowStatus) -> SweepRow {
+        SweepRow {
+            identity: RowIdentity {
+                sweep: self.fingerprint.clone(),
+                point: point.index,
+            },
+            axes: self
+                .axes
+                .iter()
+                .zip(&point.values)
+                .map(|(axis, value)| AxisValue {
+                    key: axis.key.clone(),
+                    value: value.clone(),
+                })
+                .collect(),
+            source: PointSource::new(point.source.source, point.source.resolution),
+            figures,
+            status,
+        }
+    }
+
+    /// The row of `point` from its outcome: the figures, or the error.
+    pub fn outcome_row(&self, point: &Point, outcome: anyhow::Result<PointFigures>) -> SweepRow {
+        match outcome {
+            Ok(figures) => self.row(point, figures, RowStatus::ok()),
+            Err(e) => self.row(
+                point,
+                PointFigures::default(),
+                RowStatus::failed(&format!("{e:#}")),
+            ),
+        }
+    }
+
+    /// The parameter cells of `point`, in [`SweepFile::key_columns`] order, in the normal
+    /// form rows are matched by.
     pub fn key_cells(&self, point: &Point) -> Vec<String> {
         let mut cells: Vec<String> = point.values.iter().map(cell).collect();
-        let opt = |n: Option<u32>| n.map(|n| n.to_string()).unwrap_or_default();
-        match point.source {
-            Source::Method {
-                method,
-                steps_per_period,
-            } => cells.extend([
-                method.name().to_string(),
-                opt(steps_per_period),
-                String::new(),
-                String::new(),
-            ]),
-            Source::Code {
-                code,
-                steps_per_contact,
-            } => cells.extend([
-                String::new(),
-                String::new(),
-                code.name().to_string(),
-                opt(steps_per_contact),
-            ]),
-        }
-        cells
+        let source = PointSource::new(point.source.source, point.source.resolution);
+        let name = |n: Option<&'static str>| n.unwrap_or_default().to_string();
+        let count = |n: Option<u32>| n.map(|n| n.to_string()).unwrap_or_default();
+        cells.extend([
+            name(source.method.map(Method::name)),
+            count(source.steps_per_period),
+            source.rtol.map(number).unwrap_or_default(),
+            name(source.code.map(CodeName::name)),
+            count(source.steps_per_contact),
+        ]);
+        cells.iter().map(|c| normal_cell(c)).collect()
     }
 
     /// The case at `point`: the base table edited and read strictly.
@@ -642,273 +649,4 @@ fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
         }
         _ => Err(allowed.into()),
     }
-}
-
-fn num(x: f64) -> String {
-    if x.is_nan() { String::new() } else { number(x) }
-}
-
-fn opt(x: Option<f64>) -> String {
-    x.map(num).unwrap_or_default()
-}
-
-fn relative(value: f64, reference: f64) -> f64 {
-    (value - reference) / reference
-}
-
-/// The figure cells of a method's run, in [`FIGURES`] then [`MORE_FIGURES`] order.
-pub fn method_figures(r: &RunReport) -> Vec<String> {
-    vec![
-        r.case.clone(),
-        num(r.loss_coefficient),
-        num(r.mass),
-        num(r.stiffness),
-        num(r.exponent),
-        num(r.cor),
-        num(r.exact.cor),
-        num(r.error.cor),
-        num(r.peak_deformation),
-        num(r.exact.peak_deformation),
-        num(r.error.peak_deformation),
-        num(r.peak_force),
-        num(r.exact.peak_force),
-        num(r.contact_time),
-        num(r.exact.contact_time),
-        num(r.error.contact_time),
-        num(r.compression_time),
-        num(r.restitution_time),
-        num(r.absorbed_energy),
-        r.steps.to_string(),
-        r.rhs_evaluations.to_string(),
-        opt(r.timestep),
-        num(r.wall_time),
-        String::new(),
-        String::new(),
-        String::new(),
-        String::new(),
-        String::new(),
-    ]
-}
-
-/// What a code point's row is made of, whether it ran alone or in a batch.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CodeFigures {
-    /// Case name.
-    pub case: String,
-    /// The case's law: η, reduced mass, stiffness, exponent.
-    pub law: (f64, f64, f64, f64),
-    /// The code's figures.
-    pub metrics: TrajectoryMetrics,
-    /// The COR the code should realise.
-    pub cor_target: f64,
-    /// The paper's law, exact.
-    pub paper_exact: ImpactFigures,
-    /// Steps run.
-    pub steps: u64,
-    /// Time step, s.
-    pub timestep: f64,
-    /// Wall time (a batch's divided among its impacts), s.
-    pub wall_time: f64,
-    /// The code's own loop time, s.
-    pub loop_time: Option<f64>,
-    /// The code's own law, exact and stepped.
-    pub own_law: (f64, f64),
-    /// Version string.
-    pub code_version: String,
-    /// Impacts in the process that ran it.
-    pub batch: usize,
-}
-
-impl CodeFigures {
-    /// The figures of a stored-style record of a single run.
-    pub fn from_record(case: &Case, r: &ReferenceRecord) -> CodeFigures {
-        let law = case.law();
-        CodeFigures {
-            case: r.case.clone(),
-            law: (law.loss_coefficient, law.mass, law.stiffness, law.exponent),
-            metrics: TrajectoryMetrics {
-                cor: r.cor,
-                peak_deformation: r.peak_deformation,
-                peak_force: r.peak_force,
-                contact_time: r.contact_time,
-                force_contact_time: r.force_contact_time,
-                compression_time: r.compression_time,
-            },
-            cor_target: r.cor_target(),
-            paper_exact: r.paper_exact,
-            steps: r.steps,
-            timestep: r.timestep,
-            wall_time: r.wall_time,
-            loop_time: r.loop_time,
-            own_law: (r.law_exact.cor, r.law_at_step.cor),
-            code_version: r.code_version.clone(),
-            batch: 1,
-        }
-    }
-
-    /// The figure cells, in [`FIGURES`] then [`MORE_FIGURES`] order.
-    pub fn cells(&self) -> Vec<String> {
-        let m = &self.metrics;
-        let p = &self.paper_exact;
-        vec![
-            self.case.clone(),
-            num(self.law.0),
-            num(self.law.1),
-            num(self.law.2),
-            num(self.law.3),
-            num(m.cor),
-            num(self.cor_target),
-            num(relative(m.cor, self.cor_target)),
-            num(m.peak_deformation),
-            num(p.peak_deformation),
-            num(relative(m.peak_deformation, p.peak_deformation)),
-            num(m.peak_force),
-            num(p.peak_force),
-            num(m.contact_time),
-            num(p.contact_time),
-            num(relative(m.contact_time, p.contact_time)),
-            String::new(),
-            String::new(),
-            String::new(),
-            self.steps.to_string(),
-            String::new(),
-            num(self.timestep),
-            num(self.wall_time),
-            opt(self.loop_time),
-            num(self.own_law.0),
-            num(self.own_law.1),
-            self.code_version.clone(),
-            self.batch.to_string(),
-        ]
-    }
-}
-
-/// The row of `point`: its parameters, then `figures` (or empty figures), then the status.
-pub fn row(sweep: &SweepFile, point: &Point, figures: Result<Vec<String>, String>) -> Vec<String> {
-    let mut cells = vec![sweep.fingerprint.clone(), point.index.to_string()];
-    cells.extend(sweep.key_cells(point));
-    let blank = FIGURES.len() + MORE_FIGURES.len();
-    match figures {
-        Ok(f) => {
-            cells.extend(f);
-            cells.push("ok".into());
-        }
-        Err(e) => {
-            cells.extend(std::iter::repeat_n(String::new(), blank));
-            cells.push(e.replace(['\n', '\r'], " "));
-        }
-    }
-    cells
-}
-
-/// How to run a sweep.
-#[derive(Clone, Debug)]
-pub struct GridOptions {
-    /// Worker threads for our methods, and most live code processes.
-    pub jobs: usize,
-    /// Time limit of one code process.
-    pub timeout: Duration,
-    /// Bilateral contact: undamped periods to follow.
-    pub periods: f64,
-    /// Most impacts per code process (1: no batching).
-    pub batch: usize,
-}
-
-/// Evaluate one method point.
-pub fn method_point(sweep: &SweepFile, point: &Point, periods: f64) -> Vec<String> {
-    let Source::Method {
-        method,
-        steps_per_period,
-    } = point.source
-    else {
-        unreachable!("a method point")
-    };
-    let result = (|| -> anyhow::Result<Vec<String>> {
-        let case = sweep.case(point)?;
-        let options = IntegrationOptions {
-            method,
-            steps_per_period,
-            periods,
-            ..IntegrationOptions::default()
-        };
-        let settings = options.settings(&case, false)?;
-        Ok(method_figures(&run_case(&case, &settings)?.0))
-    })();
-    row(sweep, point, result.map_err(|e| format!("{e:#}")))
-}
-
-/// Evaluate one code point alone, with the fault containment of `reference`.
-pub fn code_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> Vec<String> {
-    let Source::Code {
-        code,
-        steps_per_contact,
-    } = point.source
-    else {
-        unreachable!("a code point")
-    };
-    let result = (|| -> anyhow::Result<Vec<String>> {
-        let case = sweep.case(point)?;
-        let reference = ReferenceOptions {
-            steps_per_contact,
-            timeout: options.timeout,
-            ..ReferenceOptions::default()
-        };
-        let record = run_reference(code, &case, &reference)?;
-        Ok(CodeFigures::from_record(&case, &record).cells())
-    })();
-    row(sweep, point, result.map_err(|e| format!("{e:#}")))
-}
-
-/// Run `points`: methods on `jobs` threads, then codes in a pool of at most `jobs` live
-/// processes (in batches where the code allows). Each finished row goes to `sink` at once;
-/// after `stop` is raised no new point starts, and a point that failed after it is dropped
-/// (its failure may be the interruption's), so that a resumed sweep runs it again.
-pub fn run_grid(
-    sweep: &SweepFile,
-    points: &[Point],
-    options: &GridOptions,
-    stop: &AtomicBool,
-    sink: &(dyn Fn(Vec<String>) + Sync),
-    note: &(dyn Fn(String) + Sync),
-) -> anyhow::Result<()> {
-    let (methods, codes): (Vec<&Point>, Vec<&Point>) = points
-        .iter()
-        .partition(|p| matches!(p.source, Source::Method { .. }));
-    let emit = |row: Vec<String>| {
-        let failed = row.last().is_some_and(|s| s != "ok");
-        if !(failed && stop.load(Ordering::SeqCst)) {
-            sink(row);
-        }
-    };
-    if !methods.is_empty() {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(options.jobs.max(1))
-            .build()?;
-        pool.install(|| {
-            methods.par_iter().with_min_len(64).for_each(|p| {
-                if !stop.load(Ordering::Relaxed) {
-                    emit(method_point(sweep, p, options.periods));
-                }
-            })
-        });
-    }
-    if !codes.is_empty() {
-        let work = super::batch::plan(sweep, &codes, options);
-        let next = std::sync::atomic::AtomicUsize::new(0);
-        std::thread::scope(|scope| {
-            for _ in 0..options.jobs.max(1).min(work.len()) {
-                scope.spawn(|| {
-                    loop {
-                        if stop.load(Ordering::SeqCst) {
-                            break;
-                        }
-                        let i = next.fetch_add(1, Ordering::SeqCst);
-                        let Some(item) = work.get(i) else { break };
-                        super::batch::run_item(sweep, item, options, stop, &emit, note);
-                    }
-                });
-            }
-        });
-    }
-    Ok(())
 }

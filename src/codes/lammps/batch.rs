@@ -7,10 +7,10 @@
 
 use std::path::Path;
 
-use super::lammps::{Build, LOG_FILE, parse_loop_time, parse_trajectory, parse_version};
-use super::parse::ParseError;
-use super::template::exact_number;
-use super::{CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::lammps::{Build, LOG_FILE, parse_loop_time, parse_trajectory, parse_version};
+use crate::codes::parse::ParseError;
+use crate::codes::template::exact_number;
+use crate::codes::{CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: LAMMPS allows 32 groups, `all` among them, and each sphere
 /// needs its own group for its own wall.

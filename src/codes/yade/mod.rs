@@ -24,6 +24,8 @@
 //! - Stepping: leap-frog; the force of iteration `i` sees the position `x_i` and the half-step
 //!   velocity `v_{i-1/2}`; the initial velocity is `v_{-1/2}`.
 
+pub mod batch;
+
 use std::path::Path;
 
 pub use super::damping::{
@@ -38,7 +40,7 @@ use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
-const TEMPLATE: &str = include_str!("../../scripts/yade/impact.py");
+const TEMPLATE: &str = include_str!("impact.py");
 
 /// The name of the rendered script in the scratch directory.
 const SCRIPT: &str = "impact.py";
@@ -226,11 +228,11 @@ impl CodeDriver for Yade {
     }
 
     fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        super::yade_batch::render_batch(setups)
+        batch::render_batch(setups)
     }
 
     fn max_batch(&self) -> usize {
-        super::yade_batch::MAX_BATCH
+        batch::MAX_BATCH
     }
 
     fn parse_batch(
@@ -239,7 +241,7 @@ impl CodeDriver for Yade {
         workdir: &Path,
         log: &str,
     ) -> Vec<Result<ParsedRun, ParseError>> {
-        super::yade_batch::parse_batch(setups, workdir, log)
+        batch::parse_batch(setups, workdir, log)
     }
 
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {

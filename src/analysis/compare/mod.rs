@@ -2,13 +2,14 @@
 //! the paper's rk4, each DEM code, each code's own law at zero step error, the elastic contact),
 //! with the differences from the paper's law split into model, integration and remainder.
 
+pub mod phase;
+
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use anyhow::Result;
 use serde::Serialize;
 
-use super::phase::{self, DEFAULT_PHASES, Offsets, PhaseBand};
 use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord};
 use crate::codes::{CodeName, setup_for_case};
 use crate::model::case::Case;
@@ -18,6 +19,7 @@ use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::Method;
 use crate::solve::dashpot::accurate_metrics;
 use crate::solve::paper::{self, Settings};
+use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
 
 /// The canonical cases compared by default.
 pub const CANONICAL_CASES: [&str; 3] = [

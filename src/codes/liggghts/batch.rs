@@ -7,12 +7,12 @@
 
 use std::path::Path;
 
-use super::liggghts::{
+use crate::codes::liggghts::{
     Liggghts, RIGID_WALL_MODULUS, RIGID_WALL_POISSON, contact_gap, parse_output, version,
 };
-use super::parse::ParseError;
-use super::template::exact_number;
-use super::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::parse::ParseError;
+use crate::codes::template::exact_number;
+use crate::codes::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch (the per-type-pair tables grow as its square).
@@ -98,7 +98,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
     }
     let h = exact_number(half);
     let mut text = format!(
-        "# millimpact: independent sphere-on-plate impacts in one LIGGGHTS run (src/codes/liggghts_batch.rs).\n\
+        "# millimpact: independent sphere-on-plate impacts in one LIGGGHTS run (src/codes/liggghts/batch.rs).\n\
 units           si\natom_style      granular\natom_modify     map array\nboundary        f f f\nnewton          off\n\
 communicate     single vel yes\nhard_particles  yes\n\
 region          domain block -{h} {} -{h} {h} -{h} {h} units box\ncreate_box      {wall} domain\n\
