@@ -7,9 +7,9 @@ use std::path::PathBuf;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
 
-use crate::codes::CodeName;
-use crate::output::Format;
-use crate::solve::Method;
+use millimpact::codes::CodeName;
+use millimpact::output::Format;
+use millimpact::solve::Method;
 
 /// millimpact: checks the contact law of grinding bodies against exact closed forms and
 /// against the DEM codes LIGGGHTS, YADE, LAMMPS and Kratos.
@@ -93,7 +93,7 @@ fn parse_rtol(text: &str) -> Result<f64, String> {
         .trim()
         .parse()
         .map_err(|_| format!("`{text}` is not a number"))?;
-    let min = crate::analysis::run::MIN_RTOL;
+    let min = millimpact::analysis::run::MIN_RTOL;
     if (min..1.0).contains(&rtol) {
         Ok(rtol)
     } else {
@@ -127,8 +127,8 @@ pub struct IntegrationArgs {
     pub method: Method,
     /// Fixed-step methods: steps per undamped oscillation period [default: 1000].
     #[arg(long, value_parser = clap::value_parser!(u32).range(
-        i64::from(crate::analysis::run::MIN_STEPS_PER_PERIOD)
-            ..=i64::from(crate::analysis::run::MAX_STEPS_PER_PERIOD)
+        i64::from(millimpact::analysis::run::MIN_STEPS_PER_PERIOD)
+            ..=i64::from(millimpact::analysis::run::MAX_STEPS_PER_PERIOD)
     ))]
     pub steps_per_period: Option<u32>,
     /// Fixed-step methods: the step in seconds instead (checked against the stability limit).

@@ -2,8 +2,9 @@
 //! = η × gradient of the elastic energy), against exact closed forms and the DEM codes
 //! LIGGGHTS, YADE, LAMMPS and Kratos.
 //!
-//! Layers point one way: [`model`] ← [`solve`] ← [`codes`] ← [`analysis`] ← commands;
-//! [`output`] and [`error`] know nothing of the commands, and clap lives in [`cli`] alone.
+//! Layers point one way: [`model`] ← [`mod@solve`] ← [`codes`] ← [`analysis`] ← the binary's commands;
+//! [`output`] and [`error`] know nothing of the commands; the command line (clap) belongs to the
+//! binary.
 //!
 //! # A regression test of your own
 //!
@@ -63,9 +64,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
-pub mod cli;
 pub mod codes;
-pub mod commands;
 pub mod error;
 pub mod model;
 pub mod output;

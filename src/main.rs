@@ -1,9 +1,11 @@
+mod cli;
+mod commands;
+
 use std::io::Write;
 use std::process::ExitCode;
 
 use clap::Parser;
-use millimpact::cli::Cli;
-use millimpact::commands;
+use cli::Cli;
 use millimpact::error::exit_code;
 
 /// Parse the command line; a usage error is reported on one line (exit 2), like every other
@@ -48,7 +50,7 @@ fn main() -> ExitCode {
     };
     // Ctrl-C or SIGTERM ends the DEM codes running now (their whole process groups) and removes
     // their scratch directories; a sweep installs its own handler, which keeps its finished rows.
-    if !matches!(cli.command, millimpact::cli::Command::Sweep(_)) {
+    if !matches!(cli.command, cli::Command::Sweep(_)) {
         let _ = ctrlc::set_handler(|| millimpact::codes::runner::stop_all_codes_and_exit(130));
     }
     match commands::dispatch(&cli.command) {

@@ -263,7 +263,7 @@ fn one_thread_is_set_for_the_process_and_in_the_script() {
 #[test]
 fn a_missing_install_names_the_path_and_the_install_script() {
     let empty = tempfile::tempdir().unwrap();
-    let err = python_in(empty.path()).unwrap_err();
+    let err = python_in(empty.path()).unwrap_err().to_string();
     let looked = empty.path().join(PYTHON);
     assert!(err.contains(&looked.display().to_string()), "{err}");
     assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");

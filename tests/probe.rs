@@ -21,8 +21,9 @@ fn probe(code: CodeName) -> ProbeReport {
         .locate()
         .unwrap_or_else(|e| panic!("{code}: {e} (install with scripts/install-dem-codes.sh)"));
     driver
-        .probe(&executable)
+        .prober()
         .expect("a LAMMPS build has a probe")
+        .probe(&executable)
         .unwrap_or_else(|e| panic!("{code}: {e}"))
 }
 

@@ -124,7 +124,7 @@ impl Summary for ProbeReport {
 
 /// The generated part of a CONVENTIONS.md: the markers and the probe's Markdown table between
 /// them.
-pub fn conventions_markdown(report: &ProbeReport) -> Result<String, String> {
+pub fn conventions_markdown(report: &ProbeReport) -> anyhow::Result<String> {
     let mut only_table = conventions_section(report);
     only_table.notes.clear();
     struct One(Section);
@@ -142,7 +142,7 @@ pub fn conventions_markdown(report: &ProbeReport) -> Result<String, String> {
             vec![self.0.clone()]
         }
     }
-    let table = export(&One(only_table), Format::Markdown).map_err(|e| e.to_string())?;
+    let table = export(&One(only_table), Format::Markdown)?;
     Ok(format!("{TABLE_BEGIN}\n{}\n{TABLE_END}", table.trim_end()))
 }
 

@@ -8,6 +8,50 @@ use std::time::Instant;
 use super::runner::RunOptions;
 use super::{CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun};
 use crate::model::trajectory::check_trajectory;
+use thiserror::Error;
+
+/// Why impacts cannot run together in one process of a code.
+#[derive(Debug, Error)]
+pub enum BatchError {
+    /// The code runs one impact per process.
+    #[error("the code runs one impact per process (no batch input)")]
+    OnePerProcess,
+    /// No impacts.
+    #[error("an empty batch")]
+    Empty,
+    /// More impacts than one input may hold.
+    #[error("{count} impacts: a batch holds at most {most} ({why})")]
+    TooMany {
+        /// Impacts asked for.
+        count: usize,
+        /// Most one batch holds.
+        most: usize,
+        /// What limits it.
+        why: &'static str,
+    },
+    /// An impact of a scene the code's batches do not hold.
+    #[error("{case}: {scene} impacts run alone ({holds})")]
+    Scene {
+        /// The impact's case.
+        case: String,
+        /// Its scene.
+        scene: &'static str,
+        /// What a batch of this code holds.
+        holds: &'static str,
+    },
+    /// The impacts differ where one process needs them alike.
+    #[error("the impacts differ in {what}")]
+    Differ {
+        /// What differs.
+        what: &'static str,
+    },
+    /// One impact cannot be set up in the code at all.
+    #[error(transparent)]
+    Impact(#[from] CodeError),
+    /// No steps, or no positive time step.
+    #[error("no steps or no positive time step")]
+    NoSteps,
+}
 
 /// A finished batch: one parsed run (or why not) per impact.
 #[derive(Debug)]
@@ -40,12 +84,19 @@ pub fn run_batch(
             source,
         }
     };
-    let input = driver
+    let Some(runner) = driver.batch() else {
+        return Err(CodeError::Unsupported {
+            code: code.clone(),
+            case: format!("a batch of {}", setups.len()),
+            reason: BatchError::OnePerProcess.to_string(),
+        });
+    };
+    let input = runner
         .render_batch(setups)
         .map_err(|reason| CodeError::Unsupported {
             code: code.clone(),
             case: format!("a batch of {}", setups.len()),
-            reason,
+            reason: reason.to_string(),
         })?;
     let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
         code: code.clone(),
@@ -96,7 +147,7 @@ pub fn run_batch(
             log: scratch.keep().join("log.txt"),
         });
     }
-    let runs: Vec<Result<ParsedRun, ParseError>> = driver
+    let runs: Vec<Result<ParsedRun, ParseError>> = runner
         .parse_batch(setups, &workdir, &log)
         .into_iter()
         .map(|run| {

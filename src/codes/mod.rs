@@ -21,12 +21,14 @@ use std::process::Command;
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
 use crate::model::law::DashpotLaw;
+use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
+pub use batch::BatchError;
 use lammps::conventions::Conventions;
-use lammps::probe::ProbeReport;
+use lammps::probe::{ProbeError, ProbeReport};
 pub use parse::ParseError;
-pub use runner::{CodeError, CodeRun, RunOptions, run_code};
+pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
 pub use setup::{CodeSetup, CodeSphere, prepare, prepare_with, setup_for_case};
 
 /// What a driver's parser returns.
@@ -77,19 +79,20 @@ impl Executable {
     }
 }
 
-/// One external DEM code, as one build of it (a code with two builds has two entries).
+/// One external DEM code, as one build of it (a code with two builds has two entries). It
+/// speaks only of what every code has; what a code can do beyond one run is a capability it
+/// offers ([`CodeDriver::batch`], [`CodeDriver::prober`], [`CodeDriver::card`]).
 pub trait CodeDriver: Send + Sync {
     /// Short name, as on the command line and in `reference/<name>/`.
     fn name(&self) -> &'static str;
     /// The executable's file name (looked up on PATH by the default [`CodeDriver::locate`]).
     fn binary(&self) -> &'static str;
-    /// Find the build's executable; `Err` says where it was looked for. By default the file in
-    /// `MILLIMPACT_<NAME>_BINARY` if set (a user's own build), else [`CodeDriver::binary`] on
-    /// PATH.
-    fn locate(&self) -> Result<Executable, String> {
+    /// Find the build's executable: by default the file in `MILLIMPACT_<NAME>_BINARY` if set
+    /// (a user's own build), else [`CodeDriver::binary`] on PATH.
+    fn locate(&self) -> Result<Executable, LocateError> {
         runner::locate_override_or_path(self.name(), self.binary())
     }
-    /// Render the input deck for `setup` (from the template in `scripts/`).
+    /// Render the input deck for `setup` (from the template in the code's folder).
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError>;
     /// Parse the run's files in `workdir` and its combined stdout/stderr `log`.
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError>;
@@ -105,66 +108,21 @@ pub trait CodeDriver: Send + Sync {
     fn step_scheme(&self) -> StepScheme {
         StepScheme::VelocityVerlet
     }
-    /// Render one input that runs the independent impacts of `setups` (one time step) in one
-    /// process, or say why this code cannot. By default a code runs one impact per process.
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        let _ = setups;
-        Err(format!(
-            "{} runs one impact per process (no batch input)",
-            self.name()
-        ))
-    }
-    /// Most impacts one batch input may hold (1: no batches).
-    fn max_batch(&self) -> usize {
-        1
-    }
-    /// Parse a batch's runs in `workdir`, one result per setup, in order.
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        let _ = (workdir, log);
-        setups
-            .iter()
-            .map(|_| {
-                Err(ParseError::Empty {
-                    file: "(no batch output)".into(),
-                })
-            })
-            .collect()
-    }
-    /// Whether [`CodeDriver::probe`] covers this code.
-    fn probes(&self) -> bool {
-        false
-    }
-    /// Probe the build at `executable`: what it does, measured, item by item. `None` for a
-    /// code the probe does not cover.
-    fn probe(&self, executable: &Executable) -> Option<Result<ProbeReport, String>> {
-        let _ = executable;
+    /// Many independent impacts in one process, where the code can.
+    fn batch(&self) -> Option<&dyn BatchRunner> {
         None
     }
-    /// The conventions `setup` is planned with in this build (its own, else the build's
-    /// fallback); `None` for a code without probed conventions.
-    fn planned_conventions(&self, setup: &CodeSetup) -> Option<Conventions> {
-        let _ = setup;
+    /// The build's conventions measured by a probe, where they vary between builds.
+    fn prober(&self) -> Option<&dyn Prober> {
         None
     }
-    /// The conventions a live run of this build is set up with: its located executable's probe
-    /// (once per process). `Ok(None)` for a code with no probe, when the executable is not
-    /// found, or when it fails the probe's basic deck: no run of it can succeed then, and the
-    /// run reports why with its own log (the driver's fallback conventions describe its law
-    /// meanwhile). `Err` when the build runs but its probe is inconclusive.
-    fn measured_conventions(&self) -> Result<Option<Conventions>, String> {
-        let Ok(executable) = self.locate() else {
-            return Ok(None);
-        };
-        match self.probe(&executable) {
-            None | Some(Err(_)) => Ok(None),
-            Some(Ok(report)) if !report.ran() => Ok(None),
-            Some(Ok(report)) => report.conventions().map(Some),
-        }
+    /// What a user who sets the code up by hand types, and the traps to avoid.
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        None
+    }
+    /// The code whose contact law this one integrates too (drawn as one in the figures).
+    fn shares_law_with(&self) -> Option<CodeName> {
+        None
     }
     /// The COR the code realises when it cannot realise the target exactly (a clamp, a
     /// missing factor); `None` when it realises the target. By default: the COR of the
@@ -178,6 +136,71 @@ pub trait CodeDriver: Send + Sync {
         accurate_metrics(&law, setup.impact_velocity, 1e-12)
             .ok()
             .map(|m| m.cor)
+    }
+    /// The conventions a live run of this build is set up with: its located executable's
+    /// probe (once per process). `Ok(None)` for a code with no probe, when the executable is
+    /// not found, or when it fails the probe's basic deck: no run of it can succeed then, and
+    /// the run reports why with its own log. `Err` when the build runs but its probe is
+    /// inconclusive.
+    fn measured_conventions(&self) -> Result<Option<Conventions>, ProbeError> {
+        let Some(prober) = self.prober() else {
+            return Ok(None);
+        };
+        let Ok(executable) = self.locate() else {
+            return Ok(None);
+        };
+        match prober.probe(&executable) {
+            Err(_) => Ok(None),
+            Ok(report) if !report.ran() => Ok(None),
+            Ok(report) => report.conventions().map(Some),
+        }
+    }
+}
+
+/// A code's capability to run many independent impacts in one process (start-up paid once).
+pub trait BatchRunner: Send + Sync {
+    /// Most impacts one batch input may hold.
+    fn max_batch(&self) -> usize;
+    /// Render one input that runs the independent impacts of `setups` (one time step), or
+    /// say why they cannot run together.
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError>;
+    /// Parse a batch's runs in `workdir`, one result per setup, in order.
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>>;
+}
+
+/// A code's capability to measure, by short runs, the conventions its build follows.
+pub trait Prober: Send + Sync {
+    /// Probe the build at `executable`: what it does, measured, item by item.
+    fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError>;
+    /// The conventions `setup` is planned with in this build (its own, else the build's
+    /// fallback).
+    fn planned_conventions(&self, setup: &CodeSetup) -> Conventions;
+}
+
+/// A code's calibration card: the lines of its rendered input a user types by hand, and the
+/// traps those lines avoid.
+pub trait CalibrationCard: Send + Sync {
+    /// Markers of the lines of a rendered input that set the contact law and the bodies'
+    /// materials for `scene`.
+    fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str];
+    /// The traps a card for `setup` avoids (`reference/<code>/CONVENTIONS.md`).
+    fn traps(&self, setup: &CodeSetup) -> Vec<String>;
+    /// The law a user gets who takes the code's COR setting at its word (gives e itself
+    /// where the code wants another number), with its label; `None` where e is what the
+    /// code takes.
+    fn law_at_its_word(&self, setup: &CodeSetup) -> Option<(&'static str, DashpotLaw)> {
+        let _ = setup;
+        None
+    }
+    /// The input setting that clamps the attractive tail, where the code has one (off by
+    /// default).
+    fn clamp_setting(&self) -> Option<&'static str> {
+        None
     }
 }
 

@@ -12,6 +12,35 @@ use super::setup::CodeSetup;
 use super::{CodeDriver, Executable};
 use crate::model::trajectory::{CodeTrajectory, check_trajectory};
 
+/// Why a build's executable was not found: each variant names where it was looked for.
+#[derive(Clone, Debug, Error, PartialEq, Eq)]
+pub enum LocateError {
+    /// The override variable names something that is not a file.
+    #[error("{variable}={} is not a file", path.display())]
+    OverrideNotAFile {
+        /// The variable, `MILLIMPACT_<CODE>_BINARY`.
+        variable: String,
+        /// What it names.
+        path: PathBuf,
+    },
+    /// No such executable on PATH.
+    #[error("binary `{binary}` not found on PATH")]
+    NotOnPath {
+        /// The executable's file name.
+        binary: String,
+    },
+    /// The code's own installation under the codes' folder is missing.
+    #[error("no {} (bash scripts/install-dem-codes.sh installs it there; MILLIMPACT_CODES_DIR moves the codes' folder, {variable} names another build)", folder.join(expected).display())]
+    NotInstalled {
+        /// What was looked for, relative to `folder`.
+        expected: &'static str,
+        /// Where.
+        folder: PathBuf,
+        /// The override variable that names another build.
+        variable: String,
+    },
+}
+
 /// A fault of an external code. Each variant names the code and, where there is one, where
 /// its log was kept.
 #[derive(Debug, Error)]
@@ -22,7 +51,7 @@ pub enum CodeError {
         /// Code name.
         code: String,
         /// Where it was looked for, and what was found there.
-        looked: String,
+        looked: LocateError,
     },
     /// The code exited with a failure status.
     #[error("{code}: exited with {status}; log kept in {}", log.display())]
@@ -132,19 +161,21 @@ pub fn binary_override_variable(code: &str) -> String {
 
 /// The executable a build runs: the file named by its [`binary_override_variable`] if that is
 /// set, else `binary` on PATH; `Err` says where it was looked for.
-pub fn locate_override_or_path(code: &str, binary: &str) -> Result<Executable, String> {
+pub fn locate_override_or_path(code: &str, binary: &str) -> Result<Executable, LocateError> {
     let variable = binary_override_variable(code);
     if let Some(path) = std::env::var_os(&variable) {
         let path = PathBuf::from(path);
         return if path.is_file() {
             Ok(Executable::plain(path))
         } else {
-            Err(format!("{variable}={} is not a file", path.display()))
+            Err(LocateError::OverrideNotAFile { variable, path })
         };
     }
     find_on_path(binary)
         .map(Executable::plain)
-        .ok_or_else(|| format!("binary `{binary}` not found on PATH"))
+        .ok_or_else(|| LocateError::NotOnPath {
+            binary: binary.to_string(),
+        })
 }
 
 /// Whether `binary` is an executable on PATH.
@@ -166,15 +197,19 @@ pub fn check_conventions(
 ) -> Result<(), CodeError> {
     let planned: Vec<_> = setups
         .iter()
-        .filter_map(|s| driver.planned_conventions(s).map(|c| (s, c)))
+        .filter_map(|s| {
+            driver
+                .prober()
+                .map(|prober| (s, prober.planned_conventions(s)))
+        })
         .collect();
-    if planned.is_empty() {
+    let Some(prober) = driver.prober().filter(|_| !planned.is_empty()) else {
         return Ok(());
-    }
+    };
     // A build that cannot start or fails the probe's basic deck fails the run the same way,
     // which then says why with its log: only a build that runs is held to its conventions.
-    let report = match driver.probe(executable) {
-        Some(Ok(report)) if report.ran() => report,
+    let report = match prober.probe(executable) {
+        Ok(report) if report.ran() => report,
         _ => return Ok(()),
     };
     let measured = report
@@ -185,7 +220,7 @@ pub fn check_conventions(
                 .first()
                 .map(|s| s.case_name.clone())
                 .unwrap_or_default(),
-            reason,
+            reason: reason.to_string(),
         })?;
     match planned.into_iter().find(|(_, c)| *c != measured) {
         None => Ok(()),

@@ -4,6 +4,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::CodeDriver;
+use anyhow::Context;
+
 use super::lammps::conventions::Conventions;
 use crate::model::case::Case;
 use crate::model::count::ceil_count;
@@ -205,7 +207,7 @@ pub fn prepare(
 ) -> anyhow::Result<CodeSetup> {
     let conventions = driver
         .measured_conventions()
-        .map_err(|reason| anyhow::anyhow!("{}: {reason}", driver.name()))?;
+        .with_context(|| driver.name())?;
     Ok(prepare_with(
         driver,
         case,

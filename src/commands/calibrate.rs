@@ -5,10 +5,10 @@ use std::path::PathBuf;
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::calibrate::{CalibrateOptions, calibrate as calibrate_case};
 use crate::cli::CalibrateArgs;
-use crate::model::case::Case;
-use crate::output::export;
+use millimpact::analysis::calibrate::{CalibrateOptions, calibrate as calibrate_case};
+use millimpact::model::case::Case;
+use millimpact::output::export;
 
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<CommandOutput> {
     let path = args

@@ -6,11 +6,11 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::compare::{CompareOptions, compare as compare_cases};
 use crate::cli::CompareArgs;
-use crate::error::CheckFailed;
-use crate::model::case::Case;
-use crate::output::export;
+use millimpact::analysis::compare::{CompareOptions, compare as compare_cases};
+use millimpact::error::CheckFailed;
+use millimpact::model::case::Case;
+use millimpact::output::export;
 
 /// The canonical cases compared by default.
 pub const CANONICAL_CASES: [&str; 3] = [

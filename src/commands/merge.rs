@@ -3,8 +3,8 @@
 use anyhow::Result;
 
 use super::{CommandOutput, write_output};
-use crate::analysis::sweep::rows::merge as merge_rows;
 use crate::cli::MergeArgs;
+use millimpact::analysis::sweep::rows::merge as merge_rows;
 
 pub(super) fn merge(args: &MergeArgs) -> Result<CommandOutput> {
     let shards: Vec<&std::path::Path> = args.shards.iter().map(|p| p.as_path()).collect();

@@ -18,8 +18,8 @@ use std::path::Path;
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
-use crate::error::CheckFailed;
-use crate::output::files::write_atomic;
+use millimpact::error::CheckFailed;
+use millimpact::output::files::write_atomic;
 
 /// What a command hands back to `main`: the text for standard output, and whether a check it
 /// ran disagreed (the text is printed either way).
@@ -64,8 +64,9 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
 /// of the command's inputs (exit 2).
 fn check_output(option: &'static str, path: Option<&Path>, inputs: &[&Path]) -> Result<()> {
     let Some(path) = path else { return Ok(()) };
-    crate::output::files::check_output_path(option, path, inputs)
-        .map_err(|e| crate::error::UserError::argument(option, path.display(), e.reason).into())
+    millimpact::output::files::check_output_path(option, path, inputs).map_err(|e| {
+        millimpact::error::UserError::argument(option, path.display(), e.reason).into()
+    })
 }
 
 /// Write a file a command was asked for (`what` names it in the error).

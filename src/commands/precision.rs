@@ -3,13 +3,13 @@
 use anyhow::Result;
 
 use super::{CommandOutput, check_output, write_output};
-use crate::analysis::precision::{code_steps_sweep, precision_report};
 use crate::cli::PrecisionArgs;
-use crate::error::UserError;
-use crate::model::case::Case;
-use crate::output::export;
-use crate::output::work_precision_plot::work_precision_svg;
-use crate::solve::Method;
+use millimpact::analysis::precision::{code_steps_sweep, precision_report};
+use millimpact::error::UserError;
+use millimpact::model::case::Case;
+use millimpact::output::export;
+use millimpact::output::work_precision_plot::work_precision_svg;
+use millimpact::solve::Method;
 
 pub(super) fn precision(args: &PrecisionArgs) -> Result<CommandOutput> {
     let case = Case::load(&args.case)?;

@@ -1,19 +1,19 @@
 //! `millimpact probe`.
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 
 use super::CommandOutput;
 use crate::cli::ProbeArgs;
-use crate::codes::{CodeName, Executable};
-use crate::error::{CheckFailed, UserError};
-use crate::output::{Format, export};
+use millimpact::codes::{CodeName, Executable};
+use millimpact::error::{CheckFailed, UserError};
+use millimpact::output::{Format, export};
 
 pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
     let driver = args.code.driver();
-    if !driver.probes() {
+    let Some(prober) = driver.prober() else {
         let covered: Vec<&str> = CodeName::ALL
             .iter()
-            .filter(|c| c.driver().probes())
+            .filter(|c| c.driver().prober().is_some())
             .map(|c| c.name())
             .collect();
         return Err(UserError::argument(
@@ -22,7 +22,7 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
             format!("has no probe; the probe covers {}", covered.join(", ")),
         )
         .into());
-    }
+    };
     let executable = match &args.binary {
         Some(path) if !path.is_file() => {
             return Err(UserError::argument("--binary", path.display(), "is not a file").into());
@@ -39,12 +39,9 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
             .locate()
             .map_err(|looked| anyhow::anyhow!("{}: {looked}", driver.name()))?,
     };
-    let report = driver
-        .probe(&executable)
-        .unwrap_or_else(|| Err("no probe".into()))
-        .map_err(|reason| anyhow::anyhow!("{}: {reason}", driver.name()))?;
+    let report = prober.probe(&executable).with_context(|| driver.name())?;
     let text = if args.format == Format::Markdown {
-        crate::analysis::probe::conventions_markdown(&report).map_err(anyhow::Error::msg)? + "\n"
+        millimpact::analysis::probe::conventions_markdown(&report)? + "\n"
     } else {
         export(&report, args.format)?
     };
@@ -52,7 +49,10 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
     // will not plan for, which is a failed check (exit 1), not bad input.
     Ok(CommandOutput {
         text,
-        failure: report.conventions().err().map(CheckFailed),
+        failure: report
+            .conventions()
+            .err()
+            .map(|e| CheckFailed(e.to_string())),
         warnings: Vec::new(),
     })
 }

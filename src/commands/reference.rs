@@ -5,11 +5,11 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::store::{ReferenceOptions, run_reference, save};
 use crate::cli::ReferenceArgs;
-use crate::error::UserError;
-use crate::model::case::Case;
-use crate::output::{Format, export};
+use millimpact::analysis::store::{ReferenceOptions, run_reference, save};
+use millimpact::error::UserError;
+use millimpact::model::case::Case;
+use millimpact::output::{Format, export};
 
 pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     let mut case = Case::load(&args.case)?;

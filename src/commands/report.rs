@@ -9,12 +9,12 @@ use anyhow::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CommandOutput, write_output};
-use crate::analysis::compare::CANONICAL_CASES;
-use crate::analysis::report::{ReportOptions, ReportTable, build_report};
 use crate::cli::ReportArgs;
-use crate::error::CheckFailed;
-use crate::model::case::Case;
-use crate::output::report_page::render_pages;
+use millimpact::analysis::compare::CANONICAL_CASES;
+use millimpact::analysis::report::{ReportOptions, ReportTable, build_report};
+use millimpact::error::CheckFailed;
+use millimpact::model::case::Case;
+use millimpact::output::report_page::render_pages;
 
 fn table_csv(t: &ReportTable) -> Result<String> {
     let mut w = csv::Writer::from_writer(Vec::new());

@@ -4,13 +4,13 @@ use anyhow::Result;
 use serde::Serialize;
 
 use super::{CommandOutput, check_output, write_output};
-use crate::analysis::run::{
+use crate::cli::{IntegrationArgs, RunArgs};
+use millimpact::analysis::run::{
     IntegrationOptions, RunReport, SweepRow, reproduce_arguments, run_case, trajectory_rows,
 };
-use crate::cli::{IntegrationArgs, RunArgs};
-use crate::error::UserError;
-use crate::model::case::Case;
-use crate::output::{Section, Summary, csv_string, export};
+use millimpact::error::UserError;
+use millimpact::model::case::Case;
+use millimpact::output::{Section, Summary, csv_string, export};
 
 /// The integration options the arguments name.
 pub(super) fn integration_options(args: &IntegrationArgs) -> IntegrationOptions {

@@ -3,10 +3,10 @@
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::stability::stability_report;
 use crate::cli::StabilityArgs;
-use crate::error::CheckFailed;
-use crate::output::export;
+use millimpact::analysis::stability::stability_report;
+use millimpact::error::CheckFailed;
+use millimpact::output::export;
 
 pub(super) fn stability(args: &StabilityArgs) -> Result<CommandOutput> {
     let report = stability_report();

@@ -11,19 +11,21 @@ use anyhow::{Context, Result};
 
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
-use crate::analysis::source::Source;
-use crate::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
-use crate::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
-use crate::analysis::sweep::point::GridOptions;
-use crate::analysis::sweep::row::SweepRow;
-use crate::analysis::sweep::rows::{RowFormat, RowWriter, complete_lines, keys_of, parse_rows};
-use crate::analysis::sweep::run_grid;
 use crate::cli::SweepArgs;
-use crate::error::{CheckFailed, UserError};
-use crate::model::case::Case;
-use crate::model::exact;
-use crate::output::restitution_plot::restitution_svg;
-use crate::output::{Format, export};
+use millimpact::analysis::source::Source;
+use millimpact::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
+use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
+use millimpact::analysis::sweep::point::GridOptions;
+use millimpact::analysis::sweep::row::SweepRow;
+use millimpact::analysis::sweep::rows::{
+    RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
+};
+use millimpact::analysis::sweep::run_grid;
+use millimpact::error::{CheckFailed, UserError};
+use millimpact::model::case::Case;
+use millimpact::model::exact;
+use millimpact::output::restitution_plot::restitution_svg;
+use millimpact::output::{Format, export};
 
 /// Raised by Ctrl-C: no new point starts, finished rows are kept.
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -115,7 +117,7 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
     if let Some(v) = i.rtol {
         return Err(refuse("--rtol", v.to_string()));
     }
-    if i.method != crate::solve::Method::Rk4Event {
+    if i.method != millimpact::solve::Method::Rk4Event {
         return Err(refuse("--method", i.method.to_string()));
     }
     Ok(())
@@ -195,9 +197,9 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         // The codes running now end at once; the rows already finished are kept.
         if STOP.swap(true, Ordering::SeqCst) {
             // A second Ctrl-C: leave now.
-            crate::codes::runner::stop_all_codes_and_exit(130);
+            millimpact::codes::runner::stop_all_codes_and_exit(130);
         }
-        crate::codes::runner::stop_all_codes();
+        millimpact::codes::runner::stop_all_codes();
     });
     let state = Mutex::new((writer, None::<std::io::Error>));
     let sink = |row: SweepRow| {

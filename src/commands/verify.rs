@@ -3,10 +3,10 @@
 use anyhow::Result;
 
 use super::CommandOutput;
-use crate::analysis::store::verify::verify as verify_all;
 use crate::cli::VerifyArgs;
-use crate::error::CheckFailed;
-use crate::output::export;
+use millimpact::analysis::store::verify::verify as verify_all;
+use millimpact::error::CheckFailed;
+use millimpact::output::export;
 
 pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
     let report = verify_all(&args.cases, &args.reference)?;

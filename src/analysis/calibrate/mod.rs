@@ -7,12 +7,10 @@ use anyhow::{Context, Result};
 use serde::Serialize;
 
 use super::compare::phase::Range;
-use crate::codes::lammps::conventions::{Conventions, TsujiFit, WallModulus};
 use crate::codes::{self, CodeName, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::law::DashpotLaw;
-use crate::model::scene::SceneKind;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::{Section, Summary, sci, signed};
 use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
@@ -92,136 +90,6 @@ pub struct Calibration {
     pub targets: Vec<Target>,
 }
 
-/// The lines of a rendered input that set the contact law and the bodies' materials, by
-/// code: what a user who sets the code up by hand must type.
-fn setting_keys(code: CodeName, scene: SceneKind) -> &'static [&'static str] {
-    match (code.name(), scene) {
-        ("yade", SceneKind::RodEnd) => &["KN =", "CN =", "damping=", "ViscElMat("],
-        ("liggghts", _) => &[
-            "hard_particles",
-            "pair_style",
-            "wall/gran",
-            "youngsModulus",
-            "poissonsRatio",
-            "coefficientRestitution",
-            "property/global kn ",
-            "gamman_abs",
-        ],
-        ("yade", _) => &[
-            "EN =",
-            "WALL_E =",
-            "WALL_NU =",
-            "damping=",
-            "hertzian",
-            "MindlinPhys(",
-        ],
-        ("lammps" | "lammps-2025", _) => &["pair_style", "pair_coeff", "wall/gran"],
-        ("kratos", SceneKind::RodEnd) => &[
-            "KN =",
-            "GAMMA =",
-            "SCHEME = \"",
-            "\"NeighbourSearchFrequency\"",
-            "= \"DEM_D_Linear_Custom_Constants\"",
-            "K_NORMAL] =",
-        ],
-        ("kratos", _) => &[
-            "EN =",
-            "WALL_E =",
-            "WALL_NU =",
-            "SCHEME = \"",
-            "\"NeighbourSearchFrequency\"",
-            "= \"DEM_D_Hertz_viscous_Coulomb\"",
-        ],
-        _ => &[],
-    }
-}
-
-/// The traps a card avoids, by code and scene (reference/<code>/CONVENTIONS.md).
-fn traps(code: CodeName, setup: &codes::CodeSetup) -> Vec<String> {
-    let scene = setup.scene;
-    let mut t = Vec::new();
-    let wall = scene == SceneKind::BallPlate;
-    match code {
-        CodeName::Liggghts => {
-            if wall {
-                t.push("wall modulus: the wall's atom type's E and ν are mixed into E*: give the plate's own (a rigid plate: E = 1e30), and hard_particles yes for any E above 1e9 Pa".into());
-            }
-            t.push("limitForce off (the default): on cuts the attractive tail and raises the COR above the target (0.7128 for 0.6939)".into());
-            if scene == SceneKind::RodEnd {
-                t.push("rod: hooke/stiffness with absolute_damping on and gamman_abs from the linear dashpot's ζ(e); gamman is per mass".into());
-            }
-            t.push("touching counts as contact: start with a gap, or a linear dashpot pushes before the first step".into());
-        }
-        CodeName::Yade => {
-            t.push("numerical damping: NewtonIntegrator(damping=0.2) is the default; set damping=0 (else an elastic impact rebounds at 0.8165)".into());
-            if scene != SceneKind::RodEnd {
-                t.push("en is not the COR: Thornton's fit with the clamped law realises another e; give the inverted en (EN above), not e".into());
-                t.push("fit error: en cannot realise e between about 0.979 and 1".into());
-            }
-            if wall {
-                t.push("wall radius: Ig2_Wall_Sphere_ScGeom gives the wall the sphere's radius (R* = R/2) unless hertzian=True".into());
-                t.push("wall modulus: the wall's material is mixed into E*: give the plate's own (a rigid plate: E = 1e30)".into());
-            }
-            t.push(
-                "clamp: YADE's laws never attract; the damping is chosen for the clamped law"
-                    .into(),
-            );
-        }
-        CodeName::Lammps | CodeName::Lammps2025 => {
-            // The traps of the build as its probe found it (the setup's conventions), else as
-            // its build was measured.
-            let c = setup.conventions.unwrap_or(if code == CodeName::Lammps {
-                Conventions::DEBIAN_2021
-            } else {
-                Conventions::JUL_2025
-            });
-            if scene.spring() == crate::model::scene::SpringModel::Hertz {
-                if c.coeff_restitution {
-                    t.push("damping coeff_restitution takes e itself, but runs e = 0 (NaN) and e > 1 (energy gain) without a word".into());
-                }
-                t.push(match c.tsuji_fit {
-                    TsujiFit::Polynomial => "damping tsuji takes e_in, not e: its fit is √2 short in this build, so e_in = e realises a higher COR (0.7734 for 0.6944)".into(),
-                    TsujiFit::Sqrt2Polynomial => "damping tsuji carries the √2 in this build: an e_in compensated for builds without it realises a lower COR (about 0.594 for 0.694)".into(),
-                });
-            }
-            if wall {
-                t.push(match c.wall_modulus {
-                    WallModulus::HalfOverOneMinusNu => "wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν)) in this build, not the plate's mix; give ν = 0 and E = 2E* of the pair".into(),
-                    WallModulus::HalfOverOneMinusNuSquared => "wall modulus: fix wall/gran hertz/material reads E* = E/(2(1−ν²)) (the particle's material on both sides), not the plate's mix; give ν = 0 and E = 2E* of the pair".into(),
-                });
-            }
-            t.push(
-                "limit_damping off (the default): on cuts the attractive tail and raises the COR"
-                    .into(),
-            );
-            if c.touching_is_contact {
-                t.push("touching counts as contact: start a hair away".into());
-            }
-        }
-        CodeName::Kratos => {
-            t.push("scheme: set the translational integration scheme (and the properties proxies) in the particles' properties before creating any particle, else CreateSphericParticle segfaults (exit 139, no message)".into());
-            t.push("Symplectic_Euler, not Forward_Euler: Forward_Euler gains energy (an elastic impact rebounds at 1.0056)".into());
-            t.push("NeighbourSearchFrequency 1: the default 50 finds the wall contact only at step 48 (COR 0.711 for 0.694)".into());
-            t.push(
-                "OMP_NUM_THREADS=1: the default two threads make a one-sphere loop 5–10× slower"
-                    .into(),
-            );
-            if scene != SceneKind::RodEnd {
-                t.push("COEFFICIENT_OF_RESTITUTION is not the COR: Thornton's fit with the clamped law realises another e; give the inverted en (EN above), as for YADE".into());
-            } else {
-                t.push("rod: DEM_D_Linear_Custom_Constants with K_NORMAL in the contact's sub-properties and DAMPING_GAMMA set to the clamped linear dashpot's ζ(e) after initialisation".into());
-            }
-            t.push(
-                "clamp: the laws never attract; the damping is chosen for the clamped law".into(),
-            );
-        }
-        // A code added to the registry has no measured traps to list yet.
-        #[allow(unreachable_patterns)]
-        _ => {}
-    }
-    t
-}
-
 fn stepped_cor(
     law: &DashpotLaw,
     v0: f64,
@@ -262,7 +130,9 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
     let scheme = driver.step_scheme();
     let (settings, unsupported) = match driver.render(&setup) {
         Ok(input) => {
-            let keys = setting_keys(code, case.scene.kind());
+            let keys = driver
+                .card()
+                .map_or(&[][..], |card| card.setting_keys(case.scene.kind()));
             let lines = input
                 .text
                 .lines()
@@ -311,7 +181,10 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
         realised_band,
         timestep_for_tolerance: found.map(|f| f.0),
         steps_per_contact: found.map(|f| f.1),
-        traps: traps(code, &setup),
+        traps: driver
+            .card()
+            .map(|card| card.traps(&setup))
+            .unwrap_or_default(),
     })
 }
 

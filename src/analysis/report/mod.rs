@@ -12,7 +12,7 @@ use super::compare::{CompareOptions, compare};
 use super::precision::method_sweep;
 use super::stability::{METHODS, stability_report};
 use super::store;
-use crate::codes::{self, CodeName, lammps::tsuji_alpha, yade::thornton_damping_ratio};
+use crate::codes::{self, CodeName};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact;
 use crate::model::law::DashpotLaw;
@@ -341,7 +341,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
             (0..end)
                 .map(|i| (t.overlap[i] * um, t.normal_force[i] * kn))
                 .collect(),
-            if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
+            if code.driver().shares_law_with().is_some() {
                 Style::Thin
             } else {
                 Style::Line
@@ -352,7 +352,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
             (0..end)
                 .map(|i| (t.time[i] * us, t.normal_force[i] * kn))
                 .collect(),
-            if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
+            if code.driver().shares_law_with().is_some() {
                 Style::Thin
             } else {
                 Style::Line
@@ -418,7 +418,7 @@ fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure>
             series.push(Series::new(
                 format!("{code}: {what}"),
                 pts.iter().map(|p| (p.restitution, 100.0 * f(p))).collect(),
-                if matches!(code, CodeName::Lammps | CodeName::Lammps2025) {
+                if code.driver().shares_law_with().is_some() {
                     Style::Dots
                 } else {
                     Style::Line
@@ -468,27 +468,48 @@ fn realised_vs_requested(root: &Path) -> Result<(ReportFigure, ReportTable)> {
             },
         )?;
     }
-    add("lammps, tsuji with e_in = e", Style::Line, &|at| {
-        let setup = codes::setup_for_case(at, 1.0);
-        let mut law = CodeName::Lammps.driver().law(&setup);
-        law.damping = tsuji_alpha(at.restitution()) * (law.mass * law.stiffness).sqrt();
-        cor_of(&law, at.impact_velocity)
-    })?;
-    add("yade, en = e", Style::Line, &|at| {
-        let setup = codes::setup_for_case(at, 1.0);
-        let mut law = CodeName::Yade.driver().law(&setup);
-        law.damping = 2.0
-            * thornton_damping_ratio(at.restitution())
-            * (1.5 * law.mass * law.stiffness).sqrt();
-        cor_of(&law, at.impact_velocity)
-    })?;
-    add("clamp on (limitForce, limit_damping)", Style::Line, &|at| {
-        let setup = codes::setup_for_case(at, 1.0);
-        cor_of(
-            &CodeName::Liggghts.driver().law(&setup).clamped(),
-            at.impact_velocity,
-        )
-    })?;
+    // A user who takes each code's COR setting at its word, once per distinct setting.
+    let mut labels = Vec::new();
+    for &code in CodeName::ALL {
+        let Some(card) = code.driver().card() else {
+            continue;
+        };
+        let probe_setup = codes::setup_for_case(&case, 1.0);
+        let Some((label, _)) = card.law_at_its_word(&probe_setup) else {
+            continue;
+        };
+        if labels.contains(&label) {
+            continue;
+        }
+        labels.push(label);
+        add(&format!("{code}, {label}"), Style::Line, &|at| {
+            let setup = codes::setup_for_case(at, 1.0);
+            let (_, law) = card
+                .law_at_its_word(&setup)
+                .ok_or_else(|| anyhow::anyhow!("{code}: no setting to take at its word"))?;
+            cor_of(&law, at.impact_velocity)
+        })?;
+    }
+    let mut clamps: Vec<&str> = Vec::new();
+    let mut clamped_code = None;
+    for &code in CodeName::ALL {
+        if let Some(setting) = code.driver().card().and_then(|c| c.clamp_setting()) {
+            clamped_code.get_or_insert(code);
+            if !clamps.contains(&setting) {
+                clamps.push(setting);
+            }
+        }
+    }
+    if let Some(code) = clamped_code {
+        add(
+            &format!("clamp on ({})", clamps.join(", ")),
+            Style::Line,
+            &|at| {
+                let setup = codes::setup_for_case(at, 1.0);
+                cor_of(&code.driver().law(&setup).clamped(), at.impact_velocity)
+            },
+        )?;
+    }
     let command =
         "millimpact report (figure realised-vs-requested; from the codes' laws, no code run)";
     let mut headers = vec!["requested e".to_string()];

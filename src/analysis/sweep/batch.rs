@@ -58,13 +58,14 @@ pub fn plan<'a>(
         };
         let steps_per_contact = Resolution::steps_per_contact(p.source.resolution);
         let driver = code.driver();
-        if options.batch <= 1 || driver.max_batch() <= 1 {
+        let runner = driver.batch()?;
+        if options.batch <= 1 || runner.max_batch() <= 1 {
             return None;
         }
         let case = sweep.case(p).ok()?;
         let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
         // A point the code cannot run alone runs alone, where its error is reported.
-        driver
+        runner
             .render_batch(std::slice::from_ref(&setup))
             .ok()
             .map(|_| (code, case, setup))
@@ -99,7 +100,7 @@ pub fn plan<'a>(
         let cap = options
             .batch
             .min(by_bytes)
-            .min(code.driver().max_batch())
+            .min(code.driver().batch().map_or(1, |b| b.max_batch()))
             .max(1);
         let jobs = options.jobs.max(1);
         let size = items.len().div_ceil(jobs).clamp(1, cap);

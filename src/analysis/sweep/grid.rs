@@ -261,8 +261,7 @@ impl SweepFile {
         let mut tolerances: Vec<Option<f64>> = vec![None];
         for (key, value) in &axes_table {
             let full = format!("axes.{key}");
-            let values =
-                axis_values(value).map_err(|allowed| fail(&full, &value.to_string(), &allowed))?;
+            let values = axis_values(value, |allowed| fail(&full, &value.to_string(), allowed))?;
             if values.is_empty() {
                 return Err(fail(
                     &full,
@@ -575,16 +574,16 @@ impl SweepFile {
 
 /// The values of one axis: a list, or `{ start, stop, step }` (stop included) or
 /// `{ start, stop, count }` (evenly spaced, both ends included).
-fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
+fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<Value>, CaseError> {
     let allowed =
         "a list of values, or { start, stop, step } or { start, stop, count } with start <= stop";
     match value {
         Value::Array(items) => {
             for item in items {
                 if matches!(item, Value::Array(_) | Value::Table(_) | Value::Datetime(_)) {
-                    return Err(format!(
+                    return Err(refuse(&format!(
                         "{allowed}; values must be numbers, strings or booleans"
-                    ));
+                    )));
                 }
             }
             Ok(items.clone())
@@ -592,7 +591,7 @@ fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
         Value::Table(t) => {
             for key in t.keys() {
                 if !["start", "stop", "step", "count"].contains(&key.as_str()) {
-                    return Err(allowed.into());
+                    return Err(refuse(allowed));
                 }
             }
             let num = |k: &str| {
@@ -600,23 +599,23 @@ fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
                     .and_then(|v| v.as_float().or(v.as_integer().map(|i| i as f64)))
             };
             let (Some(start), Some(stop)) = (num("start"), num("stop")) else {
-                return Err(allowed.into());
+                return Err(refuse(allowed));
             };
             if !(start.is_finite() && stop.is_finite() && start <= stop) {
-                return Err(allowed.into());
+                return Err(refuse(allowed));
             }
             let values: Vec<f64> = match (num("step"), t.get("count").and_then(Value::as_integer)) {
                 (Some(step), None) => {
                     if !(step.is_finite() && step > 0.0) {
-                        return Err(allowed.into());
+                        return Err(refuse(allowed));
                     }
                     let count = ((stop - start) / step + 1e-9).floor() + 1.0;
                     if count.is_nan() || count > MAX_POINTS as f64 {
-                        return Err(format!("at most {MAX_POINTS} values"));
+                        return Err(refuse(&format!("at most {MAX_POINTS} values")));
                     }
                     let count = crate::model::count::ceil_count(count)
                         .and_then(|n| usize::try_from(n).ok())
-                        .ok_or_else(|| format!("at most {MAX_POINTS} values"))?;
+                        .ok_or_else(|| refuse(&format!("at most {MAX_POINTS} values")))?;
                     (0..count).map(|i| start + i as f64 * step).collect()
                 }
                 (None, Some(count)) => {
@@ -624,9 +623,9 @@ fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
                     let single_apart = count == 1 && start != stop;
                     let most = i64::try_from(MAX_POINTS).unwrap_or(i64::MAX);
                     if !(1..=most).contains(&count) || single_apart {
-                        return Err(format!(
+                        return Err(refuse(&format!(
                             "count in [1, {MAX_POINTS}] (1 only when start = stop)"
-                        ));
+                        )));
                     }
                     if count == 1 {
                         vec![start]
@@ -643,10 +642,10 @@ fn axis_values(value: &Value) -> Result<Vec<Value>, String> {
                             .collect()
                     }
                 }
-                _ => return Err(format!("{allowed}: exactly one of step and count")),
+                _ => return Err(refuse(&format!("{allowed}: exactly one of step and count"))),
             };
             Ok(values.into_iter().map(Value::Float).collect())
         }
-        _ => Err(allowed.into()),
+        _ => Err(refuse(allowed)),
     }
 }

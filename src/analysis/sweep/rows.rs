@@ -236,7 +236,7 @@ pub fn keys_of(
 
 /// Where rows go, in their format.
 enum RowSink<W: Write> {
-    Csv(csv::Writer<W>),
+    Csv(Box<csv::Writer<W>>),
     Jsonl(W),
 }
 
@@ -270,7 +270,7 @@ impl<W: Write> RowWriter<W> {
                     writer.write_record(columns)?;
                     writer.flush()?;
                 }
-                RowSink::Csv(writer)
+                RowSink::Csv(Box::new(writer))
             }
             RowFormat::Jsonl => {
                 out.flush()?;

@@ -31,6 +31,8 @@
 
 
 
+pub mod card;
+
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
@@ -41,7 +43,10 @@ use super::parse::ParseError;
 use super::runner::{self, codes_dir};
 use super::template::{exact_number, fill_template};
 use crate::codes::yade::{log_value, parse_trajectory};
-use super::{CodeDriver, CodeError, CodeSetup, Executable, ParsedRun, RenderedInput};
+use super::{
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
+    RenderedInput,
+};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
@@ -97,17 +102,16 @@ pub fn hertz_damping_gamma(restitution: f64) -> f64 {
 
 /// The Kratos python in the codes' folder `dir`, or why there is none: the path looked at, how
 /// to install it there, and how to point at another.
-pub fn python_in(dir: &Path) -> Result<PathBuf, String> {
+pub fn python_in(dir: &Path) -> Result<PathBuf, LocateError> {
     let path = dir.join(PYTHON);
     if path.is_file() {
         Ok(path)
     } else {
-        Err(format!(
-            "no Kratos python at {} (bash scripts/install-dem-codes.sh installs Kratos 10.4.4 \
-             there; MILLIMPACT_CODES_DIR moves the codes' folder, MILLIMPACT_KRATOS_BINARY \
-             names another python with KratosMultiphysics and KratosDEMApplication)",
-            path.display()
-        ))
+        Err(LocateError::NotInstalled {
+            expected: PYTHON,
+            folder: dir.to_path_buf(),
+            variable: runner::binary_override_variable("kratos"),
+        })
     }
 }
 
@@ -191,6 +195,10 @@ impl Kratos {
 }
 
 impl CodeDriver for Kratos {
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&card::KratosCard)
+    }
+
     fn name(&self) -> &'static str {
         "kratos"
     }
@@ -202,7 +210,7 @@ impl CodeDriver for Kratos {
     /// The venv's python under [`codes_dir`] (or the python in `MILLIMPACT_KRATOS_BINARY`),
     /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
     /// run's loop five to ten times slower.
-    fn locate(&self) -> Result<Executable, String> {
+    fn locate(&self) -> Result<Executable, LocateError> {
         let variable = runner::binary_override_variable(self.name());
         let program = if std::env::var_os(&variable).is_some() {
             runner::locate_override_or_path(self.name(), self.binary())?.program
@@ -460,7 +468,7 @@ mod tests {
     #[test]
     fn a_missing_install_says_where_it_looked_and_how_to_install() {
         let empty = tempfile::tempdir().unwrap();
-        let err = python_in(empty.path()).unwrap_err();
+        let err = python_in(empty.path()).unwrap_err().to_string();
         assert!(err.contains(&empty.path().join(PYTHON).display().to_string()));
         assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");
         std::fs::create_dir_all(empty.path().join("kratos/bin")).unwrap();

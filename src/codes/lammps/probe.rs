@@ -17,10 +17,13 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
-use crate::codes::Executable;
+use thiserror::Error;
+
+use crate::codes::template::TemplateError;
+use crate::codes::{CodeSetup, Executable, Prober};
 pub use crate::codes::lammps::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 use crate::codes::lammps::conventions::{exact_hertz_alpha, tsuji_alpha};
-use crate::codes::lammps::{WALL_TEMPLATE, parse_trajectory, parse_version};
+use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version};
 use crate::codes::runner::{read_log, spawn_contained, wait_contained};
 use crate::codes::template::{exact_number, fill_template};
 use crate::model::trajectory::CodeTrajectory;
@@ -111,7 +114,7 @@ impl ProbeReport {
     }
 
     /// The conventions, or why the probe establishes none.
-    pub fn conventions(&self) -> Result<Conventions, String> {
+    pub fn conventions(&self) -> Result<Conventions, ProbeError> {
         self.conventions.ok_or_else(|| {
             let open: Vec<String> = self
                 .items
@@ -119,14 +122,41 @@ impl ProbeReport {
                 .filter(|i| i.verdict.is_none())
                 .map(|i| format!("{}: {}", i.item, i.note.as_deref().unwrap_or("no verdict")))
                 .collect();
-            format!(
-                "{} ({}): the probe is inconclusive: {}",
-                self.code,
-                self.program.display(),
-                open.join("; ")
-            )
+            ProbeError::Inconclusive {
+                code: self.code.clone(),
+                program: self.program.clone(),
+                open: open.join("; "),
+            }
         })
     }
+}
+
+/// Why a probe gives no conventions.
+#[derive(Debug, Error)]
+pub enum ProbeError {
+    /// The build ran the probe, but some items have no verdict.
+    #[error("{code} ({}): the probe is inconclusive: {open}", program.display())]
+    Inconclusive {
+        /// The driver.
+        code: String,
+        /// The probed executable.
+        program: PathBuf,
+        /// The items without a verdict, each with what was seen.
+        open: String,
+    },
+    /// The probe's input could not be rendered.
+    #[error("the probe's input: {0}")]
+    Template(#[from] TemplateError),
+    /// The build could not be started or its scratch not prepared.
+    #[error("{doing} {}: {source}", path.display())]
+    Io {
+        /// What was being done.
+        doing: &'static str,
+        /// The file or program concerned.
+        path: PathBuf,
+        /// The error.
+        source: std::io::Error,
+    },
 }
 
 /// Relative agreement that counts as a match: the probes' numbers are read from 15-digit
@@ -271,7 +301,7 @@ pub fn probe_runs() -> Vec<ProbeRun> {
 
 /// The input of one probe run (the driver's wall template, so the probe exercises the same
 /// deck as the impacts).
-pub fn render_probe(run: &ProbeRun) -> Result<String, String> {
+pub fn render_probe(run: &ProbeRun) -> Result<String, TemplateError> {
     let r = PROBE_RADIUS;
     let values = [
         ("contact", run.contact.clone()),
@@ -287,7 +317,7 @@ pub fn render_probe(run: &ProbeRun) -> Result<String, String> {
         ("mass", exact_number(PROBE_MASS)),
         ("vz", exact_number(-run.approach)),
     ];
-    let text = fill_template(WALL_TEMPLATE, &values).map_err(|e| e.to_string())?;
+    let text = fill_template(WALL_TEMPLATE, &values)?;
     Ok(format!("# millimpact probe: {}\n{text}", run.name))
 }
 
@@ -317,17 +347,26 @@ pub const PROBE_TIMEOUT: Duration = Duration::from_secs(10);
 pub fn run_probe(
     executable: &Executable,
     run: &ProbeRun,
-) -> Result<(ProbeOutcome, String), String> {
+) -> Result<(ProbeOutcome, String), ProbeError> {
     let text = render_probe(run)?;
+    let io = |doing: &'static str, path: &std::path::Path| {
+        let path = path.to_path_buf();
+        move |source| ProbeError::Io {
+            doing,
+            path,
+            source,
+        }
+    };
     let scratch = tempfile::Builder::new()
         .prefix("millimpact-probe-")
         .tempdir()
-        .map_err(|e| format!("creating a scratch directory: {e}"))?;
+        .map_err(io("creating a scratch directory in", &std::env::temp_dir()))?;
     let dir = scratch.path();
-    std::fs::write(dir.join("probe.in"), text).map_err(|e| format!("writing the probe: {e}"))?;
+    let input = dir.join("probe.in");
+    std::fs::write(&input, text).map_err(io("writing", &input))?;
     let log_path = dir.join("log.txt");
-    let log = std::fs::File::create(&log_path).map_err(|e| format!("creating the log: {e}"))?;
-    let err = log.try_clone().map_err(|e| format!("{e}"))?;
+    let log = std::fs::File::create(&log_path).map_err(io("creating", &log_path))?;
+    let err = log.try_clone().map_err(io("duplicating", &log_path))?;
     let mut command = executable.command();
     command
         .args([
@@ -337,10 +376,10 @@ pub fn run_probe(
         .stdin(Stdio::null())
         .stdout(Stdio::from(log))
         .stderr(Stdio::from(err));
-    let mut child = spawn_contained(&mut command, dir)
-        .map_err(|e| format!("starting {}: {e}", executable.program.display()))?;
+    let mut child =
+        spawn_contained(&mut command, dir).map_err(io("starting", &executable.program))?;
     let status = wait_contained(&mut child, PROBE_TIMEOUT)
-        .map_err(|e| format!("waiting for {}: {e}", executable.program.display()))?;
+        .map_err(io("waiting for", &executable.program))?;
     let log = read_log(&log_path).unwrap_or_default();
     let Some(status) = status else {
         return Ok((
@@ -576,7 +615,7 @@ pub fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conv
 }
 
 /// Probe the LAMMPS build at `executable` (the driver `code`), without the cache.
-pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, String> {
+pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, ProbeError> {
     let started = Instant::now();
     let mut outcomes = Vec::new();
     let mut version = None;
@@ -605,7 +644,10 @@ static CACHE: Mutex<Vec<(String, PathBuf, ProbeReport)>> = Mutex::new(Vec::new()
 
 /// [`probe_lammps`], once per executable per process: a build does not change under a running
 /// process, and every run of it is sized and rendered from the same conventions.
-pub fn probe_lammps_cached(code: &str, executable: &Executable) -> Result<ProbeReport, String> {
+pub fn probe_lammps_cached(
+    code: &str,
+    executable: &Executable,
+) -> Result<ProbeReport, ProbeError> {
     let key = executable.program.clone();
     if let Some((_, _, r)) = CACHE
         .lock()
@@ -621,6 +663,19 @@ pub fn probe_lammps_cached(code: &str, executable: &Executable) -> Result<ProbeR
         .unwrap_or_else(|e| e.into_inner())
         .push((code.to_string(), key, report.clone()));
     Ok(report)
+}
+
+/// A LAMMPS build's probe: its conventions measured by one-step runs.
+pub struct LammpsProber(pub &'static Build);
+
+impl Prober for LammpsProber {
+    fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError> {
+        probe_lammps_cached(self.0.name, executable)
+    }
+
+    fn planned_conventions(&self, setup: &CodeSetup) -> Conventions {
+        self.0.conventions(setup)
+    }
 }
 
 #[cfg(test)]
@@ -759,7 +814,13 @@ mod tests {
             wall_time: 0.0,
         };
         assert!(!report.ran());
-        assert!(report.conventions().unwrap_err().contains("not LAMMPS"));
+        assert!(
+            report
+                .conventions()
+                .unwrap_err()
+                .to_string()
+                .contains("not LAMMPS")
+        );
         let (items, conventions) = judge_outcomes(&synthetic(Conventions::DEBIAN_2021));
         let report = ProbeReport {
             items,

@@ -12,7 +12,7 @@ use crate::codes::liggghts::{
 };
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
-use crate::codes::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch (the per-type-pair tables grow as its square).
@@ -33,28 +33,37 @@ fn plate(setup: &CodeSetup) -> (f64, f64) {
 }
 
 /// The batch input for `setups`, or why they cannot run as one.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     let Some(first) = setups.first() else {
-        return Err("an empty batch".into());
+        return Err(BatchError::Empty);
     };
     if setups.len() > MAX_BATCH {
-        return Err(format!("a batch holds at most {MAX_BATCH} impacts"));
+        return Err(BatchError::TooMany {
+            count: setups.len(),
+            most: MAX_BATCH,
+            why: "the batch input's size",
+        });
     }
     for s in setups {
-        Liggghts.render(s).map_err(|e| e.to_string())?;
+        Liggghts.render(s)?;
         if s.scene != SceneKind::BallPlate {
-            return Err(format!(
-                "{}: only ball_plate impacts run in LIGGGHTS batches",
-                s.case_name
-            ));
+            return Err(BatchError::Scene {
+                case: s.case_name.clone(),
+                scene: s.scene.name(),
+                holds: "LIGGGHTS batches hold ball_plate impacts",
+            });
         }
         if plate(s) != plate(first) {
-            return Err("the impacts have different plates (one wall type per batch)".into());
+            return Err(BatchError::Differ {
+                what: "plate (one wall type per batch)",
+            });
         }
         if s.timestep.to_bits() != first.timestep.to_bits()
             || s.clamp_attractive != first.clamp_attractive
         {
-            return Err("the impacts differ in time step or limitForce".into());
+            return Err(BatchError::Differ {
+                what: "time step or limitForce",
+            });
         }
     }
     let n = setups.len();
@@ -182,3 +191,26 @@ pub fn parse_batch(
         })
         .collect()
 }
+
+/// Liggghts's batches: many sphere-on-plate impacts in one run.
+pub struct LiggghtsBatch;
+
+impl BatchRunner for LiggghtsBatch {
+    fn max_batch(&self) -> usize {
+        MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        render_batch(setups)
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
+    }
+}
+

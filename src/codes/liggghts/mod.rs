@@ -11,13 +11,14 @@
 //! measurements behind each choice here, are in `reference/liggghts/CONVENTIONS.md`.
 
 pub mod batch;
+pub mod card;
 
 use std::f64::consts::PI;
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
 use super::template::{exact_number, fill_template};
-use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, reduced_mass};
 
@@ -186,6 +187,10 @@ impl Liggghts {
 }
 
 impl CodeDriver for Liggghts {
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&card::LiggghtsCard)
+    }
+
     fn name(&self) -> &'static str {
         "liggghts"
     }
@@ -287,21 +292,8 @@ impl CodeDriver for Liggghts {
         Ok(parsed)
     }
 
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        batch::render_batch(setups)
-    }
-
-    fn max_batch(&self) -> usize {
-        batch::MAX_BATCH
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        batch::parse_batch(setups, workdir, log)
+    fn batch(&self) -> Option<&dyn BatchRunner> {
+        Some(&batch::LiggghtsBatch)
     }
 
     /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and

@@ -9,7 +9,7 @@ use std::path::Path;
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
 use crate::codes::yade::{RIGID_WALL_MODULUS, Yade, hertz_input_restitution, parse_trajectory};
-use crate::codes::{CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -95,25 +95,32 @@ print("MILLIMPACT loop_time=%r" % loop_time)
 "#;
 
 /// The batch script for `setups`, or why they cannot run as one.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, String> {
+pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     let Some(first) = setups.first() else {
-        return Err("an empty batch".into());
+        return Err(BatchError::Empty);
     };
     if setups.len() > MAX_BATCH {
-        return Err(format!("a batch holds at most {MAX_BATCH} impacts"));
+        return Err(BatchError::TooMany {
+            count: setups.len(),
+            most: MAX_BATCH,
+            why: "the batch script's size",
+        });
     }
     let num = exact_number;
     let mut impacts = String::new();
     for s in setups {
-        Yade.render(s).map_err(|e| e.to_string())?;
+        Yade.render(s)?;
         if s.scene != SceneKind::BallPlate {
-            return Err(format!(
-                "{}: only ball_plate impacts run in YADE batches",
-                s.case_name
-            ));
+            return Err(BatchError::Scene {
+                case: s.case_name.clone(),
+                scene: s.scene.name(),
+                holds: "YADE batches hold ball_plate impacts",
+            });
         }
         if plate(s) != plate(first) || s.timestep.to_bits() != first.timestep.to_bits() {
-            return Err("the impacts differ in plate or time step".into());
+            return Err(BatchError::Differ {
+                what: "plate or time step",
+            });
         }
         let (v1, _) = s.centre_of_mass_velocities();
         let en = hertz_input_restitution(s.target_restitution).unwrap_or(s.target_restitution);
@@ -177,3 +184,26 @@ pub fn parse_batch(
         })
         .collect()
 }
+
+/// Yade's batches: many sphere-on-plate impacts in one run.
+pub struct YadeBatch;
+
+impl BatchRunner for YadeBatch {
+    fn max_batch(&self) -> usize {
+        MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        render_batch(setups)
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
+    }
+}
+

@@ -25,6 +25,7 @@
 //!   velocity `v_{i-1/2}`; the initial velocity is `v_{-1/2}`.
 
 pub mod batch;
+pub mod card;
 
 use std::path::Path;
 
@@ -33,7 +34,7 @@ pub use super::damping::{
 };
 use super::parse::ParseError;
 use super::template::{exact_number, fill_template};
-use super::{CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
@@ -134,6 +135,10 @@ impl Yade {
 }
 
 impl CodeDriver for Yade {
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&card::YadeCard)
+    }
+
     fn name(&self) -> &'static str {
         "yade"
     }
@@ -227,21 +232,8 @@ impl CodeDriver for Yade {
         })
     }
 
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, String> {
-        batch::render_batch(setups)
-    }
-
-    fn max_batch(&self) -> usize {
-        batch::MAX_BATCH
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        batch::parse_batch(setups, workdir, log)
+    fn batch(&self) -> Option<&dyn BatchRunner> {
+        Some(&batch::YadeBatch)
     }
 
     fn law(&self, setup: &CodeSetup) -> DashpotLaw {
