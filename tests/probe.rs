@@ -232,7 +232,11 @@ fn a_setup_planned_for_other_conventions_is_refused_before_the_run() {
     use millimpact::codes::{RunOptions, prepare, run_code};
     let case = common::shipped("ball_plate");
     let mut setup = prepare(CodeName::Lammps2025.driver(), &case, None, None, false).unwrap();
-    assert_eq!(setup.conventions, Some(Conventions::JUL_2025));
+    assert_eq!(
+        setup.conventions,
+        Some(Conventions::JUL_2025),
+        "the installed LAMMPS 2025 build, probed (install it with scripts/install-dem-codes.sh)"
+    );
     setup.conventions = Some(Conventions::DEBIAN_2021);
     let err = run_code(
         CodeName::Lammps2025.driver(),

@@ -463,7 +463,7 @@ fn every_impact_of_a_yade_batch_gives_the_figures_of_its_single_run() {
 }
 
 fn batch_equals_single_runs(code: &str, binary: &str) {
-    require(binary, code);
+    require(binary, &format!("the DEM code {code}"));
     let dir = TempDir::new().unwrap();
     let file = dir.path().join("batch.toml");
     std::fs::write(
