@@ -1,9 +1,16 @@
 #!/usr/bin/env bash
-# The test command: installs the DEM codes the cross-code tests run and Chromium for the
-# report test (Debian packages and pinned PyPI builds, idempotent), checks formatting and lints
-# (Cargo.toml's [lints.clippy] adds cast_possible_truncation, cast_sign_loss and float_cmp),
-# then runs every test in release mode (unit, integration, snapshot and doc-tests; the examples
-# are built), and the example a user's own regression test starts from.
+# The test command: installs the DEM codes the cross-code tests run, GNU parallel and Slurm for
+# the sweep tests and Chromium for the report test (Debian packages and pinned PyPI builds,
+# idempotent), checks formatting and lints (Cargo.toml's [lints.clippy] adds
+# cast_possible_truncation, cast_sign_loss and float_cmp), then runs the tests in release mode
+# in two tiers, each test once:
+#   - the fast tier, `cargo test --release` (unit, integration, snapshot and doc-tests; the
+#     examples are built), which needs no DEM code: run by scripts/fast-tier.sh with every DEM
+#     code and tool replaced by a tripwire, it fails if one of them is started;
+#   - the live tier, `cargo test --release -- --ignored`: the tests marked
+#     `#[ignore = "live: ..."]`, which run LIGGGHTS, YADE, both LAMMPS builds and Kratos, GNU
+#     parallel, Slurm and Chromium, and fail (not skip) when one is missing;
+# and the example a user's own regression test starts from.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
@@ -18,5 +25,6 @@ fi
 cargo fmt --check
 cargo clippy --release --all-targets -- -D warnings \
     -W clippy::cast_possible_truncation -W clippy::cast_sign_loss -W clippy::float_cmp
-cargo test --release
+bash scripts/fast-tier.sh
+cargo test --release -- --ignored
 cargo run --release --example regression_test

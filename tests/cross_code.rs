@@ -40,6 +40,7 @@ fn live(driver: CodeName, case: &Case) -> ReferenceRecord {
 }
 
 #[test]
+#[ignore = "live: runs every DEM code (bash scripts/test.sh)"]
 fn each_code_realises_the_target_and_its_own_law() {
     for &driver in CodeName::ALL {
         for name in CASES {
@@ -80,6 +81,7 @@ fn each_code_realises_the_target_and_its_own_law() {
 }
 
 #[test]
+#[ignore = "live: runs every DEM code (bash scripts/test.sh)"]
 fn elastic_contact_time_is_hertz_within_the_step() {
     for &driver in CodeName::ALL {
         for name in CASES {
@@ -108,6 +110,7 @@ fn elastic_contact_time_is_hertz_within_the_step() {
 }
 
 #[test]
+#[ignore = "live: runs every DEM code (bash scripts/test.sh)"]
 fn a_live_run_reproduces_the_stored_reference() {
     let folder = common::root().join("reference");
     for &driver in CodeName::ALL {
@@ -156,6 +159,7 @@ fn stored_references_cover_every_code_case_and_the_elastic_case() {
 /// (Schwager & Pöschel's effect), and the clamped law still explains the run. YADE's and
 /// Kratos' laws are clamped anyway, and their drivers compensate, so they stay at the target.
 #[test]
+#[ignore = "live: runs every DEM code (bash scripts/test.sh)"]
 fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
     for &driver in CodeName::ALL {
         for name in ["ball_plate", "rod_end"] {

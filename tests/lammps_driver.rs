@@ -273,6 +273,7 @@ fn check_elastic(case: Case) {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn live_ball_plate() {
     check_damped(Case::BallPlate, e_paper());
     check_damped(Case::BallPlate, 0.5);
@@ -280,12 +281,14 @@ fn live_ball_plate() {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn live_ball_rigid_plate() {
     check_damped(Case::BallRigidPlate, e_paper());
     check_elastic(Case::BallRigidPlate);
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn live_ball_ball() {
     check_damped(Case::BallBall, e_paper());
     check_damped(Case::BallBall, 0.5);
@@ -293,6 +296,7 @@ fn live_ball_ball() {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn live_rod_end() {
     check_damped(Case::RodEnd, e_paper());
     check_damped(Case::RodEnd, 0.5);
@@ -300,6 +304,7 @@ fn live_rod_end() {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn live_reports_version_and_loop_time() {
     let (run, _) = run(&setup(Case::BallPlate, e_paper()));
     assert_eq!(run.code_version, "29 Sep 2021 - Update 2");

@@ -163,6 +163,7 @@ fn markdown_and_csv_render() {
 /// The LAMMPS path, live: five time steps, one run each after a warm-up. A missing `lmp`
 /// fails the test.
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn lammps_sweep_runs_live() {
     let doc = run_json(&[
         "precision",

@@ -47,6 +47,7 @@ fn measured(report: &ProbeReport, item: &str) -> f64 {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS and LAMMPS 2025 (bash scripts/test.sh)"]
 fn the_two_installed_builds_read_as_measured() {
     let old = probe(CodeName::Lammps);
     let new = probe(CodeName::Lammps2025);
@@ -99,6 +100,7 @@ fn the_two_installed_builds_read_as_measured() {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS and LAMMPS 2025 (bash scripts/test.sh)"]
 fn the_conventions_tables_are_a_fresh_probes() {
     for code in [CodeName::Lammps, CodeName::Lammps2025] {
         let path = common::root()
@@ -122,6 +124,7 @@ fn fake_sqrt2_build() -> std::path::PathBuf {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS 2025 (bash scripts/test.sh)"]
 fn a_build_whose_tsuji_carries_the_sqrt2_is_read_and_compensated_as_such() {
     let fake = fake_sqrt2_build();
     let json = common::stdout(common::millimpact().args([
@@ -225,11 +228,16 @@ fn probe_refuses_a_code_without_a_probe_in_one_line() {
 /// A setup planned for one build's conventions is not run on a build that measures others:
 /// the input would not be the equivalent setup there.
 #[test]
+#[ignore = "live: runs LAMMPS 2025 (bash scripts/test.sh)"]
 fn a_setup_planned_for_other_conventions_is_refused_before_the_run() {
     use millimpact::codes::{RunOptions, prepare, run_code};
     let case = common::shipped("ball_plate");
     let mut setup = prepare(CodeName::Lammps2025.driver(), &case, None, None, false).unwrap();
-    assert_eq!(setup.conventions, Some(Conventions::JUL_2025));
+    assert_eq!(
+        setup.conventions,
+        Some(Conventions::JUL_2025),
+        "the installed LAMMPS 2025 build, probed (install it with scripts/install-dem-codes.sh)"
+    );
     setup.conventions = Some(Conventions::DEBIAN_2021);
     let err = run_code(
         CodeName::Lammps2025.driver(),

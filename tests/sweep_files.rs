@@ -166,11 +166,9 @@ fn resume_refuses_the_output_of_another_sweep() {
 }
 
 #[test]
+#[ignore = "live: needs GNU parallel (bash scripts/test.sh)"]
 fn three_shards_run_by_gnu_parallel_merge_into_the_unsharded_sweep() {
-    if which("parallel").is_none() {
-        eprintln!("skipped: GNU parallel is not installed (scripts/test.sh installs it)");
-        return;
-    }
+    require("parallel", "GNU parallel (Debian package `parallel`)");
     let dir = TempDir::new().unwrap();
     let file = grid_file(dir.path());
     let whole = dir.path().join("whole.csv");
@@ -239,6 +237,16 @@ fn which(binary: &str) -> Option<PathBuf> {
     std::env::split_paths(&std::env::var_os("PATH")?)
         .map(|d| d.join(binary))
         .find(|p| p.is_file())
+}
+
+/// Fail the (live) test, saying what is missing, when `binary` is not on PATH: a live test
+/// that cannot run fails, it does not pass as skipped.
+#[track_caller]
+fn require(binary: &str, what: &str) {
+    assert!(
+        which(binary).is_some(),
+        "`{binary}` is not on PATH: this live test needs {what}; bash scripts/test.sh installs it"
+    );
 }
 
 #[test]
@@ -381,13 +389,10 @@ impl Drop for Cluster {
 }
 
 #[test]
+#[ignore = "live: needs Slurm and munge (bash scripts/test.sh)"]
 fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
-    if which("slurmctld").is_none() || which("munged").is_none() {
-        eprintln!(
-            "skipped: Slurm (slurm-wlm) or munge is not installed (scripts/test.sh installs them)"
-        );
-        return;
-    }
+    require("slurmctld", "Slurm (Debian package `slurm-wlm`)");
+    require("munged", "munge (Debian package `munge`)");
     let dir = TempDir::new().unwrap();
     let cluster_dir = dir.path().join("cluster");
     let started = std::process::Command::new("bash")
@@ -397,11 +402,13 @@ fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
         .output()
         .unwrap();
     let _cluster = Cluster(cluster_dir.clone());
-    let said = String::from_utf8_lossy(&started.stdout).to_string();
-    if !started.status.success() {
-        eprintln!("skipped: a single-node Slurm cannot start here: {said}");
-        return;
-    }
+    assert!(
+        started.status.success(),
+        "the single-node Slurm of scripts/slurm/local-cluster.sh did not start ({}): {}{}",
+        started.status,
+        String::from_utf8_lossy(&started.stdout),
+        String::from_utf8_lossy(&started.stderr)
+    );
     let conf = cluster_dir.join("slurm.conf");
     let file = grid_file(dir.path());
     let whole = dir.path().join("whole.csv");
@@ -438,25 +445,25 @@ fn a_slurm_job_array_of_three_shards_merges_into_the_unsharded_sweep() {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn every_impact_of_a_lammps_batch_gives_the_figures_of_its_single_run() {
     batch_equals_single_runs("lammps", "lmp");
 }
 
 #[test]
+#[ignore = "live: runs LIGGGHTS (bash scripts/test.sh)"]
 fn every_impact_of_a_liggghts_batch_gives_the_figures_of_its_single_run() {
     batch_equals_single_runs("liggghts", "liggghts");
 }
 
 #[test]
+#[ignore = "live: runs YADE (bash scripts/test.sh)"]
 fn every_impact_of_a_yade_batch_gives_the_figures_of_its_single_run() {
     batch_equals_single_runs("yade", "yade");
 }
 
 fn batch_equals_single_runs(code: &str, binary: &str) {
-    if which(binary).is_none() {
-        eprintln!("skipped: {binary} is not installed (scripts/install-dem-codes.sh installs it)");
-        return;
-    }
+    require(binary, &format!("the DEM code {code}"));
     let dir = TempDir::new().unwrap();
     let file = dir.path().join("batch.toml");
     std::fs::write(
@@ -506,11 +513,9 @@ fn batch_equals_single_runs(code: &str, binary: &str) {
 }
 
 #[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
-    if which("lmp").is_none() {
-        eprintln!("skipped: lmp is not installed (scripts/install-dem-codes.sh installs it)");
-        return;
-    }
+    require("lmp", "LAMMPS (Debian package `lammps`)");
     let dir = TempDir::new().unwrap();
     let file = dir.path().join("slow.toml");
     std::fs::write(

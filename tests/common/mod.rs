@@ -131,4 +131,20 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
     std::fs::write(&path, text).unwrap();
     path
 }
+pub mod calibrate;
 pub mod codes;
+
+/// For every registered build, its `MILLIMPACT_<CODE>_BINARY` naming a file that does not
+/// exist: with these set, no DEM code is found, so none is probed or run, as on a machine
+/// without the codes (the drivers' fallback conventions plan the setups).
+pub fn codes_hidden() -> Vec<(String, PathBuf)> {
+    millimpact::codes::CodeName::ALL
+        .iter()
+        .map(|code| {
+            (
+                millimpact::codes::runner::binary_override_variable(code.name()),
+                PathBuf::from(format!("/nonexistent/millimpact-fast-tier/{}", code.name())),
+            )
+        })
+        .collect()
+}
