@@ -42,7 +42,8 @@ fn load(name: &str) -> Case {
     Case::load(&path).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// The settings of the cheapest impacts at COR error ≤ 1e-10 (README, "Accuracy and cost").
+/// The settings of the cheapest impacts at COR error ≤ 1e-10 (the book's "Accuracy and cost",
+/// `docs/src/accuracy-and-cost.md`).
 fn accurate_points(case: &Case) -> [(&'static str, Settings); 2] {
     let base = Settings {
         contact: case.contact,
