@@ -518,18 +518,11 @@ impl SweepFile {
     /// The parameter cells of `point`, in [`SweepFile::key_columns`] order, in the normal
     /// form rows are matched by.
     pub fn key_cells(&self, point: &Point) -> Vec<String> {
-        let mut cells: Vec<String> = point.values.iter().map(cell).collect();
-        let source = PointSource::new(point.source.source, point.source.resolution);
-        let name = |n: Option<&'static str>| n.unwrap_or_default().to_string();
-        let count = |n: Option<u32>| n.map(|n| n.to_string()).unwrap_or_default();
-        cells.extend([
-            name(source.method.map(Method::name)),
-            count(source.steps_per_period),
-            source.rtol.map(number).unwrap_or_default(),
-            name(source.code.map(CodeName::name)),
-            count(source.steps_per_contact),
-        ]);
-        cells.iter().map(|c| normal_cell(c)).collect()
+        let row = self.row(point, PointFigures::default(), RowStatus::default());
+        super::row::key_cells(&row.axes, &row.source)
+            .iter()
+            .map(|c| normal_cell(c))
+            .collect()
     }
 
     /// The case at `point`: the base table edited and read strictly.

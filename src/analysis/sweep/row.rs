@@ -41,14 +41,14 @@ pub struct AxisValue {
 pub struct PointSource {
     /// The method.
     pub method: Option<Method>,
-    /// Steps per undamped period (fixed-step methods).
-    pub steps_per_period: Option<u32>,
-    /// Relative tolerance (adaptive methods).
-    pub rtol: Option<f64>,
     /// The DEM code.
     pub code: Option<CodeName>,
+    /// Steps per undamped period (fixed-step methods).
+    pub steps_per_period: Option<u32>,
     /// Steps per elastic contact time (codes).
     pub steps_per_contact: Option<u32>,
+    /// Relative tolerance (adaptive methods).
+    pub rtol: Option<f64>,
 }
 
 impl PointSource {
@@ -60,10 +60,10 @@ impl PointSource {
         };
         PointSource {
             method,
-            steps_per_period: Resolution::steps_per_period(resolution),
-            rtol: Resolution::rtol(resolution),
             code,
+            steps_per_period: Resolution::steps_per_period(resolution),
             steps_per_contact: Resolution::steps_per_contact(resolution),
+            rtol: Resolution::rtol(resolution),
         }
     }
 }
@@ -284,6 +284,25 @@ pub fn key_columns(axis_keys: &[String]) -> Vec<String> {
     let mut c = axis_keys.to_vec();
     c.extend(field_names::<PointSource>());
     c
+}
+
+/// The cells of the key columns ([`key_columns`]) as the row writes them: the axis values and
+/// the source, through the same serialisation as the CSV record.
+pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_writer(Vec::new());
+    // Serialising scalars into memory cannot fail.
+    let _ = writer.serialize((AxisValues(axes), source));
+    let bytes = writer.into_inner().unwrap_or_default();
+    csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(bytes.as_slice())
+        .records()
+        .next()
+        .and_then(Result::ok)
+        .map(|r| r.iter().map(String::from).collect())
+        .unwrap_or_default()
 }
 
 /// The case-axis values of a row as one serde sequence (a CSV record's middle fields).
