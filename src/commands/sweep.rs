@@ -24,6 +24,7 @@ use millimpact::analysis::sweep::run_grid;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
+use millimpact::output::invocation::Invocation;
 use millimpact::output::restitution_plot::restitution_svg;
 use millimpact::output::{Format, export};
 
@@ -70,12 +71,11 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
     })?;
     let options = integration_options(&args.integration);
     let mut report = sweep_case(&case, &values, &options)?;
-    report.command = format!(
-        "millimpact sweep {} --loss-coefficient {} --method {}",
-        case.path.display(),
-        range,
-        options.method
-    );
+    report.command = Invocation::new("sweep")
+        .arg(case.path.display())
+        .option("--loss-coefficient", range)
+        .option("--method", options.method)
+        .to_string();
     if let Some(path) = &args.plot {
         let points: Vec<(f64, f64)> = report
             .rows

@@ -225,6 +225,30 @@ struct Reader<'a> {
     file: &'a str,
 }
 
+/// The keys of a ball's table (`[ball]`, `[other_ball]`).
+const BALL_KEYS: [&str; 4] = ["radius", "density", "youngs_modulus", "poisson_ratio"];
+/// The keys of `[plate]`.
+const PLATE_KEYS: [&str; 3] = ["rigid", "youngs_modulus", "poisson_ratio"];
+/// The keys of `[rod]`.
+const ROD_KEYS: [&str; 4] = ["diameter", "length", "density", "youngs_modulus"];
+/// The body tables and their keys.
+const TABLES: [(&str, &[&str]); 4] = [
+    ("ball", &BALL_KEYS),
+    ("other_ball", &BALL_KEYS),
+    ("plate", &PLATE_KEYS),
+    ("rod", &ROD_KEYS),
+];
+
+/// Every key a case file may set, as a sweep axis names it: the top-level keys, then
+/// `table.key` for each body table's keys. The one list the case reader reads by.
+pub fn case_keys() -> Vec<String> {
+    let mut keys: Vec<String> = TOP_KEYS.iter().map(|k| k.to_string()).collect();
+    for (table, table_keys) in TABLES {
+        keys.extend(table_keys.iter().map(|k| format!("{table}.{k}")));
+    }
+    keys
+}
+
 const TOP_KEYS: [&str; 6] = [
     "scene",
     "impact_velocity",
@@ -275,7 +299,7 @@ impl Reader<'_> {
             SceneKind::RodEnd => &["rod"],
         };
         for (key, value) in t {
-            let known_table = ["ball", "plate", "other_ball", "rod"].contains(&key.as_str());
+            let known_table = TABLES.iter().any(|(name, _)| name == key);
             if known_table && !tables.contains(&key.as_str()) {
                 return Err(self.error(
                     &format!("[{key}]"),
@@ -471,8 +495,7 @@ impl Reader<'_> {
 
     fn ball(&self, t: &Table, name: &str, defaults: Option<&Ball>) -> Result<Ball, CaseError> {
         let table = self.table(t, name)?;
-        let keys = ["radius", "density", "youngs_modulus", "poisson_ratio"];
-        self.only_keys(table, name, &keys)?;
+        self.only_keys(table, name, &BALL_KEYS)?;
         let pick = |key: &str, fallback: Option<f64>| -> Result<f64, CaseError> {
             match (table.get(key), fallback) {
                 (None, Some(x)) => Ok(x),
@@ -506,11 +529,7 @@ impl Reader<'_> {
             self.only_keys(table, "plate", &["rigid"])?;
             return Ok(Plate::Rigid);
         }
-        self.only_keys(
-            table,
-            "plate",
-            &["rigid", "youngs_modulus", "poisson_ratio"],
-        )?;
+        self.only_keys(table, "plate", &PLATE_KEYS)?;
         Ok(Plate::Elastic(Material {
             youngs_modulus: self.positive(table, "plate", "youngs_modulus")?,
             poisson_ratio: self.poisson(table, "plate")?,
@@ -519,11 +538,7 @@ impl Reader<'_> {
 
     fn rod(&self, t: &Table) -> Result<Rod, CaseError> {
         let table = self.table(t, "rod")?;
-        self.only_keys(
-            table,
-            "rod",
-            &["diameter", "length", "density", "youngs_modulus"],
-        )?;
+        self.only_keys(table, "rod", &ROD_KEYS)?;
         Ok(Rod {
             diameter: self.positive(table, "rod", "diameter")?,
             length: self.positive(table, "rod", "length")?,

@@ -7,6 +7,7 @@
 
 pub mod chart;
 pub mod files;
+pub mod invocation;
 pub mod report_page;
 pub mod restitution_plot;
 pub mod work_precision_plot;

@@ -12,6 +12,7 @@ use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::law::DashpotLaw;
 use crate::model::trajectory::trajectory_metrics;
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
 use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
 
@@ -340,14 +341,14 @@ impl Summary for Calibration {
             .iter()
             .map(|t| t.restitution.to_string())
             .collect();
+        let command = if cors.len() == 1 {
+            Invocation::new("calibrate").option("--cor", &cors[0])
+        } else {
+            Invocation::new("calibrate").option("--cor-range", cors.join(":"))
+        };
         vec![format!(
-            "reproduce: millimpact calibrate {} {} --tolerance {:e}",
-            if cors.len() == 1 {
-                format!("--cor {}", cors[0])
-            } else {
-                format!("--cor-range {}", cors.join(":"))
-            },
-            self.path,
+            "reproduce: {} --tolerance {:e}",
+            command.arg(&self.path),
             self.tolerance
         )]
     }

@@ -15,6 +15,7 @@ use crate::codes::{CodeName, setup_for_case};
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
 use crate::model::trajectory::TrajectoryMetrics;
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::Method;
 use crate::solve::dashpot::accurate_metrics;
@@ -653,9 +654,10 @@ impl Summary for CompareReport {
     fn footer(&self) -> Vec<String> {
         let cases: Vec<String> = self.cases.iter().map(|c| c.path.clone()).collect();
         vec![format!(
-            "reproduce: millimpact compare {}{}",
-            cases.join(" "),
-            if self.live { " --live" } else { "" },
+            "reproduce: {}",
+            Invocation::new("compare")
+                .args(&cases)
+                .flag("--live", self.live)
         )]
     }
 }

@@ -30,6 +30,7 @@ use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::trajectory_metrics;
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
 use crate::solve::dashpot::accurate_metrics;
 use crate::solve::paper::{self, Settings};
@@ -597,15 +598,19 @@ pub fn precision_report(
         })
         .map(|(_, note)| *note)
         .collect();
-    let mut command = format!("millimpact precision {}", case.path.display());
-    if !methods.is_empty() {
-        let names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
-        command += &format!(" --methods {}", names.join(","));
-    }
-    if !code_names.is_empty() {
-        let names: Vec<&str> = code_names.iter().map(|c| c.name()).collect();
-        command += &format!(" --codes {}", names.join(","));
-    }
+    let method_names: Vec<&str> = methods.iter().map(|m| m.name()).collect();
+    let code_list: Vec<&str> = code_names.iter().map(|c| c.name()).collect();
+    let command = Invocation::new("precision")
+        .arg(case.path.display())
+        .option_if(
+            "--methods",
+            (!method_names.is_empty()).then(|| method_names.join(",")),
+        )
+        .option_if(
+            "--codes",
+            (!code_list.is_empty()).then(|| code_list.join(",")),
+        )
+        .to_string();
     Ok(PrecisionReport {
         case: case.name.clone(),
         targets: targets(&points),

@@ -17,6 +17,7 @@ use crate::model::case::{Case, ContactKind};
 use crate::model::exact;
 use crate::model::law::DashpotLaw;
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, csv_string};
 use crate::solve::Method;
 use crate::solve::dashpot::{accurate_metrics, step_trajectory};
@@ -368,7 +369,9 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
         "{n}, η = {}: normal force against time. The codes' force returns to zero well before the overlap closes (force-based contact end).",
         case.loss_coefficient
     );
-    let command = format!("millimpact compare cases/{n}.toml");
+    let command = Invocation::new("compare")
+        .arg(format!("cases/{n}.toml"))
+        .to_string();
     Ok(vec![
         figure(
             &format!("force-overlap-{n}"),
@@ -435,7 +438,10 @@ fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure>
             series,
         },
         "Each code's law, as its driver sets it for the COR, against the paper's law at the same COR, both integrated exactly. Peak force and force-based contact time differ most; all differences vanish as e → 1. LAMMPS (dots) runs the same law as LIGGGHTS.",
-        &format!("millimpact compare {} --format csv", c.path),
+        &Invocation::new("compare")
+            .arg(&c.path)
+            .option("--format", "csv")
+            .to_string(),
         ("e", "difference_percent"),
     )
 }
@@ -692,11 +698,10 @@ pub fn build_report(
     }
     progress("the paper's figures");
     let paths: Vec<String> = cases.iter().map(|c| c.path.display().to_string()).collect();
-    let compare_command = format!(
-        "millimpact compare {}{}",
-        paths.join(" "),
-        if options.live { " --live" } else { "" }
-    );
+    let compare_command = Invocation::new("compare")
+        .args(&paths)
+        .flag("--live", options.live)
+        .to_string();
     let mut parts = Vec::new();
     parts.push(ReportPart {
         id: "paper".into(),
@@ -789,9 +794,10 @@ pub fn build_report(
     ];
     appendix.extend(versions.into_iter().map(|v| format!("code version, {v}")));
     appendix.push(format!(
-        "reproduce the whole report: millimpact report {}{}",
-        paths.join(" "),
-        if options.live { " --live" } else { "" }
+        "reproduce the whole report: {}",
+        Invocation::new("report")
+            .args(&paths)
+            .flag("--live", options.live)
     ));
     let data = vec![
         DataFile {

@@ -25,6 +25,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
 use crate::output::files::write_atomic;
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
 
@@ -208,19 +209,19 @@ pub fn run_reference(
     let law_at_step =
         trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
     let law_exact = accurate_metrics(&law, setup.impact_velocity, 1e-13)?;
-    let mut command = format!(
-        "millimpact reference --code {code} {} --loss-coefficient {}",
-        case.path.display(),
-        case.loss_coefficient
-    );
-    match (options.steps_per_contact, options.timestep) {
-        (_, Some(dt)) => command += &format!(" --timestep {dt:e}"),
-        (Some(n), None) => command += &format!(" --steps-per-contact {n}"),
-        (None, None) => {}
-    }
-    if options.clamp_attractive {
-        command += " --clamp";
-    }
+    let command = Invocation::new("reference")
+        .option("--code", code)
+        .arg(case.path.display())
+        .option("--loss-coefficient", case.loss_coefficient)
+        .option_if("--timestep", options.timestep.map(|dt| format!("{dt:e}")))
+        .option_if(
+            "--steps-per-contact",
+            options
+                .steps_per_contact
+                .filter(|_| options.timestep.is_none()),
+        )
+        .flag("--clamp", options.clamp_attractive)
+        .to_string();
     Ok(ReferenceRecord {
         code,
         code_version: run.code_version,

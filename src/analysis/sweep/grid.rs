@@ -40,30 +40,6 @@ const SOURCE_AXES: [&str; 5] = [
     "rtol",
     "steps_per_contact",
 ];
-/// Case keys an axis may name: top-level keys, and `table.key` for the body tables.
-const CASE_KEYS: [&str; 21] = [
-    "scene",
-    "impact_velocity",
-    "loss_coefficient",
-    "restitution",
-    "stiffness",
-    "contact",
-    "ball.radius",
-    "ball.density",
-    "ball.youngs_modulus",
-    "ball.poisson_ratio",
-    "other_ball.radius",
-    "other_ball.density",
-    "other_ball.youngs_modulus",
-    "other_ball.poisson_ratio",
-    "plate.rigid",
-    "plate.youngs_modulus",
-    "plate.poisson_ratio",
-    "rod.diameter",
-    "rod.length",
-    "rod.density",
-    "rod.youngs_modulus",
-];
 
 /// One grid axis over a case key.
 #[derive(Clone, Debug, PartialEq)]
@@ -259,6 +235,7 @@ impl SweepFile {
         let mut per_period: Vec<Option<u32>> = vec![None];
         let mut per_contact: Vec<Option<u32>> = vec![None];
         let mut tolerances: Vec<Option<f64>> = vec![None];
+        let case_keys = crate::model::case::case_keys();
         for (key, value) in &axes_table {
             let full = format!("axes.{key}");
             let values = axis_values(value, |allowed| fail(&full, &value.to_string(), allowed))?;
@@ -334,12 +311,12 @@ impl SweepFile {
                         per_contact = counts;
                     }
                 }
-                k if CASE_KEYS.contains(&k) => axes.push(Axis {
+                k if case_keys.iter().any(|c| c == k) => axes.push(Axis {
                     key: key.clone(),
                     values,
                 }),
                 _ => {
-                    let mut allowed: Vec<&str> = CASE_KEYS.to_vec();
+                    let mut allowed: Vec<&str> = case_keys.iter().map(String::as_str).collect();
                     allowed.extend(SOURCE_AXES);
                     return Err(fail(
                         &full,

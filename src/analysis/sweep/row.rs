@@ -455,10 +455,10 @@ mod tests {
             &c[3..8],
             [
                 "method",
-                "steps_per_period",
-                "rtol",
                 "code",
-                "steps_per_contact"
+                "steps_per_period",
+                "steps_per_contact",
+                "rtol"
             ]
         );
         assert_eq!(c.last().map(String::as_str), Some("status"));
