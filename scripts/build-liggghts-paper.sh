@@ -68,8 +68,12 @@ tarball_ok() {
   [ -f "$DOWNLOAD/$ORIG" ] && echo "$ORIG_SHA256  $DOWNLOAD/$ORIG" | sha256sum --check --status
 }
 if ! tarball_ok; then
+  # apt must know the source package: refresh its lists, and add a deb-src entry for this
+  # release's main archive if that is not enough.
   if ! apt-get source --print-uris liggghts >/dev/null 2>&1; then
-    # No deb-src entry: add one for this release's main archive.
+    $SUDO apt-get update -qq
+  fi
+  if ! apt-get source --print-uris liggghts >/dev/null 2>&1; then
     . /etc/os-release
     src_list=/etc/apt/sources.list.d/millimpact-deb-src.sources
     echo "adding $src_list (deb-src for $VERSION_CODENAME)"
@@ -116,7 +120,9 @@ for f in "${MODEL_FILES[@]}"; do
 done
 
 # --- build -----------------------------------------------------------------------------------
-[ -f "$SRC/STUBS/libmpi_stubs.a" ] || make -C "$SRC/STUBS" >/dev/null
+if [ ! -f "$SRC/STUBS/libmpi_stubs.a" ]; then
+  make -C "$SRC/STUBS" >"$BUILD/stubs.log" 2>&1 || { cat "$BUILD/stubs.log" >&2; exit 1; }
+fi
 echo "building LIGGGHTS with the paper's model (make -j$JOBS serial; log: $BUILD/make.log)"
 if ! make -C "$SRC" -j"$JOBS" serial CCFLAGS="$FLAGS" LINKFLAGS="-O2 -fPIC" >"$BUILD/make.log" 2>&1; then
   tail -n 40 "$BUILD/make.log" >&2
