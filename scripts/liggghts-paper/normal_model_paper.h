@@ -152,8 +152,8 @@ namespace PaperLaw {
 
     void connectToProperties(PropertyRegistry & registry)
     {
-      registry.registerProperty("Yeff", &MODEL_PARAMS::createYeff, "model paper");
-      registry.registerProperty("Geff", &MODEL_PARAMS::createGeff, "model paper");
+      registry.registerProperty("Yeff", &MODEL_PARAMS::createYeff);
+      registry.registerProperty("Geff", &MODEL_PARAMS::createGeff);
       registry.registerProperty("lossCoefficient", &PaperLaw::createLossCoefficient);
 
       registry.connect("Yeff", Yeff, "model paper");
