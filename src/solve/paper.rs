@@ -11,6 +11,22 @@ use crate::model::case::ContactKind;
 use crate::model::exact::{self, ImpactFigures, j_integral};
 use crate::model::law::PaperLaw;
 
+/// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
+/// exponents are the scenes' exact 1 and 1.5 (`SpringModel::exponent`), so exact comparison
+/// picks the specialised power; any other exponent takes the general one.
+macro_rules! with_power {
+    ($n:expr, $f:ident($($args:expr),* $(,)?)) => {
+        #[allow(clippy::float_cmp)]
+        if $n == 1.0 {
+            $f(Linear, $($args),*)
+        } else if $n == 1.5 {
+            $f(Hertz, $($args),*)
+        } else {
+            $f(AnyExponent($n), $($args),*)
+        }
+    };
+}
+
 /// How to integrate.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -76,7 +92,7 @@ pub struct Outcome {
 const SERIES_SAMPLES: usize = 16;
 
 /// Dimensionless result.
-#[derive(Default)]
+#[derive(Clone, Debug, Default)]
 struct Scaled {
     cor: f64,
     peak: f64,
@@ -128,47 +144,25 @@ pub fn solve(
     settings: &Settings,
 ) -> Result<Outcome, SolveError> {
     let started = Instant::now();
-    let v0 = impact_velocity;
-    let y_scale = law.elastic_peak(v0);
-    let t_scale = y_scale / v0;
-    let (n, eta) = (law.exponent, law.loss_coefficient);
-    let period = 4.0 * j_integral_for(n);
-    let method = settings.method;
-    if !method.integrates() {
-        let figures = exact::paper_impact(law, v0);
-        return Ok(Outcome {
-            figures,
-            stats: Stats::default(),
-            wall_time: started.elapsed().as_secs_f64(),
-            timestep: None,
-            trajectory: Vec::new(),
-            crossing_speeds: Vec::new(),
-        });
-    }
-    let h = match settings.timestep {
-        Some(dt) => {
-            if let Some(limit) = stability_limit(method) {
-                let omega = angular_frequency(law, v0);
-                if omega * dt > limit {
-                    return Err(SolveError::Unstable {
-                        method: method.name(),
-                        timestep: dt,
-                        omega,
-                        omega_dt: omega * dt,
-                        limit,
-                        max_timestep: limit / omega,
-                    });
-                }
-            }
-            dt / t_scale
+    let plan = match Plan::new(law, impact_velocity, settings)? {
+        Planned::Integrate(plan) => plan,
+        Planned::Exact(figures) => {
+            return Ok(Outcome {
+                figures,
+                stats: Stats::default(),
+                wall_time: started.elapsed().as_secs_f64(),
+                timestep: None,
+                trajectory: Vec::new(),
+                crossing_speeds: Vec::new(),
+            });
         }
-        None => period / settings.steps_per_period as f64,
     };
+    let (n, eta, h) = (plan.exponent, plan.loss_coefficient, plan.step);
     let bilateral = settings.contact == ContactKind::Bilateral;
-    let duration = settings.periods * period;
-    let mut scaled = match method {
+    let duration = settings.periods * plan.period;
+    let scaled = match settings.method {
         Method::Rk4 | Method::Verlet => {
-            fixed_step(n, eta, h, method, bilateral, duration, settings)?
+            fixed_step(n, eta, h, settings.method, bilateral, duration, settings)?
         }
         Method::Rk4Event => {
             let mut stepper = Rk4::new(h);
@@ -178,37 +172,194 @@ pub fn solve(
             let mut stepper = Dopri5::new(settings.rtol);
             phased(n, eta, &mut stepper, bilateral, duration, settings)?
         }
-        Method::Exact => unreachable!("handled above"),
+        Method::Exact => unreachable!("handled by the plan"),
     };
-    let wall_time = started.elapsed().as_secs_f64();
-    let cor = scaled.cor;
-    let force_scale = law.stiffness * y_scale.powf(n);
-    let figures = ImpactFigures {
-        cor,
-        peak_deformation: scaled.peak * y_scale,
-        peak_force: scaled.peak_force * force_scale,
-        compression_time: scaled.compression_time * t_scale,
-        restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
-        contact_time: scaled.contact_time * t_scale,
-        absorbed_energy: 0.5 * law.mass * v0 * v0 * (1.0 - cor * cor),
-    };
-    let trajectory = scaled
-        .samples
-        .drain(..)
-        .map(|(t, y, v)| Sample {
-            t: t * t_scale,
-            y: y * y_scale,
-            v: v * v0,
+    Ok(plan.outcome(scaled, started.elapsed().as_secs_f64()))
+}
+
+/// Impacts solved together: each item `(law, impact_velocity)` with the same `settings`, each
+/// giving what [`solve`] gives it, bit for bit. rk4-event on a unilateral contact without a
+/// trajectory steps [`LANES`] impacts at once, interleaved: one RK4 chain is a chain of
+/// dependent operations that leaves most of the processor idle, and independent chains fill
+/// it. Every other method runs them one after the other. An impact's `wall_time` is the
+/// batch's divided among its impacts.
+pub fn solve_many(
+    items: &[(PaperLaw, f64)],
+    settings: &Settings,
+) -> Vec<Result<Outcome, SolveError>> {
+    let lanes = settings.method == Method::Rk4Event
+        && settings.contact == ContactKind::Unilateral
+        && !settings.record;
+    if !lanes {
+        return items
+            .iter()
+            .map(|(law, v0)| solve(law, *v0, settings))
+            .collect();
+    }
+    let started = Instant::now();
+    let plans: Vec<Result<Planned, SolveError>> = items
+        .iter()
+        .map(|(law, v0)| Plan::new(law, *v0, settings))
+        .collect();
+    let mut scaled: Vec<Option<Result<Scaled, SolveError>>> =
+        (0..items.len()).map(|_| None).collect();
+    // Lanes share an exponent (the power is chosen at compile time): one pass per exponent.
+    let mut exponents: Vec<u64> = plans
+        .iter()
+        .filter_map(|p| match p {
+            Ok(Planned::Integrate(plan)) => Some(plan.exponent.to_bits()),
+            _ => None,
         })
         .collect();
-    Ok(Outcome {
-        figures,
-        stats: scaled.stats,
-        wall_time,
-        timestep: method.is_fixed_step().then_some(h * t_scale),
-        trajectory,
-        crossing_speeds: scaled.crossing_speeds.iter().map(|s| s * v0).collect(),
-    })
+    exponents.sort_unstable();
+    exponents.dedup();
+    for bits in exponents {
+        let n = f64::from_bits(bits);
+        let (at, jobs): (Vec<usize>, Vec<(f64, f64)>) = plans
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| match p {
+                Ok(Planned::Integrate(plan)) if plan.exponent.to_bits() == bits => {
+                    Some((i, (plan.loss_coefficient, plan.step)))
+                }
+                _ => None,
+            })
+            .unzip();
+        let results = rk4_event_lanes_of(n, &jobs);
+        for (i, result) in at.into_iter().zip(results) {
+            scaled[i] = Some(result);
+        }
+    }
+    let wall_time = started.elapsed().as_secs_f64() / items.len().max(1) as f64;
+    plans
+        .into_iter()
+        .zip(scaled)
+        .map(|(plan, scaled)| match plan? {
+            Planned::Exact(figures) => Ok(Outcome {
+                figures,
+                stats: Stats::default(),
+                wall_time,
+                timestep: None,
+                trajectory: Vec::new(),
+                crossing_speeds: Vec::new(),
+            }),
+            Planned::Integrate(plan) => {
+                let scaled = scaled.expect("every planned impact was stepped")?;
+                Ok(plan.outcome(scaled, wall_time))
+            }
+        })
+        .collect()
+}
+
+/// [`rk4_event_lanes`] with the power of exponent `n`.
+fn rk4_event_lanes_of(n: f64, jobs: &[(f64, f64)]) -> Vec<Result<Scaled, SolveError>> {
+    with_power!(n, rk4_event_lanes(n, jobs))
+}
+
+/// One impact made dimensionless: its scales, the step, and what the integrator needs.
+#[derive(Clone, Copy, Debug)]
+struct Plan {
+    method: Method,
+    impact_velocity: f64,
+    mass: f64,
+    stiffness: f64,
+    exponent: f64,
+    loss_coefficient: f64,
+    y_scale: f64,
+    t_scale: f64,
+    /// The undamped period, dimensionless.
+    period: f64,
+    /// The fixed step, dimensionless (fixed-step methods).
+    step: f64,
+}
+
+/// What an impact needs: integration, or the closed forms alone.
+#[derive(Clone, Copy, Debug)]
+enum Planned {
+    Integrate(Plan),
+    Exact(ImpactFigures),
+}
+
+impl Plan {
+    fn new(law: &PaperLaw, v0: f64, settings: &Settings) -> Result<Planned, SolveError> {
+        let y_scale = law.elastic_peak(v0);
+        let t_scale = y_scale / v0;
+        let (n, eta) = (law.exponent, law.loss_coefficient);
+        let period = 4.0 * j_integral_for(n);
+        let method = settings.method;
+        if !method.integrates() {
+            return Ok(Planned::Exact(exact::paper_impact(law, v0)));
+        }
+        let step = match settings.timestep {
+            Some(dt) => {
+                if let Some(limit) = stability_limit(method) {
+                    let omega = angular_frequency(law, v0);
+                    if omega * dt > limit {
+                        return Err(SolveError::Unstable {
+                            method: method.name(),
+                            timestep: dt,
+                            omega,
+                            omega_dt: omega * dt,
+                            limit,
+                            max_timestep: limit / omega,
+                        });
+                    }
+                }
+                dt / t_scale
+            }
+            None => period / settings.steps_per_period as f64,
+        };
+        Ok(Planned::Integrate(Plan {
+            method,
+            impact_velocity: v0,
+            mass: law.mass,
+            stiffness: law.stiffness,
+            exponent: n,
+            loss_coefficient: eta,
+            y_scale,
+            t_scale,
+            period,
+            step,
+        }))
+    }
+
+    /// The outcome of the dimensionless result `scaled`, in SI units.
+    fn outcome(&self, mut scaled: Scaled, wall_time: f64) -> Outcome {
+        let (n, v0, y_scale, t_scale) = (
+            self.exponent,
+            self.impact_velocity,
+            self.y_scale,
+            self.t_scale,
+        );
+        let cor = scaled.cor;
+        let force_scale = self.stiffness * y_scale.powf(n);
+        let figures = ImpactFigures {
+            cor,
+            peak_deformation: scaled.peak * y_scale,
+            peak_force: scaled.peak_force * force_scale,
+            compression_time: scaled.compression_time * t_scale,
+            restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
+            contact_time: scaled.contact_time * t_scale,
+            absorbed_energy: 0.5 * self.mass * v0 * v0 * (1.0 - cor * cor),
+        };
+        let trajectory = scaled
+            .samples
+            .drain(..)
+            .map(|(t, y, v)| Sample {
+                t: t * t_scale,
+                y: y * y_scale,
+                v: v * v0,
+            })
+            .collect();
+        Outcome {
+            figures,
+            stats: scaled.stats,
+            wall_time,
+            timestep: self.method.is_fixed_step().then_some(self.step * t_scale),
+            trajectory,
+            crossing_speeds: scaled.crossing_speeds.iter().map(|s| s * v0).collect(),
+        }
+    }
 }
 
 /// [`j_integral`] (two gamma functions), remembered per thread for the last exponent asked for.
@@ -274,22 +425,6 @@ impl Power for AnyExponent {
     fn of(self, y: f64) -> f64 {
         y.powf(self.0)
     }
-}
-
-/// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
-/// exponents are the scenes' exact 1 and 1.5 (`SpringModel::exponent`), so exact comparison
-/// picks the specialised power; any other exponent takes the general one.
-macro_rules! with_power {
-    ($n:expr, $f:ident($($args:expr),* $(,)?)) => {
-        #[allow(clippy::float_cmp)]
-        if $n == 1.0 {
-            $f(Linear, $($args),*)
-        } else if $n == 1.5 {
-            $f(Hertz, $($args),*)
-        } else {
-            $f(AnyExponent($n), $($args),*)
-        }
-    };
 }
 
 /// Dimensionless acceleration of the paper's law, `-((n+1)/2) |Y|^n sign(Y) (1 + η sign(Y V))`,
@@ -543,6 +678,326 @@ fn phased_with(
     }
     out.samples = samples;
     Ok(out)
+}
+
+/// Impacts of rk4-event stepped together in [`rk4_event_lanes`].
+pub const LANES: usize = 4;
+
+/// Which phase a lane is in.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Phase {
+    /// No impact.
+    Idle,
+    /// Loading (`1+η`) until the turning point.
+    Load,
+    /// Unloading (`1-η`) until the contact end.
+    Unload,
+}
+
+/// One impact of [`rk4_event_lanes`] in flight: the state of `phased_with`'s two marches, one
+/// step at a time.
+#[derive(Clone, Copy, Debug)]
+struct Lane {
+    job: usize,
+    phase: Phase,
+    eta: f64,
+    k_load: f64,
+    k_unload: f64,
+    /// The factor of the phase at hand (`k_load` or `k_unload`).
+    k: f64,
+    /// The stepper's step for the loading phase.
+    base_step: f64,
+    /// The stepper's step in the phase at hand.
+    step: f64,
+    /// The step the march tries next (the stepper's, or less after a refused step).
+    h: f64,
+    y: State,
+    fy: State,
+    t: f64,
+    g_now: f64,
+    phase_steps: u64,
+    stats: Stats,
+    turn_time: f64,
+    peak: f64,
+}
+
+impl Lane {
+    const IDLE: Lane = Lane {
+        job: usize::MAX,
+        phase: Phase::Idle,
+        eta: 0.0,
+        k_load: 0.0,
+        k_unload: 0.0,
+        k: 0.0,
+        base_step: 0.0,
+        step: 0.0,
+        h: 0.0,
+        y: State::new(0.0, 0.0),
+        fy: State::new(0.0, 0.0),
+        t: 0.0,
+        g_now: 0.0,
+        phase_steps: 0,
+        stats: Stats {
+            steps: 0,
+            rejected: 0,
+            rhs_evaluations: 0,
+        },
+        turn_time: 0.0,
+        peak: 0.0,
+    };
+}
+
+/// rk4-event on unilateral contacts of exponent `n`, one impact per `(η, step)` of `jobs`,
+/// [`LANES`] at a time: the same arithmetic as `phased` with an [`Rk4`] stepper, operation for
+/// operation, so each result equals that of a single chain to the last bit. The RK4 stages of
+/// every lane are computed side by side; what only one lane meets (the series at the ends, the
+/// turning point and contact end located on the step) is done for it alone with the very
+/// functions the single chain uses.
+fn rk4_event_lanes(
+    power: impl Power,
+    n: f64,
+    jobs: &[(f64, f64)],
+) -> Vec<Result<Scaled, SolveError>> {
+    let series = ContactSeries::for_exponent(n);
+    let mut results: Vec<Option<Result<Scaled, SolveError>>> =
+        (0..jobs.len()).map(|_| None).collect();
+    let mut lanes = [Lane::IDLE; LANES];
+    let mut next_job = 0;
+    // The right-hand side of a phase with factor `k`, as `phased_with` writes it.
+    let rhs_of = |k: f64| move |s: &State| State::new(s[1], power.times(-k, s[0].max(0.0)));
+    loop {
+        // Each lane: start an impact if it has none, then the checks a march makes before a
+        // step; a lane whose impact ends there takes the next one.
+        for lane in lanes.iter_mut() {
+            loop {
+                if lane.phase == Phase::Idle {
+                    if next_job == jobs.len() {
+                        break;
+                    }
+                    let (eta, h) = jobs[next_job];
+                    *lane = start_lane(power, &series, n, eta, h, next_job);
+                    next_job += 1;
+                }
+                match before_step(lane, &series, n) {
+                    None => break,
+                    Some(result) => {
+                        results[lane.job] = Some(result);
+                        *lane = Lane::IDLE;
+                    }
+                }
+            }
+        }
+        if lanes.iter().all(|l| l.phase == Phase::Idle) {
+            break;
+        }
+        // One RK4 step of every lane, side by side (idle lanes step a harmless zero state),
+        // and the right-hand side at its end, which the march needs if the step is taken.
+        let trial = rk4_step_lanes(power, &lanes);
+        for (l, lane) in lanes.iter_mut().enumerate() {
+            if lane.phase == Phase::Idle {
+                continue;
+            }
+            let (state, f_end) = (trial.0[l], trial.1[l]);
+            lane.stats.rhs_evaluations += 3;
+            let g_next = match lane.phase {
+                Phase::Load => state[1],
+                _ => state[0],
+            };
+            let crossed = super::changes_sign(lane.g_now, g_next);
+            if !state.iter().all(|x| x.is_finite()) {
+                lane.stats.rejected += 1;
+                lane.h = lane.step.min(0.5 * lane.h);
+                continue;
+            }
+            if crossed {
+                let rhs = rhs_of(lane.k);
+                let mut stepper = Rk4::new(lane.step);
+                let event = match lane.phase {
+                    Phase::Load => 1,
+                    _ => 0,
+                };
+                let (theta, located) = super::locate(
+                    &rhs,
+                    &mut stepper,
+                    &lane.y,
+                    &lane.fy,
+                    lane.h,
+                    |s: &State| s[event],
+                    lane.g_now,
+                    &mut lane.stats,
+                );
+                lane.stats.steps += 1;
+                let time = lane.t + theta * lane.h;
+                match lane.phase {
+                    Phase::Load => unload_lane(lane, power, time, located[0]),
+                    _ => {
+                        results[lane.job] = Some(Ok(finish_lane(lane, n, time, located)));
+                        *lane = Lane::IDLE;
+                    }
+                }
+                continue;
+            }
+            lane.t += lane.h;
+            lane.y = state;
+            lane.fy = f_end;
+            lane.stats.rhs_evaluations += 1;
+            lane.g_now = g_next;
+            lane.stats.steps += 1;
+            lane.phase_steps += 1;
+            lane.h = lane.step;
+        }
+    }
+    results
+        .into_iter()
+        .map(|r| r.expect("every job ran in a lane"))
+        .collect()
+}
+
+/// A lane at the start of an impact: the series over the first stretch, then the loading
+/// march's start (`phased_with` and `march`).
+fn start_lane(
+    power: impl Power,
+    series: &ContactSeries,
+    n: f64,
+    eta: f64,
+    h: f64,
+    job: usize,
+) -> Lane {
+    let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
+    let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
+    let speed = 1.0;
+    let s0 = series.reach(k_load, speed);
+    let (y0, v0) = series.advance(k_load, speed, s0);
+    let start = State::new(y0, v0);
+    let mut stats = Stats::default();
+    stats.steps += 1;
+    // Rk4::set_phase_time_scale(1.0): the step is the base step.
+    let step = h * 1.0;
+    stats.rhs_evaluations += 1;
+    Lane {
+        job,
+        phase: Phase::Load,
+        eta,
+        k_load,
+        k_unload,
+        k: k_load,
+        base_step: h,
+        step,
+        h: step,
+        y: start,
+        fy: State::new(start[1], power.times(-k_load, start[0].max(0.0))),
+        t: s0,
+        g_now: start[1],
+        phase_steps: 0,
+        stats,
+        turn_time: 0.0,
+        peak: 0.0,
+    }
+}
+
+/// The turning point found at `time` with approach `peak`: the unloading march's start.
+fn unload_lane(lane: &mut Lane, power: impl Power, time: f64, peak: f64) {
+    lane.turn_time = time;
+    lane.peak = peak;
+    lane.phase = Phase::Unload;
+    lane.k = lane.k_unload;
+    lane.step = lane.base_step * (lane.k_load / lane.k_unload).sqrt();
+    lane.h = lane.step;
+    lane.y = State::new(peak, 0.0);
+    lane.fy = State::new(lane.y[1], power.times(-lane.k, lane.y[0].max(0.0)));
+    lane.stats.rhs_evaluations += 1;
+    lane.t = time;
+    lane.g_now = lane.y[0];
+    lane.phase_steps = 0;
+}
+
+/// The checks `march` makes before each step: the step budget, the step's underflow, and in
+/// the unloading phase the series' reach of the contact end. `Some` when the impact ends here.
+fn before_step(
+    lane: &mut Lane,
+    series: &ContactSeries,
+    n: f64,
+) -> Option<Result<Scaled, SolveError>> {
+    if lane.phase_steps > super::STEP_BUDGET {
+        return Some(Err(SolveError::StepBudget {
+            method: "march",
+            steps: lane.phase_steps,
+        }));
+    }
+    if lane.h <= lane.t.abs().max(1.0) * 1e-15 {
+        return Some(Err(SolveError::StepUnderflow {
+            method: "march",
+            time: lane.t,
+        }));
+    }
+    if lane.phase == Phase::Unload
+        && lane.y[1] < 0.0
+        && series.within_reach_of_end(lane.k, lane.y[0], lane.y[1], lane.fy[1])
+        && let Some((s, v)) = series.time_to_exit(lane.k, lane.y[0], lane.y[1])
+    {
+        lane.stats.steps += 1;
+        return Some(Ok(finish_lane(lane, n, lane.t + s, State::new(0.0, -v))));
+    }
+    None
+}
+
+/// The figures of a lane's impact that ended at `time` in `state` (`phased_with`).
+fn finish_lane(lane: &Lane, n: f64, time: f64, state: State) -> Scaled {
+    Scaled {
+        cor: -state[1],
+        peak: lane.peak,
+        peak_force: (1.0 + lane.eta) * lane.peak.powf(n),
+        compression_time: lane.turn_time,
+        contact_time: time,
+        stats: lane.stats,
+        samples: Vec::new(),
+        crossing_speeds: Vec::new(),
+    }
+}
+
+/// One RK4 step (`rk4_step`, its operations in its order) of every lane, and the right-hand
+/// side at each step's end.
+#[inline]
+fn rk4_step_lanes(power: impl Power, lanes: &[Lane; LANES]) -> ([State; LANES], [State; LANES]) {
+    let h: [f64; LANES] = std::array::from_fn(|l| lanes[l].h);
+    let k: [f64; LANES] = std::array::from_fn(|l| lanes[l].k);
+    let y0: [f64; LANES] = std::array::from_fn(|l| lanes[l].y[0]);
+    let y1: [f64; LANES] = std::array::from_fn(|l| lanes[l].y[1]);
+    let f0: [f64; LANES] = std::array::from_fn(|l| lanes[l].fy[0]);
+    let f1: [f64; LANES] = std::array::from_fn(|l| lanes[l].fy[1]);
+    // The acceleration `power.times(-k, y.max(0))` of each lane.
+    let accel = |y: &[f64; LANES]| -> [f64; LANES] {
+        std::array::from_fn(|l| power.times(-k[l], y[l].max(0.0)))
+    };
+    let half: [f64; LANES] = std::array::from_fn(|l| 0.5 * h[l]);
+    // k2 = rhs(y + 0.5 h k1)
+    let a0: [f64; LANES] = std::array::from_fn(|l| y0[l] + half[l] * f0[l]);
+    let a1: [f64; LANES] = std::array::from_fn(|l| y1[l] + half[l] * f1[l]);
+    let k2_0 = a1;
+    let k2_1 = accel(&a0);
+    // k3 = rhs(y + 0.5 h k2)
+    let b0: [f64; LANES] = std::array::from_fn(|l| y0[l] + half[l] * k2_0[l]);
+    let b1: [f64; LANES] = std::array::from_fn(|l| y1[l] + half[l] * k2_1[l]);
+    let k3_0 = b1;
+    let k3_1 = accel(&b0);
+    // k4 = rhs(y + h k3)
+    let c0: [f64; LANES] = std::array::from_fn(|l| y0[l] + h[l] * k3_0[l]);
+    let c1: [f64; LANES] = std::array::from_fn(|l| y1[l] + h[l] * k3_1[l]);
+    let k4_0 = c1;
+    let k4_1 = accel(&c0);
+    // y + h/6 (k1 + 2 k2 + 2 k3 + k4)
+    let sixth: [f64; LANES] = std::array::from_fn(|l| h[l] / 6.0);
+    let n0: [f64; LANES] = std::array::from_fn(|l| {
+        y0[l] + sixth[l] * (f0[l] + 2.0 * k2_0[l] + 2.0 * k3_0[l] + k4_0[l])
+    });
+    let n1: [f64; LANES] = std::array::from_fn(|l| {
+        y1[l] + sixth[l] * (f1[l] + 2.0 * k2_1[l] + 2.0 * k3_1[l] + k4_1[l])
+    });
+    let e1 = accel(&n0);
+    (
+        std::array::from_fn(|l| State::new(n0[l], n1[l])),
+        std::array::from_fn(|l| State::new(n1[l], e1[l])),
+    )
 }
 
 /// The closed-form figures, for comparison with a run.
