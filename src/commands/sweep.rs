@@ -13,12 +13,11 @@ use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::SweepArgs;
 use millimpact::analysis::source::Source;
-use millimpact::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
+use millimpact::analysis::sweep::grid::{SweepFile, is_sweep_table, read_table};
 use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
 use millimpact::analysis::sweep::point::GridOptions;
-use millimpact::analysis::sweep::row::SweepRow;
 use millimpact::analysis::sweep::rows::{
-    RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
+    EncodedRows, RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
 };
 use millimpact::analysis::sweep::run_grid;
 use millimpact::error::{CheckFailed, UserError};
@@ -133,7 +132,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         )
     })?;
     let columns = sweep.columns();
-    let mut points: Vec<Point> = sweep.points(args.shard);
+    let mut indices: Vec<usize> = sweep.indices(args.shard);
     let mut resume_rows = false;
     let out: Box<dyn Write + Send> = match &args.out {
         None => Box::new(std::io::BufWriter::new(std::io::stdout())),
@@ -155,7 +154,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
                     format = f;
                 }
                 let keys = keys_of(&rows, &sweep.key_columns(), &sweep.fingerprint, &file)?;
-                points.retain(|p| !keys.contains(&sweep.key_cells(p)));
+                indices.retain(|&i| !keys.contains(&sweep.key_cells(&sweep.point(i))));
                 resume_rows = true;
             }
             // A row cut off by a kill is dropped; the point runs again.
@@ -171,9 +170,10 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
             Box::new(std::io::BufWriter::new(file))
         }
     };
-    let has_codes = points
+    let has_codes = sweep
+        .sources
         .iter()
-        .any(|p| matches!(p.source.source, Source::Code(_)));
+        .any(|s| matches!(s.source, Source::Code(_)));
     let flush_every = if has_codes {
         Duration::ZERO
     } else {
@@ -192,7 +192,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         periods: args.integration.periods,
         batch: args.batch as usize,
     };
-    let bar = progress_bar(points.len() as u64);
+    let bar = progress_bar(indices.len() as u64);
     let _ = ctrlc::set_handler(|| {
         // The codes running now end at once; the rows already finished are kept.
         if STOP.swap(true, Ordering::SeqCst) {
@@ -201,31 +201,27 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         }
         millimpact::codes::runner::stop_all_codes();
     });
-    let state = Mutex::new((writer, None::<std::io::Error>));
-    let sink = |row: SweepRow| {
-        let mut guard = state.lock().unwrap_or_else(|e| e.into_inner());
-        if guard.1.is_none()
-            && let Err(e) = guard.0.write(&row)
-        {
-            guard.1 = Some(e);
-            STOP.store(true, Ordering::SeqCst);
-        }
-        if let Some(bar) = &bar {
-            bar.inc(1);
-        }
-    };
+    let mut writer = writer;
     let notes = Mutex::new(Vec::<String>::new());
     let note = |text: String| notes.lock().unwrap_or_else(|e| e.into_inner()).push(text);
-    run_grid(sweep, &points, &options, &STOP, &sink, &note)?;
+    // The one writer: rows come encoded from the threads that computed them.
+    let mut write = |rows: EncodedRows| {
+        let count = rows.rows as u64;
+        writer.write_encoded(rows)?;
+        if let Some(bar) = &bar {
+            bar.inc(count);
+        }
+        Ok(())
+    };
+    let written = run_grid(sweep, &indices, &options, &STOP, format, &mut write, &note);
     for text in notes.into_inner().unwrap_or_else(|e| e.into_inner()) {
         eprintln!("note: {text}");
     }
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (mut writer, error) = state.into_inner().unwrap_or_else(|e| e.into_inner());
     let flushed = writer.flush();
-    if let Some(e) = error.or(flushed.err()) {
+    if let Some(e) = written.err().or(flushed.err()) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }

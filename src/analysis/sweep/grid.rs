@@ -24,7 +24,7 @@ use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, S
 use crate::analysis::run::MIN_RTOL;
 pub use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
-use crate::model::case::{Case, CaseError};
+use crate::model::case::{Case, CaseError, IN_PLACE_KEYS};
 use crate::solve::{Knob, Method};
 
 /// Most points a sweep file may name.
@@ -77,6 +77,11 @@ pub struct SweepFile {
     pub sources: Vec<ResolvedSource>,
     /// Hash of the normalised sweep file and base case: shards of one sweep share it.
     pub fingerprint: String,
+    /// The base case, read.
+    pub base_case: Case,
+    /// Whether every case axis is a key the case is edited at in place
+    /// ([`IN_PLACE_KEYS`]), so that a point's case need not be read anew.
+    pub in_place: bool,
 }
 
 /// One point of the grid.
@@ -212,7 +217,7 @@ impl SweepFile {
             }
         };
         // The base must itself be a valid case.
-        Case::from_table(
+        let base_case = Case::from_table(
             &base,
             &base_path.display().to_string(),
             &base_name,
@@ -396,6 +401,7 @@ impl SweepFile {
         normal.insert("base".into(), Value::Table(base.clone()));
         let text = toml::to_string(&normal).unwrap_or_default();
         let fingerprint = hex(&Sha256::digest(text.as_bytes()))[..16].to_string();
+        let in_place = axes.iter().all(|a| IN_PLACE_KEYS.contains(&a.key.as_str()));
         Ok(SweepFile {
             path: path.to_path_buf(),
             base,
@@ -404,6 +410,8 @@ impl SweepFile {
             axes,
             sources,
             fingerprint,
+            base_case,
+            in_place,
         })
     }
 
@@ -441,6 +449,13 @@ impl SweepFile {
             .step_by(n)
             .map(|i| self.point(i))
             .collect()
+    }
+
+    /// The indices of the points of shard `k` of `n` (1-based; every n-th point from the
+    /// k-th), or of all.
+    pub fn indices(&self, shard: Option<(usize, usize)>) -> Vec<usize> {
+        let (k, n) = shard.unwrap_or((1, 1));
+        (k - 1..self.len()).step_by(n).collect()
     }
 
     /// The keys of the case axes, in axis order.
@@ -537,8 +552,55 @@ impl SweepFile {
             }
             holder.insert(key.to_string(), value.clone());
         }
-        let file = format!("{} (point {})", self.path.display(), point.index);
-        Case::from_table(&table, &file, &self.base_name, &self.base_path)
+        Case::from_table(
+            &table,
+            &self.point_file(point),
+            &self.base_name,
+            &self.base_path,
+        )
+    }
+
+    /// How errors name the case of `point`.
+    pub fn point_file(&self, point: &Point) -> String {
+        format!("{} (point {})", self.path.display(), point.index)
+    }
+}
+
+/// The cases of a sweep's points, one after another: each made from the last by editing it in
+/// place when every axis allows ([`SweepFile::in_place`]), else read anew from the base's
+/// table; the same case and the same errors either way.
+pub struct PointCases<'a> {
+    sweep: &'a SweepFile,
+    case: Case,
+}
+
+impl<'a> PointCases<'a> {
+    /// Cases of `sweep`'s points.
+    pub fn new(sweep: &'a SweepFile) -> PointCases<'a> {
+        PointCases {
+            sweep,
+            case: sweep.base_case.clone(),
+        }
+    }
+
+    /// The case at `point`.
+    pub fn case(&mut self, point: &Point) -> Result<&Case, CaseError> {
+        if !self.sweep.in_place {
+            self.case = self.sweep.case(point)?;
+            return Ok(&self.case);
+        }
+        let mut edits: [(&str, &Value); IN_PLACE_KEYS.len()] =
+            [("", &Value::Boolean(false)); IN_PLACE_KEYS.len()];
+        let count = self.sweep.axes.len();
+        for ((edit, axis), value) in edits.iter_mut().zip(&self.sweep.axes).zip(&point.values) {
+            *edit = (axis.key.as_str(), value);
+        }
+        // The file's name is formatted only for an error.
+        self.case.apply(&edits[..count], "").map_err(|mut e| {
+            e.file = self.sweep.point_file(point);
+            e
+        })?;
+        Ok(&self.case)
     }
 }
 

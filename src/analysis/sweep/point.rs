@@ -1,13 +1,16 @@
 //! One point of a sweep computed alone: by a method, or by a code in a process of its own
 //! with the fault containment of `reference`.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use super::grid::{Point, SweepFile};
+use super::grid::{Point, PointCases, SweepFile};
 use super::row::{CodeFigures, PointFigures, SweepRow};
-use crate::analysis::run::{IntegrationOptions, run_case};
+use crate::analysis::run::{IntegrationOptions, run_case, solve_failure};
 use crate::analysis::source::{Resolution, Source};
 use crate::analysis::store::{ReferenceOptions, run_reference};
+use crate::model::law::PaperLaw;
+use crate::solve::paper::{Settings, solve_many};
 
 /// How to run a sweep.
 #[derive(Clone, Debug)]
@@ -20,6 +23,87 @@ pub struct GridOptions {
     pub periods: f64,
     /// Most impacts per code process (1: no batching).
     pub batch: usize,
+}
+
+/// The solver settings of a method point on `case`.
+fn method_settings(
+    point: &Point,
+    case: &crate::model::case::Case,
+    options: &GridOptions,
+) -> anyhow::Result<Settings> {
+    let Source::Method(method) = point.source.source else {
+        anyhow::bail!("point {} is a code's, not a method's", point.index);
+    };
+    let integration = IntegrationOptions {
+        method,
+        steps_per_period: Resolution::steps_per_period(point.source.resolution),
+        rtol: Resolution::rtol(point.source.resolution),
+        periods: options.periods,
+        ..IntegrationOptions::default()
+    };
+    Ok(integration.settings(case, false)?)
+}
+
+/// The rows of method points, in their order: the same rows [`single_point`] gives each, with
+/// the case edited in place from point to point where the axes allow, and the impacts of one
+/// setting solved together ([`solve_many`]: rk4-event in lanes; a row's wall time is then the
+/// batch's divided among its impacts). After `stop` is raised the points left are not run.
+pub fn method_rows(
+    sweep: &SweepFile,
+    points: &[Point],
+    options: &GridOptions,
+    stop: &AtomicBool,
+) -> Vec<SweepRow> {
+    let mut cases = PointCases::new(sweep);
+    // Each point's law and speed with its settings, or its error.
+    let mut prepared: Vec<anyhow::Result<(PaperLaw, f64, Settings)>> = Vec::new();
+    for point in points {
+        if stop.load(Ordering::Relaxed) {
+            break;
+        }
+        prepared.push((|| {
+            let case = cases.case(point)?;
+            let settings = method_settings(point, case, options)?;
+            Ok((case.law(), case.impact_velocity, settings))
+        })());
+    }
+    let mut outcomes: Vec<Option<anyhow::Result<PointFigures>>> =
+        (0..prepared.len()).map(|_| None).collect();
+    let mut pending: Vec<usize> = (0..prepared.len()).collect();
+    while let Some(&first) = pending.first() {
+        let Ok((_, _, settings)) = &prepared[first] else {
+            if let Err(e) = std::mem::replace(&mut prepared[first], Err(anyhow::anyhow!(""))) {
+                outcomes[first] = Some(Err(e));
+            }
+            pending.remove(0);
+            continue;
+        };
+        let settings = *settings;
+        let (same, rest): (Vec<usize>, Vec<usize>) = pending
+            .iter()
+            .partition(|&&i| matches!(&prepared[i], Ok((_, _, s)) if *s == settings));
+        pending = rest;
+        let items: Vec<(PaperLaw, f64)> = same
+            .iter()
+            .filter_map(|&i| prepared[i].as_ref().ok().map(|(law, v0, _)| (*law, *v0)))
+            .collect();
+        for ((&i, (law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
+        {
+            outcomes[i] = Some(
+                solved
+                    .map(|o| PointFigures::of_solution(&sweep.base_case.name, law, *v0, &o))
+                    .map_err(|e| solve_failure(&sweep.base_case.path, e)),
+            );
+        }
+    }
+    points
+        .iter()
+        .zip(outcomes)
+        .map(|(point, outcome)| {
+            let outcome = outcome.expect("every prepared point was solved");
+            sweep.outcome_row(point, outcome)
+        })
+        .collect()
 }
 
 /// Evaluate one point alone, whoever computes it.

@@ -234,15 +234,67 @@ pub fn keys_of(
     Ok(keys)
 }
 
-/// Where rows go, in their format.
-enum RowSink<W: Write> {
-    Csv(Box<csv::Writer<W>>),
-    Jsonl(W),
+/// Rows encoded in their format, ready to be written: what a worker hands the one writer.
+/// Numbers are written by the csv and serde_json serialisers (ryu's shortest form that reads
+/// back exactly), into this one buffer.
+pub struct EncodedRows {
+    format: RowFormat,
+    csv: Option<csv::Writer<Vec<u8>>>,
+    bytes: Vec<u8>,
+    /// Rows held.
+    pub rows: usize,
+    /// Rows whose status is not `ok`.
+    pub failed: usize,
+}
+
+impl EncodedRows {
+    /// An empty run of rows in `format`.
+    pub fn new(format: RowFormat) -> EncodedRows {
+        EncodedRows {
+            format,
+            csv: None,
+            bytes: Vec::new(),
+            rows: 0,
+            failed: 0,
+        }
+    }
+
+    /// Append `row`.
+    pub fn push(&mut self, row: &SweepRow) -> std::io::Result<()> {
+        match self.format {
+            RowFormat::Csv => {
+                let writer = self.csv.get_or_insert_with(|| {
+                    csv::WriterBuilder::new()
+                        .has_headers(false)
+                        .terminator(csv::Terminator::Any(b'\n'))
+                        .from_writer(Vec::new())
+                });
+                row.write_csv(writer)?;
+            }
+            RowFormat::Jsonl => row.write_json_line(&mut self.bytes)?,
+        }
+        self.rows += 1;
+        if !row.status.is_ok() {
+            self.failed += 1;
+        }
+        Ok(())
+    }
+
+    /// The rows' bytes.
+    pub fn into_bytes(self) -> std::io::Result<Vec<u8>> {
+        match self.csv {
+            Some(writer) => writer
+                .into_inner()
+                .map_err(|e| std::io::Error::other(e.to_string())),
+            None => Ok(self.bytes),
+        }
+    }
 }
 
 /// Rows to a writer, flushed as they come (at most every `flush_every` for fast rows).
 pub struct RowWriter<W: Write> {
-    sink: RowSink<W>,
+    out: W,
+    format: RowFormat,
     last_flush: std::time::Instant,
     flush_every: std::time::Duration,
     /// Rows written.
@@ -260,25 +312,13 @@ impl<W: Write> RowWriter<W> {
         resume: bool,
         flush_every: std::time::Duration,
     ) -> std::io::Result<Self> {
-        let sink = match format {
-            RowFormat::Csv => {
-                let mut writer = csv::WriterBuilder::new()
-                    .has_headers(false)
-                    .terminator(csv::Terminator::Any(b'\n'))
-                    .from_writer(out);
-                if !resume {
-                    writer.write_record(columns)?;
-                    writer.flush()?;
-                }
-                RowSink::Csv(Box::new(writer))
-            }
-            RowFormat::Jsonl => {
-                out.flush()?;
-                RowSink::Jsonl(out)
-            }
-        };
+        if format == RowFormat::Csv && !resume {
+            out.write_all(header(format, columns).as_bytes())?;
+        }
+        out.flush()?;
         Ok(RowWriter {
-            sink,
+            out,
+            format,
             last_flush: std::time::Instant::now(),
             flush_every,
             written: 0,
@@ -288,14 +328,17 @@ impl<W: Write> RowWriter<W> {
 
     /// Append one row.
     pub fn write(&mut self, row: &SweepRow) -> std::io::Result<()> {
-        match &mut self.sink {
-            RowSink::Csv(writer) => row.write_csv(writer)?,
-            RowSink::Jsonl(out) => row.write_json_line(out)?,
-        }
-        self.written += 1;
-        if !row.status.is_ok() {
-            self.failed += 1;
-        }
+        let mut rows = EncodedRows::new(self.format);
+        rows.push(row)?;
+        self.write_encoded(rows)
+    }
+
+    /// Append rows already encoded (in this writer's format).
+    pub fn write_encoded(&mut self, rows: EncodedRows) -> std::io::Result<()> {
+        let (count, failed) = (rows.rows, rows.failed);
+        self.out.write_all(&rows.into_bytes()?)?;
+        self.written += count;
+        self.failed += failed;
         if self.last_flush.elapsed() >= self.flush_every {
             self.flush()?;
             self.last_flush = std::time::Instant::now();
@@ -305,10 +348,12 @@ impl<W: Write> RowWriter<W> {
 
     /// Flush what is buffered.
     pub fn flush(&mut self) -> std::io::Result<()> {
-        match &mut self.sink {
-            RowSink::Csv(writer) => writer.flush(),
-            RowSink::Jsonl(out) => out.flush(),
-        }
+        self.out.flush()
+    }
+
+    /// The format rows are written in.
+    pub fn format(&self) -> RowFormat {
+        self.format
     }
 }
 
