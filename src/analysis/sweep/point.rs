@@ -137,3 +137,45 @@ pub fn single_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> 
     })();
     sweep.outcome_row(point, outcome)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows of the chunked path (case edited in place, impacts solved together) are those
+    /// of points run alone, errors included, but for the wall time.
+    #[test]
+    fn method_rows_are_the_rows_of_single_points() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("sweeps");
+        let text = r#"
+            base = "../cases/ball_plate.toml"
+            [axes]
+            impact_velocity = [2.0, 0, -1.0, 1e300, 3]
+            restitution = [0.5, 1.5, "x", 0.9999, 1e-9, nan]
+            method = ["rk4-event", "dopri5", "exact"]
+        "#;
+        let table: toml::Table = text.parse().unwrap();
+        let sweep = SweepFile::from_table(&dir.join("t.toml"), &table).unwrap();
+        assert!(sweep.in_place);
+        let options = GridOptions {
+            jobs: 1,
+            timeout: Duration::from_secs(1),
+            periods: 3.0,
+            batch: 1,
+        };
+        let points: Vec<Point> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
+        let stop = AtomicBool::new(false);
+        let together = method_rows(&sweep, &points, &options, &stop);
+        assert_eq!(together.len(), points.len());
+        let mut failed = 0;
+        for (point, mut row) in points.iter().zip(together) {
+            let mut alone = single_point(&sweep, point, &options);
+            row.figures.wall_time = None;
+            alone.figures.wall_time = None;
+            failed += usize::from(!row.status.is_ok());
+            // By their text: a NaN axis value is not equal to itself.
+            assert_eq!(format!("{row:?}"), format!("{alone:?}"), "point {}", point.index);
+        }
+        assert!(failed > 40 && failed < points.len(), "{failed}");
+    }
+}
