@@ -103,6 +103,17 @@ fn parse_rtol(text: &str) -> Result<f64, String> {
     }
 }
 
+/// A COR tolerance: a number the choice of a method can meet.
+fn parse_tolerance(text: &str) -> Result<f64, String> {
+    let tolerance: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    millimpact::analysis::precision::choice::choose(tolerance)
+        .map(|_| tolerance)
+        .map_err(|e| format!("must be {e}"))
+}
+
 /// Largest time limit for an external code, s (a day): beyond it a run is not a check.
 pub const MAX_TIMEOUT: f64 = 86_400.0;
 
@@ -173,6 +184,11 @@ pub struct SweepArgs {
     /// Integration settings.
     #[command(flatten)]
     pub integration: IntegrationArgs,
+    /// With a case file: a relative COR error to meet instead of a method and resolution; the
+    /// cheapest method and resolution known to meet it is chosen and named on standard error
+    /// (a sweep file says `tolerance = ...`).
+    #[arg(long, value_parser = parse_tolerance, conflicts_with_all = ["method", "steps_per_period", "timestep", "rtol"])]
+    pub tolerance: Option<f64>,
     /// Output format (a sweep file's rows: csv or jsonl).
     #[arg(long, value_parser = PossibleValuesParser::new(["table", "json", "csv", "markdown", "jsonl"]), default_value = "csv")]
     pub format: String,
@@ -182,8 +198,8 @@ pub struct SweepArgs {
     /// Sweep file: skip the points already in --out (matched by their parameters).
     #[arg(long, requires = "out")]
     pub resume: bool,
-    /// Sweep file: worker threads for our methods and most live DEM-code processes
-    /// [default: the number of cores].
+    /// Worker threads for our methods and (sweep file) most live DEM-code processes [default:
+    /// the number of cores].
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub jobs: Option<u32>,
     /// Sweep file: run only the K-th of N deterministic slices of the grid (K/N, 1-based).

@@ -12,9 +12,11 @@ use anyhow::{Context, Result};
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::SweepArgs;
+use millimpact::analysis::precision::choice::choose;
+use millimpact::analysis::source::Resolution;
 use millimpact::analysis::source::Source;
 use millimpact::analysis::sweep::grid::{SweepFile, is_sweep_table, read_table};
-use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
+use millimpact::analysis::sweep::legacy::{Streamed, parse_range};
 use millimpact::analysis::sweep::point::GridOptions;
 use millimpact::analysis::sweep::rows::{
     EncodedRows, RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
@@ -23,9 +25,9 @@ use millimpact::analysis::sweep::run_grid;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
+use millimpact::output::Format;
 use millimpact::output::invocation::Invocation;
 use millimpact::output::restitution_plot::restitution_svg;
-use millimpact::output::{Format, export};
 
 /// Raised by Ctrl-C: no new point starts, finished rows are kept.
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -68,19 +70,49 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
             "jsonl is for sweep files; a case over --loss-coefficient takes table, json, csv or markdown",
         )
     })?;
-    let options = integration_options(&args.integration);
-    let mut report = sweep_case(&case, &values, &options)?;
-    report.command = Invocation::new("sweep")
+    let mut options = integration_options(&args.integration);
+    let mut command = Invocation::new("sweep")
         .arg(case.path.display())
-        .option("--loss-coefficient", range)
-        .option("--method", options.method)
-        .to_string();
+        .option("--loss-coefficient", range);
+    match args.tolerance {
+        Some(tolerance) => {
+            let choice = choose(tolerance)
+                .map_err(|e| UserError::argument("--tolerance", tolerance, e.allowed))?;
+            eprintln!("note: {}", choice.sentence());
+            options.method = choice.method;
+            options.steps_per_period = Resolution::steps_per_period(Some(choice.resolution));
+            options.rtol = Resolution::rtol(Some(choice.resolution));
+            command = command.option("--tolerance", tolerance);
+        }
+        None => {
+            command = command
+                .option("--method", options.method)
+                .option_if("--steps-per-period", options.steps_per_period)
+                .option_if("--timestep", options.timestep)
+                .option_if("--rtol", options.rtol);
+        }
+    }
+    let streamed = Streamed {
+        case: &case,
+        values: &values,
+        options,
+        command: command.to_string(),
+        jobs: jobs(args),
+    };
+    // Rows go to standard output as they are done.
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let points = match streamed.write(format, &mut out, args.plot.is_some()) {
+        Ok(points) => points,
+        Err(e) if broken_pipe(&e) => return Ok(CommandOutput::passed(String::new())),
+        Err(e) => return Err(e),
+    };
+    if let Err(e) = out.flush() {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return Ok(CommandOutput::passed(String::new()));
+        }
+        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+    }
     if let Some(path) = &args.plot {
-        let points: Vec<(f64, f64)> = report
-            .rows
-            .iter()
-            .map(|r| (r.loss_coefficient, r.cor))
-            .collect();
         let svg = restitution_svg(
             &case.name,
             options.method.name(),
@@ -89,7 +121,24 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         )?;
         write_output(path, svg.as_bytes(), "figure")?;
     }
-    Ok(CommandOutput::passed(export(&report, format)?))
+    Ok(CommandOutput::passed(String::new()))
+}
+
+/// Whether `e` is a closed pipe (the reader has gone: what it read is what it wanted).
+fn broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// Worker threads: `--jobs`, or the number of cores.
+fn jobs(args: &SweepArgs) -> usize {
+    args.jobs.map(|j| j as usize).unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    })
 }
 
 fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
@@ -106,6 +155,14 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
     }
     if let Some(v) = &args.plot {
         return Err(refuse("--plot", v.display().to_string()));
+    }
+    if let Some(v) = args.tolerance {
+        return Err(UserError::CaseArgument {
+            case: file.clone(),
+            option: "--tolerance".into(),
+            value: format!("{v:e}"),
+            allowed: "not for a sweep file: give `tolerance = ...` in the file".into(),
+        });
     }
     if let Some(v) = i.steps_per_period {
         return Err(refuse("--steps-per-period", v.to_string()));
@@ -124,6 +181,9 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
 
 fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     refuse_for_sweep_files(args)?;
+    if let Some(choice) = &sweep.tolerance {
+        eprintln!("note: {}", choice.sentence());
+    }
     let mut format = RowFormat::from_name(&args.format).ok_or_else(|| {
         UserError::argument(
             "--format",
@@ -181,13 +241,8 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     };
     let writer = RowWriter::new(out, format, &columns, resume_rows, flush_every)
         .context("writing the sweep's rows")?;
-    let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
     let options = GridOptions {
-        jobs,
+        jobs: jobs(args),
         timeout: Duration::from_secs_f64(args.timeout),
         periods: args.integration.periods,
         batch: args.batch as usize,

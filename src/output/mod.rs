@@ -206,15 +206,18 @@ fn new_table(headers: &[String]) -> Table {
     t
 }
 
-/// A table in Markdown; `|` inside a cell is escaped.
-fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
+/// One line of a Markdown table; `|` inside a cell is escaped.
+pub fn markdown_row(cells: &[String]) -> String {
     let escape = |cell: &String| cell.replace('|', "\\|");
-    let line = |cells: &[String]| {
-        format!(
-            "| {} |\n",
-            cells.iter().map(escape).collect::<Vec<_>>().join(" | ")
-        )
-    };
+    format!(
+        "| {} |\n",
+        cells.iter().map(escape).collect::<Vec<_>>().join(" | ")
+    )
+}
+
+/// A table in Markdown.
+fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
+    let line = markdown_row;
     let mut text = line(headers);
     text += &format!("|{}\n", "---|".repeat(headers.len()));
     for row in rows {

@@ -177,6 +177,16 @@ pub fn solve(
     Ok(plan.outcome(scaled, started.elapsed().as_secs_f64()))
 }
 
+/// Refuse what [`solve`] would refuse before integrating: a step in seconds beyond the
+/// method's stability limit for this impact.
+pub fn check_step(
+    law: &PaperLaw,
+    impact_velocity: f64,
+    settings: &Settings,
+) -> Result<(), SolveError> {
+    Plan::new(law, impact_velocity, settings).map(|_| ())
+}
+
 /// Impacts solved together: each item `(law, impact_velocity)` with the same `settings`, each
 /// giving what [`solve`] gives it, bit for bit. rk4-event on a unilateral contact without a
 /// trajectory steps [`LANES`] impacts at once, interleaved: one RK4 chain is a chain of

@@ -14,6 +14,10 @@
 //! code = ["lammps"]
 //! steps_per_contact = [200]
 //! ```
+//!
+//! Instead of a method and its resolution, a file may ask for an accuracy: `tolerance = 1e-10`
+//! (a relative COR error) chooses the cheapest method and resolution known to meet it
+//! ([`crate::analysis::precision::choice`]).
 
 use std::path::{Path, PathBuf};
 
@@ -21,6 +25,7 @@ use sha2::{Digest, Sha256};
 use toml::{Table, Value};
 
 use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
+use crate::analysis::precision::choice::{Choice, allowed_tolerances, choose, resolution_text};
 use crate::analysis::run::MIN_RTOL;
 pub use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
@@ -31,7 +36,7 @@ use crate::solve::{Knob, Method};
 pub const MAX_POINTS: usize = 10_000_000;
 
 /// The keys a sweep file may have at top level.
-const SWEEP_KEYS: [&str; 2] = ["base", "axes"];
+const SWEEP_KEYS: [&str; 3] = ["base", "axes", "tolerance"];
 /// Axes that choose sources and resolutions rather than case keys.
 const SOURCE_AXES: [&str; 5] = [
     "method",
@@ -79,6 +84,8 @@ pub struct SweepFile {
     pub fingerprint: String,
     /// The base case, read.
     pub base_case: Case,
+    /// The method and resolution chosen for the file's `tolerance`, if it gives one.
+    pub tolerance: Option<Choice>,
     /// Whether every case axis is a key the case is edited at in place
     /// ([`IN_PLACE_KEYS`]), so that a point's case need not be read anew.
     pub in_place: bool,
@@ -173,7 +180,7 @@ impl SweepFile {
                 return Err(fail(
                     key,
                     &value.to_string(),
-                    "unknown key; a sweep file takes base (a case file or table) and [axes]",
+                    "unknown key; a sweep file takes base (a case file or table), [axes] and tolerance",
                 ));
             }
         }
@@ -331,6 +338,33 @@ impl SweepFile {
                 }
             }
         }
+        let tolerance = match table.get("tolerance") {
+            None => None,
+            Some(value) => {
+                let refuse = |allowed: &str| fail("tolerance", &value.to_string(), allowed);
+                let explicit: Vec<&str> = ["method", "steps_per_period", "rtol"]
+                    .into_iter()
+                    .filter(|k| axes_table.contains_key(*k))
+                    .collect();
+                if !explicit.is_empty() {
+                    return Err(refuse(&format!(
+                        "not with axes.{}: the tolerance chooses the method and its resolution",
+                        explicit.join(" or axes.")
+                    )));
+                }
+                let Some(x) = value.as_float() else {
+                    return Err(refuse(&allowed_tolerances()));
+                };
+                let choice = choose(x).map_err(|e| refuse(&e.allowed))?;
+                methods.push(choice.method);
+                match choice.resolution {
+                    Resolution::StepsPerPeriod(n) => per_period = vec![Some(n)],
+                    Resolution::Rtol(r) => tolerances = vec![Some(r)],
+                    Resolution::StepsPerContact(_) => {}
+                }
+                Some(choice)
+            }
+        };
         if methods.is_empty() && codes.is_empty() {
             methods.push(Method::Rk4Event);
         }
@@ -399,6 +433,18 @@ impl SweepFile {
         let mut normal = Table::new();
         normal.insert("axes".into(), Value::Table(axes_table));
         normal.insert("base".into(), Value::Table(base.clone()));
+        if let Some(choice) = &tolerance {
+            // The choice too: rows of another choice (other bounds) belong to another sweep.
+            normal.insert("tolerance".into(), Value::Float(choice.tolerance));
+            normal.insert(
+                "tolerance_choice".into(),
+                Value::String(format!(
+                    "{} at {}",
+                    choice.method,
+                    resolution_text(choice.resolution)
+                )),
+            );
+        }
         let text = toml::to_string(&normal).unwrap_or_default();
         let fingerprint = hex(&Sha256::digest(text.as_bytes()))[..16].to_string();
         let in_place = axes.iter().all(|a| IN_PLACE_KEYS.contains(&a.key.as_str()));
@@ -412,6 +458,7 @@ impl SweepFile {
             fingerprint,
             base_case,
             in_place,
+            tolerance,
         })
     }
 

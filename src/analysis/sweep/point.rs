@@ -174,7 +174,12 @@ mod tests {
             alone.figures.wall_time = None;
             failed += usize::from(!row.status.is_ok());
             // By their text: a NaN axis value is not equal to itself.
-            assert_eq!(format!("{row:?}"), format!("{alone:?}"), "point {}", point.index);
+            assert_eq!(
+                format!("{row:?}"),
+                format!("{alone:?}"),
+                "point {}",
+                point.index
+            );
         }
         assert!(failed > 40 && failed < points.len(), "{failed}");
     }
