@@ -693,76 +693,51 @@ fn phased_with(
 /// Impacts of rk4-event stepped together in [`rk4_event_lanes`].
 pub const LANES: usize = 4;
 
-/// Which phase a lane is in.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Phase {
-    /// No impact.
-    Idle,
-    /// Loading (`1+η`) until the turning point.
-    Load,
-    /// Unloading (`1-η`) until the contact end.
-    Unload,
-}
-
-/// One impact of [`rk4_event_lanes`] in flight: the state of `phased_with`'s two marches, one
-/// step at a time.
+/// What a lane holds besides the state it steps: which impact, its factors and step, its
+/// counters, and the turning point once found.
 #[derive(Clone, Copy, Debug)]
-struct Lane {
+struct LaneImpact {
     job: usize,
-    phase: Phase,
     eta: f64,
     k_load: f64,
     k_unload: f64,
-    /// The factor of the phase at hand (`k_load` or `k_unload`).
-    k: f64,
     /// The stepper's step for the loading phase.
     base_step: f64,
     /// The stepper's step in the phase at hand.
     step: f64,
-    /// The step the march tries next (the stepper's, or less after a refused step).
-    h: f64,
-    y: State,
-    fy: State,
-    t: f64,
-    g_now: f64,
-    phase_steps: u64,
+    /// Counters but for the steps of the phase at hand, which are added at its end.
     stats: Stats,
     turn_time: f64,
     peak: f64,
 }
 
-impl Lane {
-    const IDLE: Lane = Lane {
-        job: usize::MAX,
-        phase: Phase::Idle,
-        eta: 0.0,
-        k_load: 0.0,
-        k_unload: 0.0,
-        k: 0.0,
-        base_step: 0.0,
-        step: 0.0,
-        h: 0.0,
-        y: State::new(0.0, 0.0),
-        fy: State::new(0.0, 0.0),
-        t: 0.0,
-        g_now: 0.0,
-        phase_steps: 0,
-        stats: Stats {
-            steps: 0,
-            rejected: 0,
-            rhs_evaluations: 0,
-        },
-        turn_time: 0.0,
-        peak: 0.0,
-    };
+/// [`LANES`] impacts in flight, each in the state of `phased_with`'s marches one step at a
+/// time. What every step reads and writes is held lane by lane in arrays (the RK4 stages of
+/// all lanes are then plain arithmetic on arrays); the rest in [`LaneImpact`].
+struct Lanes {
+    active: [bool; LANES],
+    unloading: [bool; LANES],
+    /// The factor of the phase at hand (`k_load` or `k_unload`).
+    k: [f64; LANES],
+    /// The step the march tries next.
+    h: [f64; LANES],
+    y: [f64; LANES],
+    v: [f64; LANES],
+    /// The right-hand side at `(y, v)`: `(v, a)`.
+    a: [f64; LANES],
+    t: [f64; LANES],
+    g_now: [f64; LANES],
+    /// Steps taken in the phase at hand.
+    phase_steps: [u64; LANES],
+    impact: [LaneImpact; LANES],
 }
 
 /// rk4-event on unilateral contacts of exponent `n`, one impact per `(η, step)` of `jobs`,
 /// [`LANES`] at a time: the same arithmetic as `phased` with an [`Rk4`] stepper, operation for
 /// operation, so each result equals that of a single chain to the last bit. The RK4 stages of
 /// every lane are computed side by side; what only one lane meets (the series at the ends, the
-/// turning point and contact end located on the step) is done for it alone with the very
-/// functions the single chain uses.
+/// turning point and contact end located on the step, a refused step) is done for it alone
+/// with the very functions the single chain uses.
 fn rk4_event_lanes(
     power: impl Power,
     n: f64,
@@ -771,90 +746,109 @@ fn rk4_event_lanes(
     let series = ContactSeries::for_exponent(n);
     let mut results: Vec<Option<Result<Scaled, SolveError>>> =
         (0..jobs.len()).map(|_| None).collect();
-    let mut lanes = [Lane::IDLE; LANES];
+    let idle = LaneImpact {
+        job: usize::MAX,
+        eta: 0.0,
+        k_load: 0.0,
+        k_unload: 0.0,
+        base_step: 0.0,
+        step: 0.0,
+        stats: Stats::default(),
+        turn_time: 0.0,
+        peak: 0.0,
+    };
+    let mut lanes = Lanes {
+        active: [false; LANES],
+        unloading: [false; LANES],
+        k: [0.0; LANES],
+        h: [0.0; LANES],
+        y: [0.0; LANES],
+        v: [0.0; LANES],
+        a: [0.0; LANES],
+        t: [0.0; LANES],
+        g_now: [0.0; LANES],
+        phase_steps: [0; LANES],
+        impact: [idle; LANES],
+    };
     let mut next_job = 0;
     // The right-hand side of a phase with factor `k`, as `phased_with` writes it.
     let rhs_of = |k: f64| move |s: &State| State::new(s[1], power.times(-k, s[0].max(0.0)));
     loop {
         // Each lane: start an impact if it has none, then the checks a march makes before a
         // step; a lane whose impact ends there takes the next one.
-        for lane in lanes.iter_mut() {
+        for l in 0..LANES {
             loop {
-                if lane.phase == Phase::Idle {
+                if !lanes.active[l] {
                     if next_job == jobs.len() {
                         break;
                     }
                     let (eta, h) = jobs[next_job];
-                    *lane = start_lane(power, &series, n, eta, h, next_job);
+                    lanes.start(l, power, &series, n, eta, h, next_job);
                     next_job += 1;
                 }
-                match before_step(lane, &series, n) {
+                match lanes.before_step(l, &series, n) {
                     None => break,
                     Some(result) => {
-                        results[lane.job] = Some(result);
-                        *lane = Lane::IDLE;
+                        results[lanes.impact[l].job] = Some(result);
+                        lanes.active[l] = false;
                     }
                 }
             }
         }
-        if lanes.iter().all(|l| l.phase == Phase::Idle) {
+        if !lanes.active.iter().any(|&a| a) {
             break;
         }
-        // One RK4 step of every lane, side by side (idle lanes step a harmless zero state),
-        // and the right-hand side at its end, which the march needs if the step is taken.
-        let trial = rk4_step_lanes(power, &lanes);
-        for (l, lane) in lanes.iter_mut().enumerate() {
-            if lane.phase == Phase::Idle {
+        // One RK4 step of every lane, side by side (an idle lane steps a harmless state), and
+        // the acceleration at each step's end, which the march needs if the step is taken.
+        let (y1, v1, a1) = lanes.rk4_step(power);
+        for l in 0..LANES {
+            if !lanes.active[l] {
                 continue;
             }
-            let (state, f_end) = (trial.0[l], trial.1[l]);
-            lane.stats.rhs_evaluations += 3;
-            let g_next = match lane.phase {
-                Phase::Load => state[1],
-                _ => state[0],
-            };
-            let crossed = super::changes_sign(lane.g_now, g_next);
-            if !state.iter().all(|x| x.is_finite()) {
-                lane.stats.rejected += 1;
-                lane.h = lane.step.min(0.5 * lane.h);
+            let g_next = if lanes.unloading[l] { y1[l] } else { v1[l] };
+            let finite = y1[l].is_finite() && v1[l].is_finite();
+            if finite && !super::changes_sign(lanes.g_now[l], g_next) {
+                lanes.t[l] += lanes.h[l];
+                lanes.y[l] = y1[l];
+                lanes.v[l] = v1[l];
+                lanes.a[l] = a1[l];
+                lanes.g_now[l] = g_next;
+                lanes.phase_steps[l] += 1;
+                lanes.h[l] = lanes.impact[l].step;
                 continue;
             }
-            if crossed {
-                let rhs = rhs_of(lane.k);
-                let mut stepper = Rk4::new(lane.step);
-                let event = match lane.phase {
-                    Phase::Load => 1,
-                    _ => 0,
-                };
-                let (theta, located) = super::locate(
-                    &rhs,
-                    &mut stepper,
-                    &lane.y,
-                    &lane.fy,
-                    lane.h,
-                    |s: &State| s[event],
-                    lane.g_now,
-                    &mut lane.stats,
-                );
-                lane.stats.steps += 1;
-                let time = lane.t + theta * lane.h;
-                match lane.phase {
-                    Phase::Load => unload_lane(lane, power, time, located[0]),
-                    _ => {
-                        results[lane.job] = Some(Ok(finish_lane(lane, n, time, located)));
-                        *lane = Lane::IDLE;
-                    }
-                }
+            // A refused step, or an event inside this one.
+            if !finite {
+                let impact = &mut lanes.impact[l];
+                impact.stats.rhs_evaluations += 3;
+                impact.stats.rejected += 1;
+                lanes.h[l] = impact.step.min(0.5 * lanes.h[l]);
                 continue;
             }
-            lane.t += lane.h;
-            lane.y = state;
-            lane.fy = f_end;
-            lane.stats.rhs_evaluations += 1;
-            lane.g_now = g_next;
-            lane.stats.steps += 1;
-            lane.phase_steps += 1;
-            lane.h = lane.step;
+            lanes.end_phase_steps(l);
+            let impact = &mut lanes.impact[l];
+            impact.stats.rhs_evaluations += 3;
+            let rhs = rhs_of(lanes.k[l]);
+            let mut stepper = Rk4::new(impact.step);
+            let event = if lanes.unloading[l] { 0 } else { 1 };
+            let (theta, located) = super::locate(
+                &rhs,
+                &mut stepper,
+                &State::new(lanes.y[l], lanes.v[l]),
+                &State::new(lanes.v[l], lanes.a[l]),
+                lanes.h[l],
+                |s: &State| s[event],
+                lanes.g_now[l],
+                &mut impact.stats,
+            );
+            impact.stats.steps += 1;
+            let time = lanes.t[l] + theta * lanes.h[l];
+            if lanes.unloading[l] {
+                results[impact.job] = Some(Ok(impact.finish(n, time, located)));
+                lanes.active[l] = false;
+            } else {
+                lanes.unload(l, power, time, located[0]);
+            }
         }
     }
     results
@@ -863,151 +857,163 @@ fn rk4_event_lanes(
         .collect()
 }
 
-/// A lane at the start of an impact: the series over the first stretch, then the loading
-/// march's start (`phased_with` and `march`).
-fn start_lane(
-    power: impl Power,
-    series: &ContactSeries,
-    n: f64,
-    eta: f64,
-    h: f64,
-    job: usize,
-) -> Lane {
-    let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
-    let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
-    let speed = 1.0;
-    let s0 = series.reach(k_load, speed);
-    let (y0, v0) = series.advance(k_load, speed, s0);
-    let start = State::new(y0, v0);
-    let mut stats = Stats::default();
-    stats.steps += 1;
-    // Rk4::set_phase_time_scale(1.0): the step is the base step.
-    let step = h * 1.0;
-    stats.rhs_evaluations += 1;
-    Lane {
-        job,
-        phase: Phase::Load,
-        eta,
-        k_load,
-        k_unload,
-        k: k_load,
-        base_step: h,
-        step,
-        h: step,
-        y: start,
-        fy: State::new(start[1], power.times(-k_load, start[0].max(0.0))),
-        t: s0,
-        g_now: start[1],
-        phase_steps: 0,
-        stats,
-        turn_time: 0.0,
-        peak: 0.0,
+impl Lanes {
+    /// Lane `l` at the start of an impact: the series over the first stretch, then the
+    /// loading march's start (`phased_with` and `march`).
+    #[allow(clippy::too_many_arguments)]
+    fn start(
+        &mut self,
+        l: usize,
+        power: impl Power,
+        series: &ContactSeries,
+        n: f64,
+        eta: f64,
+        h: f64,
+        job: usize,
+    ) {
+        let k_load = 0.5 * (n + 1.0) * (1.0 + eta);
+        let k_unload = 0.5 * (n + 1.0) * (1.0 - eta);
+        let speed = 1.0;
+        let s0 = series.reach(k_load, speed);
+        let (y0, v0) = series.advance(k_load, speed, s0);
+        let mut stats = Stats::default();
+        // The series' stretch is a step; the march evaluates the right-hand side at its start.
+        stats.steps += 1;
+        stats.rhs_evaluations += 1;
+        // Rk4::set_phase_time_scale(1.0): the step is the base step.
+        let step = h * 1.0;
+        self.active[l] = true;
+        self.unloading[l] = false;
+        self.k[l] = k_load;
+        self.h[l] = step;
+        self.y[l] = y0;
+        self.v[l] = v0;
+        self.a[l] = power.times(-k_load, y0.max(0.0));
+        self.t[l] = s0;
+        self.g_now[l] = v0;
+        self.phase_steps[l] = 0;
+        self.impact[l] = LaneImpact {
+            job,
+            eta,
+            k_load,
+            k_unload,
+            base_step: h,
+            step,
+            stats,
+            turn_time: 0.0,
+            peak: 0.0,
+        };
+    }
+
+    /// Add the steps of lane `l`'s phase so far to its counters (each took three evaluations
+    /// in the step and one at its end).
+    fn end_phase_steps(&mut self, l: usize) {
+        let steps = std::mem::take(&mut self.phase_steps[l]);
+        let stats = &mut self.impact[l].stats;
+        stats.steps += steps;
+        stats.rhs_evaluations += 4 * steps;
+    }
+
+    /// The turning point of lane `l` found at `time` with approach `peak`: the unloading
+    /// march's start.
+    fn unload(&mut self, l: usize, power: impl Power, time: f64, peak: f64) {
+        let impact = &mut self.impact[l];
+        impact.turn_time = time;
+        impact.peak = peak;
+        impact.step = impact.base_step * (impact.k_load / impact.k_unload).sqrt();
+        impact.stats.rhs_evaluations += 1;
+        self.unloading[l] = true;
+        self.k[l] = impact.k_unload;
+        self.h[l] = impact.step;
+        self.y[l] = peak;
+        self.v[l] = 0.0;
+        self.a[l] = power.times(-impact.k_unload, peak.max(0.0));
+        self.t[l] = time;
+        self.g_now[l] = peak;
+        self.phase_steps[l] = 0;
+    }
+
+    /// The checks `march` makes before each step of lane `l`: the step budget, the step's
+    /// underflow, and in the unloading phase the series' reach of the contact end. `Some`
+    /// when the impact ends here.
+    fn before_step(
+        &mut self,
+        l: usize,
+        series: &ContactSeries,
+        n: f64,
+    ) -> Option<Result<Scaled, SolveError>> {
+        if self.phase_steps[l] > super::STEP_BUDGET {
+            return Some(Err(SolveError::StepBudget {
+                method: "march",
+                steps: self.phase_steps[l],
+            }));
+        }
+        if self.h[l] <= self.t[l].abs().max(1.0) * 1e-15 {
+            return Some(Err(SolveError::StepUnderflow {
+                method: "march",
+                time: self.t[l],
+            }));
+        }
+        if self.unloading[l]
+            && self.v[l] < 0.0
+            && series.within_reach_of_end(self.k[l], self.y[l], self.v[l], self.a[l])
+            && let Some((s, v)) = series.time_to_exit(self.k[l], self.y[l], self.v[l])
+        {
+            self.end_phase_steps(l);
+            let impact = &mut self.impact[l];
+            impact.stats.steps += 1;
+            return Some(Ok(impact.finish(n, self.t[l] + s, State::new(0.0, -v))));
+        }
+        None
+    }
+
+    /// One RK4 step (`rk4_step`, its operations in its order) of every lane, and the
+    /// acceleration at each step's end: `(y, v, a)` there.
+    #[inline]
+    fn rk4_step(&self, power: impl Power) -> ([f64; LANES], [f64; LANES], [f64; LANES]) {
+        let (h, k, y, v, a) = (&self.h, &self.k, &self.y, &self.v, &self.a);
+        // The acceleration `power.times(-k, y.max(0))` of each lane.
+        let accel = |at: &[f64; LANES]| -> [f64; LANES] {
+            std::array::from_fn(|l| power.times(-k[l], at[l].max(0.0)))
+        };
+        let half: [f64; LANES] = std::array::from_fn(|l| 0.5 * h[l]);
+        // k2 = f(y + h/2 k1), k1 = (v, a).
+        let y2: [f64; LANES] = std::array::from_fn(|l| y[l] + half[l] * v[l]);
+        let v2: [f64; LANES] = std::array::from_fn(|l| v[l] + half[l] * a[l]);
+        let a2 = accel(&y2);
+        // k3 = f(y + h/2 k2), k2 = (v2, a2).
+        let y3: [f64; LANES] = std::array::from_fn(|l| y[l] + half[l] * v2[l]);
+        let v3: [f64; LANES] = std::array::from_fn(|l| v[l] + half[l] * a2[l]);
+        let a3 = accel(&y3);
+        // k4 = f(y + h k3), k3 = (v3, a3).
+        let y4: [f64; LANES] = std::array::from_fn(|l| y[l] + h[l] * v3[l]);
+        let v4: [f64; LANES] = std::array::from_fn(|l| v[l] + h[l] * a3[l]);
+        let a4 = accel(&y4);
+        // y + h/6 (k1 + 2 k2 + 2 k3 + k4).
+        let sixth: [f64; LANES] = std::array::from_fn(|l| h[l] / 6.0);
+        let y_end: [f64; LANES] =
+            std::array::from_fn(|l| y[l] + sixth[l] * (v[l] + 2.0 * v2[l] + 2.0 * v3[l] + v4[l]));
+        let v_end: [f64; LANES] =
+            std::array::from_fn(|l| v[l] + sixth[l] * (a[l] + 2.0 * a2[l] + 2.0 * a3[l] + a4[l]));
+        let a_end = accel(&y_end);
+        (y_end, v_end, a_end)
     }
 }
 
-/// The turning point found at `time` with approach `peak`: the unloading march's start.
-fn unload_lane(lane: &mut Lane, power: impl Power, time: f64, peak: f64) {
-    lane.turn_time = time;
-    lane.peak = peak;
-    lane.phase = Phase::Unload;
-    lane.k = lane.k_unload;
-    lane.step = lane.base_step * (lane.k_load / lane.k_unload).sqrt();
-    lane.h = lane.step;
-    lane.y = State::new(peak, 0.0);
-    lane.fy = State::new(lane.y[1], power.times(-lane.k, lane.y[0].max(0.0)));
-    lane.stats.rhs_evaluations += 1;
-    lane.t = time;
-    lane.g_now = lane.y[0];
-    lane.phase_steps = 0;
-}
-
-/// The checks `march` makes before each step: the step budget, the step's underflow, and in
-/// the unloading phase the series' reach of the contact end. `Some` when the impact ends here.
-fn before_step(
-    lane: &mut Lane,
-    series: &ContactSeries,
-    n: f64,
-) -> Option<Result<Scaled, SolveError>> {
-    if lane.phase_steps > super::STEP_BUDGET {
-        return Some(Err(SolveError::StepBudget {
-            method: "march",
-            steps: lane.phase_steps,
-        }));
+impl LaneImpact {
+    /// The figures of an impact that ended at `time` in `state` (`phased_with`).
+    fn finish(&self, n: f64, time: f64, state: State) -> Scaled {
+        Scaled {
+            cor: -state[1],
+            peak: self.peak,
+            peak_force: (1.0 + self.eta) * self.peak.powf(n),
+            compression_time: self.turn_time,
+            contact_time: time,
+            stats: self.stats,
+            samples: Vec::new(),
+            crossing_speeds: Vec::new(),
+        }
     }
-    if lane.h <= lane.t.abs().max(1.0) * 1e-15 {
-        return Some(Err(SolveError::StepUnderflow {
-            method: "march",
-            time: lane.t,
-        }));
-    }
-    if lane.phase == Phase::Unload
-        && lane.y[1] < 0.0
-        && series.within_reach_of_end(lane.k, lane.y[0], lane.y[1], lane.fy[1])
-        && let Some((s, v)) = series.time_to_exit(lane.k, lane.y[0], lane.y[1])
-    {
-        lane.stats.steps += 1;
-        return Some(Ok(finish_lane(lane, n, lane.t + s, State::new(0.0, -v))));
-    }
-    None
-}
-
-/// The figures of a lane's impact that ended at `time` in `state` (`phased_with`).
-fn finish_lane(lane: &Lane, n: f64, time: f64, state: State) -> Scaled {
-    Scaled {
-        cor: -state[1],
-        peak: lane.peak,
-        peak_force: (1.0 + lane.eta) * lane.peak.powf(n),
-        compression_time: lane.turn_time,
-        contact_time: time,
-        stats: lane.stats,
-        samples: Vec::new(),
-        crossing_speeds: Vec::new(),
-    }
-}
-
-/// One RK4 step (`rk4_step`, its operations in its order) of every lane, and the right-hand
-/// side at each step's end.
-#[inline]
-fn rk4_step_lanes(power: impl Power, lanes: &[Lane; LANES]) -> ([State; LANES], [State; LANES]) {
-    let h: [f64; LANES] = std::array::from_fn(|l| lanes[l].h);
-    let k: [f64; LANES] = std::array::from_fn(|l| lanes[l].k);
-    let y0: [f64; LANES] = std::array::from_fn(|l| lanes[l].y[0]);
-    let y1: [f64; LANES] = std::array::from_fn(|l| lanes[l].y[1]);
-    let f0: [f64; LANES] = std::array::from_fn(|l| lanes[l].fy[0]);
-    let f1: [f64; LANES] = std::array::from_fn(|l| lanes[l].fy[1]);
-    // The acceleration `power.times(-k, y.max(0))` of each lane.
-    let accel = |y: &[f64; LANES]| -> [f64; LANES] {
-        std::array::from_fn(|l| power.times(-k[l], y[l].max(0.0)))
-    };
-    let half: [f64; LANES] = std::array::from_fn(|l| 0.5 * h[l]);
-    // k2 = rhs(y + 0.5 h k1)
-    let a0: [f64; LANES] = std::array::from_fn(|l| y0[l] + half[l] * f0[l]);
-    let a1: [f64; LANES] = std::array::from_fn(|l| y1[l] + half[l] * f1[l]);
-    let k2_0 = a1;
-    let k2_1 = accel(&a0);
-    // k3 = rhs(y + 0.5 h k2)
-    let b0: [f64; LANES] = std::array::from_fn(|l| y0[l] + half[l] * k2_0[l]);
-    let b1: [f64; LANES] = std::array::from_fn(|l| y1[l] + half[l] * k2_1[l]);
-    let k3_0 = b1;
-    let k3_1 = accel(&b0);
-    // k4 = rhs(y + h k3)
-    let c0: [f64; LANES] = std::array::from_fn(|l| y0[l] + h[l] * k3_0[l]);
-    let c1: [f64; LANES] = std::array::from_fn(|l| y1[l] + h[l] * k3_1[l]);
-    let k4_0 = c1;
-    let k4_1 = accel(&c0);
-    // y + h/6 (k1 + 2 k2 + 2 k3 + k4)
-    let sixth: [f64; LANES] = std::array::from_fn(|l| h[l] / 6.0);
-    let n0: [f64; LANES] = std::array::from_fn(|l| {
-        y0[l] + sixth[l] * (f0[l] + 2.0 * k2_0[l] + 2.0 * k3_0[l] + k4_0[l])
-    });
-    let n1: [f64; LANES] = std::array::from_fn(|l| {
-        y1[l] + sixth[l] * (f1[l] + 2.0 * k2_1[l] + 2.0 * k3_1[l] + k4_1[l])
-    });
-    let e1 = accel(&n0);
-    (
-        std::array::from_fn(|l| State::new(n0[l], n1[l])),
-        std::array::from_fn(|l| State::new(n1[l], e1[l])),
-    )
 }
 
 /// The closed-form figures, for comparison with a run.
