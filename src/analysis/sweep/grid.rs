@@ -52,7 +52,63 @@ pub struct Axis {
     /// The dotted case key.
     pub key: String,
     /// Its values.
-    pub values: Vec<Value>,
+    pub values: AxisValues,
+}
+
+/// The values of an axis: as listed, or evenly spaced and made on demand (a range of 10^6
+/// values takes no memory).
+#[derive(Clone, Debug, PartialEq)]
+pub enum AxisValues {
+    /// The values listed.
+    List(Vec<Value>),
+    /// `start + i × step` for `i` below `count`, the last one `last` when given (the stop of
+    /// a `{ start, stop, count }` range, exactly).
+    Spaced {
+        /// The first value.
+        start: f64,
+        /// The spacing.
+        step: f64,
+        /// How many.
+        count: usize,
+        /// The last value, if it is not `start + (count - 1) × step`.
+        last: Option<f64>,
+    },
+}
+
+impl AxisValues {
+    /// How many values.
+    pub fn len(&self) -> usize {
+        match self {
+            AxisValues::List(v) => v.len(),
+            AxisValues::Spaced { count, .. } => *count,
+        }
+    }
+
+    /// Whether there are none (an axis always has one).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Every value, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Value> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    /// Value `i`.
+    pub fn get(&self, i: usize) -> Value {
+        match self {
+            AxisValues::List(v) => v[i].clone(),
+            AxisValues::Spaced {
+                start,
+                step,
+                count,
+                last,
+            } => match last {
+                Some(last) if i + 1 == *count => Value::Float(*last),
+                _ => Value::Float(start + i as f64 * step),
+            },
+        }
+    }
 }
 
 /// A source with the resolution it runs at; `None` for its default (or a method without a
@@ -260,7 +316,7 @@ impl SweepFile {
             }
             match key.as_str() {
                 "method" => {
-                    for v in &values {
+                    for v in values.iter() {
                         let name = v.as_str().unwrap_or_default();
                         let m = Method::from_name(name).ok_or_else(|| {
                             fail(
@@ -273,7 +329,7 @@ impl SweepFile {
                     }
                 }
                 "code" => {
-                    for v in &values {
+                    for v in values.iter() {
                         let name = v.as_str().unwrap_or_default();
                         let c = CodeName::from_name(name).ok_or_else(|| {
                             fail(
@@ -287,7 +343,7 @@ impl SweepFile {
                 }
                 "rtol" => {
                     let mut rtols = Vec::new();
-                    for v in &values {
+                    for v in values.iter() {
                         match v.as_float() {
                             Some(r) if (MIN_RTOL..1.0).contains(&r) => rtols.push(Some(r)),
                             _ => {
@@ -303,7 +359,7 @@ impl SweepFile {
                 }
                 "steps_per_period" | "steps_per_contact" => {
                     let mut counts = Vec::new();
-                    for v in &values {
+                    for v in values.iter() {
                         match v.as_integer() {
                             Some(n) if (4..=100_000_000).contains(&n) => {
                                 counts.push(u32::try_from(n).ok())
@@ -479,7 +535,7 @@ impl SweepFile {
         rest /= self.sources.len();
         let mut values = vec![Value::Boolean(false); self.axes.len()];
         for (i, axis) in self.axes.iter().enumerate().rev() {
-            values[i] = axis.values[rest % axis.values.len()].clone();
+            values[i] = axis.values.get(rest % axis.values.len());
             rest /= axis.values.len();
         }
         Point {
@@ -653,7 +709,7 @@ impl<'a> PointCases<'a> {
 
 /// The values of one axis: a list, or `{ start, stop, step }` (stop included) or
 /// `{ start, stop, count }` (evenly spaced, both ends included).
-fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<Value>, CaseError> {
+fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<AxisValues, CaseError> {
     let allowed =
         "a list of values, or { start, stop, step } or { start, stop, count } with start <= stop";
     match value {
@@ -665,7 +721,7 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                     )));
                 }
             }
-            Ok(items.clone())
+            Ok(AxisValues::List(items.clone()))
         }
         Value::Table(t) => {
             for key in t.keys() {
@@ -683,7 +739,7 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
             if !(start.is_finite() && stop.is_finite() && start <= stop) {
                 return Err(refuse(allowed));
             }
-            let values: Vec<f64> = match (num("step"), t.get("count").and_then(Value::as_integer)) {
+            match (num("step"), t.get("count").and_then(Value::as_integer)) {
                 (Some(step), None) => {
                     if !(step.is_finite() && step > 0.0) {
                         return Err(refuse(allowed));
@@ -695,7 +751,12 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                     let count = crate::model::count::ceil_count(count)
                         .and_then(|n| usize::try_from(n).ok())
                         .ok_or_else(|| refuse(&format!("at most {MAX_POINTS} values")))?;
-                    (0..count).map(|i| start + i as f64 * step).collect()
+                    Ok(AxisValues::Spaced {
+                        start,
+                        step,
+                        count,
+                        last: None,
+                    })
                 }
                 (None, Some(count)) => {
                     #[allow(clippy::float_cmp)] // one point names one value: the same number twice
@@ -707,23 +768,19 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                         )));
                     }
                     if count == 1 {
-                        vec![start]
-                    } else {
-                        let h = (stop - start) / (count - 1) as f64;
-                        (0..count)
-                            .map(|i| {
-                                if i == count - 1 {
-                                    stop
-                                } else {
-                                    start + i as f64 * h
-                                }
-                            })
-                            .collect()
+                        return Ok(AxisValues::List(vec![Value::Float(start)]));
                     }
+                    let count = usize::try_from(count)
+                        .map_err(|_| refuse(&format!("at most {MAX_POINTS} values")))?;
+                    Ok(AxisValues::Spaced {
+                        start,
+                        step: (stop - start) / (count - 1) as f64,
+                        count,
+                        last: Some(stop),
+                    })
                 }
-                _ => return Err(refuse(&format!("{allowed}: exactly one of step and count"))),
-            };
-            Ok(values.into_iter().map(Value::Float).collect())
+                _ => Err(refuse(&format!("{allowed}: exactly one of step and count"))),
+            }
         }
         _ => Err(refuse(allowed)),
     }
