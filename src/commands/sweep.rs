@@ -16,7 +16,7 @@ use millimpact::analysis::precision::choice::choose;
 use millimpact::analysis::source::Resolution;
 use millimpact::analysis::source::Source;
 use millimpact::analysis::sweep::grid::{SweepFile, is_sweep_table, read_table};
-use millimpact::analysis::sweep::legacy::{Streamed, parse_range};
+use millimpact::analysis::sweep::legacy::{Streamed, parse_eta_range};
 use millimpact::analysis::sweep::point::GridOptions;
 use millimpact::analysis::sweep::rows::{
     EncodedRows, RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
@@ -50,7 +50,7 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         }
         .into());
     };
-    let values = parse_range(range).map_err(|e| match e {
+    let values = parse_eta_range(range).map_err(|e| match e {
         UserError::Argument {
             option,
             value,
@@ -94,7 +94,7 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
     }
     let streamed = Streamed {
         case: &case,
-        values: &values,
+        values,
         options,
         command: command.to_string(),
         jobs: jobs(args),

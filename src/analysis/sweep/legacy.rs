@@ -20,8 +20,37 @@ use crate::solve::paper::{Settings, check_step, solve_many};
 /// Most values a sweep may have (a sweep file's limit).
 pub const MAX_SWEEP_POINTS: usize = super::grid::MAX_POINTS;
 
+/// Loss coefficients `start + i × step` for `i` below `count`, made on demand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EtaRange {
+    /// The first.
+    pub start: f64,
+    /// The spacing.
+    pub step: f64,
+    /// How many.
+    pub count: usize,
+}
+
+impl EtaRange {
+    /// Value `i`.
+    pub fn get(&self, i: usize) -> f64 {
+        self.start + i as f64 * self.step
+    }
+
+    /// The values of `range`.
+    pub fn values(&self, range: std::ops::Range<usize>) -> Vec<f64> {
+        range.map(|i| self.get(i)).collect()
+    }
+}
+
 /// Parse `START:STOP:STEP` into the values of η it names, STOP included.
 pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
+    let range = parse_eta_range(text)?;
+    Ok(range.values(0..range.count))
+}
+
+/// Parse `START:STOP:STEP` into the range of η it names, STOP included.
+pub fn parse_eta_range(text: &str) -> Result<EtaRange, UserError> {
     let allowed = "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0";
     let refuse = |allowed: &str| UserError::argument("--loss-coefficient", text, allowed);
     let numbers: Option<Vec<f64>> = text.split(':').map(|p| p.trim().parse().ok()).collect();
@@ -44,7 +73,7 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
     let count = round_count(count)
         .and_then(|n| usize::try_from(n).ok())
         .ok_or_else(|| refuse(&format!("at most {MAX_SWEEP_POINTS} values")))?;
-    Ok((0..count).map(|i| start + i as f64 * step).collect())
+    Ok(EtaRange { start, step, count })
 }
 
 /// The rows of a sweep.
@@ -148,7 +177,7 @@ pub struct Streamed<'a> {
     /// The case.
     pub case: &'a Case,
     /// The loss coefficients.
-    pub values: &'a [f64],
+    pub values: EtaRange,
     /// The integration options (checked for every η before the first row is written).
     pub options: IntegrationOptions,
     /// The command that reproduces it.
@@ -163,7 +192,7 @@ impl Streamed<'_> {
     pub fn settings(&self) -> Result<Settings> {
         let mut at = self.case.clone();
         let mut settings = None;
-        for &eta in self.values {
+        for eta in (0..self.values.count).map(|i| self.values.get(i)) {
             at.loss_coefficient = eta;
             let s = match settings {
                 Some(s) => s,
@@ -189,11 +218,12 @@ impl Streamed<'_> {
         if format == Format::Table {
             // Column widths need every row.
             let mut rows = Vec::new();
-            let work =
-                |range: std::ops::Range<usize>| rows_at(self.case, &self.values[range], &settings);
+            let work = |range: std::ops::Range<usize>| {
+                rows_at(self.case, &self.values.values(range), &settings)
+            };
             let mut failure = None;
             super::ordered_chunks(
-                self.values.len(),
+                self.values.count,
                 CHUNK,
                 self.jobs,
                 &stop,
@@ -239,7 +269,7 @@ impl Streamed<'_> {
         out.write_all(head.as_bytes())?;
         let work = |range: std::ops::Range<usize>| -> Result<(Vec<u8>, Vec<(f64, f64)>)> {
             let first = range.start == 0;
-            let rows = rows_at(self.case, &self.values[range], &settings)?;
+            let rows = rows_at(self.case, &self.values.values(range), &settings)?;
             let plotted = if points {
                 rows.iter().map(|r| (r.loss_coefficient, r.cor)).collect()
             } else {
@@ -281,7 +311,7 @@ impl Streamed<'_> {
         };
         let mut failure = None;
         super::ordered_chunks(
-            self.values.len(),
+            self.values.count,
             CHUNK,
             self.jobs,
             &stop,
@@ -337,7 +367,7 @@ mod tests {
             "a:b:c",
             "0:nan:0.1",
             "0:0.9:1e-300",
-            "0:0.9:1e-6",
+            "0:0.9:1e-8",
         ] {
             assert!(parse_range(bad).is_err(), "{bad}");
         }
