@@ -372,19 +372,9 @@ impl Plan {
     }
 }
 
-/// [`j_integral`] (two gamma functions), remembered per thread for the last exponent asked for.
+/// [`j_integral`] (remembered per thread for the last exponent asked for).
 fn j_integral_for(n: f64) -> f64 {
-    thread_local! {
-        static LAST: std::cell::Cell<Option<(u64, f64)>> = const { std::cell::Cell::new(None) };
-    }
-    LAST.with(|last| match last.get() {
-        Some((bits, j)) if bits == n.to_bits() => j,
-        _ => {
-            let j = j_integral(n);
-            last.set(Some((n.to_bits(), j)));
-            j
-        }
-    })
+    j_integral(n)
 }
 
 /// `y^n` for `y >= 0`, in the cheapest exact-to-rounding form for the exponent: the right-hand

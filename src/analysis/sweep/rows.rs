@@ -234,6 +234,9 @@ pub fn keys_of(
     Ok(keys)
 }
 
+/// About the bytes of one row of a sweep of our methods.
+const ROW_BYTES: usize = 640;
+
 /// Rows encoded in their format, ready to be written: what a worker hands the one writer.
 /// Numbers are written by the csv and serde_json serialisers (ryu's shortest form that reads
 /// back exactly), into this one buffer.
@@ -267,7 +270,8 @@ impl EncodedRows {
                     csv::WriterBuilder::new()
                         .has_headers(false)
                         .terminator(csv::Terminator::Any(b'\n'))
-                        .from_writer(Vec::new())
+                        // About a chunk of rows, so that the buffer is not regrown.
+                        .from_writer(Vec::with_capacity(ROW_BYTES * super::CHUNK))
                 });
                 row.write_csv(writer)?;
             }
