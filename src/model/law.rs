@@ -125,3 +125,149 @@ impl DashpotLaw {
         }
     }
 }
+
+impl PaperLaw {
+    /// The force, N, as a DEM code's contact model evaluates it (LIGGGHTS `model paper` of
+    /// scripts/liggghts-paper): `C yⁿ (1 + η sign ẏ)` with `sign(0) = 0`, so that a velocity of
+    /// exactly zero gives the elastic force alone, the mean of the two branches (where
+    /// [`PaperLaw::force`] follows `f64::signum`, which has no zero).
+    pub fn force_as_coded(&self, y: f64, v: f64) -> f64 {
+        if y <= 0.0 {
+            return 0.0;
+        }
+        let branch = if v > 0.0 {
+            1.0 + self.loss_coefficient
+        } else if v < 0.0 {
+            1.0 - self.loss_coefficient
+        } else {
+            1.0
+        };
+        self.stiffness * y.powf(self.exponent) * branch
+    }
+}
+
+/// A contact force as a DEM code evaluates it, and the mass it acts on: what stepping a law
+/// the way a code steps needs.
+pub trait ContactForce {
+    /// Force, N (positive repulsive), at approach `y` (m) and approach rate `v` (m/s).
+    fn force(&self, y: f64, v: f64) -> f64;
+    /// Mass the dynamics sees, kg.
+    fn mass(&self) -> f64;
+}
+
+impl ContactForce for DashpotLaw {
+    fn force(&self, y: f64, v: f64) -> f64 {
+        DashpotLaw::force(self, y, v)
+    }
+
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+}
+
+/// The law a DEM code integrates, as its driver reads it: a spring–dashpot (the codes' own
+/// damping), or the paper's law where the code has it built in (liggghts-paper).
+///
+/// Serialised as the inner law alone (a stored record's `law` object keeps its shape); the two
+/// are told apart by their fields (`damping` against `loss_coefficient`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum CodeLaw {
+    /// `F = k yⁿ + c yᵐ ẏ`, clamped or not.
+    Dashpot(DashpotLaw),
+    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as [`PaperLaw::force_as_coded`].
+    Paper(PaperLaw),
+}
+
+impl From<DashpotLaw> for CodeLaw {
+    fn from(law: DashpotLaw) -> Self {
+        CodeLaw::Dashpot(law)
+    }
+}
+
+impl From<PaperLaw> for CodeLaw {
+    fn from(law: PaperLaw) -> Self {
+        CodeLaw::Paper(law)
+    }
+}
+
+impl ContactForce for CodeLaw {
+    fn force(&self, y: f64, v: f64) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.force(y, v),
+            CodeLaw::Paper(law) => law.force_as_coded(y, v),
+        }
+    }
+
+    fn mass(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.mass,
+            CodeLaw::Paper(law) => law.mass,
+        }
+    }
+}
+
+impl CodeLaw {
+    /// Spring constant `k` (or `C`), N/m^n.
+    pub fn stiffness(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.stiffness,
+            CodeLaw::Paper(law) => law.stiffness,
+        }
+    }
+
+    /// Exponent `n` of the elastic force.
+    pub fn exponent(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.exponent,
+            CodeLaw::Paper(law) => law.exponent,
+        }
+    }
+
+    /// Whether the code cuts the force at zero (the paper's law never attracts: no clamp).
+    pub fn clamp_attractive(&self) -> bool {
+        match self {
+            CodeLaw::Dashpot(law) => law.clamp_attractive,
+            CodeLaw::Paper(_) => false,
+        }
+    }
+
+    /// The same law with the attractive force cut at zero (the paper's law as it is: its
+    /// force never attracts).
+    pub fn clamped(self) -> Self {
+        match self {
+            CodeLaw::Dashpot(law) => CodeLaw::Dashpot(law.clamped()),
+            paper @ CodeLaw::Paper(_) => paper,
+        }
+    }
+
+    /// The spring–dashpot, if this is one.
+    pub fn dashpot(&self) -> Option<&DashpotLaw> {
+        match self {
+            CodeLaw::Dashpot(law) => Some(law),
+            CodeLaw::Paper(_) => None,
+        }
+    }
+
+    /// Whether two laws are of one kind with every parameter equal to `rtol` (relative).
+    pub fn agrees_with(&self, other: &CodeLaw, rtol: f64) -> bool {
+        let same = |a: f64, b: f64| (a - b).abs() <= rtol * a.abs().max(b.abs());
+        match (self, other) {
+            (CodeLaw::Dashpot(a), CodeLaw::Dashpot(b)) => {
+                same(a.mass, b.mass)
+                    && same(a.stiffness, b.stiffness)
+                    && same(a.exponent, b.exponent)
+                    && same(a.damping, b.damping)
+                    && same(a.damping_exponent, b.damping_exponent)
+                    && a.clamp_attractive == b.clamp_attractive
+            }
+            (CodeLaw::Paper(a), CodeLaw::Paper(b)) => {
+                same(a.mass, b.mass)
+                    && same(a.stiffness, b.stiffness)
+                    && same(a.exponent, b.exponent)
+                    && same(a.loss_coefficient, b.loss_coefficient)
+            }
+            _ => false,
+        }
+    }
+}
