@@ -167,7 +167,7 @@ fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
             let r = references::run_reference(driver, &c, &options(true))
                 .unwrap_or_else(|e| panic!("{} on {name}: {e:#}", driver.name()));
             let who = format!("{} on {name}, clamped", r.code);
-            assert!(r.law.clamp_attractive, "{who}: the law is clamped");
+            assert!(r.law.clamp_attractive(), "{who}: the law is clamped");
             let target = c.restitution();
             match r.code {
                 CodeName::Yade | CodeName::Kratos => {

@@ -403,6 +403,7 @@ mod tests {
             exponent: 1.5,
             impact_velocity: 2.0,
             target_restitution: 0.6944,
+            loss_coefficient: None,
             timestep: 3.059_664_992_222_593_2e-6,
             steps: 50,
             clamp_attractive: false,

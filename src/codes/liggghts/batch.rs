@@ -8,7 +8,6 @@
 
 use std::path::Path;
 
-use crate::codes::liggghts::paper::{LiggghtsPaper, loss_coefficient};
 use crate::codes::liggghts::{
     Liggghts, RIGID_WALL_MODULUS, RIGID_WALL_POISSON, contact_gap, parse_output, version,
 };
@@ -59,15 +58,6 @@ pub const HERTZ: BatchModel = BatchModel {
     },
     property: "coefficientRestitution",
     value: |s| s.target_restitution,
-};
-
-/// The paper build's batch: `model paper`, `lossCoefficient` per impact.
-pub const PAPER: BatchModel = BatchModel {
-    driver: &LiggghtsPaper,
-    style: "paper",
-    settings: |_| String::new(),
-    property: "lossCoefficient",
-    value: loss_coefficient,
 };
 
 /// The stock build's batch input for `setups`, or why they cannot run as one.
@@ -245,28 +235,6 @@ pub fn parse_batch(
 
 /// Liggghts's batches: many sphere-on-plate impacts in one run.
 pub struct LiggghtsBatch;
-
-/// The paper build's batches: many sphere-on-plate impacts under `model paper` in one run.
-pub struct LiggghtsPaperBatch;
-
-impl BatchRunner for LiggghtsPaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch_with(&PAPER, setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
 
 impl BatchRunner for LiggghtsBatch {
     fn max_batch(&self) -> usize {

@@ -17,13 +17,14 @@
 
 use std::path::Path;
 
-use super::batch::LiggghtsPaperBatch;
+use super::batch::{BatchModel, parse_batch, render_batch_with};
 use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
 };
 use crate::codes::runner::{binary_override_variable, codes_dir, locate_override_or_path};
 use crate::codes::template::exact_number;
+use crate::codes::batch::BatchError;
 use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParseError, ParsedRun, RenderedInput,
@@ -180,6 +181,38 @@ impl CodeDriver for LiggghtsPaper {
 
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&LiggghtsPaperCard)
+    }
+}
+
+/// The paper build's batch: `model paper`, `lossCoefficient` per impact.
+pub const PAPER_BATCH: BatchModel = BatchModel {
+    driver: &LiggghtsPaper,
+    style: "paper",
+    settings: |_| String::new(),
+    property: "lossCoefficient",
+    value: loss_coefficient,
+};
+
+/// The paper build's batches: many sphere-on-plate impacts under `model paper` in one run,
+/// each with its own η (the stock build's batch with the contact lines changed).
+pub struct LiggghtsPaperBatch;
+
+impl BatchRunner for LiggghtsPaperBatch {
+    fn max_batch(&self) -> usize {
+        super::batch::MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        render_batch_with(&PAPER_BATCH, setups)
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
     }
 }
 
