@@ -271,3 +271,63 @@ impl CodeLaw {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paper() -> PaperLaw {
+        PaperLaw {
+            mass: 2.0,
+            stiffness: 8.0,
+            exponent: 1.5,
+            loss_coefficient: 0.25,
+        }
+    }
+
+    // Powers of two and small integers: every force here is exact.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn the_coded_force_has_a_sign_that_vanishes_at_rest() {
+        let law = paper();
+        // y = 4: C y^1.5 = 64.
+        assert_eq!(law.force_as_coded(4.0, 1.0), 80.0);
+        assert_eq!(law.force_as_coded(4.0, -1.0), 48.0);
+        assert_eq!(law.force_as_coded(4.0, 0.0), 64.0);
+        assert_eq!(law.force_as_coded(4.0, -0.0), 64.0);
+        assert_eq!(law.force_as_coded(0.0, 1.0), 0.0);
+        assert_eq!(law.force_as_coded(-1.0, 1.0), 0.0);
+        // Away from rest it is the law's own force.
+        assert_eq!(law.force_as_coded(4.0, -3.0), law.force(4.0, -3.0));
+        let coded = CodeLaw::from(law);
+        assert_eq!(ContactForce::force(&coded, 4.0, 0.0), 64.0);
+        assert_eq!(coded.mass(), 2.0);
+    }
+
+    #[test]
+    fn a_code_law_is_stored_as_its_inner_law_and_read_back_as_its_kind() {
+        let dashpot = CodeLaw::from(DashpotLaw::damped_hertz(1.0, 2.0, 0.7));
+        let paper = CodeLaw::from(paper());
+        for law in [dashpot, paper] {
+            let json = serde_json::to_value(law).unwrap();
+            assert!(json.get("mass").is_some(), "{json}");
+            assert_eq!(serde_json::from_value::<CodeLaw>(json).unwrap(), law);
+        }
+        assert!(
+            serde_json::to_value(paper)
+                .unwrap()
+                .get("damping")
+                .is_none()
+        );
+        assert!(paper.agrees_with(&paper, 0.0));
+        assert!(!paper.agrees_with(&dashpot, 1.0));
+        let other = CodeLaw::Paper(PaperLaw {
+            loss_coefficient: 0.25 * (1.0 + 1e-9),
+            ..self::paper()
+        });
+        assert!(!paper.agrees_with(&other, 1e-12) && paper.agrees_with(&other, 1e-8));
+        // The paper's law never attracts: clamping leaves it as it is.
+        assert_eq!(paper.clamped(), paper);
+        assert!(!paper.clamp_attractive() && dashpot.clamped().clamp_attractive());
+    }
+}

@@ -358,3 +358,131 @@ pub fn accurate_metrics(
         compression_time: turn.time * t_scale,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::law::PaperLaw;
+    use crate::model::trajectory::trajectory_metrics;
+
+    fn paper(exponent: f64) -> CodeLaw {
+        CodeLaw::Paper(PaperLaw {
+            mass: 0.26,
+            stiffness: if exponent > 1.0 { 2.0e10 } else { 5.6e8 },
+            exponent,
+            loss_coefficient: 0.7,
+        })
+    }
+
+    fn relative(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs()
+    }
+
+    /// In a frame, a wall impact is the relative motion stepped from the same gap, and two
+    /// spheres of mass 2M each are the relative motion of mass M: the same figures to the
+    /// rounding of the absolute heights.
+    #[test]
+    fn a_frame_steps_the_relative_motion() {
+        let v0 = 2.0;
+        for exponent in [1.5, 1.0] {
+            let law = paper(exponent);
+            let peak = 1e-4;
+            let dt = 1.3e-7;
+            let steps = 2500;
+            let gap = 1e-6 * v0 * dt;
+            let relative_motion = trajectory_metrics(&step_trajectory_from(
+                &law,
+                v0,
+                dt,
+                steps,
+                StepScheme::VelocityVerlet,
+                gap,
+            ))
+            .unwrap();
+            let wall = CodeFrame {
+                reach: 0.02,
+                upper: FrameBody {
+                    height: 0.02 + gap,
+                    velocity: -v0,
+                    mass: 0.26,
+                },
+                lower: None,
+            };
+            let pair = CodeFrame {
+                reach: 0.04,
+                upper: FrameBody {
+                    height: 0.02 + gap,
+                    velocity: -0.5 * v0,
+                    mass: 0.52,
+                },
+                lower: Some(FrameBody {
+                    height: -0.02,
+                    velocity: 0.5 * v0,
+                    mass: 0.52,
+                }),
+            };
+            for frame in [wall, pair] {
+                let m = trajectory_metrics(&step_in_frame(&law, &frame, dt, steps)).unwrap();
+                assert!(m.peak_deformation < 2.0 * peak, "{m:?}");
+                for (a, b) in [
+                    (m.cor, relative_motion.cor),
+                    (m.peak_deformation, relative_motion.peak_deformation),
+                    (m.contact_time, relative_motion.contact_time),
+                ] {
+                    assert!(relative(a, b) < 1e-10, "{a} vs {b}");
+                }
+            }
+        }
+    }
+
+    /// A stepping with a frame and velocity Verlet steps in the frame, with the start phase's
+    /// gap added to the upper height; without one (or with leap-frog) from touch.
+    #[test]
+    fn a_code_stepping_uses_its_frame_for_velocity_verlet_only() {
+        let law = paper(1.5);
+        let frame = CodeFrame {
+            reach: 0.02,
+            upper: FrameBody {
+                height: 0.02,
+                velocity: -2.0,
+                mass: 0.26,
+            },
+            lower: None,
+        };
+        let gap = 3e-8;
+        let with_frame = CodeStepping {
+            scheme: StepScheme::VelocityVerlet,
+            frame: Some(frame),
+        };
+        let moved = CodeFrame {
+            upper: FrameBody {
+                height: 0.02 + gap,
+                ..frame.upper
+            },
+            ..frame
+        };
+        assert_eq!(
+            with_frame.trajectory(&law, 2.0, 1e-7, 50, gap),
+            step_in_frame(&law, &moved, 1e-7, 50)
+        );
+        let leap_frog = CodeStepping {
+            scheme: StepScheme::LeapFrog,
+            frame: Some(frame),
+        };
+        assert_eq!(
+            leap_frog.trajectory(&law, 2.0, 1e-7, 50, gap),
+            step_trajectory_from(&law, 2.0, 1e-7, 50, StepScheme::LeapFrog, gap)
+        );
+    }
+
+    /// The paper's law's figures at zero step error are its closed form: a code that has the
+    /// law differs from it by no model.
+    #[test]
+    fn the_papers_law_is_its_own_exact_figures() {
+        let CodeLaw::Paper(law) = paper(1.5) else {
+            unreachable!()
+        };
+        let m = own_law_metrics(&CodeLaw::Paper(law), 2.0, 1e-12).unwrap();
+        assert_eq!(m, paper_impact(&law, 2.0).metrics());
+    }
+}
