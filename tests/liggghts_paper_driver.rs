@@ -20,7 +20,7 @@ use millimpact::model::exact::{self, paper_impact};
 use millimpact::model::law::{CodeLaw, PaperLaw};
 use millimpact::model::scene::SceneKind;
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
-use millimpact::solve::dashpot::own_law_metrics;
+use millimpact::solve::dashpot::{own_law_metrics, paper_cor_step_error};
 
 mod common;
 
@@ -327,22 +327,13 @@ fn live_run_equals_the_rust_stepping() {
     }
 }
 
-/// The COR error velocity Verlet can make on the paper's law at `setup`'s step, absolute:
-/// each branch is conservative, so what the steps lose is at the switch. The half-step velocity
-/// that picks the branch keeps the loading force for up to one step τ ≤ Δt past the turning
-/// point; the rebound's energy then errs by at most τ² (F_L² − F_U²)/(2M) (the excess impulse
-/// ΔF τ meets a speed F_U τ / M), with F_L,U = C y_maxⁿ (1 ± η), so the COR by at most
-/// `2η/(1+η)² (F_max Δt / (M v0))² / e`; the smooth branches add velocity Verlet's own
-/// second-order error, at most `(Δt/t_c)²` over a contact of `t_c`.
-fn predicted_cor_error(setup: &CodeSetup, eta: f64) -> f64 {
+/// The COR error velocity Verlet can make on the paper's law at `setup`'s step
+/// ([`paper_cor_step_error`]).
+fn predicted_cor_error(setup: &CodeSetup) -> f64 {
     let CodeLaw::Paper(law) = LiggghtsPaper.law(setup) else {
         unreachable!("the paper build's law is the paper's")
     };
-    let exact = paper_impact(&law, setup.impact_velocity);
-    let kick = exact.peak_force * setup.timestep / (law.mass * setup.impact_velocity);
-    let switch = 2.0 * eta / ((1.0 + eta) * (1.0 + eta)) * kick * kick / exact.cor;
-    let smooth = (setup.timestep / exact.contact_time).powi(2);
-    switch + smooth
+    paper_cor_step_error(&law, setup.impact_velocity, setup.timestep)
 }
 
 /// The realised COR is `sqrt((1−η)/(1+η))` to within the step error predicted for the step:
@@ -366,7 +357,7 @@ fn live_cor_is_the_closed_form_within_the_predicted_step_error() {
                 offset >= lo - 1e-12 && offset <= hi + 1e-12,
                 "{scene} η={eta}: COR offset {offset:e} outside the predicted [{lo:e}, {hi:e}]"
             );
-            let bound = predicted_cor_error(&s, eta);
+            let bound = predicted_cor_error(&s);
             assert!(
                 lo.abs().max(hi.abs()) <= bound,
                 "{scene} η={eta}: band [{lo:e}, {hi:e}] beyond the predicted {bound:e}"
@@ -584,4 +575,110 @@ fn live_reference_splits_into_integration_alone() {
     );
     assert_eq!(r.setup.loss_coefficient, Some(case.loss_coefficient));
     assert_eq!(r.setup.scene, SceneKind::BallPlate);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The book's tables of the build (docs/src/paper-law-in-dem.md), regenerated from runs.
+
+const CHAPTER: &str = "docs/src/paper-law-in-dem.md";
+
+/// A signed offset as the chapter prints it.
+fn signed(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x:+.2e}")
+    }
+}
+
+/// The realised COR offset of `scene` at η and `steps_per_contact`, as `reference` computes
+/// it, and the predicted bound at its step.
+fn realised(scene: &str, eta: f64, steps_per_contact: Option<u32>) -> (f64, f64) {
+    let case = shipped(scene).with_loss_coefficient(eta);
+    let options = millimpact::ReferenceOptions {
+        steps_per_contact,
+        ..millimpact::ReferenceOptions::default()
+    };
+    let record = millimpact::run_reference(millimpact::CodeName::LiggghtsPaper, &case, &options)
+        .unwrap_or_else(|e| panic!("{scene} η={eta}: {e:#}"));
+    let offset = record.cor - exact::restitution(eta);
+    (offset, predicted_cor_error(&record.setup))
+}
+
+fn cor_by_eta_table() -> String {
+    let mut t = String::from(
+        "| η | e = sqrt((1−η)/(1+η)) | ball_plate: COR − e | ball_ball: COR − e | rod_end: COR − e | predicted bound, balls / rod |\n|---|---|---|---|---|---|\n",
+    );
+    for eta in ETAS {
+        let (plate, bound_ball) = realised("ball_plate", eta, None);
+        let (pair, _) = realised("ball_ball", eta, None);
+        let (rod, bound_rod) = realised("rod_end", eta, None);
+        t += &format!(
+            "| {eta} | {:.6} | {} | {} | {} | {:.2e} / {:.2e} |\n",
+            exact::restitution(eta),
+            signed(plate),
+            signed(pair),
+            signed(rod),
+            bound_ball,
+            bound_rod
+        );
+    }
+    t
+}
+
+fn convergence_table() -> String {
+    let etas = [0.35, 0.7, 0.95];
+    let mut t = String::from("| steps per elastic contact time |");
+    for eta in etas {
+        t += &format!(" η = {eta}: COR − e (bound) |");
+    }
+    t += "\n|---|---|---|---|\n";
+    for spc in [125, 250, 500, 1000, 2000, 4000] {
+        t += &format!("| {spc} |");
+        for eta in etas {
+            let (offset, bound) = realised("ball_plate", eta, Some(spc));
+            t += &format!(" {} ({bound:.2e}) |", signed(offset));
+        }
+        t += "\n";
+    }
+    t
+}
+
+/// Replace the block between `<!-- {name}: ... -->` and `<!-- end of {name} -->` in `text`.
+fn with_block(text: &str, name: &str, block: &str) -> String {
+    let begin = format!("<!-- {name}:");
+    let end = format!("<!-- end of {name} -->");
+    let at = text
+        .find(&begin)
+        .unwrap_or_else(|| panic!("{CHAPTER} has no {begin}"));
+    let open_end = at + text[at..].find("-->").unwrap() + 3;
+    let close = text
+        .find(&end)
+        .unwrap_or_else(|| panic!("{CHAPTER} has no {end}"));
+    format!("{}\n{block}{}", &text[..open_end], &text[close..])
+}
+
+/// The chapter's two tables are what this build of liggghts-paper realises now (every cell a
+/// `millimpact reference --code liggghts-paper` run); `UPDATE_BOOK=1` rewrites them.
+#[test]
+#[ignore = "live: runs liggghts-paper (bash scripts/test.sh)"]
+fn live_the_chapters_tables_are_what_the_build_realises() {
+    require_build();
+    let path = common::root().join(CHAPTER);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let generated = with_block(
+        &with_block(&text, "cor-by-eta", &cor_by_eta_table()),
+        "convergence",
+        &convergence_table(),
+    );
+    if generated == text {
+        return;
+    }
+    if std::env::var_os("UPDATE_BOOK").is_some() {
+        std::fs::write(&path, generated).unwrap();
+        return;
+    }
+    panic!(
+        "{CHAPTER}'s tables differ from what liggghts-paper realises now; rerun with UPDATE_BOOK=1 and review the diff:\n{generated}"
+    );
 }

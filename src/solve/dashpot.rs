@@ -8,7 +8,7 @@ use serde::{Deserialize, Serialize};
 use super::steppers::{Dopri5, State};
 use super::{SolveError, march};
 use crate::model::exact::paper_impact;
-use crate::model::law::{CodeLaw, ContactForce, DashpotLaw};
+use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics};
 
 /// How a DEM code advances one step.
@@ -226,6 +226,27 @@ impl CodeStepping {
     }
 }
 
+/// The largest COR error, absolute, that velocity Verlet (with the branch taken from the
+/// half-step velocity, as LIGGGHTS `model paper` takes it) makes on the paper's `law` at
+/// step `timestep` (s) and speed `impact_velocity` (m/s): the bound a run's realised COR keeps
+/// to `sqrt((1 − η)/(1 + η))`, whatever its start phase.
+///
+/// Each branch, `C yⁿ (1 ± η)`, is conservative: the steps lose energy at the switch alone. The
+/// half-step velocity keeps the loading force for up to one step τ ≤ Δt past the turning
+/// point, an excess impulse `ΔF τ` (`ΔF = 2η C y_maxⁿ`) met by a rebound speed of about
+/// `F_U τ / M`; the rebound energy errs by at most `τ² (F_L² − F_U²) / (2M)` with
+/// `F_{L,U} = C y_maxⁿ (1 ± η)`, hence the COR by at most `2η/(1 + η)² (F_L Δt / (M v0))² / e`.
+/// The smooth branches add velocity Verlet's own second-order error, bounded here by
+/// `(Δt / t_c)²` over the contact time `t_c`. Both fall as Δt².
+pub fn paper_cor_step_error(law: &PaperLaw, impact_velocity: f64, timestep: f64) -> f64 {
+    let exact = paper_impact(law, impact_velocity);
+    let eta = law.loss_coefficient;
+    let kick = exact.peak_force * timestep / (law.mass * impact_velocity);
+    let switch = 2.0 * eta / ((1.0 + eta) * (1.0 + eta)) * kick * kick / exact.cor;
+    let smooth = (timestep / exact.contact_time).powi(2);
+    switch + smooth
+}
+
 /// Figures of a code's own `law` at zero step error, at speed `impact_velocity` (m/s): a
 /// [`DashpotLaw`] integrated by [`accurate_metrics`] at relative tolerance `rtol`, the paper's
 /// law from its closed form ([`paper_impact`]; `rtol` is not needed), so that a code that has
@@ -362,7 +383,6 @@ pub fn accurate_metrics(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::law::PaperLaw;
     use crate::model::trajectory::trajectory_metrics;
 
     fn paper(exponent: f64) -> CodeLaw {
@@ -484,5 +504,47 @@ mod tests {
         };
         let m = own_law_metrics(&CodeLaw::Paper(law), 2.0, 1e-12).unwrap();
         assert_eq!(m, paper_impact(&law, 2.0).metrics());
+    }
+
+    /// No start phase takes the stepped COR further from the closed form than the predicted
+    /// bound, which the worst phase reaches to within a factor of three (it is not loose) and
+    /// falls 4× per halving of the step.
+    #[test]
+    fn the_predicted_step_error_bounds_every_start_phase() {
+        for exponent in [1.5, 1.0] {
+            for eta in [0.2, 0.7, 0.95] {
+                let CodeLaw::Paper(law) = paper(exponent) else {
+                    unreachable!()
+                };
+                let law = PaperLaw {
+                    loss_coefficient: eta,
+                    ..law
+                };
+                let v0 = 2.0;
+                let exact = paper_impact(&law, v0);
+                let dt = exact.contact_time / 1000.0;
+                let worst = (0..32)
+                    .map(|k| {
+                        let gap = f64::from(k) / 32.0 * v0 * dt;
+                        let t = step_trajectory_from(
+                            &CodeLaw::Paper(law),
+                            v0,
+                            dt,
+                            1100,
+                            StepScheme::VelocityVerlet,
+                            gap,
+                        );
+                        (trajectory_metrics(&t).unwrap().cor - exact.cor).abs()
+                    })
+                    .fold(0.0, f64::max);
+                let bound = paper_cor_step_error(&law, v0, dt);
+                assert!(
+                    worst <= bound && worst > bound / 3.0,
+                    "n={exponent} η={eta}: {worst:e} against {bound:e}"
+                );
+                let halved = paper_cor_step_error(&law, v0, 0.5 * dt);
+                assert!((bound / halved - 4.0).abs() < 1e-9);
+            }
+        }
     }
 }
