@@ -237,7 +237,11 @@ fn an_earlier_report_is_replaced_whole() {
 fn out_dot_in_a_project_root_is_refused() {
     // A project's root as a user has it: its manifest, cases and sources.
     let project = tempfile::tempdir().unwrap();
-    std::fs::write(project.path().join("Cargo.toml"), "[package]\nname = \"mine\"\n").unwrap();
+    std::fs::write(
+        project.path().join("Cargo.toml"),
+        "[package]\nname = \"mine\"\n",
+    )
+    .unwrap();
     std::fs::create_dir(project.path().join("src")).unwrap();
     std::fs::write(project.path().join("src/main.rs"), "fn main() {}\n").unwrap();
     let before = names(project.path());
@@ -246,8 +250,15 @@ fn out_dot_in_a_project_root_is_refused() {
         assert_eq!(run.status.code(), Some(2), "--out {out}: {run:?}");
         let stderr = String::from_utf8_lossy(&run.stderr);
         assert_eq!(stderr.lines().count(), 1, "{stderr}");
-        assert!(stderr.starts_with(&format!("error: --out = {out}: ")), "{stderr}");
-        assert_eq!(names(project.path()), before, "--out {out}: nothing written");
+        assert!(
+            stderr.starts_with(&format!("error: --out = {out}: ")),
+            "{stderr}"
+        );
+        assert_eq!(
+            names(project.path()),
+            before,
+            "--out {out}: nothing written"
+        );
     }
     // Even when the working directory is an earlier report: it is not replaced from inside.
     let report = project.path().join("report");

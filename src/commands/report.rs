@@ -13,8 +13,8 @@ use crate::cli::ReportArgs;
 use millimpact::analysis::compare::CANONICAL_CASES;
 use millimpact::analysis::report::{ReportOptions, ReportTable, build_report};
 use millimpact::error::{CheckFailed, UserError};
-use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
 use millimpact::model::case::Case;
+use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
 use millimpact::output::report_page::render_pages;
 
 fn table_csv(t: &ReportTable) -> Result<String> {
@@ -107,7 +107,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         // this folder for its own.
         write_output(
             &dir.join(REPORT_MARKER),
-            &format!(
+            format!(
                 "A report of millimpact {}: `millimpact report --out` replaces this folder whole.\n",
                 env!("CARGO_PKG_VERSION")
             )

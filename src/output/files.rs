@@ -203,8 +203,9 @@ pub fn replace_dir(
         return Err(anyhow::Error::from(e).context(format!("moving the new {} in", path.display())));
     }
     if let Some(aside) = earlier {
-        std::fs::remove_dir_all(&aside)
-            .with_context(|| format!("removing the earlier output, moved to {}", aside.display()))?;
+        std::fs::remove_dir_all(&aside).with_context(|| {
+            format!("removing the earlier output, moved to {}", aside.display())
+        })?;
     }
     Ok(())
 }
