@@ -395,7 +395,8 @@ pub struct CalibrateArgs {
 pub struct ReportArgs {
     /// Case files (default: the canonical ones in cases/).
     pub cases: Vec<PathBuf>,
-    /// Folder to write the report into.
+    /// Folder to write the report into: a new or empty one, or an earlier report's (replaced
+    /// whole); a folder of other files is refused.
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
     /// Run the codes now instead of reading reference/.
