@@ -16,7 +16,7 @@ use millimpact::analysis::source::Source;
 use millimpact::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
 use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
 use millimpact::analysis::sweep::point::GridOptions;
-use millimpact::analysis::sweep::resume::{Resumed, point_key, read_resumed};
+use millimpact::analysis::sweep::resume::{Resumed, point_keys, read_resumed};
 use millimpact::analysis::sweep::row::SweepRow;
 use millimpact::analysis::sweep::rows::{RowFormat, RowWriter};
 use millimpact::analysis::sweep::run_grid;
@@ -153,7 +153,9 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
                 if let Some(f) = resumed.format {
                     format = f;
                 }
-                points.retain(|p| !resumed.done.contains(&point_key(sweep, p)));
+                let keys = point_keys(sweep, &points)?;
+                let mut done = keys.iter().map(|k| resumed.done.contains(k));
+                points.retain(|_| !done.next().unwrap_or(false));
                 // Failed rows, a row cut off by a kill and rows a later one replaced go; the
                 // rows kept are copied as they were, and the file is swapped in whole.
                 if resumed.rewrites() {

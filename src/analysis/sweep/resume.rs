@@ -11,7 +11,7 @@ use std::path::Path;
 use sha2::{Digest, Sha256};
 
 use super::grid::{Point, SweepFile, normal_cell};
-use super::row::RowStatus;
+use super::row::{PointFigures, RowStatus};
 use super::rows::{RowFormat, json_cell};
 use crate::error::UserError;
 
@@ -34,9 +34,40 @@ fn key_of<'a>(cells: impl IntoIterator<Item = &'a str>) -> PointKey {
     u128::from_le_bytes(first)
 }
 
-/// The key of `point` of `sweep`, as its row's key would be.
-pub fn point_key(sweep: &SweepFile, point: &Point) -> PointKey {
-    key_of(sweep.key_cells(point).iter().map(String::as_str))
+/// The keys of `points` of `sweep`, as their rows' keys would be: each point's row written
+/// as the CSV writer writes it and read back (through one writer and one reader per
+/// thousands of points: building a CSV reader costs more than a point's row).
+pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> anyhow::Result<Vec<PointKey>> {
+    let columns = sweep.columns();
+    let at: Vec<usize> = sweep
+        .key_columns()
+        .iter()
+        .filter_map(|k| columns.iter().position(|c| c == k))
+        .collect();
+    let mut keys = Vec::with_capacity(points.len());
+    for chunk in points.chunks(4096) {
+        let mut writer = csv::WriterBuilder::new()
+            .has_headers(false)
+            .from_writer(Vec::new());
+        for p in chunk {
+            sweep
+                .row(p, PointFigures::default(), RowStatus::default())
+                .write_csv(&mut writer)?;
+        }
+        let bytes = writer.into_inner().map_err(|e| e.into_error())?;
+        let mut reader = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .from_reader(bytes.as_slice());
+        for record in reader.records() {
+            let record = record?;
+            let cells: Vec<String> = at
+                .iter()
+                .map(|&i| normal_cell(record.get(i).unwrap_or_default()))
+                .collect();
+            keys.push(key_of(cells.iter().map(String::as_str)));
+        }
+    }
+    Ok(keys)
 }
 
 /// What a resumed output holds, and what resuming it does.
@@ -274,7 +305,7 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> anyhow::Result<Resumed> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::analysis::sweep::row::{PointFigures, SweepRow};
+    use crate::analysis::sweep::row::SweepRow;
     use crate::analysis::sweep::rows::RowWriter;
 
     fn grid() -> SweepFile {
@@ -353,11 +384,9 @@ mod tests {
             assert_eq!(resumed.format, Some(format));
             assert!(resumed.torn && resumed.rewrites());
             assert_eq!((resumed.kept_rows, resumed.retried), (4, 2));
-            for p in sweep.points(None) {
-                assert_eq!(
-                    resumed.done.contains(&point_key(&sweep, &p)),
-                    ![2, 4].contains(&p.index)
-                );
+            let points = sweep.points(None);
+            for (p, key) in points.iter().zip(point_keys(&sweep, &points).unwrap()) {
+                assert_eq!(resumed.done.contains(&key), ![2, 4].contains(&p.index));
             }
             // What is kept is what was written of the other points, byte for byte.
             let mut kept = Vec::new();
@@ -375,6 +404,21 @@ mod tests {
             assert!(!whole.rewrites());
             assert_eq!(whole.kept_lines, resumed.kept_lines);
         }
+    }
+
+    #[test]
+    fn a_points_key_is_the_key_of_its_parameter_cells() {
+        let sweep =
+            SweepFile::load(&Path::new(env!("CARGO_MANIFEST_DIR")).join("sweeps/codes.toml"))
+                .unwrap();
+        let points = sweep.points(None);
+        let keys = point_keys(&sweep, &points).unwrap();
+        assert_eq!(keys.len(), points.len());
+        for (p, key) in points.iter().zip(&keys) {
+            assert_eq!(*key, key_of(sweep.key_cells(p).iter().map(String::as_str)));
+        }
+        let distinct: HashSet<_> = keys.iter().collect();
+        assert_eq!(distinct.len(), keys.len());
     }
 
     #[test]
