@@ -8,9 +8,10 @@
 #
 # The tripwires shadow `liggghts`, `yade`, `lmp`, GNU `parallel`, Slurm, munge and Chromium on
 # PATH, and stand in for the project's own builds (MILLIMPACT_CODES_DIR: the Kratos python, the
-# LAMMPS 2025 binary and LIGGGHTS with the paper's law); MILLIMPACT_<CODE>_BINARY is unset. `--without-codes` instead leaves those
-# programs out of PATH (a copy of PATH's folders without them) and points MILLIMPACT_CODES_DIR
-# at an empty folder: the fast tier as a machine without the codes runs it.
+# LAMMPS 2025 binary and LIGGGHTS with the paper's law); MILLIMPACT_<CODE>_BINARY is unset.
+# `--without-codes` instead leaves those programs out of PATH (a copy of PATH's folders without
+# them) and points MILLIMPACT_CODES_DIR at an empty folder: the fast tier as a machine without
+# the codes runs it.
 # Extra arguments go to `cargo test`.
 set -euo pipefail
 cd "$(dirname "$0")/.."

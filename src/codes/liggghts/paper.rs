@@ -22,7 +22,7 @@ use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
 };
-use crate::codes::runner::{binary_override_variable, codes_dir, locate_override_or_path};
+use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::exact_number;
 use crate::codes::batch::BatchError;
 use crate::codes::{
@@ -34,7 +34,7 @@ use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::CodeFrame;
 
-/// The folder under [`codes_dir`] the build is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
 pub const INSTALL_DIR: &str = "liggghts-paper";
 /// The executable inside [`INSTALL_DIR`].
 pub const BINARY_PATH: &str = "bin/liggghts-paper";
@@ -125,7 +125,8 @@ impl CodeDriver for LiggghtsPaper {
         if std::env::var_os(&variable).is_some() {
             return locate_override_or_path(self.name(), self.binary());
         }
-        let folder = codes_dir().join(INSTALL_DIR);
+        let codes = find_codes_dir();
+        let folder = codes.path.join(INSTALL_DIR);
         let program = folder.join(BINARY_PATH);
         if program.is_file() {
             Ok(Executable::plain(program))
@@ -133,6 +134,7 @@ impl CodeDriver for LiggghtsPaper {
             Err(LocateError::NotInstalled {
                 expected: BINARY_PATH,
                 folder,
+                origin: codes.origin,
                 variable,
             })
         }
