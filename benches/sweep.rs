@@ -58,6 +58,7 @@ fn per_point(sweep: &SweepFile, points: &[Point], pool: &rayon::ThreadPool) {
         &sweep.columns(),
         false,
         Duration::from_millis(50),
+        0,
     )
     .expect("a sink takes the header");
     let writer = Mutex::new(writer);

@@ -108,6 +108,19 @@ fn trials(dir: &Path) -> Vec<Trial> {
     std::os::unix::fs::symlink(dir.join("elsewhere.csv"), &link).unwrap();
     let link = link.display().to_string();
     let missing_dir = dir.join("no-such-dir/t.csv").display().to_string();
+    let theirs = dir.join("site");
+    std::fs::create_dir_all(&theirs).unwrap();
+    std::fs::write(theirs.join("index.html"), "<p>my own page</p>\n").unwrap();
+    let theirs = theirs.display().to_string();
+    let failing_sweep = write(
+        "failing.toml",
+        &format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.35, 1.5, 0.7]\n",
+            case_path("ball_plate").display()
+        ),
+    );
+    let sweep_out = |name: &str| dir.join(name).display().to_string();
+    std::fs::write(dir.join("earlier.csv"), "sweep,point\n").unwrap();
 
     // A copy of the store with one record's COR moved by 1e-6, and a case edited after its
     // records were made.
@@ -151,6 +164,14 @@ fn trials(dir: &Path) -> Vec<Trial> {
         "yade",
         "printf 'not a trajectory\\n' > trajectory.csv",
     );
+    // A LIGGGHTS that stops on its input as `model paper` stops on an η out of range.
+    fake_code(
+        &bin,
+        "liggghts-paper",
+        "echo 'LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0)'; \
+         echo 'ERROR: model paper: 0 <= lossCoefficient < 1 required (eta = 1.2 for atom types 1 1; eta >= 1 never separates the bodies, eta < 0 creates energy) (normal_model_paper.h:83)'; \
+         exit 1",
+    );
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).unwrap();
     let with = |mut t: Trial, env: Vec<(&'static str, String)>| {
@@ -190,6 +211,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
             "option",
             "a time step beyond RK4's stability limit",
             &["run", &case, "--method", "rk4", "--timestep", "2e-4"],
+        ),
+        trial(
+            "option",
+            "`--clamp` for a code whose force never attracts",
+            &["reference", "--code", "liggghts-paper", &case, "--clamp"],
         ),
         trial(
             "option",
@@ -248,6 +274,32 @@ fn trials(dir: &Path) -> Vec<Trial> {
             &["sweep", &case, "--loss-coefficient", "0:0.9:1e-300"],
         ),
         trial(
+            "option",
+            "a COR tolerance below what any method is known to meet",
+            &[
+                "sweep",
+                &case,
+                "--loss-coefficient",
+                "0:0.9:0.1",
+                "--tolerance",
+                "1e-15",
+            ],
+        ),
+        trial(
+            "option",
+            "a COR tolerance beside a method",
+            &[
+                "sweep",
+                &case,
+                "--loss-coefficient",
+                "0:0.9:0.1",
+                "--tolerance",
+                "1e-10",
+                "--method",
+                "dopri5",
+            ],
+        ),
+        trial(
             "output path",
             "a symbolic link",
             &["run", &case, "--trajectory", &link],
@@ -269,7 +321,47 @@ fn trials(dir: &Path) -> Vec<Trial> {
             "a directory that does not exist",
             &["run", &case, "--trajectory", &missing_dir],
         ),
+        trial(
+            "output path",
+            "`report --out` a folder holding someone else's `index.html`",
+            &["report", &case, "--out", &theirs],
+        ),
+        trial(
+            "output path",
+            "`report --out .` in the project's root",
+            &["report", "--out", "."],
+        ),
+        trial(
+            "output path",
+            "`sweep --out` a file that is not empty, without `--resume`",
+            &["sweep", &failing_sweep, "--out", &sweep_out("earlier.csv")],
+        ),
         full,
+        trial(
+            "sweep",
+            "a sweep file with a point that fails (η = 1.5)",
+            &[
+                "sweep",
+                &failing_sweep,
+                "--jobs",
+                "1",
+                "--out",
+                &sweep_out("failing.csv"),
+            ],
+        ),
+        trial(
+            "sweep",
+            "the same with `--allow-failures`",
+            &[
+                "sweep",
+                &failing_sweep,
+                "--jobs",
+                "1",
+                "--allow-failures",
+                "--out",
+                &sweep_out("allowed.csv"),
+            ],
+        ),
         trial(
             "store",
             "`--reference` naming no folder",
@@ -298,6 +390,25 @@ fn trials(dir: &Path) -> Vec<Trial> {
                 &["reference", "--code", "lammps", &case],
             ),
             vec![("PATH", empty.display().to_string())],
+        ),
+        with(
+            trial(
+                "code",
+                "a project build missing from the codes' folder",
+                &["reference", "--code", "liggghts-paper", &case],
+            ),
+            vec![("MILLIMPACT_CODES_DIR", empty.display().to_string())],
+        ),
+        with(
+            trial(
+                "code",
+                "stops on its input with its own `ERROR` line (a LIGGGHTS refusing η)",
+                &["reference", "--code", "liggghts-paper", &case],
+            ),
+            vec![(
+                "MILLIMPACT_LIGGGHTS_PAPER_BINARY",
+                bin.join("liggghts-paper").display().to_string(),
+            )],
         ),
         with(
             trial(

@@ -40,14 +40,14 @@ use super::damping::{
     clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
 };
 use super::parse::ParseError;
-use super::runner::{self, codes_dir};
+use super::runner::{self, CodesDir, find_codes_dir};
 use super::template::{exact_number, fill_template};
 use crate::codes::yade::{log_value, parse_trajectory};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
     RenderedInput,
 };
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
@@ -64,7 +64,7 @@ pub const TRAJECTORY_FILE: &str = "trajectory.csv";
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
 
-/// The python of the installed Kratos, under [`codes_dir`].
+/// The python of the installed Kratos, under the codes' folder ([`find_codes_dir`]).
 pub const PYTHON: &str = "kratos/bin/python";
 
 /// The translational integration scheme: symplectic Euler, Kratos' leap-frog. `Forward_Euler`
@@ -100,17 +100,26 @@ pub fn hertz_damping_gamma(restitution: f64) -> f64 {
     thornton_damping_ratio(restitution.max(LOWEST_RESTITUTION))
 }
 
-/// The Kratos python in the codes' folder `dir`, or why there is none: the path looked at, how
-/// to install it there, and how to point at another.
-pub fn python_in(dir: &Path) -> Result<PathBuf, LocateError> {
-    let path = dir.join(PYTHON);
+/// The Kratos python in the codes' folder `codes`, or why there is none: the path looked at,
+/// how the folder was chosen, how to install it there, and how to point at another; or, for
+/// an environment made on another machine, the Python it links to that is not here.
+pub fn python_in(codes: &CodesDir) -> Result<PathBuf, LocateError> {
+    let path = codes.path.join(PYTHON);
+    let variable = runner::binary_override_variable("kratos");
     if path.is_file() {
         Ok(path)
+    } else if let Some(target) = runner::dangling_link(&path) {
+        Err(LocateError::MovedEnvironment {
+            link: path,
+            target,
+            variable,
+        })
     } else {
         Err(LocateError::NotInstalled {
             expected: PYTHON,
-            folder: dir.to_path_buf(),
-            variable: runner::binary_override_variable("kratos"),
+            folder: codes.path.clone(),
+            origin: codes.origin,
+            variable,
         })
     }
 }
@@ -194,6 +203,45 @@ impl Kratos {
     }
 }
 
+impl Kratos {
+    /// The clamped damped law Kratos integrates for `setup` (linear for the rod).
+    pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
+        let mass = dynamic_mass(setup);
+        match setup.scene {
+            SceneKind::RodEnd => DashpotLaw {
+                mass,
+                stiffness: setup.stiffness,
+                exponent: 1.0,
+                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
+                damping_exponent: 0.0,
+                clamp_attractive: true,
+            },
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                let s = setup.sphere;
+                let (e2, nu2) = second_material(setup);
+                let modulus =
+                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+                let radius = match (setup.scene, setup.other_sphere) {
+                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
+                    // RigidFace3D3N is flat: the sphere's own radius.
+                    _ => s.radius,
+                };
+                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
+                let gamma = hertz_damping_gamma(input_restitution(setup));
+                DashpotLaw {
+                    mass,
+                    stiffness,
+                    exponent: 1.5,
+                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
+                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
+                    damping_exponent: 0.25,
+                    clamp_attractive: true,
+                }
+            }
+        }
+    }
+}
+
 impl CodeDriver for Kratos {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::KratosCard)
@@ -207,7 +255,7 @@ impl CodeDriver for Kratos {
         "python"
     }
 
-    /// The venv's python under [`codes_dir`] (or the python in `MILLIMPACT_KRATOS_BINARY`),
+    /// The venv's python under the codes' folder (or the python in `MILLIMPACT_KRATOS_BINARY`),
     /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
     /// run's loop five to ten times slower.
     fn locate(&self) -> Result<Executable, LocateError> {
@@ -215,7 +263,7 @@ impl CodeDriver for Kratos {
         let program = if std::env::var_os(&variable).is_some() {
             runner::locate_override_or_path(self.name(), self.binary())?.program
         } else {
-            python_in(&codes_dir())?
+            python_in(&find_codes_dir())?
         };
         Ok(Executable {
             program,
@@ -312,40 +360,8 @@ impl CodeDriver for Kratos {
         })
     }
 
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
-        let mass = dynamic_mass(setup);
-        match setup.scene {
-            SceneKind::RodEnd => DashpotLaw {
-                mass,
-                stiffness: setup.stiffness,
-                exponent: 1.0,
-                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
-                damping_exponent: 0.0,
-                clamp_attractive: true,
-            },
-            SceneKind::BallPlate | SceneKind::BallBall => {
-                let s = setup.sphere;
-                let (e2, nu2) = second_material(setup);
-                let modulus =
-                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
-                let radius = match (setup.scene, setup.other_sphere) {
-                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
-                    // RigidFace3D3N is flat: the sphere's own radius.
-                    _ => s.radius,
-                };
-                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
-                let gamma = hertz_damping_gamma(input_restitution(setup));
-                DashpotLaw {
-                    mass,
-                    stiffness,
-                    exponent: 1.5,
-                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
-                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                }
-            }
-        }
+    fn law(&self, setup: &CodeSetup) -> CodeLaw {
+        self.dashpot_law(setup).into()
     }
 
     fn step_scheme(&self) -> StepScheme {
@@ -357,7 +373,7 @@ impl CodeDriver for Kratos {
             // γ is solved for the clamped law: it realises the target.
             return None;
         }
-        let law = self.law(setup);
+        let law = self.dashpot_law(setup);
         let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
             .ok()?
             .cor;
@@ -396,6 +412,7 @@ mod tests {
             exponent: 1.5,
             impact_velocity: 2.0,
             target_restitution: 0.6944,
+            loss_coefficient: None,
             timestep: 3.059_664_992_222_593_2e-6,
             steps: 50,
             clamp_attractive: false,
@@ -468,12 +485,31 @@ mod tests {
     #[test]
     fn a_missing_install_says_where_it_looked_and_how_to_install() {
         let empty = tempfile::tempdir().unwrap();
-        let err = python_in(empty.path()).unwrap_err().to_string();
+        let codes = CodesDir {
+            path: empty.path().to_path_buf(),
+            origin: runner::CodesDirOrigin::Variable,
+        };
+        let err = python_in(&codes).unwrap_err().to_string();
         assert!(err.contains(&empty.path().join(PYTHON).display().to_string()));
+        assert!(err.contains("named by MILLIMPACT_CODES_DIR"), "{err}");
         assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");
         std::fs::create_dir_all(empty.path().join("kratos/bin")).unwrap();
+        // A venv made on another machine: its python links to a Python that is not here.
+        let elsewhere = empty.path().join("gone/bin/python3");
+        std::os::unix::fs::symlink(&elsewhere, empty.path().join(PYTHON)).unwrap();
+        let err = python_in(&codes).unwrap_err().to_string();
+        assert!(
+            err.starts_with(&format!(
+                "{} links to {}, which is not on this machine",
+                empty.path().join(PYTHON).display(),
+                elsewhere.display()
+            )),
+            "{err}"
+        );
+        assert!(err.contains("bash scripts/install-dem-codes.sh"), "{err}");
+        std::fs::remove_file(empty.path().join(PYTHON)).unwrap();
         std::fs::write(empty.path().join(PYTHON), "").unwrap();
-        assert_eq!(python_in(empty.path()).unwrap(), empty.path().join(PYTHON));
+        assert_eq!(python_in(&codes).unwrap(), empty.path().join(PYTHON));
     }
 
     // Kratos' cut-offs are exact comparisons in its source.
