@@ -82,7 +82,7 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
             options.method = choice.method;
             options.steps_per_period = Resolution::steps_per_period(Some(choice.resolution));
             options.rtol = Resolution::rtol(Some(choice.resolution));
-            command = command.option("--tolerance", tolerance);
+            command = command.option("--tolerance", format!("{tolerance:e}"));
         }
         None => {
             command = command
