@@ -144,7 +144,7 @@ pub fn solve(
     settings: &Settings,
 ) -> Result<Outcome, SolveError> {
     let started = Instant::now();
-    let plan = match Plan::new(law, impact_velocity, settings)? {
+    let plan = match Plan::of(law, impact_velocity, settings)? {
         Planned::Integrate(plan) => plan,
         Planned::Exact(figures) => {
             return Ok(Outcome {
@@ -184,7 +184,7 @@ pub fn check_step(
     impact_velocity: f64,
     settings: &Settings,
 ) -> Result<(), SolveError> {
-    Plan::new(law, impact_velocity, settings).map(|_| ())
+    Plan::of(law, impact_velocity, settings).map(|_| ())
 }
 
 /// Impacts solved together: each item `(law, impact_velocity)` with the same `settings`, each
@@ -209,7 +209,7 @@ pub fn solve_many(
     let started = Instant::now();
     let plans: Vec<Result<Planned, SolveError>> = items
         .iter()
-        .map(|(law, v0)| Plan::new(law, *v0, settings))
+        .map(|(law, v0)| Plan::of(law, *v0, settings))
         .collect();
     let mut scaled: Vec<Option<Result<Scaled, SolveError>>> =
         (0..items.len()).map(|_| None).collect();
@@ -291,7 +291,7 @@ enum Planned {
 }
 
 impl Plan {
-    fn new(law: &PaperLaw, v0: f64, settings: &Settings) -> Result<Planned, SolveError> {
+    fn of(law: &PaperLaw, v0: f64, settings: &Settings) -> Result<Planned, SolveError> {
         let y_scale = law.elastic_peak(v0);
         let t_scale = y_scale / v0;
         let (n, eta) = (law.exponent, law.loss_coefficient);
@@ -680,7 +680,7 @@ fn phased_with(
     Ok(out)
 }
 
-/// Impacts of rk4-event stepped together in [`rk4_event_lanes`].
+/// Impacts of rk4-event stepped together in interleaved lanes by [`solve_many`].
 pub const LANES: usize = 4;
 
 /// What a lane holds besides the state it steps: which impact, its factors and step, its

@@ -169,6 +169,9 @@ pub fn rows_at(case: &Case, values: &[f64], settings: &Settings) -> Result<Vec<S
         .collect()
 }
 
+/// A chunk of rows written out, and its points (η, COR) when they are to be drawn.
+type EncodedChunk = (Vec<u8>, Vec<(f64, f64)>);
+
 /// η values per chunk of a streamed sweep.
 const CHUNK: usize = 64;
 
@@ -267,7 +270,7 @@ impl Streamed<'_> {
             _ => String::new(),
         };
         out.write_all(head.as_bytes())?;
-        let work = |range: std::ops::Range<usize>| -> Result<(Vec<u8>, Vec<(f64, f64)>)> {
+        let work = |range: std::ops::Range<usize>| -> Result<EncodedChunk> {
             let first = range.start == 0;
             let rows = rows_at(self.case, &self.values.values(range), &settings)?;
             let plotted = if points {
