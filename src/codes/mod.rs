@@ -9,8 +9,10 @@
 
 pub mod batch;
 pub mod damping;
+pub mod deck;
 pub mod parse;
 pub mod runner;
+pub mod script;
 pub mod setup;
 pub mod template;
 
@@ -81,7 +83,8 @@ impl Executable {
 
 /// One external DEM code, as one build of it (a code with two builds has two entries). It
 /// speaks only of what every code has; what a code can do beyond one run is a capability it
-/// offers ([`CodeDriver::batch`], [`CodeDriver::prober`], [`CodeDriver::card`]).
+/// offers ([`CodeDriver::batch`], [`CodeDriver::prober`], [`CodeDriver::card`],
+/// [`CodeDriver::deck`]).
 pub trait CodeDriver: Send + Sync {
     /// Short name, as on the command line and in `reference/<name>/`.
     fn name(&self) -> &'static str;
@@ -118,6 +121,10 @@ pub trait CodeDriver: Send + Sync {
     }
     /// What a user who sets the code up by hand types, and the traps to avoid.
     fn card(&self) -> Option<&dyn CalibrationCard> {
+        None
+    }
+    /// A reader of this code's users' own decks (`millimpact deck`).
+    fn deck(&self) -> Option<&dyn deck::DeckReader> {
         None
     }
     /// The code whose contact law this one integrates too (drawn as one in the figures).

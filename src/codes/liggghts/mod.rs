@@ -12,6 +12,7 @@
 
 pub mod batch;
 pub mod card;
+pub mod deck;
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -189,6 +190,10 @@ impl Liggghts {
 impl CodeDriver for Liggghts {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::LiggghtsCard)
+    }
+
+    fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
+        Some(&deck::LiggghtsDeck)
     }
 
     fn name(&self) -> &'static str {
