@@ -67,6 +67,9 @@ pub struct DeckImpact {
     pub types: [TypeRef; 2],
     /// The pair as labelled in the tables (with radii where a type has several sizes).
     pub pair: String,
+    /// The run's name, `deck-CONTACT-TYPE-TYPE@VELOCITY` (its scratch directory's prefix, and
+    /// its key among recorded runs).
+    pub run: String,
     /// The wall's name, for a wall pair.
     pub wall: Option<String>,
     /// The normal model as the deck names it.
@@ -105,6 +108,10 @@ pub struct DeckImpact {
     pub peak_overlap_ratio: f64,
     /// The deck's time step, s.
     pub timestep: f64,
+    /// Steps the impact ran.
+    pub steps: u64,
+    /// The gap between the surfaces at the start, m (the stepped law starts from it too).
+    pub start_gap: f64,
     /// Contact time over the time step.
     pub steps_per_contact: f64,
     /// The smaller Rayleigh time of the pair's particles, s (none where the model takes no
@@ -547,6 +554,7 @@ fn impact_row(
     DeckImpact {
         types: c.types,
         pair: pair_label(deck, p.contact),
+        run: record_key(&p.impact),
         wall: match c.partner {
             Partner::Wall(w) => Some(deck.walls[w].name.clone()),
             Partner::Body(_) => None,
@@ -568,6 +576,8 @@ fn impact_row(
         peak_overlap: peak,
         peak_overlap_ratio: ratio,
         timestep: dt,
+        steps: p.steps,
+        start_gap: p.impact.start_gap,
         steps_per_contact,
         rayleigh_time: rayleigh,
         step_over_rayleigh,

@@ -229,7 +229,7 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
 /// Read `key value` settings from `words[start..]` into `model`.
 fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Result<(), DeckError> {
     let words = &command.words[start..];
-    if words.len() % 2 != 0 {
+    if !words.len().is_multiple_of(2) {
         return Err(DeckError::unsupported(
             &command.at,
             format!("`{}`: a setting without its value", command.text),
@@ -259,8 +259,7 @@ fn read_wall(command: &Command, meshes: &HashMap<String, (u32, SourceLine)>) -> 
     let mut wall_type = None;
     let mut geometry = String::new();
     let mut mesh_names: Vec<String> = Vec::new();
-    loop {
-        let Some(word) = command.words.get(k) else { break };
+    while let Some(word) = command.words.get(k) {
         match word.as_str() {
             "primitive" => {
                 if command.word(k + 1, "`type` after primitive")? != "type" {
@@ -561,7 +560,10 @@ impl LiggghtsDeck {
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
         let push = |bodies: &mut Vec<DeckBody>, t: u32, radius: f64, density: f64, from: String| {
-            if !bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density) {
+            // The same size read twice is the same number, bit for bit.
+            #[allow(clippy::float_cmp)]
+            let known = bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            if !known {
                 bodies.push(DeckBody {
                     type_id: t,
                     radius,
@@ -675,7 +677,7 @@ impl Materials<'_> {
 
     /// The law LIGGGHTS integrates between a particle of type `i` (radius, mass) and a partner
     /// of type `j` (`Some((radius, mass))` for a particle, `None` for a wall).
-    fn pair_law(&self, model: &GranModel, i: u32, radius: f64, mass: f64, j: u32, partner: Option<(f64, f64)>, at: &SourceLine) -> Result<PairLaw, DeckError> {
+    fn pair_law(&self, model: &GranModel, (i, radius, mass): (u32, f64, f64), j: u32, partner: Option<(f64, f64)>, at: &SourceLine) -> Result<PairLaw, DeckError> {
         let needed_by = format!("model {}", model.normal);
         let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
         let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
@@ -799,7 +801,7 @@ impl DeckReader for LiggghtsDeck {
             what: "no timestep".into(),
             supported: "timestep DT (s)".into(),
         })?;
-        if !(timestep > 0.0) {
+        if timestep.is_nan() || timestep <= 0.0 {
             return Err(DeckError::unsupported(&timestep_at, format!("timestep {timestep}"), "a positive time step, s"));
         }
         let (pair_model, pair_command) = r.pair.clone().ok_or_else(|| DeckError::Lacking {
@@ -845,7 +847,7 @@ impl DeckReader for LiggghtsDeck {
         let mut contacts = Vec::new();
         for (a, body) in bodies.iter().enumerate() {
             for (b, other) in bodies.iter().enumerate().skip(a) {
-                let pl = materials.pair_law(&pair_model, body.type_id, body.radius, body.mass, other.type_id, Some((other.radius, other.mass)), &pair_command.at)?;
+                let pl = materials.pair_law(&pair_model, (body.type_id, body.radius, body.mass), other.type_id, Some((other.radius, other.mass)), &pair_command.at)?;
                 contacts.push(DeckContact {
                     body: a,
                     partner: Partner::Body(b),
@@ -860,7 +862,7 @@ impl DeckReader for LiggghtsDeck {
         }
         for (a, body) in bodies.iter().enumerate() {
             for (w, wall) in r.walls.iter().enumerate() {
-                let pl = materials.pair_law(&wall.model, body.type_id, body.radius, body.mass, wall.wall_type, None, &wall.at)?;
+                let pl = materials.pair_law(&wall.model, (body.type_id, body.radius, body.mass), wall.wall_type, None, &wall.at)?;
                 let mut traps = pl.traps;
                 traps.push(format!("wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)", wall.geometry));
                 contacts.push(DeckContact {
@@ -914,7 +916,7 @@ impl DeckReader for LiggghtsDeck {
             youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
             poisson_ratio: b.poisson_ratio,
         };
-        let case_name = format!("deck-{}-{}", c.types[0], c.types[1]);
+        let case_name = format!("deck-{contact}-{}-{}", c.types[0], c.types[1]);
         let (scene, other_sphere, wall_line) = match c.partner {
             Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&deck.bodies[o])), None),
             Partner::Wall(w) => (SceneKind::BallPlate, None, Some(deck.transplant.walls[w].clone())),
