@@ -417,3 +417,110 @@ fn the_books_worked_example_is_the_recorded_check() {
         ..block.find("```\n<!-- end of deck example -->").unwrap()];
     assert_eq!(body, table);
 }
+
+const GRANULAR: &str = "examples/decks/lammps-granular/in.granular";
+
+/// As on a machine without the codes: a LAMMPS deck is read with the build's fallback
+/// conventions (no probe starts).
+fn hide_codes() {
+    for (variable, missing) in common::codes_hidden() {
+        // SAFETY: every test of this file that sets them sets the same values, before reading.
+        unsafe { std::env::set_var(variable, missing) };
+    }
+}
+
+#[test]
+fn the_lammps_deck_is_read_with_the_builds_conventions() {
+    hide_codes();
+    let (code, deck) = read_deck(&root().join(GRANULAR), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Lammps);
+    let sizes: Vec<(u32, f64, f64, Option<f64>)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density, b.youngs_modulus))
+        .collect();
+    assert_eq!(
+        sizes,
+        [
+            (1, 0.005, 2500.0, Some(6.3e10)),
+            (2, 0.0025, 2500.0, Some(6.3e10))
+        ]
+    );
+    assert_eq!(
+        deck.transplant.walls,
+        [
+            "fix floor all wall/gran granular hertz/material 6.3e10 7e-1 2.2e-1 damping tsuji tangential mindlin NULL 1.0 0.5 limit_damping zplane 0 NULL"
+        ]
+    );
+    // The ball on the floor: the 2021 wall's E/(2(1−ν)), R* = R, m* = m, tsuji's α(e_in), clamped.
+    let wall = &deck.contacts[3];
+    let body = &deck.bodies[0];
+    let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22)) * 0.005f64.sqrt();
+    let alpha = millimpact::codes::lammps::tsuji_alpha(0.7);
+    assert!(relative(wall.law.stiffness, k) < 1e-14);
+    assert!(relative(wall.law.damping, alpha * (body.mass * k).sqrt()) < 1e-14);
+    assert!(wall.law.clamp_attractive);
+    assert_eq!(wall.cor_entered, Some(0.7));
+    // Two beads: the pair's E/(2(1−ν²)), not clamped.
+    let pair = &deck.contacts[0];
+    let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22 * 0.22)) * 0.0025f64.sqrt();
+    assert!(relative(pair.law.stiffness, k) < 1e-14 && !pair.law.clamp_attractive);
+}
+
+#[test]
+fn a_lammps_line_the_build_lacks_or_a_pair_without_coefficients_is_refused() {
+    hide_codes();
+    let head = "units si\natom_style sphere\ncreate_box 2 box\ncreate_atoms 1 single 0 0 0\ncreate_atoms 2 single 1 0 0\nset type 1 diameter 0.01 density 2500\nset type 2 diameter 0.01 density 2500\ntimestep 1e-6\npair_style granular\n";
+    let (_d, path) = deck_files(&[(
+        "in.cr",
+        &format!(
+            "{head}pair_coeff * * hertz/material 1e9 0.5 0.3 damping coeff_restitution tangential linear_nohistory 0 0\n"
+        ),
+    )]);
+    let e = read_deck(&path, Some(CodeName::Lammps), &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.cr:10: damping coeff_restitution: this build (probed) has none")
+            && e.contains("--code lammps-2025"),
+        "{e}"
+    );
+    let (_d, path) = deck_files(&[(
+        "in.mix",
+        &format!("{head}pair_coeff 1 1 hertz/material 1e9 0.5 0.3\npair_coeff 2 2 hooke 1e6 0.5\n"),
+    )]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no pair_coeff covers the types 1 and 2"), "{e}");
+    let (_d, path) = deck_files(&[(
+        "in.dmt",
+        &format!("{head}pair_coeff * * dmt 1e9 0.5 0.3 0.1\n"),
+    )]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(
+            "in.dmt:10: normal model `dmt`; supported: hooke k d, hertz k d, hertz/material E d nu"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn snapshots_of_the_lammps_deck_in_every_format() {
+    hide_codes();
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/lammps-granular.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(GRANULAR), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_lammps_granular_{format}"), text);
+    }
+}

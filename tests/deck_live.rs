@@ -144,3 +144,49 @@ fn the_liggghts_mill_deck_realises_its_own_law_pair_by_pair() {
     }
     write_runs("liggghts-mill", &runs);
 }
+
+#[test]
+#[ignore = "live: runs LAMMPS (the Debian build) on examples/decks/lammps-granular"]
+fn the_lammps_granular_deck_realises_its_own_law_and_shows_its_traps() {
+    let path = Path::new("examples/decks/lammps-granular/in.granular");
+    std::env::set_current_dir(common::root()).unwrap();
+    let (code, deck) = read_deck(path, None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Lammps);
+    let live = LiveRunner::default();
+    let recording = Recording {
+        inner: &live,
+        runs: Default::default(),
+    };
+    let report = check_deck(code, &deck, velocities(&deck, &[]), &recording).unwrap();
+    assert_eq!(report.impacts.len(), 15);
+    let runs = recording.runs.into_inner().unwrap();
+    check(&report, &runs, code);
+    for i in &report.impacts {
+        // The known offsets: this build's tsuji fit is √2 short, so the law's COR lies above the
+        // e_in typed; the law with the exact damping for that e realises it.
+        let model = i.model_difference.unwrap();
+        assert!(model > 1e-2, "{}: model {model:e}", i.pair);
+        let entered = i.cor_entered.unwrap();
+        let exact = millimpact::model::law::DashpotLaw {
+            damping: millimpact::codes::lammps::exact_hertz_alpha(entered)
+                * (i.law.mass * i.law.stiffness).sqrt(),
+            clamp_attractive: false,
+            ..i.law
+        };
+        let cor = millimpact::solve::dashpot::accurate_metrics(&exact, i.impact_velocity, 1e-12)
+            .unwrap()
+            .cor;
+        assert!(
+            (cor - entered).abs() <= TARGET_TOLERANCE,
+            "{}: {cor}",
+            i.pair
+        );
+        assert!(i.traps.iter().any(|t| t.starts_with("damping tsuji")));
+        if i.wall.is_some() {
+            assert!(
+                i.law.clamp_attractive && i.traps.iter().any(|t| t.starts_with("limit_damping"))
+            );
+        }
+    }
+    write_runs("lammps-granular", &runs);
+}

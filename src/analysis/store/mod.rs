@@ -27,7 +27,7 @@ use crate::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
 use crate::output::files::write_atomic;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
-use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
+use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
 
 /// One run of one code on one case at one η.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -199,12 +199,13 @@ pub fn run_reference(
     let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
     let law = driver.law(&setup);
     let scheme = driver.step_scheme();
-    let stepped = step_trajectory(
+    let stepped = step_trajectory_from(
         &law,
         setup.impact_velocity,
         setup.timestep,
         setup.steps,
         scheme,
+        driver.start_gap(&setup),
     );
     let law_at_step =
         trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;

@@ -18,7 +18,7 @@ use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::trajectory::trajectory_metrics;
-use crate::solve::dashpot::{accurate_metrics, step_trajectory};
+use crate::solve::dashpot::{accurate_metrics, step_trajectory_from};
 
 /// Most bytes of trajectory files one batch may write (about 80 bytes per step and impact).
 pub const MAX_BATCH_BYTES: f64 = 2e8;
@@ -129,12 +129,13 @@ fn batch_figures(
     let driver = code.driver();
     let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
     let law = driver.law(setup);
-    let stepped = step_trajectory(
+    let stepped = step_trajectory_from(
         &law,
         setup.impact_velocity,
         setup.timestep,
         setup.steps,
         driver.step_scheme(),
+        driver.start_gap(setup),
     );
     let at_step =
         trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;

@@ -37,6 +37,10 @@ macro_rules! lammps_driver_methods {
             $build.law(setup)
         }
 
+        fn start_gap(&self, setup: &$crate::codes::CodeSetup) -> f64 {
+            $build.start_gap(setup)
+        }
+
         fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {
             Some($crate::codes::CodeName::Liggghts)
         }
@@ -59,4 +63,8 @@ impl CodeDriver for Lammps {
     }
 
     lammps_driver_methods!(DEBIAN_2021);
+
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        Some(&crate::codes::lammps::deck::DEBIAN_2021_DECK)
+    }
 }

@@ -297,6 +297,10 @@ impl CodeDriver for Liggghts {
         Ok(parsed)
     }
 
+    fn start_gap(&self, setup: &CodeSetup) -> f64 {
+        contact_gap(setup)
+    }
+
     fn batch(&self) -> Option<&dyn BatchRunner> {
         Some(&batch::LiggghtsBatch)
     }
