@@ -448,7 +448,7 @@ fn parse_variable(text: &str) -> Result<(String, String), String> {
 /// `millimpact deck`.
 #[derive(Debug, Args)]
 pub struct DeckArgs {
-    /// The deck: a LIGGGHTS input (LAMMPS, Kratos and YADE decks as their readers arrive).
+    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
     pub deck: PathBuf,
     /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
     /// speed: the deck's own, else 2 m/s].
