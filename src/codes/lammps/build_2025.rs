@@ -88,6 +88,8 @@ impl CodeDriver for Lammps2025 {
     lammps_driver_methods!(JUL_2025);
 
     fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
-        Some(&crate::codes::lammps::deck::JUL_2025_DECK)
+        static DECK: crate::codes::lammps::deck::LammpsDeck =
+            crate::codes::lammps::deck::LammpsDeck(&JUL_2025, &Lammps2025);
+        Some(&DECK)
     }
 }

