@@ -112,8 +112,7 @@ fn a_changed_figure_fails_the_own_law_check() {
     });
     copy.fails_naming("FAIL lammps rod_end η=0.35");
     // The figures the table has no column for are held to the same bound, and named with their
-    // difference (the stored runs agree with their laws stepped from the runs' start to rounding,
-    // so the difference named is the perturbation's).
+    // difference (each stored figure sits within a few 1e-15 of its stepped law's).
     for (code, figure, named) in [
         (
             "kratos",

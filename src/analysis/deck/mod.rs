@@ -212,8 +212,8 @@ impl CodeDriver for DeckImpactDriver {
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         self.code.parse(setup, workdir, log)
     }
-    fn law(&self, _setup: &CodeSetup) -> DashpotLaw {
-        self.law
+    fn law(&self, _setup: &CodeSetup) -> crate::model::law::CodeLaw {
+        self.law.into()
     }
     fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
         self.code.trajectory_rows(setup)

@@ -34,8 +34,8 @@ macro_rules! lammps_driver_methods {
             Some(&$crate::codes::lammps::batch::LammpsBatch(&$build))
         }
 
-        fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::DashpotLaw {
-            $build.law(setup)
+        fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::CodeLaw {
+            $build.law(setup).into()
         }
 
         fn start_gap(&self, setup: &$crate::codes::CodeSetup) -> f64 {

@@ -1,6 +1,7 @@
 //! LIGGGHTS batches: several independent sphere-on-plate impacts in one process. Sphere `i` is
-//! atom type `i`, the plate is the last type, and the per-type-pair `coefficientRestitution`
-//! gives each sphere its own damping against the plate; the spheres sit far apart along x so
+//! atom type `i`, the plate is the last type, and a per-type-pair property
+//! (`coefficientRestitution` for the stock `hertz`, `lossCoefficient` for the paper build's
+//! `paper`) gives each sphere its own damping against the plate; the spheres sit far apart along x so
 //! that they never touch, and each writes its own trajectory. Every value is the single run's,
 //! so each impact steps through the same arithmetic as when it runs alone; the run lasts the
 //! longest impact's steps and each trajectory is cut at its own.
@@ -32,8 +33,43 @@ fn plate(setup: &CodeSetup) -> (f64, f64) {
         .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON))
 }
 
-/// The batch input for `setups`, or why they cannot run as one.
+/// The contact model of a batch: what differs between the stock build's batch and the paper
+/// build's.
+pub struct BatchModel {
+    /// The driver whose single runs the batch's impacts are (each is checked by its render).
+    pub driver: &'static dyn CodeDriver,
+    /// The style after `model`.
+    pub style: &'static str,
+    /// Its settings keywords for a batch like `setup` (empty for a style that takes none).
+    pub settings: fn(&CodeSetup) -> String,
+    /// The per-type-pair property that carries each impact's damping.
+    pub property: &'static str,
+    /// Its value for one impact.
+    pub value: fn(&CodeSetup) -> f64,
+}
+
+/// The stock build's batch: damped `hertz`, `coefficientRestitution` per impact.
+pub const HERTZ: BatchModel = BatchModel {
+    driver: &Liggghts,
+    style: "hertz",
+    settings: |s| {
+        let limit_force = if s.clamp_attractive { "on" } else { "off" };
+        format!("tangential_damping off limitForce {limit_force}")
+    },
+    property: "coefficientRestitution",
+    value: |s| s.target_restitution,
+};
+
+/// The stock build's batch input for `setups`, or why they cannot run as one.
 pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    render_batch_with(&HERTZ, setups)
+}
+
+/// The batch input for `setups` under `model`, or why they cannot run as one.
+pub fn render_batch_with(
+    model: &BatchModel,
+    setups: &[CodeSetup],
+) -> Result<RenderedInput, BatchError> {
     let Some(first) = setups.first() else {
         return Err(BatchError::Empty);
     };
@@ -45,7 +81,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
         });
     }
     for s in setups {
-        Liggghts.render(s)?;
+        model.driver.render(s)?;
         if s.scene != SceneKind::BallPlate {
             return Err(BatchError::Scene {
                 case: s.case_name.clone(),
@@ -78,8 +114,13 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
         .map(|s| 4.0 * s.sphere.radius + s.impact_velocity * s.duration() + contact_gap(s))
         .fold(0.0f64, f64::max);
     let spacing = 2.0 * half;
-    let limit_force = if first.clamp_attractive { "on" } else { "off" };
-    let settings = format!("tangential_damping off limitForce {limit_force}");
+    // A style without settings leaves no trailing blank on its lines.
+    let settings = match (model.settings)(first) {
+        words if words.is_empty() => words,
+        words => format!(" {words}"),
+    };
+    let style = model.style;
+    let property = model.property;
     let (e_wall, nu_wall) = plate(first);
     let list = |values: Vec<String>| values.join(" ");
     let mut young: Vec<String> = setups
@@ -92,9 +133,9 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
         .map(|s| exact_number(s.sphere.poisson_ratio.unwrap_or_default()))
         .collect();
     poisson.push(exact_number(nu_wall));
-    // Type pair (i, wall) and (wall, i) carry sphere i's restitution; pairs of spheres, which
+    // Type pair (i, wall) and (wall, i) carry sphere i's damping; pairs of spheres, which
     // never meet, the first's.
-    let mut restitution = Vec::with_capacity(wall * wall);
+    let mut damping = Vec::with_capacity(wall * wall);
     for i in 0..wall {
         for j in 0..wall {
             let k = match (i == n, j == n) {
@@ -102,7 +143,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
                 (false, true) => i,
                 _ => 0,
             };
-            restitution.push(exact_number(setups[k].target_restitution));
+            damping.push(exact_number((model.value)(&setups[k])));
         }
     }
     let h = exact_number(half);
@@ -114,16 +155,16 @@ region          domain block -{h} {} -{h} {h} -{h} {h} units box\ncreate_box    
 neighbor        {} bin\nneigh_modify    delay 0\n\
 fix youngsModulus          all property/global youngsModulus peratomtype {}\n\
 fix poissonsRatio          all property/global poissonsRatio peratomtype {}\n\
-fix coefficientRestitution all property/global coefficientRestitution peratomtypepair {wall} {}\n\
+fix {property:<22} all property/global {property} peratomtypepair {wall} {}\n\
 fix coefficientFriction    all property/global coefficientFriction peratomtypepair {wall} {}\n\
-pair_style      gran model hertz tangential no_history {settings}\npair_coeff      * *\n\
-fix             plate all wall/gran model hertz tangential no_history primitive type {wall} zplane 0.0 {settings}\n\
+pair_style      gran model {style} tangential no_history{settings}\npair_coeff      * *\n\
+fix             plate all wall/gran model {style} tangential no_history primitive type {wall} zplane 0.0{settings}\n\
 timestep        {}\n",
         exact_number(spacing * n as f64),
         exact_number(reach),
         list(young),
         list(poisson),
-        list(restitution),
+        list(damping),
         list(vec!["0".to_string(); wall * wall]),
         exact_number(first.timestep),
     );

@@ -934,6 +934,7 @@ impl DeckReader for LiggghtsDeck {
             exponent: c.law.exponent,
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
+            loss_coefficient: None,
             timestep: deck.timestep,
             steps,
             clamp_attractive: c.law.clamp_attractive,
