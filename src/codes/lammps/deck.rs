@@ -289,11 +289,11 @@ impl LammpsDeck {
                 Some((r, density))
             };
             for (index, atom_type) in r.atom_types.iter().enumerate() {
-                if atom_type == t {
-                    if let Some((radius, density)) = size(r.set_atom.get(&(index + 1)).copied().unwrap_or_default()) {
-                        push(*t, radius, density, format!("atom {} ({at})", index + 1));
-                        found = true;
-                    }
+                if atom_type == t
+                    && let Some((radius, density)) = size(r.set_atom.get(&(index + 1)).copied().unwrap_or_default())
+                {
+                    push(*t, radius, density, format!("atom {} ({at})", index + 1));
+                    found = true;
                 }
             }
             if !found {
