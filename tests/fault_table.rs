@@ -274,6 +274,16 @@ fn trials(dir: &Path) -> Vec<Trial> {
             &["sweep", &case, "--loss-coefficient", "0:0.9:1e-300"],
         ),
         trial(
+            "deck",
+            "a line the check cannot model (cohesion)",
+            &["deck", "tests/data/deck/cohesion.in"],
+        ),
+        trial(
+            "deck",
+            "a file no code's reader takes",
+            &["deck", "cases/ball_plate.toml"],
+        ),
+        trial(
             "output path",
             "a symbolic link",
             &["run", &case, "--trajectory", &link],
