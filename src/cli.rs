@@ -49,6 +49,10 @@ pub enum Command {
     Report(ReportArgs),
     /// Join the shard outputs of one sweep into one file.
     Merge(MergeArgs),
+    /// Check a user's own DEM setup: each pair of particle types (and each type against each
+    /// wall) as one normal impact, run in the user's code with the user's contact lines and
+    /// time step, against the COR entered and the code's own law.
+    Deck(DeckArgs),
     /// Measure a build's conventions with short probe runs (LAMMPS builds): each item with
     /// the measured number, the value each hypothesis predicts, and the verdict.
     Probe(ProbeArgs),
@@ -424,4 +428,68 @@ pub struct ReportArgs {
     /// Kill a code after this many seconds (with --live).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+}
+
+/// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.
+fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, String> {
+    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type from 1, radius (m) and density (kg/m³) positive";
+    let parts: Vec<&str> = text.split(':').collect();
+    let [t, r, rho] = parts[..] else {
+        return Err(format!("`{text}`: {allowed}"));
+    };
+    match (
+        t.trim().parse::<u32>(),
+        parse_positive(r),
+        parse_positive(rho),
+    ) {
+        (Ok(type_id), Ok(radius), Ok(density)) if type_id >= 1 => {
+            Ok(millimpact::codes::deck::GivenParticle {
+                type_id,
+                radius,
+                density,
+            })
+        }
+        _ => Err(format!("`{text}`: {allowed}")),
+    }
+}
+
+/// `NAME=VALUE`: a variable defined before the deck is read.
+fn parse_variable(text: &str) -> Result<(String, String), String> {
+    match text.split_once('=') {
+        Some((name, value))
+            if !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') =>
+        {
+            Ok((name.to_string(), value.to_string()))
+        }
+        _ => Err(format!(
+            "`{text}`: allowed: NAME=VALUE, NAME of letters, digits and _"
+        )),
+    }
+}
+
+/// `millimpact deck`.
+#[derive(Debug, Args)]
+pub struct DeckArgs {
+    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
+    pub deck: PathBuf,
+    /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
+    /// speed: the deck's own, else 2 m/s].
+    #[arg(long = "impact-velocity", value_parser = parse_positive)]
+    pub impact_velocity: Vec<f64>,
+    /// The code (build) that reads and runs the deck [default: the first whose input it is].
+    #[arg(long, value_parser = code_parser())]
+    pub code: Option<CodeName>,
+    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³); repeat for
+    /// several; it replaces the deck's own sizes of that type.
+    #[arg(long, value_parser = parse_particle)]
+    pub particle: Vec<millimpact::codes::deck::GivenParticle>,
+    /// A variable defined before the deck is read, `NAME=VALUE` (as `-var NAME VALUE`).
+    #[arg(long = "var", value_parser = parse_variable)]
+    pub variables: Vec<(String, String)>,
+    /// Kill a code after this many seconds.
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
 }

@@ -300,6 +300,16 @@ fn trials(dir: &Path) -> Vec<Trial> {
             ],
         ),
         trial(
+            "deck",
+            "a line the check cannot model (cohesion)",
+            &["deck", "tests/data/deck/cohesion.in"],
+        ),
+        trial(
+            "deck",
+            "a file no code's reader takes",
+            &["deck", "cases/ball_plate.toml"],
+        ),
+        trial(
             "output path",
             "a symbolic link",
             &["run", &case, "--trajectory", &link],

@@ -252,6 +252,23 @@ pub fn signed(x: f64) -> String {
     format!("{x:+.2e}")
 }
 
+/// An energy, J, in the unit that shows four decimals of it (J, mJ, µJ, nJ, pJ; scientific
+/// below a picojoule), so that a small body's energy does not print as `0.0000 J`.
+pub fn joules(x: f64) -> String {
+    for (scale, unit) in [
+        (1.0, "J"),
+        (1e-3, "mJ"),
+        (1e-6, "µJ"),
+        (1e-9, "nJ"),
+        (1e-12, "pJ"),
+    ] {
+        if x.abs() >= scale {
+            return format!("{:.4} {unit}", x / scale);
+        }
+    }
+    format!("{x:.4e} J")
+}
+
 /// A duration, s, in convenient units.
 pub fn seconds(s: f64) -> String {
     if s >= 1.0 {
