@@ -85,8 +85,8 @@ pub struct CorErrorBound {
     /// See `coarsest`.
     pub finest: f64,
     /// The time of one right-hand-side evaluation (with the stepping around it) relative to
-    /// rk4-event's, measured by `cargo bench --bench impact -- cor-1e-10`: what a step of the
-    /// method costs beside its count.
+    /// rk4-event's on one chain, measured by `MILLIMPACT_BENCH_REPORT=1 cargo bench --bench
+    /// impact`: what a step of the method costs beside its count.
     pub evaluation_cost: f64,
 }
 
@@ -122,13 +122,15 @@ const RK4_EVENT_COR: CorErrorBound = CorErrorBound {
 };
 
 /// dopri5: the COR error follows the tolerance, 0.23 to 0.27 of it from rtol 1e-6 to 1e-13;
-/// a step costs six evaluations and the controller's arithmetic, 1.7 times rk4-event's per
-/// evaluation (10.0 µs for 560 evaluations against 5.2 µs for 500).
+/// a step costs six evaluations and the controller's arithmetic: 2.1 times rk4-event's time per
+/// evaluation on one chain (`MILLIMPACT_BENCH_REPORT=1 cargo bench --bench impact`, ball_plate:
+/// 16.9 µs for 560 evaluations at rtol 1e-10 against 7.3 µs for 500 at 400 steps per period;
+/// rk4-event in lanes is cheaper still, so the weight is a lower bound).
 const DOPRI5_COR: CorErrorBound = CorErrorBound {
     terms: &[(0.28, 1.0)],
     coarsest: 1e-6,
     finest: 1e-13,
-    evaluation_cost: 1.7,
+    evaluation_cost: 2.1,
 };
 
 /// The registry of methods: one line per method, `Variant => descriptor`. It declares the
