@@ -242,6 +242,10 @@ pub struct ProbeArgs {
     /// added).
     #[arg(long)]
     pub binary: Option<PathBuf>,
+    /// Probe the build again even if a probe of it is kept in the cache folder (see
+    /// `MILLIMPACT_CACHE_DIR`), and keep the new one.
+    #[arg(long)]
+    pub refresh: bool,
     /// Output format (markdown gives the table kept in `reference/<code>/CONVENTIONS.md`).
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,

@@ -175,8 +175,11 @@ pub trait BatchRunner: Send + Sync {
 
 /// A code's capability to measure, by short runs, the conventions its build follows.
 pub trait Prober: Send + Sync {
-    /// Probe the build at `executable`: what it does, measured, item by item.
+    /// Probe the build at `executable`: what it does, measured, item by item (a probe kept
+    /// from an earlier run of this very build is read instead of run again).
     fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError>;
+    /// Probe the build at `executable` now, whatever is kept, and keep the new report.
+    fn probe_afresh(&self, executable: &Executable) -> Result<ProbeReport, ProbeError>;
     /// The conventions `setup` is planned with in this build (its own, else the build's
     /// fallback).
     fn planned_conventions(&self, setup: &CodeSetup) -> Conventions;
