@@ -42,7 +42,7 @@ pub enum WorkItem<'a> {
 
 /// Split the code points into work items: points of one code and one time step go in
 /// batches of at most `options.batch` impacts (fewer when their trajectories would be
-/// large), spread so that every worker has one.
+/// large), of [`balanced_sizes`] across the workers.
 pub fn plan<'a>(
     sweep: &SweepFile,
     points: &[&'a Point],
@@ -102,10 +102,8 @@ pub fn plan<'a>(
             .min(by_bytes)
             .min(code.driver().batch().map_or(1, |b| b.max_batch()))
             .max(1);
-        let jobs = options.jobs.max(1);
-        let size = items.len().div_ceil(jobs).clamp(1, cap);
-        let mut items = items.into_iter().peekable();
-        while items.peek().is_some() {
+        let mut items = items.into_iter();
+        for size in balanced_sizes(items.len(), cap, options.jobs) {
             let chunk: Vec<_> = items.by_ref().take(size).collect();
             if chunk.len() == 1 {
                 work.push(WorkItem::Single(chunk[0].0));
@@ -115,6 +113,26 @@ pub fn plan<'a>(
         }
     }
     work
+}
+
+/// The sizes of the batches `count` impacts of one code run in: no batch above `cap`, as many
+/// batches as that needs rounded up to a multiple of the `jobs` workers (each worker gets the
+/// same number), and sizes that differ by at most one, so that the workers finish together
+/// (200 impacts at most 64 a batch on 2 workers: 50 + 50 + 50 + 50, not 64 + 64 + 64 + 8).
+pub fn balanced_sizes(count: usize, cap: usize, jobs: usize) -> Vec<usize> {
+    if count == 0 {
+        return Vec::new();
+    }
+    let jobs = jobs.max(1);
+    let batches = count
+        .div_ceil(cap.max(1))
+        .div_ceil(jobs)
+        .saturating_mul(jobs)
+        .clamp(1, count);
+    let (size, larger) = (count / batches, count % batches);
+    (0..batches)
+        .map(|b| size + usize::from(b < larger))
+        .collect()
 }
 
 /// The figures of one impact of a batch, read as `reference` reads a single run.
@@ -217,6 +235,44 @@ pub fn run_item(
                     }
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::balanced_sizes;
+    use proptest::prelude::*;
+
+    #[test]
+    fn batches_are_even_across_the_workers() {
+        assert_eq!(balanced_sizes(200, 64, 2), [50, 50, 50, 50]);
+        assert_eq!(balanced_sizes(200, 100, 2), [100, 100]);
+        assert_eq!(balanced_sizes(200, 31, 2), [25; 8]);
+        assert_eq!(balanced_sizes(201, 64, 2), [51, 50, 50, 50]);
+        assert_eq!(balanced_sizes(3, 64, 2), [2, 1]);
+        assert_eq!(balanced_sizes(1, 64, 4), [1]);
+        assert_eq!(balanced_sizes(5, 64, 8), [1; 5]);
+        assert_eq!(balanced_sizes(0, 64, 2), Vec::<usize>::new());
+        assert_eq!(balanced_sizes(10, 0, 0), [1; 10]);
+    }
+
+    proptest! {
+        #[test]
+        fn every_impact_runs_once_in_batches_within_the_cap_and_one_apart(
+            count in 0usize..5000,
+            cap in 1usize..300,
+            jobs in 1usize..17,
+        ) {
+            let sizes = balanced_sizes(count, cap, jobs);
+            prop_assert_eq!(sizes.iter().sum::<usize>(), count);
+            prop_assert!(sizes.iter().all(|&s| (1..=cap).contains(&s)));
+            let (lo, hi) = (sizes.iter().min(), sizes.iter().max());
+            if let (Some(lo), Some(hi)) = (lo, hi) {
+                prop_assert!(hi - lo <= 1, "{:?}", sizes);
+            }
+            // Every worker has the same number of batches unless there are too few impacts.
+            prop_assert!(sizes.len() % jobs == 0 || sizes.len() == count);
         }
     }
 }
