@@ -298,3 +298,41 @@ fn a_probe_is_kept_on_disk_and_read_by_the_next_run() {
     assert_eq!(third.kept_in, None);
     assert_ne!(third.wall_time.to_bits(), first.wall_time.to_bits());
 }
+
+/// A stored record's whole wall time holds what its process time leaves out: here the probe
+/// that sizing the run made (nothing kept yet), read back afterwards from where it was kept.
+#[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
+fn a_records_whole_wall_time_holds_the_probe_its_run_made() {
+    let cache = tempfile::tempdir().unwrap();
+    let json = common::stdout(
+        common::millimpact()
+            .env("MILLIMPACT_CACHE_DIR", cache.path())
+            .args([
+                "reference",
+                "--code",
+                "lammps",
+                "cases/ball_plate.toml",
+                "--format",
+                "json",
+            ]),
+    );
+    let record: millimpact::analysis::store::ReferenceRecord = serde_json::from_str(&json).unwrap();
+    let probe = common::stdout(
+        common::millimpact()
+            .env("MILLIMPACT_CACHE_DIR", cache.path())
+            .args(["probe", "--code", "lammps", "--format", "json"]),
+    );
+    let probe: ProbeReport = serde_json::from_str(&probe).unwrap();
+    assert!(probe.kept_in.is_some(), "the reference run kept its probe");
+    let whole = record
+        .whole_wall_time
+        .expect("a new record has its whole time");
+    assert!(
+        whole >= record.wall_time + probe.wall_time,
+        "whole {whole} s, process {} s, probe {} s",
+        record.wall_time,
+        probe.wall_time
+    );
+    assert!(record.loop_time.is_some_and(|l| l < record.wall_time));
+}

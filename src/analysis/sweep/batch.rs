@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
 
 use anyhow::Context;
 use rayon::prelude::*;
@@ -24,7 +25,17 @@ use crate::solve::dashpot::{accurate_metrics, step_trajectory};
 pub const MAX_BATCH_BYTES: f64 = 2e8;
 
 /// A code point with its case and setup.
-type Prepared<'a> = (&'a Point, Case, CodeSetup);
+#[derive(Clone, Debug)]
+pub struct Prepared<'a> {
+    /// The point.
+    pub point: &'a Point,
+    /// Its case.
+    pub case: Case,
+    /// Its setup in the code.
+    pub setup: CodeSetup,
+    /// Wall time of sizing it (and of the build's probe, where this point's sizing made it), s.
+    pub sizing_time: f64,
+}
 
 /// One unit of work for the pool: one process.
 #[derive(Clone, Debug)]
@@ -53,6 +64,7 @@ pub fn plan<'a>(
     // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
     // done on the pool's threads, in point order.
     let prepare_point = |p: &&'a Point| {
+        let started = Instant::now();
         let Source::Code(code) = p.source.source else {
             return None;
         };
@@ -65,10 +77,16 @@ pub fn plan<'a>(
         let case = sweep.case(p).ok()?;
         let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
         // A point the code cannot run alone runs alone, where its error is reported.
-        runner
-            .render_batch(std::slice::from_ref(&setup))
-            .ok()
-            .map(|_| (code, case, setup))
+        runner.render_batch(std::slice::from_ref(&setup)).ok()?;
+        Some((
+            code,
+            Prepared {
+                point: p,
+                case,
+                setup,
+                sizing_time: started.elapsed().as_secs_f64(),
+            },
+        ))
     };
     let prepared: Vec<_> = match rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.max(1))
@@ -79,17 +97,17 @@ pub fn plan<'a>(
     };
     for (&p, prepared) in points.iter().zip(prepared) {
         match prepared {
-            Some((code, case, setup)) => groups
-                .entry((code, setup.timestep.to_bits()))
+            Some((code, prepared)) => groups
+                .entry((code, prepared.setup.timestep.to_bits()))
                 .or_default()
-                .push((p, case, setup)),
+                .push(prepared),
             None => work.push(WorkItem::Single(p)),
         }
     }
     for ((code, _), items) in groups {
         let steps = items
             .iter()
-            .map(|(_, _, s)| s.steps)
+            .map(|p| p.setup.steps)
             .max()
             .unwrap_or(1)
             .max(1);
@@ -106,7 +124,7 @@ pub fn plan<'a>(
         for size in balanced_sizes(items.len(), cap, options.jobs) {
             let chunk: Vec<_> = items.by_ref().take(size).collect();
             if chunk.len() == 1 {
-                work.push(WorkItem::Single(chunk[0].0));
+                work.push(WorkItem::Single(chunk[0].point));
             } else {
                 work.push(WorkItem::Batch { code, items: chunk });
             }
@@ -173,6 +191,8 @@ fn batch_figures(
         timestep: setup.timestep,
         wall_time,
         loop_time: run.loop_time,
+        // Set by the caller, once the whole batch is read.
+        whole_wall_time: f64::NAN,
         own_law_cor: own_exact.cor,
         own_law_stepped_cor: at_step.cor,
         code_version: run.version.clone().unwrap_or_else(|| "unknown".to_string()),
@@ -193,7 +213,8 @@ pub fn run_item(
     match item {
         WorkItem::Single(p) => emit(single_point(sweep, p, options)),
         WorkItem::Batch { code, items } => {
-            let setups: Vec<CodeSetup> = items.iter().map(|(_, _, s)| s.clone()).collect();
+            let started = Instant::now();
+            let setups: Vec<CodeSetup> = items.iter().map(|p| p.setup.clone()).collect();
             let run_options = RunOptions {
                 timeout: options.timeout,
                 ..RunOptions::default()
@@ -206,30 +227,49 @@ pub fn run_item(
                         "{code}: a batch of {} ran as single runs: {e}",
                         items.len()
                     ));
-                    for (p, _, _) in items {
-                        emit(single_point(sweep, p, options));
+                    for p in items {
+                        emit(single_point(sweep, p.point, options));
                     }
                 }
                 Ok(batch) => {
                     let n = items.len();
-                    for ((p, case, setup), run) in items.iter().zip(batch.runs) {
-                        let figures = run.map_err(anyhow::Error::from).and_then(|run| {
-                            batch_figures(*code, case, setup, &run, batch.wall_time / n as f64, n)
-                        });
+                    let figures: Vec<anyhow::Result<CodeFigures>> = items
+                        .iter()
+                        .zip(batch.runs)
+                        .map(|(p, run)| {
+                            run.map_err(anyhow::Error::from).and_then(|run| {
+                                batch_figures(
+                                    *code,
+                                    &p.case,
+                                    &p.setup,
+                                    &run,
+                                    batch.wall_time / n as f64,
+                                    n,
+                                )
+                            })
+                        })
+                        .collect();
+                    // The batch's whole time (its process, reading and checking every
+                    // impact), shared, plus each point's own sizing.
+                    let share = started.elapsed().as_secs_f64() / n as f64;
+                    for (p, figures) in items.iter().zip(figures) {
                         match figures {
-                            Ok(f) => emit(sweep.outcome_row(p, Ok(PointFigures::of_code(&f)))),
+                            Ok(mut f) => {
+                                f.whole_wall_time = p.sizing_time + share;
+                                emit(sweep.outcome_row(p.point, Ok(PointFigures::of_code(&f))));
+                            }
                             Err(_) if stop.load(Ordering::SeqCst) => {}
                             Err(e) => {
                                 note(format!(
                                     "{code}: point {} of a batch ran alone: {e:#}{}",
-                                    p.index,
+                                    p.point.index,
                                     batch
                                         .kept
                                         .as_ref()
                                         .map(|k| format!(" (batch kept in {})", k.display()))
                                         .unwrap_or_default()
                                 ));
-                                emit(single_point(sweep, p, options));
+                                emit(single_point(sweep, p.point, options));
                             }
                         }
                     }

@@ -27,7 +27,6 @@ use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version
 use crate::codes::runner::{cache_dir, read_log, spawn_contained, wait_contained};
 use crate::codes::template::{exact_number, fill_template};
 use crate::model::trajectory::CodeTrajectory;
-use crate::output::files::write_atomic;
 
 /// A number that may be NaN, as JSON allows: `null` for NaN.
 mod nan_as_null {
@@ -757,11 +756,14 @@ pub fn probe_lammps_kept(
             report: report.clone(),
         })
         .unwrap_or_default();
-        // A cache that cannot be written costs the next run a probe, nothing more.
+        // Written to a temporary file and renamed, so that a reader never sees half a file;
+        // a cache that cannot be written costs the next run a probe, nothing more.
         if let Some(parent) = file.parent()
             && std::fs::create_dir_all(parent).is_ok()
+            && let Ok(mut tmp) = tempfile::NamedTempFile::new_in(parent)
+            && std::io::Write::write_all(&mut tmp, text.as_bytes()).is_ok()
         {
-            let _ = write_atomic(&file, text.as_bytes());
+            let _ = tmp.persist(&file);
         }
     }
     Ok(report)
