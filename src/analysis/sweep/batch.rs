@@ -312,7 +312,7 @@ mod tests {
                 prop_assert!(hi - lo <= 1, "{:?}", sizes);
             }
             // Every worker has the same number of batches unless there are too few impacts.
-            prop_assert!(sizes.len() % jobs == 0 || sizes.len() == count);
+            prop_assert!(sizes.len().is_multiple_of(jobs) || sizes.len() == count);
         }
     }
 }

@@ -360,7 +360,7 @@ fn loop_steps(log: &str) -> Option<u64> {
 }
 
 /// The words after `Loop time of` on the last such line.
-fn loop_line(log: &str) -> Option<Vec<&str>> {
+pub fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
 }
