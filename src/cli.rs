@@ -193,7 +193,7 @@ pub struct SweepArgs {
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
     /// Sweep file: most impacts per DEM-code process (1: one process per impact).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub batch: u32,
 }
 

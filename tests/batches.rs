@@ -1,7 +1,8 @@
-//! Batches against single runs, live: for every code and scene, impacts at several η run in one
-//! batch give, impact by impact, the trajectory of their single runs to the last bit (every row:
-//! time, overlap, approach speed, force), with the single run's row count and a loop time of
-//! their own. Without a code these tests fail; they do not skip.
+//! Batches against single runs, live: for every code and scene, a batch of 40 impacts (four η,
+//! each ten times, interleaved: more than one YADE group, a Kratos wall scaled up) gives, impact
+//! by impact, the trajectory of the single run of its η to the last bit (every row: time,
+//! overlap, approach speed, force), with the single run's row count and a loop time of its own.
+//! Without a code these tests fail; they do not skip.
 
 use millimpact::codes::batch::run_batch;
 use millimpact::codes::{CodeName, CodeSetup, RunOptions, prepare, run_code};
@@ -12,6 +13,9 @@ mod common;
 
 /// The η of a batch: elastic, light to heavy damping (the run lengths differ).
 const ETAS: [f64; 4] = [0.0, 0.2, 0.5, 0.85];
+
+/// How many times a batch holds each η.
+const COPIES: usize = 10;
 
 fn setups(code: CodeName, scene: &str) -> Vec<CodeSetup> {
     ETAS.iter()
@@ -42,27 +46,35 @@ fn batch_equals_single_runs(code: CodeName, scene: &str) {
     let driver = code.driver();
     let setups = setups(code, scene);
     let options = RunOptions::default();
-    let batch = run_batch(driver, &setups, &options)
+    let singles: Vec<_> = setups
+        .iter()
+        .zip(ETAS)
+        .map(|(setup, eta)| {
+            run_code(driver, setup, &options)
+                .unwrap_or_else(|e| panic!("{code} {scene} η {eta}: the single run failed: {e}"))
+        })
+        .collect();
+    let many: Vec<CodeSetup> = (0..COPIES).flat_map(|_| setups.clone()).collect();
+    let batch = run_batch(driver, &many, &options)
         .unwrap_or_else(|e| panic!("{code} {scene}: the batch failed: {e}"));
-    assert_eq!(batch.runs.len(), setups.len());
+    assert_eq!(batch.runs.len(), many.len());
     assert!(
         batch.kept.is_none(),
         "{code} {scene}: kept {:?}",
         batch.kept
     );
-    for ((setup, batched), eta) in setups.iter().zip(batch.runs).zip(ETAS) {
-        let batched = batched.unwrap_or_else(|e| panic!("{code} {scene} η {eta}: {e}"));
-        let single = run_code(driver, setup, &options)
-            .unwrap_or_else(|e| panic!("{code} {scene} η {eta}: the single run failed: {e}"));
+    for (k, batched) in batch.runs.into_iter().enumerate() {
+        let (single, eta) = (&singles[k % ETAS.len()], ETAS[k % ETAS.len()]);
+        let batched = batched.unwrap_or_else(|e| panic!("{code} {scene} impact {k}: {e}"));
         assert_eq!(
             batched.trajectory.time.len(),
             single.trajectory.time.len(),
-            "{code} {scene} η {eta}: rows"
+            "{code} {scene} impact {k} (η {eta}): rows"
         );
         let (b, s) = (bits(&batched.trajectory), bits(&single.trajectory));
         if let Some(row) = (0..s.len()).find(|&i| b[i] != s[i]) {
             panic!(
-                "{code} {scene} η {eta}: row {row} of {} differs: batch {:?}, single {:?}",
+                "{code} {scene} impact {k} (η {eta}): row {row} of {} differs: batch {:?}, single {:?}",
                 s.len(),
                 b[row].map(f64::from_bits),
                 s[row].map(f64::from_bits)
@@ -76,7 +88,7 @@ fn batch_equals_single_runs(code: CodeName, scene: &str) {
             batched
                 .loop_time
                 .is_some_and(|t| t > 0.0 && t < batch.wall_time),
-            "{code} {scene} η {eta}: loop time {:?} in a batch of {} s",
+            "{code} {scene} impact {k}: loop time {:?} in a batch of {} s",
             batched.loop_time,
             batch.wall_time
         );

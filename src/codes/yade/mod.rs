@@ -134,20 +134,13 @@ impl Yade {
     }
 }
 
-impl CodeDriver for Yade {
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&card::YadeCard)
-    }
-
-    fn name(&self) -> &'static str {
-        "yade"
-    }
-
-    fn binary(&self) -> &'static str {
-        "yade"
-    }
-
-    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+impl Yade {
+    /// The values the script template is filled with for `setup` (a batch fills its list of
+    /// impacts with the same ones), or why the setup cannot run.
+    pub fn script_values(
+        &self,
+        setup: &CodeSetup,
+    ) -> Result<Vec<(&'static str, String)>, CodeError> {
         self.check(setup)?;
         let s = setup.sphere;
         let (v1, v2) = setup.centre_of_mass_velocities();
@@ -166,7 +159,7 @@ impl CodeDriver for Yade {
             _ => (0.0, 0.0),
         };
         let num = exact_number;
-        let values = [
+        Ok(vec![
             ("scene", setup.scene.name().to_string()),
             ("timestep", num(setup.timestep)),
             ("steps", setup.steps.to_string()),
@@ -194,7 +187,25 @@ impl CodeDriver for Yade {
             ),
             ("linear_stiffness", num(linear_stiffness)),
             ("linear_damping", num(linear_damping)),
-        ];
+        ])
+    }
+}
+
+impl CodeDriver for Yade {
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&card::YadeCard)
+    }
+
+    fn name(&self) -> &'static str {
+        "yade"
+    }
+
+    fn binary(&self) -> &'static str {
+        "yade"
+    }
+
+    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        let values = self.script_values(setup)?;
         let text =
             fill_template(TEMPLATE, &values)
                 .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
