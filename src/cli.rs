@@ -179,9 +179,14 @@ pub struct SweepArgs {
     /// Sweep file: append rows to this file as they finish (standard output otherwise).
     #[arg(long)]
     pub out: Option<PathBuf>,
-    /// Sweep file: skip the points already in --out (matched by their parameters).
+    /// Sweep file: continue --out: keep the points computed there (matched by their
+    /// parameters), run the failed and missing ones again.
     #[arg(long, requires = "out")]
     pub resume: bool,
+    /// Sweep file: exit 0 even when points failed (their rows hold the errors; exit 1
+    /// otherwise).
+    #[arg(long)]
+    pub allow_failures: bool,
     /// Sweep file: worker threads for our methods and most live DEM-code processes
     /// [default: the number of cores].
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
@@ -394,7 +399,8 @@ pub struct CalibrateArgs {
 pub struct ReportArgs {
     /// Case files (default: the canonical ones in cases/).
     pub cases: Vec<PathBuf>,
-    /// Folder to write the report into.
+    /// Folder to write the report into: a new or empty one, or an earlier report's (replaced
+    /// whole); a folder of other files is refused.
     #[arg(long, default_value = "report")]
     pub out: PathBuf,
     /// Run the codes now instead of reading reference/.

@@ -499,3 +499,100 @@ fn stopping_millimpact_ends_the_code_and_its_scratch() {
     );
     assert!(kept.join("impact.in").is_file() || std::fs::read_dir(&kept).unwrap().count() > 0);
 }
+
+/// `reference --code kratos` run by `binary` from `cwd`, with no codes' folder named: the
+/// first line of its error (no process starts: the Kratos python is missing or broken).
+fn kratos_error(binary: &Path, cwd: &Path) -> String {
+    let out = std::process::Command::new(binary)
+        .current_dir(cwd)
+        .env_remove("MILLIMPACT_CODES_DIR")
+        .env_remove("MILLIMPACT_KRATOS_BINARY")
+        .args(["reference", "--code", "kratos"])
+        .arg(common::case_path("ball_plate"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    stderr
+}
+
+/// The codes' folder is found when millimpact runs, not where it was built: the nearest
+/// `.codes` in or above the working directory, else in or above the executable's folder.
+#[test]
+fn the_codes_folder_is_found_from_the_working_directory_then_the_executable() {
+    let place = TempDir::new().unwrap();
+    let place = place.path().canonicalize().unwrap();
+    // A copy of the binary, as on a cluster: nothing of the build machine's paths is in it.
+    let bin = place.join("install/bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    let binary = bin.join("millimpact");
+    std::fs::copy(env!("CARGO_BIN_EXE_millimpact"), &binary).unwrap();
+    let elsewhere = place.join("elsewhere");
+    std::fs::create_dir_all(&elsewhere).unwrap();
+    let python = |codes: &Path| codes.join("kratos/bin/python").display().to_string();
+
+    // None anywhere: the error says where it looked.
+    let err = kratos_error(&binary, &elsewhere);
+    assert!(
+        err.contains(&format!(
+            "no {} (no .codes in the working directory",
+            python(&elsewhere.join(".codes"))
+        )),
+        "{err}"
+    );
+
+    // Beside the executable, or above its folder.
+    let installed = place.join("install/.codes");
+    std::fs::create_dir_all(&installed).unwrap();
+    let err = kratos_error(&binary, &elsewhere);
+    assert!(
+        err.contains(&format!(
+            "no {} (the codes' folder found beside millimpact's executable or above it",
+            python(&installed)
+        )),
+        "{err}"
+    );
+
+    // A project's checkout, run from a folder inside it, comes first.
+    let project = place.join("project");
+    let results = project.join("results/eta");
+    std::fs::create_dir_all(&results).unwrap();
+    std::fs::create_dir_all(project.join(".codes")).unwrap();
+    let err = kratos_error(&binary, &results);
+    assert!(
+        err.contains(&format!(
+            "no {} (the codes' folder found in the working directory or above it",
+            python(&project.join(".codes"))
+        )),
+        "{err}"
+    );
+}
+
+/// A Kratos environment copied from another machine links to a Python that is not here: the
+/// error says so and how to make it again, instead of a missing file.
+#[test]
+fn a_kratos_environment_made_on_another_machine_is_named_as_such() {
+    let project = TempDir::new().unwrap();
+    let project = project.path().canonicalize().unwrap();
+    let bin = project.join(".codes/kratos/bin");
+    std::fs::create_dir_all(&bin).unwrap();
+    // As `python3 -m venv` makes them: python -> python3 -> the Python that made it.
+    let gone = PathBuf::from("/nonexistent/build-machine/.pyenv/versions/3.11.7/bin/python3");
+    std::os::unix::fs::symlink(&gone, bin.join("python3")).unwrap();
+    std::os::unix::fs::symlink("python3", bin.join("python")).unwrap();
+    let err = kratos_error(Path::new(env!("CARGO_BIN_EXE_millimpact")), &project);
+    assert!(
+        err.starts_with(&format!(
+            "error: kratos: {} links to {}, which is not on this machine",
+            bin.join("python").display(),
+            gone.display()
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains("make it again on this machine with bash scripts/install-dem-codes.sh"),
+        "{err}"
+    );
+    assert!(err.contains("MILLIMPACT_KRATOS_BINARY"), "{err}");
+}

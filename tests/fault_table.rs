@@ -108,6 +108,19 @@ fn trials(dir: &Path) -> Vec<Trial> {
     std::os::unix::fs::symlink(dir.join("elsewhere.csv"), &link).unwrap();
     let link = link.display().to_string();
     let missing_dir = dir.join("no-such-dir/t.csv").display().to_string();
+    let theirs = dir.join("site");
+    std::fs::create_dir_all(&theirs).unwrap();
+    std::fs::write(theirs.join("index.html"), "<p>my own page</p>\n").unwrap();
+    let theirs = theirs.display().to_string();
+    let failing_sweep = write(
+        "failing.toml",
+        &format!(
+            "base = \"{}\"\n[axes]\nloss_coefficient = [0.35, 1.5, 0.7]\n",
+            case_path("ball_plate").display()
+        ),
+    );
+    let sweep_out = |name: &str| dir.join(name).display().to_string();
+    std::fs::write(dir.join("earlier.csv"), "sweep,point\n").unwrap();
 
     // A copy of the store with one record's COR moved by 1e-6, and a case edited after its
     // records were made.
@@ -269,7 +282,47 @@ fn trials(dir: &Path) -> Vec<Trial> {
             "a directory that does not exist",
             &["run", &case, "--trajectory", &missing_dir],
         ),
+        trial(
+            "output path",
+            "`report --out` a folder holding someone else's `index.html`",
+            &["report", &case, "--out", &theirs],
+        ),
+        trial(
+            "output path",
+            "`report --out .` in the project's root",
+            &["report", "--out", "."],
+        ),
+        trial(
+            "output path",
+            "`sweep --out` a file that is not empty, without `--resume`",
+            &["sweep", &failing_sweep, "--out", &sweep_out("earlier.csv")],
+        ),
         full,
+        trial(
+            "sweep",
+            "a sweep file with a point that fails (η = 1.5)",
+            &[
+                "sweep",
+                &failing_sweep,
+                "--jobs",
+                "1",
+                "--out",
+                &sweep_out("failing.csv"),
+            ],
+        ),
+        trial(
+            "sweep",
+            "the same with `--allow-failures`",
+            &[
+                "sweep",
+                &failing_sweep,
+                "--jobs",
+                "1",
+                "--allow-failures",
+                "--out",
+                &sweep_out("allowed.csv"),
+            ],
+        ),
         trial(
             "store",
             "`--reference` naming no folder",

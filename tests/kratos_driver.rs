@@ -12,6 +12,7 @@ use millimpact::codes::kratos::{
     Kratos, PYTHON, RIGID_WALL_MODULUS, RUN_FILES, SCHEME, hertz_damping_gamma, particle_mass,
     python_in,
 };
+use millimpact::codes::runner::{CodesDir, CodesDirOrigin};
 use millimpact::codes::yade::Yade;
 use millimpact::codes::{CodeDriver, CodeName, CodeRun, CodeSetup, RunOptions, run_code};
 use millimpact::model::scene::SceneKind;
@@ -268,7 +269,11 @@ fn one_thread_is_set_for_the_installed_python() {
 #[test]
 fn a_missing_install_names_the_path_and_the_install_script() {
     let empty = tempfile::tempdir().unwrap();
-    let err = python_in(empty.path()).unwrap_err().to_string();
+    let codes = CodesDir {
+        path: empty.path().to_path_buf(),
+        origin: CodesDirOrigin::Variable,
+    };
+    let err = python_in(&codes).unwrap_err().to_string();
     let looked = empty.path().join(PYTHON);
     assert!(err.contains(&looked.display().to_string()), "{err}");
     assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");

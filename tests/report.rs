@@ -154,3 +154,120 @@ fn the_report_opens_in_a_browser_with_every_figure() {
         "every figure drawn"
     );
 }
+
+/// `report CASE --out DIR` run from `cwd`, as on a machine without the codes (a report that
+/// is written needs the project's root as `cwd`, where it finds its canonical cases).
+fn report_into(cwd: &Path, out: &Path) -> std::process::Output {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert_cmd::Command::cargo_bin("millimpact")
+        .unwrap()
+        .envs(common::codes_hidden())
+        .current_dir(cwd)
+        .arg("report")
+        .arg(root.join("cases/ball_plate.toml"))
+        .arg("--reference")
+        .arg(root.join("reference"))
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+/// The names in `dir`, hidden ones too, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn a_folder_of_someone_elses_files_is_refused_and_left_as_it_was() {
+    let parent = tempfile::tempdir().unwrap();
+    let theirs = parent.path().join("site");
+    std::fs::create_dir(&theirs).unwrap();
+    std::fs::write(theirs.join("index.html"), "<p>my own page</p>").unwrap();
+    std::fs::write(theirs.join("notes.md"), "mine").unwrap();
+    let run = report_into(parent.path(), &theirs);
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(
+        stderr,
+        format!(
+            "error: --out = {}: a folder that is not empty and holds no earlier report (no \
+             .millimpact-report in it); name a new folder, or an empty one, or one an earlier \
+             report wrote\n",
+            theirs.display()
+        )
+    );
+    assert_eq!(names(&theirs), ["index.html", "notes.md"]);
+    assert_eq!(
+        std::fs::read_to_string(theirs.join("index.html")).unwrap(),
+        "<p>my own page</p>"
+    );
+    assert_eq!(names(parent.path()), ["site"], "nothing written beside it");
+}
+
+#[test]
+fn an_earlier_report_is_replaced_whole() {
+    let parent = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let out = parent.path().join("report");
+    let first = report_into(root, &out);
+    assert!(first.status.success(), "{first:?}");
+    let written = names(&out);
+    assert!(written.contains(&".millimpact-report".to_string()));
+    assert!(written.contains(&"index.html".to_string()));
+    // A file the earlier report had (a figure since dropped, say) does not survive.
+    std::fs::write(out.join("figure-since-dropped.svg"), "<svg/>").unwrap();
+    let second = report_into(root, &out);
+    assert!(second.status.success(), "{second:?}");
+    assert_eq!(names(&out), written);
+    assert_eq!(names(parent.path()), ["report"], "no temporary folder left");
+    // An empty folder is written into as a new one.
+    let empty = parent.path().join("empty");
+    std::fs::create_dir(&empty).unwrap();
+    assert!(report_into(root, &empty).status.success());
+    assert_eq!(names(&empty), written);
+}
+
+#[test]
+fn out_dot_in_a_project_root_is_refused() {
+    // A project's root as a user has it: its manifest, cases and sources.
+    let project = tempfile::tempdir().unwrap();
+    std::fs::write(
+        project.path().join("Cargo.toml"),
+        "[package]\nname = \"mine\"\n",
+    )
+    .unwrap();
+    std::fs::create_dir(project.path().join("src")).unwrap();
+    std::fs::write(project.path().join("src/main.rs"), "fn main() {}\n").unwrap();
+    let before = names(project.path());
+    for out in [".", "..", "src"] {
+        let run = report_into(project.path(), Path::new(out));
+        assert_eq!(run.status.code(), Some(2), "--out {out}: {run:?}");
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.starts_with(&format!("error: --out = {out}: ")),
+            "{stderr}"
+        );
+        assert_eq!(
+            names(project.path()),
+            before,
+            "--out {out}: nothing written"
+        );
+    }
+    // Even when the working directory is an earlier report: it is not replaced from inside.
+    let report = project.path().join("report");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    assert!(report_into(root, &report).status.success());
+    let run = report_into(&report, Path::new("."));
+    assert_eq!(run.status.code(), Some(2), "{run:?}");
+    assert!(
+        String::from_utf8_lossy(&run.stderr).contains("the working directory"),
+        "{run:?}"
+    );
+}

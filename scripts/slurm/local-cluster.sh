@@ -71,10 +71,17 @@ munged --force --socket="$dir/munge/munge.socket" --key-file="$key" \
 export SLURM_CONF="$dir/slurm.conf"
 slurmctld -f "$SLURM_CONF" 2>>"$dir/slurmctld.log" || true
 slurmd -N localhost -f "$SLURM_CONF" 2>>"$dir/slurmd.log" || true
-for _ in $(seq 1 40); do
-  if sinfo -h -o %T 2>/dev/null | grep -qE '^(idle|mixed|allocated)'; then
+# Up to 30 s for the node to be idle. Each query has a time limit (a controller that cannot
+# answer makes sinfo wait for its message time-out), and a daemon that logged a fatal error
+# will not come up: waiting stops there.
+deadline=$((SECONDS + 30))
+while [ "$SECONDS" -lt "$deadline" ]; do
+  if timeout 3 sinfo -h -o %T 2>/dev/null | grep -qE '^(idle|mixed|allocated)'; then
     echo "export SLURM_CONF=$SLURM_CONF"
     exit 0
+  fi
+  if grep -qs 'fatal' "$dir/slurmctld.log" "$dir/slurmd.log"; then
+    break
   fi
   sleep 0.5
 done

@@ -24,21 +24,76 @@ pub enum LocateError {
         path: PathBuf,
     },
     /// No such executable on PATH.
-    #[error("binary `{binary}` not found on PATH")]
+    #[error("binary `{binary}` not found on PATH (install it with scripts/install-dem-codes.sh)")]
     NotOnPath {
         /// The executable's file name.
         binary: String,
     },
     /// The code's own installation under the codes' folder is missing.
-    #[error("no {} (bash scripts/install-dem-codes.sh installs it there; MILLIMPACT_CODES_DIR moves the codes' folder, {variable} names another build)", folder.join(expected).display())]
+    #[error("no {} ({origin}; bash scripts/install-dem-codes.sh installs the codes in its project's {CODES_FOLDER}, MILLIMPACT_CODES_DIR names another folder, {variable} another build)", folder.join(expected).display())]
     NotInstalled {
         /// What was looked for, relative to `folder`.
         expected: &'static str,
         /// Where.
         folder: PathBuf,
+        /// How that folder was chosen.
+        origin: CodesDirOrigin,
         /// The override variable that names another build.
         variable: String,
     },
+    /// A virtual environment's python links to a Python that is not on this machine: the
+    /// environment was made on another one.
+    #[error("{} links to {}, which is not on this machine: a Python virtual environment runs the Python that made it, so one made on another machine does not run here; make it again on this machine with bash scripts/install-dem-codes.sh (with the codes' folder as MILLIMPACT_CODES_DIR if it is not the project's {CODES_FOLDER}), or name a python that has the code in {variable}", link.display(), target.display())]
+    MovedEnvironment {
+        /// The venv's python.
+        link: PathBuf,
+        /// The missing file it leads to.
+        target: PathBuf,
+        /// The override variable that names another build.
+        variable: String,
+    },
+}
+
+/// The name of the codes' folder in a project (where `scripts/install-dem-codes.sh` installs).
+pub const CODES_FOLDER: &str = ".codes";
+
+/// How the codes' folder was chosen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CodesDirOrigin {
+    /// Named by `MILLIMPACT_CODES_DIR`.
+    Variable,
+    /// The nearest `.codes` in the working directory or a folder above it.
+    WorkingDirectory,
+    /// The nearest `.codes` in the executable's folder or a folder above it.
+    Executable,
+    /// None was found: `.codes` in the working directory, where none is.
+    NotFound,
+}
+
+impl std::fmt::Display for CodesDirOrigin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            CodesDirOrigin::Variable => "the codes' folder named by MILLIMPACT_CODES_DIR",
+            CodesDirOrigin::WorkingDirectory => {
+                "the codes' folder found in the working directory or above it"
+            }
+            CodesDirOrigin::Executable => {
+                "the codes' folder found beside millimpact's executable or above it"
+            }
+            CodesDirOrigin::NotFound => {
+                "no .codes in the working directory, beside millimpact's executable or above either, and MILLIMPACT_CODES_DIR is unset"
+            }
+        })
+    }
+}
+
+/// The codes' folder and how it was chosen.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CodesDir {
+    /// The folder.
+    pub path: PathBuf,
+    /// How it was chosen.
+    pub origin: CodesDirOrigin,
 }
 
 /// A fault of an external code. Each variant names the code and, where there is one, where
@@ -46,7 +101,7 @@ pub enum LocateError {
 #[derive(Debug, Error)]
 pub enum CodeError {
     /// The build's executable is not where it was looked for.
-    #[error("{code}: {looked} (install it with scripts/install-dem-codes.sh)")]
+    #[error("{code}: {looked}")]
     MissingBinary {
         /// Code name.
         code: String,
@@ -142,12 +197,71 @@ impl Default for RunOptions {
     }
 }
 
-/// Where the project-local codes installed from PyPI live: `MILLIMPACT_CODES_DIR`, else
-/// `.codes/` in the project (where `scripts/install-dem-codes.sh` puts them).
+/// Where the codes installed from PyPI (and other builds of the project's own) live, found
+/// when the program runs, not where it was built, so that a binary and its project can be
+/// copied to a cluster: `MILLIMPACT_CODES_DIR` if set; else the nearest `.codes` in the working
+/// directory or a folder above it (a project's checkout, run from anywhere inside it); else the
+/// nearest `.codes` in the executable's folder or above it (`target/release/millimpact` finds
+/// its checkout's, wherever it runs from).
+pub fn find_codes_dir() -> CodesDir {
+    if let Some(dir) = std::env::var_os("MILLIMPACT_CODES_DIR").filter(|d| !d.is_empty()) {
+        return CodesDir {
+            path: PathBuf::from(dir),
+            origin: CodesDirOrigin::Variable,
+        };
+    }
+    let nearest = |start: &Path| {
+        start
+            .ancestors()
+            .map(|dir| dir.join(CODES_FOLDER))
+            .find(|candidate| candidate.is_dir())
+    };
+    let here = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    if let Some(path) = nearest(&here) {
+        return CodesDir {
+            path,
+            origin: CodesDirOrigin::WorkingDirectory,
+        };
+    }
+    let executable = std::env::current_exe()
+        .and_then(std::fs::canonicalize)
+        .ok()
+        .and_then(|exe| exe.parent().map(Path::to_path_buf));
+    if let Some(path) = executable.as_deref().and_then(nearest) {
+        return CodesDir {
+            path,
+            origin: CodesDirOrigin::Executable,
+        };
+    }
+    CodesDir {
+        path: here.join(CODES_FOLDER),
+        origin: CodesDirOrigin::NotFound,
+    }
+}
+
+/// The codes' folder ([`find_codes_dir`]).
 pub fn codes_dir() -> PathBuf {
-    std::env::var_os("MILLIMPACT_CODES_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join(".codes"))
+    find_codes_dir().path
+}
+
+/// Whether `path` is a chain of symbolic links that ends at nothing: the file it was made to
+/// lead to is not here. Returns the last link's missing target.
+pub fn dangling_link(path: &Path) -> Option<PathBuf> {
+    let mut at = path.to_path_buf();
+    // A loop of links is not followed for ever.
+    for _ in 0..40 {
+        let meta = std::fs::symlink_metadata(&at).ok()?;
+        if !meta.file_type().is_symlink() {
+            return None;
+        }
+        let target = std::fs::read_link(&at).ok()?;
+        let next = at.parent().unwrap_or(Path::new("")).join(target);
+        if std::fs::symlink_metadata(&next).is_err() {
+            return Some(next);
+        }
+        at = next;
+    }
+    None
 }
 
 /// The environment variable that names millimpact's cache folder.

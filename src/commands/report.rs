@@ -12,8 +12,9 @@ use super::{CommandOutput, write_output};
 use crate::cli::ReportArgs;
 use millimpact::analysis::compare::CANONICAL_CASES;
 use millimpact::analysis::report::{ReportOptions, ReportTable, build_report};
-use millimpact::error::CheckFailed;
+use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
+use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
 use millimpact::output::report_page::render_pages;
 
 fn table_csv(t: &ReportTable) -> Result<String> {
@@ -36,6 +37,9 @@ fn revision() -> Option<String> {
 }
 
 pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
+    // Before any work: a folder that holds someone else's files is refused, never written.
+    check_report_dir("--out", &args.out)
+        .map_err(|e| UserError::argument(e.option, e.path.display(), e.reason))?;
     let paths: Vec<PathBuf> = if args.cases.is_empty() {
         CANONICAL_CASES.iter().map(PathBuf::from).collect()
     } else {
@@ -75,30 +79,43 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     }
     let (html, md) = render_pages(&report)?;
     let out = &args.out;
-    std::fs::create_dir_all(out).with_context(|| format!("creating {}", out.display()))?;
     let mut written = 0usize;
-    let mut write = |name: &str, text: &str| -> Result<()> {
-        written += 1;
-        write_output(&out.join(name), text.as_bytes(), "report")
-    };
-    for part in &report.parts {
-        for f in &part.figures {
-            write(&format!("{}.svg", f.id), &f.svg)?;
-            write(&format!("{}.csv", f.id), &f.csv)?;
+    replace_dir(out, |dir| {
+        let mut write = |name: &str, text: &str| -> Result<()> {
+            written += 1;
+            write_output(&dir.join(name), text.as_bytes(), "report")
+        };
+        for part in &report.parts {
+            for f in &part.figures {
+                write(&format!("{}.svg", f.id), &f.svg)?;
+                write(&format!("{}.csv", f.id), &f.csv)?;
+            }
+            for t in &part.tables {
+                write(&format!("{}.csv", t.id), &table_csv(t)?)?;
+                write(
+                    &format!("{}.json", t.id),
+                    &(serde_json::to_string_pretty(t)? + "\n"),
+                )?;
+            }
         }
-        for t in &part.tables {
-            write(&format!("{}.csv", t.id), &table_csv(t)?)?;
-            write(
-                &format!("{}.json", t.id),
-                &(serde_json::to_string_pretty(t)? + "\n"),
-            )?;
+        for d in &report.data {
+            write(&d.name, &d.text)?;
         }
-    }
-    for d in &report.data {
-        write(&d.name, &d.text)?;
-    }
-    write("index.md", &md)?;
-    write("index.html", &html)?;
+        write("index.md", &md)?;
+        write("index.html", &html)?;
+        // The marker is not counted among the report's files: it is how a later report knows
+        // this folder for its own.
+        write_output(
+            &dir.join(REPORT_MARKER),
+            format!(
+                "A report of millimpact {}: `millimpact report --out` replaces this folder whole.\n",
+                env!("CARGO_PKG_VERSION")
+            )
+            .as_bytes(),
+            "report",
+        )
+    })
+    .with_context(|| format!("writing the report to {}", out.display()))?;
     let figures: usize = report.parts.iter().map(|p| p.figures.len()).sum();
     let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
     let missing = &report.failures;

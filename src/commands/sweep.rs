@@ -16,14 +16,14 @@ use millimpact::analysis::source::Source;
 use millimpact::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
 use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
 use millimpact::analysis::sweep::point::GridOptions;
+use millimpact::analysis::sweep::resume::{Resumed, point_keys, read_resumed};
 use millimpact::analysis::sweep::row::SweepRow;
-use millimpact::analysis::sweep::rows::{
-    RowFormat, RowWriter, complete_lines, keys_of, parse_rows,
-};
+use millimpact::analysis::sweep::rows::{RowFormat, RowWriter};
 use millimpact::analysis::sweep::run_grid;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
+use millimpact::output::files::write_atomic_with;
 use millimpact::output::invocation::Invocation;
 use millimpact::output::restitution_plot::restitution_svg;
 use millimpact::output::{Format, export};
@@ -134,12 +134,13 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     })?;
     let columns = sweep.columns();
     let mut points: Vec<Point> = sweep.points(args.shard);
-    let mut resume_rows = false;
+    let mut resumed = Resumed::default();
     let out: Box<dyn Write + Send> = match &args.out {
         None => Box::new(std::io::BufWriter::new(std::io::stdout())),
         Some(path) => {
-            let text = std::fs::read_to_string(path).unwrap_or_default();
-            if !text.is_empty() && !args.resume {
+            check_output("--out", Some(path), &[&args.case, &sweep.base_path])?;
+            let held = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
+            if held && !args.resume {
                 return Err(UserError::argument(
                     "--out",
                     path.display(),
@@ -147,21 +148,39 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
                 )
                 .into());
             }
-            let complete = complete_lines(&text);
-            if args.resume && !complete.trim().is_empty() {
-                let file = path.display().to_string();
-                let rows = parse_rows(complete, &file)?;
-                if let Some(f) = rows.format {
+            if held {
+                resumed = read_resumed(path, sweep)?;
+                if let Some(f) = resumed.format {
                     format = f;
                 }
-                let keys = keys_of(&rows, &sweep.key_columns(), &sweep.fingerprint, &file)?;
-                points.retain(|p| !keys.contains(&sweep.key_cells(p)));
-                resume_rows = true;
-            }
-            // A row cut off by a kill is dropped; the point runs again.
-            if complete.len() != text.len() {
-                std::fs::write(path, complete)
-                    .with_context(|| format!("truncating {}", path.display()))?;
+                let keys = point_keys(sweep, &points)?;
+                let mut done = keys.iter().map(|k| resumed.done.contains(k));
+                points.retain(|_| !done.next().unwrap_or(false));
+                // Failed rows, a row cut off by a kill and rows a later one replaced go; the
+                // rows kept are copied as they were, and the file is swapped in whole.
+                if resumed.rewrites() {
+                    write_atomic_with(path, |out| resumed.copy_kept(path, out))
+                        .with_context(|| format!("rewriting {}", path.display()))?;
+                }
+                let mut again = Vec::new();
+                if resumed.retried > 0 {
+                    again.push(format!(
+                        "{} failed point{}",
+                        resumed.retried,
+                        if resumed.retried == 1 { "" } else { "s" }
+                    ));
+                }
+                if resumed.torn {
+                    again.push("the point of the last row, cut off mid-line".to_string());
+                }
+                if !again.is_empty() {
+                    eprintln!(
+                        "note: resuming {}: {} rows kept; run again: {}",
+                        path.display(),
+                        resumed.kept_rows,
+                        again.join(", ")
+                    );
+                }
             }
             let file = std::fs::OpenOptions::new()
                 .create(true)
@@ -179,8 +198,15 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     } else {
         Duration::from_millis(50)
     };
-    let writer = RowWriter::new(out, format, &columns, resume_rows, flush_every)
-        .context("writing the sweep's rows")?;
+    let writer = RowWriter::new(
+        out,
+        format,
+        &columns,
+        resumed.has_header,
+        flush_every,
+        resumed.kept_lines,
+    )
+    .context("writing the sweep's rows")?;
     let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
         std::thread::available_parallelism()
             .map(|n| n.get())
@@ -237,24 +263,45 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         .map(Path::display)
         .map(|d| d.to_string())
         .unwrap_or_else(|| "standard output".into());
+    let points_in_output = resumed.kept_rows + writer.written;
+    let failures =
+        (!writer.failed.is_empty()).then(|| writer.failed.summary(points_in_output, &place));
     if STOP.load(Ordering::SeqCst) {
+        let mut text = format!(
+            "interrupted: {} rows written to {place}; continue with --resume",
+            writer.written
+        );
+        if let Some(failures) = &failures {
+            text = format!("{text} (it retries the failed ones); {failures}");
+        }
         return Ok(CommandOutput {
             warnings: Vec::new(),
             text: String::new(),
-            failure: Some(CheckFailed(format!(
-                "interrupted: {} rows written to {place}; continue with --resume",
-                writer.written
-            ))),
+            failure: Some(CheckFailed(text)),
         });
     }
-    if writer.failed > 0 {
-        // A failed point is a row like any other: the sweep went on and its output is whole.
-        eprintln!(
-            "note: {} of {} points failed; their rows in {place} hold the errors",
-            writer.failed, writer.written
-        );
+    let Some(failures) = failures else {
+        return Ok(CommandOutput::passed(String::new()));
+    };
+    // A failed point is a row like any other: the sweep went on and its output is whole; the
+    // exit status says that it is not all computed.
+    if args.allow_failures {
+        let mut output = CommandOutput::passed(String::new());
+        output.warnings.push(failures);
+        return Ok(output);
     }
-    Ok(CommandOutput::passed(String::new()))
+    let retry = if args.out.is_some() {
+        "; --resume retries them"
+    } else {
+        "; --out FILE keeps the rows for --resume to retry them"
+    };
+    Ok(CommandOutput {
+        warnings: Vec::new(),
+        text: String::new(),
+        failure: Some(CheckFailed(format!(
+            "{failures}{retry}, --allow-failures exits 0"
+        ))),
+    })
 }
 
 /// A progress bar with rate and ETA on a terminal; none when standard error is not one or

@@ -6,6 +6,15 @@ use std::path::Path;
 
 /// Write `bytes` to `path` atomically: a temporary file beside it, renamed into place.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    write_atomic_with(path, |out| out.write_all(bytes))
+}
+
+/// Write what `fill` writes to `path` atomically: into a temporary file beside it, renamed
+/// into place once `fill` has succeeded (on failure `path` is untouched).
+pub fn write_atomic_with(
+    path: &Path,
+    fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let dir = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
@@ -21,7 +30,11 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         .prefix(&format!(".{name}."))
         .suffix(".tmp")
         .tempfile_in(dir)?;
-    tmp.write_all(bytes)?;
+    {
+        let mut out = std::io::BufWriter::new(tmp.as_file_mut());
+        fill(&mut out)?;
+        out.flush()?;
+    }
     tmp.as_file().sync_all()?;
     // A temporary file is private (0600); a result is for everyone who may read the folder.
     #[cfg(unix)]
@@ -95,6 +108,104 @@ pub fn check_output_path(
                 return Err(refuse("is an input of this command"));
             }
         }
+    }
+    Ok(())
+}
+
+/// The file a report writes into its folder: a later report recognises the folder as one it
+/// may replace.
+pub const REPORT_MARKER: &str = ".millimpact-report";
+
+/// Check that a report may be written whole into the folder `path`: it does not exist, or it
+/// is an empty folder, or one that holds [`REPORT_MARKER`] (an earlier report). A folder with
+/// other files, a symbolic link, something that is not a folder, and the working directory or
+/// a folder above it are refused, never replaced.
+pub fn check_report_dir(option: &'static str, path: &Path) -> Result<(), OutputPathError> {
+    let refuse = |reason| OutputPathError {
+        option,
+        path: path.to_path_buf(),
+        reason,
+    };
+    let Ok(meta) = std::fs::symlink_metadata(path) else {
+        return Ok(());
+    };
+    if meta.file_type().is_symlink() {
+        return Err(refuse("a symbolic link; name the folder itself"));
+    }
+    if !meta.is_dir() {
+        return Err(refuse("exists and is not a folder"));
+    }
+    let here = std::env::current_dir().and_then(std::fs::canonicalize);
+    if let (Ok(dir), Ok(here)) = (std::fs::canonicalize(path), here)
+        && here.starts_with(&dir)
+    {
+        return Err(refuse(
+            "the working directory or a folder above it, which the output would replace; name a new folder, or an empty one, or one an earlier report wrote",
+        ));
+    }
+    let mut entries = std::fs::read_dir(path).map_err(|_| refuse("cannot be read"))?;
+    if entries.next().is_none() || path.join(REPORT_MARKER).is_file() {
+        return Ok(());
+    }
+    Err(refuse(
+        "a folder that is not empty and holds no earlier report (no .millimpact-report in it); name a new folder, or an empty one, or one an earlier report wrote",
+    ))
+}
+
+/// Write the folder `path` whole: `fill` writes into a fresh folder beside it, which then
+/// takes its place (an earlier folder there is moved aside and removed), so that no file of
+/// an earlier output survives and an interrupted write leaves the earlier folder as it was.
+/// A report's `path` is checked by [`check_report_dir`] first.
+pub fn replace_dir(
+    path: &Path,
+    fill: impl FnOnce(&Path) -> anyhow::Result<()>,
+) -> anyhow::Result<()> {
+    use anyhow::Context;
+    let path = match std::fs::canonicalize(path) {
+        Ok(real) => real,
+        Err(_) => std::path::absolute(path)?,
+    };
+    let (Some(parent), Some(name)) = (path.parent(), path.file_name()) else {
+        anyhow::bail!("{}: a folder's name is needed", path.display());
+    };
+    let name = name.to_string_lossy();
+    std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
+    let fresh = tempfile::Builder::new()
+        .prefix(&format!(".{name}.new-"))
+        .tempdir_in(parent)
+        .with_context(|| format!("making a folder in {}", parent.display()))?;
+    fill(fresh.path())?;
+    // A temporary folder is private (0700); an output is for everyone who may read its parent.
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(fresh.path(), std::fs::Permissions::from_mode(0o755))?;
+    }
+    let fresh = fresh.keep();
+    let earlier = if path.exists() {
+        // Renaming a folder onto an empty one replaces it: the earlier folder goes to a free
+        // name beside it.
+        let aside = tempfile::Builder::new()
+            .prefix(&format!(".{name}.old-"))
+            .tempdir_in(parent)?
+            .keep();
+        std::fs::rename(&path, &aside)
+            .with_context(|| format!("moving the earlier {} aside", path.display()))?;
+        Some(aside)
+    } else {
+        None
+    };
+    if let Err(e) = std::fs::rename(&fresh, &path) {
+        if let Some(aside) = &earlier {
+            let _ = std::fs::rename(aside, &path);
+        }
+        let _ = std::fs::remove_dir_all(&fresh);
+        return Err(anyhow::Error::from(e).context(format!("moving the new {} in", path.display())));
+    }
+    if let Some(aside) = earlier {
+        std::fs::remove_dir_all(&aside).with_context(|| {
+            format!("removing the earlier output, moved to {}", aside.display())
+        })?;
     }
     Ok(())
 }

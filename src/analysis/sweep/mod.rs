@@ -2,9 +2,11 @@
 //! disk, batches of code points, and the legacy one-axis form.
 
 pub mod batch;
+pub mod failed;
 pub mod grid;
 pub mod legacy;
 pub mod point;
+pub mod resume;
 pub mod row;
 pub mod rows;
 

@@ -1,11 +1,12 @@
 //! Sweep rows on disk: CSV or JSON lines, appended and flushed as they come; read back for
 //! `--resume` (rows matched by their parameters) and for `merge` (shards of one sweep).
 
-use std::collections::HashSet;
+use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
-use super::row::SweepRow;
+use super::failed::FailedRows;
+use super::row::{RowStatus, SweepRow};
 use crate::error::UserError;
 
 /// How rows are written.
@@ -128,6 +129,20 @@ pub fn complete_lines(text: &str) -> &str {
     }
 }
 
+/// A JSON value as a cell: null empty, a string bare, a number in its written form.
+pub fn json_cell(value: &serde_json::Value) -> String {
+    match value {
+        serde_json::Value::Null => String::new(),
+        serde_json::Value::String(s) => s.clone(),
+        serde_json::Value::Number(x) => x
+            .as_f64()
+            .filter(|_| !x.is_u64() && !x.is_i64())
+            .map(crate::analysis::sweep::grid::number)
+            .unwrap_or_else(|| x.to_string()),
+        other => other.to_string(),
+    }
+}
+
 /// Read the rows of a sweep output (CSV or JSON lines, told apart by the first character).
 pub fn read_rows(path: &Path) -> anyhow::Result<Rows> {
     let text = std::fs::read_to_string(path)
@@ -162,16 +177,7 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
             let cells = rows
                 .columns
                 .iter()
-                .map(|c| match object.get(c) {
-                    None | Some(serde_json::Value::Null) => String::new(),
-                    Some(serde_json::Value::String(s)) => s.clone(),
-                    Some(serde_json::Value::Number(x)) => x
-                        .as_f64()
-                        .filter(|_| !x.is_u64() && !x.is_i64())
-                        .map(crate::analysis::sweep::grid::number)
-                        .unwrap_or_else(|| x.to_string()),
-                    Some(other) => other.to_string(),
-                })
+                .map(|c| object.get(c).map(json_cell).unwrap_or_default())
                 .collect();
             rows.rows.push(cells);
         }
@@ -197,47 +203,29 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
     }
 }
 
-/// The parameter keys of `rows` (cells of `key_columns`, numbers by value), checking that
-/// every row belongs to the sweep with `fingerprint`.
-pub fn keys_of(
-    rows: &Rows,
-    key_columns: &[String],
-    fingerprint: &str,
-    file: &str,
-) -> Result<HashSet<Vec<String>>, UserError> {
-    let refuse = |allowed: String| UserError::argument("--resume", file, allowed);
-    let sweep = rows.column("sweep").ok_or_else(|| {
-        refuse("the file has no `sweep` column: it is not a sweep's output".into())
-    })?;
-    let mut at = Vec::new();
-    for k in key_columns {
-        at.push(rows.column(k).ok_or_else(|| {
-            refuse(format!(
-                "the file has no `{k}` column: it is the output of another sweep"
-            ))
-        })?);
+/// A writer that counts the lines that pass through it, so that a row's line in the output is
+/// known without reading it back.
+struct LineCount<W: Write> {
+    inner: W,
+    lines: usize,
+}
+
+impl<W: Write> Write for LineCount<W> {
+    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
+        let n = self.inner.write(bytes)?;
+        self.lines += bytes[..n].iter().filter(|&&b| b == b'\n').count();
+        Ok(n)
     }
-    let mut keys = HashSet::new();
-    for r in &rows.rows {
-        if r.get(sweep).map(String::as_str) != Some(fingerprint) {
-            return Err(refuse(format!(
-                "holds rows of sweep {}, not of this sweep ({fingerprint})",
-                r.get(sweep).cloned().unwrap_or_default()
-            )));
-        }
-        keys.insert(
-            at.iter()
-                .map(|&i| crate::analysis::sweep::grid::normal_cell(&r[i]))
-                .collect(),
-        );
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.inner.flush()
     }
-    Ok(keys)
 }
 
 /// Where rows go, in their format.
 enum RowSink<W: Write> {
-    Csv(Box<csv::Writer<W>>),
-    Jsonl(W),
+    Csv(Box<csv::Writer<LineCount<W>>>),
+    Jsonl(LineCount<W>),
 }
 
 /// Rows to a writer, flushed as they come (at most every `flush_every` for fast rows).
@@ -245,21 +233,29 @@ pub struct RowWriter<W: Write> {
     sink: RowSink<W>,
     last_flush: std::time::Instant,
     flush_every: std::time::Duration,
+    /// Lines already in the output before this writer's first (a resumed file's kept part).
+    lines_before: usize,
     /// Rows written.
     pub written: usize,
-    /// Rows whose status is not `ok`.
-    pub failed: usize,
+    /// The rows written whose status is not `ok`, and where they are.
+    pub failed: FailedRows,
 }
 
 impl<W: Write> RowWriter<W> {
     /// A writer of rows with `columns`; the CSV header is written unless `resume`.
+    /// `lines_before` lines are in the output already (what a resumed file keeps).
     pub fn new(
-        mut out: W,
+        out: W,
         format: RowFormat,
         columns: &[String],
         resume: bool,
         flush_every: std::time::Duration,
+        lines_before: usize,
     ) -> std::io::Result<Self> {
+        let mut out = LineCount {
+            inner: out,
+            lines: 0,
+        };
         let sink = match format {
             RowFormat::Csv => {
                 let mut writer = csv::WriterBuilder::new()
@@ -281,21 +277,37 @@ impl<W: Write> RowWriter<W> {
             sink,
             last_flush: std::time::Instant::now(),
             flush_every,
+            lines_before,
             written: 0,
-            failed: 0,
+            failed: FailedRows::default(),
         })
+    }
+
+    /// The line the next row starts on (1-based).
+    fn next_line(&mut self) -> std::io::Result<usize> {
+        let counted = match &mut self.sink {
+            // The CSV writer buffers: what it holds goes through the count first.
+            RowSink::Csv(writer) => {
+                writer.flush()?;
+                writer.get_ref().lines
+            }
+            RowSink::Jsonl(out) => out.lines,
+        };
+        Ok(self.lines_before + counted + 1)
     }
 
     /// Append one row.
     pub fn write(&mut self, row: &SweepRow) -> std::io::Result<()> {
+        if !row.status.is_ok() {
+            let line = self.next_line()?;
+            self.failed
+                .record(line, row.identity.point, &row.status.status);
+        }
         match &mut self.sink {
             RowSink::Csv(writer) => row.write_csv(writer)?,
             RowSink::Jsonl(out) => row.write_json_line(out)?,
         }
         self.written += 1;
-        if !row.status.is_ok() {
-            self.failed += 1;
-        }
         if self.last_flush.elapsed() >= self.flush_every {
             self.flush()?;
             self.last_flush = std::time::Instant::now();
@@ -312,13 +324,25 @@ impl<W: Write> RowWriter<W> {
     }
 }
 
+/// Shards joined by [`merge`]: the text, and where its failed rows are.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Merged {
+    /// The joined rows in the shards' format.
+    pub text: String,
+    /// Points in it.
+    pub points: usize,
+    /// Its failed rows.
+    pub failed: FailedRows,
+}
+
 /// Join shard outputs: every shard must hold rows of one sweep (same columns and
-/// fingerprint); rows are sorted by point, a point given twice is kept once. Returns the
-/// joined text in the shards' format.
-pub fn merge(shards: &[&Path]) -> anyhow::Result<String> {
+/// fingerprint); rows are sorted by point. A point given more than once is kept once: a row
+/// that computed it before one that failed, else the first given.
+pub fn merge(shards: &[&Path]) -> anyhow::Result<Merged> {
     let mut joined: Option<Rows> = None;
     let mut fingerprint: Option<(String, String)> = None;
-    let mut seen = HashSet::new();
+    // Each point's row in `joined`, and whether it is ok.
+    let mut seen: HashMap<usize, (usize, bool)> = HashMap::new();
     for path in shards {
         let file = path.display().to_string();
         let rows = read_rows(path)?;
@@ -331,6 +355,7 @@ pub fn merge(shards: &[&Path]) -> anyhow::Result<String> {
         let point = rows.column("point").ok_or_else(|| {
             UserError::argument("SHARDS", &file, "not a sweep's output (no `point` column)")
         })?;
+        let status = rows.column("status");
         if let Some(first) = &joined
             && (first.columns != rows.columns || first.format != rows.format)
         {
@@ -369,8 +394,17 @@ pub fn merge(shards: &[&Path]) -> anyhow::Result<String> {
                     format!("point `{}` is not a number", r[point]),
                 )
             })?;
-            if seen.insert(index) {
-                target.rows.push(r);
+            let ok = status.is_some_and(|s| r[s] == RowStatus::OK);
+            match seen.get(&index) {
+                None => {
+                    seen.insert(index, (target.rows.len(), ok));
+                    target.rows.push(r);
+                }
+                Some(&(at, false)) if ok => {
+                    seen.insert(index, (at, true));
+                    target.rows[at] = r;
+                }
+                Some(_) => {}
             }
         }
     }
@@ -381,11 +415,24 @@ pub fn merge(shards: &[&Path]) -> anyhow::Result<String> {
     rows.rows
         .sort_by_key(|r| r[point].parse::<usize>().unwrap_or(usize::MAX));
     let format = rows.format.unwrap_or(RowFormat::Csv);
-    let mut text = header(format, &rows.columns);
+    let status = rows.column("status");
+    let mut merged = Merged {
+        text: header(format, &rows.columns),
+        points: rows.rows.len(),
+        failed: FailedRows::default(),
+    };
+    let mut lines = merged.text.matches('\n').count();
     for r in &rows.rows {
-        text += &encode(format, &rows.columns, r);
+        let line = encode(format, &rows.columns, r);
+        if let Some(s) = status.filter(|&s| r[s] != RowStatus::OK) {
+            merged
+                .failed
+                .record(lines + 1, r[point].parse().unwrap_or_default(), &r[s]);
+        }
+        lines += line.matches('\n').count();
+        merged.text += &line;
     }
-    Ok(text)
+    Ok(merged)
 }
 
 #[cfg(test)]

