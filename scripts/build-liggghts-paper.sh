@@ -2,18 +2,25 @@
 # Builds LIGGGHTS-PUBLIC 3.8.0 (Debian 12's source) with the paper's normal contact model
 # (scripts/liggghts-paper/normal_model_paper.h: `model paper`, `model paper/linear`) as a serial
 # binary, and installs it as .codes/liggghts-paper/bin/liggghts-paper (MILLIMPACT_CODES_DIR moves
-# .codes). Prints the build time.
+# .codes). Prints the time it took.
 #
 # - Source: Debian's orig tarball liggghts_3.8.0+repack1.orig.tar.xz through `apt-get source
 #   --download-only` (a deb-src entry is added when apt has none), checked against its SHA-256.
 #   Debian's patch tarball (…-9.debian.tar.xz) is no longer on the mirror; it is not needed.
 # - Build: `make serial` with the MPI stubs of src/STUBS, -std=gnu++98 -fpermissive, without the
 #   VTK dump styles, one comparison in finish.cpp fixed for g++ 12, `make -j$JOBS` (default 2,
-#   MILLIMPACT_BUILD_JOBS changes it). The tree stays in .codes/liggghts-paper/build, so a change
-#   of the model header recompiles only what includes it.
-# - Cache: the stamp .codes/liggghts-paper/.millimpact-built holds a hash of the tarball's
-#   checksum, the model files and this script; when it matches and the binary exists, the script
-#   returns at once. The stamp is written after a smoke run of example.in with the new binary.
+#   MILLIMPACT_BUILD_JOBS changes it).
+# - Cache, outside the clone so that a fresh clone finds it: ${XDG_CACHE_HOME:-$HOME/.cache}/
+#   millimpact/liggghts-paper (MILLIMPACT_CACHE_DIR replaces ${XDG_CACHE_HOME:-$HOME/.cache}/
+#   millimpact). It keeps the tarball (download/), the build tree (build/: a change of the model
+#   header recompiles only what includes it) and each built binary under the key of what it was
+#   built from (<key>/liggghts-paper): a hash of the tarball's checksum, the model files and this
+#   script. The install's stamp .codes/liggghts-paper/.millimpact-built holds the key too:
+#   - stamp and binary match the key: nothing to do (a second run in the same clone);
+#   - the cache holds the key's binary: it is installed from there (a fresh clone);
+#   - else the build runs, and its binary is cached under the key, then installed.
+#   Each install is smoke-run on example.in before its stamp is written; builds of one cache
+#   are serialised by a lock.
 # - Build dependencies (build-essential, xz-utils) are installed with apt-get when missing.
 set -euo pipefail
 
@@ -23,6 +30,7 @@ DIR="$CODES_DIR/liggghts-paper"
 MODEL_DIR="$ROOT/scripts/liggghts-paper"
 BIN="$DIR/bin/liggghts-paper"
 STAMP="$DIR/.millimpact-built"
+CACHE="${MILLIMPACT_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/millimpact}/liggghts-paper"
 JOBS="${MILLIMPACT_BUILD_JOBS:-2}"
 
 ORIG=liggghts_3.8.0+repack1.orig.tar.xz
@@ -45,6 +53,38 @@ if [ -x "$BIN" ] && [ -f "$STAMP" ] && [ "$(cat "$STAMP")" = "$key" ]; then
   echo "liggghts-paper is up to date: $BIN"
   exit 0
 fi
+CACHED="$CACHE/$key/liggghts-paper"
+
+# smoke BINARY: run example.in with it; it must print the realised COR.
+smoke() {
+  local dir
+  dir="$(mktemp -d)"
+  if ! (cd "$dir" && "$1" -in "$MODEL_DIR/example.in" -log none -echo none >run.log 2>&1) \
+    || ! grep -q "^COR " "$dir/run.log"; then
+    tail -n 20 "$dir/run.log" >&2
+    rm -rf "$dir"
+    echo "error: the smoke run of scripts/liggghts-paper/example.in with $1 failed" >&2
+    return 1
+  fi
+  grep "^COR " "$dir/run.log" | sed 's/^/smoke run (example.in): /'
+  rm -rf "$dir"
+}
+
+# install_cached: install the key's cached binary, smoke-run it, stamp the install.
+install_cached() {
+  install -D -m 755 "$CACHED" "$BIN"
+  smoke "$BIN"
+  echo "$key" >"$STAMP"
+}
+
+mkdir -p "$CACHE"
+exec 9>"$CACHE/.lock"
+flock 9
+if [ -x "$CACHED" ]; then
+  install_cached
+  echo "liggghts-paper installed from the cache ($CACHED) in $(($(date +%s) - started)) s: $BIN"
+  exit 0
+fi
 
 if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
 apt_install() {
@@ -62,7 +102,7 @@ apt_install() {
 apt_install build-essential xz-utils
 
 # --- source tarball --------------------------------------------------------------------------
-DOWNLOAD="$DIR/download"
+DOWNLOAD="$CACHE/download"
 mkdir -p "$DOWNLOAD"
 tarball_ok() {
   [ -f "$DOWNLOAD/$ORIG" ] && echo "$ORIG_SHA256  $DOWNLOAD/$ORIG" | sha256sum --check --status
@@ -97,7 +137,7 @@ EOF
 fi
 
 # --- source tree -----------------------------------------------------------------------------
-BUILD="$DIR/build"
+BUILD="$CACHE/build"
 SRC="$BUILD/$TREE/src"
 if [ "$(cat "$BUILD/.source-sha256" 2>/dev/null)" != "$ORIG_SHA256" ] || [ ! -d "$SRC" ]; then
   echo "unpacking $ORIG"
@@ -129,19 +169,8 @@ if ! make -C "$SRC" -j"$JOBS" serial CCFLAGS="$FLAGS" LINKFLAGS="-O2 -fPIC" >"$B
   echo "error: the LIGGGHTS build failed (full log: $BUILD/make.log)" >&2
   exit 1
 fi
-install -D -m 755 "$SRC/lmp_serial" "$BIN"
+smoke "$SRC/lmp_serial"
+install -D -m 755 "$SRC/lmp_serial" "$CACHED"
+install_cached
 
-# --- smoke run and stamp ---------------------------------------------------------------------
-smoke="$(mktemp -d)"
-trap 'rm -rf "$smoke"' EXIT
-if ! (cd "$smoke" && "$BIN" -in "$MODEL_DIR/example.in" -log none -echo none >run.log 2>&1); then
-  tail -n 20 "$smoke/run.log" >&2
-  echo "error: the smoke run of scripts/liggghts-paper/example.in failed" >&2
-  exit 1
-fi
-grep -q "^COR " "$smoke/run.log" || { echo "error: the smoke run printed no COR" >&2; exit 1; }
-echo "$key" >"$STAMP"
-
-elapsed=$(($(date +%s) - started))
-echo "liggghts-paper built in ${elapsed} s: $BIN"
-grep "^COR " "$smoke/run.log" | sed 's/^/smoke run (example.in): /'
+echo "liggghts-paper built in $(($(date +%s) - started)) s (cached as $CACHED): $BIN"

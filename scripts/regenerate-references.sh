@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
 cargo build --release --quiet
-for code in liggghts yade lammps lammps-2025 kratos; do
+for code in liggghts liggghts-paper yade lammps lammps-2025 kratos; do
   for case in ball_plate ball_ball rod_end; do
     for eta in 0 0.35 0.7; do
       ./target/release/millimpact reference --code "$code" "cases/$case.toml" \

@@ -164,6 +164,14 @@ fn trials(dir: &Path) -> Vec<Trial> {
         "yade",
         "printf 'not a trajectory\\n' > trajectory.csv",
     );
+    // A LIGGGHTS that stops on its input as `model paper` stops on an η out of range.
+    fake_code(
+        &bin,
+        "liggghts-paper",
+        "echo 'LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0)'; \
+         echo 'ERROR: model paper: 0 <= lossCoefficient < 1 required (eta = 1.2 for atom types 1 1; eta >= 1 never separates the bodies, eta < 0 creates energy) (normal_model_paper.h:83)'; \
+         exit 1",
+    );
     let empty = dir.join("empty");
     std::fs::create_dir_all(&empty).unwrap();
     let with = |mut t: Trial, env: Vec<(&'static str, String)>| {
@@ -203,6 +211,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
             "option",
             "a time step beyond RK4's stability limit",
             &["run", &case, "--method", "rk4", "--timestep", "2e-4"],
+        ),
+        trial(
+            "option",
+            "`--clamp` for a code whose force never attracts",
+            &["reference", "--code", "liggghts-paper", &case, "--clamp"],
         ),
         trial(
             "option",
@@ -351,6 +364,25 @@ fn trials(dir: &Path) -> Vec<Trial> {
                 &["reference", "--code", "lammps", &case],
             ),
             vec![("PATH", empty.display().to_string())],
+        ),
+        with(
+            trial(
+                "code",
+                "a project build missing from the codes' folder",
+                &["reference", "--code", "liggghts-paper", &case],
+            ),
+            vec![("MILLIMPACT_CODES_DIR", empty.display().to_string())],
+        ),
+        with(
+            trial(
+                "code",
+                "stops on its input with its own `ERROR` line (a LIGGGHTS refusing η)",
+                &["reference", "--code", "liggghts-paper", &case],
+            ),
+            vec![(
+                "MILLIMPACT_LIGGGHTS_PAPER_BINARY",
+                bin.join("liggghts-paper").display().to_string(),
+            )],
         ),
         with(
             trial(

@@ -75,7 +75,7 @@ fn check_live(s: &CodeSetup) -> TrajectoryMetrics {
     assert_eq!(logged(&run.log, "iterations"), s.steps as f64, "{who}");
 
     // The constants Kratos built are the ones law() reports.
-    let law = Kratos.law(s);
+    let law = Kratos.dashpot_law(s);
     assert_eq!(
         logged(&run.log, "mass"),
         particle_mass(s.sphere.radius, s.sphere.density),
@@ -347,7 +347,7 @@ fn kratos_gamma_is_thorntons_fit_with_kratos_cut_offs() {
     for e in [0.3, 0.5, TARGET, 0.9] {
         for which in [Canonical::BallPlate, Canonical::BallBall] {
             let s = setup(which, e);
-            let law = Kratos.law(&s);
+            let law = Kratos.dashpot_law(&s);
             let cor = millimpact::solve::dashpot::accurate_metrics(&law, IMPACT_VELOCITY, 1e-12)
                 .unwrap()
                 .cor;
@@ -363,7 +363,7 @@ fn kratos_gamma_is_thorntons_fit_with_kratos_cut_offs() {
 fn law_uses_kratos_radius_modulus_and_masses() {
     // Steel plate: E* = E / (2(1-ν²)); RigidFace3D3N is flat, R* = R.
     let s = setup(Canonical::BallPlate, TARGET);
-    let law = Kratos.law(&s);
+    let law = Kratos.dashpot_law(&s);
     assert!(relative(law.stiffness, s.stiffness) < 1e-15);
     assert!(relative(law.mass, s.sphere.mass) < 1e-15);
     assert_eq!(law.mass, particle_mass(s.sphere.radius, s.sphere.density));
@@ -371,15 +371,15 @@ fn law_uses_kratos_radius_modulus_and_masses() {
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
     // Rigid plate: the wall of 1e30 Pa leaves E* = E/(1-ν²) to double precision.
     let r = setup(Canonical::BallRigidPlate, TARGET);
-    assert!(relative(Kratos.law(&r).stiffness, r.stiffness) < 1e-15);
+    assert!(relative(Kratos.dashpot_law(&r).stiffness, r.stiffness) < 1e-15);
     // Two balls: Hertz at R/2, reduced mass.
     let b = setup(Canonical::BallBall, TARGET);
-    let law = Kratos.law(&b);
+    let law = Kratos.dashpot_law(&b);
     assert!(relative(law.stiffness, b.stiffness) < 1e-15);
     assert!(relative(law.mass, b.reduced_mass) < 1e-15);
     // Rod: linear, clamped.
     let rod = setup(Canonical::RodEnd, TARGET);
-    let law = Kratos.law(&rod);
+    let law = Kratos.dashpot_law(&rod);
     assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
     assert_eq!(law.stiffness, rod.stiffness);
     assert!(law.clamp_attractive);
@@ -411,7 +411,7 @@ fn the_recorded_sample_is_todays_rendering_and_the_law_stepped_by_leap_frog() {
         .trajectory;
     assert_eq!(run.time.len() as u64, s.steps + 1);
     let stepped = step_trajectory(
-        &Kratos.law(&s),
+        &Kratos.dashpot_law(&s),
         IMPACT_VELOCITY,
         s.timestep,
         s.steps,

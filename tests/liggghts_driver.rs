@@ -150,7 +150,7 @@ fn law_uses_the_codes_effective_values() {
     let rel = |a: f64, b: f64| ((a - b) / b).abs();
     for (scene, rigid) in ALL_CASES {
         let setup = canonical(scene, e_target(), rigid);
-        let law = Liggghts.law(&setup);
+        let law = Liggghts.dashpot_law(&setup);
         // Rigid wall at E = 1e30: E* equal to E/(1-ν²) to rounding.
         assert!(
             rel(law.stiffness, setup.stiffness) < 1e-15,
@@ -247,7 +247,7 @@ fn live_peak_overlap_matches_law() {
         for (scene, rigid) in ALL_CASES {
             let setup = canonical(scene, e, rigid);
             let code = trajectory_metrics(&run(&setup).trajectory).unwrap();
-            let law = Liggghts.law(&setup);
+            let law = Liggghts.dashpot_law(&setup);
             let stepped = step_trajectory(
                 &law,
                 setup.impact_velocity,

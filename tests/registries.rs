@@ -56,7 +56,14 @@ fn code_choices_are_the_code_registry() {
     assert_eq!(registry, names(CodeName::names()));
     assert_eq!(
         registry,
-        ["liggghts", "yade", "lammps", "lammps-2025", "kratos"]
+        [
+            "liggghts",
+            "liggghts-paper",
+            "yade",
+            "lammps",
+            "lammps-2025",
+            "kratos"
+        ]
     );
     assert_eq!(choices("reference", "--code"), registry, "reference --code");
     // probe offers every code and refuses those it does not cover, in one line.

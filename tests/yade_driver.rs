@@ -99,7 +99,7 @@ fn check_live(s: &CodeSetup) -> TrajectoryMetrics {
     );
 
     // The contact's constants as YADE built them are the ones law() reports.
-    let law = Yade.law(s);
+    let law = Yade.dashpot_law(s);
     match s.scene {
         SceneKind::RodEnd => {
             assert!(relative(logged_phys(&run.log, "kn"), law.stiffness) < 1e-12);
@@ -210,7 +210,7 @@ fn recorded_run_is_the_law_stepped_by_leap_frog() {
     // Thornton's fit: its law is built from that en.
     let betan = logged_phys(&log, "betan");
     assert_eq!(betan, thornton_damping_ratio(TARGET));
-    let compensated = Yade.law(&s);
+    let compensated = Yade.dashpot_law(&s);
     let law = DashpotLaw {
         damping: 2.0 * betan * (1.5 * compensated.mass * compensated.stiffness).sqrt(),
         ..compensated
@@ -303,7 +303,7 @@ fn render_refuses_what_yade_cannot_set_up() {
 fn law_uses_the_wall_radius_and_modulus_yade_uses() {
     // Steel plate: E* = E / (2(1-ν²)); flat wall R* = R (1 - 1e-8).
     let s = setup(SceneKind::BallPlate, TARGET, Plate::Steel);
-    let law = Yade.law(&s);
+    let law = Yade.dashpot_law(&s);
     assert!(relative(law.stiffness, s.stiffness) < 1.1e-8);
     assert!(relative(law.stiffness, s.stiffness) > 0.9e-8 / 2.0);
     assert_eq!(law.mass, s.sphere.mass);
@@ -311,11 +311,11 @@ fn law_uses_the_wall_radius_and_modulus_yade_uses() {
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
     // Rigid plate: the wall of 1e30 Pa leaves E* = E/(1-ν²) to double precision.
     let r = setup(SceneKind::BallPlate, TARGET, Plate::Rigid);
-    let k_rigid = Yade.law(&r).stiffness;
+    let k_rigid = Yade.dashpot_law(&r).stiffness;
     assert!(relative(k_rigid, r.stiffness) < 1.1e-8);
     // Two balls: exact Hertz, reduced mass.
     let b = setup(SceneKind::BallBall, TARGET, Plate::Rigid);
-    let law = Yade.law(&b);
+    let law = Yade.dashpot_law(&b);
     assert!(relative(law.stiffness, b.stiffness) < 1e-15);
     assert!(relative(law.mass, b.reduced_mass) < 1e-15);
 }
@@ -329,7 +329,7 @@ fn thornton_fit_matches_what_yade_logged_and_is_compensated_to_the_target() {
     assert_eq!(thornton_damping_ratio(1.0), 0.0);
     let fit_alone = |e: f64| {
         let s = setup(SceneKind::BallPlate, e, Plate::Steel);
-        let compensated = Yade.law(&s);
+        let compensated = Yade.dashpot_law(&s);
         let law = DashpotLaw {
             damping: 2.0
                 * thornton_damping_ratio(e)
@@ -350,7 +350,7 @@ fn thornton_fit_matches_what_yade_logged_and_is_compensated_to_the_target() {
     // The driver passes the en that makes the law YADE builds realise the target.
     for e in [0.3, 0.5, TARGET, 0.8, 0.9, 0.95, 0.975] {
         let s = setup(SceneKind::BallPlate, e, Plate::Steel);
-        let cor = accurate_metrics(&Yade.law(&s), IMPACT_VELOCITY, 1e-12)
+        let cor = accurate_metrics(&Yade.dashpot_law(&s), IMPACT_VELOCITY, 1e-12)
             .unwrap()
             .cor;
         assert!(

@@ -144,6 +144,7 @@ pub fn run_batch(
         return Err(CodeError::Crashed {
             code,
             status: status.to_string(),
+            said: super::runner::error_line(&log),
             log: scratch.keep().join("log.txt"),
         });
     }

@@ -20,10 +20,10 @@ use std::process::Command;
 
 use serde::{Deserialize, Deserializer, Serialize, Serializer};
 
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
-use crate::solve::dashpot::{StepScheme, accurate_metrics};
+use crate::solve::dashpot::{CodeFrame, CodeStepping, StepScheme, own_law_metrics};
 pub use batch::BatchError;
 use lammps::conventions::Conventions;
 use lammps::probe::{ProbeError, ProbeReport};
@@ -98,7 +98,7 @@ pub trait CodeDriver: Send + Sync {
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError>;
     /// The contact law this code really integrates for `setup`, as measured on the installed
     /// version (effective radius and modulus, damping formula, clamp).
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw;
+    fn law(&self, setup: &CodeSetup) -> CodeLaw;
     /// Rows a complete trajectory of `setup` has (by default the initial state and one per
     /// step): fewer is a truncated run, refused rather than read.
     fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
@@ -107,6 +107,30 @@ pub trait CodeDriver: Send + Sync {
     /// How the code advances a step (what velocity its damping sees).
     fn step_scheme(&self) -> StepScheme {
         StepScheme::VelocityVerlet
+    }
+    /// Where a run of `setup` starts in the code's own coordinates, for a code whose
+    /// rounding of the bodies' positions is worth repeating ([`CodeFrame`]); by default none:
+    /// its law is stepped from touch in the coordinates of the relative motion.
+    fn frame(&self, setup: &CodeSetup) -> Option<CodeFrame> {
+        let _ = setup;
+        None
+    }
+    /// How the code steps its law for `setup`: its scheme and its frame.
+    fn stepping(&self, setup: &CodeSetup) -> CodeStepping {
+        CodeStepping {
+            scheme: self.step_scheme(),
+            frame: self.frame(setup),
+        }
+    }
+    /// Whether the code is given the paper's η itself (its law is the paper's) rather than a
+    /// COR: its setups then carry η ([`CodeSetup::loss_coefficient`]).
+    fn takes_loss_coefficient(&self) -> bool {
+        false
+    }
+    /// Why the code cannot cut off attractive force at a user's request (`--clamp`), where it
+    /// cannot; `None` where it can (or always does).
+    fn clamp_refusal(&self) -> Option<&'static str> {
+        None
     }
     /// Many independent impacts in one process, where the code can.
     fn batch(&self) -> Option<&dyn BatchRunner> {
@@ -130,10 +154,10 @@ pub trait CodeDriver: Send + Sync {
     /// the attractive tail the target's damping was computed with.
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
         let law = self.law(setup);
-        if !(setup.clamp_attractive && law.clamp_attractive) {
+        if !(setup.clamp_attractive && law.clamp_attractive()) {
             return None;
         }
-        accurate_metrics(&law, setup.impact_velocity, 1e-12)
+        own_law_metrics(&law, setup.impact_velocity, 1e-12)
             .ok()
             .map(|m| m.cor)
     }
@@ -238,7 +262,7 @@ macro_rules! code_registry {
 }
 
 code_registry! {
-    mod liggghts { Liggghts => Liggghts },
+    mod liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
     mod yade { Yade => Yade },
     mod lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
     mod kratos { Kratos => Kratos },
@@ -293,7 +317,14 @@ mod tests {
     fn the_registry_lists_every_code_once_by_its_own_name() {
         assert_eq!(
             CodeName::names(),
-            ["liggghts", "yade", "lammps", "lammps-2025", "kratos"]
+            [
+                "liggghts",
+                "liggghts-paper",
+                "yade",
+                "lammps",
+                "lammps-2025",
+                "kratos"
+            ]
         );
         for &code in CodeName::ALL {
             assert_eq!(CodeName::from_name(code.name()), Some(code));

@@ -109,12 +109,14 @@ pub enum CodeError {
         looked: LocateError,
     },
     /// The code exited with a failure status.
-    #[error("{code}: exited with {status}; log kept in {}", log.display())]
+    #[error("{code}: exited with {status}{}; log kept in {}", said_suffix(said), log.display())]
     Crashed {
         /// Code name.
         code: String,
         /// Exit status as text.
         status: String,
+        /// The code's own error line, where its log has one ([`error_line`]).
+        said: Option<String>,
         /// The kept log file.
         log: PathBuf,
     },
@@ -158,6 +160,21 @@ pub enum CodeError {
         /// The I/O error.
         source: std::io::Error,
     },
+}
+
+fn said_suffix(said: &Option<String>) -> String {
+    said.as_deref()
+        .map(|line| format!(", saying `{line}`"))
+        .unwrap_or_default()
+}
+
+/// The error a code printed before it stopped: the first line of `log` that starts with
+/// `ERROR` (how LIGGGHTS and LAMMPS report a fatal error: `ERROR: <what> (<file>:<line>)`).
+pub fn error_line(log: &str) -> Option<String> {
+    log.lines()
+        .map(str::trim)
+        .find(|line| line.starts_with("ERROR"))
+        .map(String::from)
 }
 
 /// A finished run of an external code.
@@ -444,6 +461,7 @@ pub fn run_code(
         return Err(CodeError::Crashed {
             code,
             status: status.to_string(),
+            said: error_line(&log),
             log: keep(scratch),
         });
     }
@@ -613,4 +631,32 @@ pub fn read_log(path: &Path) -> std::io::Result<String> {
     kept.extend_from_slice(&bytes[bytes.len() - half..]);
     std::fs::write(path, &kept)?;
     Ok(String::from_utf8_lossy(&kept).into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_codes_own_error_line_is_passed_on() {
+        let log = "LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0)\n  ERROR: model paper: 0 <= lossCoefficient < 1 required (eta = 1.2) (normal_model_paper.h:83)\nLast command: run 1\n";
+        let said = error_line(log);
+        assert_eq!(
+            said.as_deref(),
+            Some(
+                "ERROR: model paper: 0 <= lossCoefficient < 1 required (eta = 1.2) (normal_model_paper.h:83)"
+            )
+        );
+        assert_eq!(error_line("Traceback (most recent call last):\n"), None);
+        let crashed = CodeError::Crashed {
+            code: "liggghts-paper".into(),
+            status: "exit status: 1".into(),
+            said,
+            log: PathBuf::from("/tmp/x/log.txt"),
+        };
+        assert_eq!(
+            crashed.to_string(),
+            "liggghts-paper: exited with exit status: 1, saying `ERROR: model paper: 0 <= lossCoefficient < 1 required (eta = 1.2) (normal_model_paper.h:83)`; log kept in /tmp/x/log.txt"
+        );
+    }
 }

@@ -11,7 +11,7 @@ use crate::model::case::Case;
 use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
 use crate::solve::SolveError;
-use crate::solve::dashpot::accurate_metrics;
+use crate::solve::dashpot::own_law_metrics;
 
 /// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -59,6 +59,11 @@ pub struct CodeSetup {
     pub impact_velocity: f64,
     /// The coefficient of restitution the code's damping is asked to realise.
     pub target_restitution: f64,
+    /// The paper's loss coefficient η itself, for a code whose law is the paper's (it is given
+    /// η, not a COR: [`CodeDriver::takes_loss_coefficient`]); `None` in the setups of the
+    /// other codes, which take `target_restitution`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub loss_coefficient: Option<f64>,
     /// Time step, s.
     pub timestep: f64,
     /// Number of steps to run: enough to end the contact, no more.
@@ -144,7 +149,8 @@ fn code_sphere(ball: &Ball) -> CodeSphere {
 }
 
 /// The equivalent setup of `case` (physics.md §5) at time step `timestep` (s), with the run
-/// length left at zero: [`prepare`] sets it from the code's own law.
+/// length left at zero: [`prepare`] sets it from the code's own law, and keeps the case's η
+/// only for a code that takes it.
 pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
     let scene = &case.scene;
     let (sphere, other_sphere, plate_material) = match scene {
@@ -187,6 +193,7 @@ pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
         exponent: scene.exponent(),
         impact_velocity: case.impact_velocity,
         target_restitution: case.restitution(),
+        loss_coefficient: Some(case.loss_coefficient),
         timestep,
         steps: 0,
         clamp_attractive: false,
@@ -233,8 +240,11 @@ pub fn prepare_with(
     let mut setup = setup_for_case(case, dt);
     setup.clamp_attractive = clamp_attractive;
     setup.conventions = conventions;
+    if !driver.takes_loss_coefficient() {
+        setup.loss_coefficient = None;
+    }
     let law = driver.law(&setup);
-    let contact = accurate_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
+    let contact = own_law_metrics(&law, setup.impact_velocity, 1e-12)?.contact_time;
     // A step so small that the count passes u64 saturates: the run then meets its time limit.
     setup.steps = ceil_count(1.05 * contact / dt).map_or(u64::MAX, |n| n.saturating_add(3));
     Ok(setup)

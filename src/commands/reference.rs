@@ -29,6 +29,11 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     if let Some(0) = args.steps_per_contact {
         return Err(UserError::argument("--steps-per-contact", 0, "must be at least 1").into());
     }
+    if args.clamp
+        && let Some(why) = args.code.driver().clamp_refusal()
+    {
+        return Err(UserError::argument("--clamp", args.code, why).into());
+    }
     if args.clamp && args.save {
         return Err(UserError::argument(
             "--save",

@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::model::law::PaperLaw;
+use crate::model::trajectory::TrajectoryMetrics;
 
 /// `J(n) = ∫0^1 (1 - u^(n+1))^(-1/2) du = sqrt(π) Γ(1 + 1/(n+1)) / Γ(1/2 + 1/(n+1))`:
 /// a quarter period of the undamped oscillation in units of `y_max / v0`.
@@ -39,6 +40,21 @@ pub struct ImpactFigures {
     pub contact_time: f64,
     /// Kinetic energy lost, J.
     pub absorbed_energy: f64,
+}
+
+impl ImpactFigures {
+    /// The figures in the form a trajectory's are read: the paper's force is repulsive all
+    /// through the contact, so its force contact time is its overlap contact time.
+    pub fn metrics(&self) -> TrajectoryMetrics {
+        TrajectoryMetrics {
+            cor: self.cor,
+            peak_deformation: self.peak_deformation,
+            peak_force: self.peak_force,
+            contact_time: self.contact_time,
+            force_contact_time: self.contact_time,
+            compression_time: self.compression_time,
+        }
+    }
 }
 
 /// The exact impact of the paper's law at approach speed `v0` (m/s).

@@ -125,3 +125,209 @@ impl DashpotLaw {
         }
     }
 }
+
+impl PaperLaw {
+    /// The force, N, as a DEM code's contact model evaluates it (LIGGGHTS `model paper` of
+    /// scripts/liggghts-paper): `C yⁿ (1 + η sign ẏ)` with `sign(0) = 0`, so that a velocity of
+    /// exactly zero gives the elastic force alone, the mean of the two branches (where
+    /// [`PaperLaw::force`] follows `f64::signum`, which has no zero).
+    pub fn force_as_coded(&self, y: f64, v: f64) -> f64 {
+        if y <= 0.0 {
+            return 0.0;
+        }
+        let branch = if v > 0.0 {
+            1.0 + self.loss_coefficient
+        } else if v < 0.0 {
+            1.0 - self.loss_coefficient
+        } else {
+            1.0
+        };
+        self.stiffness * y.powf(self.exponent) * branch
+    }
+}
+
+/// A contact force as a DEM code evaluates it, and the mass it acts on: what stepping a law
+/// the way a code steps needs.
+pub trait ContactForce {
+    /// Force, N (positive repulsive), at approach `y` (m) and approach rate `v` (m/s).
+    fn force(&self, y: f64, v: f64) -> f64;
+    /// Mass the dynamics sees, kg.
+    fn mass(&self) -> f64;
+}
+
+impl ContactForce for DashpotLaw {
+    fn force(&self, y: f64, v: f64) -> f64 {
+        DashpotLaw::force(self, y, v)
+    }
+
+    fn mass(&self) -> f64 {
+        self.mass
+    }
+}
+
+/// The law a DEM code integrates, as its driver reads it: a spring–dashpot (the codes' own
+/// damping), or the paper's law where the code has it built in (liggghts-paper).
+///
+/// Serialised as the inner law alone (a stored record's `law` object keeps its shape); the two
+/// are told apart by their fields (`damping` against `loss_coefficient`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum CodeLaw {
+    /// `F = k yⁿ + c yᵐ ẏ`, clamped or not.
+    Dashpot(DashpotLaw),
+    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as [`PaperLaw::force_as_coded`].
+    Paper(PaperLaw),
+}
+
+impl From<DashpotLaw> for CodeLaw {
+    fn from(law: DashpotLaw) -> Self {
+        CodeLaw::Dashpot(law)
+    }
+}
+
+impl From<PaperLaw> for CodeLaw {
+    fn from(law: PaperLaw) -> Self {
+        CodeLaw::Paper(law)
+    }
+}
+
+impl ContactForce for CodeLaw {
+    fn force(&self, y: f64, v: f64) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.force(y, v),
+            CodeLaw::Paper(law) => law.force_as_coded(y, v),
+        }
+    }
+
+    fn mass(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.mass,
+            CodeLaw::Paper(law) => law.mass,
+        }
+    }
+}
+
+impl CodeLaw {
+    /// Spring constant `k` (or `C`), N/m^n.
+    pub fn stiffness(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.stiffness,
+            CodeLaw::Paper(law) => law.stiffness,
+        }
+    }
+
+    /// Exponent `n` of the elastic force.
+    pub fn exponent(&self) -> f64 {
+        match self {
+            CodeLaw::Dashpot(law) => law.exponent,
+            CodeLaw::Paper(law) => law.exponent,
+        }
+    }
+
+    /// Whether the code cuts the force at zero (the paper's law never attracts: no clamp).
+    pub fn clamp_attractive(&self) -> bool {
+        match self {
+            CodeLaw::Dashpot(law) => law.clamp_attractive,
+            CodeLaw::Paper(_) => false,
+        }
+    }
+
+    /// The same law with the attractive force cut at zero (the paper's law as it is: its
+    /// force never attracts).
+    pub fn clamped(self) -> Self {
+        match self {
+            CodeLaw::Dashpot(law) => CodeLaw::Dashpot(law.clamped()),
+            paper @ CodeLaw::Paper(_) => paper,
+        }
+    }
+
+    /// The spring–dashpot, if this is one.
+    pub fn dashpot(&self) -> Option<&DashpotLaw> {
+        match self {
+            CodeLaw::Dashpot(law) => Some(law),
+            CodeLaw::Paper(_) => None,
+        }
+    }
+
+    /// Whether two laws are of one kind with every parameter equal to `rtol` (relative).
+    pub fn agrees_with(&self, other: &CodeLaw, rtol: f64) -> bool {
+        let same = |a: f64, b: f64| (a - b).abs() <= rtol * a.abs().max(b.abs());
+        match (self, other) {
+            (CodeLaw::Dashpot(a), CodeLaw::Dashpot(b)) => {
+                same(a.mass, b.mass)
+                    && same(a.stiffness, b.stiffness)
+                    && same(a.exponent, b.exponent)
+                    && same(a.damping, b.damping)
+                    && same(a.damping_exponent, b.damping_exponent)
+                    && a.clamp_attractive == b.clamp_attractive
+            }
+            (CodeLaw::Paper(a), CodeLaw::Paper(b)) => {
+                same(a.mass, b.mass)
+                    && same(a.stiffness, b.stiffness)
+                    && same(a.exponent, b.exponent)
+                    && same(a.loss_coefficient, b.loss_coefficient)
+            }
+            _ => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn paper() -> PaperLaw {
+        PaperLaw {
+            mass: 2.0,
+            stiffness: 8.0,
+            exponent: 1.5,
+            loss_coefficient: 0.25,
+        }
+    }
+
+    // Powers of two and small integers: every force here is exact.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn the_coded_force_has_a_sign_that_vanishes_at_rest() {
+        let law = paper();
+        // y = 4: C y^1.5 = 64.
+        assert_eq!(law.force_as_coded(4.0, 1.0), 80.0);
+        assert_eq!(law.force_as_coded(4.0, -1.0), 48.0);
+        assert_eq!(law.force_as_coded(4.0, 0.0), 64.0);
+        assert_eq!(law.force_as_coded(4.0, -0.0), 64.0);
+        assert_eq!(law.force_as_coded(0.0, 1.0), 0.0);
+        assert_eq!(law.force_as_coded(-1.0, 1.0), 0.0);
+        // Away from rest it is the law's own force.
+        assert_eq!(law.force_as_coded(4.0, -3.0), law.force(4.0, -3.0));
+        let coded = CodeLaw::from(law);
+        assert_eq!(ContactForce::force(&coded, 4.0, 0.0), 64.0);
+        assert_eq!(coded.mass(), 2.0);
+    }
+
+    #[test]
+    fn a_code_law_is_stored_as_its_inner_law_and_read_back_as_its_kind() {
+        let dashpot = CodeLaw::from(DashpotLaw::damped_hertz(1.0, 2.0, 0.7));
+        let paper = CodeLaw::from(paper());
+        for law in [dashpot, paper] {
+            let json = serde_json::to_value(law).unwrap();
+            assert!(json.get("mass").is_some(), "{json}");
+            assert_eq!(serde_json::from_value::<CodeLaw>(json).unwrap(), law);
+        }
+        assert!(
+            serde_json::to_value(paper)
+                .unwrap()
+                .get("damping")
+                .is_none()
+        );
+        assert!(paper.agrees_with(&paper, 0.0));
+        assert!(!paper.agrees_with(&dashpot, 1.0));
+        let other = CodeLaw::Paper(PaperLaw {
+            loss_coefficient: 0.25 * (1.0 + 1e-9),
+            ..self::paper()
+        });
+        assert!(!paper.agrees_with(&other, 1e-12) && paper.agrees_with(&other, 1e-8));
+        // The paper's law never attracts: clamping leaves it as it is.
+        assert_eq!(paper.clamped(), paper);
+        assert!(!paper.clamp_attractive() && dashpot.clamped().clamp_attractive());
+    }
+}

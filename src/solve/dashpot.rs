@@ -1,12 +1,14 @@
-//! The DEM codes' own viscoelastic laws ([`DashpotLaw`]), integrated two ways: stepped the way
-//! each code steps (to reproduce its trajectory), and to near zero step error (to measure the
-//! model's own figures).
+//! The DEM codes' own laws ([`CodeLaw`]: their viscoelastic [`DashpotLaw`]s, and the paper's law
+//! where a code has it built in), integrated two ways: stepped the way each code steps (to
+//! reproduce its trajectory), and to near zero step error (to measure the model's own figures;
+//! for the paper's law, its closed form).
 
 use serde::{Deserialize, Serialize};
 
 use super::steppers::{Dopri5, State};
 use super::{SolveError, march};
-use crate::model::law::DashpotLaw;
+use crate::model::exact::paper_impact;
+use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics};
 
 /// How a DEM code advances one step.
@@ -21,14 +23,18 @@ pub enum StepScheme {
     LeapFrog,
 }
 
-/// Step `law` from touching contact at approach speed `impact_velocity` (m/s) with a fixed
+/// Step `law` (any force a code evaluates: a [`DashpotLaw`], a [`CodeLaw`]) from touching contact at approach speed `impact_velocity` (m/s) with a fixed
 /// `timestep` (s) for `steps` steps, the way a DEM code does. Row 0 is the initial state; row
 /// `k` is the state after `k` steps (for leap-frog the velocity is the half-step one, as the
 /// code reports it). The force column is the force at that row's state, as the codes print it:
 /// for velocity Verlet the force computed in the step that led to the row, for leap-frog the
 /// one the next step kicks with (from the row's position and half-step velocity).
-pub fn step_trajectory(
-    law: &DashpotLaw,
+///
+/// With velocity Verlet the force sees the half-step velocity, so a law whose force depends on
+/// the sign of the velocity (the paper's) switches branch where the half-step velocity does,
+/// as LIGGGHTS `model paper` does from the `vn` it is handed.
+pub fn step_trajectory<L: ContactForce + ?Sized>(
+    law: &L,
     impact_velocity: f64,
     timestep: f64,
     steps: u64,
@@ -40,8 +46,8 @@ pub fn step_trajectory(
 /// [`step_trajectory`] started `gap` (m) before touch instead of at touch: with
 /// `gap = φ v0 Δt`, `φ ∈ [0, 1)`, the first contact falls at the fraction `1 − φ` of a step
 /// (the start phase), the one thing a fixed-step run's figures depend on besides the step.
-pub fn step_trajectory_from(
-    law: &DashpotLaw,
+pub fn step_trajectory_from<L: ContactForce + ?Sized>(
+    law: &L,
     impact_velocity: f64,
     timestep: f64,
     steps: u64,
@@ -62,7 +68,7 @@ pub fn step_trajectory_from(
         StepScheme::LeapFrog => law.force(y, v),
     };
     let h = timestep;
-    let inverse_mass = 1.0 / law.mass;
+    let inverse_mass = 1.0 / law.mass();
     let mut push = |k: u64, y: f64, v: f64, f: f64| {
         out.time.push(k as f64 * h);
         out.overlap.push(y);
@@ -89,6 +95,171 @@ pub fn step_trajectory_from(
         push(k, y, v, force);
     }
     out
+}
+
+/// One body on the line of centres (the z axis) as a code holds it.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct FrameBody {
+    /// Height of its centre, m.
+    pub height: f64,
+    /// Velocity along z (up positive), m/s.
+    pub velocity: f64,
+    /// Mass, kg.
+    pub mass: f64,
+}
+
+/// The start of a run in a code's own coordinates: a sphere above, and below it a second
+/// sphere or a wall at height 0.
+///
+/// A code holds each body's absolute position, so each step rounds a position to an ulp of the
+/// height (3.5e-18 m at 2 cm), not of the overlap (1e-20 m at 70 µm): over a thousand steps that
+/// moves the figures by some 1e-12. Stepped in the same coordinates with the same operations,
+/// the law repeats the code's rounding of the positions, and what is left are single roundings
+/// of the force (a few 1e-16 per step).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CodeFrame {
+    /// Distance of the centres at touch, m: the sum of the radii, the upper radius at a wall.
+    pub reach: f64,
+    /// The upper sphere (it moves down onto the other body).
+    pub upper: FrameBody,
+    /// The lower sphere; `None` for a wall, the plane z = 0.
+    pub lower: Option<FrameBody>,
+}
+
+/// Step `law` by velocity Verlet in `frame`'s coordinates, for `steps` steps of `timestep` (s),
+/// with the operations of LIGGGHTS's `fix nve/sphere` and of its wall and pair contact: per
+/// body `v += (½Δt / m) f`, `z += Δt v`, then the overlap `reach − (z₁ − z₂)` (`reach − z₁` at
+/// the wall: the wall's `r − (r − (r − z))` is that exactly, both near r) and the approach rate
+/// `v₂ − v₁` from the half-step velocities, the force, and the second half kick. Rows as
+/// [`step_trajectory`]'s: row 0 the start, then one per step with the full-step approach rate
+/// and the force computed in that step.
+pub fn step_in_frame<L: ContactForce + ?Sized>(
+    law: &L,
+    frame: &CodeFrame,
+    timestep: f64,
+    steps: u64,
+) -> CodeTrajectory {
+    let capacity = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
+    let mut out = CodeTrajectory {
+        time: Vec::with_capacity(capacity),
+        overlap: Vec::with_capacity(capacity),
+        approach_velocity: Vec::with_capacity(capacity),
+        normal_force: Vec::with_capacity(capacity),
+    };
+    let h = timestep;
+    // fix nve/sphere's dtf = 0.5 dt ftm2v (ftm2v = 1 in SI units), dtfm = dtf / m.
+    let dtf = 0.5 * h;
+    let wall = FrameBody {
+        height: 0.0,
+        velocity: 0.0,
+        mass: f64::INFINITY,
+    };
+    let (mut upper, mut lower) = (frame.upper, frame.lower.unwrap_or(wall));
+    let moves_lower = frame.lower.is_some();
+    let overlap = |a: &FrameBody, b: &FrameBody| {
+        if moves_lower {
+            frame.reach - (a.height - b.height)
+        } else {
+            frame.reach - a.height
+        }
+    };
+    let approach = |a: &FrameBody, b: &FrameBody| b.velocity - a.velocity;
+    let mut force = 0.0;
+    let mut push = |k: u64, y: f64, v: f64, f: f64| {
+        out.time.push(k as f64 * h);
+        out.overlap.push(y);
+        out.approach_velocity.push(v);
+        out.normal_force.push(f);
+    };
+    push(0, overlap(&upper, &lower), approach(&upper, &lower), force);
+    for k in 1..=steps {
+        let kick = |body: &mut FrameBody, f: f64| {
+            body.velocity += dtf / body.mass * f;
+        };
+        kick(&mut upper, force);
+        upper.height += h * upper.velocity;
+        if moves_lower {
+            kick(&mut lower, -force);
+            lower.height += h * lower.velocity;
+        }
+        let y = overlap(&upper, &lower);
+        force = law.force(y, approach(&upper, &lower));
+        kick(&mut upper, force);
+        if moves_lower {
+            kick(&mut lower, -force);
+        }
+        push(k, y, approach(&upper, &lower), force);
+    }
+    out
+}
+
+/// How a code steps its law: its scheme, and where it has one, its own coordinates.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CodeStepping {
+    /// The scheme.
+    pub scheme: StepScheme,
+    /// The run's start in the code's own coordinates (velocity Verlet only); `None`: from
+    /// touch, in the coordinates of the relative motion.
+    pub frame: Option<CodeFrame>,
+}
+
+impl CodeStepping {
+    /// `law` stepped as the code steps it, from `impact_velocity` (m/s, used without a frame)
+    /// for `steps` steps of `timestep` (s), started a further `gap` (m) away than the code's
+    /// own start (a start phase: 0 for the run's own).
+    pub fn trajectory<L: ContactForce + ?Sized>(
+        &self,
+        law: &L,
+        impact_velocity: f64,
+        timestep: f64,
+        steps: u64,
+        gap: f64,
+    ) -> CodeTrajectory {
+        match (self.scheme, self.frame) {
+            (StepScheme::VelocityVerlet, Some(frame)) => {
+                let mut frame = frame;
+                frame.upper.height += gap;
+                step_in_frame(law, &frame, timestep, steps)
+            }
+            (scheme, _) => step_trajectory_from(law, impact_velocity, timestep, steps, scheme, gap),
+        }
+    }
+}
+
+/// The largest COR error, absolute, that velocity Verlet (with the branch taken from the
+/// half-step velocity, as LIGGGHTS `model paper` takes it) makes on the paper's `law` at
+/// step `timestep` (s) and speed `impact_velocity` (m/s): the bound a run's realised COR keeps
+/// to `sqrt((1 − η)/(1 + η))`, whatever its start phase.
+///
+/// Each branch, `C yⁿ (1 ± η)`, is conservative: the steps lose energy at the switch alone. The
+/// half-step velocity keeps the loading force for up to one step τ ≤ Δt past the turning
+/// point, an excess impulse `ΔF τ` (`ΔF = 2η C y_maxⁿ`) met by a rebound speed of about
+/// `F_U τ / M`; the rebound energy errs by at most `τ² (F_L² − F_U²) / (2M)` with
+/// `F_{L,U} = C y_maxⁿ (1 ± η)`, hence the COR by at most `2η/(1 + η)² (F_L Δt / (M v0))² / e`.
+/// The smooth branches add velocity Verlet's own second-order error, bounded here by
+/// `(Δt / t_c)²` over the contact time `t_c`. Both fall as Δt².
+pub fn paper_cor_step_error(law: &PaperLaw, impact_velocity: f64, timestep: f64) -> f64 {
+    let exact = paper_impact(law, impact_velocity);
+    let eta = law.loss_coefficient;
+    let kick = exact.peak_force * timestep / (law.mass * impact_velocity);
+    let switch = 2.0 * eta / ((1.0 + eta) * (1.0 + eta)) * kick * kick / exact.cor;
+    let smooth = (timestep / exact.contact_time).powi(2);
+    switch + smooth
+}
+
+/// Figures of a code's own `law` at zero step error, at speed `impact_velocity` (m/s): a
+/// [`DashpotLaw`] integrated by [`accurate_metrics`] at relative tolerance `rtol`, the paper's
+/// law from its closed form ([`paper_impact`]; `rtol` is not needed), so that a code that has
+/// the paper's law differs from it by no model at all.
+pub fn own_law_metrics(
+    law: &CodeLaw,
+    impact_velocity: f64,
+    rtol: f64,
+) -> Result<TrajectoryMetrics, SolveError> {
+    match law {
+        CodeLaw::Dashpot(law) => accurate_metrics(law, impact_velocity, rtol),
+        CodeLaw::Paper(law) => Ok(paper_impact(law, impact_velocity).metrics()),
+    }
 }
 
 /// Figures of `law`'s impact at speed `impact_velocity` (m/s), integrated with error control at
@@ -207,4 +378,173 @@ pub fn accurate_metrics(
         force_contact_time: force_end * t_scale,
         compression_time: turn.time * t_scale,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::trajectory::trajectory_metrics;
+
+    fn paper(exponent: f64) -> CodeLaw {
+        CodeLaw::Paper(PaperLaw {
+            mass: 0.26,
+            stiffness: if exponent > 1.0 { 2.0e10 } else { 5.6e8 },
+            exponent,
+            loss_coefficient: 0.7,
+        })
+    }
+
+    fn relative(a: f64, b: f64) -> f64 {
+        (a - b).abs() / b.abs()
+    }
+
+    /// In a frame, a wall impact is the relative motion stepped from the same gap, and two
+    /// spheres of mass 2M each are the relative motion of mass M: the same figures to the
+    /// rounding of the absolute heights.
+    #[test]
+    fn a_frame_steps_the_relative_motion() {
+        let v0 = 2.0;
+        for exponent in [1.5, 1.0] {
+            let law = paper(exponent);
+            let peak = 1e-4;
+            let dt = 1.3e-7;
+            let steps = 2500;
+            let gap = 1e-6 * v0 * dt;
+            let relative_motion = trajectory_metrics(&step_trajectory_from(
+                &law,
+                v0,
+                dt,
+                steps,
+                StepScheme::VelocityVerlet,
+                gap,
+            ))
+            .unwrap();
+            let wall = CodeFrame {
+                reach: 0.02,
+                upper: FrameBody {
+                    height: 0.02 + gap,
+                    velocity: -v0,
+                    mass: 0.26,
+                },
+                lower: None,
+            };
+            let pair = CodeFrame {
+                reach: 0.04,
+                upper: FrameBody {
+                    height: 0.02 + gap,
+                    velocity: -0.5 * v0,
+                    mass: 0.52,
+                },
+                lower: Some(FrameBody {
+                    height: -0.02,
+                    velocity: 0.5 * v0,
+                    mass: 0.52,
+                }),
+            };
+            for frame in [wall, pair] {
+                let m = trajectory_metrics(&step_in_frame(&law, &frame, dt, steps)).unwrap();
+                assert!(m.peak_deformation < 2.0 * peak, "{m:?}");
+                for (a, b) in [
+                    (m.cor, relative_motion.cor),
+                    (m.peak_deformation, relative_motion.peak_deformation),
+                    (m.contact_time, relative_motion.contact_time),
+                ] {
+                    assert!(relative(a, b) < 1e-10, "{a} vs {b}");
+                }
+            }
+        }
+    }
+
+    /// A stepping with a frame and velocity Verlet steps in the frame, with the start phase's
+    /// gap added to the upper height; without one (or with leap-frog) from touch.
+    #[test]
+    fn a_code_stepping_uses_its_frame_for_velocity_verlet_only() {
+        let law = paper(1.5);
+        let frame = CodeFrame {
+            reach: 0.02,
+            upper: FrameBody {
+                height: 0.02,
+                velocity: -2.0,
+                mass: 0.26,
+            },
+            lower: None,
+        };
+        let gap = 3e-8;
+        let with_frame = CodeStepping {
+            scheme: StepScheme::VelocityVerlet,
+            frame: Some(frame),
+        };
+        let moved = CodeFrame {
+            upper: FrameBody {
+                height: 0.02 + gap,
+                ..frame.upper
+            },
+            ..frame
+        };
+        assert_eq!(
+            with_frame.trajectory(&law, 2.0, 1e-7, 50, gap),
+            step_in_frame(&law, &moved, 1e-7, 50)
+        );
+        let leap_frog = CodeStepping {
+            scheme: StepScheme::LeapFrog,
+            frame: Some(frame),
+        };
+        assert_eq!(
+            leap_frog.trajectory(&law, 2.0, 1e-7, 50, gap),
+            step_trajectory_from(&law, 2.0, 1e-7, 50, StepScheme::LeapFrog, gap)
+        );
+    }
+
+    /// The paper's law's figures at zero step error are its closed form: a code that has the
+    /// law differs from it by no model.
+    #[test]
+    fn the_papers_law_is_its_own_exact_figures() {
+        let CodeLaw::Paper(law) = paper(1.5) else {
+            unreachable!()
+        };
+        let m = own_law_metrics(&CodeLaw::Paper(law), 2.0, 1e-12).unwrap();
+        assert_eq!(m, paper_impact(&law, 2.0).metrics());
+    }
+
+    /// No start phase takes the stepped COR further from the closed form than the predicted
+    /// bound, which the worst phase reaches to within a factor of three (it is not loose) and
+    /// falls 4× per halving of the step.
+    #[test]
+    fn the_predicted_step_error_bounds_every_start_phase() {
+        for exponent in [1.5, 1.0] {
+            for eta in [0.2, 0.7, 0.95] {
+                let CodeLaw::Paper(law) = paper(exponent) else {
+                    unreachable!()
+                };
+                let law = PaperLaw {
+                    loss_coefficient: eta,
+                    ..law
+                };
+                let v0 = 2.0;
+                let exact = paper_impact(&law, v0);
+                let dt = exact.contact_time / 1000.0;
+                let worst = (0..32)
+                    .map(|k| {
+                        let gap = f64::from(k) / 32.0 * v0 * dt;
+                        let t = step_trajectory_from(
+                            &CodeLaw::Paper(law),
+                            v0,
+                            dt,
+                            1100,
+                            StepScheme::VelocityVerlet,
+                            gap,
+                        );
+                        (trajectory_metrics(&t).unwrap().cor - exact.cor).abs()
+                    })
+                    .fold(0.0, f64::max);
+                let bound = paper_cor_step_error(&law, v0, dt);
+                assert!(
+                    worst <= bound && worst > bound / 3.0,
+                    "n={exponent} η={eta}: {worst:e} against {bound:e}"
+                );
+                let halved = paper_cor_step_error(&law, v0, 0.5 * dt);
+                assert!((bound / halved - 4.0).abs() < 1e-9);
+            }
+        }
+    }
 }

@@ -152,6 +152,7 @@ pub fn code_setup(which: Canonical, e: f64, per_contact: f64, run_length: f64) -
         exponent: if which == Canonical::RodEnd { 1.0 } else { 1.5 },
         impact_velocity: IMPACT_VELOCITY,
         target_restitution: e,
+        loss_coefficient: None,
         timestep: 0.0,
         steps: round_count(run_length * per_contact).expect("a step count"),
         clamp_attractive: false,

@@ -10,11 +10,11 @@ use super::compare::phase::Range;
 use crate::codes::{self, CodeName, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;
-use crate::model::law::DashpotLaw;
+use crate::model::law::CodeLaw;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
-use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
+use crate::solve::dashpot::{CodeStepping, own_law_metrics};
 
 /// Start phases sampled when a card predicts a stepped COR.
 pub const CARD_PHASES: usize = 16;
@@ -40,7 +40,7 @@ pub struct Card {
     /// Why the code cannot realise the COR on this case, if it cannot.
     pub unsupported: Option<String>,
     /// The law the code integrates with those settings.
-    pub law: Option<DashpotLaw>,
+    pub law: Option<CodeLaw>,
     /// That law's COR at zero step error.
     pub law_cor: f64,
     /// `law_cor − target`, relative to the target (a fit's residual where the code's damping
@@ -92,27 +92,20 @@ pub struct Calibration {
 }
 
 fn stepped_cor(
-    law: &DashpotLaw,
+    law: &CodeLaw,
     v0: f64,
     dt: f64,
     steps: u64,
-    scheme: StepScheme,
+    stepping: &CodeStepping,
     phi: f64,
 ) -> f64 {
-    trajectory_metrics(&step_trajectory_from(
-        law,
-        v0,
-        dt,
-        steps,
-        scheme,
-        phi * v0 * dt,
-    ))
-    .map_or(f64::NAN, |m| m.cor)
+    trajectory_metrics(&stepping.trajectory(law, v0, dt, steps, phi * v0 * dt))
+        .map_or(f64::NAN, |m| m.cor)
 }
 
-fn band(law: &DashpotLaw, v0: f64, dt: f64, steps: u64, scheme: StepScheme) -> Range {
+fn band(law: &CodeLaw, v0: f64, dt: f64, steps: u64, stepping: &CodeStepping) -> Range {
     let cors: Vec<f64> = (0..CARD_PHASES)
-        .map(|k| stepped_cor(law, v0, dt, steps, scheme, k as f64 / CARD_PHASES as f64))
+        .map(|k| stepped_cor(law, v0, dt, steps, stepping, k as f64 / CARD_PHASES as f64))
         .collect();
     Range {
         min: cors.iter().cloned().fold(f64::INFINITY, f64::min),
@@ -128,7 +121,7 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
     let setup = codes::prepare(driver, case, None, timestep, false)
         .with_context(|| format!("{code}: sizing the run from the code's law"))?;
     let law = driver.law(&setup);
-    let scheme = driver.step_scheme();
+    let stepping = driver.stepping(&setup);
     let (settings, unsupported) = match driver.render(&setup) {
         Ok(input) => {
             let keys = driver
@@ -145,15 +138,15 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
         }
         Err(e) => (Vec::new(), Some(e.to_string())),
     };
-    let exact = accurate_metrics(&law, v0, 1e-12)?;
+    let exact = own_law_metrics(&law, v0, 1e-12)?;
     // A step too small to count in u64 cannot be run either: saturate, the run refuses it.
     let steps_for = |dt: f64| {
         crate::model::count::ceil_count(1.05 * exact.contact_time / dt)
             .map_or(u64::MAX, |n| n.saturating_add(4))
     };
     let dt = setup.timestep;
-    let realised_cor = stepped_cor(&law, v0, dt, steps_for(dt), scheme, 0.0);
-    let realised_band = band(&law, v0, dt, steps_for(dt), scheme);
+    let realised_cor = stepped_cor(&law, v0, dt, steps_for(dt), &stepping, 0.0);
+    let realised_band = band(&law, v0, dt, steps_for(dt), &stepping);
     let tc = elastic_contact_time(case);
     let within = |r: &Range| {
         (r.min - target).abs() <= tolerance * target && (r.max - target).abs() <= tolerance * target
@@ -163,7 +156,12 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
         let mut n = 10u32;
         while n <= 163_840 {
             let h = tc / n as f64;
-            if within(&band(&law, v0, h, steps_for(h), scheme)) {
+            // The frame's start is the run's at its own step; at another step, from touch.
+            let at_h = CodeStepping {
+                frame: None,
+                ..stepping
+            };
+            if within(&band(&law, v0, h, steps_for(h), &at_h)) {
                 found = Some((h, n));
                 break;
             }

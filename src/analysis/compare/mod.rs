@@ -18,7 +18,7 @@ use crate::model::trajectory::TrajectoryMetrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::Method;
-use crate::solve::dashpot::accurate_metrics;
+use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
 
@@ -72,17 +72,10 @@ pub struct SourceRow {
     pub contact_time_vs_elastic: f64,
 }
 
-/// The paper's law's exact figures in the form a trajectory's are read: its force is
-/// repulsive all through the contact, so its force contact time is its overlap contact time.
+/// The paper's law's exact figures in the form a trajectory's are read
+/// ([`ImpactFigures::metrics`]).
 pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
-    TrajectoryMetrics {
-        cor: p.cor,
-        peak_deformation: p.peak_deformation,
-        peak_force: p.peak_force,
-        contact_time: p.contact_time,
-        force_contact_time: p.contact_time,
-        compression_time: p.compression_time,
-    }
+    p.metrics()
 }
 
 /// A code's attribution for one case.
@@ -158,7 +151,7 @@ pub fn model_by_restitution(case: &Case, restitutions: &[f64]) -> Result<Vec<Mod
         let setup = setup_for_case(&at, 1.0);
         for &code in CodeName::ALL {
             let law = code.driver().law(&setup);
-            let m = accurate_metrics(&law, at.impact_velocity, 1e-12)?;
+            let m = own_law_metrics(&law, at.impact_velocity, 1e-12)?;
             points.push(ModelPoint {
                 case: case.name.clone(),
                 code,
@@ -221,7 +214,7 @@ fn figures_metrics(f: &ImpactFigures, force_contact_time: f64) -> TrajectoryMetr
 pub fn code_attribution(
     r: &ReferenceRecord,
 ) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics)> {
-    let own_exact = accurate_metrics(&r.law, r.setup.impact_velocity, 1e-13)?;
+    let own_exact = own_law_metrics(&r.law, r.setup.impact_velocity, 1e-13)?;
     let own_stepped = phase::stepped_at_phase(r, 0.0)?;
     let paper = paper_metrics(&r.paper_exact);
     let band = phase::start_phase_band(r, &own_exact, DEFAULT_PHASES)?;

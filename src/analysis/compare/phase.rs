@@ -8,7 +8,6 @@ use serde::Serialize;
 use crate::analysis::store::ReferenceRecord;
 use crate::model::exact::ImpactFigures;
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
-use crate::solve::dashpot::step_trajectory_from;
 
 /// Start phases swept by default.
 pub const DEFAULT_PHASES: usize = 32;
@@ -105,21 +104,17 @@ impl PhaseBand {
 }
 
 /// The figures of `record`'s own law stepped as its code steps, started at phase `phi`
-/// (a gap of `φ v0 Δt` before touch; `φ = 0` is the stored run's own start).
+/// (a gap of `φ v0 Δt` before the run's own start gap; `φ = 0` is the stored run's own start).
 pub fn stepped_at_phase(
     record: &ReferenceRecord,
     phi: f64,
 ) -> Result<TrajectoryMetrics, TrajectoryError> {
     let v0 = record.setup.impact_velocity;
     let dt = record.timestep;
-    let trajectory = step_trajectory_from(
-        &record.law,
-        v0,
-        dt,
-        record.steps + 2,
-        record.step_scheme,
-        phi * v0 * dt,
-    );
+    let trajectory =
+        record
+            .stepping()
+            .trajectory(&record.law, v0, dt, record.steps + 2, phi * v0 * dt);
     trajectory_metrics(&trajectory)
 }
 

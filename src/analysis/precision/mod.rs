@@ -32,7 +32,7 @@ use crate::model::law::PaperLaw;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
-use crate::solve::dashpot::accurate_metrics;
+use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Knob, Method, Stats};
 
@@ -396,7 +396,7 @@ pub fn code_sweep(
     for &spc in steps_per_contact {
         let setup = codes::prepare(driver, case, Some(spc), None, false)
             .with_context(|| format!("{}: setting up {} steps per contact", code.name(), spc))?;
-        let reference = accurate_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
+        let reference = own_law_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
             .with_context(|| format!("{}: its own law at zero step error", code.name()))?;
         if !warmed {
             // The first start of a code pays for loading its libraries from disk.

@@ -15,12 +15,12 @@ use super::store;
 use crate::codes::{self, CodeName};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact;
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, csv_string};
 use crate::solve::Method;
-use crate::solve::dashpot::{accurate_metrics, step_trajectory};
+use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 
 /// One figure: the SVG, the data behind it as CSV, and how to reproduce it.
@@ -323,12 +323,12 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
         let driver = code.driver();
         let setup = codes::prepare(driver, case, None, None, false)?;
         let own = driver.law(&setup);
-        let t = step_trajectory(
+        let t = driver.stepping(&setup).trajectory(
             &own,
             setup.impact_velocity,
             setup.timestep,
             setup.steps,
-            driver.step_scheme(),
+            0.0,
         );
         let end = t
             .overlap
@@ -463,7 +463,7 @@ fn realised_vs_requested(root: &Path) -> Result<(ReportFigure, ReportTable)> {
         Ok(())
     };
     let cor_of =
-        |law: &DashpotLaw, v0: f64| -> Result<f64> { Ok(accurate_metrics(law, v0, 1e-11)?.cor) };
+        |law: &CodeLaw, v0: f64| -> Result<f64> { Ok(own_law_metrics(law, v0, 1e-11)?.cor) };
     for &code in CodeName::ALL {
         add(
             &format!("{code}, as the driver sets it"),
@@ -493,7 +493,7 @@ fn realised_vs_requested(root: &Path) -> Result<(ReportFigure, ReportTable)> {
             let (_, law) = card
                 .law_at_its_word(&setup)
                 .ok_or_else(|| anyhow::anyhow!("{code}: no setting to take at its word"))?;
-            cor_of(&law, at.impact_velocity)
+            cor_of(&law.into(), at.impact_velocity)
         })?;
     }
     let mut clamps: Vec<&str> = Vec::new();

@@ -21,13 +21,13 @@ use crate::codes::{self, CodeName, CodeSetup, RunOptions, run_code};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
-use crate::model::law::DashpotLaw;
+use crate::model::law::CodeLaw;
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
 use crate::output::files::write_atomic;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
-use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory};
+use crate::solve::dashpot::{CodeStepping, StepScheme, own_law_metrics};
 
 /// One run of one code on one case at one η.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -82,7 +82,7 @@ pub struct ReferenceRecord {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub whole_wall_time: Option<f64>,
     /// The law the code integrates, as the driver reads it.
-    pub law: DashpotLaw,
+    pub law: CodeLaw,
     /// How the code steps.
     pub step_scheme: StepScheme,
     /// That law stepped the way the code steps, at the code's step.
@@ -151,6 +151,15 @@ impl ReferenceRecord {
         }
     }
 
+    /// How its code steps its law: the stored scheme, and the code's frame for the stored
+    /// setup.
+    pub fn stepping(&self) -> CodeStepping {
+        CodeStepping {
+            scheme: self.step_scheme,
+            frame: self.code.driver().frame(&self.setup),
+        }
+    }
+
     /// The COR the code should realise: the documented one, or the target.
     pub fn cor_target(&self) -> f64 {
         self.expected_restitution.unwrap_or(self.target_restitution)
@@ -205,16 +214,16 @@ pub fn run_reference(
     let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
     let law = driver.law(&setup);
     let scheme = driver.step_scheme();
-    let stepped = step_trajectory(
+    let stepped = driver.stepping(&setup).trajectory(
         &law,
         setup.impact_velocity,
         setup.timestep,
         setup.steps,
-        scheme,
+        0.0,
     );
     let law_at_step =
         trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
-    let law_exact = accurate_metrics(&law, setup.impact_velocity, 1e-13)?;
+    let law_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)?;
     let command = Invocation::new("reference")
         .option("--code", code)
         .arg(case.path.display())

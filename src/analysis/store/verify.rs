@@ -17,8 +17,7 @@ use crate::model::exact;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::{Section, Summary, signed};
 use crate::solve::Method;
-use crate::solve::dashpot::accurate_metrics;
-use crate::solve::dashpot::step_trajectory;
+use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::Settings;
 use sha2::{Digest, Sha256};
 
@@ -262,22 +261,13 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
                     Err(e) => found.push(format!("the driver cannot render it now: {e}")),
                 }
             }
-            let law_now = driver.law(&now);
-            let same = |a: f64, b: f64| (a - b).abs() <= 1e-12 * a.abs().max(b.abs());
-            let (a, b) = (&law_now, &record.law);
-            let same_law = same(a.mass, b.mass)
-                && same(a.stiffness, b.stiffness)
-                && same(a.exponent, b.exponent)
-                && same(a.damping, b.damping)
-                && same(a.damping_exponent, b.damping_exponent)
-                && a.clamp_attractive == b.clamp_attractive;
-            if !same_law {
+            if !driver.law(&now).agrees_with(&record.law, 1e-12) {
                 found.push("law differs from the driver's law for this setup now".to_string());
             }
         }
         Err(e) => found.push(format!("cannot set it up now: {e}")),
     }
-    match accurate_metrics(&record.law, record.setup.impact_velocity, 1e-13) {
+    match own_law_metrics(&record.law, record.setup.impact_velocity, 1e-13) {
         Ok(m) => {
             let stored = &record.law_exact;
             if [
@@ -438,12 +428,12 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>> {
                 ));
                 continue;
             }
-            let stepped = step_trajectory(
+            let stepped = record.stepping().trajectory(
                 &record.law,
                 record.setup.impact_velocity,
                 record.timestep,
                 record.steps,
-                record.step_scheme,
+                0.0,
             );
             match trajectory_metrics(&stepped) {
                 Ok(now) => {
@@ -512,7 +502,7 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>> {
                     Some(format!("own law stepped now: {e}")),
                 )),
             }
-            let realised = accurate_metrics(&record.law, record.setup.impact_velocity, 1e-13)
+            let realised = own_law_metrics(&record.law, record.setup.impact_velocity, 1e-13)
                 .map(|m| m.cor)
                 .unwrap_or(f64::NAN);
             let differences = Differences {

@@ -19,7 +19,7 @@ use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::trajectory::trajectory_metrics;
-use crate::solve::dashpot::{accurate_metrics, step_trajectory};
+use crate::solve::dashpot::own_law_metrics;
 
 /// Most bytes of trajectory files one batch may write (about 80 bytes per step and impact).
 pub const MAX_BATCH_BYTES: f64 = 2e8;
@@ -165,16 +165,16 @@ fn batch_figures(
     let driver = code.driver();
     let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
     let law = driver.law(setup);
-    let stepped = step_trajectory(
+    let stepped = driver.stepping(setup).trajectory(
         &law,
         setup.impact_velocity,
         setup.timestep,
         setup.steps,
-        driver.step_scheme(),
+        0.0,
     );
     let at_step =
         trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
-    let own_exact = accurate_metrics(&law, setup.impact_velocity, 1e-13)?;
+    let own_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)?;
     let paper = case.law();
     Ok(CodeFigures {
         case: case.name.clone(),

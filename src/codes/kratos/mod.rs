@@ -46,7 +46,7 @@ use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
     RenderedInput,
 };
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
@@ -203,6 +203,43 @@ impl Kratos {
 }
 
 impl Kratos {
+    /// The clamped damped law Kratos integrates for `setup` (linear for the rod).
+    pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
+        let mass = dynamic_mass(setup);
+        match setup.scene {
+            SceneKind::RodEnd => DashpotLaw {
+                mass,
+                stiffness: setup.stiffness,
+                exponent: 1.0,
+                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
+                damping_exponent: 0.0,
+                clamp_attractive: true,
+            },
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                let s = setup.sphere;
+                let (e2, nu2) = second_material(setup);
+                let modulus =
+                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+                let radius = match (setup.scene, setup.other_sphere) {
+                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
+                    // RigidFace3D3N is flat: the sphere's own radius.
+                    _ => s.radius,
+                };
+                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
+                let gamma = hertz_damping_gamma(input_restitution(setup));
+                DashpotLaw {
+                    mass,
+                    stiffness,
+                    exponent: 1.5,
+                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
+                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
+                    damping_exponent: 0.25,
+                    clamp_attractive: true,
+                }
+            }
+        }
+    }
+
     /// The values the script template is filled with for `setup` (a batch lists each impact
     /// with the same ones), or why the setup cannot run.
     pub fn script_values(
@@ -331,40 +368,8 @@ impl CodeDriver for Kratos {
         })
     }
 
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
-        let mass = dynamic_mass(setup);
-        match setup.scene {
-            SceneKind::RodEnd => DashpotLaw {
-                mass,
-                stiffness: setup.stiffness,
-                exponent: 1.0,
-                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
-                damping_exponent: 0.0,
-                clamp_attractive: true,
-            },
-            SceneKind::BallPlate | SceneKind::BallBall => {
-                let s = setup.sphere;
-                let (e2, nu2) = second_material(setup);
-                let modulus =
-                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
-                let radius = match (setup.scene, setup.other_sphere) {
-                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
-                    // RigidFace3D3N is flat: the sphere's own radius.
-                    _ => s.radius,
-                };
-                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
-                let gamma = hertz_damping_gamma(input_restitution(setup));
-                DashpotLaw {
-                    mass,
-                    stiffness,
-                    exponent: 1.5,
-                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
-                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                }
-            }
-        }
+    fn law(&self, setup: &CodeSetup) -> CodeLaw {
+        self.dashpot_law(setup).into()
     }
 
     fn step_scheme(&self) -> StepScheme {
@@ -380,7 +385,7 @@ impl CodeDriver for Kratos {
             // γ is solved for the clamped law: it realises the target.
             return None;
         }
-        let law = self.law(setup);
+        let law = self.dashpot_law(setup);
         let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
             .ok()?
             .cor;
@@ -419,6 +424,7 @@ mod tests {
             exponent: 1.5,
             impact_velocity: 2.0,
             target_restitution: 0.6944,
+            loss_coefficient: None,
             timestep: 3.059_664_992_222_593_2e-6,
             steps: 50,
             clamp_attractive: false,

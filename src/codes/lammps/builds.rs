@@ -33,8 +33,8 @@ macro_rules! lammps_driver_methods {
             Some(&$crate::codes::lammps::batch::LammpsBatch(&$build))
         }
 
-        fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::DashpotLaw {
-            $build.law(setup)
+        fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::CodeLaw {
+            $build.law(setup).into()
         }
 
         fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {

@@ -39,8 +39,18 @@ const INITIAL_ROW: (&str, &str) = (
     "print           \"${t} ${overlap} ${approach} 0\" file ",
 );
 
-/// The batch input for `setups`: their single inputs in sequence, or why they cannot run so.
+/// The stock build's batch input for `setups`: their single inputs in sequence, or why they
+/// cannot run so.
 pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    render_batch_with(&Liggghts, setups)
+}
+
+/// The batch input of `driver`, a LIGGGHTS build whose single inputs are the stock deck with
+/// its own contact lines (the stock build, the paper build), for `setups`.
+pub fn render_batch_with(
+    driver: &dyn CodeDriver,
+    setups: &[CodeSetup],
+) -> Result<RenderedInput, BatchError> {
     if setups.is_empty() {
         return Err(BatchError::Empty);
     }
@@ -53,7 +63,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     }
     let mut decks = Vec::with_capacity(setups.len());
     for (i, s) in setups.iter().enumerate() {
-        let single = Liggghts.render(s)?.text;
+        let single = driver.render(s)?.text;
         if !single.contains(INITIAL_ROW.0) {
             return Err(BatchError::Differ {
                 what: "the input's initial row (not the template's)",

@@ -1,6 +1,7 @@
 //! The LIGGGHTS-PUBLIC driver (tested on the Debian 12 build of 3.8.0).
 //!
-//! One input template, `scripts/liggghts/impact.in`, serves the three scenes:
+//! One input template, `impact.in` in this folder, serves the three scenes, and both builds
+//! (the stock models here, the paper's law in [`paper`]):
 //! - ball scenes run `model hertz` with `coefficientRestitution` (damped Hertz,
 //!   `F = k δ^1.5 + √5 β sqrt(M k) δ^¼ δ̇`);
 //! - `rod_end` runs `model hooke/stiffness absolute_damping on`, which takes the spring
@@ -12,6 +13,9 @@
 
 pub mod batch;
 pub mod card;
+pub mod paper;
+
+pub use paper::LiggghtsPaper;
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -19,8 +23,9 @@ use std::path::Path;
 use super::parse::{ParseError, parse_columns};
 use super::template::{exact_number, fill_template};
 use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
+use crate::solve::dashpot::{CodeFrame, FrameBody};
 
 const TEMPLATE: &str = include_str!("impact.in");
 const INPUT_FILE: &str = "impact.in";
@@ -86,102 +91,296 @@ pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
     reduced_mass(m1, m2)
 }
 
+/// The start of a run of the deck in LIGGGHTS's coordinates: sphere 1 at `r1 + gap` moving
+/// down, below it the plate (the plane z = 0) or sphere 2 at `-r2`; the velocities of the
+/// centre-of-mass frame and the masses as LIGGGHTS computes them, every number as the deck
+/// writes it (exactly).
+pub fn code_frame(setup: &CodeSetup) -> CodeFrame {
+    let (v1, v2) = setup.centre_of_mass_velocities();
+    let r1 = setup.sphere.radius;
+    let upper = FrameBody {
+        height: r1 + contact_gap(setup),
+        velocity: -v1,
+        mass: code_mass(r1, setup.sphere.density),
+    };
+    match setup.other_sphere {
+        Some(other) if setup.scene == SceneKind::BallBall => CodeFrame {
+            reach: r1 + other.radius,
+            upper,
+            lower: Some(FrameBody {
+                height: -other.radius,
+                velocity: -v2,
+                mass: code_mass(other.radius, other.density),
+            }),
+        },
+        _ => CodeFrame {
+            reach: r1,
+            upper,
+            lower: None,
+        },
+    }
+}
+
+/// The code's spring constant for `setup`: Hertz `(4/3) E* sqrt(R*)` with its own `E*` for a
+/// ball scene (N/m^1.5), the rod's `k` as given (N/m).
+pub fn code_stiffness(setup: &CodeSetup) -> f64 {
+    match (setup.scene, code_effective_modulus(setup)) {
+        (SceneKind::RodEnd, _) | (_, None) => setup.stiffness,
+        (_, Some(modulus)) => 4.0 / 3.0 * modulus * setup.pair_radius().sqrt(),
+    }
+}
+
+/// The contact model lines of a deck: the `model` style, its settings keywords, and the
+/// per-type property lines it reads.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ContactModel {
+    /// The style after `model` (`hertz`, `paper`, ...).
+    pub style: &'static str,
+    /// Its settings keywords (empty for a style that takes none).
+    pub settings: String,
+    /// The `fix property/global` lines, one per property.
+    pub properties: String,
+}
+
+/// A `fix property/global NAME peratomtypepair 2` line giving all four pairs of types 1 and 2
+/// `value`.
+pub fn pair_property(name: &str, value: &str) -> String {
+    format!(
+        "fix {name:<22} all property/global {name} peratomtypepair 2 {value} {value} {value} {value}"
+    )
+}
+
+/// The per-type `youngsModulus` and `poissonsRatio` lines of a ball scene: type 1 the moving
+/// sphere, type 2 the plate (or its rigid stand-in) or the second sphere.
+pub fn material_properties(setup: &CodeSetup) -> [String; 2] {
+    let nu1 = setup.sphere.poisson_ratio.unwrap_or_default();
+    let (e2, nu2) = partner_material(setup).unwrap_or_default();
+    [
+        format!(
+            "fix youngsModulus          all property/global youngsModulus peratomtype {} {}",
+            exact_number(setup.sphere.youngs_modulus),
+            exact_number(e2)
+        ),
+        format!(
+            "fix poissonsRatio          all property/global poissonsRatio peratomtype {} {}",
+            exact_number(nu1),
+            exact_number(nu2)
+        ),
+    ]
+}
+
+/// The checks LIGGGHTS itself would fail on, whatever the contact model, reported before it is
+/// run by `code`.
+pub fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
+    let unsupported = |reason: String| CodeError::Unsupported {
+        code: code.into(),
+        case: setup.case_name.clone(),
+        reason,
+    };
+    if !(setup.timestep > 0.0 && setup.impact_velocity > 0.0 && setup.steps > 0) {
+        return Err(unsupported(
+            "timestep, impact velocity and steps must be positive".into(),
+        ));
+    }
+    if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
+        return Err(unsupported("ball_ball needs other_sphere".into()));
+    }
+    if setup.scene != SceneKind::RodEnd {
+        let nu1 = setup.sphere.poisson_ratio;
+        let nu2 = partner_material(setup).map(|(_, nu)| nu);
+        for nu in [nu1, nu2] {
+            match nu {
+                Some(nu) if (0.0..=0.5).contains(&nu) => {}
+                other => {
+                    return Err(unsupported(format!(
+                        "LIGGGHTS requires 0 <= poissonsRatio <= 0.5, got {other:?}"
+                    )));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The deck (the template in this folder) for `setup` with `contact`'s model, as run by `code`.
+pub fn render_deck(
+    code: &str,
+    setup: &CodeSetup,
+    contact: &ContactModel,
+) -> Result<RenderedInput, CodeError> {
+    let (v1, v2) = setup.centre_of_mass_velocities();
+    let gap = contact_gap(setup);
+    let r1 = setup.sphere.radius;
+    // Sphere 1 sits above the contact point at z = 0 and moves down (-z); the plate is
+    // the plane z = 0, the second sphere hangs below it.
+    let z1 = r1 + gap;
+    let sphere_lines = |id: u32, z: f64, radius: f64, density: f64, vz: f64| {
+        format!(
+            "create_atoms    {id} single 0 0 {} units box\nset             atom {id} diameter {} density {} vz {}",
+            exact_number(z),
+            exact_number(2.0 * radius),
+            exact_number(density),
+            exact_number(vz)
+        )
+    };
+    let mut atoms = sphere_lines(1, z1, r1, setup.sphere.density, -v1);
+    let model = contact.style;
+    let settings = &contact.settings;
+    let (wall, overlap, approach, reach) = match setup.other_sphere {
+        Some(other) if setup.scene == SceneKind::BallBall => {
+            let r2 = other.radius;
+            atoms.push('\n');
+            atoms.push_str(&sphere_lines(2, -r2, r2, other.density, -v2));
+            (
+                "# No wall: the second sphere is atom 2.".to_string(),
+                format!("{}-(z[1]-z[2])", exact_number(r1 + r2)),
+                "vz[2]-vz[1]".to_string(),
+                r1 + r2,
+            )
+        }
+        _ => (
+            format!(
+                "fix             plate all wall/gran model {model} tangential no_history primitive type 2 zplane 0.0 {settings}"
+            )
+            .trim_end()
+            .to_string(),
+            format!("{}-z[1]", exact_number(r1)),
+            "-vz[1]".to_string(),
+            r1,
+        ),
+    };
+    let half = 4.0 * reach + setup.impact_velocity * setup.duration() + gap;
+    let h = exact_number(half);
+    let domain = format!("-{h} {h} -{h} {h} -{h} {h}");
+    let values = [
+        ("case_name", setup.case_name.clone()),
+        ("code", code.to_string()),
+        ("scene", setup.scene.name().to_string()),
+        ("domain", domain),
+        ("skin", exact_number(reach)),
+        ("properties", contact.properties.clone()),
+        ("model", model.to_string()),
+        ("settings", settings.clone()),
+        ("wall", wall),
+        ("timestep", exact_number(setup.timestep)),
+        ("atoms", atoms),
+        ("overlap", overlap),
+        ("approach", approach),
+        ("force", "fz[1]".to_string()),
+        ("steps", setup.steps.to_string()),
+    ];
+    let text = fill_template(TEMPLATE, &values).map_err(|reason| CodeError::Unsupported {
+        code: code.into(),
+        case: setup.case_name.clone(),
+        reason: reason.to_string(),
+    })?;
+    Ok(RenderedInput {
+        file_name: INPUT_FILE.to_string(),
+        // A style without settings leaves no trailing blank on its lines.
+        text: text
+            .lines()
+            .map(str::trim_end)
+            .collect::<Vec<_>>()
+            .join("\n")
+            + "\n",
+        // `-log none`: the default log.liggghts would duplicate the screen output.
+        args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
+            .map(String::from)
+            .to_vec(),
+    })
+}
+
+/// Read a run of the deck in `workdir` (its trajectory file and screen `log`), refusing a run
+/// that stopped short of `setup`'s steps.
+pub fn parse_run(setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
+    let path = workdir.join(TRAJECTORY_FILE);
+    let text =
+        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let parsed = parse_output(&text, log)?;
+    if let Some(ran) = loop_steps(log)
+        && ran != setup.steps
+    {
+        return Err(ParseError::StepCount {
+            ran,
+            asked: setup.steps,
+        });
+    }
+    Ok(parsed)
+}
+
 /// The LIGGGHTS-PUBLIC 3.8.0 driver.
 pub struct Liggghts;
 
 impl Liggghts {
-    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason,
-        }
-    }
-
     /// The checks LIGGGHTS itself would fail on, reported before it is run.
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
         let e = setup.target_restitution;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(self.unsupported(
-                setup,
-                format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
-            ));
+            return Err(CodeError::Unsupported {
+                code: self.name().into(),
+                case: setup.case_name.clone(),
+                reason: format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
+            });
         }
-        if !(setup.timestep > 0.0 && setup.impact_velocity > 0.0 && setup.steps > 0) {
-            return Err(self.unsupported(
-                setup,
-                "timestep, impact velocity and steps must be positive".into(),
-            ));
-        }
-        if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
-            return Err(self.unsupported(setup, "ball_ball needs other_sphere".into()));
-        }
-        if setup.scene != SceneKind::RodEnd {
-            let nu1 = setup.sphere.poisson_ratio;
-            let nu2 = partner_material(setup).map(|(_, nu)| nu);
-            for nu in [nu1, nu2] {
-                match nu {
-                    Some(nu) if (0.0..=0.5).contains(&nu) => {}
-                    other => {
-                        return Err(self.unsupported(
-                            setup,
-                            format!("LIGGGHTS requires 0 <= poissonsRatio <= 0.5, got {other:?}"),
-                        ));
-                    }
+        validate_scene(self.name(), setup)
+    }
+
+    /// The stock contact model of the scene: damped Hertz from `coefficientRestitution` for
+    /// the balls, `hooke/stiffness` with the rod's `kn` and dashpot for the rod.
+    fn contact_model(&self, setup: &CodeSetup) -> ContactModel {
+        let e = exact_number(setup.target_restitution);
+        let limit_force = if setup.clamp_attractive { "on" } else { "off" };
+        match setup.scene {
+            SceneKind::RodEnd => {
+                let law = self.dashpot_law(setup);
+                let lines = [
+                    pair_property("kn", &exact_number(law.stiffness)),
+                    pair_property("kt", "0"),
+                    pair_property("gamman_abs", &exact_number(law.damping)),
+                    pair_property("gammat_abs", "0"),
+                    pair_property("coefficientFriction", "0"),
+                ];
+                ContactModel {
+                    style: "hooke/stiffness",
+                    settings: format!(
+                        "absolute_damping on tangential_damping off limitForce {limit_force}"
+                    ),
+                    properties: lines.join("\n"),
+                }
+            }
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                let [young, poisson] = material_properties(setup);
+                let lines = [
+                    young,
+                    poisson,
+                    pair_property("coefficientRestitution", &e),
+                    pair_property("coefficientFriction", "0"),
+                ];
+                ContactModel {
+                    style: "hertz",
+                    settings: format!("tangential_damping off limitForce {limit_force}"),
+                    properties: lines.join("\n"),
                 }
             }
         }
-        Ok(())
     }
 
-    /// `(model, settings, per-type property lines)` for the scene's contact law.
-    fn contact_model(&self, setup: &CodeSetup) -> (&'static str, String, String) {
-        let e = exact_number(setup.target_restitution);
-        let limit_force = if setup.clamp_attractive { "on" } else { "off" };
-        let pair = |name: &str, value: &str| {
-            format!(
-                "fix {name:<22} all property/global {name} peratomtypepair 2 {value} {value} {value} {value}"
-            )
-        };
-        match setup.scene {
-            SceneKind::RodEnd => {
-                let law = self.law(setup);
-                let lines = [
-                    pair("kn", &exact_number(law.stiffness)),
-                    pair("kt", "0"),
-                    pair("gamman_abs", &exact_number(law.damping)),
-                    pair("gammat_abs", "0"),
-                    pair("coefficientFriction", "0"),
-                ];
-                (
-                    "hooke/stiffness",
-                    format!("absolute_damping on tangential_damping off limitForce {limit_force}"),
-                    lines.join("\n"),
-                )
-            }
+    /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and
+    /// damping; the force is not clamped (`limitForce off`, its default, confirmed by run)
+    /// unless the setup asks for `limitForce on`.
+    pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
+        let mass = code_effective_mass(setup);
+        let stiffness = code_stiffness(setup);
+        let law = match setup.scene {
+            SceneKind::RodEnd => DashpotLaw::linear(mass, stiffness, setup.target_restitution),
             SceneKind::BallPlate | SceneKind::BallBall => {
-                let nu1 = setup.sphere.poisson_ratio.unwrap_or_default();
-                let (e2, nu2) = partner_material(setup).unwrap_or_default();
-                let lines = [
-                    format!(
-                        "fix youngsModulus          all property/global youngsModulus peratomtype {} {}",
-                        exact_number(setup.sphere.youngs_modulus),
-                        exact_number(e2)
-                    ),
-                    format!(
-                        "fix poissonsRatio          all property/global poissonsRatio peratomtype {} {}",
-                        exact_number(nu1),
-                        exact_number(nu2)
-                    ),
-                    pair("coefficientRestitution", &e),
-                    pair("coefficientFriction", "0"),
-                ];
-                (
-                    "hertz",
-                    format!("tangential_damping off limitForce {limit_force}"),
-                    lines.join("\n"),
-                )
+                DashpotLaw::damped_hertz(mass, stiffness, setup.target_restitution)
             }
+        };
+        if setup.clamp_attractive {
+            law.clamped()
+        } else {
+            law
         }
     }
 }
@@ -201,74 +400,7 @@ impl CodeDriver for Liggghts {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         self.validate(setup)?;
-        let (model, settings, properties) = self.contact_model(setup);
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let gap = contact_gap(setup);
-        let r1 = setup.sphere.radius;
-        // Sphere 1 sits above the contact point at z = 0 and moves down (-z); the plate is
-        // the plane z = 0, the second sphere hangs below it.
-        let z1 = r1 + gap;
-        let sphere_lines = |id: u32, z: f64, radius: f64, density: f64, vz: f64| {
-            format!(
-                "create_atoms    {id} single 0 0 {} units box\nset             atom {id} diameter {} density {} vz {}",
-                exact_number(z),
-                exact_number(2.0 * radius),
-                exact_number(density),
-                exact_number(vz)
-            )
-        };
-        let mut atoms = sphere_lines(1, z1, r1, setup.sphere.density, -v1);
-        let (wall, overlap, approach, reach) = match setup.other_sphere {
-            Some(other) if setup.scene == SceneKind::BallBall => {
-                let r2 = other.radius;
-                atoms.push('\n');
-                atoms.push_str(&sphere_lines(2, -r2, r2, other.density, -v2));
-                (
-                    "# No wall: the second sphere is atom 2.".to_string(),
-                    format!("{}-(z[1]-z[2])", exact_number(r1 + r2)),
-                    "vz[2]-vz[1]".to_string(),
-                    r1 + r2,
-                )
-            }
-            _ => (
-                format!(
-                    "fix             plate all wall/gran model {model} tangential no_history primitive type 2 zplane 0.0 {settings}"
-                ),
-                format!("{}-z[1]", exact_number(r1)),
-                "-vz[1]".to_string(),
-                r1,
-            ),
-        };
-        let half = 4.0 * reach + setup.impact_velocity * setup.duration() + gap;
-        let h = exact_number(half);
-        let domain = format!("-{h} {h} -{h} {h} -{h} {h}");
-        let values = [
-            ("case_name", setup.case_name.clone()),
-            ("scene", setup.scene.name().to_string()),
-            ("domain", domain),
-            ("skin", exact_number(reach)),
-            ("properties", properties),
-            ("model", model.to_string()),
-            ("settings", settings.to_string()),
-            ("wall", wall),
-            ("timestep", exact_number(setup.timestep)),
-            ("atoms", atoms),
-            ("overlap", overlap),
-            ("approach", approach),
-            ("force", "fz[1]".to_string()),
-            ("steps", setup.steps.to_string()),
-        ];
-        let text =
-            fill_template(TEMPLATE, &values)
-                .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: INPUT_FILE.to_string(),
-            text,
-            // `-log none`: the default log.liggghts would duplicate the screen output.
-            args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
-                .map(String::from)
-                .to_vec(),
-        })
+        render_deck(self.name(), setup, &self.contact_model(setup))
     }
 
     fn parse(
@@ -277,47 +409,19 @@ impl CodeDriver for Liggghts {
         workdir: &Path,
         log: &str,
     ) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
-        let parsed = parse_output(&text, log)?;
-        if let Some(ran) = loop_steps(log)
-            && ran != setup.steps
-        {
-            return Err(ParseError::StepCount {
-                ran,
-                asked: setup.steps,
-            });
-        }
-        Ok(parsed)
+        parse_run(setup, workdir, log)
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
         Some(&batch::LiggghtsBatch)
     }
 
-    /// What LIGGGHTS integrates: its own `E*` (wall type mixed in), `R*`, effective mass and
-    /// damping; the force is not clamped (`limitForce off`, its default, confirmed by run)
-    /// unless the setup asks for `limitForce on`.
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
-        let mass = code_effective_mass(setup);
-        let law = match setup.scene {
-            SceneKind::RodEnd => {
-                DashpotLaw::linear(mass, setup.stiffness, setup.target_restitution)
-            }
-            SceneKind::BallPlate | SceneKind::BallBall => {
-                let stiffness = match code_effective_modulus(setup) {
-                    Some(modulus) => 4.0 / 3.0 * modulus * setup.pair_radius().sqrt(),
-                    None => setup.stiffness,
-                };
-                DashpotLaw::damped_hertz(mass, stiffness, setup.target_restitution)
-            }
-        };
-        if setup.clamp_attractive {
-            law.clamped()
-        } else {
-            law
-        }
+    fn law(&self, setup: &CodeSetup) -> CodeLaw {
+        self.dashpot_law(setup).into()
+    }
+
+    fn frame(&self, setup: &CodeSetup) -> Option<CodeFrame> {
+        Some(code_frame(setup))
     }
 }
 

@@ -3,7 +3,7 @@
 
 use crate::codes::damping::thornton_damping_ratio;
 use crate::codes::yade::Yade;
-use crate::codes::{CalibrationCard, CodeDriver, CodeSetup};
+use crate::codes::{CalibrationCard, CodeSetup};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::SceneKind;
 
@@ -42,7 +42,7 @@ impl CalibrationCard for YadeCard {
     }
 
     fn law_at_its_word(&self, setup: &CodeSetup) -> Option<(&'static str, DashpotLaw)> {
-        let mut law = Yade.law(setup);
+        let mut law = Yade.dashpot_law(setup);
         law.damping = 2.0
             * thornton_damping_ratio(setup.target_restitution)
             * (1.5 * law.mass * law.stiffness).sqrt();

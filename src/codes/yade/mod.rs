@@ -35,7 +35,7 @@ pub use super::damping::{
 use super::parse::ParseError;
 use super::template::{exact_number, fill_template};
 use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
@@ -135,6 +135,41 @@ impl Yade {
 }
 
 impl Yade {
+    /// The clamped damped law YADE integrates for `setup` (linear for the rod).
+    pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
+        let mass = dynamic_mass(setup);
+        match setup.scene {
+            SceneKind::RodEnd => {
+                // Only reachable for a restitution `render` refuses; saturate rather than fail.
+                let zeta = clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0);
+                DashpotLaw {
+                    mass,
+                    stiffness: setup.stiffness,
+                    exponent: 1.0,
+                    damping: 2.0 * zeta * (mass * setup.stiffness).sqrt(),
+                    damping_exponent: 0.0,
+                    clamp_attractive: true,
+                }
+            }
+            SceneKind::BallPlate | SceneKind::BallBall => {
+                let (modulus, radius) = hertz_parameters(setup);
+                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
+                let en = hertz_input_restitution(setup.target_restitution)
+                    .unwrap_or(setup.target_restitution);
+                let beta = thornton_damping_ratio(en);
+                DashpotLaw {
+                    mass,
+                    stiffness,
+                    exponent: 1.5,
+                    // β_n times the critical damping of the tangent stiffness 1.5 k y^0.5.
+                    damping: 2.0 * beta * (1.5 * mass * stiffness).sqrt(),
+                    damping_exponent: 0.25,
+                    clamp_attractive: true,
+                }
+            }
+        }
+    }
+
     /// The values the script template is filled with for `setup` (a batch fills its list of
     /// impacts with the same ones), or why the setup cannot run.
     pub fn script_values(
@@ -153,7 +188,7 @@ impl Yade {
             .filter(|_| setup.scene == SceneKind::BallBall);
         let (linear_stiffness, linear_damping) = match setup.scene {
             SceneKind::RodEnd => {
-                let law = self.law(setup);
+                let law = self.dashpot_law(setup);
                 (law.stiffness, law.damping)
             }
             _ => (0.0, 0.0),
@@ -247,38 +282,8 @@ impl CodeDriver for Yade {
         Some(&batch::YadeBatch)
     }
 
-    fn law(&self, setup: &CodeSetup) -> DashpotLaw {
-        let mass = dynamic_mass(setup);
-        match setup.scene {
-            SceneKind::RodEnd => {
-                // Only reachable for a restitution `render` refuses; saturate rather than fail.
-                let zeta = clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0);
-                DashpotLaw {
-                    mass,
-                    stiffness: setup.stiffness,
-                    exponent: 1.0,
-                    damping: 2.0 * zeta * (mass * setup.stiffness).sqrt(),
-                    damping_exponent: 0.0,
-                    clamp_attractive: true,
-                }
-            }
-            SceneKind::BallPlate | SceneKind::BallBall => {
-                let (modulus, radius) = hertz_parameters(setup);
-                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
-                let en = hertz_input_restitution(setup.target_restitution)
-                    .unwrap_or(setup.target_restitution);
-                let beta = thornton_damping_ratio(en);
-                DashpotLaw {
-                    mass,
-                    stiffness,
-                    exponent: 1.5,
-                    // β_n times the critical damping of the tangent stiffness 1.5 k y^0.5.
-                    damping: 2.0 * beta * (1.5 * mass * stiffness).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                }
-            }
-        }
+    fn law(&self, setup: &CodeSetup) -> CodeLaw {
+        self.dashpot_law(setup).into()
     }
 
     fn step_scheme(&self) -> StepScheme {
@@ -290,7 +295,7 @@ impl CodeDriver for Yade {
             // The damping is solved for the clamped law: it realises the target.
             return None;
         }
-        let law = self.law(setup);
+        let law = self.dashpot_law(setup);
         let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
             .ok()?
             .cor;
