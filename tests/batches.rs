@@ -123,4 +123,7 @@ batch_tests! {
     kratos_ball_plate: CodeName::Kratos, "ball_plate", "live: runs Kratos (bash scripts/test.sh)";
     kratos_ball_ball: CodeName::Kratos, "ball_ball", "live: runs Kratos (bash scripts/test.sh)";
     kratos_rod_end: CodeName::Kratos, "rod_end", "live: runs Kratos (bash scripts/test.sh)";
+    liggghts_paper_ball_plate: CodeName::LiggghtsPaper, "ball_plate", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
+    liggghts_paper_ball_ball: CodeName::LiggghtsPaper, "ball_ball", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
+    liggghts_paper_rod_end: CodeName::LiggghtsPaper, "rod_end", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
 }
