@@ -22,7 +22,10 @@ use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
 use super::template::{exact_number, fill_template};
-use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
+    ParsedRun, RenderedInput,
+};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
 use crate::solve::dashpot::{CodeFrame, FrameBody};
@@ -396,6 +399,13 @@ impl CodeDriver for Liggghts {
 
     fn binary(&self) -> &'static str {
         "liggghts"
+    }
+
+    /// The executable as the default locates it, started without Open MPI's daemon
+    /// ([`Executable::open_mpi_alone`]).
+    fn locate(&self) -> Result<Executable, LocateError> {
+        super::runner::locate_override_or_path(self.name(), self.binary())
+            .map(Executable::open_mpi_alone)
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
