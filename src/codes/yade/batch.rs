@@ -17,8 +17,10 @@
 use std::path::Path;
 
 use crate::codes::parse::ParseError;
+use crate::codes::template::exact_number;
 use crate::codes::yade::{Yade, log_value, parse_trajectory};
 use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
 pub const MAX_BATCH: usize = 256;
@@ -178,9 +180,13 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     }
     let mut impacts = String::new();
     for s in setups {
-        // The single script's values, as Python literals (the scene's name quoted).
-        let fields: Vec<String> = Yade
-            .script_values(s)?
+        // The single script's values, as Python literals (the scene's name quoted); `en` for
+        // the ball scenes only (a rod's contact is kn and cn: its inversion would be wasted).
+        let mut values = Yade.script_values(s)?;
+        if s.scene != SceneKind::RodEnd {
+            values.push(("restitution", exact_number(Yade::input_restitution(s))));
+        }
+        let fields: Vec<String> = values
             .into_iter()
             .map(|(key, value)| match key {
                 "scene" => format!("\"{key}\": \"{value}\""),
@@ -204,7 +210,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     let text = format!(
         "# millimpact: {} impacts in one YADE run, side by side in groups (src/codes/yade/batch.rs).\nimport math\nimport time\n\nimport yade\nfrom yade import utils\n\nSPACING = {}\n# Each impact's values, as its single script is filled with them.\nIMPACTS = [\n{impacts}]\nGROUPS = [{}]\n{SCRIPT}",
         setups.len(),
-        crate::codes::template::exact_number(8.0 * reach),
+        exact_number(8.0 * reach),
         groups.join(", "),
     );
     Ok(RenderedInput {
@@ -300,7 +306,9 @@ mod tests {
         let setups = [setup("ball_ball", 0.1), setup("ball_ball", 0.7)];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
-            for (key, value) in Yade.script_values(s).unwrap() {
+            let mut values = Yade.script_values(s).unwrap();
+            values.push(("restitution", exact_number(Yade::input_restitution(s))));
+            for (key, value) in values {
                 let cell = match key {
                     "scene" => format!("\"{key}\": \"{value}\""),
                     _ => format!("\"{key}\": {value}"),
@@ -309,6 +317,9 @@ mod tests {
             }
         }
         assert!(text.contains("GROUPS = [[0, 1]]"));
+        // A rod's contact is kn and cn: its `en` is not inverted for a batch.
+        let rod = render_batch(&[setup("rod_end", 0.3)]).unwrap().text;
+        assert!(!rod.contains("\"restitution\": "), "{rod}");
     }
 
     #[test]

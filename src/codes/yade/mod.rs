@@ -170,8 +170,16 @@ impl Yade {
         }
     }
 
-    /// The values the script template is filled with for `setup` (a batch fills its list of
-    /// impacts with the same ones), or why the setup cannot run.
+    /// The `en` the script gives `Ip2_FrictMat_FrictMat_MindlinPhys` (Thornton's fit inverted
+    /// through the clamped law: some sixty integrations of it, the first time for a target).
+    pub fn input_restitution(setup: &CodeSetup) -> f64 {
+        hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
+    }
+
+    /// The values the script template is filled with for `setup` but its `en`
+    /// ([`Yade::input_restitution`], which the template takes in every scene and only the ball
+    /// scenes use; a batch lists each impact with these, and its `en` for a ball scene), or why
+    /// the setup cannot run.
     pub fn script_values(
         &self,
         setup: &CodeSetup,
@@ -215,11 +223,6 @@ impl Yade {
             ("other_velocity", num(v2)),
             ("wall_young", num(wall_young)),
             ("wall_poisson", num(wall_poisson)),
-            (
-                "restitution",
-                num(hertz_input_restitution(setup.target_restitution)
-                    .unwrap_or(setup.target_restitution)),
-            ),
             ("linear_stiffness", num(linear_stiffness)),
             ("linear_damping", num(linear_damping)),
         ])
@@ -240,7 +243,11 @@ impl CodeDriver for Yade {
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        let values = self.script_values(setup)?;
+        let mut values = self.script_values(setup)?;
+        values.push((
+            "restitution",
+            exact_number(Self::input_restitution(setup)),
+        ));
         let text =
             fill_template(TEMPLATE, &values)
                 .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
