@@ -185,7 +185,9 @@ class Batch(DEMAnalysisStage):
                 z1 = math.nextafter(r1, math.inf)
                 e1 = creator.CreateSphericParticle(spheres, 2 * k + 1, KM.Array3([x, y, z1]), ball, r1, "SphericParticle3D")
                 e2 = None
-            self.impacts.append({"p": p, "e1": e1, "e2": e2, "rows": []})
+            # Their nodes, looked up once rather than every step.
+            n1, n2 = e1.GetNode(0), None if e2 is None else e2.GetNode(0)
+            self.impacts.append({"p": p, "e1": e1, "e2": e2, "n1": n1, "n2": n2, "rows": []})
         if WALL_SCENE:
             walls = self.rigid_face_model_part
             wall_props = spheres.GetProperties()[WALL]
@@ -206,19 +208,19 @@ class Batch(DEMAnalysisStage):
     def SetInitialNodalValues(self):
         super().SetInitialNodalValues()
         for c in self.impacts:
-            n1 = c["e1"].GetNode(0)
+            n1 = c["n1"]
             if c["p"]["scene"] == "ball_ball":
                 n1.SetSolutionStepValue(KM.VELOCITY_X, c["p"]["velocity"])
-                c["e2"].GetNode(0).SetSolutionStepValue(KM.VELOCITY_X, c["p"]["other_velocity"])
+                c["n2"].SetSolutionStepValue(KM.VELOCITY_X, c["p"]["other_velocity"])
             else:
                 n1.SetSolutionStepValue(KM.VELOCITY_Z, -c["p"]["velocity"])
 
 
 def gap_and_speed(c):
     p = c["p"]
-    n1 = c["e1"].GetNode(0)
+    n1 = c["n1"]
     if p["scene"] == "ball_ball":
-        n2 = c["e2"].GetNode(0)
+        n2 = c["n2"]
         overlap = (p["radius"] + p["other_radius"]) - (n2.X - n1.X)
         speed = n1.GetSolutionStepValue(KM.VELOCITY_X) - n2.GetSolutionStepValue(KM.VELOCITY_X)
     else:
@@ -228,7 +230,7 @@ def gap_and_speed(c):
 
 
 def normal_force(c):
-    f = c["e1"].GetNode(0).GetSolutionStepValue(KM.TOTAL_FORCES)
+    f = c["n1"].GetSolutionStepValue(KM.TOTAL_FORCES)
     return -f[0] if c["p"]["scene"] == "ball_ball" else f[2]
 
 
