@@ -218,7 +218,7 @@ pub struct SweepArgs {
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
     /// Sweep file: most impacts per DEM-code process (1: one process per impact).
-    #[arg(long, default_value_t = 64, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub batch: u32,
 }
 
@@ -267,6 +267,10 @@ pub struct ProbeArgs {
     /// added).
     #[arg(long)]
     pub binary: Option<PathBuf>,
+    /// Probe the build again even if a probe of it is kept in the cache folder (see
+    /// `MILLIMPACT_CACHE_DIR`), and keep the new one.
+    #[arg(long)]
+    pub refresh: bool,
     /// Output format (markdown gives the table kept in `reference/<code>/CONVENTIONS.md`).
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,

@@ -9,7 +9,7 @@
 use std::path::PathBuf;
 
 use millimpact::codes::batch::run_batch;
-use millimpact::codes::liggghts::paper::{LiggghtsPaper, PAPER_BATCH};
+use millimpact::codes::liggghts::paper::LiggghtsPaper;
 use millimpact::codes::liggghts::{Liggghts, code_effective_mass, code_stiffness};
 use millimpact::codes::{
     CodeDriver, CodeError, CodeSetup, LocateError, ParseError, ParsedRun, RenderedInput,
@@ -221,24 +221,29 @@ fn a_setup_without_eta_takes_it_from_its_cor() {
     assert!(LiggghtsPaper.render(&s).is_ok());
 }
 
-/// A batch holds ball_plate impacts with their own η per type pair, under `model paper`.
+/// A batch is the build's single inputs in sequence, each impact with its own η under `model
+/// paper` (`paper/linear` for a rod), in every scene.
 #[test]
 fn a_batch_gives_each_impact_its_own_eta() {
-    let setups: Vec<CodeSetup> = [0.0, 0.35, 0.7]
-        .map(|eta| setup("ball_plate", eta))
-        .to_vec();
     let runner = LiggghtsPaper.batch().unwrap();
-    let input = runner.render_batch(&setups).unwrap();
-    let text = &input.text;
-    assert!(text.contains("pair_style      gran model paper tangential no_history\n"));
-    assert!(text.contains(
-        "fix             plate all wall/gran model paper tangential no_history primitive type 4 zplane 0.0\n"
-    ));
-    assert!(text.contains("lossCoefficient peratomtypepair 4 0e0 0e0 0e0 0e0 0e0 0e0 0e0 3.5e-1 0e0 0e0 0e0 7e-1 0e0 3.5e-1 7e-1 0e0\n"), "{text}");
-    assert!(!text.contains("coefficientRestitution") && !text.contains("limitForce"));
-    assert_eq!(PAPER_BATCH.style, "paper");
-    let rod = setup("rod_end", 0.35);
-    assert!(runner.render_batch(&[rod]).is_err());
+    for scene in ["ball_plate", "ball_ball", "rod_end"] {
+        let setups: Vec<CodeSetup> = [0.0, 0.35, 0.7].map(|eta| setup(scene, eta)).to_vec();
+        let text = runner.render_batch(&setups).unwrap().text;
+        let runs: Vec<&str> = text.split("clear\n").collect();
+        assert_eq!(runs.len(), setups.len(), "{scene}");
+        for (run, s) in runs.iter().zip(&setups) {
+            let single = LiggghtsPaper.render(s).unwrap().text;
+            let contact: Vec<&str> = single
+                .lines()
+                .filter(|l| l.contains("lossCoefficient") || l.contains("model paper"))
+                .collect();
+            assert!(!contact.is_empty(), "{scene}");
+            for line in contact {
+                assert!(run.contains(line), "{scene}: {line}");
+            }
+        }
+        assert!(!text.contains("coefficientRestitution") && !text.contains("limitForce"));
+    }
 }
 
 /// Without its build in the codes' folder the driver says where it looked and what to run.
@@ -449,7 +454,12 @@ fn live_batched_sweep_equals_single_runs() {
         let mut reader = csv::Reader::from_path(&out).unwrap();
         let header = reader.headers().unwrap().clone();
         let keep: Vec<usize> = (0..header.len())
-            .filter(|&i| !matches!(&header[i], "batch" | "wall_time" | "loop_time"))
+            .filter(|&i| {
+                !matches!(
+                    &header[i],
+                    "batch" | "wall_time" | "loop_time" | "whole_wall_time"
+                )
+            })
             .collect();
         let mut rows: Vec<csv::StringRecord> = reader
             .records()

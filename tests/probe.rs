@@ -20,10 +20,11 @@ fn probe(code: CodeName) -> ProbeReport {
     let executable = driver
         .locate()
         .unwrap_or_else(|e| panic!("{code}: {e} (install with scripts/install-dem-codes.sh)"));
+    // Probed now, not read from the cache: these tests measure the installed builds.
     driver
         .prober()
         .expect("a LAMMPS build has a probe")
-        .probe(&executable)
+        .probe_afresh(&executable)
         .unwrap_or_else(|e| panic!("{code}: {e}"))
 }
 
@@ -262,4 +263,76 @@ fn a_program_that_is_not_lammps_leaves_the_conventions_open() {
     assert!(stdout.contains("did not run the basic deck"), "{stdout}");
     let stderr = String::from_utf8(output.stderr).unwrap();
     assert!(stderr.contains("no trajectory"), "{stderr}");
+}
+
+/// The probe of a real build is kept on disk and read back by the next run, whose report is the
+/// same one (its measured numbers, verdicts and wall time) and says where it was kept;
+/// `--refresh` probes again.
+#[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
+fn a_probe_is_kept_on_disk_and_read_by_the_next_run() {
+    let cache = tempfile::tempdir().unwrap();
+    let run = |extra: &[&str]| -> ProbeReport {
+        let mut args = vec!["probe", "--code", "lammps", "--format", "json"];
+        args.extend_from_slice(extra);
+        let json = common::stdout(
+            common::millimpact()
+                .env("MILLIMPACT_CACHE_DIR", cache.path())
+                .args(&args),
+        );
+        serde_json::from_str(&json).unwrap()
+    };
+    let first = run(&[]);
+    assert_eq!(first.conventions, Some(Conventions::DEBIAN_2021));
+    assert_eq!(first.kept_in, None);
+    let kept: Vec<_> = std::fs::read_dir(cache.path().join("probe"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .collect();
+    assert_eq!(kept.len(), 1, "{kept:?}");
+    let second = run(&[]);
+    assert_eq!(second.kept_in.as_ref(), Some(&kept[0]));
+    assert_eq!(second.wall_time.to_bits(), first.wall_time.to_bits());
+    assert_eq!(second.conventions, first.conventions);
+    let third = run(&["--refresh"]);
+    assert_eq!(third.kept_in, None);
+    assert_ne!(third.wall_time.to_bits(), first.wall_time.to_bits());
+}
+
+/// A stored record's whole wall time holds what its process time leaves out: here the probe
+/// that sizing the run made (nothing kept yet), read back afterwards from where it was kept.
+#[test]
+#[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
+fn a_records_whole_wall_time_holds_the_probe_its_run_made() {
+    let cache = tempfile::tempdir().unwrap();
+    let json = common::stdout(
+        common::millimpact()
+            .env("MILLIMPACT_CACHE_DIR", cache.path())
+            .args([
+                "reference",
+                "--code",
+                "lammps",
+                "cases/ball_plate.toml",
+                "--format",
+                "json",
+            ]),
+    );
+    let record: millimpact::analysis::store::ReferenceRecord = serde_json::from_str(&json).unwrap();
+    let probe = common::stdout(
+        common::millimpact()
+            .env("MILLIMPACT_CACHE_DIR", cache.path())
+            .args(["probe", "--code", "lammps", "--format", "json"]),
+    );
+    let probe: ProbeReport = serde_json::from_str(&probe).unwrap();
+    assert!(probe.kept_in.is_some(), "the reference run kept its probe");
+    let whole = record
+        .whole_wall_time
+        .expect("a new record has its whole time");
+    assert!(
+        whole >= record.wall_time + probe.wall_time,
+        "whole {whole} s, process {} s, probe {} s",
+        record.wall_time,
+        probe.wall_time
+    );
+    assert!(record.loop_time.is_some_and(|l| l < record.wall_time));
 }

@@ -114,9 +114,16 @@ impl Summary for ProbeReport {
             None => "conventions: inconclusive; the drivers refuse to plan runs of this build".into(),
         });
         t.notes.push(format!(
-            "probed {} in {:.2} s",
+            "probed {} in {:.2} s{}",
             self.program.display(),
-            self.wall_time
+            self.wall_time,
+            self.kept_in
+                .as_ref()
+                .map(|file| format!(
+                    ", kept in {} since (--refresh probes again)",
+                    file.display()
+                ))
+                .unwrap_or_default()
         ));
         vec![t]
     }

@@ -151,8 +151,20 @@ pub fn run_batch(
     let runs: Vec<Result<ParsedRun, ParseError>> = runner
         .parse_batch(setups, &workdir, &log)
         .into_iter()
-        .map(|run| {
+        .zip(setups)
+        .enumerate()
+        .map(|(i, (run, setup))| {
             let run = run?;
+            // Read as a single run is read: its whole trajectory, no more, no less.
+            let rows = run.trajectory.time.len() as u64;
+            let expected = driver.trajectory_rows(setup);
+            if rows != expected {
+                return Err(ParseError::RowCount {
+                    file: format!("the trajectory of impact {} of the batch", i + 1),
+                    rows,
+                    expected,
+                });
+            }
             check_trajectory(&run.trajectory)?;
             Ok(run)
         })

@@ -29,7 +29,34 @@ pub fn thornton_damping_ratio(restitution: f64) -> f64 {
 
 /// The Hertz–Mindlin law YADE (and Kratos) builds from `en`, reduced to its dimensionless COR: clamped
 /// damped Hertz with `c = 2 β_n(en) sqrt(1.5 M k)`. The COR depends on `en` alone.
+///
+/// Remembered by `en`: the inversion below evaluates it at the midpoints of a bisection, whose
+/// first levels every target of a sweep shares and whose last ones, once the bracket is two
+/// neighbouring numbers, repeat its ends: a pure function's results, so the inversion gives
+/// the same bits with fewer integrations (a quarter fewer over a sweep of 200 targets).
 fn hertz_mindlin_cor(en: f64) -> f64 {
+    type Memo = std::sync::Mutex<std::collections::HashMap<u64, f64>>;
+    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
+    let memo = MEMO.get_or_init(Default::default);
+    if let Some(&known) = memo
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&en.to_bits()).copied())
+        .as_ref()
+    {
+        return known;
+    }
+    let cor = integrate_hertz_mindlin_cor(en);
+    if let Ok(mut m) = memo.lock() {
+        if m.len() >= 1_000_000 {
+            m.clear();
+        }
+        m.insert(en.to_bits(), cor);
+    }
+    cor
+}
+
+fn integrate_hertz_mindlin_cor(en: f64) -> f64 {
     let beta = thornton_damping_ratio(en);
     let unit = DashpotLaw {
         mass: 1.0,
@@ -133,4 +160,40 @@ pub fn clamped_linear_damping_ratio(restitution: f64) -> Option<f64> {
     }
     let x = 0.5 * (lo + hi);
     Some(x / (1.0 + x * x).sqrt())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The inversion as it was before its evaluations were remembered: every midpoint
+    /// integrated afresh.
+    fn bisection_afresh(target: f64) -> Option<f64> {
+        let (mut lo, mut hi) = (1e-6, 1.0 - 1e-12);
+        if integrate_hertz_mindlin_cor(lo) > target || integrate_hertz_mindlin_cor(hi) < target {
+            return None;
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if integrate_hertz_mindlin_cor(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(0.5 * (lo + hi))
+    }
+
+    #[test]
+    fn remembering_the_law_s_cor_leaves_the_inversion_s_bits() {
+        // Targets a sweep of η over [0, 0.9] asks for, and one the fit cannot reach.
+        let canonical = crate::model::exact::restitution(0.35);
+        for target in [0.2, 0.35, 0.5, canonical, 0.8, 0.9, 0.97, 0.99] {
+            assert_eq!(
+                invert_hertz_fit(target).map(f64::to_bits),
+                bisection_afresh(target).map(f64::to_bits),
+                "{target}"
+            );
+        }
+    }
 }

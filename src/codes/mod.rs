@@ -73,6 +73,20 @@ impl Executable {
         }
     }
 
+    /// The program linked to Open MPI and started alone (the Debian builds of LIGGGHTS and
+    /// LAMMPS), told not to spawn Open MPI's support daemon (`orted`): a program that never
+    /// spawns others has no use for it, and starting it costs each process about 0.15 s and,
+    /// on a loaded machine, now and then fails the start (`Unable to start a daemon on the
+    /// local node`). The variable changes nothing the code computes; a build without Open MPI
+    /// ignores it.
+    pub fn open_mpi_alone(mut self) -> Self {
+        self.env.push((
+            "OMPI_MCA_ess_singleton_isolated",
+            std::ffi::OsString::from("1"),
+        ));
+        self
+    }
+
     /// A command that starts it.
     pub fn command(&self) -> Command {
         let mut command = Command::new(&self.program);
@@ -215,8 +229,11 @@ pub trait BatchRunner: Send + Sync {
 
 /// A code's capability to measure, by short runs, the conventions its build follows.
 pub trait Prober: Send + Sync {
-    /// Probe the build at `executable`: what it does, measured, item by item.
+    /// Probe the build at `executable`: what it does, measured, item by item (a probe kept
+    /// from an earlier run of this very build is read instead of run again).
     fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError>;
+    /// Probe the build at `executable` now, whatever is kept, and keep the new report.
+    fn probe_afresh(&self, executable: &Executable) -> Result<ProbeReport, ProbeError>;
     /// The conventions `setup` is planned with in this build (its own, else the build's
     /// fallback).
     fn planned_conventions(&self, setup: &CodeSetup) -> Conventions;

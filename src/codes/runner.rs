@@ -281,6 +281,27 @@ pub fn dangling_link(path: &Path) -> Option<PathBuf> {
     None
 }
 
+/// The environment variable that names millimpact's cache folder.
+pub const CACHE_DIR_VARIABLE: &str = "MILLIMPACT_CACHE_DIR";
+
+/// Where millimpact keeps what it measured once and reuses in later runs (each LAMMPS build's
+/// probe, under `probe/`): `MILLIMPACT_CACHE_DIR`, else `$XDG_CACHE_HOME/millimpact`, else
+/// `$HOME/.cache/millimpact`; `None`, and nothing kept, when none of them is set (a relative
+/// `XDG_CACHE_HOME` or `HOME` counts as unset, as the XDG base directory specification says).
+pub fn cache_dir() -> Option<PathBuf> {
+    let absolute = |name: &str| {
+        std::env::var_os(name)
+            .map(PathBuf::from)
+            .filter(|p| p.is_absolute())
+    };
+    if let Some(dir) = std::env::var_os(CACHE_DIR_VARIABLE).filter(|v| !v.is_empty()) {
+        return Some(PathBuf::from(dir));
+    }
+    absolute("XDG_CACHE_HOME")
+        .map(|dir| dir.join("millimpact"))
+        .or_else(|| absolute("HOME").map(|home| home.join(".cache").join("millimpact")))
+}
+
 /// The environment variable that points a code at a user's own build: `MILLIMPACT_<NAME>_BINARY`
 /// (the name upper-cased, `-` as `_`; `MILLIMPACT_LAMMPS_2025_BINARY`, say).
 pub fn binary_override_variable(code: &str) -> String {

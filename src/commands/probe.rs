@@ -39,7 +39,12 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
             .locate()
             .map_err(|looked| anyhow::anyhow!("{}: {looked}", driver.name()))?,
     };
-    let report = prober.probe(&executable).with_context(|| driver.name())?;
+    let report = if args.refresh {
+        prober.probe_afresh(&executable)
+    } else {
+        prober.probe(&executable)
+    }
+    .with_context(|| driver.name())?;
     let text = if args.format == Format::Markdown {
         millimpact::analysis::probe::conventions_markdown(&report)? + "\n"
     } else {

@@ -72,10 +72,15 @@ pub struct ReferenceRecord {
         deserialize_with = "crate::model::trajectory::nan_if_null"
     )]
     pub compression_time: f64,
-    /// Process wall time, s.
+    /// Process wall time, s: the code from start to exit, its start-up included.
     pub wall_time: f64,
     /// The code's own loop time, s.
     pub loop_time: Option<f64>,
+    /// Wall time of the whole reference run, s: sizing it (the build's probe included, where
+    /// this run made it), the code's process, reading and checking its output, and the
+    /// attribution's integrations; absent from records stored without it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub whole_wall_time: Option<f64>,
     /// The law the code integrates, as the driver reads it.
     pub law: CodeLaw,
     /// How the code steps.
@@ -191,6 +196,7 @@ pub fn run_reference(
     case: &Case,
     options: &ReferenceOptions,
 ) -> Result<ReferenceRecord> {
+    let started = std::time::Instant::now();
     let driver = code.driver();
     let setup = codes::prepare(
         driver,
@@ -249,6 +255,7 @@ pub fn run_reference(
         compression_time: metrics.compression_time,
         wall_time: run.wall_time,
         loop_time: run.loop_time,
+        whole_wall_time: Some(started.elapsed().as_secs_f64()),
         law,
         step_scheme: scheme,
         law_at_step,
@@ -414,6 +421,11 @@ pub struct RecordRow {
     pub remainder_cor: f64,
     /// Process wall time, s.
     pub wall_time: f64,
+    /// The code's own loop time, s.
+    pub loop_time: Option<f64>,
+    /// Wall time of the whole run (sizing and probe included), s; empty in a record stored
+    /// without it.
+    pub whole_wall_time: Option<f64>,
 }
 
 impl Summary for ReferenceRecord {
@@ -436,6 +448,8 @@ impl Summary for ReferenceRecord {
             integration_cor: a.integration.cor,
             remainder_cor: a.remainder.cor,
             wall_time: self.wall_time,
+            loop_time: self.loop_time,
+            whole_wall_time: self.whole_wall_time,
         }]
     }
 
@@ -506,10 +520,16 @@ impl Summary for ReferenceRecord {
                 split(&a.remainder)
             ),
             format!(
-                "wall time {}{}",
+                "wall time {}{}{}",
                 seconds(r.wall_time),
                 r.loop_time
                     .map(|l| format!(", the code's loop time {}", seconds(l)))
+                    .unwrap_or_default(),
+                r.whole_wall_time
+                    .map(|w| format!(
+                        ", the whole run {} (sizing, probe and reading included)",
+                        seconds(w)
+                    ))
                     .unwrap_or_default()
             ),
             format!("reproduce: {}", r.command),

@@ -5,6 +5,7 @@
 
 use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
 
 use anyhow::Context;
 use rayon::prelude::*;
@@ -24,7 +25,17 @@ use crate::solve::dashpot::own_law_metrics;
 pub const MAX_BATCH_BYTES: f64 = 2e8;
 
 /// A code point with its case and setup.
-type Prepared<'a> = (&'a Point, Case, CodeSetup);
+#[derive(Clone, Debug)]
+pub struct Prepared<'a> {
+    /// The point.
+    pub point: &'a Point,
+    /// Its case.
+    pub case: Case,
+    /// Its setup in the code.
+    pub setup: CodeSetup,
+    /// Wall time of sizing it (and of the build's probe, where this point's sizing made it), s.
+    pub sizing_time: f64,
+}
 
 /// One unit of work for the pool: one process.
 #[derive(Clone, Debug)]
@@ -42,7 +53,7 @@ pub enum WorkItem<'a> {
 
 /// Split the code points into work items: points of one code and one time step go in
 /// batches of at most `options.batch` impacts (fewer when their trajectories would be
-/// large), spread so that every worker has one.
+/// large), of [`balanced_sizes`] across the workers.
 pub fn plan<'a>(
     sweep: &SweepFile,
     points: &[&'a Point],
@@ -53,6 +64,7 @@ pub fn plan<'a>(
     // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
     // done on the pool's threads, in point order.
     let prepare_point = |p: &&'a Point| {
+        let started = Instant::now();
         let Source::Code(code) = p.source.source else {
             return None;
         };
@@ -65,10 +77,16 @@ pub fn plan<'a>(
         let case = sweep.case(p).ok()?;
         let setup = prepare(driver, &case, steps_per_contact, None, false).ok()?;
         // A point the code cannot run alone runs alone, where its error is reported.
-        runner
-            .render_batch(std::slice::from_ref(&setup))
-            .ok()
-            .map(|_| (code, case, setup))
+        runner.render_batch(std::slice::from_ref(&setup)).ok()?;
+        Some((
+            code,
+            Prepared {
+                point: p,
+                case,
+                setup,
+                sizing_time: started.elapsed().as_secs_f64(),
+            },
+        ))
     };
     let prepared: Vec<_> = match rayon::ThreadPoolBuilder::new()
         .num_threads(options.jobs.max(1))
@@ -79,17 +97,17 @@ pub fn plan<'a>(
     };
     for (&p, prepared) in points.iter().zip(prepared) {
         match prepared {
-            Some((code, case, setup)) => groups
-                .entry((code, setup.timestep.to_bits()))
+            Some((code, prepared)) => groups
+                .entry((code, prepared.setup.timestep.to_bits()))
                 .or_default()
-                .push((p, case, setup)),
+                .push(prepared),
             None => work.push(WorkItem::Single(p)),
         }
     }
     for ((code, _), items) in groups {
         let steps = items
             .iter()
-            .map(|(_, _, s)| s.steps)
+            .map(|p| p.setup.steps)
             .max()
             .unwrap_or(1)
             .max(1);
@@ -102,19 +120,37 @@ pub fn plan<'a>(
             .min(by_bytes)
             .min(code.driver().batch().map_or(1, |b| b.max_batch()))
             .max(1);
-        let jobs = options.jobs.max(1);
-        let size = items.len().div_ceil(jobs).clamp(1, cap);
-        let mut items = items.into_iter().peekable();
-        while items.peek().is_some() {
+        let mut items = items.into_iter();
+        for size in balanced_sizes(items.len(), cap, options.jobs) {
             let chunk: Vec<_> = items.by_ref().take(size).collect();
             if chunk.len() == 1 {
-                work.push(WorkItem::Single(chunk[0].0));
+                work.push(WorkItem::Single(chunk[0].point));
             } else {
                 work.push(WorkItem::Batch { code, items: chunk });
             }
         }
     }
     work
+}
+
+/// The sizes of the batches `count` impacts of one code run in: no batch above `cap`, as many
+/// batches as that needs rounded up to a multiple of the `jobs` workers (each worker gets the
+/// same number), and sizes that differ by at most one, so that the workers finish together
+/// (200 impacts at most 64 a batch on 2 workers: 50 + 50 + 50 + 50, not 64 + 64 + 64 + 8).
+pub fn balanced_sizes(count: usize, cap: usize, jobs: usize) -> Vec<usize> {
+    if count == 0 {
+        return Vec::new();
+    }
+    let jobs = jobs.max(1);
+    let batches = count
+        .div_ceil(cap.max(1))
+        .div_ceil(jobs)
+        .saturating_mul(jobs)
+        .clamp(1, count);
+    let (size, larger) = (count / batches, count % batches);
+    (0..batches)
+        .map(|b| size + usize::from(b < larger))
+        .collect()
 }
 
 /// The figures of one impact of a batch, read as `reference` reads a single run.
@@ -155,6 +191,8 @@ fn batch_figures(
         timestep: setup.timestep,
         wall_time,
         loop_time: run.loop_time,
+        // Set by the caller, once the whole batch is read.
+        whole_wall_time: f64::NAN,
         own_law_cor: own_exact.cor,
         own_law_stepped_cor: at_step.cor,
         code_version: run.version.clone().unwrap_or_else(|| "unknown".to_string()),
@@ -175,7 +213,8 @@ pub fn run_item(
     match item {
         WorkItem::Single(p) => emit(single_point(sweep, p, options)),
         WorkItem::Batch { code, items } => {
-            let setups: Vec<CodeSetup> = items.iter().map(|(_, _, s)| s.clone()).collect();
+            let started = Instant::now();
+            let setups: Vec<CodeSetup> = items.iter().map(|p| p.setup.clone()).collect();
             let run_options = RunOptions {
                 timeout: options.timeout,
                 ..RunOptions::default()
@@ -188,35 +227,92 @@ pub fn run_item(
                         "{code}: a batch of {} ran as single runs: {e}",
                         items.len()
                     ));
-                    for (p, _, _) in items {
-                        emit(single_point(sweep, p, options));
+                    for p in items {
+                        emit(single_point(sweep, p.point, options));
                     }
                 }
                 Ok(batch) => {
                     let n = items.len();
-                    for ((p, case, setup), run) in items.iter().zip(batch.runs) {
-                        let figures = run.map_err(anyhow::Error::from).and_then(|run| {
-                            batch_figures(*code, case, setup, &run, batch.wall_time / n as f64, n)
-                        });
+                    let figures: Vec<anyhow::Result<CodeFigures>> = items
+                        .iter()
+                        .zip(batch.runs)
+                        .map(|(p, run)| {
+                            run.map_err(anyhow::Error::from).and_then(|run| {
+                                batch_figures(
+                                    *code,
+                                    &p.case,
+                                    &p.setup,
+                                    &run,
+                                    batch.wall_time / n as f64,
+                                    n,
+                                )
+                            })
+                        })
+                        .collect();
+                    // The batch's whole time (its process, reading and checking every
+                    // impact), shared, plus each point's own sizing.
+                    let share = started.elapsed().as_secs_f64() / n as f64;
+                    for (p, figures) in items.iter().zip(figures) {
                         match figures {
-                            Ok(f) => emit(sweep.outcome_row(p, Ok(PointFigures::of_code(&f)))),
+                            Ok(mut f) => {
+                                f.whole_wall_time = p.sizing_time + share;
+                                emit(sweep.outcome_row(p.point, Ok(PointFigures::of_code(&f))));
+                            }
                             Err(_) if stop.load(Ordering::SeqCst) => {}
                             Err(e) => {
                                 note(format!(
                                     "{code}: point {} of a batch ran alone: {e:#}{}",
-                                    p.index,
+                                    p.point.index,
                                     batch
                                         .kept
                                         .as_ref()
                                         .map(|k| format!(" (batch kept in {})", k.display()))
                                         .unwrap_or_default()
                                 ));
-                                emit(single_point(sweep, p, options));
+                                emit(single_point(sweep, p.point, options));
                             }
                         }
                     }
                 }
             }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::balanced_sizes;
+    use proptest::prelude::*;
+
+    #[test]
+    fn batches_are_even_across_the_workers() {
+        assert_eq!(balanced_sizes(200, 64, 2), [50, 50, 50, 50]);
+        assert_eq!(balanced_sizes(200, 100, 2), [100, 100]);
+        assert_eq!(balanced_sizes(200, 31, 2), [25; 8]);
+        assert_eq!(balanced_sizes(201, 64, 2), [51, 50, 50, 50]);
+        assert_eq!(balanced_sizes(3, 64, 2), [2, 1]);
+        assert_eq!(balanced_sizes(1, 64, 4), [1]);
+        assert_eq!(balanced_sizes(5, 64, 8), [1; 5]);
+        assert_eq!(balanced_sizes(0, 64, 2), Vec::<usize>::new());
+        assert_eq!(balanced_sizes(10, 0, 0), [1; 10]);
+    }
+
+    proptest! {
+        #[test]
+        fn every_impact_runs_once_in_batches_within_the_cap_and_one_apart(
+            count in 0usize..5000,
+            cap in 1usize..300,
+            jobs in 1usize..17,
+        ) {
+            let sizes = balanced_sizes(count, cap, jobs);
+            prop_assert_eq!(sizes.iter().sum::<usize>(), count);
+            prop_assert!(sizes.iter().all(|&s| (1..=cap).contains(&s)));
+            let (lo, hi) = (sizes.iter().min(), sizes.iter().max());
+            if let (Some(lo), Some(hi)) = (lo, hi) {
+                prop_assert!(hi - lo <= 1, "{:?}", sizes);
+            }
+            // Every worker has the same number of batches unless there are too few impacts.
+            prop_assert!(sizes.len().is_multiple_of(jobs) || sizes.len() == count);
         }
     }
 }

@@ -117,10 +117,15 @@ pub struct PointFigures {
     pub rhs_evaluations: Option<u64>,
     /// Time step, s (fixed-step methods and codes).
     pub timestep: Option<f64>,
-    /// Wall time, s (a batch's divided among its impacts).
+    /// Wall time, s: a method's solve, or a code's process from start to exit (its start-up
+    /// included; a batch's divided among its impacts).
     pub wall_time: Option<f64>,
-    /// The code's own loop time, s.
+    /// The code's own loop time, s (a batch's divided among its impacts).
     pub loop_time: Option<f64>,
+    /// Wall time of everything a code point took, s: sizing its run (the build's probe
+    /// included, where this point's sizing made it), the process, reading and checking its
+    /// output (a batch's divided among its impacts, each adding its own sizing).
+    pub whole_wall_time: Option<f64>,
     /// COR of the code's own law, exact.
     pub own_law_cor: Option<f64>,
     /// COR of the code's own law stepped as the code steps it.
@@ -236,6 +241,7 @@ impl PointFigures {
             timestep: finite(f.timestep),
             wall_time: finite(f.wall_time),
             loop_time: f.loop_time.and_then(finite),
+            whole_wall_time: finite(f.whole_wall_time),
             own_law_cor: finite(f.own_law_cor),
             own_law_stepped_cor: finite(f.own_law_stepped_cor),
             code_version: Some(f.code_version.clone()),
@@ -439,10 +445,13 @@ pub struct CodeFigures {
     pub steps: u64,
     /// Time step, s.
     pub timestep: f64,
-    /// Wall time (a batch's divided among its impacts), s.
+    /// Process wall time (a batch's divided among its impacts), s.
     pub wall_time: f64,
     /// The code's own loop time, s.
     pub loop_time: Option<f64>,
+    /// Wall time of everything the point took (sizing, probe, process, reading), s; NaN when
+    /// not known.
+    pub whole_wall_time: f64,
     /// COR of the code's own law, exact.
     pub own_law_cor: f64,
     /// COR of the code's own law stepped as the code steps.
@@ -477,6 +486,7 @@ impl CodeFigures {
             timestep: r.timestep,
             wall_time: r.wall_time,
             loop_time: r.loop_time,
+            whole_wall_time: r.whole_wall_time.unwrap_or(f64::NAN),
             own_law_cor: r.law_exact.cor,
             own_law_stepped_cor: r.law_at_step.cor,
             code_version: r.code_version.clone(),

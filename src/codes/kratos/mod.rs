@@ -29,8 +29,7 @@
 //! (the default 50 finds the wall contact late), one OpenMP thread ([`Kratos::locate`]), the
 //! state paired with the force it produced in each row.
 
-
-
+pub mod batch;
 pub mod card;
 
 use std::ffi::OsString;
@@ -240,6 +239,58 @@ impl Kratos {
             }
         }
     }
+
+    /// The values the script template is filled with for `setup` (a batch lists each impact
+    /// with the same ones), or why the setup cannot run.
+    pub fn script_values(
+        &self,
+        setup: &CodeSetup,
+    ) -> Result<Vec<(&'static str, String)>, CodeError> {
+        self.check(setup)?;
+        let s = setup.sphere;
+        let (v1, v2) = setup.centre_of_mass_velocities();
+        let (wall_young, wall_poisson) = match setup.scene {
+            SceneKind::BallBall => (0.0, 0.0),
+            _ => second_material(setup),
+        };
+        let other = setup
+            .other_sphere
+            .filter(|_| setup.scene == SceneKind::BallBall);
+        let (restitution, linear_stiffness, damping_gamma) = match setup.scene {
+            // The linear law's γ is set directly: Kratos' own bisection from a restitution
+            // solves the same clamped closed form, but stops at 1e-4 in γ.
+            SceneKind::RodEnd => (1.0, setup.stiffness, rod_damping_ratio(setup)),
+            // A negative γ leaves the one Kratos derives from the restitution.
+            _ => (input_restitution(setup), 0.0, -1.0),
+        };
+        let num = exact_number;
+        Ok(vec![
+            ("scene", setup.scene.name().to_string()),
+            ("timestep", num(setup.timestep)),
+            ("steps", setup.steps.to_string()),
+            ("radius", num(s.radius)),
+            ("mass", num(s.mass)),
+            ("density", num(s.density)),
+            ("young", num(s.youngs_modulus)),
+            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
+            ("velocity", num(v1)),
+            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
+            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
+            ("other_density", num(other.map_or(0.0, |o| o.density))),
+            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
+            (
+                "other_poisson",
+                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
+            ),
+            ("other_velocity", num(v2)),
+            ("wall_young", num(wall_young)),
+            ("wall_poisson", num(wall_poisson)),
+            ("restitution", num(restitution)),
+            ("linear_stiffness", num(linear_stiffness)),
+            ("damping_gamma", num(damping_gamma)),
+            ("scheme", SCHEME.to_string()),
+        ])
+    }
 }
 
 impl CodeDriver for Kratos {
@@ -272,50 +323,7 @@ impl CodeDriver for Kratos {
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        self.check(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let (wall_young, wall_poisson) = match setup.scene {
-            SceneKind::BallBall => (0.0, 0.0),
-            _ => second_material(setup),
-        };
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
-        let (restitution, linear_stiffness, damping_gamma) = match setup.scene {
-            // The linear law's γ is set directly: Kratos' own bisection from a restitution
-            // solves the same clamped closed form, but stops at 1e-4 in γ.
-            SceneKind::RodEnd => (1.0, setup.stiffness, rod_damping_ratio(setup)),
-            // A negative γ leaves the one Kratos derives from the restitution.
-            _ => (input_restitution(setup), 0.0, -1.0),
-        };
-        let num = exact_number;
-        let values = [
-            ("scene", setup.scene.name().to_string()),
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("mass", num(s.mass)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
-            ("other_density", num(other.map_or(0.0, |o| o.density))),
-            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
-            (
-                "other_poisson",
-                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
-            ),
-            ("other_velocity", num(v2)),
-            ("wall_young", num(wall_young)),
-            ("wall_poisson", num(wall_poisson)),
-            ("restitution", num(restitution)),
-            ("linear_stiffness", num(linear_stiffness)),
-            ("damping_gamma", num(damping_gamma)),
-            ("scheme", SCHEME.to_string()),
-        ];
+        let values = self.script_values(setup)?;
         let text = fill_template(TEMPLATE, &values)
             .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
@@ -366,6 +374,10 @@ impl CodeDriver for Kratos {
 
     fn step_scheme(&self) -> StepScheme {
         StepScheme::LeapFrog
+    }
+
+    fn batch(&self) -> Option<&dyn super::BatchRunner> {
+        Some(&batch::KratosBatch)
     }
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {

@@ -1,20 +1,25 @@
-//! LAMMPS batches: several independent sphere-on-wall impacts in one process. Each sphere is
-//! its own group with its own `fix wall/gran` (its own contact model and damping), the spheres
-//! sit far apart along x so that nothing couples them (there is no pair style at all), and
-//! each writes its own trajectory with its own `fix print`. The deck per sphere is the single
-//! run's, so each impact steps through the same arithmetic as when it runs alone; the run
-//! lasts the longest impact's steps and each trajectory is cut at its own.
+//! LAMMPS batches: many impacts in one process, one after another, in any scene. The batch
+//! input is the single runs' inputs in sequence, each but the last followed by `clear` (which
+//! deletes every atom, fix, group and setting and restores the defaults, as a fresh start
+//! would); each writes its own trajectory file. So every impact steps through the very input and
+//! the very state of its single run and gives its trajectory to the last bit (tested for every
+//! scene and both builds), while the process's start-up is paid once.
+//!
+//! Impacts side by side in one run were the other way: each sphere then needs its own group for
+//! its own `fix wall/gran`, LAMMPS allows 32 groups, and two balls need a pair style whose
+//! coefficients differ per pair. In sequence there is no such limit.
 
 use std::path::Path;
 
-use crate::codes::lammps::{Build, LOG_FILE, parse_loop_time, parse_trajectory, parse_version};
+use crate::codes::lammps::{
+    Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
+};
 use crate::codes::parse::ParseError;
-use crate::codes::template::exact_number;
 use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
 
-/// Most impacts in one batch: LAMMPS allows 32 groups, `all` among them, and each sphere
-/// needs its own group for its own wall.
-pub const MAX_BATCH: usize = 31;
+/// Most impacts in one batch: each run adds about 2.5 kB to the screen output, which is kept
+/// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
+pub const MAX_BATCH: usize = 256;
 
 /// The batch input file.
 pub const BATCH_INPUT_FILE: &str = "batch.in";
@@ -24,103 +29,37 @@ pub fn batch_trajectory_file(i: usize) -> String {
     format!("trajectory-{}.txt", i + 1)
 }
 
-/// Why `setups` cannot run as one LAMMPS batch, if they cannot.
-pub fn batch_refusal(setups: &[CodeSetup]) -> Option<BatchError> {
-    let Some(first) = setups.first() else {
-        return Some(BatchError::Empty);
-    };
+/// The batch input for `setups` in `build`: their single inputs in sequence.
+pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    if setups.is_empty() {
+        return Err(BatchError::Empty);
+    }
     if setups.len() > MAX_BATCH {
-        return Some(BatchError::TooMany {
+        return Err(BatchError::TooMany {
             count: setups.len(),
             most: MAX_BATCH,
-            why: "LAMMPS allows 32 groups",
+            why: "the screen output kept whole",
         });
     }
-    if let Some(s) = setups.iter().find(|s| s.other_sphere.is_some()) {
-        return Some(BatchError::Scene {
-            case: s.case_name.clone(),
-            scene: s.scene.name(),
-            holds: "a LAMMPS batch holds sphere-on-wall impacts",
-        });
-    }
-    if setups
-        .iter()
-        .any(|s| s.timestep.to_bits() != first.timestep.to_bits())
-    {
-        return Some(BatchError::Differ { what: "time step" });
-    }
-    if setups
-        .iter()
-        .any(|s| s.clamp_attractive != first.clamp_attractive)
-    {
-        return Some(BatchError::Differ {
-            what: "limit_damping",
-        });
-    }
-    None
-}
-
-/// The batch input for `setups` in `build`.
-pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    if let Some(reason) = batch_refusal(setups) {
-        return Err(reason);
-    }
-    let first = &setups[0];
-    if first.steps == 0 || first.timestep.is_nan() || first.timestep <= 0.0 {
-        return Err(BatchError::NoSteps);
-    }
-    let largest = setups
-        .iter()
-        .map(|s| s.sphere.radius)
-        .fold(0.0f64, f64::max);
-    let spacing = 8.0 * largest;
-    let steps = setups.iter().map(|s| s.steps).max().unwrap_or(0);
-    let limit = if first.clamp_attractive {
-        " limit_damping"
-    } else {
-        ""
-    };
-    let mut text = String::from(
-        "# millimpact: independent sphere-on-wall impacts in one LAMMPS run (src/codes/lammps_batch.rs).\n\
-         units           si\natom_style      sphere\natom_modify     map array\ndimension       3\nboundary        f f f\n",
-    );
-    text += &format!(
-        "region          box block {} {} {} {} {} {} units box\ncreate_box      1 box\n",
-        exact_number(-4.0 * largest),
-        exact_number(spacing * setups.len() as f64),
-        exact_number(-4.0 * largest),
-        exact_number(4.0 * largest),
-        exact_number(-4.0 * largest),
-        exact_number(8.0 * largest),
-    );
+    let own_file = format!(" file {TRAJECTORY_FILE} ");
+    let mut decks = Vec::with_capacity(setups.len());
     for (i, s) in setups.iter().enumerate() {
-        let plan = build.plan(s)?;
-        let id = i + 1;
-        let r = s.sphere.radius;
-        let (v1, _) = s.centre_of_mass_velocities();
-        text += &format!(
-            "create_atoms    1 single {} 0 {} units box\nset             atom {id} diameter {}\nset             atom {id} mass {}\nset             atom {id} vz {}\ngroup           g{id} id {id}\nfix             wall{id} g{id} wall/gran granular {} tangential linear_nohistory 0 0{limit} zplane 0 NULL\n",
-            exact_number(spacing * i as f64),
-            exact_number(r + build.start_gap(s)),
-            exact_number(2.0 * r),
-            exact_number(s.sphere.mass),
-            exact_number(-v1),
-            plan.model_args,
+        // The single input names its trajectory file once, in its `fix print`.
+        let mut deck = build.render(s)?.text.replacen(
+            &own_file,
+            &format!(" file {} ", batch_trajectory_file(i)),
+            1,
         );
+        if !deck.ends_with('\n') {
+            deck.push('\n');
+        }
+        decks.push(deck);
     }
-    text += &format!(
-        "fix             integrate all nve/sphere\ntimestep        {}\nvariable        t equal time\n",
-        exact_number(first.timestep)
+    let text = format!(
+        "# millimpact: {} impacts in one LAMMPS run, one after another, each its single run's input (src/codes/lammps/batch.rs).\n{}",
+        setups.len(),
+        decks.join("clear\n")
     );
-    for (i, s) in setups.iter().enumerate() {
-        let id = i + 1;
-        text += &format!(
-            "variable        overlap{id} equal ({})-z[{id}]\nvariable        approach{id} equal -vz[{id}]\nvariable        force{id} equal fz[{id}]\nfix             print{id} all print 1 \"${{t}} ${{overlap{id}}} ${{approach{id}}} ${{force{id}}}\" file {} screen no title \"# time overlap approach_velocity normal_force\"\n",
-            exact_number(s.sphere.radius),
-            batch_trajectory_file(i),
-        );
-    }
-    text += &format!("thermo_style    custom step\nthermo          0\nrun             {steps}\n");
     Ok(RenderedInput {
         file_name: BATCH_INPUT_FILE.into(),
         text,
@@ -138,7 +77,15 @@ pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput
     })
 }
 
-/// Each impact's run from a batch: its own trajectory, cut after its own steps.
+/// The `Loop time of` seconds of every run in `log`, in order.
+fn loop_times(log: &str) -> Vec<Option<f64>> {
+    log.lines()
+        .filter(|l| l.trim_start().starts_with("Loop time of "))
+        .map(parse_loop_time)
+        .collect()
+}
+
+/// Each impact's run from a batch: its own trajectory, and its own run's loop time.
 pub fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
@@ -146,36 +93,27 @@ pub fn parse_batch(
 ) -> Vec<Result<ParsedRun, ParseError>> {
     let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();
     let version = parse_version(log).or_else(|| parse_version(&file_log));
-    let loop_time = parse_loop_time(log)
-        .or_else(|| parse_loop_time(&file_log))
-        .map(|t| t / setups.len() as f64);
+    let mut loops = loop_times(log);
+    if loops.len() != setups.len() {
+        loops = loop_times(&file_log);
+    }
     setups
         .iter()
         .enumerate()
-        .map(|(i, s)| {
+        .map(|(i, _)| {
             let path = workdir.join(batch_trajectory_file(i));
             let text = std::fs::read_to_string(&path)
                 .map_err(|source| ParseError::Read { path, source })?;
-            let mut trajectory = parse_trajectory(&text)?;
-            // The rows of this impact's own run length: times up to steps · Δt.
-            let end = (s.steps as f64 + 0.5) * s.timestep;
-            let keep = trajectory.time.iter().take_while(|&&t| t <= end).count();
-            trajectory.time.truncate(keep);
-            trajectory.overlap.truncate(keep);
-            trajectory.approach_velocity.truncate(keep);
-            trajectory
-                .normal_force
-                .truncate(keep.min(trajectory.normal_force.len()));
             Ok(ParsedRun {
-                trajectory,
-                loop_time,
+                trajectory: parse_trajectory(&text)?,
+                loop_time: loops.get(i).copied().flatten(),
                 version: version.clone(),
             })
         })
         .collect()
 }
 
-/// A LAMMPS build's batches: many sphere-on-wall impacts in one run, one group each.
+/// A LAMMPS build's batches: many impacts in one process, in sequence.
 pub struct LammpsBatch(pub &'static Build);
 
 impl BatchRunner for LammpsBatch {
@@ -197,3 +135,74 @@ impl BatchRunner for LammpsBatch {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::lammps::DEBIAN_2021;
+    use crate::codes::CodeName;
+    use crate::model::case::Case;
+
+    fn setups(scene: &str) -> Vec<CodeSetup> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(format!("{scene}.toml"));
+        [0.0, 0.35, 0.9]
+            .into_iter()
+            .map(|eta| {
+                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+                crate::codes::prepare_with(
+                    CodeName::Lammps.driver(),
+                    &case,
+                    Some(200),
+                    None,
+                    false,
+                    None,
+                )
+                .unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_is_the_single_inputs_in_sequence_each_writing_its_own_file() {
+        for scene in ["ball_plate", "ball_ball", "rod_end"] {
+            let setups = setups(scene);
+            let batch = render_batch(&DEBIAN_2021, &setups).unwrap();
+            let runs: Vec<&str> = batch.text.split("clear\n").collect();
+            assert_eq!(runs.len(), setups.len(), "{scene}");
+            for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
+                let single = DEBIAN_2021.render(setup).unwrap().text;
+                let own = run.replace(&batch_trajectory_file(i), TRAJECTORY_FILE);
+                assert!(own.ends_with(&single), "{scene} {i}: the single input");
+                assert!(run.contains(&format!(" file {} ", batch_trajectory_file(i))));
+            }
+        }
+    }
+
+    #[test]
+    fn each_run_of_a_batch_gets_its_own_loop_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let setups = setups("ball_ball");
+        for i in 0..setups.len() {
+            std::fs::write(
+                dir.path().join(batch_trajectory_file(i)),
+                format!("# time overlap approach_velocity normal_force\n0 0 1 0\n1e-6 {i}e-9 1 5\n"),
+            )
+            .unwrap();
+        }
+        let log = "LAMMPS (29 Sep 2021 - Update 2)\nLoop time of 0.25 on 1 procs for 2 steps with 2 atoms\n\
+                   Loop time of 0.5 on 1 procs for 2 steps with 2 atoms\nLoop time of 0.75 on 1 procs for 2 steps with 2 atoms\n";
+        let runs = parse_batch(&setups, dir.path(), log);
+        for (i, run) in runs.into_iter().enumerate() {
+            let run = run.unwrap();
+            assert_eq!(run.loop_time, Some(0.25 * (i + 1) as f64));
+            assert_eq!(run.version.as_deref(), Some("29 Sep 2021 - Update 2"));
+            let written: f64 = format!("{i}e-9").parse().unwrap();
+            assert_eq!(run.trajectory.overlap[1].to_bits(), written.to_bits());
+        }
+        assert_eq!(
+            CodeName::Lammps.driver().batch().unwrap().max_batch(),
+            MAX_BATCH
+        );
+    }
+}

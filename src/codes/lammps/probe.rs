@@ -10,13 +10,13 @@
 //! hypothesis, or more than one, is inconclusive and says why; a driver refuses to plan from
 //! inconclusive conventions.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
-
+use sha2::{Digest, Sha256};
 use thiserror::Error;
 
 use crate::codes::template::TemplateError;
@@ -24,7 +24,7 @@ use crate::codes::{CodeSetup, Executable, Prober};
 pub use crate::codes::lammps::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 use crate::codes::lammps::conventions::{exact_hertz_alpha, tsuji_alpha};
 use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version};
-use crate::codes::runner::{read_log, spawn_contained, wait_contained};
+use crate::codes::runner::{cache_dir, read_log, spawn_contained, wait_contained};
 use crate::codes::template::{exact_number, fill_template};
 use crate::model::trajectory::CodeTrajectory;
 
@@ -103,6 +103,10 @@ pub struct ProbeReport {
     pub conventions: Option<Conventions>,
     /// Wall time of all probe runs, s.
     pub wall_time: f64,
+    /// Where the report was kept since that probe, when it is read from there rather than
+    /// probed now.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kept_in: Option<PathBuf>,
 }
 
 impl ProbeReport {
@@ -636,32 +640,159 @@ pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, 
         items,
         conventions,
         wall_time: started.elapsed().as_secs_f64(),
+        kept_in: None,
     })
 }
 
-/// Probe results of this process, by executable.
+/// What a kept probe is valid for: the build's executable as it is on disk (its resolved path,
+/// size and modification time), the environment it is started with, and the probe's own decks.
+/// A rebuilt or replaced executable, another library path, or a changed probe, and the kept
+/// probe no longer applies. (A shared library the executable loads, replaced under it, is not
+/// seen: `millimpact probe --refresh` probes again.)
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct BuildIdentity {
+    /// The driver's name.
+    pub code: String,
+    /// The executable, symbolic links resolved.
+    pub program: PathBuf,
+    /// Its size, bytes.
+    pub size: u64,
+    /// Its modification time: seconds and nanoseconds since the Unix epoch.
+    pub modified: (u64, u32),
+    /// The variables it is started with.
+    pub env: Vec<(String, String)>,
+    /// SHA-256 of every probe deck, in order (hex).
+    pub probe_sha256: String,
+}
+
+impl BuildIdentity {
+    /// The identity of `executable` as the driver `code` probes it now.
+    pub fn of(code: &str, executable: &Executable) -> Result<BuildIdentity, ProbeError> {
+        let io = |doing: &'static str| {
+            let path = executable.program.clone();
+            move |source| ProbeError::Io {
+                doing,
+                path,
+                source,
+            }
+        };
+        let program = std::fs::canonicalize(&executable.program).map_err(io("resolving"))?;
+        let meta = std::fs::metadata(&program).map_err(io("reading the metadata of"))?;
+        let since = meta
+            .modified()
+            .map_err(io("reading the modification time of"))?
+            .duration_since(std::time::UNIX_EPOCH)
+            .unwrap_or_default();
+        let mut decks = Sha256::new();
+        for run in probe_runs() {
+            decks.update(render_probe(&run)?.as_bytes());
+        }
+        Ok(BuildIdentity {
+            code: code.to_string(),
+            program,
+            size: meta.len(),
+            modified: (since.as_secs(), since.subsec_nanos()),
+            env: executable
+                .env
+                .iter()
+                .map(|(k, v)| ((*k).to_string(), v.to_string_lossy().into_owned()))
+                .collect(),
+            probe_sha256: decks.finalize().iter().map(|b| format!("{b:02x}")).collect(),
+        })
+    }
+
+    /// The file a probe of this build is kept in under the cache folder `dir`: one per driver
+    /// and executable path, rewritten when the executable changes.
+    pub fn cache_file(&self, dir: &Path) -> PathBuf {
+        let path = Sha256::digest(self.program.as_os_str().as_encoded_bytes());
+        let short: String = path.iter().take(8).map(|b| format!("{b:02x}")).collect();
+        dir.join("probe").join(format!("{}-{short}.json", self.code))
+    }
+}
+
+/// A kept probe: the build it was made of, and its report.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+struct KeptProbe {
+    identity: BuildIdentity,
+    report: ProbeReport,
+}
+
+/// The report kept in `file` for `identity`, if the file holds one for this very build; an
+/// unreadable or foreign file holds none (it is replaced by the next probe).
+fn read_kept(file: &Path, identity: &BuildIdentity) -> Option<ProbeReport> {
+    let text = std::fs::read_to_string(file).ok()?;
+    let kept: KeptProbe = serde_json::from_str(&text).ok()?;
+    (kept.identity == *identity).then_some(kept.report)
+}
+
+/// [`probe_lammps`] kept on disk: the report kept under the cache folder `dir` for this very
+/// build (see [`BuildIdentity`]), else a fresh probe, kept there when it is conclusive (a probe
+/// cut short by a loaded machine, or a build that does not run, is probed again next time).
+/// `refresh` probes afresh whatever is kept. Without a cache folder, or when the executable's
+/// identity cannot be read, it probes.
+pub fn probe_lammps_kept(
+    code: &str,
+    executable: &Executable,
+    dir: Option<&Path>,
+    refresh: bool,
+) -> Result<ProbeReport, ProbeError> {
+    let kept = dir.and_then(|dir| {
+        let identity = BuildIdentity::of(code, executable).ok()?;
+        Some((identity.cache_file(dir), identity))
+    });
+    if !refresh
+        && let Some((file, identity)) = &kept
+        && let Some(mut report) = read_kept(file, identity)
+    {
+        report.kept_in = Some(file.clone());
+        return Ok(report);
+    }
+    let report = probe_lammps(code, executable)?;
+    if let Some((file, identity)) = kept
+        && report.conventions.is_some()
+    {
+        let text = serde_json::to_string_pretty(&KeptProbe {
+            identity,
+            report: report.clone(),
+        })
+        .unwrap_or_default();
+        // Written to a temporary file and renamed, so that a reader never sees half a file;
+        // a cache that cannot be written costs the next run a probe, nothing more.
+        if let Some(parent) = file.parent()
+            && std::fs::create_dir_all(parent).is_ok()
+            && let Ok(mut tmp) = tempfile::NamedTempFile::new_in(parent)
+            && std::io::Write::write_all(&mut tmp, text.as_bytes()).is_ok()
+        {
+            let _ = tmp.persist(&file);
+        }
+    }
+    Ok(report)
+}
+
+/// Probe results of this process, by driver and executable.
 static CACHE: Mutex<Vec<(String, PathBuf, ProbeReport)>> = Mutex::new(Vec::new());
 
-/// [`probe_lammps`], once per executable per process: a build does not change under a running
-/// process, and every run of it is sized and rendered from the same conventions.
+/// [`probe_lammps_kept`] in the cache folder `dir` (the [`cache_dir`] for a driver), once per
+/// executable per process: a build does not change under a running process, and every run of
+/// it is sized and rendered from the same conventions. The lock is held while a build is
+/// probed, so that workers asking together wait for one probe instead of each running their
+/// own.
 pub fn probe_lammps_cached(
     code: &str,
     executable: &Executable,
+    dir: Option<&Path>,
+    refresh: bool,
 ) -> Result<ProbeReport, ProbeError> {
     let key = executable.program.clone();
-    if let Some((_, _, r)) = CACHE
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .iter()
-        .find(|(c, p, _)| c == code && *p == key)
+    let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
+    if !refresh
+        && let Some((_, _, r)) = cache.iter().find(|(c, p, _)| c == code && *p == key)
     {
         return Ok(r.clone());
     }
-    let report = probe_lammps(code, executable)?;
-    CACHE
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .push((code.to_string(), key, report.clone()));
+    let report = probe_lammps_kept(code, executable, dir, refresh)?;
+    cache.retain(|(c, p, _)| !(c == code && *p == key));
+    cache.push((code.to_string(), key, report.clone()));
     Ok(report)
 }
 
@@ -670,7 +801,11 @@ pub struct LammpsProber(pub &'static Build);
 
 impl Prober for LammpsProber {
     fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError> {
-        probe_lammps_cached(self.0.name, executable)
+        probe_lammps_cached(self.0.name, executable, cache_dir().as_deref(), false)
+    }
+
+    fn probe_afresh(&self, executable: &Executable) -> Result<ProbeReport, ProbeError> {
+        probe_lammps_cached(self.0.name, executable, cache_dir().as_deref(), true)
     }
 
     fn planned_conventions(&self, setup: &CodeSetup) -> Conventions {
@@ -812,6 +947,7 @@ mod tests {
             items,
             conventions,
             wall_time: 0.0,
+            kept_in: None,
         };
         assert!(!report.ran());
         assert!(
@@ -828,6 +964,189 @@ mod tests {
             ..report
         };
         assert!(report.ran());
+    }
+
+    /// A stand-in for a LAMMPS build, in `dir`: a script that counts its starts in
+    /// `dir/starts` and answers each probe deck (named on its first line) as a build with the
+    /// conventions `c` would, from the [`synthetic`] outcomes written beside it.
+    fn fake_build(dir: &Path, c: Conventions) -> Executable {
+        for (run, outcome) in probe_runs().iter().zip(synthetic(c)) {
+            let (ext, text) = match outcome {
+                ProbeOutcome::Ran(t) => (
+                    "txt",
+                    (0..t.time.len())
+                        .map(|i| {
+                            format!(
+                                "{:e} {:e} {:e} {:e}\n",
+                                t.time[i], t.overlap[i], t.approach_velocity[i], t.normal_force[i]
+                            )
+                        })
+                        .collect::<String>(),
+                ),
+                ProbeOutcome::Refused(message) => ("err", message + "\n"),
+            };
+            std::fs::write(dir.join(format!("{}.{ext}", run.name)), text).unwrap();
+        }
+        let d = dir.display();
+        let program = dir.join("lmp");
+        std::fs::write(
+            &program,
+            format!(
+                "#!/bin/sh\necho started >> '{d}/starts'\nname=$(head -n 1 probe.in | sed 's/^# millimpact probe: //')\n\
+                 echo 'LAMMPS (fake build)'\nif [ -f \"{d}/$name.err\" ]; then cat \"{d}/$name.err\"; exit 1; fi\n\
+                 cp \"{d}/$name.txt\" trajectory.txt\n"
+            ),
+        )
+        .unwrap();
+        let mut permissions = std::fs::metadata(&program).unwrap().permissions();
+        std::os::unix::fs::PermissionsExt::set_mode(&mut permissions, 0o755);
+        std::fs::set_permissions(&program, permissions).unwrap();
+        Executable::plain(program)
+    }
+
+    /// A report as JSON, where a prediction of no number (NaN) equals itself.
+    fn json(report: &ProbeReport) -> serde_json::Value {
+        serde_json::to_value(report).unwrap()
+    }
+
+    fn starts(dir: &Path) -> usize {
+        std::fs::read_to_string(dir.join("starts"))
+            .map(|s| s.lines().count())
+            .unwrap_or(0)
+    }
+
+    #[test]
+    fn a_kept_probe_is_read_instead_of_starting_the_build() {
+        let build = tempfile::tempdir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let lmp = fake_build(build.path(), Conventions::DEBIAN_2021);
+        let first = probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(first.conventions, Some(Conventions::DEBIAN_2021), "{first:#?}");
+        assert_eq!(first.kept_in, None);
+        assert_eq!(starts(build.path()), probe_runs().len());
+        let second = probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), probe_runs().len(), "the build was not started");
+        let file = BuildIdentity::of("lammps", &lmp)
+            .unwrap()
+            .cache_file(cache.path());
+        assert_eq!(second.kept_in.as_deref(), Some(file.as_path()));
+        assert_eq!(
+            json(&ProbeReport {
+                kept_in: None,
+                ..second
+            }),
+            json(&first)
+        );
+        // Another driver's probe of the same executable is its own.
+        probe_lammps_kept("lammps-2025", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 2 * probe_runs().len());
+        // A refresh probes again, and keeps what it measured.
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), true).unwrap();
+        assert_eq!(starts(build.path()), 3 * probe_runs().len());
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 3 * probe_runs().len());
+    }
+
+    #[test]
+    fn a_changed_executable_is_probed_again() {
+        let build = tempfile::tempdir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let lmp = fake_build(build.path(), Conventions::DEBIAN_2021);
+        let n = probe_runs().len();
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), n);
+        // Touched: same size, another modification time.
+        let file = std::fs::File::options()
+            .write(true)
+            .open(&lmp.program)
+            .unwrap();
+        file.set_modified(std::time::UNIX_EPOCH + Duration::from_secs(1_000_000))
+            .unwrap();
+        drop(file);
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 2 * n, "a new modification time");
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 2 * n);
+        // Rebuilt: another size, the same modification time.
+        let mut script = std::fs::read_to_string(&lmp.program).unwrap();
+        script.push_str("# rebuilt\n");
+        std::fs::write(&lmp.program, script).unwrap();
+        let file = std::fs::File::options()
+            .write(true)
+            .open(&lmp.program)
+            .unwrap();
+        file.set_modified(std::time::UNIX_EPOCH + Duration::from_secs(1_000_000))
+            .unwrap();
+        drop(file);
+        probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 3 * n, "another size");
+        // Started with another environment.
+        let with_env = Executable {
+            env: vec![("OMP_NUM_THREADS", "1".into())],
+            ..lmp.clone()
+        };
+        probe_lammps_kept("lammps", &with_env, Some(cache.path()), false).unwrap();
+        assert_eq!(starts(build.path()), 4 * n, "another environment");
+    }
+
+    #[test]
+    fn a_corrupt_kept_probe_is_ignored_and_rewritten() {
+        let build = tempfile::tempdir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let lmp = fake_build(build.path(), Conventions::JUL_2025);
+        let n = probe_runs().len();
+        let file = BuildIdentity::of("lammps-2025", &lmp)
+            .unwrap()
+            .cache_file(cache.path());
+        std::fs::create_dir_all(file.parent().unwrap()).unwrap();
+        for corrupt in ["{\"identity\": ", "not json at all", "{}"] {
+            std::fs::write(&file, corrupt).unwrap();
+            let before = starts(build.path());
+            let report = probe_lammps_kept("lammps-2025", &lmp, Some(cache.path()), false).unwrap();
+            assert_eq!(report.conventions, Some(Conventions::JUL_2025));
+            assert_eq!(starts(build.path()), before + n, "{corrupt}: probed");
+            let kept: KeptProbe =
+                serde_json::from_str(&std::fs::read_to_string(&file).unwrap()).unwrap();
+            assert_eq!(json(&kept.report), json(&report), "{corrupt}: rewritten");
+        }
+    }
+
+    #[test]
+    fn a_probe_that_settles_nothing_is_not_kept() {
+        let build = tempfile::tempdir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let lmp = fake_build(build.path(), Conventions::DEBIAN_2021);
+        // The tsuji deck refused for another reason than the damping model: inconclusive.
+        std::fs::write(build.path().join("tsuji-fit.err"), "ERROR: Lost atoms\n").unwrap();
+        let n = probe_runs().len();
+        for round in 1..=2 {
+            let report = probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
+            assert_eq!(report.conventions, None);
+            assert_eq!(starts(build.path()), round * n);
+        }
+        let kept = std::fs::read_dir(cache.path().join("probe"))
+            .map(|entries| entries.count())
+            .unwrap_or(0);
+        assert_eq!(kept, 0, "nothing kept");
+    }
+
+    #[test]
+    fn workers_asking_together_wait_for_one_probe() {
+        let build = tempfile::tempdir().unwrap();
+        let cache = tempfile::tempdir().unwrap();
+        let lmp = fake_build(build.path(), Conventions::DEBIAN_2021);
+        let reports: Vec<ProbeReport> = std::thread::scope(|s| {
+            let workers: Vec<_> = (0..4)
+                .map(|_| {
+                    s.spawn(|| {
+                        probe_lammps_cached("lammps", &lmp, Some(cache.path()), false).unwrap()
+                    })
+                })
+                .collect();
+            workers.into_iter().map(|w| w.join().unwrap()).collect()
+        });
+        assert_eq!(starts(build.path()), probe_runs().len());
+        assert!(reports.iter().all(|r| json(r) == json(&reports[0])));
     }
 
     #[test]

@@ -1,23 +1,29 @@
-//! LIGGGHTS batches: several independent sphere-on-plate impacts in one process. Sphere `i` is
-//! atom type `i`, the plate is the last type, and a per-type-pair property
-//! (`coefficientRestitution` for the stock `hertz`, `lossCoefficient` for the paper build's
-//! `paper`) gives each sphere its own damping against the plate; the spheres sit far apart along x so
-//! that they never touch, and each writes its own trajectory. Every value is the single run's,
-//! so each impact steps through the same arithmetic as when it runs alone; the run lasts the
-//! longest impact's steps and each trajectory is cut at its own.
+//! LIGGGHTS batches: many impacts in one process, one after another, in any scene. The batch
+//! input is the single runs' inputs in sequence, each but the last followed by `clear` (which
+//! deletes every atom, fix and setting and restores the defaults, as a fresh start would), each
+//! writing its own trajectory file; so every impact steps through its single run's input and
+//! state and gives its trajectory to the last bit (tested for every scene), while the process's
+//! start-up is paid once.
+//!
+//! One line differs from the single input: the row of the initial state. The single input
+//! prints it before its `run`, when no force has been computed yet, so its force column reads
+//! `fz` as LIGGGHTS allocated it: zero in a fresh process, but, after a `clear`, whatever the
+//! freed memory held (1.6e-322 was seen). The batch prints the 0 a fresh process prints there.
+//!
+//! Impacts side by side in one run were the other way (one atom type per sphere, its
+//! restitution against the plate per type pair): it held plates only, and needs a type pair
+//! table per law parameter for two balls and rods. In sequence every scene runs as it runs
+//! alone.
 
 use std::path::Path;
 
-use crate::codes::liggghts::{
-    Liggghts, RIGID_WALL_MODULUS, RIGID_WALL_POISSON, contact_gap, parse_output, version,
-};
+use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, loop_line, parse_output, version};
 use crate::codes::parse::ParseError;
-use crate::codes::template::exact_number;
 use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
-use crate::model::scene::SceneKind;
 
-/// Most impacts in one batch (the per-type-pair tables grow as its square).
-pub const MAX_BATCH: usize = 64;
+/// Most impacts in one batch: each run adds about 1 kB to the screen output, which is kept
+/// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
+pub const MAX_BATCH: usize = 256;
 
 /// The batch input file.
 pub const BATCH_INPUT_FILE: &str = "batch.in";
@@ -27,172 +33,55 @@ pub fn batch_trajectory_file(i: usize) -> String {
     format!("traj-{}.txt", i + 1)
 }
 
-fn plate(setup: &CodeSetup) -> (f64, f64) {
-    setup
-        .plate_material
-        .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON))
-}
+/// The single input's row of the initial state, and the batch's (its force column 0).
+const INITIAL_ROW: (&str, &str) = (
+    "print           \"${t} ${overlap} ${approach} ${force}\" file ",
+    "print           \"${t} ${overlap} ${approach} 0\" file ",
+);
 
-/// The contact model of a batch: what differs between the stock build's batch and the paper
-/// build's.
-pub struct BatchModel {
-    /// The driver whose single runs the batch's impacts are (each is checked by its render).
-    pub driver: &'static dyn CodeDriver,
-    /// The style after `model`.
-    pub style: &'static str,
-    /// Its settings keywords for a batch like `setup` (empty for a style that takes none).
-    pub settings: fn(&CodeSetup) -> String,
-    /// The per-type-pair property that carries each impact's damping.
-    pub property: &'static str,
-    /// Its value for one impact.
-    pub value: fn(&CodeSetup) -> f64,
-}
-
-/// The stock build's batch: damped `hertz`, `coefficientRestitution` per impact.
-pub const HERTZ: BatchModel = BatchModel {
-    driver: &Liggghts,
-    style: "hertz",
-    settings: |s| {
-        let limit_force = if s.clamp_attractive { "on" } else { "off" };
-        format!("tangential_damping off limitForce {limit_force}")
-    },
-    property: "coefficientRestitution",
-    value: |s| s.target_restitution,
-};
-
-/// The stock build's batch input for `setups`, or why they cannot run as one.
+/// The stock build's batch input for `setups`: their single inputs in sequence, or why they
+/// cannot run so.
 pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    render_batch_with(&HERTZ, setups)
+    render_batch_with(&Liggghts, setups)
 }
 
-/// The batch input for `setups` under `model`, or why they cannot run as one.
+/// The batch input of `driver`, a LIGGGHTS build whose single inputs are the stock deck with
+/// its own contact lines (the stock build, the paper build), for `setups`.
 pub fn render_batch_with(
-    model: &BatchModel,
+    driver: &dyn CodeDriver,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
+    if setups.is_empty() {
         return Err(BatchError::Empty);
-    };
+    }
     if setups.len() > MAX_BATCH {
         return Err(BatchError::TooMany {
             count: setups.len(),
             most: MAX_BATCH,
-            why: "the batch input's size",
+            why: "the screen output kept whole",
         });
     }
-    for s in setups {
-        model.driver.render(s)?;
-        if s.scene != SceneKind::BallPlate {
-            return Err(BatchError::Scene {
-                case: s.case_name.clone(),
-                scene: s.scene.name(),
-                holds: "LIGGGHTS batches hold ball_plate impacts",
-            });
-        }
-        if plate(s) != plate(first) {
+    let mut decks = Vec::with_capacity(setups.len());
+    for (i, s) in setups.iter().enumerate() {
+        let single = driver.render(s)?.text;
+        if !single.contains(INITIAL_ROW.0) {
             return Err(BatchError::Differ {
-                what: "plate (one wall type per batch)",
+                what: "the input's initial row (not the template's)",
             });
         }
-        if s.timestep.to_bits() != first.timestep.to_bits()
-            || s.clamp_attractive != first.clamp_attractive
-        {
-            return Err(BatchError::Differ {
-                what: "time step or limitForce",
-            });
+        let mut deck = single
+            .replace(INITIAL_ROW.0, INITIAL_ROW.1)
+            .replace(TRAJECTORY_FILE, &batch_trajectory_file(i));
+        if !deck.ends_with('\n') {
+            deck.push('\n');
         }
+        decks.push(deck);
     }
-    let n = setups.len();
-    let wall = n + 1;
-    let steps = setups.iter().map(|s| s.steps).max().unwrap_or(0);
-    let reach = setups
-        .iter()
-        .map(|s| s.sphere.radius)
-        .fold(0.0f64, f64::max);
-    let half = setups
-        .iter()
-        .map(|s| 4.0 * s.sphere.radius + s.impact_velocity * s.duration() + contact_gap(s))
-        .fold(0.0f64, f64::max);
-    let spacing = 2.0 * half;
-    // A style without settings leaves no trailing blank on its lines.
-    let settings = match (model.settings)(first) {
-        words if words.is_empty() => words,
-        words => format!(" {words}"),
-    };
-    let style = model.style;
-    let property = model.property;
-    let (e_wall, nu_wall) = plate(first);
-    let list = |values: Vec<String>| values.join(" ");
-    let mut young: Vec<String> = setups
-        .iter()
-        .map(|s| exact_number(s.sphere.youngs_modulus))
-        .collect();
-    young.push(exact_number(e_wall));
-    let mut poisson: Vec<String> = setups
-        .iter()
-        .map(|s| exact_number(s.sphere.poisson_ratio.unwrap_or_default()))
-        .collect();
-    poisson.push(exact_number(nu_wall));
-    // Type pair (i, wall) and (wall, i) carry sphere i's damping; pairs of spheres, which
-    // never meet, the first's.
-    let mut damping = Vec::with_capacity(wall * wall);
-    for i in 0..wall {
-        for j in 0..wall {
-            let k = match (i == n, j == n) {
-                (true, false) => j,
-                (false, true) => i,
-                _ => 0,
-            };
-            damping.push(exact_number((model.value)(&setups[k])));
-        }
-    }
-    let h = exact_number(half);
-    let mut text = format!(
-        "# millimpact: independent sphere-on-plate impacts in one LIGGGHTS run (src/codes/liggghts/batch.rs).\n\
-units           si\natom_style      granular\natom_modify     map array\nboundary        f f f\nnewton          off\n\
-communicate     single vel yes\nhard_particles  yes\n\
-region          domain block -{h} {} -{h} {h} -{h} {h} units box\ncreate_box      {wall} domain\n\
-neighbor        {} bin\nneigh_modify    delay 0\n\
-fix youngsModulus          all property/global youngsModulus peratomtype {}\n\
-fix poissonsRatio          all property/global poissonsRatio peratomtype {}\n\
-fix {property:<22} all property/global {property} peratomtypepair {wall} {}\n\
-fix coefficientFriction    all property/global coefficientFriction peratomtypepair {wall} {}\n\
-pair_style      gran model {style} tangential no_history{settings}\npair_coeff      * *\n\
-fix             plate all wall/gran model {style} tangential no_history primitive type {wall} zplane 0.0{settings}\n\
-timestep        {}\n",
-        exact_number(spacing * n as f64),
-        exact_number(reach),
-        list(young),
-        list(poisson),
-        list(damping),
-        list(vec!["0".to_string(); wall * wall]),
-        exact_number(first.timestep),
+    let text = format!(
+        "# millimpact: {} impacts in one LIGGGHTS run, one after another, each its single run's input (src/codes/liggghts/batch.rs).\n{}",
+        setups.len(),
+        decks.join("clear\n")
     );
-    for (i, s) in setups.iter().enumerate() {
-        let id = i + 1;
-        let r = s.sphere.radius;
-        let (v1, _) = s.centre_of_mass_velocities();
-        text += &format!(
-            "create_atoms    {id} single {} 0 {} units box\nset             atom {id} diameter {} density {} vz {}\n",
-            exact_number(spacing * i as f64),
-            exact_number(r + contact_gap(s)),
-            exact_number(2.0 * r),
-            exact_number(s.sphere.density),
-            exact_number(-v1)
-        );
-    }
-    text += "fix             integrate all nve/sphere\nvariable        t equal time\n";
-    for (i, s) in setups.iter().enumerate() {
-        let id = i + 1;
-        let file = batch_trajectory_file(i);
-        text += &format!(
-            "variable        overlap{id} equal {}-z[{id}]\nvariable        approach{id} equal -vz[{id}]\nvariable        force{id} equal fz[{id}]\n\
-print           \"${{t}} ${{overlap{id}}} ${{approach{id}}} ${{force{id}}}\" file {file} screen no\n\
-fix             trajectory{id} all print 1 \"${{t}} ${{overlap{id}}} ${{approach{id}}} ${{force{id}}}\" append {file} screen no title none\n",
-            exact_number(s.sphere.radius),
-        );
-    }
-    text += &format!("thermo          {steps}\nrun             {steps}\n");
     Ok(RenderedInput {
         file_name: BATCH_INPUT_FILE.into(),
         text,
@@ -202,14 +91,18 @@ fix             trajectory{id} all print 1 \"${{t}} ${{overlap{id}}} ${{approach
     })
 }
 
-/// Each impact's run from a batch: its own trajectory, cut after its own steps (the single
-/// run's `steps + 1` rows).
+/// Each impact's run from a batch: its own trajectory, and its own run's loop time and step
+/// count (the `Loop time of` lines, one per run, in order).
 pub fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
 ) -> Vec<Result<ParsedRun, ParseError>> {
     let code_version = version(log);
+    let loops: Vec<&str> = log
+        .lines()
+        .filter(|l| l.starts_with("Loop time of "))
+        .collect();
     setups
         .iter()
         .enumerate()
@@ -217,23 +110,25 @@ pub fn parse_batch(
             let path = workdir.join(batch_trajectory_file(i));
             let text = std::fs::read_to_string(&path)
                 .map_err(|source| ParseError::Read { path, source })?;
-            let mut run = parse_output(&text, log)?;
-            let keep = usize::try_from(s.steps)
-                .map_or(usize::MAX, |n| n.saturating_add(1))
-                .min(run.trajectory.time.len());
-            let t = &mut run.trajectory;
-            t.time.truncate(keep);
-            t.overlap.truncate(keep);
-            t.approach_velocity.truncate(keep);
-            t.normal_force.truncate(keep.min(t.normal_force.len()));
-            run.loop_time = run.loop_time.map(|x| x / setups.len() as f64);
+            let line = loops.get(i).copied().unwrap_or_default();
+            let mut run = parse_output(&text, line)?;
+            if let Some(words) = loop_line(line)
+                && let Some(at) = words.iter().position(|w| *w == "for")
+                && let Some(Ok(ran)) = words.get(at + 1).map(|w| w.parse::<u64>())
+                && ran != s.steps
+            {
+                return Err(ParseError::StepCount {
+                    ran,
+                    asked: s.steps,
+                });
+            }
             run.version = code_version.clone();
             Ok(run)
         })
         .collect()
 }
 
-/// Liggghts's batches: many sphere-on-plate impacts in one run.
+/// Liggghts's batches: many impacts in one process, in sequence.
 pub struct LiggghtsBatch;
 
 impl BatchRunner for LiggghtsBatch {
@@ -255,3 +150,92 @@ impl BatchRunner for LiggghtsBatch {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::CodeName;
+    use crate::model::case::Case;
+
+    fn setups(scene: &str) -> Vec<CodeSetup> {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(format!("{scene}.toml"));
+        [0.0, 0.35, 0.9]
+            .into_iter()
+            .map(|eta| {
+                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+                crate::codes::prepare_with(
+                    CodeName::Liggghts.driver(),
+                    &case,
+                    Some(200),
+                    None,
+                    false,
+                    None,
+                )
+                .unwrap()
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_batch_is_the_single_inputs_in_sequence_each_writing_its_own_file() {
+        for scene in ["ball_plate", "ball_ball", "rod_end"] {
+            let setups = setups(scene);
+            let batch = render_batch(&setups).unwrap();
+            let runs: Vec<&str> = batch.text.split("clear\n").collect();
+            assert_eq!(runs.len(), setups.len(), "{scene}");
+            for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
+                let single = Liggghts.render(setup).unwrap().text;
+                let own = run
+                    .replace(&batch_trajectory_file(i), TRAJECTORY_FILE)
+                    .replace(INITIAL_ROW.1, INITIAL_ROW.0);
+                assert!(own.ends_with(&single), "{scene} {i}: the single input");
+                assert_eq!(run.matches(INITIAL_ROW.1).count(), 1, "{scene} {i}");
+                assert!(!run.contains(TRAJECTORY_FILE), "{scene} {i}: its own file");
+            }
+        }
+    }
+
+    #[test]
+    fn each_run_of_a_batch_gets_its_own_loop_time_and_step_count() {
+        let dir = tempfile::tempdir().unwrap();
+        let setups = setups("rod_end");
+        for i in 0..setups.len() {
+            std::fs::write(
+                dir.path().join(batch_trajectory_file(i)),
+                format!("0 0 1 0\n1e-6 {i}e-9 1 5\n"),
+            )
+            .unwrap();
+        }
+        let loop_line = |t: f64, s: &CodeSetup| {
+            format!(
+                "Loop time of {t} on 1 procs for {} steps with 1 atoms\n",
+                s.steps
+            )
+        };
+        let header = "LIGGGHTS (Version LIGGGHTS-PUBLIC 3.8.0, compiled today)\n";
+        let mut log = String::from(header);
+        for (i, s) in setups.iter().enumerate() {
+            log += &loop_line(0.5 * (i + 1) as f64, s);
+        }
+        for (i, run) in parse_batch(&setups, dir.path(), &log)
+            .into_iter()
+            .enumerate()
+        {
+            let run = run.unwrap();
+            assert_eq!(run.loop_time, Some(0.5 * (i + 1) as f64));
+            let written: f64 = format!("{i}e-9").parse().unwrap();
+            assert_eq!(run.trajectory.overlap[1].to_bits(), written.to_bits());
+            assert!(run.version.unwrap().starts_with("LIGGGHTS-PUBLIC"));
+        }
+        // A run that stopped short is refused, as a single run is.
+        let mut stopped = setups.clone();
+        stopped[1].steps -= 1;
+        let mut short = String::from(header);
+        for s in &stopped {
+            short += &loop_line(0.5, s);
+        }
+        let runs = parse_batch(&setups, dir.path(), &short);
+        assert!(matches!(runs[1], Err(ParseError::StepCount { .. })), "{runs:?}");
+    }
+}

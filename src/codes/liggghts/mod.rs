@@ -23,7 +23,10 @@ use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
 use super::template::{exact_number, fill_template};
-use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
+    ParsedRun, RenderedInput,
+};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
 use crate::solve::dashpot::{CodeFrame, FrameBody};
@@ -403,6 +406,13 @@ impl CodeDriver for Liggghts {
         "liggghts"
     }
 
+    /// The executable as the default locates it, started without Open MPI's daemon
+    /// ([`Executable::open_mpi_alone`]).
+    fn locate(&self) -> Result<Executable, LocateError> {
+        super::runner::locate_override_or_path(self.name(), self.binary())
+            .map(Executable::open_mpi_alone)
+    }
+
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         self.validate(setup)?;
         render_deck(self.name(), setup, &self.contact_model(setup))
@@ -469,7 +479,7 @@ fn loop_steps(log: &str) -> Option<u64> {
 }
 
 /// The words after `Loop time of` on the last such line.
-fn loop_line(log: &str) -> Option<Vec<&str>> {
+pub fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
 }

@@ -17,7 +17,7 @@
 
 use std::path::Path;
 
-use super::batch::{BatchModel, parse_batch, render_batch_with};
+use super::batch::{parse_batch, render_batch_with};
 use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
@@ -186,17 +186,8 @@ impl CodeDriver for LiggghtsPaper {
     }
 }
 
-/// The paper build's batch: `model paper`, `lossCoefficient` per impact.
-pub const PAPER_BATCH: BatchModel = BatchModel {
-    driver: &LiggghtsPaper,
-    style: "paper",
-    settings: |_| String::new(),
-    property: "lossCoefficient",
-    value: loss_coefficient,
-};
-
-/// The paper build's batches: many sphere-on-plate impacts under `model paper` in one run,
-/// each with its own η (the stock build's batch with the contact lines changed).
+/// The paper build's batches: many impacts in one process, its single inputs in sequence (as
+/// the stock build's), each with its own η.
 pub struct LiggghtsPaperBatch;
 
 impl BatchRunner for LiggghtsPaperBatch {
@@ -205,7 +196,7 @@ impl BatchRunner for LiggghtsPaperBatch {
     }
 
     fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch_with(&PAPER_BATCH, setups)
+        render_batch_with(&LiggghtsPaper, setups)
     }
 
     fn parse_batch(

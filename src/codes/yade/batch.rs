@@ -1,19 +1,32 @@
-//! YADE batches: several independent sphere-on-plate impacts in one process. Each sphere has
-//! its own material, the plate one more, and `Ip2_FrictMat_FrictMat_MindlinPhys` takes each
-//! sphere's restitution against the plate from a `MatchMaker` keyed by the two materials; the
-//! spheres sit far apart along x. Each impact records the rows its single run records (its
-//! own iterations, then its state after them), so it steps through the same arithmetic.
+//! YADE batches: many impacts in one process, in any scene. Impacts run side by side in one
+//! scene, in groups of at most [`GROUP`] (one after another, `O.reset()` between groups), each
+//! built as its single script builds it: the same materials, bodies, masses, velocities and
+//! functors, its own wall, and the same rows recorded. What differs is only where it is: impact
+//! `j` of a group is moved across the line of approach by `j` spacings, so every difference of
+//! positions the contact reads is the single run's to the last bit (the coordinate across is the
+//! same for both bodies of an impact, and a wall reads only the coordinate along its axis), and
+//! each impact's bodies carry a mask bit of their own, so that a sphere meets its own wall only
+//! (walls are infinite planes). A ball's restitution against its partner comes from a
+//! `MatchMaker` keyed by their two materials. Each impact records the rows its single run
+//! records (its own iterations, then its state after them), so it gives its single run's
+//! trajectory to the last bit (tested for every scene).
+//!
+//! Side by side rather than one after another: YADE's start-up costs about a second and each
+//! `O.step()` called from Python a fixed overhead, which impacts side by side share.
 
 use std::path::Path;
 
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
-use crate::codes::yade::{RIGID_WALL_MODULUS, Yade, hertz_input_restitution, parse_trajectory};
-use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::yade::{Yade, log_value, parse_trajectory};
+use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
-pub const MAX_BATCH: usize = 64;
+pub const MAX_BATCH: usize = 256;
+
+/// Most impacts side by side in one scene: each has a bit of the body mask (an `int`) to itself.
+pub const GROUP: usize = 30;
 
 /// The batch script.
 pub const BATCH_SCRIPT: &str = "batch.py";
@@ -23,82 +36,141 @@ pub fn batch_trajectory_file(i: usize) -> String {
     format!("trajectory-{}.csv", i + 1)
 }
 
-fn plate(setup: &CodeSetup) -> (f64, f64) {
-    setup.plate_material.unwrap_or((RIGID_WALL_MODULUS, 0.0))
-}
-
+/// The batch script after its list of impacts and groups: the single script's scene, for each
+/// impact of a group at once.
 const SCRIPT: &str = r#"
 print("MILLIMPACT version=" + str(yade.config.version))
-n = len(IMPACTS)
-mats = []
-for (steps, r, m, rho, e, nu, v, en) in IMPACTS:
-    mats.append(O.materials.append(FrictMat(young=e, poisson=nu, frictionAngle=0.0, density=rho)))
-wall_mat = O.materials.append(FrictMat(young=WALL_E, poisson=WALL_NU, frictionAngle=0.0, density=IMPACTS[0][3]))
-bodies = []
-for i, (steps, r, m, rho, e, nu, v, en) in enumerate(IMPACTS):
-    b = O.bodies.append(utils.sphere((SPACING * i, 0.0, math.nextafter(-r, -math.inf)), r, material=mats[i]))
-    O.bodies[b].state.mass = m
-    O.bodies[b].state.vel = Vector3(0.0, 0.0, v)
-    O.bodies[b].state.blockedDOFs = "XYZ"
-    bodies.append(b)
-wall = O.bodies.append(utils.wall(0.0, axis=2, sense=0, material=wall_mat))
-rows = [[] for _ in IMPACTS]
 
 
-def state(i):
-    r = IMPACTS[i][1]
-    s = O.bodies[bodies[i]].state
-    return r - (0.0 - s.pos[2]), s.vel[2]
+def build(slot, p):
+    """Impact p as its single script builds it, moved SPACING * slot across, with its own mask bit."""
+    ball_ball = p["scene"] == "ball_ball"
+    if p["scene"] == "rod_end":
+        kn, cn, rho = 2.0 * p["linear_stiffness"], 2.0 * p["linear_damping"], p["density"]
+        mat1 = ViscElMat(kn=kn, cn=cn, ks=0.0, cs=0.0, frictionAngle=0.0, density=rho)
+        mat2 = ViscElMat(kn=kn, cn=cn, ks=0.0, cs=0.0, frictionAngle=0.0, density=rho)
+    else:
+        mat1 = FrictMat(young=p["young"], poisson=p["poisson"], frictionAngle=0.0, density=p["density"])
+        if ball_ball:
+            mat2 = FrictMat(young=p["other_young"], poisson=p["other_poisson"], frictionAngle=0.0, density=p["other_density"])
+        else:
+            mat2 = FrictMat(young=p["wall_young"], poisson=p["wall_poisson"], frictionAngle=0.0, density=p["density"])
+    m1 = O.materials.append(mat1)
+    m2 = O.materials.append(mat2)
+    r1, y = p["radius"], SPACING * slot
+    if ball_ball:
+        axis = 0
+        r2 = p["other_radius"]
+        b1 = O.bodies.append(utils.sphere((0.0, y, 0.0), r1, material=mat1))
+        b2 = O.bodies.append(utils.sphere((math.nextafter(r1 + r2, math.inf), y, 0.0), r2, material=mat2))
+        O.bodies[b2].state.mass = p["other_mass"]
+        O.bodies[b2].state.vel = Vector3(p["other_velocity"], 0.0, 0.0)
+        O.bodies[b2].state.blockedDOFs = "XYZ"
+    else:
+        axis = 2
+        b1 = O.bodies.append(utils.sphere((0.0, y, math.nextafter(-r1, -math.inf)), r1, material=mat1))
+        b2 = O.bodies.append(utils.wall(0.0, axis=2, sense=0, material=mat2))
+    O.bodies[b1].state.mass = p["mass"]
+    v = [0.0, 0.0, 0.0]
+    v[axis] = p["velocity"]
+    O.bodies[b1].state.vel = Vector3(*v)
+    O.bodies[b1].state.blockedDOFs = "XYZ"
+    O.bodies[b1].mask = 1 << slot
+    O.bodies[b2].mask = 1 << slot
+    return {"p": p, "m1": m1, "m2": m2, "b1": b1, "b2": b2, "axis": axis, "rows": []}
+
+
+def gap_and_speed(c):
+    p, axis = c["p"], c["axis"]
+    p1 = O.bodies[c["b1"]].state.pos[axis]
+    u1 = O.bodies[c["b1"]].state.vel[axis]
+    if p["scene"] == "ball_ball":
+        p2 = O.bodies[c["b2"]].state.pos[axis]
+        u2 = O.bodies[c["b2"]].state.vel[axis]
+        return (p["radius"] + p["other_radius"]) - (p2 - p1), u1 - u2
+    return p["radius"] - (0.0 - p1), u1
+
+
+current = []
 
 
 def record():
     k = O.iter
-    for i in range(n):
-        steps = IMPACTS[i][0]
+    for c in current:
+        steps = c["p"]["steps"]
         if k < steps:
-            overlap, speed = state(i)
-            force = -O.forces.f(bodies[i], sync=True)[2]
-            rows[i].append((k, O.time, overlap, speed, force))
+            overlap, speed = gap_and_speed(c)
+            force = -O.forces.f(c["b1"], sync=True)[c["axis"]]
+            c["rows"].append((k, O.time, overlap, speed, force))
         elif k == steps:
-            overlap, speed = state(i)
+            overlap, speed = gap_and_speed(c)
             if overlap <= 0.0:
-                rows[i].append((k, O.time, overlap, speed, 0.0))
+                c["rows"].append((k, O.time, overlap, speed, 0.0))
 
 
-O.engines = [
-    ForceResetter(),
-    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
-    InteractionLoop(
-        [Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(hertzian=True)],
-        [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=[(mats[i], wall_mat, IMPACTS[i][7]) for i in range(n)]))],
-        [Law2_ScGeom_MindlinPhys_Mindlin()],
-    ),
-    PyRunner(iterPeriod=1, initRun=True, command="record()"),
-    NewtonIntegrator(damping=0.0, gravity=(0.0, 0.0, 0.0)),
-]
-O.dt = DT
-STEPS = max(i[0] for i in IMPACTS)
-start = time.perf_counter()
-for _ in range(STEPS):
-    O.step()
-loop_time = time.perf_counter() - start
-for i in range(n):
-    if IMPACTS[i][0] == STEPS:
-        overlap, speed = state(i)
-        if overlap <= 0.0:
-            rows[i].append((O.iter, O.time, overlap, speed, 0.0))
-    with open("trajectory-%d.csv" % (i + 1), "w") as out:
-        out.write("iter,time,overlap,approach_velocity,normal_force\n")
-        for row in rows[i]:
-            out.write("%d,%r,%r,%r,%r\n" % row)
-print("MILLIMPACT loop_time=%r" % loop_time)
+for group in GROUPS:
+    O.reset()
+    current = [build(slot, IMPACTS[i]) for slot, i in enumerate(group)]
+    if IMPACTS[group[0]]["scene"] == "rod_end":
+        phys_functor = Ip2_ViscElMat_ViscElMat_ViscElPhys()
+        law_functor = Law2_ScGeom_ViscElPhys_Basic()
+    else:
+        en = MatchMaker(matches=[(c["m1"], c["m2"], c["p"]["restitution"]) for c in current])
+        phys_functor = Ip2_FrictMat_FrictMat_MindlinPhys(en=en)
+        law_functor = Law2_ScGeom_MindlinPhys_Mindlin()
+    O.engines = [
+        ForceResetter(),
+        InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Wall_Aabb()]),
+        InteractionLoop(
+            [Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(hertzian=True)],
+            [phys_functor],
+            [law_functor],
+        ),
+        PyRunner(iterPeriod=1, initRun=True, command="record()"),
+        NewtonIntegrator(damping=0.0, gravity=(0.0, 0.0, 0.0)),
+    ]
+    O.dt = IMPACTS[group[0]]["timestep"]
+    steps = max(c["p"]["steps"] for c in current)
+    start = time.perf_counter()
+    for _ in range(steps):
+        O.step()
+    loop_time = (time.perf_counter() - start) / len(group)
+    for i, c in zip(group, current):
+        if c["p"]["steps"] == steps:
+            overlap, speed = gap_and_speed(c)
+            if overlap <= 0.0:
+                c["rows"].append((O.iter, O.time, overlap, speed, 0.0))
+        with open("trajectory-%d.csv" % (i + 1), "w") as out:
+            out.write("iter,time,overlap,approach_velocity,normal_force\n")
+            for row in c["rows"]:
+                out.write("%d,%r,%r,%r,%r\n" % row)
+        print("MILLIMPACT impact=%d loop_time=%r" % (i + 1, loop_time))
 "#;
+
+/// The impacts' groups: consecutive impacts of one scene and one time step, at most [`GROUP`]
+/// each.
+pub fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    for (i, s) in setups.iter().enumerate() {
+        let joins = groups.last().is_some_and(|g| {
+            let first = &setups[g[0]];
+            g.len() < GROUP
+                && first.scene == s.scene
+                && first.timestep.to_bits() == s.timestep.to_bits()
+        });
+        match groups.last_mut() {
+            Some(g) if joins => g.push(i),
+            _ => groups.push(vec![i]),
+        }
+    }
+    groups
+}
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
+    if setups.is_empty() {
         return Err(BatchError::Empty);
-    };
+    }
     if setups.len() > MAX_BATCH {
         return Err(BatchError::TooMany {
             count: setups.len(),
@@ -106,47 +178,40 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
             why: "the batch script's size",
         });
     }
-    let num = exact_number;
     let mut impacts = String::new();
     for s in setups {
-        Yade.render(s)?;
-        if s.scene != SceneKind::BallPlate {
-            return Err(BatchError::Scene {
-                case: s.case_name.clone(),
-                scene: s.scene.name(),
-                holds: "YADE batches hold ball_plate impacts",
-            });
+        // The single script's values, as Python literals (the scene's name quoted); `en` for
+        // the ball scenes only (a rod's contact is kn and cn: its inversion would be wasted).
+        let mut values = Yade.script_values(s)?;
+        if s.scene != SceneKind::RodEnd {
+            values.push(("restitution", exact_number(Yade::input_restitution(s))));
         }
-        if plate(s) != plate(first) || s.timestep.to_bits() != first.timestep.to_bits() {
-            return Err(BatchError::Differ {
-                what: "plate or time step",
-            });
-        }
-        let (v1, _) = s.centre_of_mass_velocities();
-        let en = hertz_input_restitution(s.target_restitution).unwrap_or(s.target_restitution);
-        impacts += &format!(
-            "    ({}, {}, {}, {}, {}, {}, {}, {}),\n",
-            s.steps,
-            num(s.sphere.radius),
-            num(s.sphere.mass),
-            num(s.sphere.density),
-            num(s.sphere.youngs_modulus),
-            num(s.sphere.poisson_ratio.unwrap_or(0.0)),
-            num(v1),
-            num(en)
-        );
+        let fields: Vec<String> = values
+            .into_iter()
+            .map(|(key, value)| match key {
+                "scene" => format!("\"{key}\": \"{value}\""),
+                _ => format!("\"{key}\": {value}"),
+            })
+            .collect();
+        impacts += &format!("    {{{}}},\n", fields.join(", "));
     }
-    let largest = setups
+    // Far enough apart that no two impacts' bodies ever meet (masks keep walls to their own).
+    let reach = setups
         .iter()
-        .map(|s| s.sphere.radius)
+        .map(|s| s.sphere.radius + s.other_sphere.map_or(0.0, |o| o.radius))
         .fold(0.0f64, f64::max);
-    let (wall_e, wall_nu) = plate(first);
+    let groups: Vec<String> = groups(setups)
+        .iter()
+        .map(|g| {
+            let ids: Vec<String> = g.iter().map(usize::to_string).collect();
+            format!("[{}]", ids.join(", "))
+        })
+        .collect();
     let text = format!(
-        "# millimpact: independent sphere-on-plate impacts in one YADE run (src/codes/yade/batch.rs).\nimport math\nimport time\n\nimport yade\nfrom yade import utils\n\nDT = {}\nSPACING = {}\nWALL_E = {}\nWALL_NU = {}\n# (steps, radius, mass, density, E, nu, velocity, en)\nIMPACTS = [\n{impacts}]\n{SCRIPT}",
-        num(first.timestep),
-        num(8.0 * largest),
-        num(wall_e),
-        num(wall_nu),
+        "# millimpact: {} impacts in one YADE run, side by side in groups (src/codes/yade/batch.rs).\nimport math\nimport time\n\nimport yade\nfrom yade import utils\n\nSPACING = {}\n# Each impact's values, as its single script is filled with them.\nIMPACTS = [\n{impacts}]\nGROUPS = [{}]\n{SCRIPT}",
+        setups.len(),
+        exact_number(8.0 * reach),
+        groups.join(", "),
     );
     Ok(RenderedInput {
         file_name: BATCH_SCRIPT.into(),
@@ -161,16 +226,16 @@ pub fn parse_batch(
     workdir: &Path,
     log: &str,
 ) -> Vec<Result<ParsedRun, ParseError>> {
-    let field = |key: &str| {
+    let version = log_value(log, "version=").map(str::to_string);
+    // `MILLIMPACT impact=K loop_time=T`: the share of its group's loop, per impact.
+    let loop_time = |i: usize| {
+        let key = format!("impact={}", i + 1);
         log.lines()
             .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
-            .flat_map(|rest| rest.split_whitespace())
-            .find_map(|f| f.strip_prefix(key).map(str::to_string))
+            .find(|rest| rest.split_whitespace().next() == Some(key.as_str()))
+            .and_then(|rest| rest.split_whitespace().find_map(|f| f.strip_prefix("loop_time=")))
+            .and_then(|v| v.parse::<f64>().ok())
     };
-    let version = field("version=");
-    let loop_time = field("loop_time=")
-        .and_then(|v| v.parse::<f64>().ok())
-        .map(|t| t / setups.len() as f64);
     (0..setups.len())
         .map(|i| {
             let path = workdir.join(batch_trajectory_file(i));
@@ -178,14 +243,14 @@ pub fn parse_batch(
                 .map_err(|source| ParseError::Read { path, source })?;
             Ok(ParsedRun {
                 trajectory: parse_trajectory(&text)?,
-                loop_time,
+                loop_time: loop_time(i),
                 version: version.clone(),
             })
         })
         .collect()
 }
 
-/// Yade's batches: many sphere-on-plate impacts in one run.
+/// Yade's batches: many impacts in one process, side by side in groups.
 pub struct YadeBatch;
 
 impl BatchRunner for YadeBatch {
@@ -207,3 +272,71 @@ impl BatchRunner for YadeBatch {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::CodeName;
+    use crate::model::case::Case;
+
+    fn setup(scene: &str, eta: f64) -> CodeSetup {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(format!("{scene}.toml"));
+        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+        crate::codes::prepare_with(CodeName::Yade.driver(), &case, Some(200), None, false, None)
+            .unwrap()
+    }
+
+    #[test]
+    fn groups_hold_one_scene_and_step_and_at_most_a_mask_each() {
+        let mut setups: Vec<CodeSetup> = (0..65).map(|i| setup("ball_plate", i as f64 / 100.0)).collect();
+        setups.push(setup("rod_end", 0.3));
+        setups.push(setup("rod_end", 0.4));
+        let mut finer = setup("rod_end", 0.5);
+        finer.timestep /= 2.0;
+        setups.push(finer);
+        let g = groups(&setups);
+        let sizes: Vec<usize> = g.iter().map(Vec::len).collect();
+        assert_eq!(sizes, [30, 30, 5, 2, 1]);
+        assert_eq!(g.concat(), (0..setups.len()).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn the_script_lists_each_impact_with_its_single_scripts_values() {
+        let setups = [setup("ball_ball", 0.1), setup("ball_ball", 0.7)];
+        let text = render_batch(&setups).unwrap().text;
+        for s in &setups {
+            let mut values = Yade.script_values(s).unwrap();
+            values.push(("restitution", exact_number(Yade::input_restitution(s))));
+            for (key, value) in values {
+                let cell = match key {
+                    "scene" => format!("\"{key}\": \"{value}\""),
+                    _ => format!("\"{key}\": {value}"),
+                };
+                assert!(text.contains(&cell), "{cell}");
+            }
+        }
+        assert!(text.contains("GROUPS = [[0, 1]]"));
+        // A rod's contact is kn and cn: its `en` is not inverted for a batch.
+        let rod = render_batch(&[setup("rod_end", 0.3)]).unwrap().text;
+        assert!(!rod.contains("\"restitution\": "), "{rod}");
+    }
+
+    #[test]
+    fn each_impact_reads_its_own_loop_time() {
+        let dir = tempfile::tempdir().unwrap();
+        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.2)];
+        for i in 0..2 {
+            std::fs::write(
+                dir.path().join(batch_trajectory_file(i)),
+                "iter,time,overlap,approach_velocity,normal_force\n0,0.0,0.0,1.0,0.0\n1,1e-6,1e-6,1.0,2.0\n",
+            )
+            .unwrap();
+        }
+        let log = "MILLIMPACT version=2023.02a\nMILLIMPACT impact=1 loop_time=0.25\nMILLIMPACT impact=2 loop_time=0.5\n";
+        let runs = parse_batch(&setups, dir.path(), log);
+        let times: Vec<Option<f64>> = runs.iter().map(|r| r.as_ref().unwrap().loop_time).collect();
+        assert_eq!(times, [Some(0.25), Some(0.5)]);
+        assert_eq!(runs[0].as_ref().unwrap().version.as_deref(), Some("2023.02a"));
+    }
+}

@@ -169,22 +169,21 @@ impl Yade {
             }
         }
     }
-}
 
-impl CodeDriver for Yade {
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&card::YadeCard)
+    /// The `en` the script gives `Ip2_FrictMat_FrictMat_MindlinPhys` (Thornton's fit inverted
+    /// through the clamped law: some sixty integrations of it, the first time for a target).
+    pub fn input_restitution(setup: &CodeSetup) -> f64 {
+        hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
     }
 
-    fn name(&self) -> &'static str {
-        "yade"
-    }
-
-    fn binary(&self) -> &'static str {
-        "yade"
-    }
-
-    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+    /// The values the script template is filled with for `setup` but its `en`
+    /// ([`Yade::input_restitution`], which the template takes in every scene and only the ball
+    /// scenes use; a batch lists each impact with these, and its `en` for a ball scene), or why
+    /// the setup cannot run.
+    pub fn script_values(
+        &self,
+        setup: &CodeSetup,
+    ) -> Result<Vec<(&'static str, String)>, CodeError> {
         self.check(setup)?;
         let s = setup.sphere;
         let (v1, v2) = setup.centre_of_mass_velocities();
@@ -203,7 +202,7 @@ impl CodeDriver for Yade {
             _ => (0.0, 0.0),
         };
         let num = exact_number;
-        let values = [
+        Ok(vec![
             ("scene", setup.scene.name().to_string()),
             ("timestep", num(setup.timestep)),
             ("steps", setup.steps.to_string()),
@@ -224,14 +223,31 @@ impl CodeDriver for Yade {
             ("other_velocity", num(v2)),
             ("wall_young", num(wall_young)),
             ("wall_poisson", num(wall_poisson)),
-            (
-                "restitution",
-                num(hertz_input_restitution(setup.target_restitution)
-                    .unwrap_or(setup.target_restitution)),
-            ),
             ("linear_stiffness", num(linear_stiffness)),
             ("linear_damping", num(linear_damping)),
-        ];
+        ])
+    }
+}
+
+impl CodeDriver for Yade {
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&card::YadeCard)
+    }
+
+    fn name(&self) -> &'static str {
+        "yade"
+    }
+
+    fn binary(&self) -> &'static str {
+        "yade"
+    }
+
+    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        let mut values = self.script_values(setup)?;
+        values.push((
+            "restitution",
+            exact_number(Self::input_restitution(setup)),
+        ));
         let text =
             fill_template(TEMPLATE, &values)
                 .map_err(|reason| self.unsupported(setup, reason.to_string()))?;

@@ -1,0 +1,313 @@
+# Many independent normal impacts side by side in one Kratos DEM stage (src/codes/kratos/batch.rs).
+# Each impact is built as impact.py builds it alone: the same materials and sub-properties, the
+# same start state, the same step loop and the same rows; where it sits is below. Writes
+# trajectory-K.csv per impact K (from 1) and prints MILLIMPACT lines.
+#
+# Above this script: IMPACTS (each impact's values, as impact.py is filled with them), SPACING.
+import os
+
+os.environ["OMP_NUM_THREADS"] = "1"
+
+import math
+import time
+from importlib.metadata import version
+
+import KratosMultiphysics as KM
+import KratosMultiphysics.DEMApplication as DEM
+from KratosMultiphysics.DEMApplication.DEM_analysis_stage import DEMAnalysisStage
+
+KM.Logger.GetDefaultOutput().SetSeverity(KM.Logger.Severity.WARNING)
+KM.ParallelUtilities.SetNumThreads(1)
+
+FIRST = IMPACTS[0]
+SCHEME = FIRST["scheme"]
+DT = FIRST["timestep"]
+STEPS = max(p["steps"] for p in IMPACTS)
+
+# impact.py's settings, word for word.
+PARAMETERS = """
+{
+    "problem_name"                   : "impact",
+    "do_print_results_option"        : false,
+    "post_gid_option"                : false,
+    "post_vtk_option"                : false,
+    "Dimension"                      : 3,
+    "BoundingBoxOption"              : false,
+    "dem_inlet_option"               : false,
+    "GravityX"                       : 0.0,
+    "GravityY"                       : 0.0,
+    "GravityZ"                       : 0.0,
+    "RotationOption"                 : false,
+    "CleanIndentationsOption"        : false,
+    "EnergyCalculationOption"        : false,
+    "GlobalDamping"                  : 0.0,
+    "VirtualMassCoefficient"         : 1.0,
+    "DeltaOption"                    : "Absolute",
+    "SearchTolerance"                : 0.0,
+    "search_tolerance_against_walls" : 0.0,
+    "NeighbourSearchFrequency"       : 1,
+    "TranslationalIntegrationScheme" : "SCHEME_NAME",
+    "RotationalIntegrationScheme"    : "Direct_Integration",
+    "AutomaticTimestep"              : false,
+    "MaxTimeStep"                    : 1.0,
+    "FinalTime"                      : 1.0,
+    "ControlTime"                    : 1e30,
+    "GraphExportFreq"                : 1e30,
+    "VelTrapGraphExportFreq"         : 1e30,
+    "OutputTimeStep"                 : 1e30,
+    "PostVelocity"                   : false,
+    "ElementType"                    : "SphericPartDEMElement3D",
+    "echo_level"                     : 0,
+    "solver_settings"                : {
+        "strategy"                          : "sphere_strategy",
+        "RemoveBallsInitiallyTouchingWalls" : false,
+        "model_import_settings"             : { "input_type" : "mdpa", "input_filename" : "impact" },
+        "material_import_settings"          : { "materials_filename" : "" }
+    }
+}
+""".replace("SCHEME_NAME", SCHEME)
+
+SCHEMES = {
+    "Symplectic_Euler": DEM.SymplecticEulerScheme,
+    "Velocity_Verlet": DEM.VelocityVerletScheme,
+    "Forward_Euler": DEM.ForwardEulerScheme,
+    "Taylor_Scheme": DEM.TaylorScheme,
+}
+
+
+def ball_material(props, density, young, poisson):
+    props[DEM.PARTICLE_DENSITY] = density
+    props[KM.YOUNG_MODULUS] = young
+    props[KM.POISSON_RATIO] = poisson
+    props[KM.PARTICLE_MATERIAL] = props.Id
+    props[DEM.ROLLING_FRICTION] = 0.0
+    props[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
+    props[DEM.COMPUTE_WEAR] = False
+    props[DEM.DEM_TRANSLATIONAL_INTEGRATION_SCHEME_NAME] = SCHEME
+    props[DEM.DEM_ROTATIONAL_INTEGRATION_SCHEME_NAME] = "Direct_Integration"
+    SCHEMES[SCHEME]().SetTranslationalIntegrationSchemeInProperties(props, False)
+    SCHEMES[SCHEME]().SetRotationalIntegrationSchemeInProperties(props, False)
+
+
+def wall_material(props, young, poisson):
+    props[KM.YOUNG_MODULUS] = young
+    props[KM.POISSON_RATIO] = poisson
+    props[DEM.STATIC_FRICTION] = 0.0
+    props[DEM.DYNAMIC_FRICTION] = 0.0
+    props[DEM.WALL_COHESION] = 0.0
+    props[DEM.COMPUTE_WEAR] = False
+    props[DEM.SEVERITY_OF_WEAR] = 0.0
+    props[DEM.IMPACT_WEAR_SEVERITY] = 0.0
+    props[DEM.BRINELL_HARDNESS] = 200.0
+
+
+def relation(p, props, other_id):
+    """The contact properties of `props` with material `other_id`, as impact.py sets them."""
+    sub = KM.Properties(other_id)
+    sub[DEM.STATIC_FRICTION] = 0.0
+    sub[DEM.DYNAMIC_FRICTION] = 0.0
+    sub[DEM.FRICTION_DECAY] = 500.0
+    sub[DEM.ROLLING_FRICTION] = 0.0
+    sub[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
+    sub[DEM.PARTICLE_COHESION] = 0.0
+    sub[DEM.DEM_ROLLING_FRICTION_MODEL_NAME] = "DEMRollingFrictionModelBounded"
+    if p["scene"] == "rod_end":
+        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Linear_Custom_Constants"
+        sub[DEM.K_NORMAL] = p["linear_stiffness"]
+        sub[DEM.K_TANGENTIAL] = 0.0
+        sub[DEM.COEFFICIENT_OF_RESTITUTION] = 1.0
+    else:
+        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Hertz_viscous_Coulomb"
+        sub[DEM.COEFFICIENT_OF_RESTITUTION] = p["restitution"]
+    props.AddSubProperties(sub)
+
+
+# Impact k (from 0): properties 2k+1 (its ball) and 2k+2 (the other ball), spheres 2k+1 and
+# 2k+2. Two balls sit on the line y = SPACING * k (the coordinate across their line of approach,
+# shared by both, so every difference of positions is the single run's). A plate or a rod end
+# has no wall of its own: all share one wall, made of the single run's two triangles scaled by
+# WALL_SCALE (a power of two), so that its edges and normal are the single wall's scaled exactly
+# and its normal comes out as the single run's; its properties are WALL (one sub-property per
+# ball). A sphere meets it at its own point of the lower-right triangle, away from every edge:
+# across the plane the sphere's offset is multiplied by the normal's exact zeros, so its distance
+# to the wall is its single run's to the last bit.
+WALL = 2 * len(IMPACTS) + 1
+WALL_SCENE = FIRST["scene"] != "ball_ball"
+if any((p["scene"] != "ball_ball") != WALL_SCENE for p in IMPACTS):
+    raise SystemExit("a batch holds two-ball impacts or wall impacts, not both")
+LENGTH = 4.0 * FIRST["radius"]  # the single run's half side, 4 R
+GAP = 4.0 * FIRST["radius"]  # between spheres, and from the wall's edges
+WALL_SCALE = 1.0
+while 2.0 * WALL_SCALE * LENGTH - 4.0 * GAP < GAP * len(IMPACTS):
+    WALL_SCALE *= 2.0
+
+
+def wall_point(k):
+    """Where sphere k meets the wall: on a line parallel to the diagonal, GAP below it."""
+    half = WALL_SCALE * LENGTH
+    d = -half + 2.0 * GAP + GAP * k
+    return d + 0.5 * GAP, d - 0.5 * GAP
+
+
+class Batch(DEMAnalysisStage):
+    def ReadModelParts(self, max_node_id=0, max_elem_id=0, max_cond_id=0):
+        spheres = self.spheres_model_part
+        made = []
+        if WALL_SCENE:
+            wall = spheres.CreateNewProperties(WALL)
+            wall_material(wall, FIRST["wall_young"], FIRST["wall_poisson"])
+        for k, p in enumerate(IMPACTS):
+            ball_id, other_id = 2 * k + 1, 2 * k + 2
+            ball = spheres.CreateNewProperties(ball_id)
+            ball_material(ball, p["density"], p["young"], p["poisson"])
+            if p["scene"] == "ball_ball":
+                other = spheres.CreateNewProperties(other_id)
+                ball_material(other, p["other_density"], p["other_young"], p["other_poisson"])
+                for a, b in ((ball, ball_id), (ball, other_id), (other, ball_id), (other, other_id)):
+                    relation(p, a, b)
+            else:
+                relation(p, ball, WALL)
+                relation(p, wall, ball_id)
+            made.append((ball, other_id))
+        DEM.PropertiesProxiesManager().CreatePropertiesProxies(spheres)
+        creator = self.creator_destructor
+        self.impacts = []
+        for k, (p, (ball, other_id)) in enumerate(zip(IMPACTS, made)):
+            r1 = p["radius"]
+            if p["scene"] == "ball_ball":
+                r2, y = p["other_radius"], SPACING * k
+                x2 = math.nextafter(r1 + r2, math.inf)
+                other = spheres.GetProperties()[other_id]
+                e1 = creator.CreateSphericParticle(spheres, 2 * k + 1, KM.Array3([0.0, y, 0.0]), ball, r1, "SphericParticle3D")
+                e2 = creator.CreateSphericParticle(spheres, 2 * k + 2, KM.Array3([x2, y, 0.0]), other, r2, "SphericParticle3D")
+            else:
+                x, y = wall_point(k)
+                z1 = math.nextafter(r1, math.inf)
+                e1 = creator.CreateSphericParticle(spheres, 2 * k + 1, KM.Array3([x, y, z1]), ball, r1, "SphericParticle3D")
+                e2 = None
+            # Their nodes, looked up once rather than every step.
+            n1, n2 = e1.GetNode(0), None if e2 is None else e2.GetNode(0)
+            self.impacts.append({"p": p, "e1": e1, "e2": e2, "n1": n1, "n2": n2, "rows": []})
+        if WALL_SCENE:
+            walls = self.rigid_face_model_part
+            wall_props = spheres.GetProperties()[WALL]
+            half = WALL_SCALE * LENGTH
+            n = 2 * len(IMPACTS) + 10
+            walls.CreateNewNode(n + 1, -half, -half, 0.0)
+            walls.CreateNewNode(n + 2, half, -half, 0.0)
+            walls.CreateNewNode(n + 3, half, half, 0.0)
+            walls.CreateNewNode(n + 4, -half, half, 0.0)
+            walls.CreateNewCondition("RigidFace3D3N", 1, [n + 1, n + 2, n + 3], wall_props)
+            walls.CreateNewCondition("RigidFace3D3N", 2, [n + 1, n + 3, n + 4], wall_props)
+        self.model_parts_have_been_read = True
+        self.all_model_parts.ComputeMaxIds()
+
+    def SetMaterials(self):
+        pass  # built in ReadModelParts
+
+    def SetInitialNodalValues(self):
+        super().SetInitialNodalValues()
+        for c in self.impacts:
+            n1 = c["n1"]
+            if c["p"]["scene"] == "ball_ball":
+                n1.SetSolutionStepValue(KM.VELOCITY_X, c["p"]["velocity"])
+                c["n2"].SetSolutionStepValue(KM.VELOCITY_X, c["p"]["other_velocity"])
+            else:
+                n1.SetSolutionStepValue(KM.VELOCITY_Z, -c["p"]["velocity"])
+
+
+def gap_and_speed(c):
+    p = c["p"]
+    n1 = c["n1"]
+    if p["scene"] == "ball_ball":
+        n2 = c["n2"]
+        overlap = (p["radius"] + p["other_radius"]) - (n2.X - n1.X)
+        speed = n1.GetSolutionStepValue(KM.VELOCITY_X) - n2.GetSolutionStepValue(KM.VELOCITY_X)
+    else:
+        overlap = p["radius"] - n1.Z
+        speed = -n1.GetSolutionStepValue(KM.VELOCITY_Z)
+    return overlap, speed
+
+
+def normal_force(c):
+    f = c["n1"].GetSolutionStepValue(KM.TOTAL_FORCES)
+    return -f[0] if c["p"]["scene"] == "ball_ball" else f[2]
+
+
+if SCHEME not in SCHEMES:
+    raise SystemExit("unknown translational scheme %r" % SCHEME)
+if any(p["scheme"] != SCHEME or p["timestep"] != DT for p in IMPACTS):
+    raise SystemExit("a batch runs one scheme and one time step")
+print("MILLIMPACT version=%s dem=%s threads=%d" % (
+    version("KratosMultiphysics"), version("KratosDEMApplication"), KM.ParallelUtilities.GetNumThreads()))
+parameters = KM.Parameters(PARAMETERS)
+parameters["MaxTimeStep"].SetDouble(DT)
+parameters["FinalTime"].SetDouble(DT * STEPS)
+stage = Batch(KM.Model(), parameters)
+stage.Initialize()
+all_properties = stage.spheres_model_part.GetProperties()
+for k, c in enumerate(stage.impacts):
+    gamma = c["p"]["damping_gamma"]
+    if gamma >= 0.0:
+        # As impact.py: every sub-property of the impact's bodies (the wall's towards its ball).
+        for sub in all_properties[2 * k + 1].GetSubProperties():
+            sub[DEM.DAMPING_GAMMA] = gamma
+        if c["p"]["scene"] == "ball_ball":
+            for sub in all_properties[2 * k + 2].GetSubProperties():
+                sub[DEM.DAMPING_GAMMA] = gamma
+        else:
+            all_properties[WALL].GetSubProperties(2 * k + 1)[DEM.DAMPING_GAMMA] = gamma
+
+solver = stage._GetSolver()
+strategy = solver.cplusplus_strategy
+walls = stage.rigid_face_model_part
+mesh_mover = solver.dem_fem_utils
+# impact.py's step loop and rows, for every impact at once; an impact's rows stop at its own
+# steps, with its state after them.
+verlet = SCHEME == "Velocity_Verlet"
+if verlet:
+    for c in stage.impacts:
+        overlap, speed = gap_and_speed(c)
+        c["rows"].append((0, stage.time, overlap, speed, 0.0))
+start = time.perf_counter()
+for step in range(STEPS):
+    t = stage.time
+    before = []
+    for c in stage.impacts:
+        steps = c["p"]["steps"]
+        if not verlet and step <= steps:
+            overlap, speed = gap_and_speed(c)
+            if step == steps:
+                if overlap <= 0.0:
+                    c["rows"].append((step, t, overlap, speed, 0.0))
+                before.append(None)
+            else:
+                before.append((overlap, speed))
+        else:
+            before.append(None)
+    stage.time = solver.AdvanceInTime(t)
+    mesh_mover.MoveAllMeshes(walls, stage.time, DT)
+    strategy.ResetPrescribedMotionFlagsRespectingImposedDofs()
+    strategy.InitializeSolutionStep()
+    strategy.SolveSolutionStep()
+    strategy.FinalizeSolutionStep()
+    for c, b in zip(stage.impacts, before):
+        if step >= c["p"]["steps"]:
+            continue
+        if verlet:
+            overlap, speed = gap_and_speed(c)
+            c["rows"].append((len(c["rows"]), stage.time, overlap, speed, normal_force(c)))
+        else:
+            c["rows"].append((step, t, b[0], b[1], normal_force(c)))
+loop_time = (time.perf_counter() - start) / len(IMPACTS)
+
+for k, c in enumerate(stage.impacts):
+    if c["p"]["steps"] == STEPS and not verlet:
+        overlap, speed = gap_and_speed(c)
+        if overlap <= 0.0:
+            c["rows"].append((STEPS, stage.time, overlap, speed, 0.0))
+    with open("trajectory-%d.csv" % (k + 1), "w") as out:
+        out.write("iter,time,overlap,approach_velocity,normal_force\n")
+        for r in c["rows"]:
+            out.write("%d,%r,%r,%r,%r\n" % r)
+    print("MILLIMPACT impact=%d loop_time=%r" % (k + 1, loop_time))

@@ -1,0 +1,207 @@
+//! Kratos batches: many impacts side by side in one DEM stage, in any scene. Each impact is
+//! built as the single script builds it (its own properties and sub-properties, spheres, the
+//! same start state); the stage runs the single script's step loop once for all, and each impact
+//! records its single run's rows (its own steps, then its state after them). Where the bodies
+//! sit is chosen so that every number its contact reads is its single run's to the last bit
+//! (tested for every scene):
+//!
+//! - Two balls: each pair on its own line across the others, both balls at the same coordinate
+//!   across, so their difference of positions is the single run's.
+//! - A plate or a rod end: one wall for all, the single run's two triangles scaled by a power of
+//!   two, each sphere over its own point of one triangle. Kratos' `FacetCheck` forms the normal
+//!   from the edges and scales it by the reciprocal of its length: scaled by a power of two, the
+//!   edges give the single run's normal to the bit, whose in-plane components are exact zeros, so
+//!   the distance is the single run's whatever the sphere's place in the plane. (A wall per
+//!   impact, moved in the plane, is not: its moved corners round, its edges come out an ulp
+//!   longer or shorter, and so, for some offsets, does the distance: measured, 3e-14 of the
+//!   force.) One wall means one wall material and one ball radius per batch.
+//!
+//! Side by side rather than one after another: importing Kratos and initialising a stage cost
+//! far more than an impact's steps, and the loop's Python calls a step are shared.
+
+use std::path::Path;
+
+use crate::codes::kratos::Kratos;
+use crate::codes::parse::ParseError;
+use crate::codes::template::exact_number;
+use crate::codes::yade::{log_value, parse_trajectory};
+use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::model::scene::SceneKind;
+
+/// Most impacts in one batch.
+pub const MAX_BATCH: usize = 256;
+
+/// The batch script.
+pub const BATCH_SCRIPT: &str = "batch.py";
+
+/// The part of the batch script after its list of impacts.
+const SCRIPT: &str = include_str!("batch.py");
+
+/// The trajectory file of impact `i` (from 0) of a batch.
+pub fn batch_trajectory_file(i: usize) -> String {
+    format!("trajectory-{}.csv", i + 1)
+}
+
+/// The batch script for `setups`, or why they cannot run as one.
+pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    let Some(first) = setups.first() else {
+        return Err(BatchError::Empty);
+    };
+    if setups.len() > MAX_BATCH {
+        return Err(BatchError::TooMany {
+            count: setups.len(),
+            most: MAX_BATCH,
+            why: "the batch script's size",
+        });
+    }
+    let mut impacts = String::new();
+    let shared = |values: &[(&'static str, String)]| -> Vec<String> {
+        values
+            .iter()
+            .filter(|(key, _)| ["scene", "radius", "wall_young", "wall_poisson"].contains(key))
+            .map(|(_, value)| value.clone())
+            .collect()
+    };
+    let first_values = Kratos.script_values(first)?;
+    let wall = first.scene != SceneKind::BallBall;
+    for s in setups {
+        if s.timestep.to_bits() != first.timestep.to_bits() {
+            return Err(BatchError::Differ { what: "time step" });
+        }
+        let values = Kratos.script_values(s)?;
+        if s.scene != first.scene
+            || (wall && shared(&values) != shared(&first_values))
+        {
+            return Err(BatchError::Differ {
+                what: "scene, or the wall's material or ball radius (one wall per batch)",
+            });
+        }
+        // The single script's values, as Python literals (names quoted).
+        let fields: Vec<String> = values
+            .into_iter()
+            .map(|(key, value)| match key {
+                "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
+                _ => format!("\"{key}\": {value}"),
+            })
+            .collect();
+        impacts += &format!("    {{{}}},\n", fields.join(", "));
+    }
+    // Far enough apart that no two impacts' bodies or walls (squares of side 8 R) ever meet.
+    let reach = setups
+        .iter()
+        .map(|s| (8.0 * s.sphere.radius).max(2.0 * s.other_sphere.map_or(0.0, |o| o.radius)))
+        .fold(0.0f64, f64::max);
+    let text = format!(
+        "# millimpact: {} impacts side by side in one Kratos DEM stage (src/codes/kratos/batch.rs).\n\
+         # Each impact's values, as the single script is filled with them.\nIMPACTS = [\n{impacts}]\nSPACING = {}\n{SCRIPT}",
+        setups.len(),
+        exact_number(2.0 * reach),
+    );
+    Ok(RenderedInput {
+        file_name: BATCH_SCRIPT.into(),
+        text,
+        args: vec![BATCH_SCRIPT.to_string()],
+    })
+}
+
+/// Each impact's run from a batch.
+pub fn parse_batch(
+    setups: &[CodeSetup],
+    workdir: &Path,
+    log: &str,
+) -> Vec<Result<ParsedRun, ParseError>> {
+    let version = log_value(log, "version=").map(str::to_string);
+    // `MILLIMPACT impact=K loop_time=T`: the loop's share per impact.
+    let loop_time = |i: usize| {
+        let key = format!("impact={}", i + 1);
+        log.lines()
+            .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
+            .find(|rest| rest.split_whitespace().next() == Some(key.as_str()))
+            .and_then(|rest| {
+                rest.split_whitespace()
+                    .find_map(|f| f.strip_prefix("loop_time="))
+            })
+            .and_then(|v| v.parse::<f64>().ok())
+    };
+    (0..setups.len())
+        .map(|i| {
+            let path = workdir.join(batch_trajectory_file(i));
+            let text = std::fs::read_to_string(&path)
+                .map_err(|source| ParseError::Read { path, source })?;
+            Ok(ParsedRun {
+                trajectory: parse_trajectory(&text)?,
+                loop_time: loop_time(i),
+                version: version.clone(),
+            })
+        })
+        .collect()
+}
+
+/// Kratos' batches: many impacts side by side in one stage.
+pub struct KratosBatch;
+
+impl BatchRunner for KratosBatch {
+    fn max_batch(&self) -> usize {
+        MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        render_batch(setups)
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::CodeName;
+    use crate::codes::kratos::RUN_FILES;
+    use crate::model::case::Case;
+
+    fn setup(scene: &str, eta: f64) -> CodeSetup {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("cases")
+            .join(format!("{scene}.toml"));
+        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+        crate::codes::prepare_with(
+            CodeName::Kratos.driver(),
+            &case,
+            Some(200),
+            None,
+            false,
+            None,
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn the_script_lists_each_impact_with_its_single_scripts_values() {
+        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.6)];
+        let text = render_batch(&setups).unwrap().text;
+        for s in &setups {
+            for (key, value) in Kratos.script_values(s).unwrap() {
+                let cell = match key {
+                    "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
+                    _ => format!("\"{key}\": {value}"),
+                };
+                assert!(text.contains(&cell), "{cell}");
+            }
+        }
+        // A batch writes its own files, not a single run's.
+        assert!(!text.contains(&format!("\"{}\"", RUN_FILES[1])));
+        let mut finer = setup("rod_end", 0.6);
+        finer.timestep /= 2.0;
+        assert!(matches!(
+            render_batch(&[setups[0].clone(), finer]),
+            Err(BatchError::Differ { .. })
+        ));
+    }
+}
