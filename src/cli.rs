@@ -49,6 +49,10 @@ pub enum Command {
     Report(ReportArgs),
     /// Join the shard outputs of one sweep into one file.
     Merge(MergeArgs),
+    /// Check a user's own DEM setup: each pair of particle types (and each type against each
+    /// wall) as one normal impact, run in the user's code with the user's contact lines and
+    /// time step, against the COR entered and the code's own law.
+    Deck(DeckArgs),
     /// Measure a build's conventions with short probe runs (LAMMPS builds): each item with
     /// the measured number, the value each hypothesis predicts, and the verdict.
     Probe(ProbeArgs),
@@ -101,6 +105,17 @@ fn parse_rtol(text: &str) -> Result<f64, String> {
             "must be a relative tolerance in [{min:e}, 1) (the spacing of doubles near 1 and up)"
         ))
     }
+}
+
+/// A COR tolerance: a number the choice of a method can meet.
+fn parse_tolerance(text: &str) -> Result<f64, String> {
+    let tolerance: f64 = text
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{text}` is not a number"))?;
+    millimpact::analysis::precision::choice::choose(tolerance)
+        .map(|_| tolerance)
+        .map_err(|e| format!("must be {e}"))
 }
 
 /// Largest time limit for an external code, s (a day): beyond it a run is not a check.
@@ -173,6 +188,11 @@ pub struct SweepArgs {
     /// Integration settings.
     #[command(flatten)]
     pub integration: IntegrationArgs,
+    /// With a case file: a relative COR error to meet instead of a method and resolution; the
+    /// cheapest method and resolution known to meet it is chosen and named on standard error
+    /// (a sweep file says `tolerance = ...`).
+    #[arg(long, value_parser = parse_tolerance, conflicts_with_all = ["method", "steps_per_period", "timestep", "rtol"])]
+    pub tolerance: Option<f64>,
     /// Output format (a sweep file's rows: csv or jsonl).
     #[arg(long, value_parser = PossibleValuesParser::new(["table", "json", "csv", "markdown", "jsonl"]), default_value = "csv")]
     pub format: String,
@@ -187,8 +207,8 @@ pub struct SweepArgs {
     /// otherwise).
     #[arg(long)]
     pub allow_failures: bool,
-    /// Sweep file: worker threads for our methods and most live DEM-code processes
-    /// [default: the number of cores].
+    /// Worker threads for our methods and (sweep file) most live DEM-code processes [default:
+    /// the number of cores].
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=4096))]
     pub jobs: Option<u32>,
     /// Sweep file: run only the K-th of N deterministic slices of the grid (K/N, 1-based).
@@ -412,4 +432,68 @@ pub struct ReportArgs {
     /// Kill a code after this many seconds (with --live).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+}
+
+/// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.
+fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, String> {
+    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type from 1, radius (m) and density (kg/m³) positive";
+    let parts: Vec<&str> = text.split(':').collect();
+    let [t, r, rho] = parts[..] else {
+        return Err(format!("`{text}`: {allowed}"));
+    };
+    match (
+        t.trim().parse::<u32>(),
+        parse_positive(r),
+        parse_positive(rho),
+    ) {
+        (Ok(type_id), Ok(radius), Ok(density)) if type_id >= 1 => {
+            Ok(millimpact::codes::deck::GivenParticle {
+                type_id,
+                radius,
+                density,
+            })
+        }
+        _ => Err(format!("`{text}`: {allowed}")),
+    }
+}
+
+/// `NAME=VALUE`: a variable defined before the deck is read.
+fn parse_variable(text: &str) -> Result<(String, String), String> {
+    match text.split_once('=') {
+        Some((name, value))
+            if !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') =>
+        {
+            Ok((name.to_string(), value.to_string()))
+        }
+        _ => Err(format!(
+            "`{text}`: allowed: NAME=VALUE, NAME of letters, digits and _"
+        )),
+    }
+}
+
+/// `millimpact deck`.
+#[derive(Debug, Args)]
+pub struct DeckArgs {
+    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
+    pub deck: PathBuf,
+    /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
+    /// speed: the deck's own, else 2 m/s].
+    #[arg(long = "impact-velocity", value_parser = parse_positive)]
+    pub impact_velocity: Vec<f64>,
+    /// The code (build) that reads and runs the deck [default: the first whose input it is].
+    #[arg(long, value_parser = code_parser())]
+    pub code: Option<CodeName>,
+    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³); repeat for
+    /// several; it replaces the deck's own sizes of that type.
+    #[arg(long, value_parser = parse_particle)]
+    pub particle: Vec<millimpact::codes::deck::GivenParticle>,
+    /// A variable defined before the deck is read, `NAME=VALUE` (as `-var NAME VALUE`).
+    #[arg(long = "var", value_parser = parse_variable)]
+    pub variables: Vec<(String, String)>,
+    /// Kill a code after this many seconds.
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
 }

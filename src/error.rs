@@ -13,6 +13,9 @@ pub enum UserError {
     /// A case file is invalid.
     #[error(transparent)]
     Case(#[from] CaseError),
+    /// A user's deck cannot be checked as written.
+    #[error(transparent)]
+    Deck(#[from] crate::codes::deck::DeckError),
     /// A command-line value is invalid.
     #[error("{option} = {value}: {allowed}")]
     Argument {

@@ -274,6 +274,42 @@ fn trials(dir: &Path) -> Vec<Trial> {
             &["sweep", &case, "--loss-coefficient", "0:0.9:1e-300"],
         ),
         trial(
+            "option",
+            "a COR tolerance below what any method is known to meet",
+            &[
+                "sweep",
+                &case,
+                "--loss-coefficient",
+                "0:0.9:0.1",
+                "--tolerance",
+                "1e-15",
+            ],
+        ),
+        trial(
+            "option",
+            "a COR tolerance beside a method",
+            &[
+                "sweep",
+                &case,
+                "--loss-coefficient",
+                "0:0.9:0.1",
+                "--tolerance",
+                "1e-10",
+                "--method",
+                "dopri5",
+            ],
+        ),
+        trial(
+            "deck",
+            "a line the check cannot model (cohesion)",
+            &["deck", "tests/data/deck/cohesion.in"],
+        ),
+        trial(
+            "deck",
+            "a file no code's reader takes",
+            &["deck", "cases/ball_plate.toml"],
+        ),
+        trial(
             "output path",
             "a symbolic link",
             &["run", &case, "--trajectory", &link],

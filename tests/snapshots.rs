@@ -138,6 +138,24 @@ fn sweep_a_small_range() {
     }
 }
 
+/// The same range asking for a COR tolerance instead of a method: the chosen method in the rows
+/// and the tolerance in the reproduce line.
+#[test]
+fn sweep_a_small_range_at_a_tolerance() {
+    for format in Format::ALL {
+        let args = [
+            "sweep",
+            "cases/ball_plate.toml",
+            "--loss-coefficient",
+            "0:0.7:0.35",
+            "--tolerance",
+            "1e-10",
+        ];
+        let text = command(&args, format);
+        check(&format!("sweep_tolerance_{format}"), &text, format, false);
+    }
+}
+
 #[test]
 fn verify_the_shipped_cases_and_references() {
     for format in Format::ALL {

@@ -1029,3 +1029,87 @@ fn a_sweep_whose_code_fails_its_first_launch_exits_1_and_resume_completes_it() {
         assert_eq!(lammps.count(), 3);
     }
 }
+
+/// A sweep file that asks for a COR tolerance: the method and resolution chosen are named on
+/// standard error and in every row's source columns, every row meets the tolerance, and both
+/// forms give the same figures; a tolerance beside an explicit method, or out of reach, is one
+/// line and exit 2 with nothing written.
+#[test]
+fn a_tolerance_chooses_the_method_and_every_row_meets_it() {
+    let dir = TempDir::new().unwrap();
+    let file = dir.path().join("tol.toml");
+    let base = root().join("cases/rod_end.toml");
+    std::fs::write(
+        &file,
+        format!(
+            "base = \"{}\"\ntolerance = 1e-9\n[axes]\nloss_coefficient = {{ start = 0.0, stop = 0.9999, count = 300 }}\n",
+            base.display()
+        ),
+    )
+    .unwrap();
+    let out = millimpact()
+        .args(["sweep", file.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let note = String::from_utf8_lossy(&out.stderr);
+    let chosen = note
+        .split(" steps per period")
+        .next()
+        .and_then(|s| s.rsplit(' ').next())
+        .unwrap()
+        .to_string();
+    assert!(note.contains("COR tolerance 1e-9: rk4-event at"), "{note}");
+    let mut reader = csv::Reader::from_reader(out.stdout.as_slice());
+    let headers = reader.headers().unwrap().clone();
+    let col = |name: &str| headers.iter().position(|h| h == name).unwrap();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 300);
+    for r in &rows {
+        assert_eq!(&r[col("method")], "rk4-event");
+        assert_eq!(r[col("steps_per_period")], chosen);
+        let error: f64 = r[col("cor_error")].parse().unwrap();
+        assert!(
+            error.abs() <= 1e-9,
+            "η = {}: {error}",
+            &r[col("loss_coefficient")]
+        );
+    }
+    // The legacy form with --tolerance chooses the same and gives the same COR.
+    let legacy = millimpact()
+        .args([
+            "sweep",
+            base.to_str().unwrap(),
+            "--loss-coefficient",
+            "0:0.5:0.25",
+            "--tolerance",
+            "1e-9",
+        ])
+        .output()
+        .unwrap();
+    assert!(legacy.status.success());
+    assert_eq!(
+        String::from_utf8_lossy(&legacy.stderr).trim(),
+        note.trim(),
+        "both forms name the same choice"
+    );
+    for (bad, says) in [
+        (
+            "tolerance = 1e-9\n[axes]\nmethod = [\"dopri5\"]\n",
+            "not with axes.method",
+        ),
+        ("tolerance = 1e-16\n", "a relative COR error in"),
+        ("tolerance = -1.0\n", "a relative COR error in"),
+    ] {
+        std::fs::write(&file, format!("base = \"{}\"\n{bad}", base.display())).unwrap();
+        let out = millimpact()
+            .args(["sweep", file.to_str().unwrap()])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains("tolerance = ") && err.contains(says), "{err}");
+    }
+}

@@ -4,6 +4,7 @@
 
 pub mod calibrate;
 pub mod compare;
+pub mod deck;
 pub mod precision;
 pub mod probe;
 pub mod report;

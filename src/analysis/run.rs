@@ -647,14 +647,21 @@ pub fn reproduce_arguments(case: &Case, settings: &Settings) -> String {
 
 /// Integrate `case` with `settings` and report against the closed forms.
 pub fn run_case(case: &Case, settings: &Settings) -> anyhow::Result<(RunReport, Outcome)> {
-    let outcome =
-        paper::solve(&case.law(), case.impact_velocity, settings).map_err(|e| match e {
-            SolveError::Unstable { .. } => anyhow::Error::from(UserError::Unsolvable {
-                case: case.path.display().to_string(),
-                source: e,
-            }),
-            other => anyhow::Error::from(other)
-                .context(format!("{}: integration failed", case.path.display())),
-        })?;
+    let outcome = paper::solve(&case.law(), case.impact_velocity, settings)
+        .map_err(|e| solve_failure(&case.path, e))?;
     Ok((RunReport::new(case, settings.method, &outcome), outcome))
+}
+
+/// The error of a solve of the case read from `path` that failed: a step beyond the
+/// stability limit is the user's (exit 2), any other failure the integration's.
+pub fn solve_failure(path: &std::path::Path, e: SolveError) -> anyhow::Error {
+    match e {
+        SolveError::Unstable { .. } => anyhow::Error::from(UserError::Unsolvable {
+            case: path.display().to_string(),
+            source: e,
+        }),
+        other => {
+            anyhow::Error::from(other).context(format!("{}: integration failed", path.display()))
+        }
+    }
 }

@@ -3,6 +3,7 @@
 
 mod calibrate;
 mod compare;
+mod deck;
 mod merge;
 mod precision;
 mod probe;
@@ -57,6 +58,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Report(args) => report::report(args),
         Command::Merge(args) => merge::merge(args),
         Command::Probe(args) => probe::probe(args),
+        Command::Deck(args) => deck::deck(args),
     }
 }
 

@@ -12,21 +12,22 @@ use anyhow::{Context, Result};
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::SweepArgs;
+use millimpact::analysis::precision::choice::choose;
+use millimpact::analysis::source::Resolution;
 use millimpact::analysis::source::Source;
-use millimpact::analysis::sweep::grid::{Point, SweepFile, is_sweep_table, read_table};
-use millimpact::analysis::sweep::legacy::{parse_range, sweep as sweep_case};
+use millimpact::analysis::sweep::grid::{SweepFile, is_sweep_table, read_table};
+use millimpact::analysis::sweep::legacy::{Streamed, parse_eta_range};
 use millimpact::analysis::sweep::point::GridOptions;
 use millimpact::analysis::sweep::resume::{Resumed, point_keys, read_resumed};
-use millimpact::analysis::sweep::row::SweepRow;
-use millimpact::analysis::sweep::rows::{RowFormat, RowWriter};
+use millimpact::analysis::sweep::rows::{EncodedRows, RowFormat, RowWriter};
 use millimpact::analysis::sweep::run_grid;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
+use millimpact::output::Format;
 use millimpact::output::files::write_atomic_with;
 use millimpact::output::invocation::Invocation;
 use millimpact::output::restitution_plot::restitution_svg;
-use millimpact::output::{Format, export};
 
 /// Raised by Ctrl-C: no new point starts, finished rows are kept.
 static STOP: AtomicBool = AtomicBool::new(false);
@@ -49,7 +50,7 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         }
         .into());
     };
-    let values = parse_range(range).map_err(|e| match e {
+    let values = parse_eta_range(range).map_err(|e| match e {
         UserError::Argument {
             option,
             value,
@@ -69,19 +70,49 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
             "jsonl is for sweep files; a case over --loss-coefficient takes table, json, csv or markdown",
         )
     })?;
-    let options = integration_options(&args.integration);
-    let mut report = sweep_case(&case, &values, &options)?;
-    report.command = Invocation::new("sweep")
+    let mut options = integration_options(&args.integration);
+    let mut command = Invocation::new("sweep")
         .arg(case.path.display())
-        .option("--loss-coefficient", range)
-        .option("--method", options.method)
-        .to_string();
+        .option("--loss-coefficient", range);
+    match args.tolerance {
+        Some(tolerance) => {
+            let choice = choose(tolerance)
+                .map_err(|e| UserError::argument("--tolerance", tolerance, e.allowed))?;
+            eprintln!("note: {}", choice.sentence());
+            options.method = choice.method;
+            options.steps_per_period = Resolution::steps_per_period(Some(choice.resolution));
+            options.rtol = Resolution::rtol(Some(choice.resolution));
+            command = command.option("--tolerance", format!("{tolerance:e}"));
+        }
+        None => {
+            command = command
+                .option("--method", options.method)
+                .option_if("--steps-per-period", options.steps_per_period)
+                .option_if("--timestep", options.timestep)
+                .option_if("--rtol", options.rtol);
+        }
+    }
+    let streamed = Streamed {
+        case: &case,
+        values,
+        options,
+        command: command.to_string(),
+        jobs: jobs(args),
+    };
+    // Rows go to standard output as they are done.
+    let mut out = std::io::BufWriter::new(std::io::stdout().lock());
+    let points = match streamed.write(format, &mut out, args.plot.is_some()) {
+        Ok(points) => points,
+        Err(e) if broken_pipe(&e) => return Ok(CommandOutput::passed(String::new())),
+        Err(e) => return Err(e),
+    };
+    if let Err(e) = out.flush() {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            return Ok(CommandOutput::passed(String::new()));
+        }
+        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+    }
     if let Some(path) = &args.plot {
-        let points: Vec<(f64, f64)> = report
-            .rows
-            .iter()
-            .map(|r| (r.loss_coefficient, r.cor))
-            .collect();
         let svg = restitution_svg(
             &case.name,
             options.method.name(),
@@ -90,7 +121,24 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         )?;
         write_output(path, svg.as_bytes(), "figure")?;
     }
-    Ok(CommandOutput::passed(export(&report, format)?))
+    Ok(CommandOutput::passed(String::new()))
+}
+
+/// Whether `e` is a closed pipe (the reader has gone: what it read is what it wanted).
+fn broken_pipe(e: &anyhow::Error) -> bool {
+    e.chain().any(|c| {
+        c.downcast_ref::<std::io::Error>()
+            .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// Worker threads: `--jobs`, or the number of cores.
+fn jobs(args: &SweepArgs) -> usize {
+    args.jobs.map(|j| j as usize).unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    })
 }
 
 fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
@@ -107,6 +155,14 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
     }
     if let Some(v) = &args.plot {
         return Err(refuse("--plot", v.display().to_string()));
+    }
+    if let Some(v) = args.tolerance {
+        return Err(UserError::CaseArgument {
+            case: file.clone(),
+            option: "--tolerance".into(),
+            value: format!("{v:e}"),
+            allowed: "not for a sweep file: give `tolerance = ...` in the file".into(),
+        });
     }
     if let Some(v) = i.steps_per_period {
         return Err(refuse("--steps-per-period", v.to_string()));
@@ -125,6 +181,9 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
 
 fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     refuse_for_sweep_files(args)?;
+    if let Some(choice) = &sweep.tolerance {
+        eprintln!("note: {}", choice.sentence());
+    }
     let mut format = RowFormat::from_name(&args.format).ok_or_else(|| {
         UserError::argument(
             "--format",
@@ -133,7 +192,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         )
     })?;
     let columns = sweep.columns();
-    let mut points: Vec<Point> = sweep.points(args.shard);
+    let mut indices: Vec<usize> = sweep.indices(args.shard);
     let mut resumed = Resumed::default();
     let out: Box<dyn Write + Send> = match &args.out {
         None => Box::new(std::io::BufWriter::new(std::io::stdout())),
@@ -153,9 +212,20 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
                 if let Some(f) = resumed.format {
                     format = f;
                 }
-                let keys = point_keys(sweep, &points)?;
-                let mut done = keys.iter().map(|k| resumed.done.contains(k));
-                points.retain(|_| !done.next().unwrap_or(false));
+                // The points done, by their keys, a block at a time (points are not all held).
+                let mut left = Vec::with_capacity(indices.len());
+                for block in indices.chunks(4096) {
+                    let points: Vec<_> = block.iter().map(|&i| sweep.point(i)).collect();
+                    let keys = point_keys(sweep, &points)?;
+                    left.extend(
+                        block
+                            .iter()
+                            .zip(&keys)
+                            .filter(|(_, k)| !resumed.done.contains(*k))
+                            .map(|(&i, _)| i),
+                    );
+                }
+                indices = left;
                 // Failed rows, a row cut off by a kill and rows a later one replaced go; the
                 // rows kept are copied as they were, and the file is swapped in whole.
                 if resumed.rewrites() {
@@ -190,9 +260,10 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
             Box::new(std::io::BufWriter::new(file))
         }
     };
-    let has_codes = points
+    let has_codes = sweep
+        .sources
         .iter()
-        .any(|p| matches!(p.source.source, Source::Code(_)));
+        .any(|s| matches!(s.source, Source::Code(_)));
     let flush_every = if has_codes {
         Duration::ZERO
     } else {
@@ -207,18 +278,13 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         resumed.kept_lines,
     )
     .context("writing the sweep's rows")?;
-    let jobs = args.jobs.map(|j| j as usize).unwrap_or_else(|| {
-        std::thread::available_parallelism()
-            .map(|n| n.get())
-            .unwrap_or(1)
-    });
     let options = GridOptions {
-        jobs,
+        jobs: jobs(args),
         timeout: Duration::from_secs_f64(args.timeout),
         periods: args.integration.periods,
         batch: args.batch as usize,
     };
-    let bar = progress_bar(points.len() as u64);
+    let bar = progress_bar(indices.len() as u64);
     let _ = ctrlc::set_handler(|| {
         // The codes running now end at once; the rows already finished are kept.
         if STOP.swap(true, Ordering::SeqCst) {
@@ -227,31 +293,27 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         }
         millimpact::codes::runner::stop_all_codes();
     });
-    let state = Mutex::new((writer, None::<std::io::Error>));
-    let sink = |row: SweepRow| {
-        let mut guard = state.lock().unwrap_or_else(|e| e.into_inner());
-        if guard.1.is_none()
-            && let Err(e) = guard.0.write(&row)
-        {
-            guard.1 = Some(e);
-            STOP.store(true, Ordering::SeqCst);
-        }
-        if let Some(bar) = &bar {
-            bar.inc(1);
-        }
-    };
+    let mut writer = writer;
     let notes = Mutex::new(Vec::<String>::new());
     let note = |text: String| notes.lock().unwrap_or_else(|e| e.into_inner()).push(text);
-    run_grid(sweep, &points, &options, &STOP, &sink, &note)?;
+    // The one writer: rows come encoded from the threads that computed them.
+    let mut write = |rows: EncodedRows| {
+        let count = rows.rows as u64;
+        writer.write_encoded(rows)?;
+        if let Some(bar) = &bar {
+            bar.inc(count);
+        }
+        Ok(())
+    };
+    let written = run_grid(sweep, &indices, &options, &STOP, format, &mut write, &note);
     for text in notes.into_inner().unwrap_or_else(|e| e.into_inner()) {
         eprintln!("note: {text}");
     }
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
-    let (mut writer, error) = state.into_inner().unwrap_or_else(|e| e.into_inner());
     let flushed = writer.flush();
-    if let Some(e) = error.or(flushed.err()) {
+    if let Some(e) = written.err().or(flushed.err()) {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }

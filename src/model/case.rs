@@ -140,6 +140,48 @@ impl Case {
         }
     }
 
+    /// Set top-level keys of [`IN_PLACE_KEYS`] in place, exactly as reading the case's table
+    /// with them set would: the same checks in the reader's order and the same errors, which
+    /// name `file`. A sweep edits its base case so for every point instead of reading it anew.
+    /// `edits` are applied in order (η and restitution name one number: the last given wins).
+    pub fn apply(&mut self, edits: &[(&str, &Value)], file: &str) -> Result<(), CaseError> {
+        let reader = Reader { file };
+        let mut velocity = None;
+        let mut eta: Option<(Option<&Value>, Option<&Value>)> = None;
+        for &(key, value) in edits {
+            match key {
+                "impact_velocity" => velocity = Some(value),
+                "loss_coefficient" => eta = Some((Some(value), None)),
+                "restitution" => eta = Some((None, Some(value))),
+                other => {
+                    return Err(reader.error(
+                        other,
+                        &value.to_string(),
+                        &format!("not editable in place; keys: {}", IN_PLACE_KEYS.join(", ")),
+                    ));
+                }
+            }
+        }
+        if let Some(v) = velocity {
+            let x = reader.number_of("impact_velocity", Some(v))?;
+            if x <= 0.0 {
+                return Err(reader.error(
+                    "impact_velocity",
+                    &x.to_string(),
+                    "must be a finite number > 0",
+                ));
+            }
+            self.impact_velocity = x;
+        }
+        if let Some((loss, restitution)) = eta {
+            self.loss_coefficient = reader.loss_coefficient(loss, restitution)?;
+        }
+        if velocity.is_some() {
+            self.check_representable(file)?;
+        }
+        Ok(())
+    }
+
     /// Read and validate a case file.
     ///
     /// ```
@@ -249,6 +291,10 @@ pub fn case_keys() -> Vec<String> {
     keys
 }
 
+/// The keys [`Case::apply`] sets in place; the others change a scene's bodies, and a sweep
+/// reads the case anew for them.
+pub const IN_PLACE_KEYS: [&str; 3] = ["impact_velocity", "loss_coefficient", "restitution"];
+
 const TOP_KEYS: [&str; 6] = [
     "scene",
     "impact_velocity",
@@ -330,50 +376,8 @@ impl Reader<'_> {
             }
         }
         let impact_velocity = self.positive(t, "", "impact_velocity")?;
-        let loss_coefficient = match (t.get("loss_coefficient"), t.get("restitution")) {
-            (Some(_), Some(_)) => {
-                return Err(self.error(
-                    "loss_coefficient",
-                    &t["loss_coefficient"].to_string(),
-                    "give exactly one of loss_coefficient and restitution, not both",
-                ));
-            }
-            (None, None) => {
-                return Err(self.error(
-                    "loss_coefficient",
-                    "(missing)",
-                    "give exactly one of loss_coefficient (η in [0, 1)) and restitution (e in (0, 1])",
-                ));
-            }
-            (Some(_), None) => {
-                let eta = self.number(t, "", "loss_coefficient")?;
-                if !(0.0..1.0).contains(&eta) {
-                    return Err(self.error(
-                        "loss_coefficient",
-                        &eta.to_string(),
-                        "must be in [0, 1): η = 1 never separates, η < 0 creates energy",
-                    ));
-                }
-                eta
-            }
-            (None, Some(_)) => {
-                let e = self.number(t, "", "restitution")?;
-                if !(e > 0.0 && e <= 1.0) {
-                    return Err(self.error("restitution", &e.to_string(), "must be in (0, 1]"));
-                }
-                let eta = exact::loss_coefficient(e);
-                if eta >= 1.0 {
-                    // e² below half an ulp of 1 makes η = (1 - e²)/(1 + e²) exactly 1: the
-                    // bodies would never separate and no integration would end.
-                    return Err(self.error(
-                        "restitution",
-                        &e.to_string(),
-                        "must be in (0, 1] and at least about 1.1e-8 (a smaller e gives η = 1 in double precision: the bodies never separate)",
-                    ));
-                }
-                eta
-            }
-        };
+        let loss_coefficient =
+            self.loss_coefficient(t.get("loss_coefficient"), t.get("restitution"))?;
         let stiffness = match t.get("stiffness") {
             None => StiffnessConvention::Hertz,
             Some(Value::String(s)) if s == "hertz" => StiffnessConvention::Hertz,
@@ -426,6 +430,59 @@ impl Reader<'_> {
         Ok(case)
     }
 
+    /// η from the case's `loss_coefficient` or `restitution` (exactly one given).
+    fn loss_coefficient(
+        &self,
+        loss: Option<&Value>,
+        restitution: Option<&Value>,
+    ) -> Result<f64, CaseError> {
+        let eta = match (loss, restitution) {
+            (Some(_), Some(_)) => {
+                return Err(self.error(
+                    "loss_coefficient",
+                    &loss.map(Value::to_string).unwrap_or_default(),
+                    "give exactly one of loss_coefficient and restitution, not both",
+                ));
+            }
+            (None, None) => {
+                return Err(self.error(
+                    "loss_coefficient",
+                    "(missing)",
+                    "give exactly one of loss_coefficient (η in [0, 1)) and restitution (e in (0, 1])",
+                ));
+            }
+            (Some(_), None) => {
+                let eta = self.number_of("loss_coefficient", loss)?;
+                if !(0.0..1.0).contains(&eta) {
+                    return Err(self.error(
+                        "loss_coefficient",
+                        &eta.to_string(),
+                        "must be in [0, 1): η = 1 never separates, η < 0 creates energy",
+                    ));
+                }
+                eta
+            }
+            (None, Some(_)) => {
+                let e = self.number_of("restitution", restitution)?;
+                if !(e > 0.0 && e <= 1.0) {
+                    return Err(self.error("restitution", &e.to_string(), "must be in (0, 1]"));
+                }
+                let eta = exact::loss_coefficient(e);
+                if eta >= 1.0 {
+                    // e² below half an ulp of 1 makes η = (1 - e²)/(1 + e²) exactly 1: the
+                    // bodies would never separate and no integration would end.
+                    return Err(self.error(
+                        "restitution",
+                        &e.to_string(),
+                        "must be in (0, 1] and at least about 1.1e-8 (a smaller e gives η = 1 in double precision: the bodies never separate)",
+                    ));
+                }
+                eta
+            }
+        };
+        Ok(eta)
+    }
+
     fn table<'t>(&self, t: &'t Table, name: &str) -> Result<&'t Table, CaseError> {
         match t.get(name) {
             Some(Value::Table(table)) => Ok(table),
@@ -456,14 +513,19 @@ impl Reader<'_> {
         } else {
             format!("{table}.{key}")
         };
-        let x = match t.get(key) {
+        self.number_of(&full, t.get(key))
+    }
+
+    /// The number `value` at key `full`.
+    fn number_of(&self, full: &str, value: Option<&Value>) -> Result<f64, CaseError> {
+        let x = match value {
             Some(Value::Float(x)) => *x,
             Some(Value::Integer(i)) => *i as f64,
-            Some(v) => return Err(self.error(&full, &v.to_string(), "must be a number")),
-            None => return Err(self.error(&full, "(missing)", "required")),
+            Some(v) => return Err(self.error(full, &v.to_string(), "must be a number")),
+            None => return Err(self.error(full, "(missing)", "required")),
         };
         if !x.is_finite() {
-            return Err(self.error(&full, &x.to_string(), "must be finite"));
+            return Err(self.error(full, &x.to_string(), "must be finite"));
         }
         Ok(x)
     }

@@ -6,10 +6,22 @@ use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
 
 /// `J(n) = ∫0^1 (1 - u^(n+1))^(-1/2) du = sqrt(π) Γ(1 + 1/(n+1)) / Γ(1/2 + 1/(n+1))`:
-/// a quarter period of the undamped oscillation in units of `y_max / v0`.
+/// a quarter period of the undamped oscillation in units of `y_max / v0`. Remembered per
+/// thread for the last exponent asked for: every impact of a sweep asks for it, and the two
+/// gamma functions cost more than the rest of the closed forms.
 pub fn j_integral(n: f64) -> f64 {
-    let p = 1.0 / (n + 1.0);
-    std::f64::consts::PI.sqrt() * libm::tgamma(1.0 + p) / libm::tgamma(0.5 + p)
+    thread_local! {
+        static LAST: std::cell::Cell<Option<(u64, f64)>> = const { std::cell::Cell::new(None) };
+    }
+    LAST.with(|last| match last.get() {
+        Some((bits, j)) if bits == n.to_bits() => j,
+        _ => {
+            let p = 1.0 / (n + 1.0);
+            let j = std::f64::consts::PI.sqrt() * libm::tgamma(1.0 + p) / libm::tgamma(0.5 + p);
+            last.set(Some((n.to_bits(), j)));
+            j
+        }
+    })
 }
 
 /// The COR of the paper's law: `e = sqrt((1 - η)/(1 + η))`, whatever `n`, `M`, `C` and `v0`.

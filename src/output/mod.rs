@@ -206,15 +206,18 @@ fn new_table(headers: &[String]) -> Table {
     t
 }
 
-/// A table in Markdown; `|` inside a cell is escaped.
-fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
+/// One line of a Markdown table; `|` inside a cell is escaped.
+pub fn markdown_row(cells: &[String]) -> String {
     let escape = |cell: &String| cell.replace('|', "\\|");
-    let line = |cells: &[String]| {
-        format!(
-            "| {} |\n",
-            cells.iter().map(escape).collect::<Vec<_>>().join(" | ")
-        )
-    };
+    format!(
+        "| {} |\n",
+        cells.iter().map(escape).collect::<Vec<_>>().join(" | ")
+    )
+}
+
+/// A table in Markdown.
+fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
+    let line = markdown_row;
     let mut text = line(headers);
     text += &format!("|{}\n", "---|".repeat(headers.len()));
     for row in rows {
@@ -247,6 +250,23 @@ pub fn sci(x: f64) -> String {
 /// A signed relative difference with three significant digits.
 pub fn signed(x: f64) -> String {
     format!("{x:+.2e}")
+}
+
+/// An energy, J, in the unit that shows four decimals of it (J, mJ, µJ, nJ, pJ; scientific
+/// below a picojoule), so that a small body's energy does not print as `0.0000 J`.
+pub fn joules(x: f64) -> String {
+    for (scale, unit) in [
+        (1.0, "J"),
+        (1e-3, "mJ"),
+        (1e-6, "µJ"),
+        (1e-9, "nJ"),
+        (1e-12, "pJ"),
+    ] {
+        if x.abs() >= scale {
+            return format!("{:.4} {unit}", x / scale);
+        }
+    }
+    format!("{x:.4e} J")
 }
 
 /// A duration, s, in convenient units.

@@ -61,6 +61,44 @@ pub struct MethodDescriptor {
     pub order: Option<u32>,
     /// The tolerance `verify` and `stability` hold it to.
     pub tolerance: ToleranceRule,
+    /// Its measured COR error against its knob, where it is known well enough to choose a
+    /// resolution from a COR tolerance (`None`: the method is never chosen that way).
+    pub cor_error_bound: Option<CorErrorBound>,
+}
+
+/// A measured bound on a method's relative COR error as a function of its knob:
+/// `|COR error| <= Σ constant × s^order` with `s = 1/N` (N steps per undamped period) or
+/// `s = rtol`, over every loss coefficient in [0, 1) and both exponents of the scenes (1: the
+/// rod, 1.5: the balls). In the dimensionless form of the solver an impact depends on the
+/// exponent and η alone, so the bound holds for every case of a scene.
+///
+/// Measured by `cargo run --release --example cor_error_bounds` (the largest error over 1001
+/// loss coefficients on [0, 0.9999] at each resolution, both exponents), and checked by
+/// `tests/tolerance_choice.rs` on a grid of resolutions.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CorErrorBound {
+    /// The bound's terms `(constant, order)`.
+    pub terms: &'static [(f64, f64)],
+    /// The range of the knob the bound was measured over: steps per period from `coarsest`
+    /// to `finest`, or rtol from `coarsest` down to `finest`.
+    pub coarsest: f64,
+    /// See `coarsest`.
+    pub finest: f64,
+    /// The time of one right-hand-side evaluation (with the stepping around it) relative to
+    /// rk4-event's on one chain, measured by `MILLIMPACT_BENCH_REPORT=1 cargo bench --bench
+    /// impact`: what a step of the method costs beside its count.
+    pub evaluation_cost: f64,
+}
+
+impl CorErrorBound {
+    /// The bound at knob value `value` (steps per period, or rtol).
+    pub fn at(&self, knob: Knob, value: f64) -> f64 {
+        let s = match knob {
+            Knob::StepsPerPeriod => 1.0 / value,
+            _ => value,
+        };
+        self.terms.iter().map(|&(c, p)| c * s.powf(p)).sum()
+    }
 }
 
 /// RK4's stability region meets the imaginary axis at `ω Δt = 2√2`.
@@ -69,6 +107,31 @@ const RK4_LIMIT: f64 = 2.0 * std::f64::consts::SQRT_2;
 const ACCURATE: f64 = 1e-9;
 /// What DEM practice asks of an impact's COR and peak.
 const DEM_PRACTICE: f64 = 1e-3;
+
+/// rk4-event: order 5 (the COR is fixed by the energy, whose error is O(h⁵) over a phase) with
+/// an order-4 term of small constant (the contact time's order, through the located events)
+/// that the balls' exponent shows from about 500 steps per period. Measured largest errors:
+/// 2.0e-10 at 400 steps per period, 9.99e-11 at 458, 2.4e-12 at 1000, 1.7e-14 at 3000; the
+/// bound's constants are the smallest of this form above every measured point from 32 to 3000
+/// steps per period, rounded up; beyond 3000 the error is rounding (about 5e-15).
+const RK4_EVENT_COR: CorErrorBound = CorErrorBound {
+    terms: &[(1.85e3, 5.0), (0.9, 4.0)],
+    coarsest: 32.0,
+    finest: 3000.0,
+    evaluation_cost: 1.0,
+};
+
+/// dopri5: the COR error follows the tolerance, 0.23 to 0.27 of it from rtol 1e-6 to 1e-13;
+/// a step costs six evaluations and the controller's arithmetic: 2.1 times rk4-event's time per
+/// evaluation on one chain (`MILLIMPACT_BENCH_REPORT=1 cargo bench --bench impact`, ball_plate:
+/// 16.9 µs for 560 evaluations at rtol 1e-10 against 7.3 µs for 500 at 400 steps per period;
+/// rk4-event in lanes is cheaper still, so the weight is a lower bound).
+const DOPRI5_COR: CorErrorBound = CorErrorBound {
+    terms: &[(0.28, 1.0)],
+    coarsest: 1e-6,
+    finest: 1e-13,
+    evaluation_cost: 2.1,
+};
 
 /// The registry of methods: one line per method, `Variant => descriptor`. It declares the
 /// [`Method`] variant, its place in [`Method::ALL`] and its descriptor.
@@ -103,6 +166,7 @@ method_registry! {
         knob: Knob::StepsPerPeriod,
         order: Some(4),
         tolerance: ToleranceRule::OneStepEnd { figures: DEM_PRACTICE },
+        cor_error_bound: None,
     },
     /// RK4 at a fixed step with the turning point and the contact end located and the
     /// integration restarted there; series start and end over the non-smooth `y^n`.
@@ -112,6 +176,7 @@ method_registry! {
         knob: Knob::StepsPerPeriod,
         order: Some(4),
         tolerance: ToleranceRule::Uniform(ACCURATE),
+        cor_error_bound: Some(RK4_EVENT_COR),
     },
     /// Dormand–Prince 5(4) with error control, the same event location and series treatment.
     Dopri5 => MethodDescriptor {
@@ -120,6 +185,7 @@ method_registry! {
         knob: Knob::Rtol,
         order: Some(5),
         tolerance: ToleranceRule::Uniform(ACCURATE),
+        cor_error_bound: Some(DOPRI5_COR),
     },
     /// Velocity Verlet at a fixed step, as DEM codes step (the damping sees the half-step
     /// velocity); contact end at the first step with `y < 0`.
@@ -129,6 +195,7 @@ method_registry! {
         knob: Knob::StepsPerPeriod,
         order: Some(2),
         tolerance: ToleranceRule::OneStepEnd { figures: DEM_PRACTICE },
+        cor_error_bound: None,
     },
     /// The closed forms.
     Exact => MethodDescriptor {
@@ -137,6 +204,7 @@ method_registry! {
         knob: Knob::None,
         order: None,
         tolerance: ToleranceRule::Uniform(ACCURATE),
+        cor_error_bound: None,
     },
 }
 

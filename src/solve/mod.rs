@@ -15,7 +15,7 @@ pub mod steppers;
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
-pub use method::{Knob, Method, MethodDescriptor, Stepping, ToleranceRule};
+pub use method::{CorErrorBound, Knob, Method, MethodDescriptor, Stepping, ToleranceRule};
 use series::ContactSeries;
 use steppers::{State, Stepper};
 
@@ -236,7 +236,7 @@ where
 /// `signum(a) != signum(b)` (a NaN on either side counts) or `b == 0`, with the signs compared
 /// as bits.
 #[inline]
-fn changes_sign(a: f64, b: f64) -> bool {
+pub(crate) fn changes_sign(a: f64, b: f64) -> bool {
     a != 0.0
         && (a.is_sign_negative() != b.is_sign_negative() || a.is_nan() || b.is_nan() || b == 0.0)
 }
@@ -245,7 +245,7 @@ fn changes_sign(a: f64, b: f64) -> bool {
 /// step map, and the state there.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-fn locate<R: Fn(&State) -> State, S: Stepper>(
+pub(crate) fn locate<R: Fn(&State) -> State, S: Stepper>(
     rhs: &R,
     stepper: &mut S,
     y: &State,

@@ -13,11 +13,15 @@ use crate::model::exact;
 use crate::model::law::CodeLaw;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::invocation::Invocation;
-use crate::output::{Section, Summary, sci, signed};
+use crate::output::{Section, Summary, joules, sci, signed};
 use crate::solve::dashpot::{CodeStepping, own_law_metrics};
 
 /// Start phases sampled when a card predicts a stepped COR.
 pub const CARD_PHASES: usize = 16;
+/// Fewest steps per elastic contact time a card recommends.
+pub const FEWEST_STEPS_PER_CONTACT: u32 = 10;
+/// Most steps per elastic contact time a card searches.
+pub const MOST_STEPS_PER_CONTACT: u32 = 163_840;
 
 /// How to calibrate.
 #[derive(Clone, Debug, PartialEq)]
@@ -52,8 +56,10 @@ pub struct Card {
     pub realised_cor: f64,
     /// Its range over where the first contact falls within a step.
     pub realised_band: Range,
-    /// The largest time step (elastic contact time over a power of two of steps) whose COR
-    /// stays within the tolerance of the target over every start phase, s.
+    /// The time step of the fewest steps per elastic contact time (from
+    /// [`FEWEST_STEPS_PER_CONTACT`]) whose COR stays within the tolerance of the target over
+    /// every start phase, s: one step per contact fewer leaves it (found by doubling, then
+    /// bisection).
     pub timestep_for_tolerance: Option<f64>,
     /// Steps per elastic contact time at that step.
     pub steps_per_contact: Option<u32>,
@@ -153,19 +159,36 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
     };
     let mut found = None;
     if unsupported.is_none() {
-        let mut n = 10u32;
-        while n <= 163_840 {
+        let passes = |n: u32| {
             let h = tc / n as f64;
             // The frame's start is the run's at its own step; at another step, from touch.
             let at_h = CodeStepping {
                 frame: None,
                 ..stepping
             };
-            if within(&band(&law, v0, h, steps_for(h), &at_h)) {
-                found = Some((h, n));
-                break;
+            within(&band(&law, v0, h, steps_for(h), &at_h))
+        };
+        // Doubling finds the first count that passes; bisection between it and the one before
+        // finds the fewest steps per contact that pass, not a power of two.
+        let mut hi = FEWEST_STEPS_PER_CONTACT;
+        while hi <= MOST_STEPS_PER_CONTACT && !passes(hi) {
+            hi *= 2;
+        }
+        if hi <= MOST_STEPS_PER_CONTACT {
+            let mut lo = if hi == FEWEST_STEPS_PER_CONTACT {
+                hi
+            } else {
+                hi / 2
+            };
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if passes(mid) {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
             }
-            n *= 2;
+            found = Some((tc / hi as f64, hi));
         }
     }
     Ok(Card {
@@ -288,13 +311,13 @@ impl Summary for Calibration {
         for t in &self.targets {
             let mut s = Section::new(
                 Some(format!(
-                    "{}: COR {} → η = {:.6}; absorbed per impact {:.4} J = {:.1} % of the impact energy {:.4} J",
+                    "{}: COR {} → η = {:.6}; absorbed per impact {} = {:.1} % of the impact energy {}",
                     self.case,
                     t.restitution,
                     t.loss_coefficient,
-                    t.absorbed_energy,
+                    joules(t.absorbed_energy),
                     100.0 * t.absorbed_fraction,
-                    self.impact_energy
+                    joules(self.impact_energy)
                 )),
                 &[
                     "code",

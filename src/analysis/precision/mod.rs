@@ -16,6 +16,8 @@
 //! process wall time (and the code's own loop time) of at most three runs after one warm-up
 //! run of the code.
 
+pub mod choice;
+
 use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::{Duration, Instant};

@@ -14,6 +14,10 @@
 //! code = ["lammps"]
 //! steps_per_contact = [200]
 //! ```
+//!
+//! Instead of a method and its resolution, a file may ask for an accuracy: `tolerance = 1e-10`
+//! (a relative COR error) chooses the cheapest method and resolution known to meet it
+//! ([`crate::analysis::precision::choice`]).
 
 use std::path::{Path, PathBuf};
 
@@ -21,17 +25,18 @@ use sha2::{Digest, Sha256};
 use toml::{Table, Value};
 
 use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
+use crate::analysis::precision::choice::{Choice, allowed_tolerances, choose, resolution_text};
 use crate::analysis::run::MIN_RTOL;
 pub use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
-use crate::model::case::{Case, CaseError};
+use crate::model::case::{Case, CaseError, IN_PLACE_KEYS};
 use crate::solve::{Knob, Method};
 
 /// Most points a sweep file may name.
 pub const MAX_POINTS: usize = 10_000_000;
 
 /// The keys a sweep file may have at top level.
-const SWEEP_KEYS: [&str; 2] = ["base", "axes"];
+const SWEEP_KEYS: [&str; 3] = ["base", "axes", "tolerance"];
 /// Axes that choose sources and resolutions rather than case keys.
 const SOURCE_AXES: [&str; 5] = [
     "method",
@@ -47,7 +52,63 @@ pub struct Axis {
     /// The dotted case key.
     pub key: String,
     /// Its values.
-    pub values: Vec<Value>,
+    pub values: AxisValues,
+}
+
+/// The values of an axis: as listed, or evenly spaced and made on demand (a range of 10^6
+/// values takes no memory).
+#[derive(Clone, Debug, PartialEq)]
+pub enum AxisValues {
+    /// The values listed.
+    List(Vec<Value>),
+    /// `start + i × step` for `i` below `count`, the last one `last` when given (the stop of
+    /// a `{ start, stop, count }` range, exactly).
+    Spaced {
+        /// The first value.
+        start: f64,
+        /// The spacing.
+        step: f64,
+        /// How many.
+        count: usize,
+        /// The last value, if it is not `start + (count - 1) × step`.
+        last: Option<f64>,
+    },
+}
+
+impl AxisValues {
+    /// How many values.
+    pub fn len(&self) -> usize {
+        match self {
+            AxisValues::List(v) => v.len(),
+            AxisValues::Spaced { count, .. } => *count,
+        }
+    }
+
+    /// Whether there are none (an axis always has one).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Every value, in order.
+    pub fn iter(&self) -> impl Iterator<Item = Value> + '_ {
+        (0..self.len()).map(|i| self.get(i))
+    }
+
+    /// Value `i`.
+    pub fn get(&self, i: usize) -> Value {
+        match self {
+            AxisValues::List(v) => v[i].clone(),
+            AxisValues::Spaced {
+                start,
+                step,
+                count,
+                last,
+            } => match last {
+                Some(last) if i + 1 == *count => Value::Float(*last),
+                _ => Value::Float(start + i as f64 * step),
+            },
+        }
+    }
 }
 
 /// A source with the resolution it runs at; `None` for its default (or a method without a
@@ -77,6 +138,13 @@ pub struct SweepFile {
     pub sources: Vec<ResolvedSource>,
     /// Hash of the normalised sweep file and base case: shards of one sweep share it.
     pub fingerprint: String,
+    /// The base case, read.
+    pub base_case: Case,
+    /// The method and resolution chosen for the file's `tolerance`, if it gives one.
+    pub tolerance: Option<Choice>,
+    /// Whether every case axis is a key the case is edited at in place
+    /// ([`IN_PLACE_KEYS`]), so that a point's case need not be read anew.
+    pub in_place: bool,
 }
 
 /// One point of the grid.
@@ -168,7 +236,7 @@ impl SweepFile {
                 return Err(fail(
                     key,
                     &value.to_string(),
-                    "unknown key; a sweep file takes base (a case file or table) and [axes]",
+                    "unknown key; a sweep file takes base (a case file or table), [axes] and tolerance",
                 ));
             }
         }
@@ -212,7 +280,7 @@ impl SweepFile {
             }
         };
         // The base must itself be a valid case.
-        Case::from_table(
+        let base_case = Case::from_table(
             &base,
             &base_path.display().to_string(),
             &base_name,
@@ -248,7 +316,7 @@ impl SweepFile {
             }
             match key.as_str() {
                 "method" => {
-                    for v in &values {
+                    for v in values.iter() {
                         let name = v.as_str().unwrap_or_default();
                         let m = Method::from_name(name).ok_or_else(|| {
                             fail(
@@ -261,7 +329,7 @@ impl SweepFile {
                     }
                 }
                 "code" => {
-                    for v in &values {
+                    for v in values.iter() {
                         let name = v.as_str().unwrap_or_default();
                         let c = CodeName::from_name(name).ok_or_else(|| {
                             fail(
@@ -275,7 +343,7 @@ impl SweepFile {
                 }
                 "rtol" => {
                     let mut rtols = Vec::new();
-                    for v in &values {
+                    for v in values.iter() {
                         match v.as_float() {
                             Some(r) if (MIN_RTOL..1.0).contains(&r) => rtols.push(Some(r)),
                             _ => {
@@ -291,7 +359,7 @@ impl SweepFile {
                 }
                 "steps_per_period" | "steps_per_contact" => {
                     let mut counts = Vec::new();
-                    for v in &values {
+                    for v in values.iter() {
                         match v.as_integer() {
                             Some(n) if (4..=100_000_000).contains(&n) => {
                                 counts.push(u32::try_from(n).ok())
@@ -326,6 +394,33 @@ impl SweepFile {
                 }
             }
         }
+        let tolerance = match table.get("tolerance") {
+            None => None,
+            Some(value) => {
+                let refuse = |allowed: &str| fail("tolerance", &value.to_string(), allowed);
+                let explicit: Vec<&str> = ["method", "steps_per_period", "rtol"]
+                    .into_iter()
+                    .filter(|k| axes_table.contains_key(*k))
+                    .collect();
+                if !explicit.is_empty() {
+                    return Err(refuse(&format!(
+                        "not with axes.{}: the tolerance chooses the method and its resolution",
+                        explicit.join(" or axes.")
+                    )));
+                }
+                let Some(x) = value.as_float() else {
+                    return Err(refuse(&allowed_tolerances()));
+                };
+                let choice = choose(x).map_err(|e| refuse(&e.allowed))?;
+                methods.push(choice.method);
+                match choice.resolution {
+                    Resolution::StepsPerPeriod(n) => per_period = vec![Some(n)],
+                    Resolution::Rtol(r) => tolerances = vec![Some(r)],
+                    Resolution::StepsPerContact(_) => {}
+                }
+                Some(choice)
+            }
+        };
         if methods.is_empty() && codes.is_empty() {
             methods.push(Method::Rk4Event);
         }
@@ -394,8 +489,21 @@ impl SweepFile {
         let mut normal = Table::new();
         normal.insert("axes".into(), Value::Table(axes_table));
         normal.insert("base".into(), Value::Table(base.clone()));
+        if let Some(choice) = &tolerance {
+            // The choice too: rows of another choice (other bounds) belong to another sweep.
+            normal.insert("tolerance".into(), Value::Float(choice.tolerance));
+            normal.insert(
+                "tolerance_choice".into(),
+                Value::String(format!(
+                    "{} at {}",
+                    choice.method,
+                    resolution_text(choice.resolution)
+                )),
+            );
+        }
         let text = toml::to_string(&normal).unwrap_or_default();
         let fingerprint = hex(&Sha256::digest(text.as_bytes()))[..16].to_string();
+        let in_place = axes.iter().all(|a| IN_PLACE_KEYS.contains(&a.key.as_str()));
         Ok(SweepFile {
             path: path.to_path_buf(),
             base,
@@ -404,6 +512,9 @@ impl SweepFile {
             axes,
             sources,
             fingerprint,
+            base_case,
+            in_place,
+            tolerance,
         })
     }
 
@@ -424,7 +535,7 @@ impl SweepFile {
         rest /= self.sources.len();
         let mut values = vec![Value::Boolean(false); self.axes.len()];
         for (i, axis) in self.axes.iter().enumerate().rev() {
-            values[i] = axis.values[rest % axis.values.len()].clone();
+            values[i] = axis.values.get(rest % axis.values.len());
             rest /= axis.values.len();
         }
         Point {
@@ -441,6 +552,13 @@ impl SweepFile {
             .step_by(n)
             .map(|i| self.point(i))
             .collect()
+    }
+
+    /// The indices of the points of shard `k` of `n` (1-based; every n-th point from the
+    /// k-th), or of all.
+    pub fn indices(&self, shard: Option<(usize, usize)>) -> Vec<usize> {
+        let (k, n) = shard.unwrap_or((1, 1));
+        (k - 1..self.len()).step_by(n).collect()
     }
 
     /// The keys of the case axes, in axis order.
@@ -537,14 +655,61 @@ impl SweepFile {
             }
             holder.insert(key.to_string(), value.clone());
         }
-        let file = format!("{} (point {})", self.path.display(), point.index);
-        Case::from_table(&table, &file, &self.base_name, &self.base_path)
+        Case::from_table(
+            &table,
+            &self.point_file(point),
+            &self.base_name,
+            &self.base_path,
+        )
+    }
+
+    /// How errors name the case of `point`.
+    pub fn point_file(&self, point: &Point) -> String {
+        format!("{} (point {})", self.path.display(), point.index)
+    }
+}
+
+/// The cases of a sweep's points, one after another: each made from the last by editing it in
+/// place when every axis allows ([`SweepFile::in_place`]), else read anew from the base's
+/// table; the same case and the same errors either way.
+pub struct PointCases<'a> {
+    sweep: &'a SweepFile,
+    case: Case,
+}
+
+impl<'a> PointCases<'a> {
+    /// Cases of `sweep`'s points.
+    pub fn new(sweep: &'a SweepFile) -> PointCases<'a> {
+        PointCases {
+            sweep,
+            case: sweep.base_case.clone(),
+        }
+    }
+
+    /// The case at `point`.
+    pub fn case(&mut self, point: &Point) -> Result<&Case, CaseError> {
+        if !self.sweep.in_place {
+            self.case = self.sweep.case(point)?;
+            return Ok(&self.case);
+        }
+        let mut edits: [(&str, &Value); IN_PLACE_KEYS.len()] =
+            [("", &Value::Boolean(false)); IN_PLACE_KEYS.len()];
+        let count = self.sweep.axes.len();
+        for ((edit, axis), value) in edits.iter_mut().zip(&self.sweep.axes).zip(&point.values) {
+            *edit = (axis.key.as_str(), value);
+        }
+        // The file's name is formatted only for an error.
+        self.case.apply(&edits[..count], "").map_err(|mut e| {
+            e.file = self.sweep.point_file(point);
+            e
+        })?;
+        Ok(&self.case)
     }
 }
 
 /// The values of one axis: a list, or `{ start, stop, step }` (stop included) or
 /// `{ start, stop, count }` (evenly spaced, both ends included).
-fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<Value>, CaseError> {
+fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<AxisValues, CaseError> {
     let allowed =
         "a list of values, or { start, stop, step } or { start, stop, count } with start <= stop";
     match value {
@@ -556,7 +721,7 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                     )));
                 }
             }
-            Ok(items.clone())
+            Ok(AxisValues::List(items.clone()))
         }
         Value::Table(t) => {
             for key in t.keys() {
@@ -574,7 +739,7 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
             if !(start.is_finite() && stop.is_finite() && start <= stop) {
                 return Err(refuse(allowed));
             }
-            let values: Vec<f64> = match (num("step"), t.get("count").and_then(Value::as_integer)) {
+            match (num("step"), t.get("count").and_then(Value::as_integer)) {
                 (Some(step), None) => {
                     if !(step.is_finite() && step > 0.0) {
                         return Err(refuse(allowed));
@@ -586,7 +751,12 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                     let count = crate::model::count::ceil_count(count)
                         .and_then(|n| usize::try_from(n).ok())
                         .ok_or_else(|| refuse(&format!("at most {MAX_POINTS} values")))?;
-                    (0..count).map(|i| start + i as f64 * step).collect()
+                    Ok(AxisValues::Spaced {
+                        start,
+                        step,
+                        count,
+                        last: None,
+                    })
                 }
                 (None, Some(count)) => {
                     #[allow(clippy::float_cmp)] // one point names one value: the same number twice
@@ -598,23 +768,19 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Vec<
                         )));
                     }
                     if count == 1 {
-                        vec![start]
-                    } else {
-                        let h = (stop - start) / (count - 1) as f64;
-                        (0..count)
-                            .map(|i| {
-                                if i == count - 1 {
-                                    stop
-                                } else {
-                                    start + i as f64 * h
-                                }
-                            })
-                            .collect()
+                        return Ok(AxisValues::List(vec![Value::Float(start)]));
                     }
+                    let count = usize::try_from(count)
+                        .map_err(|_| refuse(&format!("at most {MAX_POINTS} values")))?;
+                    Ok(AxisValues::Spaced {
+                        start,
+                        step: (stop - start) / (count - 1) as f64,
+                        count,
+                        last: Some(stop),
+                    })
                 }
-                _ => return Err(refuse(&format!("{allowed}: exactly one of step and count"))),
-            };
-            Ok(values.into_iter().map(Value::Float).collect())
+                _ => Err(refuse(&format!("{allowed}: exactly one of step and count"))),
+            }
         }
         _ => Err(refuse(allowed)),
     }

@@ -1,19 +1,56 @@
 //! `sweep`: one impact per loss coefficient over a range (the paper's Figure 3).
+//!
+//! Rows stream: they are computed in chunks on several threads, written in η order as each
+//! chunk is done, and not kept (but for the table format, whose column widths need every row).
+
+use std::io::Write;
+use std::sync::atomic::AtomicBool;
 
 use anyhow::Result;
 use serde::Serialize;
 
-use crate::analysis::run::{IntegrationOptions, SweepRow, run_case};
+use crate::analysis::run::{IntegrationOptions, RunReport, SweepRow, run_case, solve_failure};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::count::round_count;
-use crate::output::{Section, Summary, sci, signed};
+use crate::model::law::PaperLaw;
+use crate::output::{Format, Section, Summary, export, markdown_row, sci, signed};
+use crate::solve::paper::{Settings, check_step, solve_many};
 
-/// Most values a sweep may have.
-pub const MAX_SWEEP_POINTS: usize = 100_000;
+/// Most values a sweep may have (a sweep file's limit).
+pub const MAX_SWEEP_POINTS: usize = super::grid::MAX_POINTS;
+
+/// Loss coefficients `start + i × step` for `i` below `count`, made on demand.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EtaRange {
+    /// The first.
+    pub start: f64,
+    /// The spacing.
+    pub step: f64,
+    /// How many.
+    pub count: usize,
+}
+
+impl EtaRange {
+    /// Value `i`.
+    pub fn get(&self, i: usize) -> f64 {
+        self.start + i as f64 * self.step
+    }
+
+    /// The values of `range`.
+    pub fn values(&self, range: std::ops::Range<usize>) -> Vec<f64> {
+        range.map(|i| self.get(i)).collect()
+    }
+}
 
 /// Parse `START:STOP:STEP` into the values of η it names, STOP included.
 pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
+    let range = parse_eta_range(text)?;
+    Ok(range.values(0..range.count))
+}
+
+/// Parse `START:STOP:STEP` into the range of η it names, STOP included.
+pub fn parse_eta_range(text: &str) -> Result<EtaRange, UserError> {
     let allowed = "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0";
     let refuse = |allowed: &str| UserError::argument("--loss-coefficient", text, allowed);
     let numbers: Option<Vec<f64>> = text.split(':').map(|p| p.trim().parse().ok()).collect();
@@ -36,7 +73,7 @@ pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
     let count = round_count(count)
         .and_then(|n| usize::try_from(n).ok())
         .ok_or_else(|| refuse(&format!("at most {MAX_SWEEP_POINTS} values")))?;
-    Ok((0..count).map(|i| start + i as f64 * step).collect())
+    Ok(EtaRange { start, step, count })
 }
 
 /// The rows of a sweep.
@@ -62,6 +99,33 @@ pub fn sweep(case: &Case, values: &[f64], options: &IntegrationOptions) -> Resul
     })
 }
 
+/// The headers of the table people read.
+const HEADERS: [&str; 6] = [
+    "η",
+    "COR",
+    "exact",
+    "COR error",
+    "peak (m)",
+    "contact time (s)",
+];
+
+/// The title of the table people read.
+fn title(case: &str, method: &str) -> String {
+    format!("{case}: COR against η by {method}")
+}
+
+/// A row's cells in the table people read.
+fn cells(r: &SweepRow) -> Vec<String> {
+    vec![
+        r.loss_coefficient.to_string(),
+        sci(r.cor),
+        sci(r.cor_exact),
+        signed(r.cor_error),
+        sci(r.peak_deformation),
+        sci(r.contact_time),
+    ]
+}
+
 impl Summary for SweepReport {
     type Record = SweepRow;
 
@@ -71,33 +135,215 @@ impl Summary for SweepReport {
 
     fn sections(&self) -> Vec<Section> {
         let mut t = Section::new(
-            self.rows
-                .first()
-                .map(|r| format!("{}: COR against η by {}", r.case, r.method)),
-            &[
-                "η",
-                "COR",
-                "exact",
-                "COR error",
-                "peak (m)",
-                "contact time (s)",
-            ],
+            self.rows.first().map(|r| title(&r.case, r.method)),
+            &HEADERS,
         );
-        for r in &self.rows {
-            t.rows.push(vec![
-                r.loss_coefficient.to_string(),
-                sci(r.cor),
-                sci(r.cor_exact),
-                signed(r.cor_error),
-                sci(r.peak_deformation),
-                sci(r.contact_time),
-            ]);
-        }
+        t.rows = self.rows.iter().map(cells).collect();
         vec![t]
     }
 
     fn footer(&self) -> Vec<String> {
         vec![format!("reproduce: {}", self.command)]
+    }
+}
+
+/// The rows of `case` at the loss coefficients `values` with `settings`, in order: each the
+/// row of [`run_case`] at that η (rk4-event solves them in lanes, to the same bits).
+pub fn rows_at(case: &Case, values: &[f64], settings: &Settings) -> Result<Vec<SweepRow>> {
+    let mut at = case.clone();
+    let items: Vec<(PaperLaw, f64)> = values
+        .iter()
+        .map(|&eta| {
+            at.loss_coefficient = eta;
+            (at.law(), at.impact_velocity)
+        })
+        .collect();
+    values
+        .iter()
+        .zip(solve_many(&items, settings))
+        .map(|(&eta, outcome)| {
+            at.loss_coefficient = eta;
+            let outcome = outcome.map_err(|e| solve_failure(&case.path, e))?;
+            Ok(RunReport::new(&at, settings.method, &outcome).row())
+        })
+        .collect()
+}
+
+/// A chunk of rows written out, and its points (η, COR) when they are to be drawn.
+type EncodedChunk = (Vec<u8>, Vec<(f64, f64)>);
+
+/// η values per chunk of a streamed sweep.
+const CHUNK: usize = 64;
+
+/// A case over a range of η, its rows streamed.
+pub struct Streamed<'a> {
+    /// The case.
+    pub case: &'a Case,
+    /// The loss coefficients.
+    pub values: EtaRange,
+    /// The integration options (checked for every η before the first row is written).
+    pub options: IntegrationOptions,
+    /// The command that reproduces it.
+    pub command: String,
+    /// Worker threads.
+    pub jobs: usize,
+}
+
+impl Streamed<'_> {
+    /// Check the options at every η: a bad option or a step beyond the stability limit at any
+    /// η is refused before a row is written.
+    pub fn settings(&self) -> Result<Settings> {
+        let mut at = self.case.clone();
+        let mut settings = None;
+        for eta in (0..self.values.count).map(|i| self.values.get(i)) {
+            at.loss_coefficient = eta;
+            let s = match settings {
+                Some(s) => s,
+                None => *settings.insert(self.options.settings(&at, false)?),
+            };
+            check_step(&at.law(), at.impact_velocity, &s)
+                .map_err(|e| solve_failure(&self.case.path, e))?;
+        }
+        settings.ok_or_else(|| anyhow::anyhow!("a sweep has at least one value"))
+    }
+
+    /// Write the rows to `out` in `format`, as they are done; returns the points (η, COR) when
+    /// `points` is asked for (to draw them).
+    pub fn write(
+        &self,
+        format: Format,
+        out: &mut dyn Write,
+        points: bool,
+    ) -> Result<Vec<(f64, f64)>> {
+        let settings = self.settings()?;
+        let stop = AtomicBool::new(false);
+        let mut plotted = Vec::new();
+        if format == Format::Table {
+            // Column widths need every row.
+            let mut rows = Vec::new();
+            let work = |range: std::ops::Range<usize>| {
+                rows_at(self.case, &self.values.values(range), &settings)
+            };
+            let mut failure = None;
+            super::ordered_chunks(
+                self.values.count,
+                CHUNK,
+                self.jobs,
+                &stop,
+                &work,
+                &mut |chunk| match chunk {
+                    Ok(chunk) => {
+                        rows.extend(chunk);
+                        Ok(())
+                    }
+                    Err(e) => {
+                        failure = Some(e);
+                        Err(std::io::Error::other("stopped"))
+                    }
+                },
+            )
+            .or_else(|e| if failure.is_some() { Ok(()) } else { Err(e) })?;
+            if let Some(e) = failure {
+                return Err(e);
+            }
+            if points {
+                plotted = rows.iter().map(|r| (r.loss_coefficient, r.cor)).collect();
+            }
+            let report = SweepReport {
+                rows,
+                command: self.command.clone(),
+            };
+            out.write_all(export(&report, format)?.as_bytes())?;
+            return Ok(plotted);
+        }
+        let head = match format {
+            Format::Json => "{\n  \"rows\": [\n".to_string(),
+            Format::Markdown => {
+                let headers: Vec<String> = HEADERS.iter().map(|h| h.to_string()).collect();
+                format!(
+                    "### {}\n\n{}|{}\n",
+                    title(&self.case.name, settings.method.name()),
+                    markdown_row(&headers),
+                    "---|".repeat(HEADERS.len())
+                )
+            }
+            _ => String::new(),
+        };
+        out.write_all(head.as_bytes())?;
+        let work = |range: std::ops::Range<usize>| -> Result<EncodedChunk> {
+            let first = range.start == 0;
+            let rows = rows_at(self.case, &self.values.values(range), &settings)?;
+            let plotted = if points {
+                rows.iter().map(|r| (r.loss_coefficient, r.cor)).collect()
+            } else {
+                Vec::new()
+            };
+            let mut bytes = Vec::new();
+            match format {
+                Format::Csv => {
+                    let mut writer = csv::WriterBuilder::new()
+                        .has_headers(first)
+                        .from_writer(bytes);
+                    for row in &rows {
+                        writer.serialize(row)?;
+                    }
+                    bytes = writer.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+                }
+                Format::Json => {
+                    for (i, row) in rows.iter().enumerate() {
+                        if !(first && i == 0) {
+                            bytes.extend_from_slice(b",\n");
+                        }
+                        let text = serde_json::to_string_pretty(row)?;
+                        for (j, line) in text.lines().enumerate() {
+                            if j > 0 {
+                                bytes.push(b'\n');
+                            }
+                            bytes.extend_from_slice(b"    ");
+                            bytes.extend_from_slice(line.as_bytes());
+                        }
+                    }
+                }
+                _ => {
+                    for row in &rows {
+                        bytes.extend_from_slice(markdown_row(&cells(row)).as_bytes());
+                    }
+                }
+            }
+            Ok((bytes, plotted))
+        };
+        let mut failure = None;
+        super::ordered_chunks(
+            self.values.count,
+            CHUNK,
+            self.jobs,
+            &stop,
+            &work,
+            &mut |chunk| match chunk {
+                Ok((bytes, chunk_points)) => {
+                    plotted.extend(chunk_points);
+                    out.write_all(&bytes)
+                }
+                Err(e) => {
+                    failure = Some(e);
+                    Err(std::io::Error::other("stopped"))
+                }
+            },
+        )
+        .or_else(|e| if failure.is_some() { Ok(()) } else { Err(e) })?;
+        if let Some(e) = failure {
+            return Err(e);
+        }
+        let tail = match format {
+            Format::Json => format!(
+                "\n  ],\n  \"command\": {}\n}}\n",
+                serde_json::to_string(&self.command)?
+            ),
+            Format::Markdown => format!("\nreproduce: {}\n", self.command),
+            _ => String::new(),
+        };
+        out.write_all(tail.as_bytes())?;
+        Ok(plotted)
     }
 }
 
@@ -124,7 +370,7 @@ mod tests {
             "a:b:c",
             "0:nan:0.1",
             "0:0.9:1e-300",
-            "0:0.9:1e-6",
+            "0:0.9:1e-8",
         ] {
             assert!(parse_range(bad).is_err(), "{bad}");
         }

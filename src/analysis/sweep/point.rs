@@ -1,13 +1,16 @@
 //! One point of a sweep computed alone: by a method, or by a code in a process of its own
 //! with the fault containment of `reference`.
 
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use super::grid::{Point, SweepFile};
+use super::grid::{Point, PointCases, SweepFile};
 use super::row::{CodeFigures, PointFigures, SweepRow};
-use crate::analysis::run::{IntegrationOptions, run_case};
+use crate::analysis::run::{IntegrationOptions, run_case, solve_failure};
 use crate::analysis::source::{Resolution, Source};
 use crate::analysis::store::{ReferenceOptions, run_reference};
+use crate::model::law::PaperLaw;
+use crate::solve::paper::{Settings, solve_many};
 
 /// How to run a sweep.
 #[derive(Clone, Debug)]
@@ -20,6 +23,87 @@ pub struct GridOptions {
     pub periods: f64,
     /// Most impacts per code process (1: no batching).
     pub batch: usize,
+}
+
+/// The solver settings of a method point on `case`.
+fn method_settings(
+    point: &Point,
+    case: &crate::model::case::Case,
+    options: &GridOptions,
+) -> anyhow::Result<Settings> {
+    let Source::Method(method) = point.source.source else {
+        anyhow::bail!("point {} is a code's, not a method's", point.index);
+    };
+    let integration = IntegrationOptions {
+        method,
+        steps_per_period: Resolution::steps_per_period(point.source.resolution),
+        rtol: Resolution::rtol(point.source.resolution),
+        periods: options.periods,
+        ..IntegrationOptions::default()
+    };
+    Ok(integration.settings(case, false)?)
+}
+
+/// The rows of method points, in their order: the same rows [`single_point`] gives each, with
+/// the case edited in place from point to point where the axes allow, and the impacts of one
+/// setting solved together ([`solve_many`]: rk4-event in lanes; a row's wall time is then the
+/// batch's divided among its impacts). After `stop` is raised the points left are not run.
+pub fn method_rows(
+    sweep: &SweepFile,
+    points: &[Point],
+    options: &GridOptions,
+    stop: &AtomicBool,
+) -> Vec<SweepRow> {
+    let mut cases = PointCases::new(sweep);
+    // Each point's law and speed with its settings, or its error.
+    let mut prepared: Vec<anyhow::Result<(PaperLaw, f64, Settings)>> = Vec::new();
+    for point in points {
+        if stop.load(Ordering::Relaxed) {
+            break;
+        }
+        prepared.push((|| {
+            let case = cases.case(point)?;
+            let settings = method_settings(point, case, options)?;
+            Ok((case.law(), case.impact_velocity, settings))
+        })());
+    }
+    let mut outcomes: Vec<Option<anyhow::Result<PointFigures>>> =
+        (0..prepared.len()).map(|_| None).collect();
+    let mut pending: Vec<usize> = (0..prepared.len()).collect();
+    while let Some(&first) = pending.first() {
+        let Ok((_, _, settings)) = &prepared[first] else {
+            if let Err(e) = std::mem::replace(&mut prepared[first], Err(anyhow::anyhow!(""))) {
+                outcomes[first] = Some(Err(e));
+            }
+            pending.remove(0);
+            continue;
+        };
+        let settings = *settings;
+        let (same, rest): (Vec<usize>, Vec<usize>) = pending
+            .iter()
+            .partition(|&&i| matches!(&prepared[i], Ok((_, _, s)) if *s == settings));
+        pending = rest;
+        let items: Vec<(PaperLaw, f64)> = same
+            .iter()
+            .filter_map(|&i| prepared[i].as_ref().ok().map(|(law, v0, _)| (*law, *v0)))
+            .collect();
+        for ((&i, (law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
+        {
+            outcomes[i] = Some(
+                solved
+                    .map(|o| PointFigures::of_solution(&sweep.base_case.name, law, *v0, &o))
+                    .map_err(|e| solve_failure(&sweep.base_case.path, e)),
+            );
+        }
+    }
+    points
+        .iter()
+        .zip(outcomes)
+        .map(|(point, outcome)| {
+            let outcome = outcome.expect("every prepared point was solved");
+            sweep.outcome_row(point, outcome)
+        })
+        .collect()
 }
 
 /// Evaluate one point alone, whoever computes it.
@@ -52,4 +136,51 @@ pub fn single_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> 
         }
     })();
     sweep.outcome_row(point, outcome)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows of the chunked path (case edited in place, impacts solved together) are those
+    /// of points run alone, errors included, but for the wall time.
+    #[test]
+    fn method_rows_are_the_rows_of_single_points() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("sweeps");
+        let text = r#"
+            base = "../cases/ball_plate.toml"
+            [axes]
+            impact_velocity = [2.0, 0, -1.0, 1e300, 3]
+            restitution = [0.5, 1.5, "x", 0.9999, 1e-9, nan]
+            method = ["rk4-event", "dopri5", "exact"]
+        "#;
+        let table: toml::Table = text.parse().unwrap();
+        let sweep = SweepFile::from_table(&dir.join("t.toml"), &table).unwrap();
+        assert!(sweep.in_place);
+        let options = GridOptions {
+            jobs: 1,
+            timeout: Duration::from_secs(1),
+            periods: 3.0,
+            batch: 1,
+        };
+        let points: Vec<Point> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
+        let stop = AtomicBool::new(false);
+        let together = method_rows(&sweep, &points, &options, &stop);
+        assert_eq!(together.len(), points.len());
+        let mut failed = 0;
+        for (point, mut row) in points.iter().zip(together) {
+            let mut alone = single_point(&sweep, point, &options);
+            row.figures.wall_time = None;
+            alone.figures.wall_time = None;
+            failed += usize::from(!row.status.is_ok());
+            // By their text: a NaN axis value is not equal to itself.
+            assert_eq!(
+                format!("{row:?}"),
+                format!("{alone:?}"),
+                "point {}",
+                point.index
+            );
+        }
+        assert!(failed > 40 && failed < points.len(), "{failed}");
+    }
 }

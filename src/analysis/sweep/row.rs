@@ -14,8 +14,10 @@ use crate::analysis::store::ReferenceRecord;
 use crate::codes::CodeName;
 use crate::model::case::Case;
 use crate::model::exact::ImpactFigures;
+use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
 use crate::solve::Method;
+use crate::solve::paper::Outcome;
 
 /// Which sweep and which of its points a row belongs to.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -170,6 +172,46 @@ impl PointFigures {
             rhs_evaluations: Some(r.rhs_evaluations),
             timestep: r.timestep.and_then(finite),
             wall_time: finite(r.wall_time),
+            ..PointFigures::default()
+        }
+    }
+
+    /// The figures of a method's `outcome` on the case named `case` with `law` at
+    /// `impact_velocity`: what [`PointFigures::of_method`] gives for the run's report, without
+    /// the report's other parts (the elastic Hertz figures, the warnings).
+    pub fn of_solution(
+        case: &str,
+        law: &PaperLaw,
+        impact_velocity: f64,
+        outcome: &Outcome,
+    ) -> PointFigures {
+        let exact = crate::model::exact::paper_impact(law, impact_velocity);
+        let f = &outcome.figures;
+        let error = |value: f64, reference: f64| finite((value - reference) / reference);
+        PointFigures {
+            case: Some(case.to_string()),
+            eta: finite(law.loss_coefficient),
+            reduced_mass: finite(law.mass),
+            contact_stiffness: finite(law.stiffness),
+            exponent: finite(law.exponent),
+            cor: finite(f.cor),
+            cor_target: finite(exact.cor),
+            cor_error: error(f.cor, exact.cor),
+            peak_deformation: finite(f.peak_deformation),
+            peak_deformation_exact: finite(exact.peak_deformation),
+            peak_deformation_error: error(f.peak_deformation, exact.peak_deformation),
+            peak_force: finite(f.peak_force),
+            peak_force_exact: finite(exact.peak_force),
+            contact_time: finite(f.contact_time),
+            contact_time_exact: finite(exact.contact_time),
+            contact_time_error: error(f.contact_time, exact.contact_time),
+            compression_time: finite(f.compression_time),
+            restitution_time: finite(f.restitution_time),
+            absorbed_energy: finite(f.absorbed_energy),
+            steps: Some(outcome.stats.steps),
+            rhs_evaluations: Some(outcome.stats.rhs_evaluations),
+            timestep: outcome.timestep.and_then(finite),
+            wall_time: finite(outcome.wall_time),
             ..PointFigures::default()
         }
     }
@@ -456,6 +498,34 @@ impl CodeFigures {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The figures a sweep builds from a solution are those of the run's report.
+    #[test]
+    fn figures_of_a_solution_are_those_of_its_report() {
+        use crate::analysis::run::{IntegrationOptions, run_case};
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/ball_plate.toml");
+        let base = Case::load(&path).unwrap();
+        for method in [Method::Rk4Event, Method::Dopri5, Method::Rk4, Method::Exact] {
+            for eta in [0.0, 0.35, 0.9999] {
+                let case = base.with_loss_coefficient(eta);
+                let options = IntegrationOptions {
+                    method,
+                    ..IntegrationOptions::default()
+                };
+                let (report, outcome) =
+                    run_case(&case, &options.settings(&case, false).unwrap()).unwrap();
+                assert_eq!(
+                    PointFigures::of_solution(
+                        &case.name,
+                        &case.law(),
+                        case.impact_velocity,
+                        &outcome
+                    ),
+                    PointFigures::of_method(&report)
+                );
+            }
+        }
+    }
 
     #[test]
     fn the_header_follows_the_fields() {

@@ -203,38 +203,98 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
     }
 }
 
-/// A writer that counts the lines that pass through it, so that a row's line in the output is
-/// known without reading it back.
-struct LineCount<W: Write> {
-    inner: W,
-    lines: usize,
+/// About the bytes of one row of a sweep of our methods.
+const ROW_BYTES: usize = 640;
+
+/// Rows encoded in their format, ready to be written: what a worker hands the one writer.
+/// Numbers are written by the csv and serde_json serialisers (ryu's shortest form that reads
+/// back exactly), into this one buffer.
+pub struct EncodedRows {
+    format: RowFormat,
+    csv: Option<csv::Writer<Vec<u8>>>,
+    bytes: Vec<u8>,
+    /// Of the bytes so far, how many have been scanned for line ends, and how many they held.
+    scanned: (usize, usize),
+    /// Rows held.
+    pub rows: usize,
+    /// The rows whose status is not `ok`: the lines before theirs among these rows (a CSV
+    /// record may span lines), their point and their status.
+    pub failed: Vec<(usize, usize, String)>,
 }
 
-impl<W: Write> Write for LineCount<W> {
-    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
-        let n = self.inner.write(bytes)?;
-        self.lines += bytes[..n].iter().filter(|&&b| b == b'\n').count();
-        Ok(n)
+impl EncodedRows {
+    /// An empty run of rows in `format`.
+    pub fn new(format: RowFormat) -> EncodedRows {
+        EncodedRows {
+            format,
+            csv: None,
+            bytes: Vec::new(),
+            scanned: (0, 0),
+            rows: 0,
+            failed: Vec::new(),
+        }
     }
 
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.inner.flush()
+    /// The lines held so far (rare: asked for before a failed row).
+    fn lines(&mut self) -> std::io::Result<usize> {
+        let bytes = match &mut self.csv {
+            Some(writer) => {
+                writer.flush()?;
+                writer.get_ref()
+            }
+            None => &self.bytes,
+        };
+        let (from, lines) = self.scanned;
+        let more = bytes[from..].iter().filter(|&&b| b == b'\n').count();
+        self.scanned = (bytes.len(), lines + more);
+        Ok(lines + more)
     }
-}
 
-/// Where rows go, in their format.
-enum RowSink<W: Write> {
-    Csv(Box<csv::Writer<LineCount<W>>>),
-    Jsonl(LineCount<W>),
+    /// Append `row`.
+    pub fn push(&mut self, row: &SweepRow) -> std::io::Result<()> {
+        if !row.status.is_ok() {
+            let before = self.lines()?;
+            self.failed
+                .push((before, row.identity.point, row.status.status.clone()));
+        }
+        match self.format {
+            RowFormat::Csv => {
+                let writer = self.csv.get_or_insert_with(|| {
+                    csv::WriterBuilder::new()
+                        .has_headers(false)
+                        .terminator(csv::Terminator::Any(b'\n'))
+                        // About a chunk of rows, so that the buffer is not regrown.
+                        .from_writer(Vec::with_capacity(ROW_BYTES * super::CHUNK))
+                });
+                row.write_csv(writer)?;
+            }
+            RowFormat::Jsonl => row.write_json_line(&mut self.bytes)?,
+        }
+        self.rows += 1;
+        Ok(())
+    }
+
+    /// The rows' bytes.
+    pub fn into_bytes(self) -> std::io::Result<Vec<u8>> {
+        match self.csv {
+            Some(writer) => writer
+                .into_inner()
+                .map_err(|e| std::io::Error::other(e.to_string())),
+            None => Ok(self.bytes),
+        }
+    }
 }
 
 /// Rows to a writer, flushed as they come (at most every `flush_every` for fast rows).
 pub struct RowWriter<W: Write> {
-    sink: RowSink<W>,
+    out: W,
+    format: RowFormat,
     last_flush: std::time::Instant,
     flush_every: std::time::Duration,
     /// Lines already in the output before this writer's first (a resumed file's kept part).
     lines_before: usize,
+    /// Lines this writer has written (the header, then the rows').
+    lines: usize,
     /// Rows written.
     pub written: usize,
     /// The rows written whose status is not `ok`, and where they are.
@@ -245,69 +305,50 @@ impl<W: Write> RowWriter<W> {
     /// A writer of rows with `columns`; the CSV header is written unless `resume`.
     /// `lines_before` lines are in the output already (what a resumed file keeps).
     pub fn new(
-        out: W,
+        mut out: W,
         format: RowFormat,
         columns: &[String],
         resume: bool,
         flush_every: std::time::Duration,
         lines_before: usize,
     ) -> std::io::Result<Self> {
-        let mut out = LineCount {
-            inner: out,
-            lines: 0,
-        };
-        let sink = match format {
-            RowFormat::Csv => {
-                let mut writer = csv::WriterBuilder::new()
-                    .has_headers(false)
-                    .terminator(csv::Terminator::Any(b'\n'))
-                    .from_writer(out);
-                if !resume {
-                    writer.write_record(columns)?;
-                    writer.flush()?;
-                }
-                RowSink::Csv(Box::new(writer))
-            }
-            RowFormat::Jsonl => {
-                out.flush()?;
-                RowSink::Jsonl(out)
-            }
-        };
+        let mut lines = 0;
+        if format == RowFormat::Csv && !resume {
+            out.write_all(header(format, columns).as_bytes())?;
+            lines = 1;
+        }
+        out.flush()?;
         Ok(RowWriter {
-            sink,
+            out,
+            format,
             last_flush: std::time::Instant::now(),
             flush_every,
             lines_before,
+            lines,
             written: 0,
             failed: FailedRows::default(),
         })
     }
 
-    /// The line the next row starts on (1-based).
-    fn next_line(&mut self) -> std::io::Result<usize> {
-        let counted = match &mut self.sink {
-            // The CSV writer buffers: what it holds goes through the count first.
-            RowSink::Csv(writer) => {
-                writer.flush()?;
-                writer.get_ref().lines
-            }
-            RowSink::Jsonl(out) => out.lines,
-        };
-        Ok(self.lines_before + counted + 1)
-    }
-
     /// Append one row.
     pub fn write(&mut self, row: &SweepRow) -> std::io::Result<()> {
-        if !row.status.is_ok() {
-            let line = self.next_line()?;
-            self.failed
-                .record(line, row.identity.point, &row.status.status);
+        let mut rows = EncodedRows::new(self.format);
+        rows.push(row)?;
+        self.write_encoded(rows)
+    }
+
+    /// Append rows already encoded (in this writer's format), noting where the failed ones
+    /// are.
+    pub fn write_encoded(&mut self, rows: EncodedRows) -> std::io::Result<()> {
+        let first_line = self.lines_before + self.lines + 1;
+        for (before, point, status) in &rows.failed {
+            self.failed.record(first_line + before, *point, status);
         }
-        match &mut self.sink {
-            RowSink::Csv(writer) => row.write_csv(writer)?,
-            RowSink::Jsonl(out) => row.write_json_line(out)?,
-        }
-        self.written += 1;
+        let count = rows.rows;
+        let bytes = rows.into_bytes()?;
+        self.out.write_all(&bytes)?;
+        self.lines += bytes.iter().filter(|&&b| b == b'\n').count();
+        self.written += count;
         if self.last_flush.elapsed() >= self.flush_every {
             self.flush()?;
             self.last_flush = std::time::Instant::now();
@@ -317,10 +358,12 @@ impl<W: Write> RowWriter<W> {
 
     /// Flush what is buffered.
     pub fn flush(&mut self) -> std::io::Result<()> {
-        match &mut self.sink {
-            RowSink::Csv(writer) => writer.flush(),
-            RowSink::Jsonl(out) => out.flush(),
-        }
+        self.out.flush()
+    }
+
+    /// The format rows are written in.
+    pub fn format(&self) -> RowFormat {
+        self.format
     }
 }
 

@@ -17,10 +17,17 @@ impl CalibrationCard for KratosCard {
                 "= \"DEM_D_Linear_Custom_Constants\"",
                 "K_NORMAL] =",
             ],
-            SceneKind::BallPlate | SceneKind::BallBall => &[
+            SceneKind::BallPlate => &[
                 "EN =",
                 "WALL_E =",
                 "WALL_NU =",
+                "SCHEME = \"",
+                "\"NeighbourSearchFrequency\"",
+                "= \"DEM_D_Hertz_viscous_Coulomb\"",
+            ],
+            // No wall on a two-ball card: its WALL_E line would read 0e0.
+            SceneKind::BallBall => &[
+                "EN =",
                 "SCHEME = \"",
                 "\"NeighbourSearchFrequency\"",
                 "= \"DEM_D_Hertz_viscous_Coulomb\"",

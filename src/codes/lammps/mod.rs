@@ -28,6 +28,7 @@ pub mod build_2025;
 pub mod builds;
 pub mod card;
 pub mod conventions;
+pub mod deck;
 pub mod probe;
 
 pub use build_2025::Lammps2025;

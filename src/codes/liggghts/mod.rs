@@ -13,6 +13,7 @@
 
 pub mod batch;
 pub mod card;
+pub mod deck;
 pub mod paper;
 
 pub use paper::LiggghtsPaper;
@@ -391,6 +392,10 @@ impl Liggghts {
 impl CodeDriver for Liggghts {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::LiggghtsCard)
+    }
+
+    fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
+        Some(&deck::LiggghtsDeck)
     }
 
     fn name(&self) -> &'static str {

@@ -14,7 +14,7 @@ impl CalibrationCard for YadeCard {
     fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {
         match scene {
             SceneKind::RodEnd => &["KN =", "CN =", "damping=", "ViscElMat("],
-            SceneKind::BallPlate | SceneKind::BallBall => &[
+            SceneKind::BallPlate => &[
                 "EN =",
                 "WALL_E =",
                 "WALL_NU =",
@@ -22,6 +22,8 @@ impl CalibrationCard for YadeCard {
                 "hertzian",
                 "MindlinPhys(",
             ],
+            // No wall on a two-ball card: its WALL_E line would read 0e0.
+            SceneKind::BallBall => &["EN =", "damping=", "MindlinPhys("],
         }
     }
 

@@ -1,0 +1,819 @@
+//! `millimpact deck`: a user's own DEM setup checked pair by pair. For each pair of particle
+//! types (and each type against each wall) the single normal impact runs in the user's own code
+//! with the user's own contact lines, at the user's time step, at a few impact speeds; each run
+//! is set against the COR the user entered and against the code's own law (the law the lines
+//! make the code integrate), exact and stepped as the code steps, so that a difference splits
+//! into model (what the lines mean: a clamp, a fit, a convention), integration (the step) and
+//! a remainder (what nothing explains), as `compare` splits it. Beside it: the peak overlap
+//! against the radius, the steps per contact and the COR band they leave, the step against the
+//! Rayleigh time, the traps the lines meet, and the paper's η for the COR realised.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Mutex;
+
+use anyhow::Result;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::compare::phase::Range;
+use super::run::HERTZ_MAX_STRAIN;
+use super::store::verify::REMAINDER_TOLERANCE;
+use crate::codes::deck::{
+    DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckWall, Partner, TypeRef, UserDeck,
+    rayleigh_time,
+};
+use crate::codes::{
+    CodeDriver, CodeError, CodeName, CodeSetup, ParseError, ParsedRun, RenderedInput, RunOptions,
+    run_code,
+};
+use crate::model::count::ceil_count;
+use crate::model::exact;
+use crate::model::law::DashpotLaw;
+use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
+use crate::output::invocation::Invocation;
+use crate::output::{Section, Summary, sci, signed};
+use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
+
+/// The speed the default velocities are spread around when the deck names none, m/s (the
+/// canonical cases' speed, typical of a ball's fall in a mill).
+pub const DEFAULT_VELOCITY: f64 = 2.0;
+/// Fewest steps per contact before a warning: below it the step alone moves the COR by 1e-3
+/// and more (the band printed beside it says by how much).
+pub const MIN_STEPS_PER_CONTACT: f64 = 20.0;
+/// Largest time step, as a fraction of the Rayleigh time, before a warning (the usual rule
+/// of DEM practice is 10 to 20 %).
+pub const MAX_RAYLEIGH_FRACTION: f64 = 0.2;
+/// Start phases over which the step's COR band is taken.
+pub const PHASES: usize = 16;
+/// Most steps one impact may run (a step this small for the contact is a deck error).
+pub const MAX_STEPS: u64 = 20_000_000;
+
+/// How to check a deck.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeckCheckOptions {
+    /// Which code (build) reads and runs the deck; `None`: the first that recognises it.
+    pub code: Option<CodeName>,
+    /// Impact speeds, m/s; empty: a small range around a representative speed.
+    pub velocities: Vec<f64>,
+    /// What the command line adds to the deck.
+    pub deck: DeckOptions,
+}
+
+/// The figures of one impact of one pair, in the JSON one object per pair and velocity.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckImpact {
+    /// The two types (a type and `"wall"` for a wall).
+    pub types: [TypeRef; 2],
+    /// The pair as labelled in the tables (with radii where a type has several sizes).
+    pub pair: String,
+    /// The run's name, `deck-CONTACT-TYPE-TYPE@VELOCITY` (its scratch directory's prefix, and
+    /// its key among recorded runs).
+    pub run: String,
+    /// The wall's name, for a wall pair.
+    pub wall: Option<String>,
+    /// The normal model as the deck names it.
+    pub model: String,
+    /// Radius of the moving particle, m.
+    pub radius: f64,
+    /// Radius of the other particle, m (none for a wall).
+    pub partner_radius: Option<f64>,
+    /// Normal approach speed, m/s.
+    pub impact_velocity: f64,
+    /// The COR the user entered for the pair (none for a model that takes stiffness and
+    /// damping directly).
+    pub cor_entered: Option<f64>,
+    /// The COR the user's code realised with the user's lines.
+    pub cor_realised: f64,
+    /// The COR of the code's own law at zero step error.
+    pub cor_law: f64,
+    /// The COR of the code's own law stepped as the code steps, from the run's start.
+    pub cor_law_stepped: f64,
+    /// `cor_law − cor_entered`: what the lines mean differs from what was typed (a clamp, a
+    /// fit); none without an entered COR.
+    pub model_difference: Option<f64>,
+    /// `cor_law_stepped − cor_law`: the step's error.
+    pub integration_difference: f64,
+    /// `cor_realised − cor_law_stepped`: what nothing explains.
+    pub remainder: f64,
+    /// The step's COR error over where the first contact falls within a step.
+    pub integration_band: Range,
+    /// Contact time by overlap, s (the run's).
+    pub contact_time: f64,
+    /// Contact time by force, s (the run's).
+    pub force_contact_time: f64,
+    /// Largest overlap, m (the run's).
+    pub peak_overlap: f64,
+    /// Largest overlap over the smaller radius of the pair.
+    pub peak_overlap_ratio: f64,
+    /// The deck's time step, s.
+    pub timestep: f64,
+    /// Steps the impact ran.
+    pub steps: u64,
+    /// The gap between the surfaces at the start, m (the stepped law starts from it too).
+    pub start_gap: f64,
+    /// Contact time over the time step.
+    pub steps_per_contact: f64,
+    /// The smaller Rayleigh time of the pair's particles, s (none where the model takes no
+    /// Young's modulus).
+    pub rayleigh_time: Option<f64>,
+    /// Time step over that Rayleigh time.
+    pub step_over_rayleigh: Option<f64>,
+    /// The paper's η that gives the COR realised: `(1 − e²)/(1 + e²)`.
+    pub paper_loss_coefficient: f64,
+    /// The law the code integrates for the pair.
+    pub law: DashpotLaw,
+    /// The convention traps the pair's lines meet.
+    pub traps: Vec<String>,
+    /// What is out of range or worth a look.
+    pub warnings: Vec<String>,
+    /// Why the run failed, if it did (its figures are then NaN).
+    pub failure: Option<String>,
+}
+
+/// What `deck` reports.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckReport {
+    /// The deck's file.
+    pub deck: String,
+    /// The code (build) that read and ran it.
+    pub code: CodeName,
+    /// The code's version as its runs printed it.
+    pub code_version: Option<String>,
+    /// The deck's time step, s.
+    pub timestep: f64,
+    /// Where it was set.
+    pub timestep_from: String,
+    /// The impact speeds, m/s.
+    pub velocities: Vec<f64>,
+    /// Where they come from.
+    pub velocities_from: String,
+    /// The particles.
+    pub bodies: Vec<DeckBody>,
+    /// The walls.
+    pub walls: Vec<DeckWall>,
+    /// What the deck holds that the impacts leave out.
+    pub left_out: Vec<String>,
+    /// One entry per pair and velocity.
+    pub impacts: Vec<DeckImpact>,
+    /// The command line's additions, for the reproduce line.
+    #[serde(skip)]
+    pub given: Vec<(&'static str, String)>,
+}
+
+/// A finished impact run as the check reads it.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ImpactRun {
+    /// The trajectory the code wrote.
+    pub trajectory: CodeTrajectory,
+    /// The code's version as it printed it.
+    pub code_version: String,
+}
+
+/// Runs the impacts of a deck: the installed code ([`LiveRunner`]), or runs recorded from it
+/// ([`RecordedRuns`]).
+pub trait ImpactRunner: Sync {
+    /// Run `impact` of `code`, whose law is `law`.
+    fn run(
+        &self,
+        code: CodeName,
+        impact: &DeckImpactInput,
+        law: &DashpotLaw,
+    ) -> Result<ImpactRun, CodeError>;
+}
+
+/// The installed codes, run under the runner's time limit and scratch rules.
+#[derive(Clone, Debug, Default)]
+pub struct LiveRunner {
+    /// Time limit and scratch location.
+    pub options: RunOptions,
+}
+
+/// A driver that runs one prepared deck impact with the code's own executable and parser.
+struct DeckImpactDriver {
+    code: &'static dyn CodeDriver,
+    input: RenderedInput,
+    law: DashpotLaw,
+}
+
+impl CodeDriver for DeckImpactDriver {
+    fn name(&self) -> &'static str {
+        self.code.name()
+    }
+    fn binary(&self) -> &'static str {
+        self.code.binary()
+    }
+    fn locate(&self) -> Result<crate::codes::Executable, crate::codes::LocateError> {
+        self.code.locate()
+    }
+    fn render(&self, _setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        Ok(self.input.clone())
+    }
+    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
+        self.code.parse(setup, workdir, log)
+    }
+    fn law(&self, _setup: &CodeSetup) -> crate::model::law::CodeLaw {
+        self.law.into()
+    }
+    fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
+        self.code.trajectory_rows(setup)
+    }
+    fn step_scheme(&self) -> StepScheme {
+        self.code.step_scheme()
+    }
+}
+
+impl ImpactRunner for LiveRunner {
+    fn run(
+        &self,
+        code: CodeName,
+        impact: &DeckImpactInput,
+        law: &DashpotLaw,
+    ) -> Result<ImpactRun, CodeError> {
+        let driver = DeckImpactDriver {
+            code: code.driver(),
+            input: impact.input.clone(),
+            law: *law,
+        };
+        let run = run_code(&driver, &impact.setup, &self.options)?;
+        Ok(ImpactRun {
+            trajectory: run.trajectory,
+            code_version: run.code_version,
+        })
+    }
+}
+
+/// Runs recorded from a live check, keyed by impact, to check a deck again without the code
+/// (the snapshot tests read them).
+#[derive(Debug, Default, Serialize, Deserialize)]
+pub struct RecordedRuns {
+    /// `case@velocity` → the run.
+    pub runs: BTreeMap<String, ImpactRun>,
+}
+
+fn record_key(impact: &DeckImpactInput) -> String {
+    format!(
+        "{}@{}",
+        impact.setup.case_name, impact.setup.impact_velocity
+    )
+}
+
+impl ImpactRunner for RecordedRuns {
+    fn run(
+        &self,
+        code: CodeName,
+        impact: &DeckImpactInput,
+        _law: &DashpotLaw,
+    ) -> Result<ImpactRun, CodeError> {
+        self.runs
+            .get(&record_key(impact))
+            .cloned()
+            .ok_or_else(|| CodeError::Unsupported {
+                code: code.name().into(),
+                case: impact.setup.case_name.clone(),
+                reason: format!("no recorded run {}", record_key(impact)),
+            })
+    }
+}
+
+/// A runner that keeps what another returns, to be written as [`RecordedRuns`].
+pub struct Recording<'a> {
+    /// The runner that runs.
+    pub inner: &'a dyn ImpactRunner,
+    /// What it returned.
+    pub runs: Mutex<RecordedRuns>,
+}
+
+impl ImpactRunner for Recording<'_> {
+    fn run(
+        &self,
+        code: CodeName,
+        impact: &DeckImpactInput,
+        law: &DashpotLaw,
+    ) -> Result<ImpactRun, CodeError> {
+        let run = self.inner.run(code, impact, law)?;
+        if let Ok(mut runs) = self.runs.lock() {
+            runs.runs.insert(record_key(impact), run.clone());
+        }
+        Ok(run)
+    }
+}
+
+/// Read the deck at `path` with the reader of `code`, or of the first code that recognises it.
+pub fn read_deck(
+    path: &Path,
+    code: Option<CodeName>,
+    options: &DeckOptions,
+) -> Result<(CodeName, UserDeck), DeckError> {
+    let readers: Vec<CodeName> = match code {
+        Some(c) => vec![c],
+        None => CodeName::ALL.to_vec(),
+    };
+    let supported = || {
+        CodeName::ALL
+            .iter()
+            .filter_map(|c| c.driver().deck().map(|d| format!("{c}: {}", d.reads())))
+            .collect::<Vec<_>>()
+            .join("; ")
+    };
+    let text = std::fs::read_to_string(path).map_err(|source| DeckError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    for c in readers {
+        let Some(reader) = c.driver().deck() else {
+            continue;
+        };
+        if code.is_some() || reader.recognises(path, &text) {
+            return Ok((c, reader.read(path, options)?));
+        }
+    }
+    Err(DeckError::Unrecognised {
+        path: path.to_path_buf(),
+        supported: supported(),
+    })
+}
+
+/// The label of a body: its type, with its radius where the type has several sizes.
+fn body_label(deck: &UserDeck, body: usize) -> String {
+    let b = &deck.bodies[body];
+    if deck
+        .bodies
+        .iter()
+        .filter(|o| o.type_id == b.type_id)
+        .count()
+        > 1
+    {
+        format!("{} (R {})", b.type_id, b.radius)
+    } else {
+        b.type_id.to_string()
+    }
+}
+
+fn pair_label(deck: &UserDeck, contact: usize) -> String {
+    let c = &deck.contacts[contact];
+    let first = body_label(deck, c.body);
+    match c.partner {
+        Partner::Body(o) => format!("{first}–{}", body_label(deck, o)),
+        Partner::Wall(w) if deck.walls.len() > 1 => format!("{first}–wall {}", deck.walls[w].name),
+        Partner::Wall(_) => format!("{first}–wall"),
+    }
+}
+
+/// The impact speeds: the given ones, else half, once and twice a representative speed (the
+/// deck's own, else [`DEFAULT_VELOCITY`]), with where they come from.
+pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
+    if !given.is_empty() {
+        return (given.to_vec(), "given".into());
+    }
+    let (v, from) = match &deck.representative_velocity {
+        Some((v, from)) => (*v, format!("around the deck's {from}")),
+        None => (
+            DEFAULT_VELOCITY,
+            format!("default: around {DEFAULT_VELOCITY} m/s; --impact-velocity to choose"),
+        ),
+    };
+    (vec![0.5 * v, v, 2.0 * v], from)
+}
+
+/// One impact planned: its contact, speed and input.
+struct Planned {
+    contact: usize,
+    velocity: f64,
+    steps: u64,
+    impact: DeckImpactInput,
+}
+
+/// Check `deck` (read by `code`) at `velocities`, running each impact with `runner`. Every
+/// input is rendered before the first run, so that a deck that cannot be rendered runs nothing.
+pub fn check_deck(
+    code: CodeName,
+    deck: &UserDeck,
+    velocities: (Vec<f64>, String),
+    runner: &dyn ImpactRunner,
+) -> Result<DeckReport> {
+    let reader = code
+        .driver()
+        .deck()
+        .ok_or_else(|| anyhow::anyhow!("{code} reads no decks"))?;
+    let scheme = code.driver().step_scheme();
+    let dt = deck.timestep;
+    let mut planned = Vec::new();
+    for (k, contact) in deck.contacts.iter().enumerate() {
+        for &v in &velocities.0 {
+            let exact = accurate_metrics(&contact.law, v, 1e-12)?;
+            let steps = ceil_count(1.05 * exact.contact_time / dt)
+                .map_or(u64::MAX, |n| n.saturating_add(3));
+            if steps > MAX_STEPS {
+                return Err(crate::error::UserError::argument(
+                    "timestep",
+                    format!("{dt:e} s ({})", deck.timestep_from),
+                    format!("a step that resolves the contact of {} at {v} m/s ({:e} s) in at most {MAX_STEPS} steps", pair_label(deck, k), exact.contact_time),
+                )
+                .into());
+            }
+            let impact = reader.render(deck, k, v, steps)?;
+            planned.push(Planned {
+                contact: k,
+                velocity: v,
+                steps,
+                impact,
+            });
+        }
+    }
+    let runs: Vec<Result<ImpactRun, CodeError>> = planned
+        .par_iter()
+        .map(|p| runner.run(code, &p.impact, &deck.contacts[p.contact].law))
+        .collect();
+    let mut version = None;
+    let mut impacts = Vec::new();
+    for (p, run) in planned.iter().zip(runs) {
+        let row = match run {
+            Ok(run) => {
+                version.get_or_insert(run.code_version.clone());
+                impact_row(deck, p, scheme, Ok(&run.trajectory))
+            }
+            Err(e) => impact_row(deck, p, scheme, Err(e.to_string())),
+        };
+        impacts.push(row);
+    }
+    Ok(DeckReport {
+        deck: deck.path.display().to_string(),
+        code,
+        code_version: version,
+        timestep: dt,
+        timestep_from: deck.timestep_from.clone(),
+        velocities: velocities.0,
+        velocities_from: velocities.1,
+        bodies: deck.bodies.clone(),
+        walls: deck.walls.clone(),
+        left_out: deck.left_out.clone(),
+        impacts,
+        given: Vec::new(),
+    })
+}
+
+/// The COR of `law` stepped as the code steps from `gap` before touch.
+fn stepped_cor(law: &DashpotLaw, v: f64, dt: f64, steps: u64, scheme: StepScheme, gap: f64) -> f64 {
+    trajectory_metrics(&step_trajectory_from(law, v, dt, steps, scheme, gap))
+        .map_or(f64::NAN, |m| m.cor)
+}
+
+fn impact_row(
+    deck: &UserDeck,
+    p: &Planned,
+    scheme: StepScheme,
+    run: Result<&CodeTrajectory, String>,
+) -> DeckImpact {
+    let c = &deck.contacts[p.contact];
+    let body = &deck.bodies[c.body];
+    let partner_body = match c.partner {
+        Partner::Body(o) => Some(&deck.bodies[o]),
+        Partner::Wall(_) => None,
+    };
+    let v = p.velocity;
+    let dt = deck.timestep;
+    let law = c.law;
+    let exact = accurate_metrics(&law, v, 1e-12).ok();
+    let cor_law = exact.map_or(f64::NAN, |m| m.cor);
+    let cor_law_stepped = stepped_cor(&law, v, dt, p.steps, scheme, p.impact.start_gap);
+    let mut band = Range {
+        min: f64::INFINITY,
+        max: f64::NEG_INFINITY,
+    };
+    for k in 0..PHASES {
+        let gap = k as f64 / PHASES as f64 * v * dt;
+        let d = stepped_cor(&law, v, dt, p.steps + 1, scheme, gap) - cor_law;
+        if d.is_finite() {
+            band.min = band.min.min(d);
+            band.max = band.max.max(d);
+        }
+    }
+    let rayleigh = [Some(body), partner_body]
+        .into_iter()
+        .flatten()
+        .map(|b| match (b.youngs_modulus, b.poisson_ratio) {
+            (Some(e), Some(nu)) => Some(rayleigh_time(b.radius, b.density, e, nu)),
+            _ => None,
+        })
+        .collect::<Option<Vec<f64>>>()
+        .map(|t| t.into_iter().fold(f64::INFINITY, f64::min));
+    let smaller_radius = partner_body.map_or(body.radius, |o| o.radius.min(body.radius));
+    let (metrics, failure) = match run {
+        Ok(t) => match trajectory_metrics(t) {
+            Ok(m) => (Some(m), None),
+            Err(e) => (None, Some(format!("the run's trajectory: {e}"))),
+        },
+        Err(e) => (None, Some(e)),
+    };
+    let nan = f64::NAN;
+    let cor_realised = metrics.map_or(nan, |m| m.cor);
+    let contact_time = metrics.map_or(nan, |m| m.contact_time);
+    let peak = metrics.map_or(nan, |m| m.peak_deformation);
+    let steps_per_contact = contact_time / dt;
+    let mut warnings = Vec::new();
+    let ratio = peak / smaller_radius;
+    if ratio > HERTZ_MAX_STRAIN {
+        warnings.push(format!(
+            "small strain: the peak overlap is {:.2} % of the radius, beyond Hertz's small-strain range (δ/R ≤ {} %); the law's force and the contact time are not the material's there",
+            100.0 * ratio,
+            100.0 * HERTZ_MAX_STRAIN
+        ));
+    }
+    if steps_per_contact < MIN_STEPS_PER_CONTACT {
+        warnings.push(format!(
+            "resolution: {steps_per_contact:.1} steps per contact (below {MIN_STEPS_PER_CONTACT}): the step alone moves the COR by {} to {}",
+            signed(band.min),
+            signed(band.max)
+        ));
+    }
+    let step_over_rayleigh = rayleigh.map(|t| dt / t);
+    if let Some(f) = step_over_rayleigh.filter(|f| *f > MAX_RAYLEIGH_FRACTION) {
+        warnings.push(format!(
+            "time step: {:.0} % of the Rayleigh time {} s (the usual rule keeps it below {:.0} %)",
+            100.0 * f,
+            sci(rayleigh.unwrap_or(nan)),
+            100.0 * MAX_RAYLEIGH_FRACTION
+        ));
+    }
+    let model_difference = c.cor_entered.map(|e| cor_law - e);
+    if let Some(d) = model_difference.filter(|d| d.abs() > 1e-6) {
+        warnings.push(format!(
+            "model: these lines realise a COR of {cor_law:.6} at zero step error, {} from the {:.6} entered (see the traps)",
+            signed(d),
+            c.cor_entered.unwrap_or(nan)
+        ));
+    }
+    let remainder = cor_realised - cor_law_stepped;
+    if (remainder / cor_law_stepped).abs() > REMAINDER_TOLERANCE {
+        warnings.push(format!(
+            "remainder: the run differs from the code's own law stepped as it steps by {} in COR (more than {REMAINDER_TOLERANCE:e}): the code does something its lines, as read, do not say",
+            signed(remainder)
+        ));
+    }
+    DeckImpact {
+        types: c.types,
+        pair: pair_label(deck, p.contact),
+        run: record_key(&p.impact),
+        wall: match c.partner {
+            Partner::Wall(w) => Some(deck.walls[w].name.clone()),
+            Partner::Body(_) => None,
+        },
+        model: c.model.clone(),
+        radius: body.radius,
+        partner_radius: partner_body.map(|o| o.radius),
+        impact_velocity: v,
+        cor_entered: c.cor_entered,
+        cor_realised,
+        cor_law,
+        cor_law_stepped,
+        model_difference,
+        integration_difference: cor_law_stepped - cor_law,
+        remainder,
+        integration_band: band,
+        contact_time,
+        force_contact_time: metrics.map_or(nan, |m| m.force_contact_time),
+        peak_overlap: peak,
+        peak_overlap_ratio: ratio,
+        timestep: dt,
+        steps: p.steps,
+        start_gap: p.impact.start_gap,
+        steps_per_contact,
+        rayleigh_time: rayleigh,
+        step_over_rayleigh,
+        paper_loss_coefficient: exact::loss_coefficient(cor_realised),
+        law,
+        traps: c.traps.clone(),
+        warnings,
+        failure,
+    }
+}
+
+/// One impact as a CSV row.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckImpactRecord {
+    /// The deck.
+    pub deck: String,
+    /// The code.
+    pub code: CodeName,
+    /// The pair's label.
+    pub pair: String,
+    /// The first type.
+    pub first_type: String,
+    /// The second type, or `wall`.
+    pub second_type: String,
+    /// Impact speed, m/s.
+    pub impact_velocity: f64,
+    /// The COR entered.
+    pub cor_entered: Option<f64>,
+    /// The COR realised.
+    pub cor_realised: f64,
+    /// The own law's COR, exact.
+    pub cor_law: f64,
+    /// The own law's COR, stepped.
+    pub cor_law_stepped: f64,
+    /// Model difference.
+    pub model_difference: Option<f64>,
+    /// Integration difference.
+    pub integration_difference: f64,
+    /// Remainder.
+    pub remainder: f64,
+    /// Contact time, s.
+    pub contact_time: f64,
+    /// Peak overlap, m.
+    pub peak_overlap: f64,
+    /// Peak overlap over the smaller radius.
+    pub peak_overlap_ratio: f64,
+    /// Time step, s.
+    pub timestep: f64,
+    /// Steps per contact.
+    pub steps_per_contact: f64,
+    /// Time step over the Rayleigh time.
+    pub step_over_rayleigh: Option<f64>,
+    /// The paper's η for the COR realised.
+    pub paper_loss_coefficient: f64,
+    /// Warnings, joined by ` | `.
+    pub warnings: String,
+}
+
+fn percent(x: f64) -> String {
+    if x.is_nan() {
+        "n/a".into()
+    } else {
+        format!("{:.3} %", 100.0 * x)
+    }
+}
+
+impl Summary for DeckReport {
+    type Record = DeckImpactRecord;
+
+    fn records(&self) -> Vec<DeckImpactRecord> {
+        self.impacts
+            .iter()
+            .map(|i| DeckImpactRecord {
+                deck: self.deck.clone(),
+                code: self.code,
+                pair: i.pair.clone(),
+                first_type: i.types[0].to_string(),
+                second_type: i.types[1].to_string(),
+                impact_velocity: i.impact_velocity,
+                cor_entered: i.cor_entered,
+                cor_realised: i.cor_realised,
+                cor_law: i.cor_law,
+                cor_law_stepped: i.cor_law_stepped,
+                model_difference: i.model_difference,
+                integration_difference: i.integration_difference,
+                remainder: i.remainder,
+                contact_time: i.contact_time,
+                peak_overlap: i.peak_overlap,
+                peak_overlap_ratio: i.peak_overlap_ratio,
+                timestep: i.timestep,
+                steps_per_contact: i.steps_per_contact,
+                step_over_rayleigh: i.step_over_rayleigh,
+                paper_loss_coefficient: i.paper_loss_coefficient,
+                warnings: i.warnings.join(" | "),
+            })
+            .collect()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let speeds: Vec<String> = self.velocities.iter().map(|v| v.to_string()).collect();
+        let mut table = Section::new(
+            Some(format!(
+                "{}: {} ({}), Δt = {} s ({}); impact speeds {} m/s ({})",
+                self.deck,
+                self.code,
+                self.code_version.as_deref().unwrap_or("not run"),
+                sci(self.timestep),
+                self.timestep_from,
+                speeds.join(", "),
+                self.velocities_from
+            )),
+            &[
+                "pair",
+                "v0 (m/s)",
+                "COR entered",
+                "COR realised",
+                "model / integration / remainder",
+                "contact time (s)",
+                "steps per contact [step's COR band]",
+                "peak overlap / R",
+                "Δt / Rayleigh time",
+                "paper's η",
+            ],
+        );
+        for i in &self.impacts {
+            table.rows.push(vec![
+                i.pair.clone(),
+                i.impact_velocity.to_string(),
+                i.cor_entered.map_or("—".into(), |e| format!("{e}")),
+                format!("{:.6}", i.cor_realised),
+                format!(
+                    "{} / {} / {}",
+                    i.model_difference.map_or("—".into(), signed),
+                    signed(i.integration_difference),
+                    signed(i.remainder)
+                ),
+                sci(i.contact_time),
+                format!(
+                    "{:.1} [{}, {}]",
+                    i.steps_per_contact,
+                    signed(i.integration_band.min),
+                    signed(i.integration_band.max)
+                ),
+                percent(i.peak_overlap_ratio),
+                i.step_over_rayleigh.map_or("—".into(), percent),
+                format!("{:.6}", i.paper_loss_coefficient),
+            ]);
+        }
+        table.notes.push("model: the COR of the code's own law (what these lines make it integrate) − the COR entered; integration: that law stepped as the code steps − the law exact; remainder: the run − the law stepped (absolute COR differences); the band: the step's COR error over where the first contact falls within a step".into());
+        let mut out = vec![table];
+        let mut bodies = vec!["particles:".to_string()];
+        for b in &self.bodies {
+            let material = match (b.youngs_modulus, b.poisson_ratio) {
+                (Some(e), Some(nu)) => format!(", E = {e:e} Pa, ν = {nu}"),
+                _ => String::new(),
+            };
+            bodies.push(format!(
+                "  type {}: R = {} m, ρ = {} kg/m³, m = {} kg{material} (from {})",
+                b.type_id,
+                b.radius,
+                b.density,
+                sci(b.mass),
+                b.from
+            ));
+        }
+        for w in &self.walls {
+            let material = match (w.youngs_modulus, w.poisson_ratio) {
+                (Some(e), Some(nu)) => format!(", E = {e:e} Pa, ν = {nu}"),
+                _ => String::new(),
+            };
+            let t = w.type_id.map_or(String::new(), |t| format!(" type {t}"));
+            bodies.push(format!("  wall {}{t}{material} ({})", w.name, w.from));
+        }
+        out.push(Section::text(bodies));
+        let mut traps = vec!["traps of these lines:".to_string()];
+        let mut seen = Vec::new();
+        for i in &self.impacts {
+            if seen.contains(&i.pair) {
+                continue;
+            }
+            seen.push(i.pair.clone());
+            traps.push(format!("  {} (model {}):", i.pair, i.model));
+            traps.extend(i.traps.iter().map(|t| format!("    {t}")));
+        }
+        out.push(Section::text(traps));
+        let warned: Vec<String> = self
+            .impacts
+            .iter()
+            .flat_map(|i| {
+                let at = format!("{} at {} m/s", i.pair, i.impact_velocity);
+                i.failure
+                    .iter()
+                    .map(|f| format!("  {at}: failed: {f}"))
+                    .chain(i.warnings.iter().map(|w| format!("  {at}: {w}")))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        if !warned.is_empty() {
+            let mut lines = vec!["warnings:".to_string()];
+            lines.extend(warned);
+            out.push(Section::text(lines));
+        }
+        if !self.left_out.is_empty() {
+            let mut lines = vec![
+                "left out of the impacts (the deck's own run needs them; one impact does not):"
+                    .to_string(),
+            ];
+            lines.extend(self.left_out.iter().map(|l| format!("  {l}")));
+            out.push(Section::text(lines));
+        }
+        out
+    }
+
+    fn footer(&self) -> Vec<String> {
+        let mut command = Invocation::new("deck")
+            .arg(&self.deck)
+            .option("--code", self.code);
+        for v in &self.velocities {
+            command = command.option("--impact-velocity", v);
+        }
+        for (option, value) in &self.given {
+            command = command.option(option, value);
+        }
+        vec![format!("reproduce: {command}")]
+    }
+}
+
+/// The failures of a report's runs, one line each (empty when every run finished).
+pub fn failures(report: &DeckReport) -> Vec<String> {
+    report
+        .impacts
+        .iter()
+        .filter_map(|i| {
+            i.failure
+                .as_ref()
+                .map(|f| format!("{} at {} m/s: {f}", i.pair, i.impact_velocity))
+        })
+        .collect()
+}

@@ -1,0 +1,304 @@
+//! Accuracy as the input: from a COR tolerance to the cheapest method and resolution known to
+//! meet it, by the measured bounds of [`CorErrorBound`].
+//!
+//! Each method with a bound gets the coarsest resolution whose bound, times [`MARGIN`], is at
+//! most the tolerance; the cheapest of them is chosen by its work: the right-hand-side
+//! evaluations of one impact at that resolution, weighted by the method's cost per evaluation.
+//! In the solver's dimensionless form an impact depends on the exponent and η alone, so one
+//! choice holds for every case of every scene and every loss coefficient.
+
+use crate::analysis::run::MIN_RTOL;
+use crate::analysis::source::Resolution;
+use crate::model::exact;
+use crate::model::law::PaperLaw;
+use crate::solve::paper::{self, Settings};
+use crate::solve::{CorErrorBound, Knob, Method};
+
+/// The bound is held to the tolerance with this factor to spare: the bound is the largest
+/// error measured on a grid of loss coefficients and resolutions, and a point between them may
+/// lie a little above it.
+pub const MARGIN: f64 = 1.25;
+
+/// Largest tolerance asked for: a relative COR error of 1 says nothing.
+pub const MAX_TOLERANCE: f64 = 1.0;
+
+/// A method and resolution chosen for a COR tolerance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Choice {
+    /// The relative COR error asked for.
+    pub tolerance: f64,
+    /// The method chosen.
+    pub method: Method,
+    /// Its resolution.
+    pub resolution: Resolution,
+    /// The measured bound on the COR error there (at most `tolerance / MARGIN`).
+    pub bound: f64,
+    /// The runner-up, and its work relative to the choice's.
+    pub runner_up: Option<(Method, Resolution, f64)>,
+}
+
+/// A tolerance no method is known to meet, or that is not a tolerance.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{allowed}")]
+pub struct ToleranceRefused {
+    /// What is allowed.
+    pub allowed: String,
+}
+
+/// What a tolerance may be: a number in (smallest, 1), the smallest being what the finest
+/// resolution of the best-bounded method meets with the margin.
+pub fn allowed_tolerances() -> String {
+    format!(
+        "a relative COR error in [{:.1e}, {MAX_TOLERANCE}) (the smallest any method is known to meet)",
+        smallest_tolerance()
+    )
+}
+
+/// The smallest tolerance any method is known to meet.
+pub fn smallest_tolerance() -> f64 {
+    Method::ALL
+        .iter()
+        .filter_map(|m| {
+            let bound = m.descriptor().cor_error_bound?;
+            Some(bound.at(m.descriptor().knob, bound.finest) * MARGIN)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The coarsest resolution of `method` whose bound with the margin meets `tolerance`, and that
+/// bound; `None` if even its finest does not.
+pub fn resolution_for(method: Method, tolerance: f64) -> Option<(Resolution, f64)> {
+    let descriptor = method.descriptor();
+    let bound = descriptor.cor_error_bound?;
+    let knob = descriptor.knob;
+    let meets = |value: f64| bound.at(knob, value) * MARGIN <= tolerance;
+    match knob {
+        Knob::StepsPerPeriod => {
+            let (mut lo, mut hi) = (to_steps(bound.coarsest)?, to_steps(bound.finest)?);
+            if !meets(f64::from(hi)) {
+                return None;
+            }
+            // The bound falls with N: the least N that meets it, by bisection.
+            while lo < hi {
+                let mid = lo + (hi - lo) / 2;
+                if meets(f64::from(mid)) {
+                    hi = mid;
+                } else {
+                    lo = mid + 1;
+                }
+            }
+            Some((
+                Resolution::StepsPerPeriod(lo),
+                bound.at(knob, f64::from(lo)),
+            ))
+        }
+        Knob::Rtol => {
+            if !meets(bound.finest) {
+                return None;
+            }
+            // The bound rises with rtol: the largest rtol that meets it, by bisection in
+            // log rtol, then rounded down to two significant digits so that it reads as it is.
+            let (mut lo, mut hi) = (bound.finest.ln(), bound.coarsest.ln());
+            if meets(bound.coarsest) {
+                lo = hi;
+            }
+            for _ in 0..100 {
+                let mid = 0.5 * (lo + hi);
+                if meets(mid.exp()) {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            let largest = lo.exp();
+            let unit = 10f64.powf(largest.log10().floor() - 1.0);
+            let mut rtol = two_digits((largest / unit).floor() * unit);
+            for _ in 0..3 {
+                if meets(rtol) {
+                    break;
+                }
+                rtol = two_digits(rtol - unit);
+            }
+            (rtol >= bound.finest.max(MIN_RTOL) && meets(rtol))
+                .then(|| (Resolution::Rtol(rtol), bound.at(knob, rtol)))
+        }
+        Knob::None => None,
+    }
+}
+
+fn to_steps(value: f64) -> Option<u32> {
+    crate::model::count::round_count(value).and_then(|n| u32::try_from(n).ok())
+}
+
+/// `x` to two significant digits (by its decimal text, so that it prints as it is).
+fn two_digits(x: f64) -> f64 {
+    format!("{x:.1e}").parse().unwrap_or(x)
+}
+
+/// The work of one impact by `method` at `resolution`: its right-hand-side evaluations on the
+/// balls' exponent at η = 0.5, weighted by the method's cost per evaluation.
+pub fn work(method: Method, resolution: Resolution) -> f64 {
+    let Some(bound) = method.descriptor().cor_error_bound else {
+        return f64::INFINITY;
+    };
+    let law = PaperLaw {
+        mass: 1.0,
+        stiffness: 1.0,
+        exponent: 1.5,
+        loss_coefficient: 0.5,
+    };
+    let mut settings = Settings {
+        method,
+        ..Settings::default()
+    };
+    match resolution {
+        Resolution::StepsPerPeriod(n) => settings.steps_per_period = n,
+        Resolution::Rtol(r) => settings.rtol = r,
+        Resolution::StepsPerContact(_) => return f64::INFINITY,
+    }
+    match paper::solve(&law, 1.0, &settings) {
+        Ok(outcome) => outcome.stats.rhs_evaluations as f64 * bound.evaluation_cost,
+        Err(_) => f64::INFINITY,
+    }
+}
+
+/// The cheapest method and resolution known to meet a relative COR error of `tolerance`.
+///
+/// ```
+/// use millimpact::analysis::precision::choice::choose;
+/// use millimpact::analysis::source::Resolution;
+/// use millimpact::solve::Method;
+///
+/// let choice = choose(1e-10)?;
+/// assert_eq!(choice.method, Method::Rk4Event);
+/// assert!(matches!(choice.resolution, Resolution::StepsPerPeriod(n) if (458..=520).contains(&n)));
+/// assert!(choice.bound * 1.25 <= 1e-10);
+/// # Ok::<(), millimpact::analysis::precision::choice::ToleranceRefused>(())
+/// ```
+pub fn choose(tolerance: f64) -> Result<Choice, ToleranceRefused> {
+    let refuse = || ToleranceRefused {
+        allowed: allowed_tolerances(),
+    };
+    if !(tolerance.is_finite() && tolerance > 0.0 && tolerance < MAX_TOLERANCE) {
+        return Err(refuse());
+    }
+    let mut candidates: Vec<(Method, Resolution, f64, f64)> = Method::ALL
+        .iter()
+        .filter_map(|&m| {
+            let (resolution, bound) = resolution_for(m, tolerance)?;
+            Some((m, resolution, bound, work(m, resolution)))
+        })
+        .collect();
+    candidates.sort_by(|a, b| a.3.total_cmp(&b.3));
+    let (method, resolution, bound, cost) = *candidates.first().ok_or_else(refuse)?;
+    Ok(Choice {
+        tolerance,
+        method,
+        resolution,
+        bound,
+        runner_up: candidates.get(1).map(|&(m, r, _, c)| (m, r, c / cost)),
+    })
+}
+
+impl Choice {
+    /// The sentence a command prints: what was chosen and why.
+    pub fn sentence(&self) -> String {
+        let mut text = format!(
+            "COR tolerance {:e}: {} at {} (measured COR error at most {:.1e} over η in [0, 1) \
+             for every scene)",
+            self.tolerance,
+            self.method,
+            resolution_text(self.resolution),
+            self.bound
+        );
+        if let Some((m, r, ratio)) = self.runner_up {
+            text += &format!(
+                "; {m} would need {} at {ratio:.1}× the work",
+                resolution_text(r)
+            );
+        }
+        text
+    }
+}
+
+/// A resolution in words.
+pub fn resolution_text(resolution: Resolution) -> String {
+    match resolution {
+        Resolution::StepsPerPeriod(n) => format!("{n} steps per period"),
+        Resolution::Rtol(r) => format!("rtol {r:e}"),
+        Resolution::StepsPerContact(n) => format!("{n} steps per contact"),
+    }
+}
+
+/// The largest relative COR error of `method` at knob value `value` over `etas` and
+/// `exponents`, against the closed form: what a [`CorErrorBound`] is measured from and checked
+/// against.
+pub fn largest_cor_error(method: Method, value: f64, etas: &[f64], exponents: &[f64]) -> f64 {
+    let mut settings = Settings {
+        method,
+        ..Settings::default()
+    };
+    match method.descriptor().knob {
+        Knob::StepsPerPeriod => {
+            settings.steps_per_period = to_steps(value).unwrap_or(settings.steps_per_period)
+        }
+        Knob::Rtol => settings.rtol = value,
+        Knob::None => {}
+    }
+    let mut worst = 0.0f64;
+    for &exponent in exponents {
+        for &eta in etas {
+            let law = PaperLaw {
+                mass: 1.0,
+                stiffness: 1.0,
+                exponent,
+                loss_coefficient: eta,
+            };
+            let exact = exact::restitution(eta);
+            let error = match paper::solve(&law, 1.0, &settings) {
+                Ok(o) => ((o.figures.cor - exact) / exact).abs(),
+                Err(_) => f64::INFINITY,
+            };
+            worst = worst.max(error);
+        }
+    }
+    worst
+}
+
+/// The bound of `method`, if it has one.
+pub fn bound_of(method: Method) -> Option<CorErrorBound> {
+    method.descriptor().cor_error_bound
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn what_is_not_a_tolerance_is_refused() {
+        for bad in [0.0, -1e-10, f64::NAN, f64::INFINITY, 1.0, 2.0, 1e-20] {
+            assert!(choose(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_finer_tolerance_never_asks_for_less_work() {
+        let mut last = 0.0;
+        for k in 2..=13 {
+            let c = choose(10f64.powi(-k)).unwrap();
+            let w = work(c.method, c.resolution);
+            assert!(w >= last, "1e-{k}: {w} < {last}");
+            last = w;
+        }
+    }
+
+    #[test]
+    fn rtol_is_rounded_down_to_two_digits_and_meets_the_bound() {
+        let (r, bound) = resolution_for(Method::Dopri5, 1e-10).unwrap();
+        let Resolution::Rtol(r) = r else {
+            panic!("{r:?}")
+        };
+        assert_eq!(format!("{r:e}"), "2.8e-10");
+        assert!(bound * MARGIN <= 1e-10);
+    }
+}

@@ -1,0 +1,285 @@
+//! A user's own DEM setup, read from their input (`millimpact deck`): the particle types with
+//! their sizes and materials, the walls, the user's time step, and for each pair of types (and
+//! each type against each wall) the contact law the user's own lines make the code integrate.
+//!
+//! Each code reads its own inputs ([`DeckReader`], a capability of its driver, in
+//! `codes/<code>/deck.rs`) and renders the single normal impact of one pair with the user's own
+//! contact lines transplanted into it. What the deck holds that the impact does not need (the
+//! mill's geometry, insertion, gravity, output) is left out and said so; what the reader cannot
+//! resolve or the harness cannot model is refused with the file, the line and what is supported.
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use serde::{Serialize, Serializer};
+use thiserror::Error;
+
+use super::{CodeError, CodeSetup, RenderedInput};
+use crate::model::law::DashpotLaw;
+
+/// Where something was written in a deck: a file and a line (from 1).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SourceLine {
+    /// The file.
+    pub file: PathBuf,
+    /// The line, from 1 (the first line of a continued command).
+    pub line: usize,
+}
+
+impl fmt::Display for SourceLine {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}", self.file.display(), self.line)
+    }
+}
+
+impl Serialize for SourceLine {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
+/// A deck that cannot be checked as written: bad input (exit 2), and nothing is run.
+#[derive(Debug, Error)]
+pub enum DeckError {
+    /// A line holds something unsupported or unresolvable.
+    #[error("{at}: {what}; supported: {supported}")]
+    Unsupported {
+        /// Where.
+        at: SourceLine,
+        /// What was found, with its value.
+        what: String,
+        /// What is supported there.
+        supported: String,
+    },
+    /// The deck lacks something every check needs (no time step, no particle size).
+    #[error("{}: {what}; {supported}", file.display())]
+    Lacking {
+        /// The deck.
+        file: PathBuf,
+        /// What is missing.
+        what: String,
+        /// How to give it.
+        supported: String,
+    },
+    /// A file of the deck cannot be read.
+    #[error("cannot read {}: {source}", path.display())]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// No reader takes the file.
+    #[error("{}: not a deck of any code this build reads; supported: {supported}", path.display())]
+    Unrecognised {
+        /// The file.
+        path: PathBuf,
+        /// What is read.
+        supported: String,
+    },
+}
+
+impl DeckError {
+    /// An unsupported or unresolvable line.
+    pub fn unsupported(at: &SourceLine, what: String, supported: &str) -> Self {
+        DeckError::Unsupported {
+            at: at.clone(),
+            what,
+            supported: supported.to_string(),
+        }
+    }
+}
+
+/// One side of a pair: a particle type, or a wall.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum TypeRef {
+    /// A particle type (LIGGGHTS/LAMMPS atom type, Kratos material id).
+    Type(u32),
+    /// A wall.
+    Wall,
+}
+
+impl Serialize for TypeRef {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        match self {
+            TypeRef::Type(t) => serializer.serialize_u32(*t),
+            TypeRef::Wall => serializer.serialize_str("wall"),
+        }
+    }
+}
+
+impl fmt::Display for TypeRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TypeRef::Type(t) => write!(f, "{t}"),
+            TypeRef::Wall => f.write_str("wall"),
+        }
+    }
+}
+
+/// A particle of the deck: one size of one type.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckBody {
+    /// Its type.
+    pub type_id: u32,
+    /// Radius, m.
+    pub radius: f64,
+    /// Density, kg/m³.
+    pub density: f64,
+    /// Mass, kg, as the code forms it from radius and density.
+    pub mass: f64,
+    /// Young's modulus of its type, Pa, where the model uses one.
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio of its type, where the model uses one.
+    pub poisson_ratio: Option<f64>,
+    /// Where its size was read (a line, or the command-line flag).
+    pub from: String,
+}
+
+/// A wall of the deck.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckWall {
+    /// The wall's name in the deck (a fix ID, a model part).
+    pub name: String,
+    /// Its material's type, where the code gives walls one.
+    pub type_id: Option<u32>,
+    /// Young's modulus of its material, Pa, where the model uses one.
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio of its material, where the model uses one.
+    pub poisson_ratio: Option<f64>,
+    /// Where it is defined.
+    pub from: SourceLine,
+}
+
+/// The other body of a pair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Partner {
+    /// A second particle: the index of its [`DeckBody`].
+    Body(usize),
+    /// A wall: the index of its [`DeckWall`].
+    Wall(usize),
+}
+
+/// One pair of the deck and the contact law the user's lines give it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckContact {
+    /// The moving particle: the index of its [`DeckBody`].
+    pub body: usize,
+    /// What it hits.
+    pub partner: Partner,
+    /// The two types (a type and `"wall"` for a wall).
+    pub types: [TypeRef; 2],
+    /// The normal model as the deck names it (`hertz`, `hooke/stiffness`, …).
+    pub model: String,
+    /// The COR the user entered for this pair, where the model takes one.
+    pub cor_entered: Option<f64>,
+    /// The law the code integrates with the user's lines: its `E*`, `R*`, mass, damping formula
+    /// and clamp, as measured for the installed code (`reference/<code>/CONVENTIONS.md`).
+    pub law: DashpotLaw,
+    /// The convention traps these lines meet.
+    pub traps: Vec<String>,
+    /// The lines that set this pair's contact.
+    pub lines: Vec<SourceLine>,
+}
+
+/// The lines of the user's deck an impact input carries, as the code will read them
+/// (variables substituted).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Transplant {
+    /// Lines that must come before the simulation box (atom style, particle hardness).
+    pub before_box: Vec<String>,
+    /// Lines every impact carries (units, styles, the material properties, the pair lines).
+    pub common: Vec<String>,
+    /// Per wall (in the order of [`UserDeck::walls`]): its contact line, made a flat plane.
+    pub walls: Vec<String>,
+    /// The number of particle types the deck declares (its property tables are that size).
+    pub types: u32,
+}
+
+/// A user's deck as read.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct UserDeck {
+    /// The file.
+    pub path: PathBuf,
+    /// The user's time step, s.
+    pub timestep: f64,
+    /// Where the time step was set.
+    pub timestep_from: String,
+    /// The particles (one per size of each type).
+    pub bodies: Vec<DeckBody>,
+    /// The walls.
+    pub walls: Vec<DeckWall>,
+    /// Each pair of bodies, and each body against each wall.
+    pub contacts: Vec<DeckContact>,
+    /// A speed the deck itself names as typical (LIGGGHTS' `characteristicVelocity`), m/s,
+    /// with where.
+    pub representative_velocity: Option<(f64, String)>,
+    /// What the deck holds that the impacts leave out.
+    pub left_out: Vec<String>,
+    /// The user's lines each impact carries.
+    pub transplant: Transplant,
+}
+
+/// A particle size and density given on the command line, for a deck that computes them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GivenParticle {
+    /// The type.
+    pub type_id: u32,
+    /// Radius, m.
+    pub radius: f64,
+    /// Density, kg/m³.
+    pub density: f64,
+}
+
+/// What the command line adds to a deck.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DeckOptions {
+    /// Particles given with flags (they replace the deck's own sizes for their types).
+    pub particles: Vec<GivenParticle>,
+    /// Variables defined before the deck is read (`-var NAME VALUE`).
+    pub variables: Vec<(String, String)>,
+}
+
+/// One impact of one pair, ready to run: the input with the user's lines, the setup the run
+/// is read with, and where the stepped law starts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DeckImpactInput {
+    /// The input.
+    pub input: RenderedInput,
+    /// The setup (bodies, time step, steps, velocity) the run is parsed with.
+    pub setup: CodeSetup,
+    /// The gap between the surfaces at `t = 0`, m (the code's law is stepped from it).
+    pub start_gap: f64,
+}
+
+/// A code's capability to read its users' decks and run one pair's impact with their lines.
+pub trait DeckReader: Send + Sync {
+    /// Whether `text` (the file at `path`) is an input of this code.
+    fn recognises(&self, path: &Path, text: &str) -> bool;
+    /// What this reader reads, for an error that names it.
+    fn reads(&self) -> &'static str;
+    /// Read the deck at `path`.
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError>;
+    /// The input of the impact of `deck.contacts[contact]` at `velocity` (m/s), run for `steps`
+    /// steps of the deck's own time step.
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError>;
+}
+
+/// The mass of a sphere, kg, as the codes form it from radius (m) and density (kg/m³).
+pub fn sphere_mass(radius: f64, density: f64) -> f64 {
+    4.0 * std::f64::consts::PI / 3.0 * radius * radius * radius * density
+}
+
+/// The Rayleigh time of a particle, s: `π R sqrt(ρ/G) / (0.1631 ν + 0.8766)`, `G = E/(2(1+ν))`,
+/// the time a Rayleigh wave takes across it, from which DEM codes pick their step.
+pub fn rayleigh_time(radius: f64, density: f64, youngs_modulus: f64, poisson_ratio: f64) -> f64 {
+    let shear = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
+    std::f64::consts::PI * radius * (density / shear).sqrt() / (0.1631 * poisson_ratio + 0.8766)
+}

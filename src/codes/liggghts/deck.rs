@@ -1,0 +1,1040 @@
+//! A LIGGGHTS user's deck (`millimpact deck`): the granular `pair_style gran` and `fix wall/gran`
+//! lines, the `fix property/global` materials, `timestep`, the particles from
+//! `particletemplate/sphere` or `create_atoms` and `set`, read through `include`s and variables;
+//! and the impact of one pair rendered with those lines transplanted, a mesh or primitive wall
+//! made the flat plane `primitive type T zplane 0.0` (a wall's `R*` is the particle's radius in
+//! LIGGGHTS whatever its shape).
+//!
+//! What each model integrates is read from the 3.8.0 sources (`normal_model_hertz.h`,
+//! `normal_model_hooke.h`, `normal_model_hertz_stiffness.h`, `normal_model_hooke_stiffness.h`,
+//! `global_properties.cpp`) and confirmed by the live tests; `reference/liggghts/CONVENTIONS.md`
+//! has the measurements.
+
+use std::collections::{BTreeMap, HashMap};
+use std::path::Path;
+
+use super::{Liggghts, TRAJECTORY_FILE};
+use crate::codes::deck::{
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
+    Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+};
+use crate::codes::script::{Command, ScriptReader};
+use crate::codes::template::{exact_number, fill_template};
+use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+
+const TEMPLATE: &str = include_str!("deck.in");
+const INPUT_FILE: &str = "impact.in";
+
+/// The normal models whose law the harness knows.
+const NORMAL_MODELS: &str = "model hertz, hooke, hertz/stiffness, hooke/stiffness";
+
+/// LIGGGHTS's deck reader.
+pub struct LiggghtsDeck;
+
+/// A `model …` specification of `pair_style gran` or `fix wall/gran`, with its settings.
+#[derive(Clone, Debug, PartialEq)]
+struct GranModel {
+    normal: String,
+    tangential: String,
+    cohesion: String,
+    rolling: String,
+    surface: String,
+    /// The words of the model specification (`model hertz tangential history …`).
+    spec: Vec<String>,
+    /// `key value` settings after the wall or pair arguments.
+    settings: Vec<(String, String)>,
+}
+
+impl GranModel {
+    fn setting(&self, key: &str) -> Option<&str> {
+        self.settings
+            .iter()
+            .rev()
+            .find(|(k, _)| k == key)
+            .map(|(_, v)| v.as_str())
+    }
+
+    fn on(&self, key: &str) -> bool {
+        self.setting(key) == Some("on")
+    }
+}
+
+/// A `fix property/global` table.
+#[derive(Clone, Debug)]
+struct Property {
+    values: Vec<f64>,
+    columns: usize,
+    at: SourceLine,
+}
+
+impl Property {
+    fn of_type(&self, name: &str, t: u32) -> Result<f64, DeckError> {
+        let k = t as usize - 1;
+        self.values.get(k).copied().ok_or_else(|| {
+            DeckError::unsupported(
+                &self.at,
+                format!("{name} has {} values, none for type {t}", self.values.len()),
+                "one value per atom type (peratomtype)",
+            )
+        })
+    }
+
+    fn of_pair(&self, name: &str, i: u32, j: u32) -> Result<f64, DeckError> {
+        let (i, j) = (i as usize - 1, j as usize - 1);
+        if self.columns == 0 {
+            return Err(DeckError::unsupported(
+                &self.at,
+                format!("{name} is not a table of type pairs"),
+                "peratomtypepair N v11 v12 … vNN",
+            ));
+        }
+        self.values
+            .get(i * self.columns + j)
+            .copied()
+            .ok_or_else(|| {
+                DeckError::unsupported(
+                    &self.at,
+                    format!("{name} has no value for the types {} and {}", i + 1, j + 1),
+                    "peratomtypepair N with N×N values",
+                )
+            })
+    }
+
+    fn scalar(&self, name: &str) -> Result<f64, DeckError> {
+        self.values.first().copied().ok_or_else(|| {
+            DeckError::unsupported(&self.at, format!("{name} has no value"), "scalar V")
+        })
+    }
+}
+
+/// A wall fix as read.
+#[derive(Clone, Debug)]
+struct WallFix {
+    id: String,
+    group: String,
+    model: GranModel,
+    wall_type: u32,
+    at: SourceLine,
+    /// What of the wall's definition the plane leaves out.
+    geometry: String,
+}
+
+/// Everything the reader gathers in one pass.
+#[derive(Default)]
+struct Reading {
+    units: Option<Command>,
+    before_box: Vec<String>,
+    types: Option<(u32, SourceLine)>,
+    properties: HashMap<String, Property>,
+    property_lines: Vec<String>,
+    pair: Option<(GranModel, Command)>,
+    pair_coeffs: Vec<Command>,
+    walls: Vec<WallFix>,
+    meshes: HashMap<String, (u32, SourceLine)>,
+    templates: Vec<(u32, Option<f64>, Option<f64>, Command)>,
+    atoms_of_type: BTreeMap<u32, SourceLine>,
+    atom_types: Vec<u32>,
+    set_type: HashMap<u32, (Option<f64>, Option<f64>)>,
+    set_atom: HashMap<usize, (Option<f64>, Option<f64>)>,
+    timestep: Option<(f64, SourceLine)>,
+    hard_particles: bool,
+    soft_particles: bool,
+    left_out: BTreeMap<String, Vec<usize>>,
+    left_out_files: BTreeMap<String, std::path::PathBuf>,
+}
+
+impl Reading {
+    fn leave_out(&mut self, what: &str, command: &Command) {
+        self.left_out
+            .entry(what.to_string())
+            .or_default()
+            .push(command.at.line);
+        self.left_out_files
+            .entry(what.to_string())
+            .or_insert_with(|| command.at.file.clone());
+    }
+
+    fn property(&self, name: &str, file: &Path, needed_by: &str) -> Result<&Property, DeckError> {
+        self.properties.get(name).ok_or_else(|| DeckError::Lacking {
+            file: file.to_path_buf(),
+            what: format!("{needed_by} needs the material property {name}, which no fix property/global sets"),
+            supported: format!("add `fix ID all property/global {name} …` as LIGGGHTS requires"),
+        })
+    }
+}
+
+/// The model keywords of LIGGGHTS's model selector, in the order it reads them.
+const MODEL_KEYWORDS: [&str; 5] = ["model", "tangential", "cohesion", "rolling_friction", "surface"];
+
+/// Read `model X [tangential Y] [cohesion Z] [rolling_friction R] [surface S]` from
+/// `words[start..]`; returns the model and the index after it.
+fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), DeckError> {
+    let mut k = start;
+    let mut model = GranModel {
+        normal: String::new(),
+        tangential: "no_history".into(),
+        cohesion: "off".into(),
+        rolling: "off".into(),
+        surface: "default".into(),
+        spec: Vec::new(),
+        settings: Vec::new(),
+    };
+    while let Some(key) = command.words.get(k).filter(|w| MODEL_KEYWORDS.contains(&w.as_str())) {
+        let value = command.word(k + 1, &format!("a value after {key}"))?.to_string();
+        match key.as_str() {
+            "model" => model.normal = value.clone(),
+            "tangential" => model.tangential = value.clone(),
+            "cohesion" => model.cohesion = value.clone(),
+            "rolling_friction" => model.rolling = value.clone(),
+            _ => model.surface = value.clone(),
+        }
+        model.spec.push(key.clone());
+        model.spec.push(value);
+        k += 2;
+    }
+    if model.normal.is_empty() {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!("`{}`: no `model` keyword", command.text),
+            "LIGGGHTS 3.x granular lines: `model M [tangential T] [cohesion C] [rolling_friction R] [surface S]`",
+        ));
+    }
+    let supported = ["hertz", "hooke", "hertz/stiffness", "hooke/stiffness"];
+    if !supported.contains(&model.normal.as_str()) {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!("normal model `{}`", model.normal),
+            NORMAL_MODELS,
+        ));
+    }
+    if model.cohesion != "off" {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!("cohesion {}: it adds a normal force the impact check does not model", model.cohesion),
+            "cohesion off",
+        ));
+    }
+    if model.surface != "default" {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!("surface {}", model.surface),
+            "surface default (spheres)",
+        ));
+    }
+    Ok((model, k))
+}
+
+/// Read `key value` settings from `words[start..]` into `model`.
+fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Result<(), DeckError> {
+    let words = &command.words[start..];
+    if !words.len().is_multiple_of(2) {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!("`{}`: a setting without its value", command.text),
+            "settings as `key on|off` pairs (limitForce on, tangential_damping off, …)",
+        ));
+    }
+    for pair in words.chunks(2) {
+        let (key, value) = (&pair[0], &pair[1]);
+        let switch = value == "on";
+        match key.as_str() {
+            "viscous" | "disableNormalWhenBonded" if switch => {
+                return Err(DeckError::unsupported(
+                    &command.at,
+                    format!("{key} on: a normal force the impact check does not model"),
+                    &format!("{key} off"),
+                ));
+            }
+            _ => model.settings.push((key.clone(), value.clone())),
+        }
+    }
+    Ok(())
+}
+
+/// Read `fix ID group wall/gran …`.
+fn read_wall(command: &Command, meshes: &HashMap<String, (u32, SourceLine)>) -> Result<WallFix, DeckError> {
+    let (mut model, mut k) = read_model(command, 4)?;
+    let mut wall_type = None;
+    let mut geometry = String::new();
+    let mut mesh_names: Vec<String> = Vec::new();
+    while let Some(word) = command.words.get(k) {
+        match word.as_str() {
+            "primitive" => {
+                if command.word(k + 1, "`type` after primitive")? != "type" {
+                    return Err(DeckError::unsupported(
+                        &command.at,
+                        "primitive without `type`".into(),
+                        "primitive type T STYLE ARGS",
+                    ));
+                }
+                let t = command.number(k + 2, "the wall's type")?;
+                wall_type = Some(type_number(t, command)?);
+                let style = command.word(k + 3, "the primitive's style")?;
+                let args = match style {
+                    "xplane" | "yplane" | "zplane" => 1,
+                    "xcylinder" | "ycylinder" | "zcylinder" => 3,
+                    other => {
+                        return Err(DeckError::unsupported(
+                            &command.at,
+                            format!("primitive {other}"),
+                            "primitive xplane, yplane, zplane, xcylinder, ycylinder, zcylinder",
+                        ));
+                    }
+                };
+                geometry = format!("primitive {style}");
+                k += 4 + args;
+            }
+            "mesh" => k += 1,
+            "n_meshes" => k += 2,
+            "meshes" => {
+                let n = command.words[k + 1..]
+                    .iter()
+                    .take_while(|w| meshes.contains_key(w.as_str()))
+                    .count();
+                if n == 0 {
+                    return Err(DeckError::unsupported(
+                        &command.at,
+                        format!("`meshes` names no mesh/surface fix defined before: `{}`", command.text),
+                        "meshes ID… of fix mesh/surface lines above",
+                    ));
+                }
+                mesh_names.extend(command.words[k + 1..k + 1 + n].iter().cloned());
+                k += 1 + n;
+            }
+            "store_force" | "store_force_contact" | "store_force_contact_every"
+            | "allow_special_domain_periodic" | "store_force_contact_stress" | "temperature"
+            | "track_energy" => k += if word == "track_energy" { 1 } else { 2 },
+            "shear" => {
+                geometry.push_str(" (its shear motion)");
+                k += 3;
+            }
+            "contact_area" => k += if command.words.get(k + 1).is_some_and(|w| w == "constant") { 3 } else { 2 },
+            _ => break,
+        }
+    }
+    read_settings(command, k, &mut model)?;
+    if !mesh_names.is_empty() {
+        let types: Vec<u32> = mesh_names.iter().map(|m| meshes[m].0).collect();
+        if types.iter().any(|t| *t != types[0]) {
+            return Err(DeckError::unsupported(
+                &command.at,
+                format!("the meshes {} have different types {types:?}", mesh_names.join(", ")),
+                "one wall/gran fix per wall material (meshes of one type)",
+            ));
+        }
+        wall_type = Some(types[0]);
+        geometry = format!("mesh {}", mesh_names.join(", "));
+    }
+    let wall_type = wall_type.ok_or_else(|| {
+        DeckError::unsupported(
+            &command.at,
+            format!("`{}`: no primitive or mesh wall", command.text),
+            "primitive type T STYLE ARGS, or mesh n_meshes N meshes ID…",
+        )
+    })?;
+    Ok(WallFix {
+        id: command.words[1].clone(),
+        group: command.words[2].clone(),
+        model,
+        wall_type,
+        at: command.at.clone(),
+        geometry,
+    })
+}
+
+fn type_number(t: f64, command: &Command) -> Result<u32, DeckError> {
+    if t >= 1.0 && t.fract() == 0.0 && t <= f64::from(u32::MAX) {
+        // A positive whole number below u32::MAX: the conversion is exact.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        Ok(t as u32)
+    } else {
+        Err(DeckError::unsupported(
+            &command.at,
+            format!("type `{t}`"),
+            "a whole atom type from 1",
+        ))
+    }
+}
+
+/// `key constant VALUE` in a particle template (`density constant 7800`).
+fn constant_after(command: &Command, key: &str) -> Result<Option<f64>, DeckError> {
+    let Some(k) = command.words.iter().position(|w| w == key) else {
+        return Ok(None);
+    };
+    match command.words.get(k + 1).map(String::as_str) {
+        Some("constant") => command.number(k + 2, key).map(Some),
+        _ => Ok(None),
+    }
+}
+
+impl LiggghtsDeck {
+    fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
+        let commands = ScriptReader::read(path, &options.variables)?;
+        let mut r = Reading::default();
+        for c in &commands {
+            match c.name() {
+                "units" => r.units = Some(c.clone()),
+                "atom_style" => r.before_box.push(c.text.clone()),
+                "hard_particles" => {
+                    r.hard_particles = c.word(1, "yes or no")? == "yes";
+                    r.before_box.push(c.text.clone());
+                }
+                "soft_particles" => {
+                    r.soft_particles = c.word(1, "yes or no")? == "yes";
+                    r.before_box.push(c.text.clone());
+                }
+                "create_box" => {
+                    let n = c.number(1, "the number of atom types")?;
+                    r.types = Some((type_number(n, c)?, c.at.clone()));
+                }
+                "timestep" => r.timestep = Some((c.number(1, "the time step")?, c.at.clone())),
+                "pair_style" => {
+                    if c.word(1, "a pair style")? != "gran" {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("pair_style {}", c.words[1]),
+                            "pair_style gran model …",
+                        ));
+                    }
+                    let (mut model, k) = read_model(c, 2)?;
+                    read_settings(c, k, &mut model)?;
+                    r.pair = Some((model, c.clone()));
+                }
+                "pair_coeff" => r.pair_coeffs.push(c.clone()),
+                "read_restart" | "read_data" | "read_dump" => r.leave_out(
+                    "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
+                    c,
+                ),
+                "fix" => Self::fix(c, &mut r)?,
+                "create_atoms" => {
+                    let t = type_number(c.number(1, "the atom type")?, c)?;
+                    r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+                    if c.words.get(2).is_some_and(|w| w == "single") {
+                        r.atom_types.push(t);
+                    }
+                }
+                "set" => Self::set(c, &mut r)?,
+                "region" => r.leave_out("regions (the mill's geometry)", c),
+                "neighbor" | "neigh_modify" | "communicate" | "comm_modify" | "newton"
+                | "processors" | "boundary" | "atom_modify" | "modify_timing" => {
+                    r.leave_out("neighbour lists, communication and domain settings (the impact sets its own)", c)
+                }
+                "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
+                | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
+                | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
+                | "jump" | "next" | "if" | "clear" | "quit" => r.leave_out("output and control", c),
+                "run" | "rerun" | "minimize" => r.leave_out("the run itself", c),
+                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box" => {
+                    r.leave_out("changes to the running simulation", c)
+                }
+                "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep" | "run_style"
+                | "atom_style_modify" => r.leave_out("other settings", c),
+                other => {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("command `{other}`"),
+                        "the LIGGGHTS commands of a granular deck (units, atom_style, create_box, region, fix, pair_style gran, pair_coeff, timestep, create_atoms, set, include, variable, output and run commands)",
+                    ));
+                }
+            }
+        }
+        Ok(r)
+    }
+
+    fn fix(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        let style = c.word(3, "the fix style")?;
+        match style {
+            "property/global" => {
+                let name = c.word(4, "the property's name")?.to_string();
+                let data = c.word(5, "the property's style")?;
+                let (columns, first) = match data {
+                    "scalar" | "vector" | "peratomtype" | "atomtype" => (0, 6),
+                    "peratomtypepair" | "atomtypepair" | "matrix" => {
+                        let n = c.number(6, "the number of columns")?;
+                        (type_number(n, c)? as usize, 7)
+                    }
+                    other => {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("property/global style {other}"),
+                            "scalar, vector, peratomtype, peratomtypepair, matrix",
+                        ));
+                    }
+                };
+                let values = (first..c.words.len())
+                    .map(|k| c.number(k, &name))
+                    .collect::<Result<Vec<_>, _>>()?;
+                r.properties.insert(
+                    name,
+                    Property {
+                        values,
+                        columns,
+                        at: c.at.clone(),
+                    },
+                );
+                r.property_lines.push(c.text.clone());
+            }
+            "wall/gran" => {
+                let wall = read_wall(c, &r.meshes)?;
+                r.walls.push(wall);
+            }
+            "mesh/surface" | "mesh/surface/stress" | "mesh/surface/planar" | "mesh/surface/stress/servo" => {
+                let k = c.words.iter().position(|w| w == "type").ok_or_else(|| {
+                    DeckError::unsupported(&c.at, format!("fix {style} without `type`"), "fix ID group mesh/surface file F type T …")
+                })?;
+                let t = type_number(c.number(k + 1, "the mesh's type")?, c)?;
+                r.meshes.insert(c.words[1].clone(), (t, c.at.clone()));
+                r.leave_out("mesh walls' geometry (each wall/gran wall is met as a flat plane)", c);
+            }
+            "particletemplate/sphere" => {
+                let k = c.words.iter().position(|w| w == "atom_type").ok_or_else(|| {
+                    DeckError::unsupported(&c.at, "particletemplate/sphere without atom_type".into(), "particletemplate/sphere SEED atom_type T density constant RHO radius constant R")
+                })?;
+                let t = type_number(c.number(k + 1, "the template's atom type")?, c)?;
+                let density = constant_after(c, "density")?;
+                let radius = constant_after(c, "radius")?;
+                r.templates.push((t, radius, density, c.clone()));
+            }
+            "particletemplate/multisphere" | "particletemplate/superquadric" => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    format!("fix {style}: a non-spherical particle"),
+                    "particletemplate/sphere",
+                ));
+            }
+            "nve/sphere" => r.leave_out("the integrator (the impact runs fix nve/sphere, as the deck)", c),
+            "nve" | "nve/limit" | "nve/sphere/limit" | "nve/asphere" | "nvt" | "rigid" | "multisphere" => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    format!("fix {style}: an integrator whose step the harness does not model"),
+                    "fix nve/sphere",
+                ));
+            }
+            "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
+            "coarsegraining" => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    "fix coarsegraining: it scales the contact law".into(),
+                    "decks without coarse-graining",
+                ));
+            }
+            "particledistribution/discrete" | "particledistribution/discrete/numberbased"
+            | "particledistribution/discrete/massbased" | "insert/pack" | "insert/stream"
+            | "insert/rate/region" | "insert/pack/dense" => r.leave_out("particle insertion", c),
+            "move/mesh" | "move" | "rotate" => r.leave_out("wall and particle motion", c),
+            _ => r.leave_out("other fixes (no part of a contact)", c),
+        }
+        Ok(())
+    }
+
+    fn set(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        let target = c.word(1, "atom or type")?;
+        let pick = |key: &str| -> Result<Option<f64>, DeckError> {
+            match c.words.iter().position(|w| w == key) {
+                Some(k) => c.number(k + 1, key).map(Some),
+                None => Ok(None),
+            }
+        };
+        let diameter = pick("diameter")?;
+        let density = pick("density")?;
+        let merge = |slot: &mut (Option<f64>, Option<f64>)| {
+            slot.0 = diameter.or(slot.0);
+            slot.1 = density.or(slot.1);
+        };
+        match target {
+            "type" => {
+                let t = type_number(c.number(2, "the atom type")?, c)?;
+                merge(r.set_type.entry(t).or_default());
+            }
+            "atom" => {
+                let id = type_number(c.number(2, "the atom id")?, c)? as usize;
+                merge(r.set_atom.entry(id).or_default());
+            }
+            _ => r.leave_out("set commands on groups or regions", c),
+        }
+        Ok(())
+    }
+
+    fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
+        let mut bodies: Vec<DeckBody> = Vec::new();
+        let push = |bodies: &mut Vec<DeckBody>, t: u32, radius: f64, density: f64, from: String| {
+            // The same size read twice is the same number, bit for bit.
+            #[allow(clippy::float_cmp)]
+            let known = bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            if !known {
+                bodies.push(DeckBody {
+                    type_id: t,
+                    radius,
+                    density,
+                    mass: sphere_mass(radius, density),
+                    youngs_modulus: None,
+                    poisson_ratio: None,
+                    from,
+                });
+            }
+        };
+        let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
+        for (t, radius, density, c) in &r.templates {
+            if given.contains(t) {
+                continue;
+            }
+            match (radius, density) {
+                (Some(radius), Some(density)) => push(&mut bodies, *t, *radius, *density, format!("{} ({})", c.words[1], c.at)),
+                _ => {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("the template {} has no constant radius and density", c.words[1]),
+                        &format!("`radius constant R` and `density constant RHO`, or --particle {t}:RADIUS:DENSITY"),
+                    ));
+                }
+            }
+        }
+        for (t, at) in &r.atoms_of_type {
+            if given.contains(t) {
+                continue;
+            }
+            let of_type = r.set_type.get(t).copied().unwrap_or_default();
+            let mut found = false;
+            for (index, atom_type) in r.atom_types.iter().enumerate() {
+                if atom_type != t {
+                    continue;
+                }
+                let own = r.set_atom.get(&(index + 1)).copied().unwrap_or_default();
+                if let (Some(d), Some(rho)) = (own.0.or(of_type.0), own.1.or(of_type.1)) {
+                    push(&mut bodies, *t, d / 2.0, rho, format!("atom {} ({at})", index + 1));
+                    found = true;
+                }
+            }
+            if !found {
+                match of_type {
+                    (Some(d), Some(rho)) => {
+                        push(&mut bodies, *t, d / 2.0, rho, format!("set type {t} ({at})"));
+                    }
+                    _ => {
+                        return Err(DeckError::unsupported(
+                            at,
+                            format!("atoms of type {t} are created without a diameter and density set for them"),
+                            &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"),
+                        ));
+                    }
+                }
+            }
+        }
+        for p in &options.particles {
+            push(&mut bodies, p.type_id, p.radius, p.density, format!("--particle {}:{}:{}", p.type_id, p.radius, p.density));
+        }
+        if bodies.is_empty() {
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: "no particle sizes (no particletemplate/sphere, no create_atoms with set diameter and density)".into(),
+                supported: "give them with --particle TYPE:RADIUS:DENSITY".into(),
+            });
+        }
+        Ok(bodies)
+    }
+}
+
+/// The law, entered COR and traps of one pair under `model`, `j` the partner's type.
+struct PairLaw {
+    law: DashpotLaw,
+    cor_entered: Option<f64>,
+    traps: Vec<String>,
+    lines: Vec<SourceLine>,
+}
+
+struct Materials<'a> {
+    r: &'a Reading,
+    path: &'a Path,
+}
+
+impl Materials<'_> {
+    fn modulus(&self, t: u32, needed_by: &str) -> Result<(f64, f64, SourceLine), DeckError> {
+        let e = self.r.property("youngsModulus", self.path, needed_by)?;
+        let nu = self.r.property("poissonsRatio", self.path, needed_by)?;
+        let (ev, nuv) = (e.of_type("youngsModulus", t)?, nu.of_type("poissonsRatio", t)?);
+        if !(0.0..=0.5).contains(&nuv) {
+            return Err(DeckError::unsupported(&nu.at, format!("poissonsRatio {nuv} of type {t}"), "0 <= poissonsRatio <= 0.5 (LIGGGHTS stops otherwise)"));
+        }
+        if ev > 1e9 && !self.r.hard_particles {
+            return Err(DeckError::unsupported(&e.at, format!("youngsModulus {ev} of type {t} without `hard_particles yes`"), "youngsModulus <= 1e9, or hard_particles yes (LIGGGHTS stops otherwise)"));
+        }
+        if ev < 5e6 && !self.r.soft_particles {
+            return Err(DeckError::unsupported(&e.at, format!("youngsModulus {ev} of type {t} without `soft_particles yes`"), "youngsModulus >= 5e6, or soft_particles yes (LIGGGHTS stops otherwise)"));
+        }
+        Ok((ev, nuv, e.at.clone()))
+    }
+
+    fn restitution(&self, i: u32, j: u32, needed_by: &str) -> Result<(f64, SourceLine), DeckError> {
+        let p = self.r.property("coefficientRestitution", self.path, needed_by)?;
+        let e = p.of_pair("coefficientRestitution", i, j)?;
+        if !(e > 0.05 && e <= 1.0) {
+            return Err(DeckError::unsupported(&p.at, format!("coefficientRestitution {e} for the types {i} and {j}"), "0.05 < coefficientRestitution <= 1 (LIGGGHTS stops otherwise)"));
+        }
+        Ok((e, p.at.clone()))
+    }
+
+    /// The law LIGGGHTS integrates between a particle of type `i` (radius, mass) and a partner
+    /// of type `j` (`Some((radius, mass))` for a particle, `None` for a wall).
+    fn pair_law(&self, model: &GranModel, (i, radius, mass): (u32, f64, f64), j: u32, partner: Option<(f64, f64)>, at: &SourceLine) -> Result<PairLaw, DeckError> {
+        let needed_by = format!("model {}", model.normal);
+        let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
+        let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
+        let mut traps = Vec::new();
+        let mut lines = vec![at.clone()];
+        let (law, cor_entered) = match model.normal.as_str() {
+            "hertz" | "hooke" => {
+                let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
+                let (e2, nu2, _) = self.modulus(j, &needed_by)?;
+                let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+                let (e, e_line) = self.restitution(i, j, &needed_by)?;
+                lines.push(e_at);
+                lines.push(e_line);
+                if partner.is_none() {
+                    let own = e1 / (1.0 - nu1 * nu1);
+                    traps.push(format!(
+                        "wall modulus: the wall's type {j} (E = {e2:e} Pa, ν = {nu2}) is mixed into E* = {y_star:.4e} Pa, {:.3e} of the particle's own E/(1−ν²) = {own:.4e} Pa against a rigid wall{}",
+                        y_star / own,
+                        if y_star < 0.99 * own { " (a wall meant rigid needs a far larger E: LIGGGHTS has no rigid wall)" } else { "" }
+                    ));
+                }
+                if model.normal == "hertz" {
+                    let k = 4.0 / 3.0 * y_star * r_star.sqrt();
+                    (DashpotLaw::damped_hertz(m_star, k, e), Some(e))
+                } else {
+                    let v_prop = self.r.property("characteristicVelocity", self.path, &needed_by)?;
+                    let v = v_prop.scalar("characteristicVelocity")?;
+                    if v < 1e-2 {
+                        return Err(DeckError::unsupported(&v_prop.at, format!("characteristicVelocity {v}"), "characteristicVelocity >= 1e-2 (LIGGGHTS stops otherwise)"));
+                    }
+                    lines.push(v_prop.at.clone());
+                    let s = r_star.sqrt();
+                    let kn = 16.0 / 15.0 * s * y_star * (15.0 * m_star * v * v / (16.0 * s * y_star)).powf(0.2);
+                    traps.push(format!(
+                        "model hooke: its spring kn = {kn:.4e} N/m is Hertz's at characteristicVelocity {v} m/s only: at another speed the contact time and overlap are not Hertz's (the COR is)"
+                    ));
+                    (DashpotLaw::linear(m_star, kn, e), Some(e))
+                }
+            }
+            "hooke/stiffness" => {
+                let kn_p = self.r.property("kn", self.path, &needed_by)?;
+                let kn = kn_p.of_pair("kn", i, j)?;
+                let absolute = model.on("absolute_damping");
+                let name = if absolute { "gamman_abs" } else { "gamman" };
+                let g = self.r.property(name, self.path, &needed_by)?;
+                let gamma = g.of_pair(name, i, j)?;
+                lines.push(kn_p.at.clone());
+                lines.push(g.at.clone());
+                let damping = if absolute { gamma } else { gamma * m_star };
+                if !absolute {
+                    traps.push(format!("gamman is per unit mass: the dashpot is gamman × m* = {damping:.4e} N·s/m here (absolute_damping on takes N·s/m)"));
+                }
+                (
+                    DashpotLaw { mass: m_star, stiffness: kn, exponent: 1.0, damping, damping_exponent: 0.0, clamp_attractive: false },
+                    None,
+                )
+            }
+            _ => {
+                // hertz/stiffness: kn and gamman scaled by sqrt(R* δ), gamman per unit mass.
+                let kn_p = self.r.property("kn", self.path, &needed_by)?;
+                let g = self.r.property("gamman", self.path, &needed_by)?;
+                let kn = kn_p.of_pair("kn", i, j)?;
+                let gamma = g.of_pair("gamman", i, j)?;
+                lines.push(kn_p.at.clone());
+                lines.push(g.at.clone());
+                let s = r_star.sqrt();
+                (
+                    DashpotLaw { mass: m_star, stiffness: kn * s, exponent: 1.5, damping: gamma * m_star * s, damping_exponent: 0.5, clamp_attractive: false },
+                    None,
+                )
+            }
+        };
+        let law = if model.on("limitForce") {
+            traps.push("limitForce on: the attractive tail at the end of contact is cut, and the COR rises above the entered one (Schwager & Pöschel; 0.7128 for 0.6939 with hertz)".into());
+            law.clamped()
+        } else {
+            law
+        };
+        if model.tangential != "no_history" || model.rolling != "off" {
+            traps.push(format!(
+                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
+                model.tangential, model.rolling
+            ));
+        }
+        Ok(PairLaw { law, cor_entered, traps, lines })
+    }
+}
+
+impl DeckReader for LiggghtsDeck {
+    fn recognises(&self, _path: &Path, text: &str) -> bool {
+        text.lines().map(str::trim).any(|l| {
+            let words: Vec<&str> = l.split_whitespace().collect();
+            matches!(words.as_slice(), ["pair_style", "gran", "model", ..])
+                || (words.first() == Some(&"fix") && words.get(3) == Some(&"wall/gran") && words.get(4) == Some(&"model"))
+                || matches!(words.as_slice(), ["atom_style", "granular", ..])
+        })
+    }
+
+    fn reads(&self) -> &'static str {
+        "LIGGGHTS inputs (pair_style gran model …)"
+    }
+
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
+        let r = Self::gather(path, options)?;
+        match &r.units {
+            Some(c) if c.words.get(1).is_some_and(|u| u == "si") => {}
+            Some(c) => {
+                return Err(DeckError::unsupported(&c.at, format!("units {}", c.words.get(1).map_or("", String::as_str)), "units si"));
+            }
+            None => {
+                return Err(DeckError::Lacking { file: path.to_path_buf(), what: "no `units` line (LIGGGHTS's default is lj)".into(), supported: "units si".into() });
+            }
+        }
+        let (types, _) = r.types.clone().ok_or_else(|| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: "no create_box (the number of atom types)".into(),
+            supported: "create_box N REGION".into(),
+        })?;
+        let (timestep, timestep_at) = r.timestep.clone().ok_or_else(|| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: "no timestep".into(),
+            supported: "timestep DT (s)".into(),
+        })?;
+        if timestep.is_nan() || timestep <= 0.0 {
+            return Err(DeckError::unsupported(&timestep_at, format!("timestep {timestep}"), "a positive time step, s"));
+        }
+        let (pair_model, pair_command) = r.pair.clone().ok_or_else(|| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: "no pair_style gran line".into(),
+            supported: "pair_style gran model …".into(),
+        })?;
+        for t in r.templates.iter().map(|x| x.0).chain(r.atoms_of_type.keys().copied()).chain(r.walls.iter().map(|w| w.wall_type)) {
+            if t > types {
+                return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("type {t} is used but create_box declares {types} types"), supported: "types from 1 to create_box's N".into() });
+            }
+        }
+        let mut bodies = Self::bodies(&r, path, options)?;
+        let materials = Materials { r: &r, path };
+        let uses_modulus = |m: &GranModel| m.normal == "hertz" || m.normal == "hooke";
+        if uses_modulus(&pair_model) || r.walls.iter().any(|w| uses_modulus(&w.model)) {
+            for b in &mut bodies {
+                let (e, nu, _) = materials.modulus(b.type_id, &format!("model {}", pair_model.normal))?;
+                b.youngs_modulus = Some(e);
+                b.poisson_ratio = Some(nu);
+            }
+        }
+        let mut walls = Vec::new();
+        let mut wall_lines = Vec::new();
+        for w in &r.walls {
+            let (e, nu) = if uses_modulus(&w.model) {
+                let (e, nu, _) = materials.modulus(w.wall_type, &format!("model {}", w.model.normal))?;
+                (Some(e), Some(nu))
+            } else {
+                (None, None)
+            };
+            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone() });
+            let settings: Vec<String> = w.model.settings.iter().flat_map(|(k, v)| [k.clone(), v.clone()]).collect();
+            wall_lines.push(format!(
+                "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
+                w.id,
+                w.group,
+                w.model.spec.join(" "),
+                w.wall_type,
+                settings.join(" ")
+            ).trim_end().to_string());
+        }
+        let mut contacts = Vec::new();
+        for (a, body) in bodies.iter().enumerate() {
+            for (b, other) in bodies.iter().enumerate().skip(a) {
+                let pl = materials.pair_law(&pair_model, (body.type_id, body.radius, body.mass), other.type_id, Some((other.radius, other.mass)), &pair_command.at)?;
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Body(b),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
+                    model: pair_model.normal.clone(),
+                    cor_entered: pl.cor_entered,
+                    law: pl.law,
+                    traps: pl.traps,
+                    lines: pl.lines,
+                });
+            }
+        }
+        for (a, body) in bodies.iter().enumerate() {
+            for (w, wall) in r.walls.iter().enumerate() {
+                let pl = materials.pair_law(&wall.model, (body.type_id, body.radius, body.mass), wall.wall_type, None, &wall.at)?;
+                let mut traps = pl.traps;
+                traps.push(format!("wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)", wall.geometry));
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Wall(w),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    model: wall.model.normal.clone(),
+                    cor_entered: pl.cor_entered,
+                    law: pl.law,
+                    traps,
+                    lines: pl.lines,
+                });
+            }
+        }
+        let representative_velocity = r
+            .properties
+            .get("characteristicVelocity")
+            .and_then(|p| p.values.first().map(|v| (*v, format!("characteristicVelocity ({})", p.at))));
+        let left_out = r
+            .left_out
+            .iter()
+            .map(|(what, lines)| {
+                let file = r.left_out_files[what].display();
+                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+                format!("{what}: {file}:{}", lines.join(","))
+            })
+            .collect();
+        let mut common = r.property_lines.clone();
+        common.push(pair_command.text.clone());
+        common.extend(r.pair_coeffs.iter().map(|c| c.text.clone()));
+        Ok(UserDeck {
+            path: path.to_path_buf(),
+            timestep,
+            timestep_from: timestep_at.to_string(),
+            bodies,
+            walls,
+            contacts,
+            representative_velocity,
+            left_out,
+            transplant: Transplant { before_box: r.before_box.clone(), common, walls: wall_lines, types },
+        })
+    }
+
+    fn render(&self, deck: &UserDeck, contact: usize, velocity: f64, steps: u64) -> Result<DeckImpactInput, CodeError> {
+        let c = &deck.contacts[contact];
+        let body = &deck.bodies[c.body];
+        let sphere = |b: &DeckBody| CodeSphere {
+            radius: b.radius,
+            density: b.density,
+            mass: b.mass,
+            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
+            poisson_ratio: b.poisson_ratio,
+        };
+        let case_name = format!("deck-{contact}-{}-{}", c.types[0], c.types[1]);
+        let (scene, other_sphere, wall_line) = match c.partner {
+            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&deck.bodies[o])), None),
+            Partner::Wall(w) => (SceneKind::BallPlate, None, Some(deck.transplant.walls[w].clone())),
+        };
+        let mut setup = CodeSetup {
+            case_name,
+            scene,
+            sphere: sphere(body),
+            other_sphere,
+            plate_material: None,
+            effective_modulus: None,
+            effective_radius: None,
+            reduced_mass: c.law.mass,
+            stiffness: c.law.stiffness,
+            exponent: c.law.exponent,
+            impact_velocity: velocity,
+            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
+            loss_coefficient: None,
+            timestep: deck.timestep,
+            steps,
+            clamp_attractive: c.law.clamp_attractive,
+            conventions: None,
+        };
+        setup.effective_radius = Some(setup.pair_radius());
+        let gap = super::contact_gap(&setup);
+        let (v1, v2) = setup.centre_of_mass_velocities();
+        let r1 = body.radius;
+        let type_of = |t: TypeRef| match t {
+            TypeRef::Type(t) => t,
+            TypeRef::Wall => 0,
+        };
+        let atom = |id: u32, t: u32, z: f64, b: &DeckBody, vz: f64| {
+            format!(
+                "create_atoms    {t} single 0 0 {} units box\nset             atom {id} diameter {} density {} vz {}",
+                exact_number(z),
+                exact_number(2.0 * b.radius),
+                exact_number(b.density),
+                exact_number(vz)
+            )
+        };
+        let mut atoms = atom(1, type_of(c.types[0]), r1 + gap, body, -v1);
+        let (overlap, approach, reach) = match c.partner {
+            Partner::Body(o) => {
+                let other = &deck.bodies[o];
+                atoms.push('\n');
+                atoms.push_str(&atom(2, type_of(c.types[1]), -other.radius, other, -v2));
+                (
+                    format!("{}-(z[1]-z[2])", exact_number(r1 + other.radius)),
+                    "vz[2]-vz[1]".to_string(),
+                    r1 + other.radius,
+                )
+            }
+            Partner::Wall(_) => (format!("{}-z[1]", exact_number(r1)), "-vz[1]".to_string(), r1),
+        };
+        let half = 4.0 * reach + velocity * setup.duration() + gap;
+        let h = exact_number(half);
+        let mut lines = deck.transplant.common.clone();
+        lines.extend(wall_line);
+        // LIGGGHTS stops unless the lowest type in use (by an atom or a wall) is 1: a pair of
+        // higher types gets a plane of type 1 beyond the neighbour distance of both bodies,
+        // which nothing ever touches.
+        let in_use = c.types.iter().map(|&t| type_of(t)).chain(match c.partner {
+            Partner::Wall(w) => deck.walls[w].type_id,
+            Partner::Body(_) => None,
+        });
+        if in_use.filter(|&t| t > 0).min().is_some_and(|t| t > 1) {
+            let spec = lowest_type_spec(&deck.transplant.common);
+            lines.push(format!(
+                "fix             lowest_type all wall/gran {spec} primitive type 1 zplane {} # untouched: type 1 in use",
+                exact_number(-0.9 * half)
+            ));
+        }
+        let values = [
+            ("deck", deck.path.display().to_string()),
+            ("pair", format!("{} on {}", c.types[0], c.types[1])),
+            ("velocity", exact_number(velocity)),
+            ("before_box", deck.transplant.before_box.join("\n")),
+            ("domain", format!("-{h} {h} -{h} {h} -{h} {h}")),
+            ("types", deck.transplant.types.to_string()),
+            ("skin", exact_number(reach)),
+            ("deck_lines", lines.join("\n")),
+            ("timestep", exact_number(deck.timestep)),
+            ("atoms", atoms),
+            ("overlap", overlap),
+            ("approach", approach),
+            ("steps", steps.to_string()),
+            ("trajectory", TRAJECTORY_FILE.to_string()),
+        ];
+        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
+            code: Liggghts.name().into(),
+            case: setup.case_name.clone(),
+            reason: e.to_string(),
+        })?;
+        Ok(DeckImpactInput {
+            input: RenderedInput {
+                file_name: INPUT_FILE.into(),
+                text,
+                args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"].map(String::from).to_vec(),
+            },
+            setup,
+            start_gap: gap,
+        })
+    }
+}
+
+/// The model specification of the deck's `pair_style gran` line (`model hertz tangential …`),
+/// for a wall that must exist but never be touched.
+fn lowest_type_spec(common: &[String]) -> String {
+    let Some(line) = common.iter().find(|l| l.trim_start().starts_with("pair_style")) else {
+        return "model hertz".into();
+    };
+    let words: Vec<&str> = line.split_whitespace().skip(2).collect();
+    let mut spec = Vec::new();
+    for pair in words.chunks(2) {
+        match pair {
+            [key, value] if MODEL_KEYWORDS.contains(key) => spec.extend([*key, *value]),
+            _ => break,
+        }
+    }
+    spec.join(" ")
+}

@@ -1,0 +1,777 @@
+//! The input language LIGGGHTS and LAMMPS share, read the way they read it: lines continued by a
+//! trailing `&`, `#` comments, quoted words, `include`, and variables (`variable NAME equal …`,
+//! `index`, `string`, `loop`, `world`, `internal`) substituted as `${NAME}`, `$N` and `$(…)`
+//! before a line is split into words. A user's deck is read with it (`millimpact deck`); what
+//! only a running simulation knows (a thermo keyword, an atom's position) cannot be resolved
+//! and is named with its file and line.
+//!
+//! The equal-style formulas are evaluated here, not by an expression crate: LAMMPS's grammar
+//! has its own precedence (unary minus binds tighter than `^`, and `^` is left-associative, so
+//! `-2^2` is 4 and `2^3^2` is 64), its own function names (`ln`, `log` = log10, `PI`) and
+//! `v_NAME` references, and every number form `atof` reads (`1.5E+2`).
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+use super::deck::{DeckError, SourceLine};
+
+/// One command of a script after substitution: its words and where it was written.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Command {
+    /// The file and line (the first line of a continued command).
+    pub at: SourceLine,
+    /// The words, quotes removed, variables substituted.
+    pub words: Vec<String>,
+    /// The line as the code reads it (continuations joined, comment cut, variables
+    /// substituted): what a transplanted deck writes.
+    pub text: String,
+}
+
+impl Command {
+    /// The command's name (its first word).
+    pub fn name(&self) -> &str {
+        &self.words[0]
+    }
+
+    /// Word `k` (0 is the command), or an error naming the line and what was expected there.
+    pub fn word(&self, k: usize, expected: &str) -> Result<&str, DeckError> {
+        self.words.get(k).map(String::as_str).ok_or_else(|| {
+            DeckError::unsupported(
+                &self.at,
+                format!("`{}`: missing {expected}", self.text),
+                expected,
+            )
+        })
+    }
+
+    /// Word `k` read as a number (as `atof` reads it), or an error naming the line.
+    pub fn number(&self, k: usize, what: &str) -> Result<f64, DeckError> {
+        let word = self.word(k, what)?;
+        parse_number(word).ok_or_else(|| {
+            DeckError::unsupported(
+                &self.at,
+                format!("{what} `{word}` is not a number"),
+                "a number, or a variable that resolves to one",
+            )
+        })
+    }
+}
+
+/// A number as LAMMPS's `numeric()` accepts it (no trailing text).
+pub fn parse_number(word: &str) -> Option<f64> {
+    word.trim().parse::<f64>().ok().filter(|x| x.is_finite())
+}
+
+/// What a variable holds.
+#[derive(Clone, Debug, PartialEq)]
+enum Variable {
+    /// A formula evaluated each time it is used (`equal`), with where it was defined.
+    Formula(String, SourceLine),
+    /// A text (`index`, `string`, `loop`, `world`, `internal`: the first value).
+    Text(String),
+}
+
+/// Reads a script and its includes.
+#[derive(Debug, Default)]
+pub struct ScriptReader {
+    variables: HashMap<String, Variable>,
+    commands: Vec<Command>,
+    depth: usize,
+}
+
+/// Most nested includes followed (a file that includes itself stops here).
+const MAX_INCLUDE_DEPTH: usize = 16;
+
+/// The variable styles a deck may use.
+const SUPPORTED_STYLES: &str = "variable styles equal, index, string, loop, world, internal";
+
+impl ScriptReader {
+    /// Read `path` with the variables `preset` defined first (as `-var NAME VALUE` on the
+    /// command line defines them), following `include`s.
+    pub fn read(path: &Path, preset: &[(String, String)]) -> Result<Vec<Command>, DeckError> {
+        let mut reader = ScriptReader::default();
+        for (name, value) in preset {
+            reader
+                .variables
+                .insert(name.clone(), Variable::Text(value.clone()));
+        }
+        reader.file(path)?;
+        Ok(reader.commands)
+    }
+
+    fn file(&mut self, path: &Path) -> Result<(), DeckError> {
+        let text = std::fs::read_to_string(path).map_err(|source| DeckError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let mut pending = String::new();
+        let mut first_line = 0;
+        for (index, raw) in text.lines().enumerate() {
+            if pending.is_empty() {
+                first_line = index + 1;
+            }
+            let trimmed = raw.trim_end();
+            if let Some(head) = trimmed.strip_suffix('&') {
+                pending.push_str(head);
+                pending.push(' ');
+                continue;
+            }
+            pending.push_str(trimmed);
+            let line = std::mem::take(&mut pending);
+            let at = SourceLine {
+                file: path.to_path_buf(),
+                line: first_line,
+            };
+            self.line(&line, at, path)?;
+        }
+        if !pending.is_empty() {
+            let at = SourceLine {
+                file: path.to_path_buf(),
+                line: first_line,
+            };
+            self.line(&pending, at, path)?;
+        }
+        Ok(())
+    }
+
+    fn line(&mut self, raw: &str, at: SourceLine, path: &Path) -> Result<(), DeckError> {
+        let text = self.substitute(&strip_comment(raw), &at)?;
+        let words = split_words(&text, &at)?;
+        if words.is_empty() {
+            return Ok(());
+        }
+        match words[0].as_str() {
+            "include" => {
+                let name = words.get(1).ok_or_else(|| {
+                    DeckError::unsupported(&at, "include without a file".into(), "include FILE")
+                })?;
+                if self.depth >= MAX_INCLUDE_DEPTH {
+                    return Err(DeckError::unsupported(
+                        &at,
+                        format!("include {name}: more than {MAX_INCLUDE_DEPTH} nested includes"),
+                        "includes that end",
+                    ));
+                }
+                let included = resolve_include(path, name);
+                self.depth += 1;
+                let result = self.file(&included);
+                self.depth -= 1;
+                result
+            }
+            "variable" => self.define(&words, &at),
+            _ => {
+                self.commands.push(Command {
+                    at,
+                    words,
+                    text: text.trim().to_string(),
+                });
+                Ok(())
+            }
+        }
+    }
+
+    fn define(&mut self, words: &[String], at: &SourceLine) -> Result<(), DeckError> {
+        let (Some(name), Some(style)) = (words.get(1), words.get(2)) else {
+            return Err(DeckError::unsupported(
+                at,
+                "variable without a name and style".into(),
+                SUPPORTED_STYLES,
+            ));
+        };
+        let values = &words[3..];
+        let first = || {
+            values.first().cloned().ok_or_else(|| {
+                DeckError::unsupported(
+                    at,
+                    format!("variable {name} {style} without a value"),
+                    SUPPORTED_STYLES,
+                )
+            })
+        };
+        match style.as_str() {
+            "delete" => {
+                self.variables.remove(name);
+            }
+            // Defined once: a second definition is ignored (as LAMMPS does, so that `-var`
+            // on the command line wins).
+            "index" | "loop" | "world" | "universe" | "uloop" => {
+                if !self.variables.contains_key(name) {
+                    let value = if style == "loop" && values.len() == 1 {
+                        "1".to_string()
+                    } else {
+                        first()?
+                    };
+                    self.variables.insert(name.clone(), Variable::Text(value));
+                }
+            }
+            "string" | "internal" => {
+                let value = first()?;
+                self.variables.insert(name.clone(), Variable::Text(value));
+            }
+            "equal" => {
+                let formula = values.join(" ");
+                if formula.is_empty() {
+                    return Err(DeckError::unsupported(
+                        at,
+                        format!("variable {name} equal without a formula"),
+                        SUPPORTED_STYLES,
+                    ));
+                }
+                self.variables
+                    .insert(name.clone(), Variable::Formula(formula, at.clone()));
+            }
+            other => {
+                return Err(DeckError::unsupported(
+                    at,
+                    format!(
+                        "variable {name} {other}: a style whose value only the running code knows"
+                    ),
+                    SUPPORTED_STYLES,
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The text of variable `name`, used at `at`: a formula evaluated now, written to 15
+    /// significant digits as `${NAME}` writes it.
+    fn value(&self, name: &str, at: &SourceLine) -> Result<String, DeckError> {
+        match self.variables.get(name) {
+            Some(Variable::Text(text)) => Ok(text.clone()),
+            Some(Variable::Formula(..)) => Ok(fifteen_digits(self.evaluate_variable(name, at, 0)?)),
+            None => Err(DeckError::unsupported(
+                at,
+                format!("variable `{name}` is not defined"),
+                "variables defined in the deck before their use, or given with --var NAME=VALUE",
+            )),
+        }
+    }
+
+    fn evaluate_variable(
+        &self,
+        name: &str,
+        at: &SourceLine,
+        depth: usize,
+    ) -> Result<f64, DeckError> {
+        if depth > 64 {
+            return Err(DeckError::unsupported(
+                at,
+                format!("variable `{name}` refers to itself"),
+                "variables that resolve to numbers",
+            ));
+        }
+        match self.variables.get(name) {
+            Some(Variable::Formula(formula, _)) => {
+                let lookup = |v: &str| self.evaluate_variable(v, at, depth + 1);
+                Expression::new(formula, at, &lookup).evaluate()
+            }
+            Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
+                DeckError::unsupported(
+                    at,
+                    format!("variable `{name}` = `{text}` is not a number"),
+                    "numeric variables in formulas",
+                )
+            }),
+            None => Err(DeckError::unsupported(
+                at,
+                format!("variable `{name}` is not defined"),
+                "variables defined in the deck before their use, or given with --var NAME=VALUE",
+            )),
+        }
+    }
+
+    /// Replace `${NAME}`, `$N` (one character) and `$(formula)` outside quotes.
+    fn substitute(&self, line: &str, at: &SourceLine) -> Result<String, DeckError> {
+        let mut out = String::with_capacity(line.len());
+        let chars: Vec<char> = line.chars().collect();
+        let (mut single, mut double) = (false, false);
+        let mut i = 0;
+        while i < chars.len() {
+            let c = chars[i];
+            if c == '$' && !single && !double && i + 1 < chars.len() {
+                let (value, next) = match chars[i + 1] {
+                    '{' => {
+                        let end = find(&chars, i + 2, '}').ok_or_else(|| {
+                            DeckError::unsupported(at, "`${` without `}`".into(), "${NAME}")
+                        })?;
+                        let name: String = chars[i + 2..end].iter().collect();
+                        (self.value(&name, at)?, end + 1)
+                    }
+                    '(' => {
+                        let end = matching_paren(&chars, i + 1).ok_or_else(|| {
+                            DeckError::unsupported(at, "`$(` without `)`".into(), "$(formula)")
+                        })?;
+                        let inner: String = chars[i + 2..end].iter().collect();
+                        // `$(formula:format)`: the format only changes how it is written.
+                        let formula = inner.split(':').next().unwrap_or_default();
+                        let lookup = |v: &str| self.evaluate_variable(v, at, 1);
+                        let x = Expression::new(formula, at, &lookup).evaluate()?;
+                        (format!("{x:e}"), end + 1)
+                    }
+                    name => (self.value(&name.to_string(), at)?, i + 2),
+                };
+                out.push_str(&value);
+                i = next;
+                continue;
+            }
+            if c == '"' && !single {
+                double = !double;
+            } else if c == '\'' && !double {
+                single = !single;
+            }
+            out.push(c);
+            i += 1;
+        }
+        Ok(out)
+    }
+}
+
+fn find(chars: &[char], from: usize, c: char) -> Option<usize> {
+    (from..chars.len()).find(|&k| chars[k] == c)
+}
+
+fn matching_paren(chars: &[char], open: usize) -> Option<usize> {
+    let mut depth = 0;
+    for (k, &c) in chars.iter().enumerate().skip(open) {
+        match c {
+            '(' => depth += 1,
+            ')' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(k);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
+/// An included file: relative names are found beside the including file (where the user runs
+/// the deck from, in the usual layout).
+fn resolve_include(from: &Path, name: &str) -> PathBuf {
+    let path = Path::new(name);
+    if path.is_absolute() {
+        path.to_path_buf()
+    } else {
+        from.parent().unwrap_or(Path::new(".")).join(path)
+    }
+}
+
+/// The line up to a `#` outside quotes.
+fn strip_comment(line: &str) -> String {
+    let (mut single, mut double) = (false, false);
+    for (k, c) in line.char_indices() {
+        match c {
+            '"' if !single => double = !double,
+            '\'' if !double => single = !single,
+            '#' if !single && !double => return line[..k].to_string(),
+            _ => {}
+        }
+    }
+    line.to_string()
+}
+
+/// Split a line into words; a quoted span (single, double or triple quotes) is one word.
+fn split_words(line: &str, at: &SourceLine) -> Result<Vec<String>, DeckError> {
+    let mut words = Vec::new();
+    let mut rest = line.trim_start();
+    while !rest.is_empty() {
+        let (word, tail) = if let Some(inner) = rest.strip_prefix("\"\"\"") {
+            let end = inner.find("\"\"\"").ok_or_else(|| unclosed(at))?;
+            (inner[..end].to_string(), &inner[end + 3..])
+        } else if let Some(quote) = rest.chars().next().filter(|c| *c == '"' || *c == '\'') {
+            let inner = &rest[1..];
+            let end = inner.find(quote).ok_or_else(|| unclosed(at))?;
+            (inner[..end].to_string(), &inner[end + 1..])
+        } else {
+            let end = rest.find(char::is_whitespace).unwrap_or(rest.len());
+            (rest[..end].to_string(), &rest[end..])
+        };
+        words.push(word);
+        rest = tail.trim_start();
+    }
+    Ok(words)
+}
+
+fn unclosed(at: &SourceLine) -> DeckError {
+    DeckError::unsupported(
+        at,
+        "a quote that is not closed".into(),
+        "quoted words closed on their line",
+    )
+}
+
+/// A value written to 15 significant digits (LAMMPS's `%.15g` for `${NAME}` of an equal-style
+/// variable): the number the code reads back.
+pub fn fifteen_digits(x: f64) -> String {
+    let text = format!("{x:.14e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{exponent}")
+        }
+        _ => text,
+    }
+}
+
+/// The names a formula may call, with their argument counts.
+const FUNCTIONS: &str = "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+
+/// What a formula may hold.
+const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+
+/// A formula of an equal-style variable, evaluated by precedence climbing with LAMMPS's
+/// precedences (`||` 1, `&&` 2, `== !=` 3, `< <= > >=` 4, `+ -` 5, `* / %` 6, `^` 7, unary 8,
+/// every binary operator left-associative).
+struct Expression<'a> {
+    chars: Vec<char>,
+    at: usize,
+    text: &'a str,
+    line: &'a SourceLine,
+    lookup: &'a dyn Fn(&str) -> Result<f64, DeckError>,
+}
+
+impl<'a> Expression<'a> {
+    fn new(
+        text: &'a str,
+        line: &'a SourceLine,
+        lookup: &'a dyn Fn(&str) -> Result<f64, DeckError>,
+    ) -> Self {
+        Expression {
+            chars: text.chars().collect(),
+            at: 0,
+            text,
+            line,
+            lookup,
+        }
+    }
+
+    fn evaluate(mut self) -> Result<f64, DeckError> {
+        let value = self.binary(1)?;
+        self.skip_space();
+        if self.at < self.chars.len() {
+            return Err(self.fail(format!(
+                "cannot read `{}` in `{}`",
+                self.chars[self.at..].iter().collect::<String>(),
+                self.text
+            )));
+        }
+        Ok(value)
+    }
+
+    fn fail(&self, what: String) -> DeckError {
+        DeckError::unsupported(self.line, what, FORMULA_SUPPORTED)
+    }
+
+    fn skip_space(&mut self) {
+        while self.at < self.chars.len() && self.chars[self.at].is_whitespace() {
+            self.at += 1;
+        }
+    }
+
+    fn peek_operator(&mut self) -> Option<(&'static str, u8)> {
+        self.skip_space();
+        let rest: String = self.chars[self.at..].iter().take(2).collect();
+        const OPERATORS: [(&str, u8); 14] = [
+            ("||", 1),
+            ("&&", 2),
+            ("==", 3),
+            ("!=", 3),
+            ("<=", 4),
+            (">=", 4),
+            ("<", 4),
+            (">", 4),
+            ("+", 5),
+            ("-", 5),
+            ("*", 6),
+            ("/", 6),
+            ("%", 6),
+            ("^", 7),
+        ];
+        OPERATORS.into_iter().find(|(op, _)| rest.starts_with(op))
+    }
+
+    fn binary(&mut self, min: u8) -> Result<f64, DeckError> {
+        let mut left = self.unary()?;
+        while let Some((op, precedence)) = self.peek_operator() {
+            if precedence < min {
+                break;
+            }
+            self.at += op.len();
+            let right = self.binary(precedence + 1)?;
+            left = self.apply(op, left, right)?;
+        }
+        Ok(left)
+    }
+
+    fn apply(&self, op: &str, a: f64, b: f64) -> Result<f64, DeckError> {
+        let truth = |x: bool| if x { 1.0 } else { 0.0 };
+        Ok(match op {
+            "||" => truth(a != 0.0 || b != 0.0),
+            "&&" => truth(a != 0.0 && b != 0.0),
+            "==" => truth((a - b).abs() == 0.0),
+            "!=" => truth((a - b).abs() != 0.0),
+            "<=" => truth(a <= b),
+            ">=" => truth(a >= b),
+            "<" => truth(a < b),
+            ">" => truth(a > b),
+            "+" => a + b,
+            "-" => a - b,
+            "*" => a * b,
+            "/" if b == 0.0 => return Err(self.fail(format!("divide by zero in `{}`", self.text))),
+            "/" => a / b,
+            "%" if b == 0.0 => return Err(self.fail(format!("modulo zero in `{}`", self.text))),
+            "%" => a % b,
+            // LAMMPS: x^0 is 1 whatever x.
+            "^" if b == 0.0 => 1.0,
+            "^" => a.powf(b),
+            _ => unreachable!("an operator of the table"),
+        })
+    }
+
+    fn unary(&mut self) -> Result<f64, DeckError> {
+        self.skip_space();
+        match self.chars.get(self.at) {
+            Some('-') => {
+                self.at += 1;
+                Ok(-self.unary()?)
+            }
+            Some('!') if self.chars.get(self.at + 1) != Some(&'=') => {
+                self.at += 1;
+                Ok(if self.unary()? == 0.0 { 1.0 } else { 0.0 })
+            }
+            _ => self.primary(),
+        }
+    }
+
+    fn primary(&mut self) -> Result<f64, DeckError> {
+        self.skip_space();
+        let Some(&c) = self.chars.get(self.at) else {
+            return Err(self.fail(format!("`{}` ends where a value is expected", self.text)));
+        };
+        if c == '(' {
+            self.at += 1;
+            let value = self.binary(1)?;
+            self.skip_space();
+            if self.chars.get(self.at) != Some(&')') {
+                return Err(self.fail(format!("unbalanced parentheses in `{}`", self.text)));
+            }
+            self.at += 1;
+            return Ok(value);
+        }
+        if c.is_ascii_digit() || c == '.' {
+            return self.number();
+        }
+        if c.is_ascii_alphabetic() || c == '_' {
+            let start = self.at;
+            while self.at < self.chars.len()
+                && (self.chars[self.at].is_ascii_alphanumeric() || self.chars[self.at] == '_')
+            {
+                self.at += 1;
+            }
+            let name: String = self.chars[start..self.at].iter().collect();
+            self.skip_space();
+            if self.chars.get(self.at) == Some(&'(') {
+                return self.call(&name);
+            }
+            if self.chars.get(self.at) == Some(&'[') {
+                return Err(self.fail(format!(
+                    "`{name}[…]` in `{}` is a value only the running code knows",
+                    self.text
+                )));
+            }
+            if name == "PI" {
+                return Ok(std::f64::consts::PI);
+            }
+            if let Some(variable) = name.strip_prefix("v_") {
+                return (self.lookup)(variable);
+            }
+            return Err(self.fail(format!(
+                "`{name}` in `{}` is a thermo keyword or a name this reader does not know: a value only the running code knows",
+                self.text
+            )));
+        }
+        Err(self.fail(format!("unexpected `{c}` in `{}`", self.text)))
+    }
+
+    fn number(&mut self) -> Result<f64, DeckError> {
+        let start = self.at;
+        let digits = |s: &mut Self| {
+            while s.at < s.chars.len() && s.chars[s.at].is_ascii_digit() {
+                s.at += 1;
+            }
+        };
+        digits(self);
+        if self.chars.get(self.at) == Some(&'.') {
+            self.at += 1;
+            digits(self);
+        }
+        if matches!(self.chars.get(self.at), Some('e' | 'E')) {
+            let mark = self.at;
+            self.at += 1;
+            if matches!(self.chars.get(self.at), Some('+' | '-')) {
+                self.at += 1;
+            }
+            let before = self.at;
+            digits(self);
+            if before == self.at {
+                self.at = mark;
+            }
+        }
+        let text: String = self.chars[start..self.at].iter().collect();
+        text.parse()
+            .map_err(|_| self.fail(format!("`{text}` in `{}` is not a number", self.text)))
+    }
+
+    fn call(&mut self, name: &str) -> Result<f64, DeckError> {
+        const KNOWN: [&str; 18] = [
+            "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos", "atan", "ceil",
+            "floor", "round", "atan2", "min", "max", "ternary",
+        ];
+        if !KNOWN.contains(&name) {
+            return Err(self.fail(format!(
+                "`{name}()` in `{}`: a function this reader does not evaluate (one of {FUNCTIONS} is)",
+                self.text
+            )));
+        }
+        // At the opening parenthesis.
+        self.at += 1;
+        let mut args = Vec::new();
+        loop {
+            args.push(self.binary(1)?);
+            self.skip_space();
+            match self.chars.get(self.at) {
+                Some(',') => self.at += 1,
+                Some(')') => {
+                    self.at += 1;
+                    break;
+                }
+                _ => return Err(self.fail(format!("unbalanced parentheses in `{}`", self.text))),
+            }
+        }
+        let one = |f: fn(f64) -> f64| -> Result<f64, DeckError> {
+            match args[..] {
+                [x] => Ok(f(x)),
+                _ => Err(self.fail(format!("{name}() takes one argument in `{}`", self.text))),
+            }
+        };
+        let two = |f: fn(f64, f64) -> f64| -> Result<f64, DeckError> {
+            match args[..] {
+                [x, y] => Ok(f(x, y)),
+                _ => Err(self.fail(format!("{name}() takes two arguments in `{}`", self.text))),
+            }
+        };
+        let value = match name {
+            "sqrt" => one(f64::sqrt)?,
+            "exp" => one(f64::exp)?,
+            "ln" => one(f64::ln)?,
+            "log" => one(f64::log10)?,
+            "abs" => one(f64::abs)?,
+            "sin" => one(f64::sin)?,
+            "cos" => one(f64::cos)?,
+            "tan" => one(f64::tan)?,
+            "asin" => one(f64::asin)?,
+            "acos" => one(f64::acos)?,
+            "atan" => one(f64::atan)?,
+            "ceil" => one(f64::ceil)?,
+            "floor" => one(f64::floor)?,
+            "round" => one(f64::round)?,
+            "atan2" => two(f64::atan2)?,
+            "min" => two(f64::min)?,
+            "max" => two(f64::max)?,
+            "ternary" => match args[..] {
+                [c, a, b] => {
+                    if c != 0.0 {
+                        a
+                    } else {
+                        b
+                    }
+                }
+                _ => {
+                    return Err(self.fail(format!(
+                        "ternary() takes three arguments in `{}`",
+                        self.text
+                    )));
+                }
+            },
+            _ => unreachable!("a function of the list above"),
+        };
+        if value.is_finite() {
+            Ok(value)
+        } else {
+            Err(self.fail(format!("`{}` is not a finite number", self.text)))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn eval(text: &str) -> Result<f64, DeckError> {
+        let at = SourceLine {
+            file: "in".into(),
+            line: 1,
+        };
+        let lookup = |name: &str| match name {
+            "r" => Ok(0.5),
+            _ => Err(DeckError::unsupported(&at, format!("no {name}"), "")),
+        };
+        Expression::new(text, &at, &lookup).evaluate()
+    }
+
+    // Each formula's value is exact in binary floating point.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn formulas_follow_lammps_precedence() {
+        assert_eq!(eval("-2^2").unwrap(), 4.0);
+        assert_eq!(eval("2^3^2").unwrap(), 64.0);
+        assert_eq!(eval("1 + 2*3 - 4/2").unwrap(), 5.0);
+        assert_eq!(eval("1.5E+2 * 2e-1").unwrap(), 30.0);
+        assert_eq!(eval("2*v_r").unwrap(), 1.0);
+        assert_eq!(eval("ternary(1 > 2, 3, 4) + (1 == 1) + !0").unwrap(), 6.0);
+        assert_eq!(eval("sqrt(16) + log(100) + abs(-1)").unwrap(), 7.0);
+        assert_eq!(eval("0^0").unwrap(), 1.0);
+        assert_eq!(eval("7 % 4 && 1").unwrap(), 1.0);
+    }
+
+    #[test]
+    fn formulas_with_running_values_are_refused() {
+        for (text, word) in [
+            ("step*2", "step"),
+            ("x[1]", "x[…]"),
+            ("count(all)", "count()"),
+            ("1/0", "divide by zero"),
+            ("(1+2", "unbalanced"),
+            ("v_nope", "no nope"),
+        ] {
+            let e = eval(text).unwrap_err().to_string();
+            assert!(e.contains(word) && e.starts_with("in:1:"), "{text}: {e}");
+        }
+    }
+
+    #[test]
+    fn fifteen_digits_reads_back_as_lammps_writes_it() {
+        let third = 1.0 / 3.0;
+        let x: f64 = fifteen_digits(third).parse().unwrap();
+        assert!((x - third).abs() < 1e-15 && (x - third).abs() > 0.0);
+        assert_eq!(fifteen_digits(2e11), "2e11");
+        assert_eq!(fifteen_digits(0.25), "2.5e-1");
+    }
+
+    #[test]
+    fn words_comments_and_quotes_are_split_as_the_codes_split_them() {
+        let at = SourceLine {
+            file: "in".into(),
+            line: 3,
+        };
+        assert_eq!(
+            strip_comment("fix a all print \"#x\" # note"),
+            "fix a all print \"#x\" "
+        );
+        let words = split_words("print \"a b\" 'c d' \"\"\"e \"f\" g\"\"\" h", &at).unwrap();
+        assert_eq!(words, ["print", "a b", "c d", "e \"f\" g", "h"]);
+        assert!(split_words("print \"a", &at).is_err());
+    }
+}

@@ -1,0 +1,526 @@
+//! `millimpact deck` without a code: the deck readers (each construct, includes and variables,
+//! every refusal naming its file and line, exit 2 with nothing run), and snapshots of every
+//! format from the runs `tests/deck_live.rs` recorded in the real codes.
+
+// A value read from a deck is the number written in it, bit for bit: compared exactly.
+#![allow(clippy::float_cmp)]
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{millimpact, root};
+use millimpact::analysis::deck::{RecordedRuns, check_deck, read_deck};
+use millimpact::codes::CodeName;
+use millimpact::codes::deck::{DeckOptions, GivenParticle, Partner, TypeRef, UserDeck};
+use millimpact::model::law::DashpotLaw;
+use millimpact::output::{Format, export};
+
+const MILL: &str = "examples/decks/liggghts-mill/in.mill";
+
+fn read(path: &Path) -> UserDeck {
+    read_deck(path, None, &DeckOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+        .1
+}
+
+/// A deck in a fresh folder: `files` are (name, text); the first is the deck.
+fn deck_files(files: &[(&str, &str)]) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, text) in files {
+        std::fs::write(dir.path().join(name), text).unwrap();
+    }
+    let path = dir.path().join(files[0].0);
+    (dir, path)
+}
+
+/// The lines every small deck below shares: two steel types, a wall type, COR 0.5.
+const HEAD: &str = "units si\natom_style granular\nhard_particles yes\ncreate_box 3 box\n\
+fix m1 all property/global youngsModulus peratomtype 2e11 2e11 2e11\n\
+fix m2 all property/global poissonsRatio peratomtype 0.3 0.3 0.3\n\
+fix m3 all property/global coefficientRestitution peratomtypepair 3 0.5 0.5 0.5 0.5 0.5 0.5 0.5 0.5 0.5\n";
+
+fn relative(a: f64, b: f64) -> f64 {
+    ((a - b) / b).abs()
+}
+
+#[test]
+fn the_mill_deck_is_read_through_its_include_and_variables() {
+    let deck = read(&root().join(MILL));
+    assert_eq!(deck.timestep, 2e-6);
+    assert!(
+        deck.timestep_from.ends_with("in.mill:28"),
+        "{}",
+        deck.timestep_from
+    );
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    // r_small = v_r_big/2 with r_big = 0.06/2: a formula through another variable.
+    assert_eq!(sizes, [(1, 0.03, 7800.0), (2, 0.015, 7800.0)]);
+    assert_eq!(deck.walls.len(), 1);
+    assert_eq!(deck.walls[0].type_id, Some(3));
+    assert_eq!(deck.walls[0].youngs_modulus, Some(5e7));
+    // Three ball pairs, two ball–wall pairs.
+    let types: Vec<[TypeRef; 2]> = deck.contacts.iter().map(|c| c.types).collect();
+    use TypeRef::{Type, Wall};
+    assert_eq!(
+        types,
+        [
+            [Type(1), Type(1)],
+            [Type(1), Type(2)],
+            [Type(2), Type(2)],
+            [Type(1), Wall],
+            [Type(2), Wall]
+        ]
+    );
+    // The include's property lines, variables substituted; the mesh wall made a plane.
+    let common = deck.transplant.common.join("\n");
+    assert!(
+        common.contains("youngsModulus peratomtype 2e11 2e11 5e7"),
+        "{common}"
+    );
+    assert!(
+        common.contains("pair_style      gran model hertz tangential history rolling_friction cdt"),
+        "{common}"
+    );
+    assert_eq!(
+        deck.transplant.walls,
+        [
+            "fix walls all wall/gran model hertz tangential history rolling_friction cdt primitive type 3 zplane 0.0"
+        ]
+    );
+    assert_eq!(deck.transplant.types, 3);
+    for left in [
+        "gravity",
+        "mesh walls",
+        "particle insertion",
+        "the run itself",
+    ] {
+        assert!(
+            deck.left_out.iter().any(|l| l.starts_with(left)),
+            "{left}: {:?}",
+            deck.left_out
+        );
+    }
+}
+
+#[test]
+fn the_mill_decks_laws_are_liggghts_hertz_with_its_mixed_modulus() {
+    let deck = read(&root().join(MILL));
+    let big = &deck.bodies[0];
+    let small = &deck.bodies[1];
+    // Ball on ball (types 1 and 2): Y* of two steels, R* = R1 R2/(R1+R2), m* reduced.
+    let y = 2e11 / (2.0 * (1.0 - 0.09));
+    let r: f64 = 0.03 * 0.015 / 0.045;
+    let m = big.mass * small.mass / (big.mass + small.mass);
+    let expected = DashpotLaw::damped_hertz(m, 4.0 / 3.0 * y * r.sqrt(), 0.7);
+    let law = deck.contacts[1].law;
+    assert!(relative(law.stiffness, expected.stiffness) < 1e-14);
+    assert!(relative(law.damping, expected.damping) < 1e-14);
+    assert!(relative(law.mass, expected.mass) < 1e-14);
+    assert!(!law.clamp_attractive);
+    // Ball on the rubber liner: the liner's E and ν mixed in, R* = R, m* = m.
+    let y_wall = 1.0 / ((1.0 - 0.09) / 2e11 + (1.0 - 0.45 * 0.45) / 5e7);
+    let wall = &deck.contacts[3];
+    assert_eq!(wall.partner, Partner::Wall(0));
+    assert_eq!(wall.cor_entered, Some(0.6));
+    assert!(relative(wall.law.stiffness, 4.0 / 3.0 * y_wall * 0.03f64.sqrt()) < 1e-14);
+    assert!(relative(wall.law.mass, big.mass) < 1e-14);
+    assert!(
+        wall.traps.iter().any(|t| t.starts_with("wall modulus")),
+        "{:?}",
+        wall.traps
+    );
+}
+
+#[test]
+fn each_normal_model_and_setting_gives_its_law() {
+    let atoms =
+        "create_atoms 1 single 0 0 0\nset atom 1 diameter 0.02 density 7800\ntimestep 1e-7\n";
+    let mass = 4.0 / 3.0 * std::f64::consts::PI * 0.01f64.powi(3) * 7800.0;
+    // hooke: kn from characteristicVelocity, the linear dashpot of the entered COR.
+    let hooke = format!(
+        "{HEAD}fix v all property/global characteristicVelocity scalar 2.0\npair_style gran model hooke\npair_coeff * *\n{atoms}"
+    );
+    let (_d, path) = deck_files(&[("in.hooke", &hooke)]);
+    let deck = read(&path);
+    let (y, r, m): (f64, f64, f64) = (2e11 / (2.0 * 0.91), 0.005, mass / 2.0);
+    let kn = 16.0 / 15.0 * r.sqrt() * y * (15.0 * m * 4.0 / (16.0 * r.sqrt() * y)).powf(0.2);
+    let law = deck.contacts[0].law;
+    assert!(
+        relative(law.stiffness, kn) < 1e-13,
+        "{} {kn}",
+        law.stiffness
+    );
+    assert!(relative(law.damping, DashpotLaw::linear(m, kn, 0.5).damping) < 1e-13);
+    assert_eq!(
+        deck.representative_velocity.as_ref().map(|v| v.0),
+        Some(2.0)
+    );
+    // hooke/stiffness with absolute damping, and limitForce on: a clamped linear law.
+    let stiff = "units si\natom_style granular\ncreate_box 1 box\n\
+fix k all property/global kn peratomtypepair 1 1e6\nfix kt all property/global kt peratomtypepair 1 0\n\
+fix g all property/global gamman_abs peratomtypepair 1 25\nfix gt all property/global gammat_abs peratomtypepair 1 0\n\
+pair_style gran model hooke/stiffness absolute_damping on limitForce on\npair_coeff * *\n";
+    let (_d, path) = deck_files(&[("in.stiff", &format!("{stiff}{atoms}"))]);
+    let deck = read(&path);
+    let law = deck.contacts[0].law;
+    assert_eq!(
+        (
+            law.stiffness,
+            law.damping,
+            law.exponent,
+            law.damping_exponent
+        ),
+        (1e6, 25.0, 1.0, 0.0)
+    );
+    assert!(law.clamp_attractive);
+    assert_eq!(deck.contacts[0].cor_entered, None);
+    assert!(
+        deck.contacts[0]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("limitForce on"))
+    );
+    // hertz/stiffness: kn and gamman (per mass) scaled by sqrt(R* δ).
+    let hs = "units si\natom_style granular\ncreate_box 1 box\n\
+fix k all property/global kn peratomtypepair 1 1e9\nfix g all property/global gamman peratomtypepair 1 100\n\
+pair_style gran model hertz/stiffness\npair_coeff * *\n";
+    let (_d, path) = deck_files(&[("in.hs", &format!("{hs}{atoms}"))]);
+    let law = read(&path).contacts[0].law;
+    assert!(relative(law.stiffness, 1e9 * r.sqrt()) < 1e-14);
+    assert!(relative(law.damping, 100.0 * m * r.sqrt()) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.5));
+}
+
+#[test]
+fn atoms_set_by_type_continuations_and_command_line_variables_are_read() {
+    let text = format!(
+        "variable r index 0.01\nvariable rho string 7800\n{HEAD}pair_style gran &\n  model hertz\npair_coeff * *\n\
+create_atoms 2 region everywhere\nset type 2 diameter $(2*v_r) density ${{rho}}\nvariable q equal 1e-6\ntimestep $q\n\
+fix w all wall/gran model hertz primitive type 3 zplane 0.0 limitForce on\n"
+    );
+    let (_d, path) = deck_files(&[("in.deck", &text)]);
+    let options = DeckOptions {
+        variables: vec![("r".into(), "0.02".into())],
+        ..DeckOptions::default()
+    };
+    let (_, deck) = read_deck(&path, None, &options).unwrap();
+    // The command line's r wins over the deck's index variable, as -var does.
+    assert_eq!(deck.bodies[0].radius, 0.02);
+    assert_eq!(deck.bodies[0].type_id, 2);
+    assert_eq!(deck.timestep, 1e-6);
+    assert_eq!(
+        deck.transplant.walls,
+        ["fix w all wall/gran model hertz primitive type 3 zplane 0.0 limitForce on"]
+    );
+    // The wall's own settings: clamped at the wall, not between the balls.
+    assert!(deck.contacts[1].law.clamp_attractive && !deck.contacts[0].law.clamp_attractive);
+    // Particles given on the command line replace the deck's sizes of their type.
+    let options = DeckOptions {
+        particles: vec![GivenParticle {
+            type_id: 2,
+            radius: 0.05,
+            density: 1000.0,
+        }],
+        ..DeckOptions::default()
+    };
+    let (_, deck) = read_deck(&path, None, &options).unwrap();
+    assert_eq!(deck.bodies.len(), 1);
+    assert_eq!(
+        (deck.bodies[0].radius, deck.bodies[0].density),
+        (0.05, 1000.0)
+    );
+}
+
+/// Each deck with one bad line, and what its error must say besides its file and line.
+#[test]
+fn bad_lines_are_refused_with_their_file_line_and_what_is_supported() {
+    let atoms = "pair_coeff * *\ncreate_atoms 1 single 0 0 0\nset atom 1 diameter 0.02 density 7800\ntimestep 1e-7\n";
+    let cases: [(&str, String, usize, &str); 10] = [
+        (
+            "normal model",
+            format!("{HEAD}pair_style gran model edinburgh\n{atoms}"),
+            8,
+            "supported: model hertz, hooke",
+        ),
+        (
+            "cohesion",
+            format!("{HEAD}pair_style gran model hertz cohesion sjkr\n{atoms}"),
+            8,
+            "supported: cohesion off",
+        ),
+        (
+            "pair style",
+            format!("{HEAD}pair_style lj/cut 2.5\n{atoms}"),
+            8,
+            "supported: pair_style gran",
+        ),
+        (
+            "unknown variable",
+            format!("{HEAD}pair_style gran model hertz\ntimestep ${{dt}}\n"),
+            9,
+            "`dt` is not defined",
+        ),
+        (
+            "running value",
+            format!(
+                "{HEAD}variable t equal step*2\npair_style gran model hertz\ntimestep ${{t}}\n"
+            ),
+            10,
+            "thermo keyword",
+        ),
+        (
+            "units",
+            format!(
+                "units cgs\n{}pair_style gran model hertz\n{atoms}",
+                &HEAD[9..]
+            ),
+            1,
+            "supported: units si",
+        ),
+        (
+            "soft limit",
+            format!(
+                "{}pair_style gran model hertz\n{atoms}",
+                HEAD.replace("hard_particles yes\n", "")
+            ),
+            4,
+            "hard_particles yes",
+        ),
+        (
+            "integrator",
+            format!("{HEAD}pair_style gran model hertz\nfix i all nve/limit 0.1\n{atoms}"),
+            9,
+            "supported: fix nve/sphere",
+        ),
+        (
+            "template",
+            format!(
+                "{HEAD}pair_style gran model hertz\nfix p all particletemplate/sphere 1 atom_type 1 density constant 7800 radius gaussian 0.01 0.001\ntimestep 1e-7\n"
+            ),
+            9,
+            "--particle 1:RADIUS:DENSITY",
+        ),
+        (
+            "multisphere",
+            format!(
+                "{HEAD}pair_style gran model hertz\nfix p all particletemplate/multisphere 1 atom_type 1\n"
+            ),
+            9,
+            "supported: particletemplate/sphere",
+        ),
+    ];
+    for (what, text, line, says) in cases {
+        let (_d, path) = deck_files(&[("in.bad", &text)]);
+        let e = read_deck(&path, None, &DeckOptions::default())
+            .unwrap_err()
+            .to_string();
+        let at = format!("{}:{line}: ", path.display());
+        assert!(e.starts_with(&at) && e.contains(says), "{what}: {e}");
+    }
+}
+
+#[test]
+fn an_included_file_names_its_own_lines_and_a_missing_one_is_named() {
+    let (_d, path) = deck_files(&[
+        ("in.main", &format!("{HEAD}include more.in\n")),
+        (
+            "more.in",
+            "# the pair line\n\npair_style gran model luding\n",
+        ),
+    ]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("more.in:3: normal model `luding`"), "{e}");
+    let (_d, path) = deck_files(&[("in.main", &format!("{HEAD}include nowhere.in\n"))]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.starts_with("cannot read ") && e.contains("nowhere.in"),
+        "{e}"
+    );
+}
+
+#[test]
+fn the_command_refuses_a_bad_deck_in_one_line_with_exit_2_and_runs_nothing() {
+    let (_d, path) = deck_files(&[(
+        "in.bad",
+        &format!("{HEAD}pair_style gran model hertz cohesion sjkr\n"),
+    )]);
+    let out = millimpact()
+        .args(["deck", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("in.bad:8: cohesion sjkr"),
+        "{err}"
+    );
+    // A file no reader takes.
+    let (_d, path) = deck_files(&[("notes.txt", "a list of groceries\n")]);
+    let out = millimpact()
+        .args(["deck", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert!(
+        err.contains("not a deck of any code this build reads; supported: liggghts:"),
+        "{err}"
+    );
+}
+
+/// Every format of the mill deck's check, from the runs recorded in LIGGGHTS.
+#[test]
+fn snapshots_of_the_mill_deck_in_every_format() {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/liggghts-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(MILL), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Liggghts);
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_liggghts_mill_{format}"), text);
+    }
+}
+
+/// The worked example of `docs/src/commands/deck.md` is the table of the recorded check.
+#[test]
+fn the_books_worked_example_is_the_recorded_check() {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/liggghts-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(MILL), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    let table = export(&report, Format::Table).unwrap();
+    let page = std::fs::read_to_string(root().join("docs/src/commands/deck.md")).unwrap();
+    let start = page
+        .find("<!-- deck example:")
+        .expect("the example's marker");
+    let block = &page[start..];
+    let body = &block[block.find("```text\n").unwrap() + 8
+        ..block.find("```\n<!-- end of deck example -->").unwrap()];
+    assert_eq!(body, table);
+}
+
+const GRANULAR: &str = "examples/decks/lammps-granular/in.granular";
+
+/// As on a machine without the codes: a LAMMPS deck is read with the build's fallback
+/// conventions (no probe starts).
+fn hide_codes() {
+    for (variable, missing) in common::codes_hidden() {
+        // SAFETY: every test of this file that sets them sets the same values, before reading.
+        unsafe { std::env::set_var(variable, missing) };
+    }
+}
+
+#[test]
+fn the_lammps_deck_is_read_with_the_builds_conventions() {
+    hide_codes();
+    let (code, deck) = read_deck(&root().join(GRANULAR), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Lammps);
+    let sizes: Vec<(u32, f64, f64, Option<f64>)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density, b.youngs_modulus))
+        .collect();
+    assert_eq!(
+        sizes,
+        [
+            (1, 0.005, 2500.0, Some(6.3e10)),
+            (2, 0.0025, 2500.0, Some(6.3e10))
+        ]
+    );
+    assert_eq!(
+        deck.transplant.walls,
+        [
+            "fix floor all wall/gran granular hertz/material 6.3e10 7e-1 2.2e-1 damping tsuji tangential mindlin NULL 1.0 0.5 limit_damping zplane 0 NULL"
+        ]
+    );
+    // The ball on the floor: the 2021 wall's E/(2(1−ν)), R* = R, m* = m, tsuji's α(e_in), clamped.
+    let wall = &deck.contacts[3];
+    let body = &deck.bodies[0];
+    let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22)) * 0.005f64.sqrt();
+    let alpha = millimpact::codes::lammps::tsuji_alpha(0.7);
+    assert!(relative(wall.law.stiffness, k) < 1e-14);
+    assert!(relative(wall.law.damping, alpha * (body.mass * k).sqrt()) < 1e-14);
+    assert!(wall.law.clamp_attractive);
+    assert_eq!(wall.cor_entered, Some(0.7));
+    // Two beads: the pair's E/(2(1−ν²)), not clamped.
+    let pair = &deck.contacts[0];
+    let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22 * 0.22)) * 0.0025f64.sqrt();
+    assert!(relative(pair.law.stiffness, k) < 1e-14 && !pair.law.clamp_attractive);
+}
+
+#[test]
+fn a_lammps_line_the_build_lacks_or_a_pair_without_coefficients_is_refused() {
+    hide_codes();
+    let head = "units si\natom_style sphere\ncreate_box 2 box\ncreate_atoms 1 single 0 0 0\ncreate_atoms 2 single 1 0 0\nset type 1 diameter 0.01 density 2500\nset type 2 diameter 0.01 density 2500\ntimestep 1e-6\npair_style granular\n";
+    let (_d, path) = deck_files(&[(
+        "in.cr",
+        &format!(
+            "{head}pair_coeff * * hertz/material 1e9 0.5 0.3 damping coeff_restitution tangential linear_nohistory 0 0\n"
+        ),
+    )]);
+    let e = read_deck(&path, Some(CodeName::Lammps), &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.cr:10: damping coeff_restitution: this build (probed) has none")
+            && e.contains("--code lammps-2025"),
+        "{e}"
+    );
+    let (_d, path) = deck_files(&[(
+        "in.mix",
+        &format!("{head}pair_coeff 1 1 hertz/material 1e9 0.5 0.3\npair_coeff 2 2 hooke 1e6 0.5\n"),
+    )]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no pair_coeff covers the types 1 and 2"), "{e}");
+    let (_d, path) = deck_files(&[(
+        "in.dmt",
+        &format!("{head}pair_coeff * * dmt 1e9 0.5 0.3 0.1\n"),
+    )]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains(
+            "in.dmt:10: normal model `dmt`; supported: hooke k d, hertz k d, hertz/material E d nu"
+        ),
+        "{e}"
+    );
+}
+
+#[test]
+fn snapshots_of_the_lammps_deck_in_every_format() {
+    hide_codes();
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/lammps-granular.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(GRANULAR), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_lammps_granular_{format}"), text);
+    }
+}
