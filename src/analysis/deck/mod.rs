@@ -433,7 +433,7 @@ pub fn check_deck(
                 version.get_or_insert(run.code_version.clone());
                 impact_row(deck, p, scheme, Ok(&run.trajectory))
             }
-            Err(e) => impact_row(deck, p, scheme, Err(e.to_string())),
+            Err(e) => impact_row(deck, p, scheme, Err(&e)),
         };
         impacts.push(row);
     }
@@ -463,7 +463,7 @@ fn impact_row(
     deck: &UserDeck,
     p: &Planned,
     scheme: StepScheme,
-    run: Result<&CodeTrajectory, String>,
+    run: Result<&CodeTrajectory, &CodeError>,
 ) -> DeckImpact {
     let c = &deck.contacts[p.contact];
     let body = &deck.bodies[c.body];
@@ -504,7 +504,7 @@ fn impact_row(
             Ok(m) => (Some(m), None),
             Err(e) => (None, Some(format!("the run's trajectory: {e}"))),
         },
-        Err(e) => (None, Some(e)),
+        Err(e) => (None, Some(e.to_string())),
     };
     let nan = f64::NAN;
     let cor_realised = metrics.map_or(nan, |m| m.cor);
