@@ -4,8 +4,8 @@
 //! overlap, approach speed, force), with the single run's row count and a loop time of its own.
 //! Without a code these tests fail; they do not skip.
 
-use millimpact::codes::batch::run_batch;
-use millimpact::codes::{CodeName, CodeSetup, RunOptions, prepare, run_code};
+use millimpact::codes::batch::{run_batch, run_batch_with};
+use millimpact::codes::{CodeName, CodeSetup, Executable, RunOptions, prepare, run_code};
 use millimpact::model::case::Case;
 use millimpact::model::trajectory::CodeTrajectory;
 
@@ -126,4 +126,41 @@ batch_tests! {
     liggghts_paper_ball_plate: CodeName::LiggghtsPaper, "ball_plate", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
     liggghts_paper_ball_ball: CodeName::LiggghtsPaper, "ball_ball", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
     liggghts_paper_rod_end: CodeName::LiggghtsPaper, "rod_end", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
+}
+
+/// YADE's batches run by the launcher's Python (its library, without the launcher's shell);
+/// through a launcher that is not YADE's Python script, a wrapper, by that launcher itself:
+/// the same bits either way.
+#[test]
+#[ignore = "live: runs YADE (bash scripts/test.sh)"]
+fn yade_batches_by_its_python_equal_those_by_a_wrapper_of_its_launcher() {
+    let driver = CodeName::Yade.driver();
+    let located = driver.locate().expect("YADE is installed");
+    let runner = driver.batch().unwrap();
+    let setups = setups(CodeName::Yade, "ball_ball");
+    let input = runner.render_batch(&setups).unwrap();
+    let light = runner.launch(located.clone(), &input);
+    assert_ne!(light.executable.program, located.program, "{light:?}");
+    let dir = tempfile::tempdir().unwrap();
+    let wrapper = dir.path().join("yade-wrapper");
+    std::fs::write(
+        &wrapper,
+        format!("#!/bin/sh\nexec '{}' \"$@\"\n", located.program.display()),
+    )
+    .unwrap();
+    std::fs::set_permissions(
+        &wrapper,
+        std::os::unix::fs::PermissionsExt::from_mode(0o755),
+    )
+    .unwrap();
+    let wrapped = Executable::plain(wrapper);
+    assert_eq!(runner.launch(wrapped.clone(), &input).executable, wrapped);
+    let options = RunOptions::default();
+    let by_python = run_batch(driver, &setups, &options).unwrap();
+    let by_wrapper = run_batch_with(driver, Ok(wrapped), &setups, &options).unwrap();
+    for (k, (a, b)) in by_python.runs.iter().zip(&by_wrapper.runs).enumerate() {
+        let (a, b) = (a.as_ref().unwrap(), b.as_ref().unwrap());
+        assert_eq!(bits(&a.trajectory), bits(&b.trajectory), "impact {k}");
+        assert_eq!(a.version, b.version);
+    }
 }

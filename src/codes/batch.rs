@@ -6,7 +6,7 @@ use std::process::Stdio;
 use std::time::Instant;
 
 use super::runner::RunOptions;
-use super::{CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun};
+use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun};
 use crate::model::trajectory::check_trajectory;
 use thiserror::Error;
 
@@ -66,11 +66,26 @@ pub struct BatchRun {
     pub kept: Option<PathBuf>,
 }
 
-/// Render, run and parse `setups` in one process of `driver`'s code. A batch the driver
-/// cannot render is `Unsupported` with its reason; a crash or time-out fails the whole
-/// batch, with the log kept.
+/// Render, run and parse `setups` in one process of `driver`'s code, its located build. A
+/// batch the driver cannot render is `Unsupported` with its reason; a crash or time-out fails
+/// the whole batch, with the log kept.
 pub fn run_batch(
     driver: &dyn CodeDriver,
+    setups: &[CodeSetup],
+    options: &RunOptions,
+) -> Result<BatchRun, CodeError> {
+    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
+        code: driver.name().to_string(),
+        looked,
+    });
+    run_batch_with(driver, executable, setups, options)
+}
+
+/// [`run_batch`] with the build at `executable` (or why none was found, reported once the
+/// batch is known to render).
+pub fn run_batch_with(
+    driver: &dyn CodeDriver,
+    executable: Result<Executable, CodeError>,
     setups: &[CodeSetup],
     options: &RunOptions,
 ) -> Result<BatchRun, CodeError> {
@@ -98,11 +113,9 @@ pub fn run_batch(
             case: format!("a batch of {}", setups.len()),
             reason: reason.to_string(),
         })?;
-    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
-        code: code.clone(),
-        looked,
-    })?;
+    let executable = executable?;
     super::runner::check_conventions(driver, &executable, setups)?;
+    let launch = runner.launch(executable, &input);
     let parent = options
         .scratch_parent
         .clone()
@@ -120,9 +133,9 @@ pub fn run_batch(
         .try_clone()
         .map_err(io_error("duplicating the log handle"))?;
     let started = Instant::now();
-    let mut child = executable.command();
+    let mut child = launch.executable.command();
     child
-        .args(&input.args)
+        .args(&launch.args)
         .current_dir(&workdir)
         .stdin(Stdio::null())
         .stdout(Stdio::from(log_file))

@@ -225,6 +225,23 @@ pub trait BatchRunner: Send + Sync {
         workdir: &Path,
         log: &str,
     ) -> Vec<Result<ParsedRun, ParseError>>;
+    /// The program that runs a rendered batch `input`, given the build's located
+    /// `executable`, and its arguments: by default the executable itself with the input's.
+    fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {
+        Launch {
+            executable,
+            args: input.args.clone(),
+        }
+    }
+}
+
+/// What a batch is started with: a program, its environment and its arguments.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Launch {
+    /// The program and the variables set for it.
+    pub executable: Executable,
+    /// Its arguments, the input file's name among them.
+    pub args: Vec<String>,
 }
 
 /// A code's capability to measure, by short runs, the conventions its build follows.
