@@ -225,6 +225,12 @@ pub trait BatchRunner: Send + Sync {
         workdir: &Path,
         log: &str,
     ) -> Vec<Result<ParsedRun, ParseError>>;
+    /// How many impacts' steps cost what one start of the code's process does (measured): a
+    /// sweep runs fewer batches than it has workers rather than start a process for fewer
+    /// (see `balanced_sizes` in the sweep). By default 1: a start as cheap as an impact.
+    fn impacts_per_start(&self) -> usize {
+        1
+    }
     /// The program that runs a rendered batch `input`, given the build's located
     /// `executable`, and its arguments: by default the executable itself with the input's.
     fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {

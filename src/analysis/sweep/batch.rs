@@ -53,7 +53,10 @@ pub enum WorkItem<'a> {
 
 /// Split the code points into work items: points of one code and one time step go in
 /// batches of at most `options.batch` impacts (fewer when their trajectories would be
-/// large), of [`balanced_sizes`] across the workers.
+/// large), of [`balanced_sizes`] across the workers (fewer batches than workers when the
+/// impacts are too few to pay each process's start: [`BatchRunner::impacts_per_start`]).
+///
+/// [`BatchRunner::impacts_per_start`]: crate::codes::BatchRunner::impacts_per_start
 pub fn plan<'a>(
     sweep: &SweepFile,
     points: &[&'a Point],
@@ -115,13 +118,15 @@ pub fn plan<'a>(
             crate::model::count::ceil_count((MAX_BATCH_BYTES / (80.0 * steps as f64)).max(1.0))
                 .and_then(|n| usize::try_from(n).ok())
                 .unwrap_or(1);
+        let runner = code.driver().batch();
         let cap = options
             .batch
             .min(by_bytes)
-            .min(code.driver().batch().map_or(1, |b| b.max_batch()))
+            .min(runner.map_or(1, |b| b.max_batch()))
             .max(1);
+        let least = runner.map_or(1, |b| b.impacts_per_start());
         let mut items = items.into_iter();
-        for size in balanced_sizes(items.len(), cap, options.jobs) {
+        for size in balanced_sizes(items.len(), cap, options.jobs, least) {
             let chunk: Vec<_> = items.by_ref().take(size).collect();
             if chunk.len() == 1 {
                 work.push(WorkItem::Single(chunk[0].point));
@@ -137,16 +142,24 @@ pub fn plan<'a>(
 /// batches as that needs rounded up to a multiple of the `jobs` workers (each worker gets the
 /// same number), and sizes that differ by at most one, so that the workers finish together
 /// (200 impacts at most 64 a batch on 2 workers: 50 + 50 + 50 + 50, not 64 + 64 + 64 + 8).
-pub fn balanced_sizes(count: usize, cap: usize, jobs: usize) -> Vec<usize> {
+/// But when the impacts are too few to give every worker a batch of at least `least` (the
+/// impacts whose steps cost what a process's start does), they run in fewer batches, each of
+/// at least `least` where the cap allows (one if all are fewer): a process started for fewer
+/// would spend more on its start than on its impacts, and on a loaded machine the CPU it
+/// takes is what the others wait for.
+pub fn balanced_sizes(count: usize, cap: usize, jobs: usize, least: usize) -> Vec<usize> {
     if count == 0 {
         return Vec::new();
     }
     let jobs = jobs.max(1);
-    let batches = count
-        .div_ceil(cap.max(1))
-        .div_ceil(jobs)
-        .saturating_mul(jobs)
-        .clamp(1, count);
+    let needed = count.div_ceil(cap.max(1));
+    let worth_a_start = (count / least.max(1)).max(needed).max(1);
+    let batches = if worth_a_start < jobs {
+        worth_a_start
+    } else {
+        needed.div_ceil(jobs).saturating_mul(jobs)
+    }
+    .clamp(1, count);
     let (size, larger) = (count / batches, count % batches);
     (0..batches)
         .map(|b| size + usize::from(b < larger))
@@ -286,15 +299,29 @@ mod tests {
 
     #[test]
     fn batches_are_even_across_the_workers() {
-        assert_eq!(balanced_sizes(200, 64, 2), [50, 50, 50, 50]);
-        assert_eq!(balanced_sizes(200, 100, 2), [100, 100]);
-        assert_eq!(balanced_sizes(200, 31, 2), [25; 8]);
-        assert_eq!(balanced_sizes(201, 64, 2), [51, 50, 50, 50]);
-        assert_eq!(balanced_sizes(3, 64, 2), [2, 1]);
-        assert_eq!(balanced_sizes(1, 64, 4), [1]);
-        assert_eq!(balanced_sizes(5, 64, 8), [1; 5]);
-        assert_eq!(balanced_sizes(0, 64, 2), Vec::<usize>::new());
-        assert_eq!(balanced_sizes(10, 0, 0), [1; 10]);
+        assert_eq!(balanced_sizes(200, 64, 2, 1), [50, 50, 50, 50]);
+        assert_eq!(balanced_sizes(200, 100, 2, 1), [100, 100]);
+        assert_eq!(balanced_sizes(200, 31, 2, 1), [25; 8]);
+        assert_eq!(balanced_sizes(201, 64, 2, 1), [51, 50, 50, 50]);
+        assert_eq!(balanced_sizes(3, 64, 2, 1), [2, 1]);
+        assert_eq!(balanced_sizes(1, 64, 4, 1), [1]);
+        assert_eq!(balanced_sizes(5, 64, 8, 1), [1; 5]);
+        assert_eq!(balanced_sizes(0, 64, 2, 1), Vec::<usize>::new());
+        assert_eq!(balanced_sizes(10, 0, 0, 0), [1; 10]);
+    }
+
+    #[test]
+    fn impacts_too_few_to_pay_each_worker_s_start_run_in_fewer_batches() {
+        // YADE's start costs some 350 impacts: 200 run in one process, not two of 100.
+        assert_eq!(balanced_sizes(200, 256, 2, 350), [200]);
+        assert_eq!(balanced_sizes(700, 256, 4, 350), [234, 233, 233]);
+        assert_eq!(balanced_sizes(1000, 512, 4, 300), [334, 333, 333]);
+        // Enough for every worker: even across them, as without.
+        assert_eq!(balanced_sizes(700, 256, 2, 350), [175; 4]);
+        assert_eq!(balanced_sizes(1000, 256, 2, 350), [250; 4]);
+        // The cap still holds.
+        assert_eq!(balanced_sizes(600, 256, 4, 350), [200; 3]);
+        assert_eq!(balanced_sizes(300, 64, 2, 350), [50; 6]);
     }
 
     proptest! {
@@ -303,16 +330,27 @@ mod tests {
             count in 0usize..5000,
             cap in 1usize..300,
             jobs in 1usize..17,
+            least in 1usize..500,
         ) {
-            let sizes = balanced_sizes(count, cap, jobs);
+            let sizes = balanced_sizes(count, cap, jobs, least);
             prop_assert_eq!(sizes.iter().sum::<usize>(), count);
             prop_assert!(sizes.iter().all(|&s| (1..=cap).contains(&s)));
             let (lo, hi) = (sizes.iter().min(), sizes.iter().max());
             if let (Some(lo), Some(hi)) = (lo, hi) {
                 prop_assert!(hi - lo <= 1, "{:?}", sizes);
             }
-            // Every worker has the same number of batches unless there are too few impacts.
-            prop_assert!(sizes.len().is_multiple_of(jobs) || sizes.len() == count);
+            // Every worker has the same number of batches unless there are too few impacts,
+            // or too few to pay each worker's start; then each batch pays its own, unless the
+            // cap asks for more batches or all are fewer than one start's worth.
+            let needed = count.div_ceil(cap);
+            prop_assert!(
+                sizes.len().is_multiple_of(jobs)
+                    || sizes.len() == count
+                    || (sizes.len() < jobs
+                        && (sizes.len() == needed.max(1)
+                            || sizes.iter().all(|&s| s >= least))),
+                "{:?}", sizes
+            );
         }
     }
 }
