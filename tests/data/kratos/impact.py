@@ -52,7 +52,7 @@ WALL_E = 2e11
 WALL_NU = 3e-1
 # COEFFICIENT_OF_RESTITUTION of the contact (ball scenes): Kratos turns it into DAMPING_GAMMA
 # with Thornton's fit (GammaForHertzThornton), as YADE does.
-EN = 6.946306739218842e-1
+EN = 6.946306739218823e-1
 # rod_end: the linear spring k (N/m) of DEM_D_Linear_Custom_Constants (K_NORMAL of the contact).
 KN = 0e0
 # The contact's damping ratio DAMPING_GAMMA (dashpot 2 gamma sqrt(m* k_tangent)), set directly
