@@ -118,35 +118,43 @@ def build(slot, p):
     O.bodies[b1].state.blockedDOFs = "XYZ"
     O.bodies[b1].mask = 1 << slot
     O.bodies[b2].mask = 1 << slot
-    return {"p": p, "m1": m1, "m2": m2, "b1": b1, "b2": b2, "axis": axis, "rows": []}
+    # Looked up once, not every step: the bodies' states (their fields read live), and the sum
+    # of radii the overlap is measured from (the same sum the single script forms).
+    return {
+        "p": p, "m1": m1, "m2": m2, "b1": b1, "b2": b2, "axis": axis, "rows": [],
+        "steps": p["steps"],
+        "s1": O.bodies[b1].state,
+        "s2": O.bodies[b2].state if ball_ball else None,
+        "reach": (p["radius"] + p["other_radius"]) if ball_ball else p["radius"],
+    }
 
 
 def gap_and_speed(c):
-    p, axis = c["p"], c["axis"]
-    p1 = O.bodies[c["b1"]].state.pos[axis]
-    u1 = O.bodies[c["b1"]].state.vel[axis]
-    if p["scene"] == "ball_ball":
-        p2 = O.bodies[c["b2"]].state.pos[axis]
-        u2 = O.bodies[c["b2"]].state.vel[axis]
-        return (p["radius"] + p["other_radius"]) - (p2 - p1), u1 - u2
-    return p["radius"] - (0.0 - p1), u1
+    axis, s1, s2 = c["axis"], c["s1"], c["s2"]
+    p1 = s1.pos[axis]
+    u1 = s1.vel[axis]
+    if s2 is not None:
+        p2 = s2.pos[axis]
+        u2 = s2.vel[axis]
+        return c["reach"] - (p2 - p1), u1 - u2
+    return c["reach"] - (0.0 - p1), u1
 
 
 current = []
 
 
 def record():
-    k = O.iter
+    k, t, force_on = O.iter, O.time, O.forces.f
     for c in current:
-        steps = c["p"]["steps"]
+        steps = c["steps"]
         if k < steps:
             overlap, speed = gap_and_speed(c)
-            force = -O.forces.f(c["b1"], sync=True)[c["axis"]]
-            c["rows"].append((k, O.time, overlap, speed, force))
+            force = -force_on(c["b1"], sync=True)[c["axis"]]
+            c["rows"].append((k, t, overlap, speed, force))
         elif k == steps:
             overlap, speed = gap_and_speed(c)
             if overlap <= 0.0:
-                c["rows"].append((k, O.time, overlap, speed, 0.0))
+                c["rows"].append((k, t, overlap, speed, 0.0))
 
 
 for group in GROUPS:
