@@ -74,7 +74,7 @@ fn per_point(sweep: &SweepFile, points: &[Point], pool: &rayon::ThreadPool) {
 fn chunked(sweep: &SweepFile, indices: &[usize]) {
     let mut out = std::io::sink();
     let mut write = |rows: millimpact::analysis::sweep::rows::EncodedRows| {
-        std::io::Write::write_all(&mut out, &rows.into_bytes()?)
+        std::io::Write::write_all(&mut out, &rows.into_bytes())
     };
     run_grid(
         sweep,

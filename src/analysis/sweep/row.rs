@@ -16,6 +16,7 @@ use crate::model::case::Case;
 use crate::model::exact::ImpactFigures;
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
+use crate::output::csv_record::{CsvRecords, RecordError};
 use crate::solve::Method;
 use crate::solve::paper::Outcome;
 
@@ -337,15 +338,12 @@ pub fn key_columns(axis_keys: &[String]) -> Vec<String> {
 /// The cells of the key columns ([`key_columns`]) as the row writes them: the axis values and
 /// the source, through the same serialisation as the CSV record.
 pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
-    let mut writer = csv::WriterBuilder::new()
-        .has_headers(false)
-        .from_writer(Vec::new());
+    let mut records = CsvRecords::default();
     // Serialising scalars into memory cannot fail.
-    let _ = writer.serialize((AxisValues(axes), source));
-    let bytes = writer.into_inner().unwrap_or_default();
+    let _ = records.push(&(AxisValues(axes), source));
     csv::ReaderBuilder::new()
         .has_headers(false)
-        .from_reader(bytes.as_slice())
+        .from_reader(records.as_bytes())
         .records()
         .next()
         .and_then(Result::ok)
@@ -395,15 +393,22 @@ struct JsonRow<'a> {
 }
 
 impl SweepRow {
-    /// Append the row as one CSV record (no header) to `writer`.
-    pub fn write_csv<W: Write>(&self, writer: &mut csv::Writer<W>) -> csv::Result<()> {
-        writer.serialize((
+    /// The row as one flat record: every part's fields in column order (a CSV record's
+    /// fields, through any serde serialiser of records).
+    pub fn record(&self) -> impl Serialize + '_ {
+        (
             &self.identity,
             AxisValues(&self.axes),
             &self.source,
             &self.figures,
             &self.status,
-        ))
+        )
+    }
+
+    /// Append the row as one CSV record (no header) to `records`: the bytes the csv crate's
+    /// writer gives [`SweepRow::record`].
+    pub fn write_csv(&self, records: &mut CsvRecords) -> Result<(), RecordError> {
+        records.push(&self.record())
     }
 
     /// Append the row as one JSON line to `out`.
