@@ -186,11 +186,30 @@ impl PointFigures {
         impact_velocity: f64,
         outcome: &Outcome,
     ) -> PointFigures {
+        let mut figures = PointFigures::default();
+        figures.set_solution(case, law, impact_velocity, outcome);
+        figures
+    }
+
+    /// Make these the figures of [`PointFigures::of_solution`], the case name's storage
+    /// reused (a chunk of a sweep fills one row point after point).
+    pub fn set_solution(
+        &mut self,
+        case: &str,
+        law: &PaperLaw,
+        impact_velocity: f64,
+        outcome: &Outcome,
+    ) {
         let exact = crate::model::exact::paper_impact(law, impact_velocity);
         let f = &outcome.figures;
         let error = |value: f64, reference: f64| finite((value - reference) / reference);
-        PointFigures {
-            case: Some(case.to_string()),
+        let mut name = self.case.take().unwrap_or_default();
+        if name != case {
+            name.clear();
+            name.push_str(case);
+        }
+        *self = PointFigures {
+            case: Some(name),
             eta: finite(law.loss_coefficient),
             reduced_mass: finite(law.mass),
             contact_stiffness: finite(law.stiffness),
@@ -214,7 +233,7 @@ impl PointFigures {
             timestep: outcome.timestep.and_then(finite),
             wall_time: finite(outcome.wall_time),
             ..PointFigures::default()
-        }
+        };
     }
 
     /// The figures of a code's run.
@@ -270,6 +289,14 @@ impl RowStatus {
         }
     }
 
+    /// Make this the status of a computed point, its storage reused.
+    pub fn set_ok(&mut self) {
+        if !self.is_ok() {
+            self.status.clear();
+            self.status.push_str(Self::OK);
+        }
+    }
+
     /// A point that failed with `error` (kept on one line).
     pub fn failed(error: &str) -> RowStatus {
         RowStatus {
@@ -284,7 +311,7 @@ impl RowStatus {
 }
 
 /// One row of a sweep's output.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct SweepRow {
     /// The sweep and the point.
     pub identity: RowIdentity,
