@@ -232,7 +232,7 @@ impl<'b> ser::Serializer for &'b mut Fields<'_> {
         // zmij writes ryu's digits and ryu's choice of plain or exponent form, but a positive
         // exponent with its sign (`1e+16` where ryu, and so the csv crate, write `1e16`); a
         // sign only a number of magnitude 1e16 or more can have.
-        match (v.abs() >= 1.0)
+        match (v.abs() >= 1e16)
             .then(|| text.iter().position(|&b| b == b'+'))
             .flatten()
         {
