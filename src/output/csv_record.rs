@@ -13,6 +13,7 @@
 //! costs: the formatting, nothing around it.
 
 use std::fmt::Display;
+use std::sync::LazyLock;
 
 use serde::Serialize;
 use serde::ser::{self, Impossible};
@@ -36,12 +37,14 @@ impl From<RecordError> for std::io::Error {
     }
 }
 
+/// csv_core's writer with the csv crate's default settings: asked only which text needs
+/// quotes.
+static QUOTING: LazyLock<csv_core::Writer> =
+    LazyLock::new(|| csv_core::WriterBuilder::new().build());
+
 /// CSV records appended to one buffer.
 pub struct CsvRecords {
     bytes: Vec<u8>,
-    /// csv_core's writer with the csv crate's default settings: asked only which text needs
-    /// quotes.
-    quoting: csv_core::Writer,
     /// The `\n` bytes written: one per record, and those inside quoted text.
     lines: usize,
     /// Records written.
@@ -62,7 +65,6 @@ impl CsvRecords {
     pub fn with_capacity(bytes: usize) -> CsvRecords {
         CsvRecords {
             bytes: Vec::with_capacity(bytes),
-            quoting: csv_core::WriterBuilder::new().build(),
             lines: 0,
             records: 0,
             width: None,
@@ -74,7 +76,7 @@ impl CsvRecords {
         let start = self.bytes.len();
         let mut fields = Fields {
             out: &mut self.bytes,
-            quoting: &self.quoting,
+            quoting: &QUOTING,
             count: 0,
             newlines: 0,
         };
@@ -201,7 +203,7 @@ macro_rules! integers {
     )*};
 }
 
-impl<'b> ser::Serializer for &'b mut Fields<'_> {
+impl ser::Serializer for &mut Fields<'_> {
     type Ok = ();
     type Error = RecordError;
     type SerializeSeq = Self;
