@@ -833,7 +833,7 @@ impl DeckReader for LiggghtsDeck {
             } else {
                 (None, None)
             };
-            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone() });
+            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone().into() });
             let settings: Vec<String> = w.model.settings.iter().flat_map(|(k, v)| [k.clone(), v.clone()]).collect();
             wall_lines.push(format!(
                 "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
@@ -856,7 +856,7 @@ impl DeckReader for LiggghtsDeck {
                     cor_entered: pl.cor_entered,
                     law: pl.law,
                     traps: pl.traps,
-                    lines: pl.lines,
+                    lines: pl.lines.into_iter().map(Into::into).collect(),
                 });
             }
         }
@@ -873,7 +873,7 @@ impl DeckReader for LiggghtsDeck {
                     cor_entered: pl.cor_entered,
                     law: pl.law,
                     traps,
-                    lines: pl.lines,
+                    lines: pl.lines.into_iter().map(Into::into).collect(),
                 });
             }
         }
