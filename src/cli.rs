@@ -474,7 +474,8 @@ fn parse_variable(text: &str) -> Result<(String, String), String> {
 /// `millimpact deck`.
 #[derive(Debug, Args)]
 pub struct DeckArgs {
-    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
+    /// The deck: a LIGGGHTS or LAMMPS input script, or a Kratos MaterialsDEM.json or
+    /// ProjectParametersDEM.json (YADE scripts are not read yet).
     pub deck: PathBuf,
     /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
     /// speed: the deck's own, else 2 m/s].
@@ -483,8 +484,8 @@ pub struct DeckArgs {
     /// The code (build) that reads and runs the deck [default: the first whose input it is].
     #[arg(long, value_parser = code_parser())]
     pub code: Option<CodeName>,
-    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³); repeat for
-    /// several; it replaces the deck's own sizes of that type.
+    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³; Kratos: TYPE
+    /// is the material id); repeat for several; it replaces the deck's own sizes of that type.
     #[arg(long, value_parser = parse_particle)]
     pub particle: Vec<millimpact::codes::deck::GivenParticle>,
     /// A variable defined before the deck is read, `NAME=VALUE` (as `-var NAME VALUE`).
