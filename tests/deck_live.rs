@@ -15,9 +15,12 @@ use millimpact::analysis::deck::{
 };
 use millimpact::analysis::store::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
 use millimpact::codes::CodeName;
+use millimpact::codes::damping::{clamped_linear_damping_ratio, hertz_input_restitution};
 use millimpact::codes::deck::DeckOptions;
+use millimpact::codes::kratos::hertz_damping_gamma;
+use millimpact::model::law::DashpotLaw;
 use millimpact::model::trajectory::trajectory_metrics;
-use millimpact::solve::dashpot::step_trajectory_from;
+use millimpact::solve::dashpot::{accurate_metrics, step_trajectory_from};
 
 /// The speed the snapshots of `tests/deck.rs` are taken at, m/s.
 pub const SNAPSHOT_VELOCITY: f64 = 4.0;
@@ -215,4 +218,88 @@ fn the_lammps_granular_deck_in_the_2025_build_follows_its_wall_convention() {
         "{} {k}",
         wall.law.stiffness
     );
+}
+
+#[test]
+#[ignore = "live: runs Kratos on examples/decks/kratos-mill"]
+fn the_kratos_mill_realises_its_own_laws_and_shows_kratos_fits() {
+    let path = Path::new("examples/decks/kratos-mill/MaterialsDEM.json");
+    std::env::set_current_dir(common::root()).unwrap();
+    let (code, deck) = read_deck(path, None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Kratos);
+    let live = LiveRunner::default();
+    let recording = Recording {
+        inner: &live,
+        runs: Default::default(),
+    };
+    let report = check_deck(code, &deck, velocities(&deck, &[]), &recording).unwrap();
+    // Two ball materials and the liner: three ball pairs and two ball–wall pairs, at three speeds.
+    assert_eq!(report.impacts.len(), 15);
+    assert_eq!(report.code_version.as_deref(), Some("10.4.4"));
+    let runs = recording.runs.into_inner().unwrap();
+    check(&report, &runs, code);
+    for i in &report.impacts {
+        let entered = i.cor_entered.unwrap();
+        let model = i.model_difference.unwrap();
+        // The known offsets: each law's damping ratio as Kratos derives it from the entered
+        // COR. Hertz: Thornton's fit, off by 1e-4 to 1e-3 in COR, which the compensated
+        // restitution removes; linear: the bisection to 1e-4 in γ, which the exact clamped
+        // ratio removes.
+        let (exact_damping, hertz) = if i.law.exponent > 1.0 {
+            let en = hertz_input_restitution(entered).unwrap();
+            (
+                2.0 * hertz_damping_gamma(en) * (1.5 * i.law.mass * i.law.stiffness).sqrt(),
+                true,
+            )
+        } else {
+            (
+                2.0 * clamped_linear_damping_ratio(entered).unwrap()
+                    * (i.law.mass * i.law.stiffness).sqrt(),
+                false,
+            )
+        };
+        let exact = DashpotLaw {
+            damping: exact_damping,
+            ..i.law
+        };
+        let cor = accurate_metrics(&exact, i.impact_velocity, 1e-12)
+            .unwrap()
+            .cor;
+        assert!(
+            (cor - entered).abs() <= TARGET_TOLERANCE,
+            "{}: {cor}",
+            i.pair
+        );
+        if hertz {
+            assert!(
+                model.abs() > 1e-4 && model.abs() < 1e-3,
+                "{}: model {model:e}",
+                i.pair
+            );
+            assert!(
+                i.traps
+                    .iter()
+                    .any(|t| t.starts_with("damping ratio from Thornton's fit"))
+            );
+        } else {
+            assert!(model.abs() < 1e-4, "{}: model {model:e}", i.pair);
+            assert!(
+                i.traps
+                    .iter()
+                    .any(|t| t.starts_with("damping ratio by bisection"))
+            );
+        }
+        // The rubber liner: its E* is 3e-4 of a rigid wall's, and the balls sink beyond 1 % of
+        // their radius into it at every speed.
+        if i.wall.is_some() {
+            assert!(i.traps.iter().any(|t| t.starts_with("wall modulus")));
+            assert!(
+                i.warnings.iter().any(|w| w.starts_with("small strain")),
+                "{}: {:?}",
+                i.pair,
+                i.warnings
+            );
+        }
+    }
+    write_runs("kratos-mill", &runs);
 }

@@ -306,6 +306,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a Kratos law the check cannot step",
+            &["deck", "tests/data/deck/kratos-conical/MaterialsDEM.json"],
+        ),
+        trial(
+            "deck",
             "a file no code's reader takes",
             &["deck", "cases/ball_plate.toml"],
         ),
