@@ -303,3 +303,52 @@ fn the_kratos_mill_realises_its_own_laws_and_shows_kratos_fits() {
     }
     write_runs("kratos-mill", &runs);
 }
+
+#[test]
+#[ignore = "live: runs Kratos on examples/decks/kratos-mill with its liner met by DEM_D_Linear_Custom_Constants"]
+fn kratos_custom_constants_realise_their_k_normal() {
+    // The example in a fresh folder, its liner relations set to K_NORMAL = 2e6 N/m.
+    let dir = tempfile::tempdir().unwrap();
+    let example = common::root().join("examples/decks/kratos-mill");
+    for name in ["ProjectParametersDEM.json", "millDEM.mdpa"] {
+        std::fs::copy(example.join(name), dir.path().join(name)).unwrap();
+    }
+    let mut materials: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(example.join("MaterialsDEM.json")).unwrap())
+            .unwrap();
+    for r in [3, 4] {
+        let v = &mut materials["material_relations"][r]["Variables"];
+        v["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] = "DEM_D_Linear_Custom_Constants".into();
+        v["K_NORMAL"] = 2e6.into();
+    }
+    let path = dir.path().join("MaterialsDEM.json");
+    std::fs::write(&path, materials.to_string()).unwrap();
+    let (code, deck) = read_deck(&path, None, &DeckOptions::default()).unwrap();
+    let live = LiveRunner::default();
+    let recording = Recording {
+        inner: &live,
+        runs: Default::default(),
+    };
+    let report = check_deck(code, &deck, (vec![2.0], "given".into()), &recording).unwrap();
+    let runs = recording.runs.into_inner().unwrap();
+    check(&report, &runs, code);
+    let walls: Vec<_> = report.impacts.iter().filter(|i| i.wall.is_some()).collect();
+    assert_eq!(walls.len(), 2);
+    for i in walls {
+        // The relation's K_NORMAL as written, bit for bit.
+        #[allow(clippy::float_cmp)]
+        let written = i.law.stiffness == 2e6;
+        assert!(written, "{}", i.law.stiffness);
+        assert_eq!(i.model, "DEM_D_Linear_Custom_Constants");
+        // Whatever the radius, the contact lasts as long as K_NORMAL and the mass say (to
+        // within a step of the clamped law's exact time).
+        let exact = accurate_metrics(&i.law, i.impact_velocity, 1e-12).unwrap();
+        assert!(
+            (i.contact_time - exact.contact_time).abs() <= i.timestep,
+            "{}: {} against {}",
+            i.pair,
+            i.contact_time,
+            exact.contact_time
+        );
+    }
+}
