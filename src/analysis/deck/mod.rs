@@ -808,6 +808,13 @@ impl Summary for DeckReport {
     }
 
     fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: {}", self.reproduce())]
+    }
+}
+
+impl DeckReport {
+    /// The `deck` command that checks the deck again, as this check did.
+    pub fn reproduce(&self) -> Invocation {
         let mut command = Invocation::new("deck")
             .arg(&self.deck)
             .option("--code", self.code);
@@ -817,7 +824,7 @@ impl Summary for DeckReport {
         for (option, value) in &self.given {
             command = command.option(option, value);
         }
-        vec![format!("reproduce: {command}")]
+        command
     }
 }
 

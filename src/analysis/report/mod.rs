@@ -9,6 +9,7 @@ use anyhow::Result;
 use serde::Serialize;
 
 use super::compare::{CompareOptions, compare};
+use super::deck::DeckReport;
 use super::precision::method_sweep;
 use super::stability::{METHODS, stability_report};
 use super::store;
@@ -18,7 +19,7 @@ use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
-use crate::output::{Section, Summary, csv_string};
+use crate::output::{Format, Section, Summary, csv_string, export};
 use crate::solve::Method;
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
@@ -841,4 +842,129 @@ pub fn build_report(
         data,
         failures: compared.failures(),
     })
+}
+
+/// The report's part on a user's own deck, checked by `deck`: its table of pairs, the traps
+/// its lines meet, the warnings and what the impacts leave out, with the whole check beside it
+/// as `deck-<number>.json` and `.csv` (`number` from 1, in the order the decks were given).
+pub fn deck_part(number: usize, check: &DeckReport) -> Result<(ReportPart, Vec<DataFile>)> {
+    let command = check.reproduce().to_string();
+    let stem = format!("deck-{number}");
+    let sections = check.sections();
+    let mut tables = Vec::new();
+    if let Some(pairs) = sections.first() {
+        let mut table = table_from(format!("{stem}-pairs"), pairs, &command);
+        table.title = "Each pair at each impact speed".into();
+        tables.push(table);
+    }
+    let mut traps = Section::new(
+        Some("Traps of these lines".into()),
+        &["pair", "model", "trap"],
+    );
+    let mut seen = std::collections::BTreeSet::new();
+    for i in &check.impacts {
+        if seen.insert(&i.pair) {
+            for t in &i.traps {
+                traps
+                    .rows
+                    .push(vec![i.pair.clone(), i.model.clone(), t.clone()]);
+            }
+        }
+    }
+    let mut warnings = Section::new(
+        Some("Warnings and failures".into()),
+        &["pair", "v0 (m/s)", "warning"],
+    );
+    for i in &check.impacts {
+        for w in i
+            .failure
+            .iter()
+            .map(|f| format!("failed: {f}"))
+            .chain(i.warnings.iter().cloned())
+        {
+            warnings
+                .rows
+                .push(vec![i.pair.clone(), i.impact_velocity.to_string(), w]);
+        }
+    }
+    let mut left_out = Section::new(
+        Some("Left out of the impacts (the deck's own run needs them; one impact does not)".into()),
+        &["what", "where"],
+    );
+    for l in &check.left_out {
+        let (what, at) = l.rsplit_once(": ").unwrap_or((l.as_str(), ""));
+        left_out.rows.push(vec![what.to_string(), at.to_string()]);
+    }
+    for (name, section) in [
+        ("traps", traps),
+        ("warnings", warnings),
+        ("left-out", left_out),
+    ] {
+        if !section.rows.is_empty() {
+            tables.push(table_from(format!("{stem}-{name}"), &section, &command));
+        }
+    }
+    let particles: Vec<String> = check
+        .bodies
+        .iter()
+        .map(|b| {
+            format!(
+                "type {} (R = {} m, ρ = {} kg/m³)",
+                b.type_id, b.radius, b.density
+            )
+        })
+        .chain(check.walls.iter().map(|w| format!("wall {}", w.name)))
+        .collect();
+    let part = ReportPart {
+        id: stem.clone(),
+        title: format!("Your setup: {}", check.deck),
+        intro: format!(
+            "{} run by {} ({}) with the deck's own contact lines at its time step {} s ({}), one normal impact per pair of {} at {} m/s ({}). Each pair's COR is set against the COR entered and against the code's own law, exact and stepped as the code steps, so that a difference splits into model, integration and remainder. The whole check: {stem}.json and {stem}.csv.",
+            check.deck,
+            check.code,
+            check.code_version.as_deref().unwrap_or("not run"),
+            crate::output::sci(check.timestep),
+            check.timestep_from,
+            particles.join(", "),
+            check
+                .velocities
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            check.velocities_from,
+        ),
+        figures: vec![],
+        tables,
+    };
+    let data = vec![
+        DataFile {
+            name: format!("{stem}.json"),
+            text: export(check, Format::Json)?,
+        },
+        DataFile {
+            name: format!("{stem}.csv"),
+            text: export(check, Format::Csv)?,
+        },
+    ];
+    Ok((part, data))
+}
+
+/// Add the parts of the users' own decks to `report`, with their data, reproduce commands and
+/// failed runs.
+pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<()> {
+    for (k, check) in checks.iter().enumerate() {
+        let (part, data) = deck_part(k + 1, check)?;
+        report.parts.push(part);
+        report.data.extend(data);
+        report
+            .appendix
+            .push(format!("reproduce {}: {}", check.deck, check.reproduce()));
+        report.failures.extend(
+            super::deck::failures(check)
+                .into_iter()
+                .map(|f| format!("{}: {f}", check.deck)),
+        );
+    }
+    Ok(())
 }
