@@ -8,7 +8,7 @@ use std::time::Duration;
 use anyhow::Result;
 use serde::Serialize;
 
-use super::compare::{CompareOptions, compare};
+use super::compare::{CompareOptions, ModelPointRecord, compare};
 use super::deck::DeckReport;
 use super::precision::method_sweep;
 use super::stability::{METHODS, stability_report};
@@ -112,25 +112,17 @@ pub struct ReportOptions {
     pub revision: Option<String>,
 }
 
-fn rows_csv(header: &str, rows: impl Iterator<Item = String>) -> String {
-    let mut s = String::from(header);
-    s.push('\n');
-    for r in rows {
-        s.push_str(&r);
-        s.push('\n');
+/// A figure's points as CSV, one row per point: its series, then `x` and `y` under the
+/// axes' names.
+fn series_csv(x: &str, y: &str, series: &[Series]) -> Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(["series", x, y])?;
+    for s in series {
+        for (a, b) in &s.points {
+            writer.serialize((&s.name, a, b))?;
+        }
     }
-    s
-}
-
-fn series_csv(x: &str, y: &str, series: &[Series]) -> String {
-    rows_csv(
-        &format!("series,{x},{y}"),
-        series.iter().flat_map(|s| {
-            s.points
-                .iter()
-                .map(move |(a, b)| format!("\"{}\",{a:e},{b:e}", s.name))
-        }),
-    )
+    Ok(String::from_utf8(writer.into_inner()?)?)
 }
 
 fn figure(
@@ -145,7 +137,7 @@ fn figure(
         title: chart.title.clone(),
         caption: caption.to_string(),
         svg: chart_svg(&chart, 960, 520)?,
-        csv: series_csv(csv_names.0, csv_names.1, &chart.series),
+        csv: series_csv(csv_names.0, csv_names.1, &chart.series)?,
         command: command.to_string(),
     })
 }
@@ -650,15 +642,7 @@ fn stability_map() -> Result<ReportFigure> {
         960,
         360,
     )?;
-    let csv = rows_csv(
-        "case,family,method,cor_error,accurate,pass",
-        report.cases.iter().map(|c| {
-            format!(
-                "\"{}\",{},{},{:e},{},{}",
-                c.case, c.family, c.method, c.cor_error, c.accurate, c.pass
-            )
-        }),
-    );
+    let csv = csv_string(&report.records())?;
     Ok(ReportFigure {
         id: "stability-map".into(),
         title: "Stability grid".into(),
@@ -811,28 +795,14 @@ pub fn build_report(
         },
         DataFile {
             name: "model-by-e.csv".into(),
-            text: rows_csv(
-                "case,code,restitution,loss_coefficient,law_cor,peak_deformation,peak_force,contact_time,force_contact_time,compression_time",
-                compared
+            text: csv_string(
+                &compared
                     .cases
                     .iter()
                     .flat_map(|c| c.model_by_restitution.iter())
-                    .map(|p| {
-                        format!(
-                            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-                            p.case,
-                            p.code,
-                            p.restitution,
-                            p.loss_coefficient,
-                            p.law_cor,
-                            p.offsets.peak_deformation,
-                            p.offsets.peak_force,
-                            p.offsets.contact_time,
-                            p.offsets.force_contact_time,
-                            p.compression_time
-                        )
-                    }),
-            ),
+                    .map(ModelPointRecord::from)
+                    .collect::<Vec<_>>(),
+            )?,
         },
     ];
     Ok(Report {
