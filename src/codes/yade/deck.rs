@@ -951,7 +951,11 @@ impl DeckReader for YadeDeck {
         let (dt_expr, dt_at) = r.timestep.clone().ok_or_else(|| lacking("no `O.dt = …` (YADE's default step is 1e-8 s)", "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()"))?;
         let mut pwave: Option<(f64, String)> = None;
         let mut consider = |radius: f64, m: &Material, density: f64, from: String| {
-            let t = radius * (density / m.value("young")).sqrt();
+            // In YADE's operations: utils.sphere's mass (4/3 π r³ ρ), the density Shop::PWaveTimeStep
+            // forms back from it, and r / sqrt(E/ρ): the step to the last bit.
+            let volume = 4.0 / 3.0 * PI * radius.powf(3.0);
+            let density = volume * density / (4.0 / 3.0 * PI * radius.powf(3.0));
+            let t = radius / (m.value("young") / density).sqrt();
             if pwave.as_ref().is_none_or(|(best, _)| t < *best) {
                 pwave = Some((t, from));
             }
@@ -959,7 +963,7 @@ impl DeckReader for YadeDeck {
         for sp in r.spheres.iter().filter(|sp| sp.at.line < dt_at.line) {
             if let Ok(radius) = sp.radius {
                 let m = &r.materials[sp.material as usize];
-                consider(radius, m, m.value("density"), format!("R {radius} of {}", sp.at));
+                consider(radius, m, m.value("density"), format!("R {radius} at {}", sp.at));
             }
         }
         for p in &options.particles {
@@ -975,7 +979,7 @@ impl DeckReader for YadeDeck {
             Some((t, from)) if uses_pwave => {
                 let viscel_default = r.materials.iter().any(|m| m.class == Class::ViscEl && m.get("young").is_none());
                 format!(
-                    "{dt_at}: {} with PWaveTimeStep() = {} s, R sqrt(ρ/E) of the {from}{}",
+                    "{dt_at}, {}; PWaveTimeStep() = {} s, R/sqrt(E/ρ) of the sphere of {from}{}",
                     show(&dt_expr),
                     exact_number(*t),
                     if viscel_default { "; a ViscElMat's young there is its default 1e9 Pa, which its tc or kn do not use" } else { "" }
