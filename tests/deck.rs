@@ -556,8 +556,11 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     assert_eq!(deck.walls[0].name, "facetCylinder:22");
     assert_eq!(deck.walls[0].type_id, Some(2));
     use TypeRef::{Type, Wall};
-    let pairs: Vec<([TypeRef; 2], Option<f64>)> =
-        deck.contacts.iter().map(|c| (c.types, c.cor_entered)).collect();
+    let pairs: Vec<([TypeRef; 2], Option<f64>)> = deck
+        .contacts
+        .iter()
+        .map(|c| (c.types, c.cor_entered))
+        .collect();
     // The en of each pair from the MatchMaker, looked up by the materials' ids.
     assert_eq!(
         pairs,
@@ -584,7 +587,12 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     let wall = deck.contacts[4].law;
     let k = 4.0 / 3.0 * mixed(3.7e11, 0.22, 2e11, 0.29) * (2.0 * 0.0125 / 3.0f64).sqrt();
     assert!(relative(wall.stiffness, k) < 1e-14 && relative(wall.mass, alumina.mass) < 1e-14);
-    assert!(deck.contacts[4].traps.iter().any(|t| t.starts_with("wall radius")));
+    assert!(
+        deck.contacts[4]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("wall radius"))
+    );
     // The script's own lines, names resolved, carried into every impact.
     let common = deck.transplant.common.join("\n");
     assert!(
@@ -612,7 +620,8 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
 }
 
 /// The lines every small YADE script below shares: a steel ball and a wall.
-const YADE_BASE: &str = "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
+const YADE_BASE: &str =
+    "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
 O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
 O.bodies.append(wall(-0.01, axis=2, material=steel))
 O.engines = [
@@ -645,8 +654,16 @@ O.dt = 1e-7\n";
         let law = deck.contacts[c].law;
         let kn = m_r * (pi2 + en.ln().powi(2)) / (tc * tc);
         let cn = -2.0 * en.ln() * m_r / tc;
-        assert!(relative(law.stiffness, kn) < 1e-14, "{c}: {} {kn}", law.stiffness);
-        assert!(relative(law.damping, cn) < 1e-14, "{c}: {} {cn}", law.damping);
+        assert!(
+            relative(law.stiffness, kn) < 1e-14,
+            "{c}: {} {kn}",
+            law.stiffness
+        );
+        assert!(
+            relative(law.damping, cn) < 1e-14,
+            "{c}: {} {cn}",
+            law.damping
+        );
         assert!(law.clamp_attractive && law.exponent == 1.0);
     };
     let m_r = m1 * m2 / (m1 + m2);
@@ -655,21 +672,41 @@ O.dt = 1e-7\n";
     // The ball on the wall: tuned for m/2, while m moves.
     tuned(3, m1 / 2.0, 2e-5, 0.8);
     assert!(relative(deck.contacts[3].law.mass, m1) < 1e-14);
-    assert!(deck.contacts[3].traps.iter().any(|t| t.starts_with("a wall's mass is 0")));
+    assert!(
+        deck.contacts[3]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("a wall's mass is 0"))
+    );
     // The ball on the fixed box: its own mass 8 · 0.5 · 0.5 · 0.01 · 1100 kg in the tuning.
     let m_box = 8.0 * 0.5 * 0.5 * 0.01 * 1100.0;
     tuned(5, m1 * m_box / (m1 + m_box), 3e-5, 0.7);
     // kn, cn in series; FrictPhys's linear spring; young and en through YADE's Newton iteration.
     let kn_cn = YADE_BASE
-        .replace("FrictMat(young=2e11, poisson=0.3, density=7800)", "ViscElMat(kn=2e6, ks=0, cn=40.0, cs=0)")
-        .replace("Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)", "Ip2_ViscElMat_ViscElMat_ViscElPhys()")
-        .replace("Law2_ScGeom_MindlinPhys_Mindlin()", "Law2_ScGeom_ViscElPhys_Basic()");
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(kn=2e6, ks=0, cn=40.0, cs=0)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
     let (_d, path) = deck_files(&[("kn_cn.py", &kn_cn)]);
     let law = read(&path).contacts[0].law;
     assert_eq!((law.stiffness, law.damping), (1e6, 20.0));
     let frict = YADE_BASE
-        .replace("Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)", "Ip2_FrictMat_FrictMat_FrictPhys()")
-        .replace("Law2_ScGeom_MindlinPhys_Mindlin()", "Law2_ScGeom_FrictPhys_CundallStrack()");
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_FrictPhys_CundallStrack()",
+        );
     let (_d, path) = deck_files(&[("frict.py", &frict)]);
     let deck = read(&path);
     // kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2): E R between two balls and at a wall (refR = R).
@@ -678,9 +715,18 @@ O.dt = 1e-7\n";
         assert_eq!((c.law.damping, c.cor_entered), (0.0, None));
     }
     let young = YADE_BASE
-        .replace("FrictMat(young=2e11, poisson=0.3, density=7800)", "ViscElMat(young=1e8, en=0.5, density=1200)")
-        .replace("Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)", "Ip2_ViscElMat_ViscElMat_ViscElPhys()")
-        .replace("Law2_ScGeom_MindlinPhys_Mindlin()", "Law2_ScGeom_ViscElPhys_Basic()");
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(young=1e8, en=0.5, density=1200)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
     let (_d, path) = deck_files(&[("young.py", &young)]);
     let deck = read(&path);
     let law = deck.contacts[0].law;
@@ -696,20 +742,105 @@ O.dt = 1e-7\n";
 /// Each script with one bad line, the line and what its error must say.
 #[test]
 fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is_supported() {
-    let cases: [(&str, &str, &str, usize, &str); 13] = [
-        ("capillary", "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)", "Ip2_FrictMat_FrictMat_CapillaryPhys()", 7, "functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: Ig2_Sphere_Sphere_ScGeom"),
-        ("law", "Law2_ScGeom_MindlinPhys_Mindlin()", "Law2_ScGeom_MindlinPhys_HertzWithLinearShear()", 8, "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear"),
-        ("no law", "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)", "Ip2_FrictMat_FrictMat_FrictPhys()", 7, "without Law2_ScGeom_FrictPhys_CundallStrack"),
-        ("local damping", "NewtonIntegrator(damping=0.0)", "NewtonIntegrator()", 9, "damping = 0.2 (its default)"),
-        ("time stepper", "ForceResetter()", "GlobalStiffnessTimeStepper()", 5, "supported: O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()"),
-        ("unresolved value", "young=2e11", "young=E", 1, "`E` is not assigned in the script"),
-        ("radius", "0.01, material=steel", "r, material=steel", 2, "--particle 0:RADIUS:DENSITY"),
-        ("not appended", "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))", "steel = FrictMat(young=2e11, poisson=0.3, density=7800)", 2, "is not appended to O.materials"),
-        ("material class", "FrictMat(", "CohFrictMat(", 1, "material class `CohFrictMat`; supported: FrictMat, ViscElMat"),
-        ("step in a block", "O.dt = 1e-7", "if True:\n    O.dt = 1e-7", 12, "inside a block"),
-        ("free box", "wall(-0.01, axis=2, material=steel)", "box((0, 0, -1), (1, 1, 1), material=steel)", 3, "supported: box(…, fixed=True) as a wall"),
-        ("match maker", "en=0.5", "en=MatchMaker(matches=((0, 1, 0.5),))", 7, "no match for the materials 0 and 0"),
-        ("no geometry", "Ig2_Wall_Sphere_ScGeom()", "Ig2_Facet_Sphere_ScGeom()", 3, "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop (line 6)"),
+    let cases: [(&str, &str, &str, usize, &str); 14] = [
+        (
+            "step changed in place",
+            "O.dt = 1e-7",
+            "O.dt = 1e-7\nO.dt *= 0.5",
+            12,
+            "the time step changed in place",
+        ),
+        (
+            "capillary",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_CapillaryPhys()",
+            7,
+            "functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: Ig2_Sphere_Sphere_ScGeom",
+        ),
+        (
+            "law",
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_MindlinPhys_HertzWithLinearShear()",
+            8,
+            "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear",
+        ),
+        (
+            "no law",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+            7,
+            "without Law2_ScGeom_FrictPhys_CundallStrack",
+        ),
+        (
+            "local damping",
+            "NewtonIntegrator(damping=0.0)",
+            "NewtonIntegrator()",
+            9,
+            "damping = 0.2 (its default)",
+        ),
+        (
+            "time stepper",
+            "ForceResetter()",
+            "GlobalStiffnessTimeStepper()",
+            5,
+            "supported: O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        ),
+        (
+            "unresolved value",
+            "young=2e11",
+            "young=E",
+            1,
+            "`E` is not assigned in the script",
+        ),
+        (
+            "radius",
+            "0.01, material=steel",
+            "r, material=steel",
+            2,
+            "--particle 0:RADIUS:DENSITY",
+        ),
+        (
+            "not appended",
+            "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))",
+            "steel = FrictMat(young=2e11, poisson=0.3, density=7800)",
+            2,
+            "is not appended to O.materials",
+        ),
+        (
+            "material class",
+            "FrictMat(",
+            "CohFrictMat(",
+            1,
+            "material class `CohFrictMat`; supported: FrictMat, ViscElMat",
+        ),
+        (
+            "step in a block",
+            "O.dt = 1e-7",
+            "if True:\n    O.dt = 1e-7",
+            12,
+            "inside a block",
+        ),
+        (
+            "free box",
+            "wall(-0.01, axis=2, material=steel)",
+            "box((0, 0, -1), (1, 1, 1), material=steel)",
+            3,
+            "supported: box(…, fixed=True) as a wall",
+        ),
+        (
+            "match maker",
+            "en=0.5",
+            "en=MatchMaker(matches=((0, 1, 0.5),))",
+            7,
+            "no match for the materials 0 and 0",
+        ),
+        (
+            "no geometry",
+            "Ig2_Wall_Sphere_ScGeom()",
+            "Ig2_Facet_Sphere_ScGeom()",
+            3,
+            "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop (line 6)",
+        ),
     ];
     for (what, from, to, line, says) in cases {
         assert!(YADE_BASE.contains(from), "{what}");
@@ -727,7 +858,10 @@ fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is
         .to_string();
     assert!(e.contains("bad.py: no `O.dt = …`"), "{e}");
     // The radius given on the command line instead, by the material's O.materials id.
-    let (_d, path) = deck_files(&[("given.py", &YADE_BASE.replace("0.01, material=steel", "r, material=steel"))]);
+    let (_d, path) = deck_files(&[(
+        "given.py",
+        &YADE_BASE.replace("0.01, material=steel", "r, material=steel"),
+    )]);
     let options = DeckOptions {
         particles: vec![GivenParticle {
             type_id: 0,
@@ -742,7 +876,10 @@ fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is
     let e = read_deck(&root().join(MILL), None, &options)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("--particle 0:0.02:7800: atom types count from 1"), "{e}");
+    assert!(
+        e.contains("--particle 0:0.02:7800: atom types count from 1"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -794,6 +931,8 @@ fn the_books_yade_example_is_the_recorded_check() {
         .expect("the example's marker");
     let block = &page[start..];
     let body = &block[block.find("```text\n").unwrap() + 8
-        ..block.find("```\n<!-- end of yade deck example -->").unwrap()];
+        ..block
+            .find("```\n<!-- end of yade deck example -->")
+            .unwrap()];
     assert_eq!(body, table);
 }

@@ -577,6 +577,10 @@ impl YadeDeck {
         }
         for (index, st) in s.module.statements.iter().enumerate() {
             let t = super::python::text(&st.tokens);
+            let changed_in_place = t.starts_with("O.dt ") && !t.starts_with("O.dt =") && st.tokens.get(3).is_some_and(|x| matches!(x.tok, super::python::Tok::Op(o) if o.ends_with('=') && o != "=="));
+            if changed_in_place {
+                return Err(DeckError::unsupported(&s.at(st.line), format!("`{t}`: the time step changed in place"), "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()"));
+            }
             if t.starts_with("O.dt =") {
                 if st.indent > 0 {
                     return Err(DeckError::unsupported(&s.at(st.line), format!("`{t}` inside a block: the time step is set while the script runs"), "O.dt = … at module level"));
