@@ -429,9 +429,22 @@ pub struct ReportArgs {
     /// Folder of stored references.
     #[arg(long, default_value = "reference")]
     pub reference: PathBuf,
-    /// Kill a code after this many seconds (with --live).
+    /// Kill a code after this many seconds (with --live, and the decks' runs).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// A deck of your own to check as `deck` checks it (its code runs now), in a part of its
+    /// own; repeat for several.
+    #[arg(long = "deck", value_name = "FILE")]
+    pub decks: Vec<PathBuf>,
+    /// Impact speed for the decks, m/s; repeat for several [default: as `deck`].
+    #[arg(long = "deck-impact-velocity", value_name = "V", value_parser = parse_positive)]
+    pub deck_impact_velocity: Vec<f64>,
+    /// A particle the decks compute at run time, `TYPE:RADIUS:DENSITY`, as `deck --particle`.
+    #[arg(long = "deck-particle", value_name = "TYPE:RADIUS:DENSITY", value_parser = parse_particle)]
+    pub deck_particle: Vec<millimpact::codes::deck::GivenParticle>,
+    /// A variable defined before each deck is read, `NAME=VALUE`, as `deck --var`.
+    #[arg(long = "deck-var", value_name = "NAME=VALUE", value_parser = parse_variable)]
+    pub deck_variables: Vec<(String, String)>,
 }
 
 /// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.

@@ -397,6 +397,71 @@ fn snapshots_of_the_mill_deck_in_every_format() {
     }
 }
 
+/// `report --deck` reads its decks before any work: a bad one is the same one line, exit 2,
+/// and no report folder.
+#[test]
+fn the_report_refuses_a_bad_deck_before_any_work() {
+    let (dir, path) = deck_files(&[(
+        "in.bad",
+        &format!("{HEAD}pair_style gran model hertz cohesion sjkr\n"),
+    )]);
+    let out_dir = dir.path().join("report");
+    let out = millimpact()
+        .current_dir(root())
+        .args(["report", "--deck", path.to_str().unwrap(), "--out"])
+        .arg(&out_dir)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: ") && err.contains("in.bad:8: cohesion sjkr"),
+        "{err}"
+    );
+    assert!(!out_dir.exists(), "no report written");
+}
+
+/// The mill deck's part of `report --deck`, from the runs recorded in LIGGGHTS: its tables as
+/// the pages render them, and the whole check beside it as JSON and CSV.
+#[test]
+fn snapshot_of_the_mill_deck_s_part_of_the_report() {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/liggghts-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(MILL), None, &DeckOptions::default()).unwrap();
+    let check = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    let (part, data) = millimpact::analysis::report::deck_part(1, &check).unwrap();
+    let names: Vec<&str> = data.iter().map(|d| d.name.as_str()).collect();
+    assert_eq!(names, ["deck-1.json", "deck-1.csv"]);
+    assert_eq!(data[0].text, export(&check, Format::Json).unwrap());
+    assert_eq!(data[1].text, export(&check, Format::Csv).unwrap());
+    // Every pair at the speed, and the wall's traps, warnings and what was left out.
+    assert_eq!(part.tables[0].rows.len(), check.impacts.len());
+    let ids: Vec<&str> = part.tables.iter().map(|t| t.id.as_str()).collect();
+    assert_eq!(
+        ids,
+        [
+            "deck-1-pairs",
+            "deck-1-traps",
+            "deck-1-warnings",
+            "deck-1-left-out"
+        ]
+    );
+    let report = millimpact::analysis::report::Report {
+        title: "report".into(),
+        parts: vec![part],
+        appendix: vec![],
+        data,
+        failures: vec![],
+    };
+    let (_, markdown) = millimpact::output::report_page::render_pages(&report).unwrap();
+    insta::assert_snapshot!("deck_liggghts_mill_report_part", markdown);
+}
+
 /// The worked example of `docs/src/commands/deck.md` is the table of the recorded check.
 #[test]
 fn the_books_worked_example_is_the_recorded_check() {
