@@ -1127,3 +1127,415 @@ fn the_books_kratos_example_is_the_recorded_check() {
     let table = export(&kratos_report(), Format::Table).unwrap();
     assert_eq!(book_example("<!-- kratos deck example:"), table);
 }
+
+const YADE_MILL: &str = "examples/decks/yade-mill/mill.py";
+
+/// YADE's `E*` of two materials.
+fn mixed(e1: f64, n1: f64, e2: f64, n2: f64) -> f64 {
+    e1 * e2 / ((1.0 - n1 * n1) * e2 + (1.0 - n2 * n2) * e1)
+}
+
+#[test]
+fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
+    use millimpact::codes::yade::thornton_damping_ratio;
+    let (code, deck) = read_deck(&root().join(YADE_MILL), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Yade);
+    // R_ALUMINA = R_STEEL * 0.625: a module-level formula through another name.
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(0, 0.02, 7850.0), (1, 0.02 * 0.625, 3950.0)]);
+    // O.dt = 0.2 * PWaveTimeStep(): the smallest R sqrt(ρ/E) of the spheres, the alumina's.
+    // YADE's own O.dt for this script, as it printed it: the step to the last bit.
+    assert_eq!(deck.timestep, 2.5830790342723347e-07);
+    assert!(
+        deck.timestep_from.contains("mill.py:47") && deck.timestep_from.contains("PWaveTimeStep"),
+        "{}",
+        deck.timestep_from
+    );
+    assert_eq!(deck.walls.len(), 1);
+    assert_eq!(deck.walls[0].name, "facetCylinder:22");
+    assert_eq!(deck.walls[0].type_id, Some(2));
+    use TypeRef::{Type, Wall};
+    let pairs: Vec<([TypeRef; 2], Option<f64>)> = deck
+        .contacts
+        .iter()
+        .map(|c| (c.types, c.cor_entered))
+        .collect();
+    // The en of each pair from the MatchMaker, looked up by the materials' ids.
+    assert_eq!(
+        pairs,
+        [
+            ([Type(0), Type(0)], Some(0.8)),
+            ([Type(0), Type(1)], Some(0.75)),
+            ([Type(1), Type(1)], Some(0.7)),
+            ([Type(0), Wall], Some(0.6)),
+            ([Type(1), Wall], Some(0.55))
+        ]
+    );
+    // Steel on alumina: Hertz of the mixed E*, R* and reduced mass; β_n of Thornton's fit.
+    let (steel, alumina) = (&deck.bodies[0], &deck.bodies[1]);
+    let m = steel.mass * alumina.mass / (steel.mass + alumina.mass);
+    let r: f64 = 0.02 * 0.0125 / 0.0325;
+    let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 3.7e11, 0.22) * r.sqrt();
+    let law = deck.contacts[1].law;
+    assert!(relative(law.stiffness, k) < 1e-14 && relative(law.mass, m) < 1e-14);
+    let c = 2.0 * thornton_damping_ratio(0.75) * (1.5 * m * k).sqrt();
+    assert!(relative(law.damping, c) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
+    assert!(law.clamp_attractive);
+    // Alumina on the drum's facets: the facet's radius is 2R, so R* = 2R/3; the liner mixed in.
+    let wall = deck.contacts[4].law;
+    let k = 4.0 / 3.0 * mixed(3.7e11, 0.22, 2e11, 0.29) * (2.0 * 0.0125 / 3.0f64).sqrt();
+    assert!(relative(wall.stiffness, k) < 1e-14 && relative(wall.mass, alumina.mass) < 1e-14);
+    assert!(
+        deck.contacts[4]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("wall radius"))
+    );
+    // The script's own lines, names resolved, carried into every impact.
+    let common = deck.transplant.common.join("\n");
+    assert!(
+        common.contains("O.materials.append(FrictMat(young=2.1e11, poisson=3e-1, density=7.85e3, frictionAngle=3.490658503988659e-1, label='steel'))"),
+        "{common}"
+    );
+    assert!(
+        common.contains("IP2 = [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=((0, 0, 8e-1), (0, 1, 7.5e-1), (1, 1, 7e-1), (0, 2, 6e-1), (1, 2, 5.5e-1),), algo='val', val=7e-1), es=7e-1)]"),
+        "{common}"
+    );
+    assert!(common.contains("IG2 = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]"));
+    for left in [
+        "gravity",
+        "output and control",
+        "the run itself",
+        "the walls' shapes",
+        "wall and particle motion",
+    ] {
+        assert!(
+            deck.left_out.iter().any(|l| l.starts_with(left)),
+            "{left}: {:?}",
+            deck.left_out
+        );
+    }
+}
+
+/// The lines every small YADE script below shares: a steel ball and a wall.
+const YADE_BASE: &str =
+    "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
+O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
+O.bodies.append(wall(-0.01, axis=2, material=steel))
+O.engines = [
+    ForceResetter(),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                    [Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)],
+                    [Law2_ScGeom_MindlinPhys_Mindlin()]),
+    NewtonIntegrator(damping=0.0),
+]
+O.dt = 1e-7
+";
+
+#[test]
+fn yade_viscel_and_frictphys_forms_give_their_laws() {
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let mass = |r: f64, rho: f64| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho;
+    // tc, en, et: en and tc averaged over the two materials; a wall's mass is the sphere's.
+    let tc_en = "a = O.materials.append(ViscElMat(tc=2e-5, en=0.8, et=0.8, density=2500.0))\n\
+b = O.materials.append(ViscElMat(tc=4e-5, en=0.6, et=0.6, density=1100.0))\n\
+O.bodies.append(sphere((0, 0, 0), 0.005, material=a))\n\
+O.bodies.append(sphere((0, 0, 1), 0.004, material=b))\n\
+O.bodies.append(wall(0, axis=2, material=a))\n\
+O.bodies.append(box((0, 0, -0.5), (0.5, 0.5, 0.01), fixed=True, material=b))\n\
+O.engines = [InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]), NewtonIntegrator(damping=0)]\n\
+O.dt = 1e-7\n";
+    let (_d, path) = deck_files(&[("tc_en.py", tc_en)]);
+    let deck = read(&path);
+    let (m1, m2) = (mass(0.005, 2500.0), mass(0.004, 1100.0));
+    let tuned = |c: usize, m_r: f64, tc: f64, en: f64| {
+        let law = deck.contacts[c].law;
+        let kn = m_r * (pi2 + en.ln().powi(2)) / (tc * tc);
+        let cn = -2.0 * en.ln() * m_r / tc;
+        assert!(
+            relative(law.stiffness, kn) < 1e-14,
+            "{c}: {} {kn}",
+            law.stiffness
+        );
+        assert!(
+            relative(law.damping, cn) < 1e-14,
+            "{c}: {} {cn}",
+            law.damping
+        );
+        assert!(law.clamp_attractive && law.exponent == 1.0);
+    };
+    let m_r = m1 * m2 / (m1 + m2);
+    tuned(1, m_r, 3e-5, 0.7);
+    assert_eq!(deck.contacts[1].cor_entered, Some(0.7));
+    // The ball on the wall: tuned for m/2, while m moves.
+    tuned(3, m1 / 2.0, 2e-5, 0.8);
+    assert!(relative(deck.contacts[3].law.mass, m1) < 1e-14);
+    assert!(
+        deck.contacts[3]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("a wall's mass is 0"))
+    );
+    // The ball on the fixed box: its own mass 8 · 0.5 · 0.5 · 0.01 · 1100 kg in the tuning.
+    let m_box = 8.0 * 0.5 * 0.5 * 0.01 * 1100.0;
+    tuned(5, m1 * m_box / (m1 + m_box), 3e-5, 0.7);
+    // kn, cn in series; FrictPhys's linear spring; young and en through YADE's Newton iteration.
+    let kn_cn = YADE_BASE
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(kn=2e6, ks=0, cn=40.0, cs=0)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
+    let (_d, path) = deck_files(&[("kn_cn.py", &kn_cn)]);
+    let law = read(&path).contacts[0].law;
+    assert_eq!((law.stiffness, law.damping), (1e6, 20.0));
+    let frict = YADE_BASE
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_FrictPhys_CundallStrack()",
+        );
+    let (_d, path) = deck_files(&[("frict.py", &frict)]);
+    let deck = read(&path);
+    // kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2): E R between two balls and at a wall (refR = R).
+    for c in &deck.contacts {
+        assert!(relative(c.law.stiffness, 2e11 * 0.01) < 1e-14);
+        assert_eq!((c.law.damping, c.cor_entered), (0.0, None));
+    }
+    let young = YADE_BASE
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(young=1e8, en=0.5, density=1200)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
+    let (_d, path) = deck_files(&[("young.py", &young)]);
+    let deck = read(&path);
+    let law = deck.contacts[0].law;
+    assert!(relative(law.stiffness, 1e8 * 0.01) < 1e-14);
+    // Within 1 % of en on the mass it is tuned for (m/2 between two equal balls).
+    let m = mass(0.01, 1200.0) / 2.0;
+    let zeta = law.damping / (2.0 * (m * law.stiffness).sqrt());
+    let x = zeta / (1.0 - zeta * zeta).sqrt();
+    let e = (-x * (std::f64::consts::PI - 2.0 * x.atan())).exp();
+    assert!(relative(e, 0.5) <= 1e-2 && relative(e, 0.5) > 1e-6, "{e}");
+}
+
+/// Each script with one bad line, the line and what its error must say.
+#[test]
+fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is_supported() {
+    let cases: [(&str, &str, &str, usize, &str); 14] = [
+        (
+            "step changed in place",
+            "O.dt = 1e-7",
+            "O.dt = 1e-7\nO.dt *= 0.5",
+            12,
+            "the time step changed in place",
+        ),
+        (
+            "capillary",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_CapillaryPhys()",
+            7,
+            "functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: Ig2_Sphere_Sphere_ScGeom",
+        ),
+        (
+            "law",
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_MindlinPhys_HertzWithLinearShear()",
+            8,
+            "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear",
+        ),
+        (
+            "no law",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+            7,
+            "without Law2_ScGeom_FrictPhys_CundallStrack",
+        ),
+        (
+            "local damping",
+            "NewtonIntegrator(damping=0.0)",
+            "NewtonIntegrator()",
+            9,
+            "damping = 0.2 (its default)",
+        ),
+        (
+            "time stepper",
+            "ForceResetter()",
+            "GlobalStiffnessTimeStepper()",
+            5,
+            "supported: O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        ),
+        (
+            "unresolved value",
+            "young=2e11",
+            "young=E",
+            1,
+            "`E` is not assigned in the script",
+        ),
+        (
+            "radius",
+            "0.01, material=steel",
+            "r, material=steel",
+            2,
+            "--particle 0:RADIUS:DENSITY",
+        ),
+        (
+            "not appended",
+            "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))",
+            "steel = FrictMat(young=2e11, poisson=0.3, density=7800)",
+            2,
+            "is not appended to O.materials",
+        ),
+        (
+            "material class",
+            "FrictMat(",
+            "CohFrictMat(",
+            1,
+            "material class `CohFrictMat`; supported: FrictMat, ViscElMat",
+        ),
+        (
+            "step in a block",
+            "O.dt = 1e-7",
+            "if True:\n    O.dt = 1e-7",
+            12,
+            "inside a block",
+        ),
+        (
+            "free box",
+            "wall(-0.01, axis=2, material=steel)",
+            "box((0, 0, -1), (1, 1, 1), material=steel)",
+            3,
+            "supported: box(…, fixed=True) as a wall",
+        ),
+        (
+            "match maker",
+            "en=0.5",
+            "en=MatchMaker(matches=((0, 1, 0.5),))",
+            7,
+            "no match for the materials 0 and 0",
+        ),
+        (
+            "no geometry",
+            "Ig2_Wall_Sphere_ScGeom()",
+            "Ig2_Facet_Sphere_ScGeom()",
+            3,
+            "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop (line 6)",
+        ),
+    ];
+    for (what, from, to, line, says) in cases {
+        assert!(YADE_BASE.contains(from), "{what}");
+        let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace(from, to))]);
+        let e = read_deck(&path, None, &DeckOptions::default())
+            .unwrap_err()
+            .to_string();
+        let at = format!("{}:{line}: ", path.display());
+        assert!(e.starts_with(&at) && e.contains(says), "{what}: {e}");
+    }
+    // A script without a time step lacks what every check needs.
+    let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace("O.dt = 1e-7\n", ""))]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bad.py: no `O.dt = …`"), "{e}");
+    // The radius given on the command line instead, by the material's O.materials id.
+    let (_d, path) = deck_files(&[(
+        "given.py",
+        &YADE_BASE.replace("0.01, material=steel", "r, material=steel"),
+    )]);
+    let options = DeckOptions {
+        particles: vec![GivenParticle {
+            type_id: 0,
+            radius: 0.02,
+            density: 7800.0,
+        }],
+        ..DeckOptions::default()
+    };
+    let (_, deck) = read_deck(&path, None, &options).unwrap();
+    assert_eq!(deck.bodies[0].radius, 0.02);
+    // A LIGGGHTS deck takes no type 0.
+    let e = read_deck(&root().join(MILL), None, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--particle 0:0.02:7800: atom types count from 1"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_yade_script_with_an_unsupported_functor_exits_2_naming_its_line_and_runs_nothing() {
+    let out = millimpact()
+        .current_dir(root())
+        .args(["deck", "tests/data/deck/yade-capillary.py"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: tests/data/deck/yade-capillary.py:14: functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: "),
+        "{err}"
+    );
+}
+
+fn yade_report() -> millimpact::analysis::deck::DeckReport {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/yade-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(YADE_MILL), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    report
+}
+
+/// Every format of the YADE mill's check, from the runs recorded in YADE.
+#[test]
+fn snapshots_of_the_yade_mill_script_in_every_format() {
+    let report = yade_report();
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_yade_mill_{format}"), text);
+    }
+}
+
+/// The YADE example of `docs/src/commands/deck.md` is the table of the recorded check.
+#[test]
+fn the_books_yade_example_is_the_recorded_check() {
+    let table = export(&yade_report(), Format::Table).unwrap();
+    let page = std::fs::read_to_string(root().join("docs/src/commands/deck.md")).unwrap();
+    let start = page
+        .find("<!-- yade deck example:")
+        .expect("the example's marker");
+    let block = &page[start..];
+    let body = &block[block.find("```text\n").unwrap() + 8
+        ..block
+            .find("```\n<!-- end of yade deck example -->")
+            .unwrap()];
+    assert_eq!(body, table);
+}

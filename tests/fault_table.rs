@@ -311,6 +311,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a YADE functor the check cannot model (capillary)",
+            &["deck", "tests/data/deck/yade-capillary.py"],
+        ),
+        trial(
+            "deck",
             "a file no code's reader takes",
             &["deck", "cases/ball_plate.toml"],
         ),

@@ -267,6 +267,9 @@ impl LammpsDeck {
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.

@@ -575,6 +575,9 @@ impl LiggghtsDeck {
                 });
             }
         };
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for (t, radius, density, c) in &r.templates {
             if given.contains(t) {
