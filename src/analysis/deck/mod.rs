@@ -33,7 +33,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
-use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
+use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
 /// canonical cases' speed, typical of a ball's fall in a mill).
@@ -396,7 +396,7 @@ pub fn check_deck(
         .driver()
         .deck()
         .ok_or_else(|| anyhow::anyhow!("{code} reads no decks"))?;
-    let scheme = code.driver().step_scheme();
+    let driver = code.driver();
     let dt = deck.timestep;
     let mut planned = Vec::new();
     for (k, contact) in deck.contacts.iter().enumerate() {
@@ -431,9 +431,9 @@ pub fn check_deck(
         let row = match run {
             Ok(run) => {
                 version.get_or_insert(run.code_version.clone());
-                impact_row(deck, p, scheme, Ok(&run.trajectory))
+                impact_row(deck, p, driver, Ok(&run.trajectory))
             }
-            Err(e) => impact_row(deck, p, scheme, Err(&e)),
+            Err(e) => impact_row(deck, p, driver, Err(&e)),
         };
         impacts.push(row);
     }
@@ -453,16 +453,31 @@ pub fn check_deck(
     })
 }
 
-/// The COR of `law` stepped as the code steps from `gap` before touch.
-fn stepped_cor(law: &DashpotLaw, v: f64, dt: f64, steps: u64, scheme: StepScheme, gap: f64) -> f64 {
-    trajectory_metrics(&step_trajectory_from(law, v, dt, steps, scheme, gap))
-        .map_or(f64::NAN, |m| m.cor)
+/// The COR of `law` stepped as the code steps the run `impact`, started a further `phase` (m)
+/// away than the run itself.
+fn stepped_cor(
+    law: &DashpotLaw,
+    stepping: &CodeStepping,
+    impact: &DeckImpactInput,
+    steps: u64,
+    phase: f64,
+) -> f64 {
+    let setup = &impact.setup;
+    // A code stepped in its own frame starts where the run starts (the frame holds the gap);
+    // one stepped in the relative motion starts from touch, so the run's gap is added.
+    let gap = if stepping.frame.is_some() {
+        phase
+    } else {
+        impact.start_gap + phase
+    };
+    let trajectory = stepping.trajectory(law, setup.impact_velocity, setup.timestep, steps, gap);
+    trajectory_metrics(&trajectory).map_or(f64::NAN, |m| m.cor)
 }
 
 fn impact_row(
     deck: &UserDeck,
     p: &Planned,
-    scheme: StepScheme,
+    driver: &dyn CodeDriver,
     run: Result<&CodeTrajectory, &CodeError>,
 ) -> DeckImpact {
     let c = &deck.contacts[p.contact];
@@ -476,14 +491,15 @@ fn impact_row(
     let law = c.law;
     let exact = accurate_metrics(&law, v, 1e-12).ok();
     let cor_law = exact.map_or(f64::NAN, |m| m.cor);
-    let cor_law_stepped = stepped_cor(&law, v, dt, p.steps, scheme, p.impact.start_gap);
+    let stepping = driver.stepping(&p.impact.setup);
+    let cor_law_stepped = stepped_cor(&law, &stepping, &p.impact, p.steps, 0.0);
     let mut band = Range {
         min: f64::INFINITY,
         max: f64::NEG_INFINITY,
     };
     for k in 0..PHASES {
-        let gap = k as f64 / PHASES as f64 * v * dt;
-        let d = stepped_cor(&law, v, dt, p.steps + 1, scheme, gap) - cor_law;
+        let phase = k as f64 / PHASES as f64 * v * dt;
+        let d = stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phase) - cor_law;
         if d.is_finite() {
             band.min = band.min.min(d);
             band.max = band.max.max(d);
@@ -792,6 +808,13 @@ impl Summary for DeckReport {
     }
 
     fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: {}", self.reproduce())]
+    }
+}
+
+impl DeckReport {
+    /// The `deck` command that checks the deck again, as this check did.
+    pub fn reproduce(&self) -> Invocation {
         let mut command = Invocation::new("deck")
             .arg(&self.deck)
             .option("--code", self.code);
@@ -801,7 +824,7 @@ impl Summary for DeckReport {
         for (option, value) in &self.given {
             command = command.option(option, value);
         }
-        vec![format!("reproduce: {command}")]
+        command
     }
 }
 

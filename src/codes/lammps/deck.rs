@@ -267,6 +267,9 @@ impl LammpsDeck {
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
@@ -428,18 +431,18 @@ impl DeckReader for LammpsDeck {
                     lacking(&format!("no pair_coeff covers the types {} and {}", body.type_id, other.type_id), "a pair_coeff for every pair of types in use, or * * (LAMMPS would mix the pair from I I and J J; the check does not)")
                 })?;
                 let (law, entered, traps) = self.law(&conventions, model, (body.radius, body.mass), Some((other.radius, other.mass)), &c.at)?;
-                contacts.push(DeckContact { body: a, partner: Partner::Body(b), types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)], model: format!("{} damping {}", model.normal, model.damping), cor_entered: entered, law, traps, lines: vec![c.at.clone()] });
+                contacts.push(DeckContact { body: a, partner: Partner::Body(b), types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)], model: format!("{} damping {}", model.normal, model.damping), cor_entered: entered, law, traps, lines: vec![c.at.clone().into()] });
             }
         }
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone() });
+            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone().into() });
             wall_lines.push(format!("fix {} {} wall/gran granular {} zplane 0 NULL", wall.id, wall.group, wall.model.words.join(" ")));
             for (a, body) in bodies.iter().enumerate() {
                 let (law, entered, mut traps) = self.law(&conventions, &wall.model, (body.radius, body.mass), None, &wall.at)?;
                 traps.push(format!("wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)", wall.geometry));
-                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone()] });
+                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone().into()] });
             }
         }
         let left_out = r.left_out.iter().map(|(what, (file, lines))| {
