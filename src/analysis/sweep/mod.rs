@@ -27,12 +27,9 @@ pub const CHUNK: usize = 64;
 
 /// Run `count` items in chunks of `chunk` on `jobs` threads, `work` turning each range of
 /// items into a value, and hand the values to `deliver` on the calling thread in the order
-/// of their ranges. The calling thread is one of the `jobs`: between two chunks of its own it
-/// hands on what is ready, so that no thread waits idle for the others' chunks (on two cores,
-/// two threads rather than three, and no wake-up per chunk). Threads take the next chunk as
-/// they finish one, so at most a few chunks wait for an earlier one; after `stop` is raised no
-/// chunk starts. `deliver` returning an error raises `stop` and is returned; the chunks still
-/// coming are dropped.
+/// of their ranges. Threads take the next chunk as they finish one, so at most a few chunks
+/// wait for an earlier one; after `stop` is raised no chunk starts. `deliver` returning an
+/// error raises `stop` and is returned; the chunks still coming are dropped.
 pub fn ordered_chunks<T: Send>(
     count: usize,
     chunk: usize,
@@ -45,20 +42,21 @@ pub fn ordered_chunks<T: Send>(
     let chunks = count.div_ceil(chunk);
     let jobs = jobs.max(1).min(chunks.max(1));
     let next = AtomicUsize::new(0);
-    let take = || {
-        if stop.load(Ordering::Relaxed) {
-            return None;
-        }
-        let k = next.fetch_add(1, Ordering::Relaxed);
-        (k < chunks).then(|| (k, k * chunk..((k + 1) * chunk).min(count)))
-    };
     let (tx, rx) = mpsc::sync_channel::<(usize, T)>(2 * jobs);
     std::thread::scope(|scope| {
-        for _ in 1..jobs {
+        for _ in 0..jobs {
             let tx = tx.clone();
-            let take = &take;
+            let next = &next;
             scope.spawn(move || {
-                while let Some((k, range)) = take() {
+                loop {
+                    if stop.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let k = next.fetch_add(1, Ordering::Relaxed);
+                    if k >= chunks {
+                        break;
+                    }
+                    let range = k * chunk..((k + 1) * chunk).min(count);
                     if tx.send((k, work(range))).is_err() {
                         break;
                     }
@@ -66,65 +64,34 @@ pub fn ordered_chunks<T: Send>(
             });
         }
         drop(tx);
-        let mut ready = Ordered {
-            waiting: BTreeMap::new(),
-            expected: 0,
-            failure: None,
-        };
-        while let Some((k, range)) = take() {
-            ready.add(k, work(range), stop, deliver);
-            while let Ok((k, value)) = rx.try_recv() {
-                ready.add(k, value, stop, deliver);
-            }
-        }
+        let mut waiting: BTreeMap<usize, T> = BTreeMap::new();
+        let mut expected = 0;
+        let mut failure = None;
         for (k, value) in rx {
-            ready.add(k, value, stop, deliver);
-        }
-        // Chunks after one that never came (the sweep was stopped) are kept, in order.
-        if ready.failure.is_none() {
-            for (_, value) in std::mem::take(&mut ready.waiting) {
+            if failure.is_some() {
+                continue;
+            }
+            waiting.insert(k, value);
+            while let Some(value) = waiting.remove(&expected) {
+                expected += 1;
                 if let Err(e) = deliver(value) {
-                    ready.failure = Some(e);
+                    stop.store(true, Ordering::SeqCst);
+                    failure = Some(e);
                     break;
                 }
             }
         }
-        ready.failure.map_or(Ok(()), Err)
-    })
-}
-
-/// Chunks' values waiting for the ones before them, handed on in order.
-struct Ordered<T> {
-    waiting: BTreeMap<usize, T>,
-    /// The chunk to hand on next.
-    expected: usize,
-    /// The first failure of the delivery: the values after it are dropped.
-    failure: Option<std::io::Error>,
-}
-
-impl<T> Ordered<T> {
-    /// Chunk `k`'s `value` is done: hand it on with those after it that wait, in order.
-    fn add(
-        &mut self,
-        k: usize,
-        value: T,
-        stop: &AtomicBool,
-        deliver: &mut dyn FnMut(T) -> std::io::Result<()>,
-    ) {
-        if self.failure.is_some() {
-            return;
-        }
-        self.waiting.insert(k, value);
-        while let Some(value) = self.waiting.remove(&self.expected) {
-            self.expected += 1;
-            if let Err(e) = deliver(value) {
-                stop.store(true, Ordering::SeqCst);
-                self.failure = Some(e);
-                self.waiting.clear();
-                return;
+        // Chunks after one that never came (the sweep was stopped) are kept, in order.
+        if failure.is_none() {
+            for (_, value) in waiting {
+                if let Err(e) = deliver(value) {
+                    failure = Some(e);
+                    break;
+                }
             }
         }
-    }
+        failure.map_or(Ok(()), Err)
+    })
 }
 
 /// Run the points of `indices`: our methods on `jobs` threads, in chunks whose rows reach
