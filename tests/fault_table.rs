@@ -306,6 +306,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a LAMMPS pair of types the code refuses to mix (lines of different forms)",
+            &["deck", "tests/data/deck/unmixable.in"],
+        ),
+        trial(
+            "deck",
             "a file no code's reader takes",
             &["deck", "cases/ball_plate.toml"],
         ),
