@@ -449,7 +449,7 @@ pub struct ReportArgs {
 
 /// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.
 fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, String> {
-    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type from 1, radius (m) and density (kg/m³) positive";
+    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type (an atom type from 1, a YADE O.materials id from 0), radius (m) and density (kg/m³) positive";
     let parts: Vec<&str> = text.split(':').collect();
     let [t, r, rho] = parts[..] else {
         return Err(format!("`{text}`: {allowed}"));
@@ -459,13 +459,11 @@ fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, 
         parse_positive(r),
         parse_positive(rho),
     ) {
-        (Ok(type_id), Ok(radius), Ok(density)) if type_id >= 1 => {
-            Ok(millimpact::codes::deck::GivenParticle {
-                type_id,
-                radius,
-                density,
-            })
-        }
+        (Ok(type_id), Ok(radius), Ok(density)) => Ok(millimpact::codes::deck::GivenParticle {
+            type_id,
+            radius,
+            density,
+        }),
         _ => Err(format!("`{text}`: {allowed}")),
     }
 }
@@ -487,7 +485,8 @@ fn parse_variable(text: &str) -> Result<(String, String), String> {
 /// `millimpact deck`.
 #[derive(Debug, Args)]
 pub struct DeckArgs {
-    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
+    /// The deck: a LIGGGHTS or LAMMPS input script, a Kratos MaterialsDEM.json or
+    /// ProjectParametersDEM.json, or a YADE Python script.
     pub deck: PathBuf,
     /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
     /// speed: the deck's own, else 2 m/s].
@@ -496,8 +495,8 @@ pub struct DeckArgs {
     /// The code (build) that reads and runs the deck [default: the first whose input it is].
     #[arg(long, value_parser = code_parser())]
     pub code: Option<CodeName>,
-    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³); repeat for
-    /// several; it replaces the deck's own sizes of that type.
+    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³; Kratos: TYPE
+    /// is the material id); repeat for several; it replaces the deck's own sizes of that type.
     #[arg(long, value_parser = parse_particle)]
     pub particle: Vec<millimpact::codes::deck::GivenParticle>,
     /// A variable defined before the deck is read, `NAME=VALUE` (as `-var NAME VALUE`).

@@ -473,14 +473,16 @@ fn the_books_worked_example_is_the_recorded_check() {
     let (code, deck) = read_deck(Path::new(MILL), None, &DeckOptions::default()).unwrap();
     let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
     let table = export(&report, Format::Table).unwrap();
+    assert_eq!(book_example("<!-- deck example:"), table);
+}
+
+/// The text block after `marker` in `docs/src/commands/deck.md`, up to its end marker.
+fn book_example(marker: &str) -> String {
     let page = std::fs::read_to_string(root().join("docs/src/commands/deck.md")).unwrap();
-    let start = page
-        .find("<!-- deck example:")
-        .expect("the example's marker");
+    let start = page.find(marker).expect("the example's marker");
     let block = &page[start..];
-    let body = &block[block.find("```text\n").unwrap() + 8
-        ..block.find("```\n<!-- end of deck example -->").unwrap()];
-    assert_eq!(body, table);
+    block[block.find("```text\n").unwrap() + 8..block.find("```\n<!-- end of ").unwrap()]
+        .to_string()
 }
 
 const GRANULAR: &str = "examples/decks/lammps-granular/in.granular";
@@ -594,6 +596,954 @@ fn snapshots_of_the_lammps_deck_in_every_format() {
     }
 }
 
+const KRATOS_MILL: &str = "examples/decks/kratos-mill/MaterialsDEM.json";
+const KRATOS_PROJECT: &str = "examples/decks/kratos-mill/ProjectParametersDEM.json";
+
+/// The DAMPING_GAMMA Kratos 10.4.4 wrote into the example's sub-properties when it ran the
+/// example's own project (its DEMAnalysisStage, 100 steps): Thornton's fit for the Hertz
+/// relations at 0.7 and 0.65, the bisection for the linear ones at 0.6.
+const KRATOS_LOGGED_GAMMA: [(f64, f64); 3] = [
+    (0.7, 0.111_675_654_969_499_98),
+    (0.65, 0.136_969_229_119_020_37),
+    (0.6, 0.180_877_685_546_875),
+];
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// The example's files in a fresh folder, its materials and project edited by `materials`
+/// and `project`; the path of the materials file.
+fn kratos_deck(
+    materials: impl Fn(&mut serde_json::Value),
+    project: impl Fn(&mut serde_json::Value),
+) -> (tempfile::TempDir, PathBuf) {
+    let dir = tempfile::tempdir().unwrap();
+    let example = root().join("examples/decks/kratos-mill");
+    for (name, edit) in [
+        (
+            "MaterialsDEM.json",
+            &materials as &dyn Fn(&mut serde_json::Value),
+        ),
+        ("ProjectParametersDEM.json", &project),
+    ] {
+        let mut value = json(&example.join(name));
+        edit(&mut value);
+        std::fs::write(
+            dir.path().join(name),
+            serde_json::to_string_pretty(&value).unwrap(),
+        )
+        .unwrap();
+    }
+    std::fs::copy(
+        example.join("millDEM.mdpa"),
+        dir.path().join("millDEM.mdpa"),
+    )
+    .unwrap();
+    let path = dir.path().join("MaterialsDEM.json");
+    (dir, path)
+}
+
+#[test]
+fn the_kratos_mill_is_read_from_either_of_its_files() {
+    let (code, deck) = read_deck(&root().join(KRATOS_MILL), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Kratos);
+    let (code, by_project) =
+        read_deck(&root().join(KRATOS_PROJECT), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Kratos);
+    assert_eq!(
+        UserDeck {
+            path: deck.path.clone(),
+            ..by_project
+        },
+        deck
+    );
+    assert_eq!(deck.timestep, 2e-6);
+    assert!(
+        deck.timestep_from
+            .ends_with("ProjectParametersDEM.json: MaxTimeStep"),
+        "{}",
+        deck.timestep_from
+    );
+    // The radii from the DEM .mdpa's nodal RADIUS of each material's sub-model part.
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(1, 0.03, 7800.0), (2, 0.02, 7600.0)]);
+    assert!(
+        deck.bodies[0]
+            .from
+            .starts_with("nodal RADIUS of 3 spheres of SpheresPart.DEMParts_SteelBalls"),
+        "{}",
+        deck.bodies[0].from
+    );
+    assert_eq!(deck.walls.len(), 1);
+    let wall = &deck.walls[0];
+    assert_eq!(wall.name, "RigidFacePart.DEM-FEM-Wall_Liner");
+    assert_eq!(
+        (wall.type_id, wall.youngs_modulus, wall.poisson_ratio),
+        (Some(3), Some(5e7), Some(0.45))
+    );
+    assert!(
+        wall.from
+            .to_string()
+            .ends_with("MaterialsDEM.json: materials[2]")
+    );
+    use TypeRef::{Type, Wall};
+    let types: Vec<[TypeRef; 2]> = deck.contacts.iter().map(|c| c.types).collect();
+    assert_eq!(
+        types,
+        [
+            [Type(1), Type(1)],
+            [Type(1), Type(2)],
+            [Type(2), Type(2)],
+            [Type(1), Wall],
+            [Type(2), Wall]
+        ]
+    );
+    // What each impact carries: the file's materials and the relations checked, as written.
+    let carried: serde_json::Value =
+        serde_json::from_str(&deck.transplant.common.join("\n")).unwrap();
+    let file = json(&root().join(KRATOS_MILL));
+    assert_eq!(carried["materials"], file["materials"]);
+    assert_eq!(carried["material_relations"], file["material_relations"]);
+    assert!(carried.get("material_assignation_table").is_none());
+    assert!(
+        deck.left_out
+            .iter()
+            .any(|l| l.starts_with("gravity, rotation")),
+        "{:?}",
+        deck.left_out
+    );
+}
+
+#[test]
+fn the_kratos_mill_laws_are_the_ones_kratos_integrates() {
+    let deck = read(&root().join(KRATOS_MILL));
+    let gamma = |e: f64| {
+        KRATOS_LOGGED_GAMMA
+            .iter()
+            .find(|(cor, _)| *cor == e)
+            .unwrap()
+            .1
+    };
+    let mixed = |e1: f64, n1: f64, e2: f64, n2: f64| {
+        e1 * e2 / (e2 * (1.0 - n1 * n1) + e1 * (1.0 - n2 * n2))
+    };
+    let (steel, chrome) = (&deck.bodies[0], &deck.bodies[1]);
+    // Steel on chrome iron: Hertz, E* of both, R* and m* of the pair, γ of Thornton's fit.
+    let pair = &deck.contacts[1];
+    assert_eq!(pair.model, "DEM_D_Hertz_viscous_Coulomb");
+    let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 1.8e11, 0.28) * (0.03f64 * 0.02 / 0.05).sqrt();
+    let m = steel.mass * chrome.mass / (steel.mass + chrome.mass);
+    assert!(relative(pair.law.stiffness, k) < 1e-14);
+    assert!(relative(pair.law.mass, m) < 1e-14);
+    let c = 2.0 * gamma(0.7) * (1.5 * m * k).sqrt();
+    assert!(relative(pair.law.damping, c) < 1e-14);
+    assert_eq!((pair.law.exponent, pair.law.damping_exponent), (1.5, 0.25));
+    assert!(pair.law.clamp_attractive);
+    let both = &deck.contacts[2];
+    assert!(
+        relative(
+            both.law.damping / (1.5 * both.law.mass * both.law.stiffness).sqrt(),
+            2.0 * gamma(0.65)
+        ) < 1e-14
+    );
+    // Chrome iron on the liner: linear, k = π E* (0.31225 R) without the 1.432 of two
+    // particles, the ball's own mass, γ of Kratos' bisection.
+    let wall = &deck.contacts[4];
+    assert_eq!(wall.model, "DEM_D_Linear_viscous_Coulomb");
+    let k = std::f64::consts::PI * mixed(1.8e11, 0.28, 5e7, 0.45) * 0.31225 * 0.02;
+    assert!(relative(wall.law.stiffness, k) < 1e-14);
+    assert!(relative(wall.law.mass, chrome.mass) < 1e-14);
+    assert!(
+        relative(
+            wall.law.damping,
+            2.0 * gamma(0.6) * (chrome.mass * k).sqrt()
+        ) < 1e-14
+    );
+    assert_eq!((wall.law.exponent, wall.law.damping_exponent), (1.0, 0.0));
+    assert!(wall.law.clamp_attractive);
+    assert_eq!(wall.cor_entered, Some(0.6));
+    for trap in [
+        "wall modulus",
+        "linear stiffness from E*",
+        "damping ratio by bisection",
+        "clamped",
+        "wall: RigidFacePart.DEM-FEM-Wall_Liner met as a flat RigidFace3D3N plane",
+        "neighbour search: NeighbourSearchFrequency 20",
+    ] {
+        assert!(
+            wall.traps.iter().any(|t| t.starts_with(trap)),
+            "{trap}: {:?}",
+            wall.traps
+        );
+    }
+    // The neighbour search's speed: search_tolerance_against_walls / (20 Δt).
+    assert!(wall.traps.iter().any(|t| t.contains("= 2.5 m/s")));
+    // The Hertz trap names the restitution that realises the one entered.
+    let en = millimpact::codes::damping::hertz_input_restitution(0.7).unwrap();
+    assert!(
+        pair.traps
+            .iter()
+            .any(|t| t.contains(&format!("when given {en:.6}")))
+    );
+}
+
+/// Kratos' own derivations of γ, bit for bit as 10.4.4 logged them.
+#[test]
+fn kratos_damping_ratios_are_kratos_own_bits() {
+    use millimpact::codes::kratos::{hertz_damping_gamma, linear_damping_gamma};
+    let [(e1, g1), (e2, g2), (e3, g3)] = KRATOS_LOGGED_GAMMA;
+    assert_eq!(hertz_damping_gamma(e1), g1);
+    assert_eq!(hertz_damping_gamma(e2), g2);
+    assert_eq!(linear_damping_gamma(e3), g3);
+}
+
+#[test]
+fn kratos_custom_constants_take_k_normal_and_sizes_come_from_an_inlet_or_flags() {
+    // The liner's relations with DEM_D_Linear_Custom_Constants and K_NORMAL; the steel balls
+    // from an inlet instead of the .mdpa.
+    let (dir, path) = kratos_deck(
+        |m| {
+            for r in [3, 4] {
+                let v = &mut m["material_relations"][r]["Variables"];
+                v["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] =
+                    "DEM_D_Linear_Custom_Constants".into();
+                v["K_NORMAL"] = 2e6.into();
+            }
+            m["material_assignation_table"][0][0] = "DEMInletPart.Inlet_Steel".into();
+        },
+        |_| {},
+    );
+    std::fs::write(
+        dir.path().join("millDEM_Inlet.mdpa"),
+        "Begin SubModelPart Inlet_Steel // Group Steel\n  Begin SubModelPartData\n    RADIUS 0.025\n    PROBABILITY_DISTRIBUTION normal\n    STANDARD_DEVIATION 0.002\n  End SubModelPartData\nEnd SubModelPart\n",
+    )
+    .unwrap();
+    let deck = read(&path);
+    let steel = &deck.bodies[0];
+    assert_eq!((steel.type_id, steel.radius), (1, 0.025));
+    assert!(
+        steel
+            .from
+            .contains("the mean RADIUS of the inlet DEMInletPart.Inlet_Steel")
+            && steel.from.contains("standard deviation 0.002"),
+        "{}",
+        steel.from
+    );
+    let wall = deck
+        .contacts
+        .iter()
+        .find(|c| c.types == [TypeRef::Type(1), TypeRef::Wall])
+        .unwrap();
+    assert_eq!(wall.law.stiffness, 2e6);
+    let gamma = millimpact::codes::kratos::linear_damping_gamma(0.6);
+    assert!(relative(wall.law.damping, 2.0 * gamma * (steel.mass * 2e6).sqrt()) < 1e-14);
+    // Flags replace a material's sizes; their density must be the material's.
+    let options = DeckOptions {
+        particles: vec![GivenParticle {
+            type_id: 2,
+            radius: 0.05,
+            density: 7600.0,
+        }],
+        ..DeckOptions::default()
+    };
+    let (_, deck) = read_deck(&path, None, &options).unwrap();
+    let chrome: Vec<(f64, &str)> = deck
+        .bodies
+        .iter()
+        .filter(|b| b.type_id == 2)
+        .map(|b| (b.radius, b.from.as_str()))
+        .collect();
+    assert_eq!(chrome, [(0.05, "--particle")]);
+    let options = DeckOptions {
+        particles: vec![GivenParticle {
+            type_id: 2,
+            radius: 0.05,
+            density: 7800.0,
+        }],
+        ..DeckOptions::default()
+    };
+    let e = read_deck(&path, None, &options).unwrap_err().to_string();
+    assert!(
+        e.contains("material 2 (high_chrome_iron) has PARTICLE_DENSITY 7600")
+            && e.ends_with("--particle 2:0.05:7600"),
+        "{e}"
+    );
+}
+
+/// Each Kratos setup with one bad field, and what its error must say after its file and field.
+#[test]
+fn bad_kratos_fields_are_refused_with_their_path_and_what_is_supported() {
+    type Edit = Box<dyn Fn(&mut serde_json::Value)>;
+    let none = || -> Edit { Box::new(|_| {}) };
+    let cases: Vec<(&str, Edit, Edit, &str, &str)> = vec![
+        (
+            "law",
+            Box::new(|m| {
+                m["material_relations"][3]["Variables"]["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] =
+                    "DEM_D_Linear_classic".into()
+            }),
+            none(),
+            "MaterialsDEM.json: material_relations[3].Variables.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME: ",
+            "supported: DEM_D_Hertz_viscous_Coulomb, DEM_D_Linear_viscous_Coulomb, DEM_D_Linear_Custom_Constants",
+        ),
+        (
+            "restitution as text",
+            Box::new(|m| {
+                m["material_relations"][0]["Variables"]["COEFFICIENT_OF_RESTITUTION"] = "0.7".into()
+            }),
+            none(),
+            "MaterialsDEM.json: material_relations[0].Variables.COEFFICIENT_OF_RESTITUTION: ",
+            "`\"0.7\"` is not a number",
+        ),
+        (
+            "restitution above 1",
+            Box::new(|m| {
+                m["material_relations"][1]["Variables"]["COEFFICIENT_OF_RESTITUTION"] = 1.5.into()
+            }),
+            none(),
+            "MaterialsDEM.json: material_relations[1].Variables.COEFFICIENT_OF_RESTITUTION: ",
+            "supported: a restitution in (0, 1]",
+        ),
+        (
+            "K_NORMAL missing",
+            Box::new(|m| {
+                m["material_relations"][4]["Variables"]["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] =
+                    "DEM_D_Linear_Custom_Constants".into()
+            }),
+            none(),
+            "MaterialsDEM.json: material_relations[4].Variables.K_NORMAL: ",
+            "no K_NORMAL",
+        ),
+        (
+            "density missing",
+            Box::new(|m| {
+                m["materials"][0]["Variables"]
+                    .as_object_mut()
+                    .unwrap()
+                    .remove("PARTICLE_DENSITY");
+            }),
+            none(),
+            "MaterialsDEM.json: materials[0].Variables.PARTICLE_DENSITY: ",
+            "no PARTICLE_DENSITY",
+        ),
+        (
+            "material name",
+            Box::new(|m| m["material_assignation_table"][0][1] = "steel".into()),
+            none(),
+            "MaterialsDEM.json: material_assignation_table[0][1]: ",
+            "material `steel` is in no material_name",
+        ),
+        (
+            "model part",
+            Box::new(|m| m["material_assignation_table"][2][0] = "FEMPart.Liner".into()),
+            none(),
+            "MaterialsDEM.json: material_assignation_table[2][0]: ",
+            "supported: SpheresPart, DEMInletPart and RigidFacePart",
+        ),
+        (
+            "scheme",
+            none(),
+            Box::new(|p| p["TranslationalIntegrationScheme"] = "Forward_Euler".into()),
+            "ProjectParametersDEM.json: TranslationalIntegrationScheme: ",
+            "supported: Symplectic_Euler",
+        ),
+        (
+            "virtual mass",
+            none(),
+            Box::new(|p| p["VirtualMassCoefficient"] = 0.9.into()),
+            "ProjectParametersDEM.json: VirtualMassCoefficient: ",
+            "supported: 1.0",
+        ),
+        (
+            "continuum",
+            none(),
+            Box::new(|p| p["ElementType"] = "SphericContPartDEMElement3D".into()),
+            "ProjectParametersDEM.json: ElementType: ",
+            "supported: SphericPartDEMElement3D",
+        ),
+    ];
+    for (what, materials, project, at, says) in cases {
+        let (dir, path) = kratos_deck(materials, project);
+        let e = read_deck(&path, None, &DeckOptions::default())
+            .unwrap_err()
+            .to_string();
+        let at = format!("{}{at}", dir.path().display().to_string() + "/");
+        assert!(e.starts_with(&at) && e.contains(says), "{what}: {e}");
+    }
+}
+
+#[test]
+fn a_kratos_setup_lacking_a_part_says_what_and_how_to_give_it() {
+    let (_d, path) = kratos_deck(
+        |m| {
+            m["material_relations"].as_array_mut().unwrap().remove(2);
+        },
+        |_| {},
+    );
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no material_relations entry for the materials 2 (high_chrome_iron) and 2 (high_chrome_iron)"), "{e}");
+    // No .mdpa to take the radii from: named, with the flag that gives them.
+    let (_d, path) = kratos_deck(|_| {}, |p| p["problem_name"] = "elsewhere".into());
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("no radius for material 1 (forged_steel)")
+            && e.contains("elsewhereDEM.mdpa")
+            && e.ends_with("--particle 1:RADIUS:7800"),
+        "{e}"
+    );
+    // A distribution in the .mdpa: more radii than are checked one by one.
+    let (dir, path) = kratos_deck(|_| {}, |_| {});
+    let mdpa = std::fs::read_to_string(dir.path().join("millDEM.mdpa")).unwrap();
+    let mdpa = mdpa
+        .replace("    2   0   0.03\n", "    2   0   0.031\n")
+        .replace("    3   0   0.03\n", "    3   0   0.032\n")
+        .replace("    1   0   0.03\n", "    1   0   0.029\n");
+    let mdpa = mdpa.replace("    4   0   0.02\n", "    4   0   0.021\n");
+    let mdpa = mdpa.replace(
+        "Begin SubModelPartElements\n        1\n",
+        "Begin SubModelPartElements\n        1\n        4\n",
+    );
+    std::fs::write(dir.path().join("millDEM.mdpa"), mdpa).unwrap();
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("SpheresPart.DEMParts_SteelBalls (material 1 (forged_steel)) has 4 radii from 0.021 to 0.032 m") && e.contains("--particle 1:RADIUS:DENSITY"),
+        "{e}"
+    );
+    // A project beside it that names another materials file.
+    let (_d, path) = kratos_deck(
+        |_| {},
+        |p| {
+            p["solver_settings"]["material_import_settings"]["materials_filename"] =
+                "Other.json".into()
+        },
+    );
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("names the materials file")
+            && e.contains("Other.json")
+            && e.contains("name ")
+            && e.contains("ProjectParametersDEM.json instead"),
+        "{e}"
+    );
+    // A materials file alone: the project with the time step is missing.
+    let (dir, path) = kratos_deck(|_| {}, |_| {});
+    std::fs::remove_file(dir.path().join("ProjectParametersDEM.json")).unwrap();
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("no ProjectParametersDEM.json beside it") && e.contains("MaxTimeStep"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_kratos_setup_with_an_unsupported_law_exits_2_naming_the_field_and_runs_nothing() {
+    let (_d, path) = kratos_deck(
+        |m| {
+            m["material_relations"][0]["Variables"]["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] =
+                "DEM_D_Conical_damage".into()
+        },
+        |_| {},
+    );
+    let out = millimpact()
+        .args(["deck", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: ")
+            && err.contains("MaterialsDEM.json: material_relations[0].Variables.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME: DEM_D_Conical_damage")
+            && err.contains("supported: DEM_D_Hertz_viscous_Coulomb"),
+        "{err}"
+    );
+}
+
+#[test]
+fn each_reader_recognises_its_own_files_only() {
+    let text = |p: &str| std::fs::read_to_string(root().join(p)).unwrap();
+    let kratos = CodeName::Kratos.driver().deck().unwrap();
+    let liggghts = CodeName::Liggghts.driver().deck().unwrap();
+    let lammps = CodeName::Lammps.driver().deck().unwrap();
+    for json in [KRATOS_MILL, KRATOS_PROJECT] {
+        assert!(kratos.recognises(Path::new(json), &text(json)), "{json}");
+        assert!(!liggghts.recognises(Path::new(json), &text(json)), "{json}");
+        assert!(!lammps.recognises(Path::new(json), &text(json)), "{json}");
+    }
+    for script in [MILL, GRANULAR] {
+        assert!(
+            !kratos.recognises(Path::new(script), &text(script)),
+            "{script}"
+        );
+    }
+    // JSON of something else is no Kratos setup.
+    let (_d, path) = deck_files(&[("settings.json", "{\"theme\": \"dark\"}\n")]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("not a deck of any code this build reads")
+            && e.contains("kratos: Kratos DEM MaterialsDEM.json or ProjectParametersDEM.json"),
+        "{e}"
+    );
+}
+
+/// Every format of the Kratos mill's check, from the runs recorded in Kratos.
+#[test]
+fn snapshots_of_the_kratos_mill_in_every_format() {
+    let report = kratos_report();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_kratos_mill_{format}"), text);
+    }
+}
+
+fn kratos_report() -> millimpact::analysis::deck::DeckReport {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/kratos-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(KRATOS_MILL), None, &DeckOptions::default()).unwrap();
+    check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap()
+}
+
+/// The Kratos example of `docs/src/commands/deck.md` is the table of the recorded check.
+#[test]
+fn the_books_kratos_example_is_the_recorded_check() {
+    let table = export(&kratos_report(), Format::Table).unwrap();
+    assert_eq!(book_example("<!-- kratos deck example:"), table);
+}
+
+const YADE_MILL: &str = "examples/decks/yade-mill/mill.py";
+
+/// YADE's `E*` of two materials.
+fn mixed(e1: f64, n1: f64, e2: f64, n2: f64) -> f64 {
+    e1 * e2 / ((1.0 - n1 * n1) * e2 + (1.0 - n2 * n2) * e1)
+}
+
+#[test]
+fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
+    use millimpact::codes::yade::thornton_damping_ratio;
+    let (code, deck) = read_deck(&root().join(YADE_MILL), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Yade);
+    // R_ALUMINA = R_STEEL * 0.625: a module-level formula through another name.
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(0, 0.02, 7850.0), (1, 0.02 * 0.625, 3950.0)]);
+    // O.dt = 0.2 * PWaveTimeStep(): the smallest R sqrt(ρ/E) of the spheres, the alumina's.
+    // YADE's own O.dt for this script, as it printed it: the step to the last bit.
+    assert_eq!(deck.timestep, 2.5830790342723347e-07);
+    assert!(
+        deck.timestep_from.contains("mill.py:47") && deck.timestep_from.contains("PWaveTimeStep"),
+        "{}",
+        deck.timestep_from
+    );
+    assert_eq!(deck.walls.len(), 1);
+    assert_eq!(deck.walls[0].name, "facetCylinder:22");
+    assert_eq!(deck.walls[0].type_id, Some(2));
+    use TypeRef::{Type, Wall};
+    let pairs: Vec<([TypeRef; 2], Option<f64>)> = deck
+        .contacts
+        .iter()
+        .map(|c| (c.types, c.cor_entered))
+        .collect();
+    // The en of each pair from the MatchMaker, looked up by the materials' ids.
+    assert_eq!(
+        pairs,
+        [
+            ([Type(0), Type(0)], Some(0.8)),
+            ([Type(0), Type(1)], Some(0.75)),
+            ([Type(1), Type(1)], Some(0.7)),
+            ([Type(0), Wall], Some(0.6)),
+            ([Type(1), Wall], Some(0.55))
+        ]
+    );
+    // Steel on alumina: Hertz of the mixed E*, R* and reduced mass; β_n of Thornton's fit.
+    let (steel, alumina) = (&deck.bodies[0], &deck.bodies[1]);
+    let m = steel.mass * alumina.mass / (steel.mass + alumina.mass);
+    let r: f64 = 0.02 * 0.0125 / 0.0325;
+    let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 3.7e11, 0.22) * r.sqrt();
+    let law = deck.contacts[1].law;
+    assert!(relative(law.stiffness, k) < 1e-14 && relative(law.mass, m) < 1e-14);
+    let c = 2.0 * thornton_damping_ratio(0.75) * (1.5 * m * k).sqrt();
+    assert!(relative(law.damping, c) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
+    assert!(law.clamp_attractive);
+    // Alumina on the drum's facets: the facet's radius is 2R, so R* = 2R/3; the liner mixed in.
+    let wall = deck.contacts[4].law;
+    let k = 4.0 / 3.0 * mixed(3.7e11, 0.22, 2e11, 0.29) * (2.0 * 0.0125 / 3.0f64).sqrt();
+    assert!(relative(wall.stiffness, k) < 1e-14 && relative(wall.mass, alumina.mass) < 1e-14);
+    assert!(
+        deck.contacts[4]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("wall radius"))
+    );
+    // The script's own lines, names resolved, carried into every impact.
+    let common = deck.transplant.common.join("\n");
+    assert!(
+        common.contains("O.materials.append(FrictMat(young=2.1e11, poisson=3e-1, density=7.85e3, frictionAngle=3.490658503988659e-1, label='steel'))"),
+        "{common}"
+    );
+    assert!(
+        common.contains("IP2 = [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=((0, 0, 8e-1), (0, 1, 7.5e-1), (1, 1, 7e-1), (0, 2, 6e-1), (1, 2, 5.5e-1),), algo='val', val=7e-1), es=7e-1)]"),
+        "{common}"
+    );
+    assert!(common.contains("IG2 = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]"));
+    for left in [
+        "gravity",
+        "output and control",
+        "the run itself",
+        "the walls' shapes",
+        "wall and particle motion",
+    ] {
+        assert!(
+            deck.left_out.iter().any(|l| l.starts_with(left)),
+            "{left}: {:?}",
+            deck.left_out
+        );
+    }
+}
+
+/// The lines every small YADE script below shares: a steel ball and a wall.
+const YADE_BASE: &str =
+    "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
+O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
+O.bodies.append(wall(-0.01, axis=2, material=steel))
+O.engines = [
+    ForceResetter(),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                    [Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)],
+                    [Law2_ScGeom_MindlinPhys_Mindlin()]),
+    NewtonIntegrator(damping=0.0),
+]
+O.dt = 1e-7
+";
+
+#[test]
+fn yade_viscel_and_frictphys_forms_give_their_laws() {
+    let pi2 = std::f64::consts::PI * std::f64::consts::PI;
+    let mass = |r: f64, rho: f64| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho;
+    // tc, en, et: en and tc averaged over the two materials; a wall's mass is the sphere's.
+    let tc_en = "a = O.materials.append(ViscElMat(tc=2e-5, en=0.8, et=0.8, density=2500.0))\n\
+b = O.materials.append(ViscElMat(tc=4e-5, en=0.6, et=0.6, density=1100.0))\n\
+O.bodies.append(sphere((0, 0, 0), 0.005, material=a))\n\
+O.bodies.append(sphere((0, 0, 1), 0.004, material=b))\n\
+O.bodies.append(wall(0, axis=2, material=a))\n\
+O.bodies.append(box((0, 0, -0.5), (0.5, 0.5, 0.01), fixed=True, material=b))\n\
+O.engines = [InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]), NewtonIntegrator(damping=0)]\n\
+O.dt = 1e-7\n";
+    let (_d, path) = deck_files(&[("tc_en.py", tc_en)]);
+    let deck = read(&path);
+    let (m1, m2) = (mass(0.005, 2500.0), mass(0.004, 1100.0));
+    let tuned = |c: usize, m_r: f64, tc: f64, en: f64| {
+        let law = deck.contacts[c].law;
+        let kn = m_r * (pi2 + en.ln().powi(2)) / (tc * tc);
+        let cn = -2.0 * en.ln() * m_r / tc;
+        assert!(
+            relative(law.stiffness, kn) < 1e-14,
+            "{c}: {} {kn}",
+            law.stiffness
+        );
+        assert!(
+            relative(law.damping, cn) < 1e-14,
+            "{c}: {} {cn}",
+            law.damping
+        );
+        assert!(law.clamp_attractive && law.exponent == 1.0);
+    };
+    let m_r = m1 * m2 / (m1 + m2);
+    tuned(1, m_r, 3e-5, 0.7);
+    assert_eq!(deck.contacts[1].cor_entered, Some(0.7));
+    // The ball on the wall: tuned for m/2, while m moves.
+    tuned(3, m1 / 2.0, 2e-5, 0.8);
+    assert!(relative(deck.contacts[3].law.mass, m1) < 1e-14);
+    assert!(
+        deck.contacts[3]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("a wall's mass is 0"))
+    );
+    // The ball on the fixed box: its own mass 8 · 0.5 · 0.5 · 0.01 · 1100 kg in the tuning.
+    let m_box = 8.0 * 0.5 * 0.5 * 0.01 * 1100.0;
+    tuned(5, m1 * m_box / (m1 + m_box), 3e-5, 0.7);
+    // kn, cn in series; FrictPhys's linear spring; young and en through YADE's Newton iteration.
+    let kn_cn = YADE_BASE
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(kn=2e6, ks=0, cn=40.0, cs=0)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
+    let (_d, path) = deck_files(&[("kn_cn.py", &kn_cn)]);
+    let law = read(&path).contacts[0].law;
+    assert_eq!((law.stiffness, law.damping), (1e6, 20.0));
+    let frict = YADE_BASE
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_FrictPhys_CundallStrack()",
+        );
+    let (_d, path) = deck_files(&[("frict.py", &frict)]);
+    let deck = read(&path);
+    // kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2): E R between two balls and at a wall (refR = R).
+    for c in &deck.contacts {
+        assert!(relative(c.law.stiffness, 2e11 * 0.01) < 1e-14);
+        assert_eq!((c.law.damping, c.cor_entered), (0.0, None));
+    }
+    let young = YADE_BASE
+        .replace(
+            "FrictMat(young=2e11, poisson=0.3, density=7800)",
+            "ViscElMat(young=1e8, en=0.5, density=1200)",
+        )
+        .replace(
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
+        )
+        .replace(
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_ViscElPhys_Basic()",
+        );
+    let (_d, path) = deck_files(&[("young.py", &young)]);
+    let deck = read(&path);
+    let law = deck.contacts[0].law;
+    assert!(relative(law.stiffness, 1e8 * 0.01) < 1e-14);
+    // Within 1 % of en on the mass it is tuned for (m/2 between two equal balls).
+    let m = mass(0.01, 1200.0) / 2.0;
+    let zeta = law.damping / (2.0 * (m * law.stiffness).sqrt());
+    let x = zeta / (1.0 - zeta * zeta).sqrt();
+    let e = (-x * (std::f64::consts::PI - 2.0 * x.atan())).exp();
+    assert!(relative(e, 0.5) <= 1e-2 && relative(e, 0.5) > 1e-6, "{e}");
+}
+
+/// Each script with one bad line, the line and what its error must say.
+#[test]
+fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is_supported() {
+    let cases: [(&str, &str, &str, usize, &str); 14] = [
+        (
+            "step changed in place",
+            "O.dt = 1e-7",
+            "O.dt = 1e-7\nO.dt *= 0.5",
+            12,
+            "the time step changed in place",
+        ),
+        (
+            "capillary",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_CapillaryPhys()",
+            7,
+            "functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: Ig2_Sphere_Sphere_ScGeom",
+        ),
+        (
+            "law",
+            "Law2_ScGeom_MindlinPhys_Mindlin()",
+            "Law2_ScGeom_MindlinPhys_HertzWithLinearShear()",
+            8,
+            "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear",
+        ),
+        (
+            "no law",
+            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
+            "Ip2_FrictMat_FrictMat_FrictPhys()",
+            7,
+            "without Law2_ScGeom_FrictPhys_CundallStrack",
+        ),
+        (
+            "local damping",
+            "NewtonIntegrator(damping=0.0)",
+            "NewtonIntegrator()",
+            9,
+            "damping = 0.2 (its default)",
+        ),
+        (
+            "time stepper",
+            "ForceResetter()",
+            "GlobalStiffnessTimeStepper()",
+            5,
+            "supported: O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        ),
+        (
+            "unresolved value",
+            "young=2e11",
+            "young=E",
+            1,
+            "`E` is not assigned in the script",
+        ),
+        (
+            "radius",
+            "0.01, material=steel",
+            "r, material=steel",
+            2,
+            "--particle 0:RADIUS:DENSITY",
+        ),
+        (
+            "not appended",
+            "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))",
+            "steel = FrictMat(young=2e11, poisson=0.3, density=7800)",
+            2,
+            "is not appended to O.materials",
+        ),
+        (
+            "material class",
+            "FrictMat(",
+            "CohFrictMat(",
+            1,
+            "material class `CohFrictMat`; supported: FrictMat, ViscElMat",
+        ),
+        (
+            "step in a block",
+            "O.dt = 1e-7",
+            "if True:\n    O.dt = 1e-7",
+            12,
+            "inside a block",
+        ),
+        (
+            "free box",
+            "wall(-0.01, axis=2, material=steel)",
+            "box((0, 0, -1), (1, 1, 1), material=steel)",
+            3,
+            "supported: box(…, fixed=True) as a wall",
+        ),
+        (
+            "match maker",
+            "en=0.5",
+            "en=MatchMaker(matches=((0, 1, 0.5),))",
+            7,
+            "no match for the materials 0 and 0",
+        ),
+        (
+            "no geometry",
+            "Ig2_Wall_Sphere_ScGeom()",
+            "Ig2_Facet_Sphere_ScGeom()",
+            3,
+            "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop (line 6)",
+        ),
+    ];
+    for (what, from, to, line, says) in cases {
+        assert!(YADE_BASE.contains(from), "{what}");
+        let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace(from, to))]);
+        let e = read_deck(&path, None, &DeckOptions::default())
+            .unwrap_err()
+            .to_string();
+        let at = format!("{}:{line}: ", path.display());
+        assert!(e.starts_with(&at) && e.contains(says), "{what}: {e}");
+    }
+    // A script without a time step lacks what every check needs.
+    let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace("O.dt = 1e-7\n", ""))]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("bad.py: no `O.dt = …`"), "{e}");
+    // The radius given on the command line instead, by the material's O.materials id.
+    let (_d, path) = deck_files(&[(
+        "given.py",
+        &YADE_BASE.replace("0.01, material=steel", "r, material=steel"),
+    )]);
+    let options = DeckOptions {
+        particles: vec![GivenParticle {
+            type_id: 0,
+            radius: 0.02,
+            density: 7800.0,
+        }],
+        ..DeckOptions::default()
+    };
+    let (_, deck) = read_deck(&path, None, &options).unwrap();
+    assert_eq!(deck.bodies[0].radius, 0.02);
+    // A LIGGGHTS deck takes no type 0.
+    let e = read_deck(&root().join(MILL), None, &options)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("--particle 0:0.02:7800: atom types count from 1"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_yade_script_with_an_unsupported_functor_exits_2_naming_its_line_and_runs_nothing() {
+    let out = millimpact()
+        .current_dir(root())
+        .args(["deck", "tests/data/deck/yade-capillary.py"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(out.stdout.is_empty());
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with("error: tests/data/deck/yade-capillary.py:14: functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: "),
+        "{err}"
+    );
+}
+
+fn yade_report() -> millimpact::analysis::deck::DeckReport {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(root().join("tests/data/deck/yade-mill.runs.json")).unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(YADE_MILL), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    report
+}
+
+/// Every format of the YADE mill's check, from the runs recorded in YADE.
+#[test]
+fn snapshots_of_the_yade_mill_script_in_every_format() {
+    let report = yade_report();
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_yade_mill_{format}"), text);
+    }
+}
+
+/// The YADE example of `docs/src/commands/deck.md` is the table of the recorded check.
+#[test]
+fn the_books_yade_example_is_the_recorded_check() {
+    let table = export(&yade_report(), Format::Table).unwrap();
+    let page = std::fs::read_to_string(root().join("docs/src/commands/deck.md")).unwrap();
+    let start = page
+        .find("<!-- yade deck example:")
+        .expect("the example's marker");
+    let block = &page[start..];
+    let body = &block[block.find("```text\n").unwrap() + 8
+        ..block
+            .find("```\n<!-- end of yade deck example -->")
+            .unwrap()];
+    assert_eq!(body, table);
+}
+
 const MIXED: &str = "examples/decks/lammps-mixed/in.mixed";
 const MIXED_HERTZ: &str = "tests/data/deck/lammps-mixed-hertz.in";
 
@@ -648,7 +1598,14 @@ fn each_build_mixes_the_pair_of_two_bead_types_as_its_source_does() {
     assert!(alpha / (poly(c1) * poly(c2)).sqrt() > 1.3);
     // No COR is entered for a mixed pair; its lines are both types' own.
     assert_eq!(pair.cor_entered, None);
-    let lines: Vec<usize> = pair.lines.iter().map(|l| l.line).collect();
+    let lines: Vec<usize> = pair
+        .lines
+        .iter()
+        .map(|l| match l {
+            millimpact::codes::deck::DeckSource::Line(l) => l.line,
+            other => panic!("{other}"),
+        })
+        .collect();
     assert_eq!(lines, [29, 30]);
     assert!(
         pair.traps[0].starts_with("mixed: no pair_coeff sets the types 1 and 2"),

@@ -311,6 +311,16 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a Kratos law the check cannot step",
+            &["deck", "tests/data/deck/kratos-conical/MaterialsDEM.json"],
+        ),
+        trial(
+            "deck",
+            "a YADE functor the check cannot model (capillary)",
+            &["deck", "tests/data/deck/yade-capillary.py"],
+        ),
+        trial(
+            "deck",
             "a file no code's reader takes",
             &["deck", "cases/ball_plate.toml"],
         ),

@@ -296,6 +296,9 @@ impl LammpsDeck {
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
@@ -482,19 +485,19 @@ impl DeckReader for LammpsDeck {
         for (a, body) in bodies.iter().enumerate() {
             for (b, other) in bodies.iter().enumerate().skip(a) {
                 let (i, j) = (body.type_id, other.type_id);
-                let (coefficients, model, mut traps, lines, mixed) = match coeff_for(i, j) {
+                let (coefficients, model, mut traps, lines, at, mixed) = match coeff_for(i, j) {
                     Some((model, c)) => {
                         let (coefficients, traps) = model.coefficients(&conventions, false);
-                        (coefficients, format!("{} damping {}", model.normal, model.damping), traps, vec![c.at.clone()], false)
+                        (coefficients, format!("{} damping {}", model.normal, model.damping), traps, vec![c.at.clone().into()], &c.at, false)
                     }
                     None => {
                         let own = |t: u32| coeff_for(t, t).ok_or_else(|| lacking(&format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"));
                         let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
                         let pair = mixing.mix(&conventions, (i.min(j), ma, &ca.at.to_string()), (i.max(j), mb, &cb.at.to_string()));
-                        (pair.coefficients, pair.model, pair.traps, vec![ca.at.clone(), cb.at.clone()], true)
+                        (pair.coefficients, pair.model, pair.traps, vec![ca.at.clone().into(), cb.at.clone().into()], &cb.at, true)
                     }
                 };
-                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), Some((other.radius, other.mass)), &lines[lines.len() - 1])?;
+                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), Some((other.radius, other.mass)), at)?;
                 traps.extend(law_traps);
                 // A mixed pair has no COR of its own: what it realises is said in its traps.
                 let entered = if mixed {
@@ -509,14 +512,14 @@ impl DeckReader for LammpsDeck {
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone() });
+            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone().into() });
             wall_lines.push(format!("fix {} {} wall/gran granular {} zplane 0 NULL", wall.id, wall.group, wall.model.words.join(" ")));
             for (a, body) in bodies.iter().enumerate() {
                 let (coefficients, mut traps) = wall.model.coefficients(&conventions, true);
                 let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), None, &wall.at)?;
                 traps.extend(law_traps);
                 traps.push(format!("wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)", wall.geometry));
-                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone()] });
+                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone().into()] });
             }
         }
         let left_out = r.left_out.iter().map(|(what, (file, lines))| {
