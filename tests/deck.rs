@@ -1659,10 +1659,13 @@ fn a_hertz_pair_is_mixed_whole_in_2025_and_as_hooke_in_2021() {
     assert!(relative(law.stiffness, k * r.sqrt()) < 1e-14);
     assert!(relative(law.damping, d) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.0));
+    // limit_damping of type 2's line: on in the 2025 pair, not in the 2021 one.
+    assert!(law.clamp_attractive);
     let law = read_with(CodeName::Lammps, &path).contacts[1].law;
     assert!(relative(law.stiffness, k) < 1e-14);
     assert!(relative(law.damping, d) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
+    assert!(!law.clamp_attractive);
 }
 
 /// limit_damping on one type's line: the 2025 pair takes it, the 2021 pair does not; and

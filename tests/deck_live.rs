@@ -629,10 +629,12 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
     }
     write_runs("lammps-mixed", &runs);
     // hertz with damping velocity: the mixed pair is hooke too, resolved at this deck's step,
-    // and realises its law's speed-free COR up to the step's band.
+    // and realises its law's speed-free COR up to the step's band; type 2's limit_damping does
+    // not reach it.
     let (report, _) = checked_live(MIXED_HERTZ, CodeName::Lammps, &[1.0, 2.0, 4.0]);
     for i in mixed_rows(&report) {
         assert_eq!((i.law.exponent, i.law.damping_exponent), (1.0, 0.0));
+        assert!(!i.law.clamp_attractive);
         assert!(i.steps_per_contact > 20.0, "{}", i.steps_per_contact);
         let offset = i.cor_realised - i.cor_law;
         assert!(
@@ -664,8 +666,10 @@ fn the_2025_build_runs_a_mixed_pair_as_the_mixed_model() {
         );
     }
     write_runs("lammps-mixed-2025", &runs);
+    // Type 2's limit_damping reaches the mixed pair, and cuts its attractive tail.
     let (report, _) = checked_live(MIXED_HERTZ, CodeName::Lammps2025, &[1.0, 2.0, 4.0]);
     for i in mixed_rows(&report) {
         assert_eq!((i.law.exponent, i.law.damping_exponent), (1.5, 0.0));
+        assert!(i.law.clamp_attractive);
     }
 }
