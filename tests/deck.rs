@@ -552,14 +552,18 @@ fn a_lammps_line_the_build_lacks_or_a_pair_without_coefficients_is_refused() {
             && e.contains("--code lammps-2025"),
         "{e}"
     );
+    // A pair_coeff without its tangential model, which both builds refuse.
     let (_d, path) = deck_files(&[(
-        "in.mix",
-        &format!("{head}pair_coeff 1 1 hertz/material 1e9 0.5 0.3\npair_coeff 2 2 hooke 1e6 0.5\n"),
+        "in.tangential",
+        &format!("{head}pair_coeff * * hertz/material 1e9 0.5 0.3 damping tsuji\n"),
     )]);
     let e = read_deck(&path, None, &DeckOptions::default())
         .unwrap_err()
         .to_string();
-    assert!(e.contains("no pair_coeff covers the types 1 and 2"), "{e}");
+    assert!(
+        e.contains("in.tangential:10: a pair_coeff without a tangential model"),
+        "{e}"
+    );
     let (_d, path) = deck_files(&[(
         "in.dmt",
         &format!("{head}pair_coeff * * dmt 1e9 0.5 0.3 0.1\n"),
@@ -1538,4 +1542,337 @@ fn the_books_yade_example_is_the_recorded_check() {
             .find("```\n<!-- end of yade deck example -->")
             .unwrap()];
     assert_eq!(body, table);
+}
+
+const MIXED: &str = "examples/decks/lammps-mixed/in.mixed";
+const MIXED_HERTZ: &str = "tests/data/deck/lammps-mixed-hertz.in";
+
+/// tsuji's fit as both builds apply it (their probes measure no √2), evaluated at run time as
+/// the reader evaluates it: near e = 0.9 its terms (up to 18) cancel to 0.05, and
+/// the compiler's folding of a constant argument rounds them otherwise (by 2e-14).
+fn poly(e: f64) -> f64 {
+    millimpact::codes::lammps::tsuji_alpha(std::hint::black_box(e))
+}
+
+/// Read `path` with the reader of `code` (the build's fallback conventions: no code runs).
+fn read_with(code: CodeName, path: &Path) -> UserDeck {
+    hide_codes();
+    read_deck(path, Some(code), &DeckOptions::default())
+        .unwrap_or_else(|e| panic!("{e}"))
+        .1
+}
+
+/// Two bead types, each with lines of its own only: the pair 1 2 is LAMMPS's to mix.
+fn two_types(lines: &str) -> String {
+    format!(
+        "units si\natom_style sphere\ncreate_box 2 box\ncreate_atoms 1 single 0 0 0\ncreate_atoms 2 single 1 0 0\n\
+set type 1 diameter 0.004 density 2500\nset type 2 diameter 0.006 density 7800\ntimestep 1e-7\npair_style granular\n{lines}"
+    )
+}
+
+/// The glass–steel pair of the mixed example, as each build mixes it from `pair_coeff 1 1`
+/// and `2 2`: the 2025 build Hertz with the two materials' E* and tsuji's α of √(e₁e₂), the
+/// 2021 build a linear spring of √(k₁k₂) and a dashpot of √(α₁α₂), whatever the lines say.
+#[test]
+fn each_build_mixes_the_pair_of_two_bead_types_as_its_source_does() {
+    let path = root().join(MIXED);
+    let (e1, nu1, c1, e2, nu2, c2): (f64, f64, f64, f64, f64, f64) =
+        (6.3e10, 0.22, 0.9, 2.0e11, 0.3, 0.6);
+    let new = read_with(CodeName::Lammps2025, &path);
+    let (glass, steel) = (&new.bodies[0], &new.bodies[1]);
+    let r: f64 = glass.radius * steel.radius / (glass.radius + steel.radius);
+    let m = glass.mass * steel.mass / (glass.mass + steel.mass);
+    let types: Vec<[TypeRef; 2]> = new.contacts.iter().map(|c| c.types).collect();
+    assert_eq!(types[1], [TypeRef::Type(1), TypeRef::Type(2)]);
+    let pair = &new.contacts[1];
+    let e_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+    let k = 4.0 / 3.0 * e_star * r.sqrt();
+    let alpha = poly((c1 * c2).sqrt());
+    let law = pair.law;
+    assert!(relative(law.stiffness, k) < 1e-14, "{} {k}", law.stiffness);
+    assert!(relative(law.damping, alpha * (m * k).sqrt()) < 1e-14);
+    assert!(relative(law.mass, m) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
+    assert!(!law.clamp_attractive);
+    // The damping is converted after mixing: √(α₁α₂) would be 25 % weaker.
+    assert!(alpha / (poly(c1) * poly(c2)).sqrt() > 1.3);
+    // No COR is entered for a mixed pair; its lines are both types' own.
+    assert_eq!(pair.cor_entered, None);
+    let lines: Vec<usize> = pair
+        .lines
+        .iter()
+        .map(|l| match l {
+            millimpact::codes::deck::DeckSource::Line(l) => l.line,
+            other => panic!("{other}"),
+        })
+        .collect();
+    assert_eq!(lines, [29, 30]);
+    assert!(
+        pair.traps[0].starts_with("mixed: no pair_coeff sets the types 1 and 2"),
+        "{:?}",
+        pair.traps
+    );
+    assert!(
+        pair.traps.iter().any(|t| t.starts_with(
+            "COR of the mixed pair: none entered (the lines have e = 0.9 in 1 1, e = 0.6 in 2 2)"
+        )),
+        "{:?}",
+        pair.traps
+    );
+    // The types' own pairs are their own lines.
+    assert_eq!(new.contacts[0].cor_entered, Some(c1));
+    assert_eq!(new.contacts[2].cor_entered, Some(c2));
+
+    let old = read_with(CodeName::Lammps, &path);
+    let pair = &old.contacts[1];
+    let stored = |e: f64, nu: f64| 4.0 / 3.0 * e / (2.0 * (1.0 - nu * nu));
+    let k = (stored(e1, nu1) * stored(e2, nu2)).sqrt();
+    let d = (poly(c1) * poly(c2)).sqrt();
+    let law = pair.law;
+    assert!(relative(law.stiffness, k) < 1e-14, "{} {k}", law.stiffness);
+    assert!(relative(law.damping, d) < 1e-14, "{} {d}", law.damping);
+    assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
+    assert!(!law.clamp_attractive);
+    assert_eq!(pair.cor_entered, None);
+    assert!(
+        pair.traps
+            .iter()
+            .any(|t| t.starts_with("mixed pair's model left unset")),
+        "{:?}",
+        pair.traps
+    );
+    // The own pairs read the same in both builds.
+    assert_eq!(old.contacts[0].law, new.contacts[0].law);
+}
+
+/// hertz with damping velocity: the 2025 build keeps the form with √(k₁k₂) and √(d₁d₂); the
+/// 2021 build runs those numbers as hooke.
+#[test]
+fn a_hertz_pair_is_mixed_whole_in_2025_and_as_hooke_in_2021() {
+    let path = root().join(MIXED_HERTZ);
+    let new = read_with(CodeName::Lammps2025, &path);
+    let (a, b) = (&new.bodies[0], &new.bodies[1]);
+    let r: f64 = a.radius * b.radius / (a.radius + b.radius);
+    let k = (4e10f64 * 1.3e11).sqrt();
+    let d = 3f64.sqrt();
+    let law = new.contacts[1].law;
+    assert!(relative(law.stiffness, k * r.sqrt()) < 1e-14);
+    assert!(relative(law.damping, d) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.0));
+    // limit_damping of type 2's line: on in the 2025 pair, not in the 2021 one.
+    assert!(law.clamp_attractive);
+    let law = read_with(CodeName::Lammps, &path).contacts[1].law;
+    assert!(relative(law.stiffness, k) < 1e-14);
+    assert!(relative(law.damping, d) < 1e-14);
+    assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
+    assert!(!law.clamp_attractive);
+}
+
+/// limit_damping on one type's line: the 2025 pair takes it, the 2021 pair does not; and
+/// coeff_restitution mixed in 2025 realises the geometric mean of the two e's exactly.
+#[test]
+fn limit_damping_and_coeff_restitution_reach_the_mixed_pair_as_each_build_has_it() {
+    let tsuji = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping tsuji tangential linear_nohistory 0 0 limit_damping\n\
+pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.ld", &tsuji)]);
+    let new = read_with(CodeName::Lammps2025, &path);
+    assert!(new.contacts[1].law.clamp_attractive);
+    assert!(
+        new.contacts[1]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("limit_damping is on in pair_coeff 1 1 only"))
+    );
+    let old = read_with(CodeName::Lammps, &path);
+    assert!(!old.contacts[1].law.clamp_attractive);
+    assert!(
+        old.contacts[1]
+            .traps
+            .iter()
+            .any(|t| t.starts_with("limit_damping of the lines does not reach the mixed pair"))
+    );
+    // The own pair 1 1 keeps its clamp in both.
+    assert!(new.contacts[0].law.clamp_attractive && old.contacts[0].law.clamp_attractive);
+
+    let restitution = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping coeff_restitution tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hertz/material 2e11 0.4 0.3 damping coeff_restitution tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.cr", &restitution)]);
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    let cor = millimpact::solve::dashpot::accurate_metrics(&law, 2.0, 1e-12)
+        .unwrap()
+        .cor;
+    assert!((cor - 0.6).abs() < 1e-9, "{cor}");
+}
+
+/// What LAMMPS refuses, refused with the lines: two own lines of different forms to mix, a
+/// type without its own line, and (in the 2021 build) `pair_coeff J I` with `J > I`.
+#[test]
+fn a_pair_lammps_cannot_mix_is_refused_with_both_lines() {
+    let forms = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping tsuji tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hooke 1e6 0.5 damping velocity tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.forms", &forms)]);
+    let at = |line: usize| format!("{}:{line}", path.display());
+    for code in [CodeName::Lammps, CodeName::Lammps2025] {
+        hide_codes();
+        let e = read_deck(&path, Some(code), &DeckOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.starts_with(&format!("{}: no pair_coeff sets the types 1 and 2, and LAMMPS refuses to mix them from pair_coeff 1 1 ({}: hertz/material damping tsuji tangential linear_nohistory) and 2 2 (here: hooke damping velocity tangential linear_nohistory)", at(11), at(10)))
+                && e.contains("supported: a pair_coeff 1 2 of its own"),
+            "{code}: {e}"
+        );
+    }
+    // A tangential model of another name is another form too.
+    let tangential = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping tsuji tangential mindlin NULL 1.0 0.3\n\
+pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.tangential", &tangential)]);
+    hide_codes();
+    let e = read_deck(&path, Some(CodeName::Lammps2025), &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.tangential:11: no pair_coeff sets the types 1 and 2")
+            && e.contains("tangential mindlin"),
+        "{e}"
+    );
+    // Its own line for every type of the box, in use or not.
+    let three = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping tsuji tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohistory 0 0\n",
+    )
+    .replace("create_box 2 box", "create_box 3 box");
+    let (_d, path) = deck_files(&[("in.three", &three)]);
+    hide_codes();
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.three: no pair_coeff sets the type 3 with itself")
+            && e.contains("All pair coeffs are not set"),
+        "{e}"
+    );
+    // pair_coeff 2 1: the 2021 build sets nothing and refuses it; the 2025 build reads 1 2.
+    let swapped = two_types(
+        "pair_coeff 1 1 hooke 1e6 0.5 damping velocity tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hooke 4e6 2.0 damping velocity tangential linear_nohistory 0 0\n\
+pair_coeff 2 1 hooke 9e6 0.1 damping velocity tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.swapped", &swapped)]);
+    hide_codes();
+    let e = read_deck(&path, Some(CodeName::Lammps), &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.swapped:12: pair_coeff 2 1: this build sets no pair for J < I")
+            && e.contains("supported: pair_coeff 1 2"),
+        "{e}"
+    );
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    assert_eq!((law.stiffness, law.damping), (9e6, 0.1));
+}
+
+/// The command refuses the unmixable deck in one line naming it, exit 2, and runs nothing.
+#[test]
+fn the_command_refuses_a_pair_lammps_cannot_mix_with_exit_2() {
+    hide_codes();
+    let forms = two_types(
+        "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping tsuji tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hertz 1e9 0.5 damping tsuji tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.forms", &forms)]);
+    for code in ["lammps", "lammps-2025"] {
+        let out = millimpact()
+            .args(["deck", path.to_str().unwrap(), "--code", code])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        assert!(out.stdout.is_empty());
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(
+            err.starts_with("error: ")
+                && err.contains("in.forms:11: no pair_coeff sets the types 1 and 2")
+                && err.contains("in.forms:10: hertz/material"),
+            "{err}"
+        );
+    }
+}
+
+/// A mixed pair the 2021 build damps beyond critical (viscoelastic numbers run as a velocity
+/// dashpot) never separates: its row says so, and no run is started for it.
+#[test]
+fn a_mixed_pair_that_never_separates_is_reported_not_run() {
+    let sticky = two_types(
+        "pair_coeff 1 1 hertz 4e10 5e8 damping viscoelastic tangential linear_nohistory 0 0\n\
+pair_coeff 2 2 hertz 1.3e11 8e8 damping viscoelastic tangential linear_nohistory 0 0\n",
+    );
+    let (_d, path) = deck_files(&[("in.sticky", &sticky)]);
+    let deck = read_with(CodeName::Lammps, &path);
+    let zeta = deck.contacts[1].law.never_separates().unwrap();
+    assert!(zeta > 1e5, "{zeta}");
+    assert!(
+        deck.contacts[1]
+            .traps
+            .iter()
+            .any(|t| t.contains("the bodies never separate, COR 0")),
+        "{:?}",
+        deck.contacts[1].traps
+    );
+    let report = check_deck(
+        CodeName::Lammps,
+        &deck,
+        (vec![2.0], "given".into()),
+        &RecordedRuns::default(),
+    )
+    .unwrap();
+    let row = &report.impacts[1];
+    assert_eq!(row.pair, "1–2");
+    assert_eq!(row.cor_law, 0.0);
+    assert!(row.cor_realised.is_nan() && row.steps == 0);
+    assert!(row.failure.as_deref().unwrap().starts_with("not run: the law these lines make the code integrate is a linear spring with a dashpot of damping ratio"), "{:?}", row.failure);
+    // The own pairs went to the runner (here: none recorded).
+    assert!(
+        report.impacts[0]
+            .failure
+            .as_deref()
+            .unwrap()
+            .contains("no recorded run")
+    );
+    // In the 2025 build the pair stays viscoelastic Hertz, and separates.
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    assert_eq!(law.never_separates(), None);
+}
+
+/// The mixed example's check in each build, from runs recorded in it: the table and JSON.
+#[test]
+fn snapshots_of_the_mixed_deck_in_each_build() {
+    hide_codes();
+    std::env::set_current_dir(root()).unwrap();
+    for (code, runs) in [
+        (CodeName::Lammps, "lammps-mixed"),
+        (CodeName::Lammps2025, "lammps-mixed-2025"),
+    ] {
+        let runs: RecordedRuns = serde_json::from_str(
+            &std::fs::read_to_string(root().join(format!("tests/data/deck/{runs}.runs.json")))
+                .unwrap(),
+        )
+        .unwrap();
+        let (code, deck) =
+            read_deck(Path::new(MIXED), Some(code), &DeckOptions::default()).unwrap();
+        let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+        assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+        for format in [Format::Table, Format::Json] {
+            let text = export(&report, format).unwrap();
+            insta::assert_snapshot!(format!("deck_lammps_mixed_{code}_{format}"), text);
+        }
+    }
 }

@@ -306,6 +306,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a LAMMPS pair of types the code refuses to mix (lines of different forms)",
+            &["deck", "tests/data/deck/unmixable.in"],
+        ),
+        trial(
+            "deck",
             "a Kratos law the check cannot step",
             &["deck", "tests/data/deck/kratos-conical/MaterialsDEM.json"],
         ),

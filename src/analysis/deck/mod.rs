@@ -384,6 +384,18 @@ struct Planned {
     impact: DeckImpactInput,
 }
 
+/// An impact as planned: run, or not run because its own law ends no contact.
+enum Plan {
+    /// Run in the code.
+    Run(Box<Planned>),
+    /// Not run: the law never separates the bodies (damping ratio ζ ≥ 1).
+    NeverSeparates {
+        contact: usize,
+        velocity: f64,
+        zeta: f64,
+    },
+}
+
 /// Check `deck` (read by `code`) at `velocities`, running each impact with `runner`. Every
 /// input is rendered before the first run, so that a deck that cannot be rendered runs nothing.
 pub fn check_deck(
@@ -401,6 +413,15 @@ pub fn check_deck(
     let mut planned = Vec::new();
     for (k, contact) in deck.contacts.iter().enumerate() {
         for &v in &velocities.0 {
+            // A contact with no end has no step count and nothing a run could measure.
+            if let Some(zeta) = contact.law.never_separates() {
+                planned.push(Plan::NeverSeparates {
+                    contact: k,
+                    velocity: v,
+                    zeta,
+                });
+                continue;
+            }
             let exact = accurate_metrics(&contact.law, v, 1e-12)?;
             let steps = ceil_count(1.05 * exact.contact_time / dt)
                 .map_or(u64::MAX, |n| n.saturating_add(3));
@@ -413,30 +434,34 @@ pub fn check_deck(
                 .into());
             }
             let impact = reader.render(deck, k, v, steps)?;
-            planned.push(Planned {
+            planned.push(Plan::Run(Box::new(Planned {
                 contact: k,
                 velocity: v,
                 steps,
                 impact,
-            });
+            })));
         }
     }
-    let runs: Vec<Result<ImpactRun, CodeError>> = planned
+    // Each impact runs and is read on its own; the rows keep the plan's order.
+    let rows: Vec<(DeckImpact, Option<String>)> = planned
         .par_iter()
-        .map(|p| runner.run(code, &p.impact, &deck.contacts[p.contact].law))
+        .map(|plan| match plan {
+            Plan::Run(p) => match runner.run(code, &p.impact, &deck.contacts[p.contact].law) {
+                Ok(run) => (
+                    impact_row(deck, p, driver, Ok(&run.trajectory)),
+                    Some(run.code_version),
+                ),
+                Err(e) => (impact_row(deck, p, driver, Err(&e)), None),
+            },
+            &Plan::NeverSeparates {
+                contact,
+                velocity,
+                zeta,
+            } => (never_separating_row(deck, contact, velocity, zeta), None),
+        })
         .collect();
-    let mut version = None;
-    let mut impacts = Vec::new();
-    for (p, run) in planned.iter().zip(runs) {
-        let row = match run {
-            Ok(run) => {
-                version.get_or_insert(run.code_version.clone());
-                impact_row(deck, p, driver, Ok(&run.trajectory))
-            }
-            Err(e) => impact_row(deck, p, driver, Err(&e)),
-        };
-        impacts.push(row);
-    }
+    let version = rows.iter().find_map(|(_, v)| v.clone());
+    let impacts: Vec<DeckImpact> = rows.into_iter().map(|(row, _)| row).collect();
     Ok(DeckReport {
         deck: deck.path.display().to_string(),
         code,
@@ -474,6 +499,72 @@ fn stepped_cor(
     trajectory_metrics(&trajectory).map_or(f64::NAN, |m| m.cor)
 }
 
+/// The smaller Rayleigh time of a pair's particles, s (none where a particle has no Young's
+/// modulus).
+fn smallest_rayleigh_time(body: &DeckBody, partner: Option<&DeckBody>) -> Option<f64> {
+    [Some(body), partner]
+        .into_iter()
+        .flatten()
+        .map(|b| match (b.youngs_modulus, b.poisson_ratio) {
+            (Some(e), Some(nu)) => Some(rayleigh_time(b.radius, b.density, e, nu)),
+            _ => None,
+        })
+        .collect::<Option<Vec<f64>>>()
+        .map(|t| t.into_iter().fold(f64::INFINITY, f64::min))
+}
+
+/// The row of an impact not run because its law never separates the bodies: the law and the
+/// traps, the figures NaN, and why.
+fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f64) -> DeckImpact {
+    let c = &deck.contacts[contact];
+    let body = &deck.bodies[c.body];
+    let partner_body = match c.partner {
+        Partner::Body(o) => Some(&deck.bodies[o]),
+        Partner::Wall(_) => None,
+    };
+    let nan = f64::NAN;
+    let rayleigh = smallest_rayleigh_time(body, partner_body);
+    let pair = pair_label(deck, contact);
+    DeckImpact {
+        types: c.types,
+        run: format!("{pair}@{velocity} (not run)"),
+        pair,
+        wall: match c.partner {
+            Partner::Wall(w) => Some(deck.walls[w].name.clone()),
+            Partner::Body(_) => None,
+        },
+        model: c.model.clone(),
+        radius: body.radius,
+        partner_radius: partner_body.map(|o| o.radius),
+        impact_velocity: velocity,
+        cor_entered: c.cor_entered,
+        cor_realised: nan,
+        cor_law: 0.0,
+        cor_law_stepped: nan,
+        model_difference: c.cor_entered.map(|e| -e),
+        integration_difference: nan,
+        remainder: nan,
+        integration_band: Range { min: nan, max: nan },
+        contact_time: f64::INFINITY,
+        force_contact_time: f64::INFINITY,
+        peak_overlap: nan,
+        peak_overlap_ratio: nan,
+        timestep: deck.timestep,
+        steps: 0,
+        start_gap: 0.0,
+        steps_per_contact: f64::INFINITY,
+        rayleigh_time: rayleigh,
+        step_over_rayleigh: rayleigh.map(|t| deck.timestep / t),
+        paper_loss_coefficient: nan,
+        law: c.law,
+        traps: c.traps.clone(),
+        warnings: Vec::new(),
+        failure: Some(format!(
+            "not run: the law these lines make the code integrate is a linear spring with a dashpot of damping ratio ζ = {zeta:.4e} ≥ 1, overdamped: the bodies approach and creep back without ever separating (COR 0, no end of contact to run to)"
+        )),
+    }
+}
+
 fn impact_row(
     deck: &UserDeck,
     p: &Planned,
@@ -505,15 +596,7 @@ fn impact_row(
             band.max = band.max.max(d);
         }
     }
-    let rayleigh = [Some(body), partner_body]
-        .into_iter()
-        .flatten()
-        .map(|b| match (b.youngs_modulus, b.poisson_ratio) {
-            (Some(e), Some(nu)) => Some(rayleigh_time(b.radius, b.density, e, nu)),
-            _ => None,
-        })
-        .collect::<Option<Vec<f64>>>()
-        .map(|t| t.into_iter().fold(f64::INFINITY, f64::min));
+    let rayleigh = smallest_rayleigh_time(body, partner_body);
     let smaller_radius = partner_body.map_or(body.radius, |o| o.radius.min(body.radius));
     let (metrics, failure) = match run {
         Ok(t) => match trajectory_metrics(t) {
@@ -541,6 +624,12 @@ fn impact_row(
             "resolution: {steps_per_contact:.1} steps per contact (below {MIN_STEPS_PER_CONTACT}): the step alone moves the COR by {} to {}",
             signed(band.min),
             signed(band.max)
+        ));
+    }
+    if cor_realised > 1.0 {
+        warnings.push(format!(
+            "energy gain: the run's COR {cor_realised:.6} exceeds 1: the bodies leave faster than they came; the step ({} s) is too long for this contact ({steps_per_contact:.1} steps), which the step integrates unstably",
+            sci(dt)
         ));
     }
     let step_over_rayleigh = rayleigh.map(|t| dt / t);
