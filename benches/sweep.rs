@@ -12,8 +12,16 @@
 //!   no case, no row, no output.
 //! - `floor-single-chain`: the same without lanes, one impact after another.
 //!
-//! Rows go to `std::io::sink()`. `cargo bench --bench sweep`; the wall time a user gets from the
-//! command line is measured by `bash benches/sweep_wall.sh`.
+//! Rows go to `std::io::sink()`.
+//!
+//! And the rows' encoding alone, the same 10^4 rows of that sweep on one thread:
+//!
+//! - `csv-writer`: through the csv crate's serde writer, its lines counted after (how rows were
+//!   written before `CsvRecords`).
+//! - `csv-records`: through `CsvRecords`, the same bytes.
+//!
+//! `cargo bench --bench sweep`; the wall time a user gets from the command line is measured by
+//! `bash benches/sweep_wall.sh`.
 
 use std::hint::black_box;
 use std::path::PathBuf;
@@ -26,12 +34,14 @@ use millimpact::analysis::run::IntegrationOptions;
 use millimpact::analysis::source::Resolution;
 use millimpact::analysis::sweep::grid::{Point, SweepFile};
 use millimpact::analysis::sweep::legacy::{EtaRange, Streamed};
-use millimpact::analysis::sweep::point::{GridOptions, single_point};
+use millimpact::analysis::sweep::point::{GridOptions, method_rows, single_point};
+use millimpact::analysis::sweep::row::SweepRow;
 use millimpact::analysis::sweep::rows::{RowFormat, RowWriter};
 use millimpact::analysis::sweep::run_grid;
 use millimpact::model::case::Case;
 use millimpact::model::law::PaperLaw;
 use millimpact::output::Format;
+use millimpact::output::csv_record::CsvRecords;
 use millimpact::solve::paper::{self, Settings};
 use rayon::prelude::*;
 
@@ -74,7 +84,7 @@ fn per_point(sweep: &SweepFile, points: &[Point], pool: &rayon::ThreadPool) {
 fn chunked(sweep: &SweepFile, indices: &[usize]) {
     let mut out = std::io::sink();
     let mut write = |rows: millimpact::analysis::sweep::rows::EncodedRows| {
-        std::io::Write::write_all(&mut out, &rows.into_bytes()?)
+        std::io::Write::write_all(&mut out, &rows.into_bytes())
     };
     run_grid(
         sweep,
@@ -142,6 +152,54 @@ fn floor(
     })
 }
 
+/// The rows through the csv crate's writer, and their lines counted.
+fn by_csv_writer(rows: &[SweepRow]) -> (usize, usize) {
+    let mut writer = csv::WriterBuilder::new()
+        .has_headers(false)
+        .terminator(csv::Terminator::Any(b'\n'))
+        .from_writer(Vec::with_capacity(640 * rows.len()));
+    for row in rows {
+        writer.serialize(row.record()).expect("rows serialise");
+    }
+    let bytes = writer.into_inner().expect("into memory");
+    let lines = bytes.iter().filter(|&&b| b == b'\n').count();
+    (bytes.len(), lines)
+}
+
+/// The rows through `CsvRecords`.
+fn by_csv_records(rows: &[SweepRow]) -> (usize, usize) {
+    let mut records = CsvRecords::with_capacity(640 * rows.len());
+    for row in rows {
+        row.write_csv(&mut records).expect("rows serialise");
+    }
+    (records.as_bytes().len(), records.lines())
+}
+
+fn rows_1e4(c: &mut Criterion) {
+    let sweep = SweepFile::load(&root().join("sweeps/eta.toml")).expect("sweeps/eta.toml");
+    let points: Vec<Point> = sweep.points(None);
+    let mut rows = Vec::with_capacity(points.len());
+    method_rows(
+        &sweep,
+        &points,
+        &options(),
+        &AtomicBool::new(false),
+        &mut |row| {
+            rows.push(row.clone());
+            Ok(())
+        },
+    )
+    .expect("the sweep runs");
+    assert_eq!(by_csv_writer(&rows), by_csv_records(&rows));
+    let mut group = c.benchmark_group("rows-1e4-csv-1-thread");
+    group.sample_size(20);
+    group.bench_function("csv-writer", |b| b.iter(|| black_box(by_csv_writer(&rows))));
+    group.bench_function("csv-records", |b| {
+        b.iter(|| black_box(by_csv_records(&rows)))
+    });
+    group.finish();
+}
+
 fn sweep_1e4(c: &mut Criterion) {
     let sweep = SweepFile::load(&root().join("sweeps/eta.toml")).expect("sweeps/eta.toml");
     let choice = sweep.tolerance.expect("eta.toml asks for a tolerance");
@@ -188,6 +246,6 @@ criterion_group! {
     config = Criterion::default()
         .warm_up_time(Duration::from_millis(500))
         .measurement_time(Duration::from_secs(3));
-    targets = sweep_1e4
+    targets = sweep_1e4, rows_1e4
 }
 criterion_main!(benches);

@@ -429,14 +429,27 @@ pub struct ReportArgs {
     /// Folder of stored references.
     #[arg(long, default_value = "reference")]
     pub reference: PathBuf,
-    /// Kill a code after this many seconds (with --live).
+    /// Kill a code after this many seconds (with --live, and the decks' runs).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// A deck of your own to check as `deck` checks it (its code runs now), in a part of its
+    /// own; repeat for several.
+    #[arg(long = "deck", value_name = "FILE")]
+    pub decks: Vec<PathBuf>,
+    /// Impact speed for the decks, m/s; repeat for several [default: as `deck`].
+    #[arg(long = "deck-impact-velocity", value_name = "V", value_parser = parse_positive)]
+    pub deck_impact_velocity: Vec<f64>,
+    /// A particle the decks compute at run time, `TYPE:RADIUS:DENSITY`, as `deck --particle`.
+    #[arg(long = "deck-particle", value_name = "TYPE:RADIUS:DENSITY", value_parser = parse_particle)]
+    pub deck_particle: Vec<millimpact::codes::deck::GivenParticle>,
+    /// A variable defined before each deck is read, `NAME=VALUE`, as `deck --var`.
+    #[arg(long = "deck-var", value_name = "NAME=VALUE", value_parser = parse_variable)]
+    pub deck_variables: Vec<(String, String)>,
 }
 
 /// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.
 fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, String> {
-    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type from 1, radius (m) and density (kg/m³) positive";
+    let allowed = "allowed: TYPE:RADIUS:DENSITY, a whole type (an atom type from 1, a YADE O.materials id from 0), radius (m) and density (kg/m³) positive";
     let parts: Vec<&str> = text.split(':').collect();
     let [t, r, rho] = parts[..] else {
         return Err(format!("`{text}`: {allowed}"));
@@ -446,13 +459,11 @@ fn parse_particle(text: &str) -> Result<millimpact::codes::deck::GivenParticle, 
         parse_positive(r),
         parse_positive(rho),
     ) {
-        (Ok(type_id), Ok(radius), Ok(density)) if type_id >= 1 => {
-            Ok(millimpact::codes::deck::GivenParticle {
-                type_id,
-                radius,
-                density,
-            })
-        }
+        (Ok(type_id), Ok(radius), Ok(density)) => Ok(millimpact::codes::deck::GivenParticle {
+            type_id,
+            radius,
+            density,
+        }),
         _ => Err(format!("`{text}`: {allowed}")),
     }
 }
@@ -474,7 +485,8 @@ fn parse_variable(text: &str) -> Result<(String, String), String> {
 /// `millimpact deck`.
 #[derive(Debug, Args)]
 pub struct DeckArgs {
-    /// The deck: a LIGGGHTS or LAMMPS input script (Kratos and YADE decks are not read yet).
+    /// The deck: a LIGGGHTS or LAMMPS input script, a Kratos MaterialsDEM.json or
+    /// ProjectParametersDEM.json, or a YADE Python script.
     pub deck: PathBuf,
     /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
     /// speed: the deck's own, else 2 m/s].
@@ -483,8 +495,8 @@ pub struct DeckArgs {
     /// The code (build) that reads and runs the deck [default: the first whose input it is].
     #[arg(long, value_parser = code_parser())]
     pub code: Option<CodeName>,
-    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³); repeat for
-    /// several; it replaces the deck's own sizes of that type.
+    /// A particle the deck computes at run time, `TYPE:RADIUS:DENSITY` (m, kg/m³; Kratos: TYPE
+    /// is the material id); repeat for several; it replaces the deck's own sizes of that type.
     #[arg(long, value_parser = parse_particle)]
     pub particle: Vec<millimpact::codes::deck::GivenParticle>,
     /// A variable defined before the deck is read, `NAME=VALUE` (as `-var NAME VALUE`).

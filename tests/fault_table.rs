@@ -306,6 +306,21 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "deck",
+            "a LAMMPS pair of types the code refuses to mix (lines of different forms)",
+            &["deck", "tests/data/deck/unmixable.in"],
+        ),
+        trial(
+            "deck",
+            "a Kratos law the check cannot step",
+            &["deck", "tests/data/deck/kratos-conical/MaterialsDEM.json"],
+        ),
+        trial(
+            "deck",
+            "a YADE functor the check cannot model (capillary)",
+            &["deck", "tests/data/deck/yade-capillary.py"],
+        ),
+        trial(
+            "deck",
             "a file no code's reader takes",
             &["deck", "cases/ball_plate.toml"],
         ),

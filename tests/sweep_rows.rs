@@ -212,3 +212,212 @@ fn the_issue_sweep_puts_the_code_under_code() {
         }
     }
 }
+
+mod encoding {
+    //! The rows' CSV bytes are the csv crate's: every kind of row (any text, any double, any
+    //! axis value, empty cells) written by `CsvRecords` equals what `csv::Writer::serialize`
+    //! writes for the same typed record, byte for byte, both forms.
+
+    use millimpact::analysis::run::SweepRow as LegacyRow;
+    use millimpact::analysis::sweep::row::{
+        AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow,
+    };
+    use millimpact::codes::CodeName;
+    use millimpact::output::csv_record::{CsvRecords, header_of};
+    use millimpact::solve::Method;
+    use proptest::prelude::*;
+
+    /// Text with what CSV must quote (commas, quotes, line breaks) among the rest.
+    fn text() -> impl Strategy<Value = String> {
+        "[a-z0-9 ,\"\\n\\r#;:é.-]{0,14}"
+    }
+
+    /// Any double (NaN, infinities, subnormals), or one log-uniform over the doubles'
+    /// magnitudes, of either sign: the exponent and plain forms of the shortest text.
+    fn number() -> impl Strategy<Value = f64> {
+        prop_oneof![
+            any::<f64>(),
+            (-323.0f64..308.0, any::<bool>()).prop_map(|(e, negative)| if negative {
+                -1.0
+            } else {
+                1.0
+            } * 10f64.powf(e)),
+            (0u32..100_000).prop_map(|i| f64::from(i) * 1e-4),
+        ]
+    }
+
+    fn axis_value() -> impl Strategy<Value = toml::Value> {
+        prop_oneof![
+            number().prop_map(toml::Value::Float),
+            any::<i64>().prop_map(toml::Value::Integer),
+            text().prop_map(toml::Value::String),
+            any::<bool>().prop_map(toml::Value::Boolean),
+        ]
+    }
+
+    fn row(axes: usize) -> impl Strategy<Value = SweepRow> {
+        (
+            (text(), any::<usize>()),
+            proptest::collection::vec(axis_value(), axes),
+            (
+                proptest::option::of(proptest::sample::select(Method::ALL.to_vec())),
+                proptest::option::of(proptest::sample::select(CodeName::ALL.to_vec())),
+                proptest::option::of(any::<u32>()),
+                proptest::option::of(any::<u32>()),
+                proptest::option::of(number()),
+            ),
+            (
+                proptest::option::of(text()),
+                proptest::collection::vec(proptest::option::of(number()), 24),
+                proptest::option::of(any::<u64>()),
+                proptest::option::of(any::<u64>()),
+                proptest::option::of(text()),
+                proptest::option::of(any::<usize>()),
+            ),
+            prop_oneof![
+                Just(RowStatus::ok()),
+                text().prop_map(|t| RowStatus::failed(&t))
+            ],
+        )
+            .prop_map(
+                |(
+                    (sweep, point),
+                    values,
+                    source,
+                    (case, f, steps, rhs, version, batch),
+                    status,
+                )| {
+                    SweepRow {
+                        identity: RowIdentity { sweep, point },
+                        axes: values
+                            .into_iter()
+                            .enumerate()
+                            .map(|(i, value)| AxisValue {
+                                key: format!("axis{i}"),
+                                value,
+                            })
+                            .collect(),
+                        source: PointSource {
+                            method: source.0,
+                            code: source.1,
+                            steps_per_period: source.2,
+                            steps_per_contact: source.3,
+                            rtol: source.4,
+                        },
+                        figures: PointFigures {
+                            case,
+                            eta: f[0],
+                            reduced_mass: f[1],
+                            contact_stiffness: f[2],
+                            exponent: f[3],
+                            cor: f[4],
+                            cor_target: f[5],
+                            cor_error: f[6],
+                            peak_deformation: f[7],
+                            peak_deformation_exact: f[8],
+                            peak_deformation_error: f[9],
+                            peak_force: f[10],
+                            peak_force_exact: f[11],
+                            contact_time: f[12],
+                            contact_time_exact: f[13],
+                            contact_time_error: f[14],
+                            compression_time: f[15],
+                            restitution_time: f[16],
+                            absorbed_energy: f[17],
+                            steps,
+                            rhs_evaluations: rhs,
+                            timestep: f[18],
+                            wall_time: f[19],
+                            loop_time: f[20],
+                            whole_wall_time: f[21],
+                            own_law_cor: f[22],
+                            own_law_stepped_cor: f[23],
+                            code_version: version,
+                            batch,
+                        },
+                        status,
+                    }
+                },
+            )
+    }
+
+    fn legacy_row() -> impl Strategy<Value = LegacyRow> {
+        (
+            text(),
+            proptest::sample::select(Method::ALL.to_vec()),
+            proptest::collection::vec(number(), 15),
+            any::<u64>(),
+            any::<u64>(),
+            number(),
+        )
+            .prop_map(|(case, method, f, steps, rhs, wall)| LegacyRow {
+                case,
+                method: method.name(),
+                loss_coefficient: f[0],
+                cor: f[1],
+                cor_exact: f[2],
+                cor_error: f[3],
+                peak_deformation: f[4],
+                peak_deformation_exact: f[5],
+                peak_deformation_error: f[6],
+                peak_force: f[7],
+                contact_time: f[8],
+                contact_time_exact: f[9],
+                contact_time_error: f[10],
+                compression_time: f[11],
+                restitution_time: f[12],
+                absorbed_energy: f[13],
+                absorbed_fraction: f[14],
+                steps,
+                rhs_evaluations: rhs,
+                wall_time: wall,
+            })
+    }
+
+    fn rows() -> impl Strategy<Value = Vec<SweepRow>> {
+        (0usize..4).prop_flat_map(|axes| proptest::collection::vec(row(axes), 1..6))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(512))]
+
+        /// A sweep file's rows, and the lines they take (a failed row's line is found by it).
+        #[test]
+        fn sweep_rows_are_the_csv_crates_bytes(rows in rows()) {
+            let mut csv = csv::WriterBuilder::new()
+                .has_headers(false)
+                .terminator(csv::Terminator::Any(b'\n'))
+                .from_writer(Vec::new());
+            let mut ours = CsvRecords::default();
+            for r in &rows {
+                csv.serialize(r.record()).unwrap();
+                r.write_csv(&mut ours).unwrap();
+            }
+            let csv = csv.into_inner().unwrap();
+            prop_assert_eq!(
+                String::from_utf8_lossy(ours.as_bytes()),
+                String::from_utf8_lossy(&csv)
+            );
+            prop_assert_eq!(ours.as_bytes(), &csv[..]);
+            prop_assert_eq!(ours.lines(), csv.iter().filter(|&&b| b == b'\n').count());
+            prop_assert_eq!(ours.records(), rows.len());
+        }
+
+        /// The legacy form's rows with their header.
+        #[test]
+        fn legacy_rows_are_the_csv_crates_bytes(
+            rows in proptest::collection::vec(legacy_row(), 1..6)
+        ) {
+            let mut csv = csv::Writer::from_writer(Vec::new());
+            let mut ours = CsvRecords::default();
+            for r in &rows {
+                csv.serialize(r).unwrap();
+                ours.push(r).unwrap();
+            }
+            let csv = csv.into_inner().unwrap();
+            let ours = [header_of(&rows[0]).unwrap(), ours.into_bytes()].concat();
+            prop_assert_eq!(String::from_utf8_lossy(&ours), String::from_utf8_lossy(&csv));
+            prop_assert_eq!(ours, csv);
+        }
+    }
+}

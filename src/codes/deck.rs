@@ -38,14 +38,67 @@ impl Serialize for SourceLine {
     }
 }
 
+/// Where something was set in a deck: a line of a script (LIGGGHTS, LAMMPS), or a field of a
+/// structured file, by its path (Kratos' JSON files, which have no lines to speak of: a value
+/// is found by its keys, as the code finds it).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum DeckSource {
+    /// A line of a script.
+    Line(SourceLine),
+    /// A field of a structured file.
+    Field {
+        /// The file.
+        file: PathBuf,
+        /// The field's path (`material_relations[1].Variables.COEFFICIENT_OF_RESTITUTION`).
+        path: String,
+    },
+}
+
+impl DeckSource {
+    /// The field at `path` of `file`.
+    pub fn field(file: &Path, path: impl Into<String>) -> Self {
+        DeckSource::Field {
+            file: file.to_path_buf(),
+            path: path.into(),
+        }
+    }
+}
+
+impl From<SourceLine> for DeckSource {
+    fn from(line: SourceLine) -> Self {
+        DeckSource::Line(line)
+    }
+}
+
+impl From<&SourceLine> for DeckSource {
+    fn from(line: &SourceLine) -> Self {
+        DeckSource::Line(line.clone())
+    }
+}
+
+impl fmt::Display for DeckSource {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            DeckSource::Line(line) => line.fmt(f),
+            DeckSource::Field { file, path } => write!(f, "{}: {path}", file.display()),
+        }
+    }
+}
+
+impl Serialize for DeckSource {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
 /// A deck that cannot be checked as written: bad input (exit 2), and nothing is run.
 #[derive(Debug, Error)]
 pub enum DeckError {
-    /// A line holds something unsupported or unresolvable.
+    /// A line (or a field) holds something unsupported or unresolvable.
     #[error("{at}: {what}; supported: {supported}")]
     Unsupported {
         /// Where.
-        at: SourceLine,
+        at: DeckSource,
         /// What was found, with its value.
         what: String,
         /// What is supported there.
@@ -80,10 +133,10 @@ pub enum DeckError {
 }
 
 impl DeckError {
-    /// An unsupported or unresolvable line.
-    pub fn unsupported(at: &SourceLine, what: String, supported: &str) -> Self {
+    /// An unsupported or unresolvable line (or field).
+    pub fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
         DeckError::Unsupported {
-            at: at.clone(),
+            at: at.into(),
             what,
             supported: supported.to_string(),
         }
@@ -148,7 +201,7 @@ pub struct DeckWall {
     /// Poisson's ratio of its material, where the model uses one.
     pub poisson_ratio: Option<f64>,
     /// Where it is defined.
-    pub from: SourceLine,
+    pub from: DeckSource,
 }
 
 /// The other body of a pair.
@@ -179,8 +232,8 @@ pub struct DeckContact {
     pub law: DashpotLaw,
     /// The convention traps these lines meet.
     pub traps: Vec<String>,
-    /// The lines that set this pair's contact.
-    pub lines: Vec<SourceLine>,
+    /// The lines (or fields) that set this pair's contact.
+    pub lines: Vec<DeckSource>,
 }
 
 /// The lines of the user's deck an impact input carries, as the code will read them

@@ -11,7 +11,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use super::{CommandOutput, write_output};
 use crate::cli::ReportArgs;
 use millimpact::analysis::compare::CANONICAL_CASES;
-use millimpact::analysis::report::{ReportOptions, ReportTable, build_report};
+use millimpact::analysis::report::{ReportOptions, ReportTable, add_decks, build_report};
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
@@ -49,6 +49,16 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         .iter()
         .map(|p| Case::load(p))
         .collect::<Result<Vec<_>, _>>()?;
+    // The decks are read before any work too: one that cannot be checked runs nothing.
+    let given = super::deck::Given {
+        particles: &args.deck_particle,
+        variables: &args.deck_variables,
+    };
+    let decks = args
+        .decks
+        .iter()
+        .map(|path| super::deck::read(path, None, &given))
+        .collect::<Result<Vec<_>>>()?;
     let options = ReportOptions {
         live: args.live,
         reference: args.reference.clone(),
@@ -56,9 +66,10 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         revision: revision(),
     };
     // A progress bar on a terminal, none when output is piped or under CI.
-    let interactive =
-        std::io::stderr().is_terminal() && std::env::var_os("CI").is_none() && args.live;
-    let stages = cases.len() as u64 + 4;
+    let interactive = std::io::stderr().is_terminal()
+        && std::env::var_os("CI").is_none()
+        && (args.live || !args.decks.is_empty());
+    let stages = cases.len() as u64 + 4 + decks.len() as u64;
     let bar = interactive.then(|| {
         let bar = ProgressBar::new(stages);
         bar.set_style(
@@ -73,7 +84,19 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
             bar.inc(1);
         }
     };
-    let report = build_report(Path::new("."), &cases, &options, &mut progress)?;
+    let mut report = build_report(Path::new("."), &cases, &options, &mut progress)?;
+    let mut checks = Vec::new();
+    for (code, deck) in &decks {
+        progress(&format!("{}: running {code}", deck.path.display()));
+        checks.push(super::deck::check(
+            *code,
+            deck,
+            &args.deck_impact_velocity,
+            &given,
+            args.timeout,
+        )?);
+    }
+    add_decks(&mut report, &checks)?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }
@@ -129,6 +152,6 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
             written
         ),
         failure: (!missing.is_empty())
-            .then(|| CheckFailed(format!("report --live: {}", missing.join("; ")))),
+            .then(|| CheckFailed(format!("report: {}", missing.join("; ")))),
     })
 }

@@ -124,6 +124,16 @@ impl DashpotLaw {
             ..self
         }
     }
+
+    /// The damping ratio `ζ = c/(2√(M k))` of a linear spring with a constant dashpot, not
+    /// clamped, damped at or beyond critical (`ζ ≥ 1`): from touch such a pair approaches and
+    /// then creeps back towards zero overlap without ever reaching it, so its bodies never
+    /// separate and its contact has no end. `None` for any other law.
+    pub fn never_separates(&self) -> Option<f64> {
+        let linear = (self.exponent - 1.0).abs() < 1e-12 && self.damping_exponent.abs() < 1e-12;
+        let zeta = self.damping / (2.0 * (self.mass * self.stiffness).sqrt());
+        (linear && !self.clamp_attractive && zeta >= 1.0).then_some(zeta)
+    }
 }
 
 impl PaperLaw {

@@ -6,6 +6,7 @@
 //! Markdown forms lay out the same [`Section`]s.
 
 pub mod chart;
+pub mod csv_record;
 pub mod files;
 pub mod invocation;
 pub mod report_page;

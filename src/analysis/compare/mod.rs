@@ -140,6 +140,51 @@ pub struct ModelPoint {
     pub compression_time: f64,
 }
 
+/// A [`ModelPoint`] as one CSV row: its offsets side by side.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ModelPointRecord {
+    /// Case name.
+    pub case: String,
+    /// The code whose law this is.
+    pub code: CodeName,
+    /// The COR asked for.
+    pub restitution: f64,
+    /// The paper's η for it.
+    pub loss_coefficient: f64,
+    /// The COR the code's law realises (exact integration).
+    pub law_cor: f64,
+    /// COR, own law exact − paper's law exact, relative.
+    pub cor: f64,
+    /// Peak deformation, relative difference.
+    pub peak_deformation: f64,
+    /// Peak force, relative difference.
+    pub peak_force: f64,
+    /// Contact time by overlap, relative difference.
+    pub contact_time: f64,
+    /// Contact time by force, relative to the paper's contact time.
+    pub force_contact_time: f64,
+    /// Compression time, relative difference.
+    pub compression_time: f64,
+}
+
+impl From<&ModelPoint> for ModelPointRecord {
+    fn from(p: &ModelPoint) -> Self {
+        ModelPointRecord {
+            case: p.case.clone(),
+            code: p.code,
+            restitution: p.restitution,
+            loss_coefficient: p.loss_coefficient,
+            law_cor: p.law_cor,
+            cor: p.offsets.cor,
+            peak_deformation: p.offsets.peak_deformation,
+            peak_force: p.offsets.peak_force,
+            contact_time: p.offsets.contact_time,
+            force_contact_time: p.offsets.force_contact_time,
+            compression_time: p.compression_time,
+        }
+    }
+}
+
 /// Each code's law, as its driver sets it up for `case` at each COR in `restitutions`,
 /// against the paper's law at the same COR, both integrated exactly.
 pub fn model_by_restitution(case: &Case, restitutions: &[f64]) -> Result<Vec<ModelPoint>> {

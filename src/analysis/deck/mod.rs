@@ -33,7 +33,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
-use crate::solve::dashpot::{StepScheme, accurate_metrics, step_trajectory_from};
+use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
 /// canonical cases' speed, typical of a ball's fall in a mill).
@@ -384,6 +384,18 @@ struct Planned {
     impact: DeckImpactInput,
 }
 
+/// An impact as planned: run, or not run because its own law ends no contact.
+enum Plan {
+    /// Run in the code.
+    Run(Box<Planned>),
+    /// Not run: the law never separates the bodies (damping ratio ζ ≥ 1).
+    NeverSeparates {
+        contact: usize,
+        velocity: f64,
+        zeta: f64,
+    },
+}
+
 /// Check `deck` (read by `code`) at `velocities`, running each impact with `runner`. Every
 /// input is rendered before the first run, so that a deck that cannot be rendered runs nothing.
 pub fn check_deck(
@@ -396,11 +408,20 @@ pub fn check_deck(
         .driver()
         .deck()
         .ok_or_else(|| anyhow::anyhow!("{code} reads no decks"))?;
-    let scheme = code.driver().step_scheme();
+    let driver = code.driver();
     let dt = deck.timestep;
     let mut planned = Vec::new();
     for (k, contact) in deck.contacts.iter().enumerate() {
         for &v in &velocities.0 {
+            // A contact with no end has no step count and nothing a run could measure.
+            if let Some(zeta) = contact.law.never_separates() {
+                planned.push(Plan::NeverSeparates {
+                    contact: k,
+                    velocity: v,
+                    zeta,
+                });
+                continue;
+            }
             let exact = accurate_metrics(&contact.law, v, 1e-12)?;
             let steps = ceil_count(1.05 * exact.contact_time / dt)
                 .map_or(u64::MAX, |n| n.saturating_add(3));
@@ -413,30 +434,34 @@ pub fn check_deck(
                 .into());
             }
             let impact = reader.render(deck, k, v, steps)?;
-            planned.push(Planned {
+            planned.push(Plan::Run(Box::new(Planned {
                 contact: k,
                 velocity: v,
                 steps,
                 impact,
-            });
+            })));
         }
     }
-    let runs: Vec<Result<ImpactRun, CodeError>> = planned
+    // Each impact runs and is read on its own; the rows keep the plan's order.
+    let rows: Vec<(DeckImpact, Option<String>)> = planned
         .par_iter()
-        .map(|p| runner.run(code, &p.impact, &deck.contacts[p.contact].law))
+        .map(|plan| match plan {
+            Plan::Run(p) => match runner.run(code, &p.impact, &deck.contacts[p.contact].law) {
+                Ok(run) => (
+                    impact_row(deck, p, driver, Ok(&run.trajectory)),
+                    Some(run.code_version),
+                ),
+                Err(e) => (impact_row(deck, p, driver, Err(&e)), None),
+            },
+            &Plan::NeverSeparates {
+                contact,
+                velocity,
+                zeta,
+            } => (never_separating_row(deck, contact, velocity, zeta), None),
+        })
         .collect();
-    let mut version = None;
-    let mut impacts = Vec::new();
-    for (p, run) in planned.iter().zip(runs) {
-        let row = match run {
-            Ok(run) => {
-                version.get_or_insert(run.code_version.clone());
-                impact_row(deck, p, scheme, Ok(&run.trajectory))
-            }
-            Err(e) => impact_row(deck, p, scheme, Err(&e)),
-        };
-        impacts.push(row);
-    }
+    let version = rows.iter().find_map(|(_, v)| v.clone());
+    let impacts: Vec<DeckImpact> = rows.into_iter().map(|(row, _)| row).collect();
     Ok(DeckReport {
         deck: deck.path.display().to_string(),
         code,
@@ -453,16 +478,97 @@ pub fn check_deck(
     })
 }
 
-/// The COR of `law` stepped as the code steps from `gap` before touch.
-fn stepped_cor(law: &DashpotLaw, v: f64, dt: f64, steps: u64, scheme: StepScheme, gap: f64) -> f64 {
-    trajectory_metrics(&step_trajectory_from(law, v, dt, steps, scheme, gap))
-        .map_or(f64::NAN, |m| m.cor)
+/// The COR of `law` stepped as the code steps the run `impact`, started a further `phase` (m)
+/// away than the run itself.
+fn stepped_cor(
+    law: &DashpotLaw,
+    stepping: &CodeStepping,
+    impact: &DeckImpactInput,
+    steps: u64,
+    phase: f64,
+) -> f64 {
+    let setup = &impact.setup;
+    // A code stepped in its own frame starts where the run starts (the frame holds the gap);
+    // one stepped in the relative motion starts from touch, so the run's gap is added.
+    let gap = if stepping.frame.is_some() {
+        phase
+    } else {
+        impact.start_gap + phase
+    };
+    let trajectory = stepping.trajectory(law, setup.impact_velocity, setup.timestep, steps, gap);
+    trajectory_metrics(&trajectory).map_or(f64::NAN, |m| m.cor)
+}
+
+/// The smaller Rayleigh time of a pair's particles, s (none where a particle has no Young's
+/// modulus).
+fn smallest_rayleigh_time(body: &DeckBody, partner: Option<&DeckBody>) -> Option<f64> {
+    [Some(body), partner]
+        .into_iter()
+        .flatten()
+        .map(|b| match (b.youngs_modulus, b.poisson_ratio) {
+            (Some(e), Some(nu)) => Some(rayleigh_time(b.radius, b.density, e, nu)),
+            _ => None,
+        })
+        .collect::<Option<Vec<f64>>>()
+        .map(|t| t.into_iter().fold(f64::INFINITY, f64::min))
+}
+
+/// The row of an impact not run because its law never separates the bodies: the law and the
+/// traps, the figures NaN, and why.
+fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f64) -> DeckImpact {
+    let c = &deck.contacts[contact];
+    let body = &deck.bodies[c.body];
+    let partner_body = match c.partner {
+        Partner::Body(o) => Some(&deck.bodies[o]),
+        Partner::Wall(_) => None,
+    };
+    let nan = f64::NAN;
+    let rayleigh = smallest_rayleigh_time(body, partner_body);
+    let pair = pair_label(deck, contact);
+    DeckImpact {
+        types: c.types,
+        run: format!("{pair}@{velocity} (not run)"),
+        pair,
+        wall: match c.partner {
+            Partner::Wall(w) => Some(deck.walls[w].name.clone()),
+            Partner::Body(_) => None,
+        },
+        model: c.model.clone(),
+        radius: body.radius,
+        partner_radius: partner_body.map(|o| o.radius),
+        impact_velocity: velocity,
+        cor_entered: c.cor_entered,
+        cor_realised: nan,
+        cor_law: 0.0,
+        cor_law_stepped: nan,
+        model_difference: c.cor_entered.map(|e| -e),
+        integration_difference: nan,
+        remainder: nan,
+        integration_band: Range { min: nan, max: nan },
+        contact_time: f64::INFINITY,
+        force_contact_time: f64::INFINITY,
+        peak_overlap: nan,
+        peak_overlap_ratio: nan,
+        timestep: deck.timestep,
+        steps: 0,
+        start_gap: 0.0,
+        steps_per_contact: f64::INFINITY,
+        rayleigh_time: rayleigh,
+        step_over_rayleigh: rayleigh.map(|t| deck.timestep / t),
+        paper_loss_coefficient: nan,
+        law: c.law,
+        traps: c.traps.clone(),
+        warnings: Vec::new(),
+        failure: Some(format!(
+            "not run: the law these lines make the code integrate is a linear spring with a dashpot of damping ratio ζ = {zeta:.4e} ≥ 1, overdamped: the bodies approach and creep back without ever separating (COR 0, no end of contact to run to)"
+        )),
+    }
 }
 
 fn impact_row(
     deck: &UserDeck,
     p: &Planned,
-    scheme: StepScheme,
+    driver: &dyn CodeDriver,
     run: Result<&CodeTrajectory, &CodeError>,
 ) -> DeckImpact {
     let c = &deck.contacts[p.contact];
@@ -476,28 +582,21 @@ fn impact_row(
     let law = c.law;
     let exact = accurate_metrics(&law, v, 1e-12).ok();
     let cor_law = exact.map_or(f64::NAN, |m| m.cor);
-    let cor_law_stepped = stepped_cor(&law, v, dt, p.steps, scheme, p.impact.start_gap);
+    let stepping = driver.stepping(&p.impact.setup);
+    let cor_law_stepped = stepped_cor(&law, &stepping, &p.impact, p.steps, 0.0);
     let mut band = Range {
         min: f64::INFINITY,
         max: f64::NEG_INFINITY,
     };
     for k in 0..PHASES {
-        let gap = k as f64 / PHASES as f64 * v * dt;
-        let d = stepped_cor(&law, v, dt, p.steps + 1, scheme, gap) - cor_law;
+        let phase = k as f64 / PHASES as f64 * v * dt;
+        let d = stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phase) - cor_law;
         if d.is_finite() {
             band.min = band.min.min(d);
             band.max = band.max.max(d);
         }
     }
-    let rayleigh = [Some(body), partner_body]
-        .into_iter()
-        .flatten()
-        .map(|b| match (b.youngs_modulus, b.poisson_ratio) {
-            (Some(e), Some(nu)) => Some(rayleigh_time(b.radius, b.density, e, nu)),
-            _ => None,
-        })
-        .collect::<Option<Vec<f64>>>()
-        .map(|t| t.into_iter().fold(f64::INFINITY, f64::min));
+    let rayleigh = smallest_rayleigh_time(body, partner_body);
     let smaller_radius = partner_body.map_or(body.radius, |o| o.radius.min(body.radius));
     let (metrics, failure) = match run {
         Ok(t) => match trajectory_metrics(t) {
@@ -525,6 +624,12 @@ fn impact_row(
             "resolution: {steps_per_contact:.1} steps per contact (below {MIN_STEPS_PER_CONTACT}): the step alone moves the COR by {} to {}",
             signed(band.min),
             signed(band.max)
+        ));
+    }
+    if cor_realised > 1.0 {
+        warnings.push(format!(
+            "energy gain: the run's COR {cor_realised:.6} exceeds 1: the bodies leave faster than they came; the step ({} s) is too long for this contact ({steps_per_contact:.1} steps), which the step integrates unstably",
+            sci(dt)
         ));
     }
     let step_over_rayleigh = rayleigh.map(|t| dt / t);
@@ -792,6 +897,13 @@ impl Summary for DeckReport {
     }
 
     fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: {}", self.reproduce())]
+    }
+}
+
+impl DeckReport {
+    /// The `deck` command that checks the deck again, as this check did.
+    pub fn reproduce(&self) -> Invocation {
         let mut command = Invocation::new("deck")
             .arg(&self.deck)
             .option("--code", self.code);
@@ -801,7 +913,7 @@ impl Summary for DeckReport {
         for (option, value) in &self.given {
             command = command.option(option, value);
         }
-        vec![format!("reproduce: {command}")]
+        command
     }
 }
 

@@ -8,7 +8,8 @@ use std::time::Duration;
 use anyhow::Result;
 use serde::Serialize;
 
-use super::compare::{CompareOptions, compare};
+use super::compare::{CompareOptions, ModelPointRecord, compare};
+use super::deck::DeckReport;
 use super::precision::method_sweep;
 use super::stability::{METHODS, stability_report};
 use super::store;
@@ -18,7 +19,7 @@ use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
-use crate::output::{Section, Summary, csv_string};
+use crate::output::{Format, Section, Summary, csv_string, export};
 use crate::solve::Method;
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
@@ -111,25 +112,17 @@ pub struct ReportOptions {
     pub revision: Option<String>,
 }
 
-fn rows_csv(header: &str, rows: impl Iterator<Item = String>) -> String {
-    let mut s = String::from(header);
-    s.push('\n');
-    for r in rows {
-        s.push_str(&r);
-        s.push('\n');
+/// A figure's points as CSV, one row per point: its series, then `x` and `y` under the
+/// axes' names.
+fn series_csv(x: &str, y: &str, series: &[Series]) -> Result<String> {
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(["series", x, y])?;
+    for s in series {
+        for (a, b) in &s.points {
+            writer.serialize((&s.name, a, b))?;
+        }
     }
-    s
-}
-
-fn series_csv(x: &str, y: &str, series: &[Series]) -> String {
-    rows_csv(
-        &format!("series,{x},{y}"),
-        series.iter().flat_map(|s| {
-            s.points
-                .iter()
-                .map(move |(a, b)| format!("\"{}\",{a:e},{b:e}", s.name))
-        }),
-    )
+    Ok(String::from_utf8(writer.into_inner()?)?)
 }
 
 fn figure(
@@ -144,7 +137,7 @@ fn figure(
         title: chart.title.clone(),
         caption: caption.to_string(),
         svg: chart_svg(&chart, 960, 520)?,
-        csv: series_csv(csv_names.0, csv_names.1, &chart.series),
+        csv: series_csv(csv_names.0, csv_names.1, &chart.series)?,
         command: command.to_string(),
     })
 }
@@ -649,15 +642,7 @@ fn stability_map() -> Result<ReportFigure> {
         960,
         360,
     )?;
-    let csv = rows_csv(
-        "case,family,method,cor_error,accurate,pass",
-        report.cases.iter().map(|c| {
-            format!(
-                "\"{}\",{},{},{:e},{},{}",
-                c.case, c.family, c.method, c.cor_error, c.accurate, c.pass
-            )
-        }),
-    );
+    let csv = csv_string(&report.records())?;
     Ok(ReportFigure {
         id: "stability-map".into(),
         title: "Stability grid".into(),
@@ -810,28 +795,14 @@ pub fn build_report(
         },
         DataFile {
             name: "model-by-e.csv".into(),
-            text: rows_csv(
-                "case,code,restitution,loss_coefficient,law_cor,peak_deformation,peak_force,contact_time,force_contact_time,compression_time",
-                compared
+            text: csv_string(
+                &compared
                     .cases
                     .iter()
                     .flat_map(|c| c.model_by_restitution.iter())
-                    .map(|p| {
-                        format!(
-                            "{},{},{},{:e},{:e},{:e},{:e},{:e},{:e},{:e}",
-                            p.case,
-                            p.code,
-                            p.restitution,
-                            p.loss_coefficient,
-                            p.law_cor,
-                            p.offsets.peak_deformation,
-                            p.offsets.peak_force,
-                            p.offsets.contact_time,
-                            p.offsets.force_contact_time,
-                            p.compression_time
-                        )
-                    }),
-            ),
+                    .map(ModelPointRecord::from)
+                    .collect::<Vec<_>>(),
+            )?,
         },
     ];
     Ok(Report {
@@ -841,4 +812,129 @@ pub fn build_report(
         data,
         failures: compared.failures(),
     })
+}
+
+/// The report's part on a user's own deck, checked by `deck`: its table of pairs, the traps
+/// its lines meet, the warnings and what the impacts leave out, with the whole check beside it
+/// as `deck-<number>.json` and `.csv` (`number` from 1, in the order the decks were given).
+pub fn deck_part(number: usize, check: &DeckReport) -> Result<(ReportPart, Vec<DataFile>)> {
+    let command = check.reproduce().to_string();
+    let stem = format!("deck-{number}");
+    let sections = check.sections();
+    let mut tables = Vec::new();
+    if let Some(pairs) = sections.first() {
+        let mut table = table_from(format!("{stem}-pairs"), pairs, &command);
+        table.title = "Each pair at each impact speed".into();
+        tables.push(table);
+    }
+    let mut traps = Section::new(
+        Some("Traps of these lines".into()),
+        &["pair", "model", "trap"],
+    );
+    let mut seen = std::collections::BTreeSet::new();
+    for i in &check.impacts {
+        if seen.insert(&i.pair) {
+            for t in &i.traps {
+                traps
+                    .rows
+                    .push(vec![i.pair.clone(), i.model.clone(), t.clone()]);
+            }
+        }
+    }
+    let mut warnings = Section::new(
+        Some("Warnings and failures".into()),
+        &["pair", "v0 (m/s)", "warning"],
+    );
+    for i in &check.impacts {
+        for w in i
+            .failure
+            .iter()
+            .map(|f| format!("failed: {f}"))
+            .chain(i.warnings.iter().cloned())
+        {
+            warnings
+                .rows
+                .push(vec![i.pair.clone(), i.impact_velocity.to_string(), w]);
+        }
+    }
+    let mut left_out = Section::new(
+        Some("Left out of the impacts (the deck's own run needs them; one impact does not)".into()),
+        &["what", "where"],
+    );
+    for l in &check.left_out {
+        let (what, at) = l.rsplit_once(": ").unwrap_or((l.as_str(), ""));
+        left_out.rows.push(vec![what.to_string(), at.to_string()]);
+    }
+    for (name, section) in [
+        ("traps", traps),
+        ("warnings", warnings),
+        ("left-out", left_out),
+    ] {
+        if !section.rows.is_empty() {
+            tables.push(table_from(format!("{stem}-{name}"), &section, &command));
+        }
+    }
+    let particles: Vec<String> = check
+        .bodies
+        .iter()
+        .map(|b| {
+            format!(
+                "type {} (R = {} m, ρ = {} kg/m³)",
+                b.type_id, b.radius, b.density
+            )
+        })
+        .chain(check.walls.iter().map(|w| format!("wall {}", w.name)))
+        .collect();
+    let part = ReportPart {
+        id: stem.clone(),
+        title: format!("Your setup: {}", check.deck),
+        intro: format!(
+            "{} run by {} ({}) with the deck's own contact lines at its time step {} s ({}), one normal impact per pair of {} at {} m/s ({}). Each pair's COR is set against the COR entered and against the code's own law, exact and stepped as the code steps, so that a difference splits into model, integration and remainder. The whole check: {stem}.json and {stem}.csv.",
+            check.deck,
+            check.code,
+            check.code_version.as_deref().unwrap_or("not run"),
+            crate::output::sci(check.timestep),
+            check.timestep_from,
+            particles.join(", "),
+            check
+                .velocities
+                .iter()
+                .map(|v| v.to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
+            check.velocities_from,
+        ),
+        figures: vec![],
+        tables,
+    };
+    let data = vec![
+        DataFile {
+            name: format!("{stem}.json"),
+            text: export(check, Format::Json)?,
+        },
+        DataFile {
+            name: format!("{stem}.csv"),
+            text: export(check, Format::Csv)?,
+        },
+    ];
+    Ok((part, data))
+}
+
+/// Add the parts of the users' own decks to `report`, with their data, reproduce commands and
+/// failed runs.
+pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<()> {
+    for (k, check) in checks.iter().enumerate() {
+        let (part, data) = deck_part(k + 1, check)?;
+        report.parts.push(part);
+        report.data.extend(data);
+        report
+            .appendix
+            .push(format!("reproduce {}: {}", check.deck, check.reproduce()));
+        report.failures.extend(
+            super::deck::failures(check)
+                .into_iter()
+                .map(|f| format!("{}: {f}", check.deck)),
+        );
+    }
+    Ok(())
 }

@@ -530,18 +530,26 @@ impl SweepFile {
 
     /// Point `index` (the last axis varies fastest, the source fastest of all).
     pub fn point(&self, index: usize) -> Point {
-        let mut rest = index;
-        let source = self.sources[rest % self.sources.len()];
-        rest /= self.sources.len();
-        let mut values = vec![Value::Boolean(false); self.axes.len()];
-        for (i, axis) in self.axes.iter().enumerate().rev() {
-            values[i] = axis.values.get(rest % axis.values.len());
-            rest /= axis.values.len();
-        }
-        Point {
+        let mut point = Point {
             index,
-            values,
-            source,
+            values: Vec::with_capacity(self.axes.len()),
+            source: self.sources[0],
+        };
+        self.point_into(index, &mut point);
+        point
+    }
+
+    /// Make `point` point `index`, its storage reused (points one after another, as a chunk
+    /// of a sweep runs them).
+    pub fn point_into(&self, index: usize, point: &mut Point) {
+        let mut rest = index;
+        point.index = index;
+        point.source = self.sources[rest % self.sources.len()];
+        rest /= self.sources.len();
+        point.values.resize(self.axes.len(), Value::Boolean(false));
+        for (value, axis) in point.values.iter_mut().zip(&self.axes).rev() {
+            *value = axis.values.get(rest % axis.values.len());
+            rest /= axis.values.len();
         }
     }
 
@@ -578,24 +586,41 @@ impl SweepFile {
 
     /// The row of `point` with `figures` and `status`.
     pub fn row(&self, point: &Point, figures: PointFigures, status: RowStatus) -> SweepRow {
-        SweepRow {
-            identity: RowIdentity {
-                sweep: self.fingerprint.clone(),
-                point: point.index,
-            },
-            axes: self
-                .axes
-                .iter()
-                .zip(&point.values)
-                .map(|(axis, value)| AxisValue {
-                    key: axis.key.clone(),
-                    value: value.clone(),
-                })
-                .collect(),
-            source: PointSource::new(point.source.source, point.source.resolution),
+        let mut row = SweepRow {
+            identity: RowIdentity::default(),
+            axes: Vec::with_capacity(self.axes.len()),
+            source: PointSource::default(),
             figures,
             status,
+        };
+        self.set_point(&mut row, point);
+        row
+    }
+
+    /// Make `row` the row of `point` (its identity, axis values and source), its storage
+    /// reused: a row of this sweep's is made once per chunk and filled point after point.
+    /// The figures and status are left to the caller.
+    pub fn set_point(&self, row: &mut SweepRow, point: &Point) {
+        if row.identity.sweep != self.fingerprint {
+            row.identity.sweep.clone_from(&self.fingerprint);
         }
+        row.identity.point = point.index;
+        row.axes.truncate(self.axes.len());
+        for (i, (axis, value)) in self.axes.iter().zip(&point.values).enumerate() {
+            match row.axes.get_mut(i) {
+                Some(a) => {
+                    if a.key != axis.key {
+                        a.key.clone_from(&axis.key);
+                    }
+                    a.value.clone_from(value);
+                }
+                None => row.axes.push(AxisValue {
+                    key: axis.key.clone(),
+                    value: value.clone(),
+                }),
+            }
+        }
+        row.source = PointSource::new(point.source.source, point.source.resolution);
     }
 
     /// The row of `point` from its outcome: the figures, or the error.

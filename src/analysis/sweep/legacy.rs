@@ -14,6 +14,7 @@ use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::count::round_count;
 use crate::model::law::PaperLaw;
+use crate::output::csv_record::{CsvRecords, header_of};
 use crate::output::{Format, Section, Summary, export, markdown_row, sci, signed};
 use crate::solve::paper::{Settings, check_step, solve_many};
 
@@ -175,6 +176,9 @@ type EncodedChunk = (Vec<u8>, Vec<(f64, f64)>);
 /// η values per chunk of a streamed sweep.
 const CHUNK: usize = 64;
 
+/// About the bytes of one CSV row.
+const CSV_ROW_BYTES: usize = 400;
+
 /// A case over a range of η, its rows streamed.
 pub struct Streamed<'a> {
     /// The case.
@@ -281,13 +285,16 @@ impl Streamed<'_> {
             let mut bytes = Vec::new();
             match format {
                 Format::Csv => {
-                    let mut writer = csv::WriterBuilder::new()
-                        .has_headers(first)
-                        .from_writer(bytes);
+                    // The header as the csv crate writes it, then the records in the same
+                    // bytes (`CsvRecords`).
+                    let mut records = CsvRecords::with_capacity(CSV_ROW_BYTES * rows.len());
                     for row in &rows {
-                        writer.serialize(row)?;
+                        records.push(row)?;
                     }
-                    bytes = writer.into_inner().map_err(|e| anyhow::anyhow!("{e}"))?;
+                    bytes = match rows.first().filter(|_| first) {
+                        Some(row) => [header_of(row)?, records.into_bytes()].concat(),
+                        None => records.into_bytes(),
+                    };
                 }
                 Format::Json => {
                     for (i, row) in rows.iter().enumerate() {

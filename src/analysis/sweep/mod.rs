@@ -129,11 +129,12 @@ pub fn run_grid(
         let work = |range: Range<usize>| -> std::io::Result<EncodedRows> {
             let points: Vec<Point> = methods[range].iter().map(|&i| sweep.point(i)).collect();
             let mut encoded = EncodedRows::new(format);
-            for row in method_rows(sweep, &points, options, stop) {
-                if keep(&row) {
-                    encoded.push(&row)?;
+            method_rows(sweep, &points, options, stop, &mut |row| {
+                if keep(row) {
+                    encoded.push(row)?;
                 }
-            }
+                Ok(())
+            })?;
             Ok(encoded)
         };
         ordered_chunks(

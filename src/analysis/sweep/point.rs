@@ -5,12 +5,12 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use super::grid::{Point, PointCases, SweepFile};
-use super::row::{CodeFigures, PointFigures, SweepRow};
+use super::row::{CodeFigures, PointFigures, RowStatus, SweepRow};
 use crate::analysis::run::{IntegrationOptions, run_case, solve_failure};
 use crate::analysis::source::{Resolution, Source};
 use crate::analysis::store::{ReferenceOptions, run_reference};
 use crate::model::law::PaperLaw;
-use crate::solve::paper::{Settings, solve_many};
+use crate::solve::paper::{Outcome, Settings, solve_many};
 
 /// How to run a sweep.
 #[derive(Clone, Debug)]
@@ -44,16 +44,19 @@ fn method_settings(
     Ok(integration.settings(case, false)?)
 }
 
-/// The rows of method points, in their order: the same rows [`single_point`] gives each, with
-/// the case edited in place from point to point where the axes allow, and the impacts of one
-/// setting solved together ([`solve_many`]: rk4-event in lanes; a row's wall time is then the
-/// batch's divided among its impacts). After `stop` is raised the points left are not run.
+/// The rows of method points, in their order, each handed to `emit`: the same rows
+/// [`single_point`] gives each, with the case edited in place from point to point where the
+/// axes allow, and the impacts of one setting solved together ([`solve_many`]: rk4-event in
+/// lanes; a row's wall time is then the batch's divided among its impacts). One row is filled
+/// point after point, its storage reused. After `stop` is raised the points left are not run.
+/// An error of `emit` ends it and is returned.
 pub fn method_rows(
     sweep: &SweepFile,
     points: &[Point],
     options: &GridOptions,
     stop: &AtomicBool,
-) -> Vec<SweepRow> {
+    emit: &mut dyn FnMut(&SweepRow) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let mut cases = PointCases::new(sweep);
     // Each point's law and speed with its settings, or its error.
     let mut prepared: Vec<anyhow::Result<(PaperLaw, f64, Settings)>> = Vec::new();
@@ -67,7 +70,8 @@ pub fn method_rows(
             Ok((case.law(), case.impact_velocity, settings))
         })());
     }
-    let mut outcomes: Vec<Option<anyhow::Result<PointFigures>>> =
+    // Each point's law and speed with its solution, or its error.
+    let mut outcomes: Vec<Option<anyhow::Result<(PaperLaw, f64, Outcome)>>> =
         (0..prepared.len()).map(|_| None).collect();
     let mut pending: Vec<usize> = (0..prepared.len()).collect();
     while let Some(&first) = pending.first() {
@@ -87,23 +91,32 @@ pub fn method_rows(
             .iter()
             .filter_map(|&i| prepared[i].as_ref().ok().map(|(law, v0, _)| (*law, *v0)))
             .collect();
-        for ((&i, (law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
+        for ((&i, &(law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
         {
             outcomes[i] = Some(
                 solved
-                    .map(|o| PointFigures::of_solution(&sweep.base_case.name, law, *v0, &o))
+                    .map(|o| (law, v0, o))
                     .map_err(|e| solve_failure(&sweep.base_case.path, e)),
             );
         }
     }
-    points
-        .iter()
-        .zip(outcomes)
-        .map(|(point, outcome)| {
-            let outcome = outcome.expect("every prepared point was solved");
-            sweep.outcome_row(point, outcome)
-        })
-        .collect()
+    let mut row = SweepRow::default();
+    for (point, outcome) in points.iter().zip(outcomes) {
+        sweep.set_point(&mut row, point);
+        match outcome.expect("every prepared point was solved") {
+            Ok((law, v0, outcome)) => {
+                row.figures
+                    .set_solution(&sweep.base_case.name, &law, v0, &outcome);
+                row.status.set_ok();
+            }
+            Err(e) => {
+                row.figures = PointFigures::default();
+                row.status = RowStatus::failed(&format!("{e:#}"));
+            }
+        }
+        emit(&row)?;
+    }
+    Ok(())
 }
 
 /// Evaluate one point alone, whoever computes it.
@@ -165,7 +178,12 @@ mod tests {
         };
         let points: Vec<Point> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
         let stop = AtomicBool::new(false);
-        let together = method_rows(&sweep, &points, &options, &stop);
+        let mut together = Vec::new();
+        method_rows(&sweep, &points, &options, &stop, &mut |row| {
+            together.push(row.clone());
+            Ok(())
+        })
+        .unwrap();
         assert_eq!(together.len(), points.len());
         let mut failed = 0;
         for (point, mut row) in points.iter().zip(together) {

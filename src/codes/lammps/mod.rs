@@ -22,6 +22,10 @@
 //!   on a build whose fit carries the √2 it solves `√2 poly(e_in) = √5 β(e)`, and on a build
 //!   with `damping coeff_restitution` (2023 on) it gives `e` to that instead.
 //! * `limit_damping` is off unless asked for; the driver leaves it off (no clamp).
+//! * A pair of types no `pair_coeff` sets is mixed from the two types' own lines: this build
+//!   mixes the numbers but leaves the pair's model unset (it runs as `hooke` with `damping
+//!   velocity`), the 2025 build mixes the whole model ([`mixing`]; the deck reader follows
+//!   the build's [`Build::mixing`]).
 
 pub mod batch;
 pub mod build_2025;
@@ -29,6 +33,7 @@ pub mod builds;
 pub mod card;
 pub mod conventions;
 pub mod deck;
+pub mod mixing;
 pub mod probe;
 
 pub use build_2025::Lammps2025;
@@ -76,12 +81,16 @@ pub struct Build {
     pub name: &'static str,
     /// The conventions of a setup that carries none.
     pub fallback: Conventions,
+    /// How the build fills a pair of types no `pair_coeff` sets (read in its source and
+    /// measured in it: [`mixing`]).
+    pub mixing: mixing::PairMixing,
 }
 
 /// The Debian 12 build, "29 Sep 2021 - Update 2".
 pub const DEBIAN_2021: Build = Build {
     name: "lammps",
     fallback: Conventions::DEBIAN_2021,
+    mixing: mixing::PairMixing::CoefficientsOnly,
 };
 
 /// The contact model as the code is told it and as it then integrates it.

@@ -575,6 +575,9 @@ impl LiggghtsDeck {
                 });
             }
         };
+        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
+            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+        }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for (t, radius, density, c) in &r.templates {
             if given.contains(t) {
@@ -833,7 +836,7 @@ impl DeckReader for LiggghtsDeck {
             } else {
                 (None, None)
             };
-            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone() });
+            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone().into() });
             let settings: Vec<String> = w.model.settings.iter().flat_map(|(k, v)| [k.clone(), v.clone()]).collect();
             wall_lines.push(format!(
                 "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
@@ -856,7 +859,7 @@ impl DeckReader for LiggghtsDeck {
                     cor_entered: pl.cor_entered,
                     law: pl.law,
                     traps: pl.traps,
-                    lines: pl.lines,
+                    lines: pl.lines.into_iter().map(Into::into).collect(),
                 });
             }
         }
@@ -873,7 +876,7 @@ impl DeckReader for LiggghtsDeck {
                     cor_entered: pl.cor_entered,
                     law: pl.law,
                     traps,
-                    lines: pl.lines,
+                    lines: pl.lines.into_iter().map(Into::into).collect(),
                 });
             }
         }

@@ -26,6 +26,8 @@
 
 pub mod batch;
 pub mod card;
+pub mod deck;
+pub mod python;
 
 use std::path::Path;
 
@@ -232,6 +234,10 @@ impl Yade {
 impl CodeDriver for Yade {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::YadeCard)
+    }
+
+    fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
+        Some(&deck::YadeDeck)
     }
 
     fn name(&self) -> &'static str {
