@@ -359,7 +359,7 @@ fn thornton_fit_matches_what_yade_logged_and_is_compensated_to_the_target() {
         );
         assert_eq!(Yade.expected_restitution(&s), None);
     }
-    // Thornton's β_n does not vanish as en → 1, so above about 0.979 no en realises the
+    // Thornton's β_n does not vanish as en → 1, so above about 0.985 no en realises the
     // target: the driver passes it as given and reports what the code will realise.
     assert_eq!(hertz_input_restitution(0.99), None);
     let s = setup(SceneKind::BallPlate, 0.99, Plate::Steel);

@@ -33,7 +33,7 @@ impl CalibrationCard for YadeCard {
         t.push("numerical damping: NewtonIntegrator(damping=0.2) is the default; set damping=0 (else an elastic impact rebounds at 0.8165)".into());
         if scene != SceneKind::RodEnd {
             t.push("en is not the COR: Thornton's fit with the clamped law realises another e; give the inverted en (EN above), not e".into());
-            t.push("fit error: en cannot realise e between about 0.979 and 1".into());
+            t.push("fit error: en cannot realise e between about 0.985 and 1".into());
         }
         if scene == SceneKind::BallPlate {
             t.push("wall radius: Ig2_Wall_Sphere_ScGeom gives the wall the sphere's radius (R* = R/2) unless hertzian=True".into());
