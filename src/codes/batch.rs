@@ -190,3 +190,17 @@ pub fn run_batch_with(
         kept,
     })
 }
+
+/// The loop time of impact `index` (from 0) of a batch whose script prints one
+/// `MILLIMPACT impact=K loop_time=T` line per impact (K from 1), s; `None` where it printed none.
+pub fn marked_loop_time(log: &str, index: usize) -> Option<f64> {
+    let key = format!("impact={}", index + 1);
+    log.lines()
+        .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
+        .find(|rest| rest.split_whitespace().next() == Some(key.as_str()))
+        .and_then(|rest| {
+            rest.split_whitespace()
+                .find_map(|f| f.strip_prefix("loop_time="))
+        })
+        .and_then(|v| v.parse::<f64>().ok())
+}

@@ -117,17 +117,7 @@ pub fn parse_batch(
 ) -> Vec<Result<ParsedRun, ParseError>> {
     let version = log_value(log, "version=").map(str::to_string);
     // `MILLIMPACT impact=K loop_time=T`: the loop's share per impact.
-    let loop_time = |i: usize| {
-        let key = format!("impact={}", i + 1);
-        log.lines()
-            .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
-            .find(|rest| rest.split_whitespace().next() == Some(key.as_str()))
-            .and_then(|rest| {
-                rest.split_whitespace()
-                    .find_map(|f| f.strip_prefix("loop_time="))
-            })
-            .and_then(|v| v.parse::<f64>().ok())
-    };
+    let loop_time = |i: usize| crate::codes::batch::marked_loop_time(log, i);
     (0..setups.len())
         .map(|i| {
             let path = workdir.join(batch_trajectory_file(i));
