@@ -572,7 +572,11 @@ fn the_report_gives_the_mill_deck_a_part_of_its_own() {
         ])
         .output()
         .unwrap();
-    assert!(deck.status.success());
+    assert!(
+        deck.status.success(),
+        "{}",
+        String::from_utf8_lossy(&deck.stderr)
+    );
     let by_deck: serde_json::Value = serde_json::from_slice(&deck.stdout).unwrap();
     assert_eq!(in_report["impacts"], by_deck["impacts"]);
     assert_eq!(in_report["impacts"].as_array().unwrap().len(), 5);
