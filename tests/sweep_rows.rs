@@ -205,7 +205,12 @@ fn the_issue_sweep_puts_the_code_under_code() {
             .output()
             .unwrap();
         let text = String::from_utf8(output.stdout).unwrap();
-        for row in rows(&text, format) {
+        // Both points fail on the missing binary: the sweep says so by its exit status, and
+        // still writes one row per point with its parameters.
+        assert_eq!(output.status.code(), Some(1), "{format}: {text}");
+        let rows = rows(&text, format);
+        assert_eq!(rows.len(), 2, "{format}: one row per η\n{text}");
+        for row in rows {
             assert_eq!(row["code"], "liggghts", "{format}: {row:?}");
             assert_eq!(row["steps_per_contact"], "100", "{format}: {row:?}");
             assert_eq!(row["steps_per_period"], "", "{format}: {row:?}");

@@ -25,10 +25,12 @@ fn etas(count: usize) -> Vec<f64> {
 #[test]
 fn the_bounds_hold_across_their_range() {
     let etas = etas(301);
+    let mut checked = Vec::new();
     for &method in Method::ALL {
         let Some(bound) = bound_of(method) else {
             continue;
         };
+        checked.push(method);
         let knob = method.descriptor().knob;
         for k in 0..=16 {
             let f = (f64::from(k) + 0.37) / 17.0;
@@ -44,6 +46,11 @@ fn the_bounds_hold_across_their_range() {
             );
         }
     }
+    // The tolerance choice picks among the methods with a bound: both must have been checked.
+    assert!(
+        checked.contains(&Method::Rk4Event) && checked.contains(&Method::Dopri5),
+        "methods with a measured bound: {checked:?}"
+    );
 }
 
 /// For each scene's case and tolerances from 1e-3 to the smallest allowed, the chosen method

@@ -284,12 +284,16 @@ pub trait CalibrationCard: Send + Sync {
     }
 }
 
-/// The registry of codes: one line per code folder, `mod folder { Variant => Driver }`. It declares the
-/// driver's module, the [`CodeName`] variant and its dispatch, so that a new code is its driver
-/// file plus one line here.
+pub mod kratos;
+pub mod lammps;
+pub mod liggghts;
+pub mod yade;
+
+/// The registry of codes: one line per code folder, `folder { Variant => Driver }`. It declares
+/// the [`CodeName`] variant and its dispatch, so that a new code is its driver folder, its `mod`
+/// line above (declared outside the macro so that rustfmt follows it) and one line here.
 macro_rules! code_registry {
-    ($(mod $module:ident { $($variant:ident => $driver:ident),+ $(,)? }),+ $(,)?) => {
-        $(pub mod $module;)+
+    ($($module:ident { $($variant:ident => $driver:ident),+ $(,)? }),+ $(,)?) => {
 
         /// A DEM code the harness drives.
         #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -315,10 +319,10 @@ macro_rules! code_registry {
 }
 
 code_registry! {
-    mod liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
-    mod yade { Yade => Yade },
-    mod lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
-    mod kratos { Kratos => Kratos },
+    liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
+    yade { Yade => Yade },
+    lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
+    kratos { Kratos => Kratos },
 }
 
 impl CodeName {

@@ -74,9 +74,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
             return Err(BatchError::Differ { what: "time step" });
         }
         let values = Kratos.script_values(s)?;
-        if s.scene != first.scene
-            || (wall && shared(&values) != shared(&first_values))
-        {
+        if s.scene != first.scene || (wall && shared(&values) != shared(&first_values)) {
             return Err(BatchError::Differ {
                 what: "scene, or the wall's material or ball radius (one wall per batch)",
             });

@@ -121,7 +121,10 @@ impl<'a> Node<'a> {
     }
 
     fn items(&self, supported: &str) -> Result<Vec<Node<'a>>, DeckError> {
-        let list = self.value.as_array().ok_or_else(|| self.bad("a list", supported))?;
+        let list = self
+            .value
+            .as_array()
+            .ok_or_else(|| self.bad("a list", supported))?;
         Ok(list
             .iter()
             .enumerate()
@@ -239,8 +242,10 @@ struct Relation<'a> {
 
 impl<'a> Relation<'a> {
     fn variables(&self) -> Result<Node<'a>, DeckError> {
-        self.node
-            .require("Variables", "a relation's Variables (its law and restitution)")
+        self.node.require(
+            "Variables",
+            "a relation's Variables (its law and restitution)",
+        )
     }
 
     /// The relation's constitutive law, if the harness steps it.
@@ -317,10 +322,12 @@ impl Project {
     fn read(path: &Path, value: &Value) -> Result<(Self, PathBuf), DeckError> {
         let root = Node::root(path, value);
         let folder = path.parent().unwrap_or(Path::new("")).to_path_buf();
-        let text = |key: &str, default: &'static str, supported: &str| -> Result<String, DeckError> {
-            root.key(key)
-                .map_or(Ok(default.to_string()), |n| n.string(supported).map(str::to_string))
-        };
+        let text =
+            |key: &str, default: &'static str, supported: &str| -> Result<String, DeckError> {
+                root.key(key).map_or(Ok(default.to_string()), |n| {
+                    n.string(supported).map(str::to_string)
+                })
+            };
         let number = |key: &str, default: f64| -> Result<(f64, Option<Node<'_>>), DeckError> {
             match root.key(key) {
                 Some(n) => Ok((n.number("a number")?, Some(n))),
@@ -332,20 +339,36 @@ impl Project {
         };
         let dimension = number("Dimension", 3.0)?.0;
         if !(2.5..=3.5).contains(&dimension) {
-            return Err(refuse("Dimension", format!("{dimension}"), "3 (the 2D laws are not read)"));
+            return Err(refuse(
+                "Dimension",
+                format!("{dimension}"),
+                "3 (the 2D laws are not read)",
+            ));
         }
         let element = text("ElementType", "SphericPartDEMElement3D", "an element type")?;
         if element != "SphericPartDEMElement3D" {
-            return Err(refuse("ElementType", element.clone(), "SphericPartDEMElement3D (discontinuum spheres)"));
+            return Err(refuse(
+                "ElementType",
+                element.clone(),
+                "SphericPartDEMElement3D (discontinuum spheres)",
+            ));
         }
         let strategy = root
             .key("solver_settings")
             .and_then(|s| s.key("strategy"))
             .map_or(Ok("sphere_strategy"), |n| n.string("a strategy"))?;
         if strategy != "sphere_strategy" {
-            return Err(refuse("solver_settings.strategy", strategy.to_string(), "sphere_strategy (discontinuum spheres)"));
+            return Err(refuse(
+                "solver_settings.strategy",
+                strategy.to_string(),
+                "sphere_strategy (discontinuum spheres)",
+            ));
         }
-        let scheme = text("TranslationalIntegrationScheme", "Symplectic_Euler", "a scheme")?;
+        let scheme = text(
+            "TranslationalIntegrationScheme",
+            "Symplectic_Euler",
+            "a scheme",
+        )?;
         if scheme != SCHEME {
             return Err(refuse(
                 "TranslationalIntegrationScheme",
@@ -364,35 +387,53 @@ impl Project {
         }
         let (timestep, given) = number("MaxTimeStep", DEFAULT_MAX_TIME_STEP)?;
         if timestep <= 0.0 {
-            return Err(refuse("MaxTimeStep", format!("{timestep}"), "a positive time step, s"));
+            return Err(refuse(
+                "MaxTimeStep",
+                format!("{timestep}"),
+                "a positive time step, s",
+            ));
         }
         let timestep_from = match given {
             Some(n) => n.at().to_string(),
             None => format!("Kratos' default MaxTimeStep: {} sets none", path.display()),
         };
         let mut left_out = Vec::new();
-        if root.key("AutomaticTimestep").is_some_and(|n| n.value.as_bool() == Some(true)) {
+        if root
+            .key("AutomaticTimestep")
+            .is_some_and(|n| n.value.as_bool() == Some(true))
+        {
             left_out.push(format!(
                 "AutomaticTimestep true ({}): Kratos 10.4.4 reads it nowhere (its stage steps by MaxTimeStep); the impacts run at MaxTimeStep",
                 path.display()
             ));
         }
         let (global_damping, damping_node) = number("GlobalDamping", 0.0)?;
-        let global_damping = damping_node.filter(|_| global_damping != 0.0).map(|n| (global_damping, n.at()));
+        let global_damping = damping_node
+            .filter(|_| global_damping != 0.0)
+            .map(|n| (global_damping, n.at()));
         if let Some((g, at)) = &global_damping {
             left_out.push(format!(
                 "GlobalDamping {g} ({at}): Kratos damps every particle's total force by it; the impacts check the contact alone, without it"
             ));
         }
-        let (frequency, frequency_node) = number("NeighbourSearchFrequency", DEFAULT_NEIGHBOUR_SEARCH_FREQUENCY)?;
+        let (frequency, frequency_node) = number(
+            "NeighbourSearchFrequency",
+            DEFAULT_NEIGHBOUR_SEARCH_FREQUENCY,
+        )?;
         let search = (frequency > 1.0).then(|| {
             let tolerance = |key: &str| root.key(key).and_then(|n| n.value.as_f64()).unwrap_or(0.0);
             Search {
                 frequency,
-                from: frequency_node.map_or_else(|| format!("Kratos' default: {} sets none", path.display()), |n| n.at().to_string()),
+                from: frequency_node.map_or_else(
+                    || format!("Kratos' default: {} sets none", path.display()),
+                    |n| n.at().to_string(),
+                ),
                 particles: tolerance("SearchTolerance"),
                 walls: tolerance("search_tolerance_against_walls"),
-                absolute: root.key("DeltaOption").and_then(|n| n.value.as_str()).is_none_or(|o| o == "Absolute"),
+                absolute: root
+                    .key("DeltaOption")
+                    .and_then(|n| n.value.as_str())
+                    .is_none_or(|o| o == "Absolute"),
             }
         });
         left_out.push(format!(
@@ -467,7 +508,9 @@ impl Mdpa {
             let line = raw.split("//").next().unwrap_or("").trim();
             let words: Vec<&str> = line.split_whitespace().collect();
             let id = |w: &str| -> Result<u64, DeckError> {
-                w.parse().map_err(|_| DeckError::unsupported(&at, format!("`{w}` is not an id"), "whole numbers"))
+                w.parse().map_err(|_| {
+                    DeckError::unsupported(&at, format!("`{w}` is not an id"), "whole numbers")
+                })
             };
             match words.as_slice() {
                 [] => {}
@@ -480,12 +523,15 @@ impl Mdpa {
                         ("Elements", _) => Block::Elements,
                         ("NodalData", Some(&"RADIUS")) => Block::Radius,
                         ("SubModelPart", Some(name)) => {
-                            let full = parent.map_or((*name).to_string(), |p| format!("{p}.{name}"));
+                            let full =
+                                parent.map_or((*name).to_string(), |p| format!("{p}.{name}"));
                             mdpa.parts.entry(full.clone()).or_default().line = index + 1;
                             Block::Part(full)
                         }
                         ("SubModelPartData", _) => parent.map_or(Block::Other, Block::PartData),
-                        ("SubModelPartElements", _) => parent.map_or(Block::Other, Block::PartElements),
+                        ("SubModelPartElements", _) => {
+                            parent.map_or(Block::Other, Block::PartElements)
+                        }
                         _ => Block::Other,
                     };
                     stack.push(block);
@@ -496,20 +542,35 @@ impl Mdpa {
                 _ => match stack.last() {
                     Some(Block::Elements) => {
                         let node = words.get(2).ok_or_else(|| {
-                            DeckError::unsupported(&at, format!("`{line}`: an element without its node"), "ID PROPERTIES NODE")
+                            DeckError::unsupported(
+                                &at,
+                                format!("`{line}`: an element without its node"),
+                                "ID PROPERTIES NODE",
+                            )
                         })?;
                         mdpa.element_node.insert(id(words[0])?, id(node)?);
                     }
                     Some(Block::Radius) => {
-                        let value = words.last().and_then(|w| w.parse::<f64>().ok()).filter(|r| *r > 0.0);
+                        let value = words
+                            .last()
+                            .and_then(|w| w.parse::<f64>().ok())
+                            .filter(|r| *r > 0.0);
                         let value = value.ok_or_else(|| {
-                            DeckError::unsupported(&at, format!("`{line}`: no positive radius"), "NODE FIXED RADIUS")
+                            DeckError::unsupported(
+                                &at,
+                                format!("`{line}`: no positive radius"),
+                                "NODE FIXED RADIUS",
+                            )
                         })?;
                         mdpa.radius.insert(id(words[0])?, value);
                     }
                     Some(Block::PartData(part)) => {
                         let part = part.clone();
-                        mdpa.parts.entry(part).or_default().data.insert(words[0].to_string(), words[1..].join(" "));
+                        mdpa.parts
+                            .entry(part)
+                            .or_default()
+                            .data
+                            .insert(words[0].to_string(), words[1..].join(" "));
                     }
                     Some(Block::PartElements(part)) => {
                         let part = part.clone();
@@ -527,7 +588,11 @@ impl Mdpa {
 
     /// The radii of the spheres of `part` (a sub-model part's name below the root, or `None`
     /// for the whole file), each with how many spheres have it.
-    fn radii(&self, path: &Path, part: Option<&str>) -> Result<BTreeMap<u64, (f64, usize)>, DeckError> {
+    fn radii(
+        &self,
+        path: &Path,
+        part: Option<&str>,
+    ) -> Result<BTreeMap<u64, (f64, usize)>, DeckError> {
         let elements: Vec<u64> = match part {
             None => self.element_node.keys().copied().collect(),
             Some(name) => self
@@ -539,11 +604,15 @@ impl Mdpa {
         };
         let mut radii = BTreeMap::new();
         for e in elements {
-            let radius = self.element_node.get(&e).and_then(|n| self.radius.get(n)).ok_or_else(|| DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: format!("element {e} has no nodal RADIUS"),
-                supported: "a `Begin NodalData RADIUS` block with every sphere's node".into(),
-            })?;
+            let radius = self
+                .element_node
+                .get(&e)
+                .and_then(|n| self.radius.get(n))
+                .ok_or_else(|| DeckError::Lacking {
+                    file: path.to_path_buf(),
+                    what: format!("element {e} has no nodal RADIUS"),
+                    supported: "a `Begin NodalData RADIUS` block with every sphere's node".into(),
+                })?;
             radii.entry(radius.to_bits()).or_insert((*radius, 0)).1 += 1;
         }
         Ok(radii)
@@ -594,7 +663,11 @@ fn pair_law(
     )?;
     let entered = cor_node.number("a restitution in (0, 1]")?;
     if !(entered > 0.0 && entered <= 1.0) {
-        return Err(DeckError::unsupported(cor_node.at(), format!("{entered}"), "a restitution in (0, 1]"));
+        return Err(DeckError::unsupported(
+            cor_node.at(),
+            format!("{entered}"),
+            "a restitution in (0, 1]",
+        ));
     }
     let (material, radius, mass) = own;
     let (radius_star, mass_star, other_material) = match other {
@@ -605,8 +678,14 @@ fn pair_law(
     let mut traps = Vec::new();
     let elastic = "YOUNG_MODULUS and POISSON_RATIO (the law mixes both materials' into E*)";
     let modulus = || -> Result<(f64, f64), DeckError> {
-        let (e1, nu1) = (material.variable("YOUNG_MODULUS", elastic)?, material.variable("POISSON_RATIO", elastic)?);
-        let (e2, nu2) = (other_material.variable("YOUNG_MODULUS", elastic)?, other_material.variable("POISSON_RATIO", elastic)?);
+        let (e1, nu1) = (
+            material.variable("YOUNG_MODULUS", elastic)?,
+            material.variable("POISSON_RATIO", elastic)?,
+        );
+        let (e2, nu2) = (
+            other_material.variable("YOUNG_MODULUS", elastic)?,
+            other_material.variable("POISSON_RATIO", elastic)?,
+        );
         Ok((mixed_modulus(e1, nu1, e2, nu2), e1 / (1.0 - nu1 * nu1)))
     };
     let wall_trap = |e_star: f64, rigid: f64| -> Result<String, DeckError> {
@@ -657,10 +736,17 @@ fn pair_law(
                 ));
                 k
             } else {
-                let k_node = vars.require("K_NORMAL", "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants")?;
+                let k_node = vars.require(
+                    "K_NORMAL",
+                    "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants",
+                )?;
                 let k = k_node.number("a positive stiffness, N/m")?;
                 if k <= 0.0 {
-                    return Err(DeckError::unsupported(k_node.at(), format!("{k}"), "a positive stiffness, N/m"));
+                    return Err(DeckError::unsupported(
+                        k_node.at(),
+                        format!("{k}"),
+                        "a positive stiffness, N/m",
+                    ));
                 }
                 traps.push(format!(
                     "stiffness: K_NORMAL = {k:e} N/m from the relation, whatever the sizes and moduli (the contact time is π sqrt(M/k) for every radius)"
@@ -689,15 +775,29 @@ fn pair_law(
         }
     };
     traps.push("clamped: Kratos sets a negative (attractive) total normal force to zero at the end of contact: the COR is the clamped law's".into());
-    let tangential: Vec<&str> = ["STATIC_FRICTION", "DYNAMIC_FRICTION", "ROLLING_FRICTION", "ROLLING_FRICTION_WITH_WALLS"]
-        .into_iter()
-        .filter(|v| vars.key(v).and_then(|n| n.value.as_f64()).is_some_and(|x| x != 0.0))
-        .collect();
+    let tangential: Vec<&str> = [
+        "STATIC_FRICTION",
+        "DYNAMIC_FRICTION",
+        "ROLLING_FRICTION",
+        "ROLLING_FRICTION_WITH_WALLS",
+    ]
+    .into_iter()
+    .filter(|v| {
+        vars.key(v)
+            .and_then(|n| n.value.as_f64())
+            .is_some_and(|x| x != 0.0)
+    })
+    .collect();
     if !tangential.is_empty() {
-        traps.push(format!("{} act on no head-on impact: kept, and they change nothing here", tangential.join(", ")));
+        traps.push(format!(
+            "{} act on no head-on impact: kept, and they change nothing here",
+            tangential.join(", ")
+        ));
     }
     if let Side::Wall(_, parts) = other {
-        traps.push(format!("wall: {parts} met as a flat RigidFace3D3N plane (R* = R)"));
+        traps.push(format!(
+            "wall: {parts} met as a flat RigidFace3D3N plane (R* = R)"
+        ));
     }
     Ok(PairLaw {
         law,
@@ -802,32 +902,65 @@ fn sizes_of(
                     );
                     return Err(DeckError::Lacking {
                         file: file.clone(),
-                        what: format!("{name} (material {}) has {} radii from {lo} to {hi} m", material.label(), radii.len()),
-                        supported: format!("at most {MAX_SIZES} are checked one by one: give the sizes to check with --particle {}:RADIUS:DENSITY", material.id),
+                        what: format!(
+                            "{name} (material {}) has {} radii from {lo} to {hi} m",
+                            material.label(),
+                            radii.len()
+                        ),
+                        supported: format!(
+                            "at most {MAX_SIZES} are checked one by one: give the sizes to check with --particle {}:RADIUS:DENSITY",
+                            material.id
+                        ),
                     });
                 }
                 for (radius, count) in radii.values() {
-                    sizes.push((*radius, format!("nodal RADIUS of {count} spheres of {name} ({})", file.display())));
+                    sizes.push((
+                        *radius,
+                        format!(
+                            "nodal RADIUS of {count} spheres of {name} ({})",
+                            file.display()
+                        ),
+                    ));
                 }
             }
             _ => {
-                let part = sub.and_then(|s| m.parts.get(s)).ok_or_else(|| DeckError::Lacking {
+                let part = sub
+                    .and_then(|s| m.parts.get(s))
+                    .ok_or_else(|| DeckError::Lacking {
+                        file: file.clone(),
+                        what: format!("no SubModelPart {} for the inlet {name}", sub.unwrap_or("")),
+                        supported: format!(
+                            "the inlet's RADIUS, or --particle {}:RADIUS:DENSITY",
+                            material.id
+                        ),
+                    })?;
+                let at = SourceLine {
                     file: file.clone(),
-                    what: format!("no SubModelPart {} for the inlet {name}", sub.unwrap_or("")),
-                    supported: format!("the inlet's RADIUS, or --particle {}:RADIUS:DENSITY", material.id),
-                })?;
-                let at = SourceLine { file: file.clone(), line: part.line };
+                    line: part.line,
+                };
                 let radius = part
                     .data
                     .get("RADIUS")
                     .and_then(|r| r.parse::<f64>().ok())
                     .filter(|r| *r > 0.0)
-                    .ok_or_else(|| DeckError::unsupported(&at, format!("the inlet {name} has no positive RADIUS"), "RADIUS R in its SubModelPartData"))?;
-                let spread = part.data.get("STANDARD_DEVIATION").and_then(|s| s.parse::<f64>().ok()).unwrap_or(0.0);
+                    .ok_or_else(|| {
+                        DeckError::unsupported(
+                            &at,
+                            format!("the inlet {name} has no positive RADIUS"),
+                            "RADIUS R in its SubModelPartData",
+                        )
+                    })?;
+                let spread = part
+                    .data
+                    .get("STANDARD_DEVIATION")
+                    .and_then(|s| s.parse::<f64>().ok())
+                    .unwrap_or(0.0);
                 let from = if spread > 0.0 {
                     format!(
                         "the mean RADIUS of the inlet {name} ({at}; a {} distribution of standard deviation {spread}: other sizes with --particle {}:RADIUS:DENSITY)",
-                        part.data.get("PROBABILITY_DISTRIBUTION").map_or("normal", String::as_str),
+                        part.data
+                            .get("PROBABILITY_DISTRIBUTION")
+                            .map_or("normal", String::as_str),
                         material.id
                     )
                 } else {
@@ -842,8 +975,14 @@ fn sizes_of(
 
 impl DeckReader for KratosDeck {
     fn recognises(&self, path: &Path, text: &str) -> bool {
-        let looks_like = path.extension().is_some_and(|e| e == "json") || text.trim_start().starts_with('{');
-        looks_like && serde_json::from_str::<Value>(text).ok().as_ref().and_then(kind_of).is_some()
+        let looks_like =
+            path.extension().is_some_and(|e| e == "json") || text.trim_start().starts_with('{');
+        looks_like
+            && serde_json::from_str::<Value>(text)
+                .ok()
+                .as_ref()
+                .and_then(kind_of)
+                .is_some()
     }
 
     fn reads(&self) -> &'static str {
@@ -867,12 +1006,19 @@ impl DeckReader for KratosDeck {
                 (named_by_project, value)
             }
             Some((named, value)) => {
-                let same = std::fs::canonicalize(&named_by_project).ok() == std::fs::canonicalize(&named).ok();
+                let same = std::fs::canonicalize(&named_by_project).ok()
+                    == std::fs::canonicalize(&named).ok();
                 if !same {
                     return Err(DeckError::Lacking {
                         file: path.to_path_buf(),
-                        what: format!("the {PROJECT_FILE} beside it names the materials file {}", named_by_project.display()),
-                        supported: format!("name {} instead, or make its materials_filename name this file", project_path.display()),
+                        what: format!(
+                            "the {PROJECT_FILE} beside it names the materials file {}",
+                            named_by_project.display()
+                        ),
+                        supported: format!(
+                            "name {} instead, or make its materials_filename name this file",
+                            project_path.display()
+                        ),
                     });
                 }
                 (named, value)
@@ -880,20 +1026,32 @@ impl DeckReader for KratosDeck {
         };
         let root = Node::root(&materials_path, &materials_value);
         let mut materials: Vec<Material<'_>> = Vec::new();
-        for node in root.require("materials", "a list of materials")?.items("a list of materials")? {
+        for node in root
+            .require("materials", "a list of materials")?
+            .items("a list of materials")?
+        {
             let id = node.require("material_id", "a material_id")?.id()?;
-            let name = node.key("material_name").map(|n| n.string("a name").map(str::to_string)).transpose()?;
+            let name = node
+                .key("material_name")
+                .map(|n| n.string("a name").map(str::to_string))
+                .transpose()?;
             materials.push(Material { id, name, node });
         }
         let relations: Vec<Relation<'_>> = root
-            .require("material_relations", "the material relations (each pair's law and restitution)")?
+            .require(
+                "material_relations",
+                "the material relations (each pair's law and restitution)",
+            )?
             .items("a list of material relations")?
             .into_iter()
             .map(|node| {
                 let ids = node.require("material_ids_list", "material_ids_list [ID, ID]")?;
                 let list = ids.items("material_ids_list [ID, ID]")?;
                 match list.as_slice() {
-                    [a, b] => Ok(Relation { ids: [a.id()?, b.id()?], node }),
+                    [a, b] => Ok(Relation {
+                        ids: [a.id()?, b.id()?],
+                        node,
+                    }),
                     _ => Err(ids.bad("two material ids", "material_ids_list [ID, ID]")),
                 }
             })
@@ -902,7 +1060,10 @@ impl DeckReader for KratosDeck {
         let parts_supported = "SpheresPart, DEMInletPart and RigidFacePart (ClusterPart is left out), or their sub-model parts";
         let mut assigned: BTreeMap<u32, Vec<(String, Root, Node<'_>)>> = BTreeMap::new();
         let mut left_out = project.left_out.clone();
-        let table = root.require("material_assignation_table", "the material assignation table ([MODEL PART, MATERIAL] pairs)")?;
+        let table = root.require(
+            "material_assignation_table",
+            "the material assignation table ([MODEL PART, MATERIAL] pairs)",
+        )?;
         for entry in table.items("a list of [MODEL PART, MATERIAL] pairs")? {
             let pair = entry.items("[MODEL PART, MATERIAL]")?;
             let [part, which] = pair.as_slice() else {
@@ -910,50 +1071,93 @@ impl DeckReader for KratosDeck {
             };
             let part_name = part.string("a model part's name")?.to_string();
             let material = match which.value.as_str() {
-                Some(n) => materials.iter().find(|m| m.name.as_deref() == Some(n)).map(|m| m.id).ok_or_else(|| {
-                    DeckError::unsupported(which.at(), format!("material `{n}` is in no material_name"), "the name or id of a material of the file")
-                })?,
+                Some(n) => materials
+                    .iter()
+                    .find(|m| m.name.as_deref() == Some(n))
+                    .map(|m| m.id)
+                    .ok_or_else(|| {
+                        DeckError::unsupported(
+                            which.at(),
+                            format!("material `{n}` is in no material_name"),
+                            "the name or id of a material of the file",
+                        )
+                    })?,
                 None => which.id()?,
             };
             if !materials.iter().any(|m| m.id == material) {
-                return Err(DeckError::unsupported(which.at(), format!("material {material} is in no material_id"), "the name or id of a material of the file"));
+                return Err(DeckError::unsupported(
+                    which.at(),
+                    format!("material {material} is in no material_id"),
+                    "the name or id of a material of the file",
+                ));
             }
             let root_kind = match split_part(&part_name).0 {
                 "SpheresPart" => Root::Spheres,
                 "DEMInletPart" => Root::Inlet,
                 "RigidFacePart" => Root::Walls,
                 "ClusterPart" => Root::Clusters,
-                other => return Err(DeckError::unsupported(part.at(), format!("model part `{other}`"), parts_supported)),
+                other => {
+                    return Err(DeckError::unsupported(
+                        part.at(),
+                        format!("model part `{other}`"),
+                        parts_supported,
+                    ));
+                }
             };
             if root_kind == Root::Clusters {
-                left_out.push(format!("clusters ({part_name}, {}): particles of several spheres are not checked", entry.at()));
+                left_out.push(format!(
+                    "clusters ({part_name}, {}): particles of several spheres are not checked",
+                    entry.at()
+                ));
                 continue;
             }
-            assigned.entry(material).or_default().push((part_name, root_kind, entry));
+            assigned
+                .entry(material)
+                .or_default()
+                .push((part_name, root_kind, entry));
         }
-        let material_of = |id: u32| materials.iter().find(|m| m.id == id).expect("assigned materials exist");
+        let material_of = |id: u32| {
+            materials
+                .iter()
+                .find(|m| m.id == id)
+                .expect("assigned materials exist")
+        };
         // Every relation the check will use names a law it steps, before any size is looked for.
         let role = |id: u32, wall: bool| {
-            assigned.get(&id).is_some_and(|ps| ps.iter().any(|(_, r, _)| (*r == Root::Walls) == wall))
+            assigned
+                .get(&id)
+                .is_some_and(|ps| ps.iter().any(|(_, r, _)| (*r == Root::Walls) == wall))
         };
         for r in &relations {
             let [a, b] = r.ids;
-            if (role(a, false) && (role(b, false) || role(b, true))) || (role(b, false) && role(a, true)) {
+            if (role(a, false) && (role(b, false) || role(b, true)))
+                || (role(b, false) && role(a, true))
+            {
                 r.law()?;
             }
         }
         let problem = project.problem_name.clone().unwrap_or_default();
         let mut mdpa = Some((project.folder.join(format!("{problem}DEM.mdpa")), None));
-        let mut inlet = Some((project.folder.join(format!("{problem}DEM_Inlet.mdpa")), None));
+        let mut inlet = Some((
+            project.folder.join(format!("{problem}DEM_Inlet.mdpa")),
+            None,
+        ));
         let mut bodies: Vec<DeckBody> = Vec::new();
         let given: BTreeSet<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for p in &options.particles {
-            let parts = assigned.get(&p.type_id).filter(|ps| ps.iter().any(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet)));
+            let parts = assigned.get(&p.type_id).filter(|ps| {
+                ps.iter()
+                    .any(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet))
+            });
             if parts.is_none() {
                 return Err(DeckError::Lacking {
                     file: materials_path.clone(),
-                    what: format!("--particle {}:{}:{}: material {} is assigned to no particles (SpheresPart, DEMInletPart)", p.type_id, p.radius, p.density, p.type_id),
-                    supported: "the material id of a particle material of the assignation table".into(),
+                    what: format!(
+                        "--particle {}:{}:{}: material {} is assigned to no particles (SpheresPart, DEMInletPart)",
+                        p.type_id, p.radius, p.density, p.type_id
+                    ),
+                    supported: "the material id of a particle material of the assignation table"
+                        .into(),
                 });
             }
             let material = material_of(p.type_id);
@@ -962,22 +1166,40 @@ impl DeckReader for KratosDeck {
             if p.density != density {
                 return Err(DeckError::Lacking {
                     file: materials_path.clone(),
-                    what: format!("--particle {}:{}:{}: material {} has PARTICLE_DENSITY {density}, and Kratos forms the mass from it", p.type_id, p.radius, p.density, material.label()),
+                    what: format!(
+                        "--particle {}:{}:{}: material {} has PARTICLE_DENSITY {density}, and Kratos forms the mass from it",
+                        p.type_id,
+                        p.radius,
+                        p.density,
+                        material.label()
+                    ),
                     supported: format!("--particle {}:{}:{density}", p.type_id, p.radius),
                 });
             }
         }
         for (id, parts) in &assigned {
-            let particles: Vec<(&str, Root, Node<'_>)> = parts.iter().filter(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet)).map(|(n, r, e)| (n.as_str(), *r, e.clone())).collect();
+            let particles: Vec<(&str, Root, Node<'_>)> = parts
+                .iter()
+                .filter(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet))
+                .map(|(n, r, e)| (n.as_str(), *r, e.clone()))
+                .collect();
             if particles.is_empty() {
                 continue;
             }
             let material = material_of(*id);
-            let density = material.variable("PARTICLE_DENSITY", "PARTICLE_DENSITY, kg/m³ (a particle material's)")?;
+            let density = material.variable(
+                "PARTICLE_DENSITY",
+                "PARTICLE_DENSITY, kg/m³ (a particle material's)",
+            )?;
             let e = material.variable("YOUNG_MODULUS", "YOUNG_MODULUS, Pa")?;
             let nu = material.variable("POISSON_RATIO", "POISSON_RATIO")?;
             let sizes: Vec<(f64, String)> = if given.contains(id) {
-                options.particles.iter().filter(|p| p.type_id == *id).map(|p| (p.radius, "--particle".to_string())).collect()
+                options
+                    .particles
+                    .iter()
+                    .filter(|p| p.type_id == *id)
+                    .map(|p| (p.radius, "--particle".to_string()))
+                    .collect()
             } else {
                 sizes_of(material, &particles, &mut mdpa, &mut inlet)?
             };
@@ -989,17 +1211,30 @@ impl DeckReader for KratosDeck {
                         "no radius for material {} ({}): no sphere of it in {} nor an inlet RADIUS in {}",
                         material.label(),
                         names.join(", "),
-                        mdpa.as_ref().map_or(String::new(), |m| m.0.display().to_string()),
-                        inlet.as_ref().map_or(String::new(), |m| m.0.display().to_string())
+                        mdpa.as_ref()
+                            .map_or(String::new(), |m| m.0.display().to_string()),
+                        inlet
+                            .as_ref()
+                            .map_or(String::new(), |m| m.0.display().to_string())
                     ),
                     supported: format!("give its size with --particle {id}:RADIUS:{density}"),
                 });
             }
             for (radius, from) in sizes {
                 #[allow(clippy::float_cmp)] // the same radius read twice is the same number
-                let known = bodies.iter().any(|b| b.type_id == *id && b.radius == radius);
+                let known = bodies
+                    .iter()
+                    .any(|b| b.type_id == *id && b.radius == radius);
                 if !known {
-                    bodies.push(DeckBody { type_id: *id, radius, density, mass: particle_mass(radius, density), youngs_modulus: Some(e), poisson_ratio: Some(nu), from });
+                    bodies.push(DeckBody {
+                        type_id: *id,
+                        radius,
+                        density,
+                        mass: particle_mass(radius, density),
+                        youngs_modulus: Some(e),
+                        poisson_ratio: Some(nu),
+                        from,
+                    });
                 }
             }
         }
@@ -1012,7 +1247,11 @@ impl DeckReader for KratosDeck {
         }
         let mut walls = Vec::new();
         for (id, parts) in &assigned {
-            let names: Vec<&str> = parts.iter().filter(|(_, r, _)| *r == Root::Walls).map(|(n, _, _)| n.as_str()).collect();
+            let names: Vec<&str> = parts
+                .iter()
+                .filter(|(_, r, _)| *r == Root::Walls)
+                .map(|(n, _, _)| n.as_str())
+                .collect();
             if names.is_empty() {
                 continue;
             }
@@ -1038,19 +1277,47 @@ impl DeckReader for KratosDeck {
         }
         let mut contacts = Vec::new();
         let mut used_relations = BTreeSet::new();
-        let mut push = |body: usize, partner: Partner, types: [TypeRef; 2], relation: &Relation<'_>, pl: PairLaw| {
+        let mut push = |body: usize,
+                        partner: Partner,
+                        types: [TypeRef; 2],
+                        relation: &Relation<'_>,
+                        pl: PairLaw| {
             used_relations.insert(relation.node.path.clone());
             let mut traps = pl.traps;
-            traps.extend(project.search.as_ref().map(|s| s.trap(matches!(partner, Partner::Wall(_)), project.timestep)));
+            traps.extend(
+                project
+                    .search
+                    .as_ref()
+                    .map(|s| s.trap(matches!(partner, Partner::Wall(_)), project.timestep)),
+            );
             traps.extend(extra_traps.iter().cloned());
-            contacts.push(DeckContact { body, partner, types, model: pl.name, cor_entered: Some(pl.entered), law: pl.law, traps, lines: vec![pl.at] });
+            contacts.push(DeckContact {
+                body,
+                partner,
+                types,
+                model: pl.name,
+                cor_entered: Some(pl.entered),
+                law: pl.law,
+                traps,
+                lines: vec![pl.at],
+            });
         };
         for (a, body) in bodies.iter().enumerate() {
             for (b, other) in bodies.iter().enumerate().skip(a) {
                 let relation = relation_of(body.type_id, other.type_id)?;
                 let side = Side::Particle(material_of(other.type_id), other.radius, other.mass);
-                let pl = pair_law(relation, (material_of(body.type_id), body.radius, body.mass), &side)?;
-                push(a, Partner::Body(b), [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)], relation, pl);
+                let pl = pair_law(
+                    relation,
+                    (material_of(body.type_id), body.radius, body.mass),
+                    &side,
+                )?;
+                push(
+                    a,
+                    Partner::Body(b),
+                    [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
+                    relation,
+                    pl,
+                );
             }
         }
         for (w, wall) in walls.iter().enumerate() {
@@ -1058,26 +1325,55 @@ impl DeckReader for KratosDeck {
             for (a, body) in bodies.iter().enumerate() {
                 let relation = relation_of(body.type_id, wall_id)?;
                 let side = Side::Wall(material_of(wall_id), &wall.name);
-                let pl = pair_law(relation, (material_of(body.type_id), body.radius, body.mass), &side)?;
-                push(a, Partner::Wall(w), [TypeRef::Type(body.type_id), TypeRef::Wall], relation, pl);
+                let pl = pair_law(
+                    relation,
+                    (material_of(body.type_id), body.radius, body.mass),
+                    &side,
+                )?;
+                push(
+                    a,
+                    Partner::Wall(w),
+                    [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    relation,
+                    pl,
+                );
             }
         }
         // The file reduced to the materials in use and the relations checked, as written.
-        let used: BTreeSet<u32> = bodies.iter().map(|b| b.type_id).chain(walls.iter().filter_map(|w| w.type_id)).collect();
+        let used: BTreeSet<u32> = bodies
+            .iter()
+            .map(|b| b.type_id)
+            .chain(walls.iter().filter_map(|w| w.type_id))
+            .collect();
         let reduced = serde_json::json!({
             "materials": materials.iter().filter(|m| used.contains(&m.id)).map(|m| m.node.value.clone()).collect::<Vec<_>>(),
             "material_relations": relations.iter().filter(|r| used_relations.contains(&r.node.path)).map(|r| r.node.value.clone()).collect::<Vec<_>>(),
         });
-        let unused: Vec<String> = relations.iter().filter(|r| !used_relations.contains(&r.node.path)).map(|r| r.node.path.clone()).collect();
+        let unused: Vec<String> = relations
+            .iter()
+            .filter(|r| !used_relations.contains(&r.node.path))
+            .map(|r| r.node.path.clone())
+            .collect();
         if !unused.is_empty() {
-            left_out.push(format!("relations no checked pair uses ({}: {})", materials_path.display(), unused.join(", ")));
+            left_out.push(format!(
+                "relations no checked pair uses ({}: {})",
+                materials_path.display(),
+                unused.join(", ")
+            ));
         }
         let common = serde_json::to_string_pretty(&reduced).map_err(|e| DeckError::Lacking {
             file: materials_path.clone(),
             what: format!("its materials cannot be written back as JSON: {e}"),
             supported: "plain JSON values".into(),
         })?;
-        let particle_types = u32::try_from(bodies.iter().map(|b| b.type_id).collect::<BTreeSet<_>>().len()).unwrap_or(u32::MAX);
+        let particle_types = u32::try_from(
+            bodies
+                .iter()
+                .map(|b| b.type_id)
+                .collect::<BTreeSet<_>>()
+                .len(),
+        )
+        .unwrap_or(u32::MAX);
         Ok(UserDeck {
             path: path.to_path_buf(),
             timestep: project.timestep,
@@ -1101,7 +1397,13 @@ impl DeckReader for KratosDeck {
         })
     }
 
-    fn render(&self, deck: &UserDeck, contact: usize, velocity: f64, steps: u64) -> Result<DeckImpactInput, CodeError> {
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
         let sphere = |b: &DeckBody| CodeSphere {
@@ -1112,8 +1414,16 @@ impl DeckReader for KratosDeck {
             poisson_ratio: b.poisson_ratio,
         };
         let (scene, other, other_material) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o]), deck.bodies[o].type_id),
-            Partner::Wall(w) => (SceneKind::BallPlate, None, deck.walls[w].type_id.unwrap_or_default()),
+            Partner::Body(o) => (
+                SceneKind::BallBall,
+                Some(&deck.bodies[o]),
+                deck.bodies[o].type_id,
+            ),
+            Partner::Wall(w) => (
+                SceneKind::BallPlate,
+                None,
+                deck.walls[w].type_id.unwrap_or_default(),
+            ),
         };
         let mut setup = CodeSetup {
             case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
@@ -1140,10 +1450,12 @@ impl DeckReader for KratosDeck {
         let reach = body.radius + other.map_or(0.0, |o| o.radius);
         let start_gap = reach.next_up() - reach;
         let num = exact_number;
-        let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| CodeError::Unsupported {
-            code: "kratos".into(),
-            case: setup.case_name.clone(),
-            reason: e.to_string(),
+        let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| {
+            CodeError::Unsupported {
+                code: "kratos".into(),
+                case: setup.case_name.clone(),
+                reason: e.to_string(),
+            }
         })?;
         let values = [
             ("scene", scene.name().to_string()),
@@ -1210,7 +1522,8 @@ Begin SubModelPart Big\n Begin SubModelPartData\n  RADIUS 0.5\n End SubModelPart
         )
         .unwrap();
         let m = Mdpa::read(&path).unwrap();
-        let radii = |part| -> Vec<(f64, usize)> { m.radii(&path, part).unwrap().into_values().collect() };
+        let radii =
+            |part| -> Vec<(f64, usize)> { m.radii(&path, part).unwrap().into_values().collect() };
         assert_eq!(radii(None).len(), 2);
         // A part holds its own elements and its sub-parts'.
         assert_eq!(radii(Some("Big")).iter().map(|r| r.1).sum::<usize>(), 3);

@@ -42,11 +42,11 @@ use super::damping::{
 use super::parse::ParseError;
 use super::runner::{self, CodesDir, find_codes_dir};
 use super::template::{exact_number, fill_template};
-use crate::codes::yade::{log_value, parse_trajectory};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
     RenderedInput,
 };
+use crate::codes::yade::{log_value, parse_trajectory};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
@@ -393,12 +393,7 @@ impl CodeDriver for Kratos {
         })
     }
 
-    fn parse(
-        &self,
-        setup: &CodeSetup,
-        workdir: &Path,
-        log: &str,
-    ) -> Result<ParsedRun, ParseError> {
+    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         let path = workdir.join(TRAJECTORY_FILE);
         let text =
             std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;

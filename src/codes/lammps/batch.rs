@@ -138,8 +138,8 @@ impl BatchRunner for LammpsBatch {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::codes::lammps::DEBIAN_2021;
     use crate::codes::CodeName;
+    use crate::codes::lammps::DEBIAN_2021;
     use crate::model::case::Case;
 
     fn setups(scene: &str) -> Vec<CodeSetup> {
@@ -186,7 +186,9 @@ mod tests {
         for i in 0..setups.len() {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),
-                format!("# time overlap approach_velocity normal_force\n0 0 1 0\n1e-6 {i}e-9 1 5\n"),
+                format!(
+                    "# time overlap approach_velocity normal_force\n0 0 1 0\n1e-6 {i}e-9 1 5\n"
+                ),
             )
             .unwrap();
         }

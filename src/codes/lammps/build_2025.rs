@@ -16,9 +16,9 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use crate::codes::lammps::conventions::Conventions;
 use crate::codes::lammps::Build;
 use crate::codes::lammps::builds::lammps_driver_methods;
+use crate::codes::lammps::conventions::Conventions;
 use crate::codes::runner::{binary_override_variable, find_codes_dir};
 use crate::codes::{CodeDriver, Executable, LocateError};
 

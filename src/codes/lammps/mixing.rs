@@ -44,7 +44,11 @@ impl GranularModel {
     /// tangential, rolling and twisting models.
     pub fn form(&self) -> String {
         let mut form = format!("{} damping {}", self.normal, self.damping);
-        for (word, style) in [("tangential", &self.tangential), ("rolling", &self.rolling), ("twisting", &self.twisting)] {
+        for (word, style) in [
+            ("tangential", &self.tangential),
+            ("rolling", &self.rolling),
+            ("twisting", &self.twisting),
+        ] {
             if !style.is_empty() {
                 form.push_str(&format!(" {word} {style}"));
             }
@@ -54,7 +58,11 @@ impl GranularModel {
 
     /// What the build integrates for this model on its own (a pair's own line, or a wall),
     /// with the wall modulus's traps.
-    pub fn coefficients(&self, conventions: &Conventions, wall: bool) -> (Coefficients, Vec<String>) {
+    pub fn coefficients(
+        &self,
+        conventions: &Conventions,
+        wall: bool,
+    ) -> (Coefficients, Vec<String>) {
         let mut traps = Vec::new();
         let v = &self.values;
         let normal = match self.normal.as_str() {
@@ -63,7 +71,9 @@ impl GranularModel {
             _ => {
                 let (e, nu) = (v[0], v[2]);
                 let e_star = match (wall, conventions.wall_modulus) {
-                    (false, _) | (true, WallModulus::HalfOverOneMinusNuSquared) => own_modulus(e, nu),
+                    (false, _) | (true, WallModulus::HalfOverOneMinusNuSquared) => {
+                        own_modulus(e, nu)
+                    }
                     (true, WallModulus::HalfOverOneMinusNu) => {
                         traps.push(format!("wall modulus: in this build fix wall/gran hertz/material reads E* = E/(2(1−ν)) = {:.4e} Pa, not E/(2(1−ν²)) = {:.4e} Pa (the particle's material on both sides): {:+.1} % stiffer", e / (2.0 * (1.0 - nu)), own_modulus(e, nu), 100.0 * nu));
                         e / (2.0 * (1.0 - nu))
@@ -244,14 +254,17 @@ impl PairMixing {
                         limit_damping: false,
                         tangential: String::new(),
                     },
-                    model: format!("hooke damping velocity (mixed from {i} {i} and {j} {j}: the model left unset)"),
+                    model: format!(
+                        "hooke damping velocity (mixed from {i} {i} and {j} {j}: the model left unset)"
+                    ),
                     traps,
                 }
             }
             PairMixing::WholeModel => {
                 let (normal, stiffness_is) = match a.normal.as_str() {
                     "hertz/material" => {
-                        let (ea, nua, eb, nub) = (a.values[0], a.values[2], b.values[0], b.values[2]);
+                        let (ea, nua, eb, nub) =
+                            (a.values[0], a.values[2], b.values[0], b.values[2]);
                         let e_star = two_material_modulus((ea, nua), (eb, nub));
                         (
                             Normal::Material(e_star),
@@ -262,8 +275,18 @@ impl PairMixing {
                     }
                     name => {
                         let k = geometric(a.values[0], b.values[0]);
-                        let normal = if name == "hooke" { Normal::Hooke(k) } else { Normal::Hertz(k) };
-                        (normal, format!("k = √(k{i}·k{j}) = √({:e}·{:e}) = {k:.6e}", a.values[0], b.values[0]))
+                        let normal = if name == "hooke" {
+                            Normal::Hooke(k)
+                        } else {
+                            Normal::Hertz(k)
+                        };
+                        (
+                            normal,
+                            format!(
+                                "k = √(k{i}·k{j}) = √({:e}·{:e}) = {k:.6e}",
+                                a.values[0], b.values[0]
+                            ),
+                        )
                     }
                 };
                 let d = geometric(da, db);
@@ -297,7 +320,10 @@ impl PairMixing {
                         limit_damping: a.limit_damping || b.limit_damping,
                         tangential: a.tangential.clone(),
                     },
-                    model: format!("{} damping {} (mixed from {i} {i} and {j} {j})", a.normal, a.damping),
+                    model: format!(
+                        "{} damping {} (mixed from {i} {i} and {j} {j})",
+                        a.normal, a.damping
+                    ),
                     traps,
                 }
             }

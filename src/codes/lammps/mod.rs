@@ -41,13 +41,13 @@ pub use build_2025::Lammps2025;
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
-pub use conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
-use conventions::{Conventions, DampingVelocity};
 use super::template::{exact_number, fill_template};
 use super::{CodeError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::SpringModel;
 use crate::model::trajectory::CodeTrajectory;
+use conventions::{Conventions, DampingVelocity};
+pub use conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
 
 /// The sphere-on-wall deck (also the probes' deck).
 pub const WALL_TEMPLATE: &str = include_str!("impact_wall.in");
@@ -151,9 +151,7 @@ impl Build {
         // coeff_restitution runs e = 0 (NaN) and e > 1 (energy gain) without a word: refused
         // here for every damping model.
         if !(e > 0.0 && e <= 1.0) {
-            return Err(refuse(format!(
-                "target restitution {e} is outside (0, 1]"
-            )));
+            return Err(refuse(format!("target restitution {e} is outside (0, 1]")));
         }
         let elastic = e >= 1.0;
         if setup.spring() == SpringModel::Hertz {

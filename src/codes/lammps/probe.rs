@@ -19,13 +19,13 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 use thiserror::Error;
 
-use crate::codes::template::TemplateError;
-use crate::codes::{CodeSetup, Executable, Prober};
 pub use crate::codes::lammps::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 use crate::codes::lammps::conventions::{exact_hertz_alpha, tsuji_alpha};
 use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version};
 use crate::codes::runner::{cache_dir, read_log, spawn_contained, wait_contained};
+use crate::codes::template::TemplateError;
 use crate::codes::template::{exact_number, fill_template};
+use crate::codes::{CodeSetup, Executable, Prober};
 use crate::model::trajectory::CodeTrajectory;
 
 /// A number that may be NaN, as JSON allows: `null` for NaN.
@@ -697,7 +697,11 @@ impl BuildIdentity {
                 .iter()
                 .map(|(k, v)| ((*k).to_string(), v.to_string_lossy().into_owned()))
                 .collect(),
-            probe_sha256: decks.finalize().iter().map(|b| format!("{b:02x}")).collect(),
+            probe_sha256: decks
+                .finalize()
+                .iter()
+                .map(|b| format!("{b:02x}"))
+                .collect(),
         })
     }
 
@@ -706,7 +710,8 @@ impl BuildIdentity {
     pub fn cache_file(&self, dir: &Path) -> PathBuf {
         let path = Sha256::digest(self.program.as_os_str().as_encoded_bytes());
         let short: String = path.iter().take(8).map(|b| format!("{b:02x}")).collect();
-        dir.join("probe").join(format!("{}-{short}.json", self.code))
+        dir.join("probe")
+            .join(format!("{}-{short}.json", self.code))
     }
 }
 
@@ -785,9 +790,7 @@ pub fn probe_lammps_cached(
 ) -> Result<ProbeReport, ProbeError> {
     let key = executable.program.clone();
     let mut cache = CACHE.lock().unwrap_or_else(|e| e.into_inner());
-    if !refresh
-        && let Some((_, _, r)) = cache.iter().find(|(c, p, _)| c == code && *p == key)
-    {
+    if !refresh && let Some((_, _, r)) = cache.iter().find(|(c, p, _)| c == code && *p == key) {
         return Ok(r.clone());
     }
     let report = probe_lammps_kept(code, executable, dir, refresh)?;
@@ -1021,11 +1024,19 @@ mod tests {
         let cache = tempfile::tempdir().unwrap();
         let lmp = fake_build(build.path(), Conventions::DEBIAN_2021);
         let first = probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
-        assert_eq!(first.conventions, Some(Conventions::DEBIAN_2021), "{first:#?}");
+        assert_eq!(
+            first.conventions,
+            Some(Conventions::DEBIAN_2021),
+            "{first:#?}"
+        );
         assert_eq!(first.kept_in, None);
         assert_eq!(starts(build.path()), probe_runs().len());
         let second = probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
-        assert_eq!(starts(build.path()), probe_runs().len(), "the build was not started");
+        assert_eq!(
+            starts(build.path()),
+            probe_runs().len(),
+            "the build was not started"
+        );
         let file = BuildIdentity::of("lammps", &lmp)
             .unwrap()
             .cache_file(cache.path());

@@ -236,6 +236,9 @@ mod tests {
             short += &loop_line(0.5, s);
         }
         let runs = parse_batch(&setups, dir.path(), &short);
-        assert!(matches!(runs[1], Err(ParseError::StepCount { .. })), "{runs:?}");
+        assert!(
+            matches!(runs[1], Err(ParseError::StepCount { .. })),
+            "{runs:?}"
+        );
     }
 }

@@ -15,8 +15,8 @@ use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
-    Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
+    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::{exact_number, fill_template};
@@ -159,14 +159,22 @@ impl Reading {
     fn property(&self, name: &str, file: &Path, needed_by: &str) -> Result<&Property, DeckError> {
         self.properties.get(name).ok_or_else(|| DeckError::Lacking {
             file: file.to_path_buf(),
-            what: format!("{needed_by} needs the material property {name}, which no fix property/global sets"),
+            what: format!(
+                "{needed_by} needs the material property {name}, which no fix property/global sets"
+            ),
             supported: format!("add `fix ID all property/global {name} …` as LIGGGHTS requires"),
         })
     }
 }
 
 /// The model keywords of LIGGGHTS's model selector, in the order it reads them.
-const MODEL_KEYWORDS: [&str; 5] = ["model", "tangential", "cohesion", "rolling_friction", "surface"];
+const MODEL_KEYWORDS: [&str; 5] = [
+    "model",
+    "tangential",
+    "cohesion",
+    "rolling_friction",
+    "surface",
+];
 
 /// Read `model X [tangential Y] [cohesion Z] [rolling_friction R] [surface S]` from
 /// `words[start..]`; returns the model and the index after it.
@@ -181,8 +189,14 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
         spec: Vec::new(),
         settings: Vec::new(),
     };
-    while let Some(key) = command.words.get(k).filter(|w| MODEL_KEYWORDS.contains(&w.as_str())) {
-        let value = command.word(k + 1, &format!("a value after {key}"))?.to_string();
+    while let Some(key) = command
+        .words
+        .get(k)
+        .filter(|w| MODEL_KEYWORDS.contains(&w.as_str()))
+    {
+        let value = command
+            .word(k + 1, &format!("a value after {key}"))?
+            .to_string();
         match key.as_str() {
             "model" => model.normal = value.clone(),
             "tangential" => model.tangential = value.clone(),
@@ -212,7 +226,10 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
     if model.cohesion != "off" {
         return Err(DeckError::unsupported(
             &command.at,
-            format!("cohesion {}: it adds a normal force the impact check does not model", model.cohesion),
+            format!(
+                "cohesion {}: it adds a normal force the impact check does not model",
+                model.cohesion
+            ),
             "cohesion off",
         ));
     }
@@ -254,7 +271,10 @@ fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Resu
 }
 
 /// Read `fix ID group wall/gran …`.
-fn read_wall(command: &Command, meshes: &HashMap<String, (u32, SourceLine)>) -> Result<WallFix, DeckError> {
+fn read_wall(
+    command: &Command,
+    meshes: &HashMap<String, (u32, SourceLine)>,
+) -> Result<WallFix, DeckError> {
     let (mut model, mut k) = read_model(command, 4)?;
     let mut wall_type = None;
     let mut geometry = String::new();
@@ -296,21 +316,34 @@ fn read_wall(command: &Command, meshes: &HashMap<String, (u32, SourceLine)>) -> 
                 if n == 0 {
                     return Err(DeckError::unsupported(
                         &command.at,
-                        format!("`meshes` names no mesh/surface fix defined before: `{}`", command.text),
+                        format!(
+                            "`meshes` names no mesh/surface fix defined before: `{}`",
+                            command.text
+                        ),
                         "meshes ID… of fix mesh/surface lines above",
                     ));
                 }
                 mesh_names.extend(command.words[k + 1..k + 1 + n].iter().cloned());
                 k += 1 + n;
             }
-            "store_force" | "store_force_contact" | "store_force_contact_every"
-            | "allow_special_domain_periodic" | "store_force_contact_stress" | "temperature"
+            "store_force"
+            | "store_force_contact"
+            | "store_force_contact_every"
+            | "allow_special_domain_periodic"
+            | "store_force_contact_stress"
+            | "temperature"
             | "track_energy" => k += if word == "track_energy" { 1 } else { 2 },
             "shear" => {
                 geometry.push_str(" (its shear motion)");
                 k += 3;
             }
-            "contact_area" => k += if command.words.get(k + 1).is_some_and(|w| w == "constant") { 3 } else { 2 },
+            "contact_area" => {
+                k += if command.words.get(k + 1).is_some_and(|w| w == "constant") {
+                    3
+                } else {
+                    2
+                }
+            }
             _ => break,
         }
     }
@@ -320,7 +353,10 @@ fn read_wall(command: &Command, meshes: &HashMap<String, (u32, SourceLine)>) -> 
         if types.iter().any(|t| *t != types[0]) {
             return Err(DeckError::unsupported(
                 &command.at,
-                format!("the meshes {} have different types {types:?}", mesh_names.join(", ")),
+                format!(
+                    "the meshes {} have different types {types:?}",
+                    mesh_names.join(", ")
+                ),
                 "one wall/gran fix per wall material (meshes of one type)",
             ));
         }
@@ -480,13 +516,23 @@ impl LiggghtsDeck {
                 let wall = read_wall(c, &r.meshes)?;
                 r.walls.push(wall);
             }
-            "mesh/surface" | "mesh/surface/stress" | "mesh/surface/planar" | "mesh/surface/stress/servo" => {
+            "mesh/surface"
+            | "mesh/surface/stress"
+            | "mesh/surface/planar"
+            | "mesh/surface/stress/servo" => {
                 let k = c.words.iter().position(|w| w == "type").ok_or_else(|| {
-                    DeckError::unsupported(&c.at, format!("fix {style} without `type`"), "fix ID group mesh/surface file F type T …")
+                    DeckError::unsupported(
+                        &c.at,
+                        format!("fix {style} without `type`"),
+                        "fix ID group mesh/surface file F type T …",
+                    )
                 })?;
                 let t = type_number(c.number(k + 1, "the mesh's type")?, c)?;
                 r.meshes.insert(c.words[1].clone(), (t, c.at.clone()));
-                r.leave_out("mesh walls' geometry (each wall/gran wall is met as a flat plane)", c);
+                r.leave_out(
+                    "mesh walls' geometry (each wall/gran wall is met as a flat plane)",
+                    c,
+                );
             }
             "particletemplate/sphere" => {
                 let k = c.words.iter().position(|w| w == "atom_type").ok_or_else(|| {
@@ -504,8 +550,12 @@ impl LiggghtsDeck {
                     "particletemplate/sphere",
                 ));
             }
-            "nve/sphere" => r.leave_out("the integrator (the impact runs fix nve/sphere, as the deck)", c),
-            "nve" | "nve/limit" | "nve/sphere/limit" | "nve/asphere" | "nvt" | "rigid" | "multisphere" => {
+            "nve/sphere" => r.leave_out(
+                "the integrator (the impact runs fix nve/sphere, as the deck)",
+                c,
+            ),
+            "nve" | "nve/limit" | "nve/sphere/limit" | "nve/asphere" | "nvt" | "rigid"
+            | "multisphere" => {
                 return Err(DeckError::unsupported(
                     &c.at,
                     format!("fix {style}: an integrator whose step the harness does not model"),
@@ -520,9 +570,13 @@ impl LiggghtsDeck {
                     "decks without coarse-graining",
                 ));
             }
-            "particledistribution/discrete" | "particledistribution/discrete/numberbased"
-            | "particledistribution/discrete/massbased" | "insert/pack" | "insert/stream"
-            | "insert/rate/region" | "insert/pack/dense" => r.leave_out("particle insertion", c),
+            "particledistribution/discrete"
+            | "particledistribution/discrete/numberbased"
+            | "particledistribution/discrete/massbased"
+            | "insert/pack"
+            | "insert/stream"
+            | "insert/rate/region"
+            | "insert/pack/dense" => r.leave_out("particle insertion", c),
             "move/mesh" | "move" | "rotate" => r.leave_out("wall and particle motion", c),
             _ => r.leave_out("other fixes (no part of a contact)", c),
         }
@@ -562,7 +616,9 @@ impl LiggghtsDeck {
         let push = |bodies: &mut Vec<DeckBody>, t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
             #[allow(clippy::float_cmp)]
-            let known = bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            let known = bodies
+                .iter()
+                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
             if !known {
                 bodies.push(DeckBody {
                     type_id: t,
@@ -576,7 +632,15 @@ impl LiggghtsDeck {
             }
         };
         if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
-            return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}:{}:{}: atom types count from 1", p.type_id, p.radius, p.density), supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck".into() });
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: format!(
+                    "--particle {}:{}:{}: atom types count from 1",
+                    p.type_id, p.radius, p.density
+                ),
+                supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck"
+                    .into(),
+            });
         }
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for (t, radius, density, c) in &r.templates {
@@ -584,12 +648,23 @@ impl LiggghtsDeck {
                 continue;
             }
             match (radius, density) {
-                (Some(radius), Some(density)) => push(&mut bodies, *t, *radius, *density, format!("{} ({})", c.words[1], c.at)),
+                (Some(radius), Some(density)) => push(
+                    &mut bodies,
+                    *t,
+                    *radius,
+                    *density,
+                    format!("{} ({})", c.words[1], c.at),
+                ),
                 _ => {
                     return Err(DeckError::unsupported(
                         &c.at,
-                        format!("the template {} has no constant radius and density", c.words[1]),
-                        &format!("`radius constant R` and `density constant RHO`, or --particle {t}:RADIUS:DENSITY"),
+                        format!(
+                            "the template {} has no constant radius and density",
+                            c.words[1]
+                        ),
+                        &format!(
+                            "`radius constant R` and `density constant RHO`, or --particle {t}:RADIUS:DENSITY"
+                        ),
                     ));
                 }
             }
@@ -606,27 +681,49 @@ impl LiggghtsDeck {
                 }
                 let own = r.set_atom.get(&(index + 1)).copied().unwrap_or_default();
                 if let (Some(d), Some(rho)) = (own.0.or(of_type.0), own.1.or(of_type.1)) {
-                    push(&mut bodies, *t, d / 2.0, rho, format!("atom {} ({at})", index + 1));
+                    push(
+                        &mut bodies,
+                        *t,
+                        d / 2.0,
+                        rho,
+                        format!("atom {} ({at})", index + 1),
+                    );
                     found = true;
                 }
             }
             if !found {
                 match of_type {
                     (Some(d), Some(rho)) => {
-                        push(&mut bodies, *t, d / 2.0, rho, format!("set type {t} ({at})"));
+                        push(
+                            &mut bodies,
+                            *t,
+                            d / 2.0,
+                            rho,
+                            format!("set type {t} ({at})"),
+                        );
                     }
                     _ => {
                         return Err(DeckError::unsupported(
                             at,
-                            format!("atoms of type {t} are created without a diameter and density set for them"),
-                            &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"),
+                            format!(
+                                "atoms of type {t} are created without a diameter and density set for them"
+                            ),
+                            &format!(
+                                "`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"
+                            ),
                         ));
                     }
                 }
             }
         }
         for p in &options.particles {
-            push(&mut bodies, p.type_id, p.radius, p.density, format!("--particle {}:{}:{}", p.type_id, p.radius, p.density));
+            push(
+                &mut bodies,
+                p.type_id,
+                p.radius,
+                p.density,
+                format!("--particle {}:{}:{}", p.type_id, p.radius, p.density),
+            );
         }
         if bodies.is_empty() {
             return Err(DeckError::Lacking {
@@ -656,31 +753,59 @@ impl Materials<'_> {
     fn modulus(&self, t: u32, needed_by: &str) -> Result<(f64, f64, SourceLine), DeckError> {
         let e = self.r.property("youngsModulus", self.path, needed_by)?;
         let nu = self.r.property("poissonsRatio", self.path, needed_by)?;
-        let (ev, nuv) = (e.of_type("youngsModulus", t)?, nu.of_type("poissonsRatio", t)?);
+        let (ev, nuv) = (
+            e.of_type("youngsModulus", t)?,
+            nu.of_type("poissonsRatio", t)?,
+        );
         if !(0.0..=0.5).contains(&nuv) {
-            return Err(DeckError::unsupported(&nu.at, format!("poissonsRatio {nuv} of type {t}"), "0 <= poissonsRatio <= 0.5 (LIGGGHTS stops otherwise)"));
+            return Err(DeckError::unsupported(
+                &nu.at,
+                format!("poissonsRatio {nuv} of type {t}"),
+                "0 <= poissonsRatio <= 0.5 (LIGGGHTS stops otherwise)",
+            ));
         }
         if ev > 1e9 && !self.r.hard_particles {
-            return Err(DeckError::unsupported(&e.at, format!("youngsModulus {ev} of type {t} without `hard_particles yes`"), "youngsModulus <= 1e9, or hard_particles yes (LIGGGHTS stops otherwise)"));
+            return Err(DeckError::unsupported(
+                &e.at,
+                format!("youngsModulus {ev} of type {t} without `hard_particles yes`"),
+                "youngsModulus <= 1e9, or hard_particles yes (LIGGGHTS stops otherwise)",
+            ));
         }
         if ev < 5e6 && !self.r.soft_particles {
-            return Err(DeckError::unsupported(&e.at, format!("youngsModulus {ev} of type {t} without `soft_particles yes`"), "youngsModulus >= 5e6, or soft_particles yes (LIGGGHTS stops otherwise)"));
+            return Err(DeckError::unsupported(
+                &e.at,
+                format!("youngsModulus {ev} of type {t} without `soft_particles yes`"),
+                "youngsModulus >= 5e6, or soft_particles yes (LIGGGHTS stops otherwise)",
+            ));
         }
         Ok((ev, nuv, e.at.clone()))
     }
 
     fn restitution(&self, i: u32, j: u32, needed_by: &str) -> Result<(f64, SourceLine), DeckError> {
-        let p = self.r.property("coefficientRestitution", self.path, needed_by)?;
+        let p = self
+            .r
+            .property("coefficientRestitution", self.path, needed_by)?;
         let e = p.of_pair("coefficientRestitution", i, j)?;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(DeckError::unsupported(&p.at, format!("coefficientRestitution {e} for the types {i} and {j}"), "0.05 < coefficientRestitution <= 1 (LIGGGHTS stops otherwise)"));
+            return Err(DeckError::unsupported(
+                &p.at,
+                format!("coefficientRestitution {e} for the types {i} and {j}"),
+                "0.05 < coefficientRestitution <= 1 (LIGGGHTS stops otherwise)",
+            ));
         }
         Ok((e, p.at.clone()))
     }
 
     /// The law LIGGGHTS integrates between a particle of type `i` (radius, mass) and a partner
     /// of type `j` (`Some((radius, mass))` for a particle, `None` for a wall).
-    fn pair_law(&self, model: &GranModel, (i, radius, mass): (u32, f64, f64), j: u32, partner: Option<(f64, f64)>, at: &SourceLine) -> Result<PairLaw, DeckError> {
+    fn pair_law(
+        &self,
+        model: &GranModel,
+        (i, radius, mass): (u32, f64, f64),
+        j: u32,
+        partner: Option<(f64, f64)>,
+        at: &SourceLine,
+    ) -> Result<PairLaw, DeckError> {
         let needed_by = format!("model {}", model.normal);
         let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
         let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
@@ -706,14 +831,23 @@ impl Materials<'_> {
                     let k = 4.0 / 3.0 * y_star * r_star.sqrt();
                     (DashpotLaw::damped_hertz(m_star, k, e), Some(e))
                 } else {
-                    let v_prop = self.r.property("characteristicVelocity", self.path, &needed_by)?;
+                    let v_prop =
+                        self.r
+                            .property("characteristicVelocity", self.path, &needed_by)?;
                     let v = v_prop.scalar("characteristicVelocity")?;
                     if v < 1e-2 {
-                        return Err(DeckError::unsupported(&v_prop.at, format!("characteristicVelocity {v}"), "characteristicVelocity >= 1e-2 (LIGGGHTS stops otherwise)"));
+                        return Err(DeckError::unsupported(
+                            &v_prop.at,
+                            format!("characteristicVelocity {v}"),
+                            "characteristicVelocity >= 1e-2 (LIGGGHTS stops otherwise)",
+                        ));
                     }
                     lines.push(v_prop.at.clone());
                     let s = r_star.sqrt();
-                    let kn = 16.0 / 15.0 * s * y_star * (15.0 * m_star * v * v / (16.0 * s * y_star)).powf(0.2);
+                    let kn = 16.0 / 15.0
+                        * s
+                        * y_star
+                        * (15.0 * m_star * v * v / (16.0 * s * y_star)).powf(0.2);
                     traps.push(format!(
                         "model hooke: its spring kn = {kn:.4e} N/m is Hertz's at characteristicVelocity {v} m/s only: at another speed the contact time and overlap are not Hertz's (the COR is)"
                     ));
@@ -734,7 +868,14 @@ impl Materials<'_> {
                     traps.push(format!("gamman is per unit mass: the dashpot is gamman × m* = {damping:.4e} N·s/m here (absolute_damping on takes N·s/m)"));
                 }
                 (
-                    DashpotLaw { mass: m_star, stiffness: kn, exponent: 1.0, damping, damping_exponent: 0.0, clamp_attractive: false },
+                    DashpotLaw {
+                        mass: m_star,
+                        stiffness: kn,
+                        exponent: 1.0,
+                        damping,
+                        damping_exponent: 0.0,
+                        clamp_attractive: false,
+                    },
                     None,
                 )
             }
@@ -748,7 +889,14 @@ impl Materials<'_> {
                 lines.push(g.at.clone());
                 let s = r_star.sqrt();
                 (
-                    DashpotLaw { mass: m_star, stiffness: kn * s, exponent: 1.5, damping: gamma * m_star * s, damping_exponent: 0.5, clamp_attractive: false },
+                    DashpotLaw {
+                        mass: m_star,
+                        stiffness: kn * s,
+                        exponent: 1.5,
+                        damping: gamma * m_star * s,
+                        damping_exponent: 0.5,
+                        clamp_attractive: false,
+                    },
                     None,
                 )
             }
@@ -765,7 +913,12 @@ impl Materials<'_> {
                 model.tangential, model.rolling
             ));
         }
-        Ok(PairLaw { law, cor_entered, traps, lines })
+        Ok(PairLaw {
+            law,
+            cor_entered,
+            traps,
+            lines,
+        })
     }
 }
 
@@ -774,7 +927,9 @@ impl DeckReader for LiggghtsDeck {
         text.lines().map(str::trim).any(|l| {
             let words: Vec<&str> = l.split_whitespace().collect();
             matches!(words.as_slice(), ["pair_style", "gran", "model", ..])
-                || (words.first() == Some(&"fix") && words.get(3) == Some(&"wall/gran") && words.get(4) == Some(&"model"))
+                || (words.first() == Some(&"fix")
+                    && words.get(3) == Some(&"wall/gran")
+                    && words.get(4) == Some(&"model"))
                 || matches!(words.as_slice(), ["atom_style", "granular", ..])
         })
     }
@@ -788,10 +943,18 @@ impl DeckReader for LiggghtsDeck {
         match &r.units {
             Some(c) if c.words.get(1).is_some_and(|u| u == "si") => {}
             Some(c) => {
-                return Err(DeckError::unsupported(&c.at, format!("units {}", c.words.get(1).map_or("", String::as_str)), "units si"));
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    format!("units {}", c.words.get(1).map_or("", String::as_str)),
+                    "units si",
+                ));
             }
             None => {
-                return Err(DeckError::Lacking { file: path.to_path_buf(), what: "no `units` line (LIGGGHTS's default is lj)".into(), supported: "units si".into() });
+                return Err(DeckError::Lacking {
+                    file: path.to_path_buf(),
+                    what: "no `units` line (LIGGGHTS's default is lj)".into(),
+                    supported: "units si".into(),
+                });
             }
         }
         let (types, _) = r.types.clone().ok_or_else(|| DeckError::Lacking {
@@ -805,16 +968,30 @@ impl DeckReader for LiggghtsDeck {
             supported: "timestep DT (s)".into(),
         })?;
         if timestep.is_nan() || timestep <= 0.0 {
-            return Err(DeckError::unsupported(&timestep_at, format!("timestep {timestep}"), "a positive time step, s"));
+            return Err(DeckError::unsupported(
+                &timestep_at,
+                format!("timestep {timestep}"),
+                "a positive time step, s",
+            ));
         }
         let (pair_model, pair_command) = r.pair.clone().ok_or_else(|| DeckError::Lacking {
             file: path.to_path_buf(),
             what: "no pair_style gran line".into(),
             supported: "pair_style gran model …".into(),
         })?;
-        for t in r.templates.iter().map(|x| x.0).chain(r.atoms_of_type.keys().copied()).chain(r.walls.iter().map(|w| w.wall_type)) {
+        for t in r
+            .templates
+            .iter()
+            .map(|x| x.0)
+            .chain(r.atoms_of_type.keys().copied())
+            .chain(r.walls.iter().map(|w| w.wall_type))
+        {
             if t > types {
-                return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("type {t} is used but create_box declares {types} types"), supported: "types from 1 to create_box's N".into() });
+                return Err(DeckError::Lacking {
+                    file: path.to_path_buf(),
+                    what: format!("type {t} is used but create_box declares {types} types"),
+                    supported: "types from 1 to create_box's N".into(),
+                });
             }
         }
         let mut bodies = Self::bodies(&r, path, options)?;
@@ -822,7 +999,8 @@ impl DeckReader for LiggghtsDeck {
         let uses_modulus = |m: &GranModel| m.normal == "hertz" || m.normal == "hooke";
         if uses_modulus(&pair_model) || r.walls.iter().any(|w| uses_modulus(&w.model)) {
             for b in &mut bodies {
-                let (e, nu, _) = materials.modulus(b.type_id, &format!("model {}", pair_model.normal))?;
+                let (e, nu, _) =
+                    materials.modulus(b.type_id, &format!("model {}", pair_model.normal))?;
                 b.youngs_modulus = Some(e);
                 b.poisson_ratio = Some(nu);
             }
@@ -831,26 +1009,48 @@ impl DeckReader for LiggghtsDeck {
         let mut wall_lines = Vec::new();
         for w in &r.walls {
             let (e, nu) = if uses_modulus(&w.model) {
-                let (e, nu, _) = materials.modulus(w.wall_type, &format!("model {}", w.model.normal))?;
+                let (e, nu, _) =
+                    materials.modulus(w.wall_type, &format!("model {}", w.model.normal))?;
                 (Some(e), Some(nu))
             } else {
                 (None, None)
             };
-            walls.push(DeckWall { name: w.id.clone(), type_id: Some(w.wall_type), youngs_modulus: e, poisson_ratio: nu, from: w.at.clone().into() });
-            let settings: Vec<String> = w.model.settings.iter().flat_map(|(k, v)| [k.clone(), v.clone()]).collect();
-            wall_lines.push(format!(
-                "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
-                w.id,
-                w.group,
-                w.model.spec.join(" "),
-                w.wall_type,
-                settings.join(" ")
-            ).trim_end().to_string());
+            walls.push(DeckWall {
+                name: w.id.clone(),
+                type_id: Some(w.wall_type),
+                youngs_modulus: e,
+                poisson_ratio: nu,
+                from: w.at.clone().into(),
+            });
+            let settings: Vec<String> = w
+                .model
+                .settings
+                .iter()
+                .flat_map(|(k, v)| [k.clone(), v.clone()])
+                .collect();
+            wall_lines.push(
+                format!(
+                    "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
+                    w.id,
+                    w.group,
+                    w.model.spec.join(" "),
+                    w.wall_type,
+                    settings.join(" ")
+                )
+                .trim_end()
+                .to_string(),
+            );
         }
         let mut contacts = Vec::new();
         for (a, body) in bodies.iter().enumerate() {
             for (b, other) in bodies.iter().enumerate().skip(a) {
-                let pl = materials.pair_law(&pair_model, (body.type_id, body.radius, body.mass), other.type_id, Some((other.radius, other.mass)), &pair_command.at)?;
+                let pl = materials.pair_law(
+                    &pair_model,
+                    (body.type_id, body.radius, body.mass),
+                    other.type_id,
+                    Some((other.radius, other.mass)),
+                    &pair_command.at,
+                )?;
                 contacts.push(DeckContact {
                     body: a,
                     partner: Partner::Body(b),
@@ -865,9 +1065,18 @@ impl DeckReader for LiggghtsDeck {
         }
         for (a, body) in bodies.iter().enumerate() {
             for (w, wall) in r.walls.iter().enumerate() {
-                let pl = materials.pair_law(&wall.model, (body.type_id, body.radius, body.mass), wall.wall_type, None, &wall.at)?;
+                let pl = materials.pair_law(
+                    &wall.model,
+                    (body.type_id, body.radius, body.mass),
+                    wall.wall_type,
+                    None,
+                    &wall.at,
+                )?;
                 let mut traps = pl.traps;
-                traps.push(format!("wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)", wall.geometry));
+                traps.push(format!(
+                    "wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)",
+                    wall.geometry
+                ));
                 contacts.push(DeckContact {
                     body: a,
                     partner: Partner::Wall(w),
@@ -880,10 +1089,11 @@ impl DeckReader for LiggghtsDeck {
                 });
             }
         }
-        let representative_velocity = r
-            .properties
-            .get("characteristicVelocity")
-            .and_then(|p| p.values.first().map(|v| (*v, format!("characteristicVelocity ({})", p.at))));
+        let representative_velocity = r.properties.get("characteristicVelocity").and_then(|p| {
+            p.values
+                .first()
+                .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
+        });
         let left_out = r
             .left_out
             .iter()
@@ -905,11 +1115,22 @@ impl DeckReader for LiggghtsDeck {
             contacts,
             representative_velocity,
             left_out,
-            transplant: Transplant { before_box: r.before_box.clone(), common, walls: wall_lines, types },
+            transplant: Transplant {
+                before_box: r.before_box.clone(),
+                common,
+                walls: wall_lines,
+                types,
+            },
         })
     }
 
-    fn render(&self, deck: &UserDeck, contact: usize, velocity: f64, steps: u64) -> Result<DeckImpactInput, CodeError> {
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
         let sphere = |b: &DeckBody| CodeSphere {
@@ -922,7 +1143,11 @@ impl DeckReader for LiggghtsDeck {
         let case_name = format!("deck-{contact}-{}-{}", c.types[0], c.types[1]);
         let (scene, other_sphere, wall_line) = match c.partner {
             Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&deck.bodies[o])), None),
-            Partner::Wall(w) => (SceneKind::BallPlate, None, Some(deck.transplant.walls[w].clone())),
+            Partner::Wall(w) => (
+                SceneKind::BallPlate,
+                None,
+                Some(deck.transplant.walls[w].clone()),
+            ),
         };
         let mut setup = CodeSetup {
             case_name,
@@ -972,7 +1197,11 @@ impl DeckReader for LiggghtsDeck {
                     r1 + other.radius,
                 )
             }
-            Partner::Wall(_) => (format!("{}-z[1]", exact_number(r1)), "-vz[1]".to_string(), r1),
+            Partner::Wall(_) => (
+                format!("{}-z[1]", exact_number(r1)),
+                "-vz[1]".to_string(),
+                r1,
+            ),
         };
         let half = 4.0 * reach + velocity * setup.duration() + gap;
         let h = exact_number(half);
@@ -1017,7 +1246,9 @@ impl DeckReader for LiggghtsDeck {
             input: RenderedInput {
                 file_name: INPUT_FILE.into(),
                 text,
-                args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"].map(String::from).to_vec(),
+                args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
+                    .map(String::from)
+                    .to_vec(),
             },
             setup,
             start_gap: gap,
@@ -1028,7 +1259,10 @@ impl DeckReader for LiggghtsDeck {
 /// The model specification of the deck's `pair_style gran` line (`model hertz tangential …`),
 /// for a wall that must exist but never be touched.
 fn lowest_type_spec(common: &[String]) -> String {
-    let Some(line) = common.iter().find(|l| l.trim_start().starts_with("pair_style")) else {
+    let Some(line) = common
+        .iter()
+        .find(|l| l.trim_start().starts_with("pair_style"))
+    else {
         return "model hertz".into();
     };
     let words: Vec<&str> = line.split_whitespace().skip(2).collect();

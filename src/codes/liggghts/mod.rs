@@ -418,12 +418,7 @@ impl CodeDriver for Liggghts {
         render_deck(self.name(), setup, &self.contact_model(setup))
     }
 
-    fn parse(
-        &self,
-        setup: &CodeSetup,
-        workdir: &Path,
-        log: &str,
-    ) -> Result<ParsedRun, ParseError> {
+    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         parse_run(setup, workdir, log)
     }
 

@@ -22,9 +22,9 @@ use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
 };
+use crate::codes::batch::BatchError;
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::exact_number;
-use crate::codes::batch::BatchError;
 use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParseError, ParsedRun, RenderedInput,
@@ -145,12 +145,7 @@ impl CodeDriver for LiggghtsPaper {
         render_deck(self.name(), setup, &self.contact_model(setup))
     }
 
-    fn parse(
-        &self,
-        setup: &CodeSetup,
-        workdir: &Path,
-        log: &str,
-    ) -> Result<ParsedRun, ParseError> {
+    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         parse_run(setup, workdir, log)
     }
 

@@ -328,11 +328,14 @@ pub fn launcher_python(launcher: &Path) -> Option<LauncherPython> {
 pub fn launch(executable: Executable, input: &RenderedInput) -> Launch {
     let module_path = launcher_python(&executable.program).and_then(|python| {
         let mut folders = vec![python.library.clone()];
-        folders.extend(std::env::var_os("PYTHONPATH").map_or_else(Vec::new, |p| {
-            std::env::split_paths(&p).collect::<Vec<_>>()
-        }));
+        folders.extend(
+            std::env::var_os("PYTHONPATH")
+                .map_or_else(Vec::new, |p| std::env::split_paths(&p).collect::<Vec<_>>()),
+        );
         // A folder whose name holds the path separator cannot be put on the path.
-        std::env::join_paths(folders).ok().map(|joined| (python, joined))
+        std::env::join_paths(folders)
+            .ok()
+            .map(|joined| (python, joined))
     });
     let Some((python, module_path)) = module_path else {
         return Launch {
@@ -424,7 +427,9 @@ mod tests {
 
     #[test]
     fn groups_hold_one_scene_and_step_and_at_most_a_mask_each() {
-        let mut setups: Vec<CodeSetup> = (0..65).map(|i| setup("ball_plate", i as f64 / 100.0)).collect();
+        let mut setups: Vec<CodeSetup> = (0..65)
+            .map(|i| setup("ball_plate", i as f64 / 100.0))
+            .collect();
         setups.push(setup("rod_end", 0.3));
         setups.push(setup("rod_end", 0.4));
         let mut finer = setup("rod_end", 0.5);
@@ -472,7 +477,10 @@ mod tests {
         let runs = parse_batch(&setups, dir.path(), log);
         let times: Vec<Option<f64>> = runs.iter().map(|r| r.as_ref().unwrap().loop_time).collect();
         assert_eq!(times, [Some(0.25), Some(0.5)]);
-        assert_eq!(runs[0].as_ref().unwrap().version.as_deref(), Some("2023.02a"));
+        assert_eq!(
+            runs[0].as_ref().unwrap().version.as_deref(),
+            Some("2023.02a")
+        );
     }
 
     /// A launcher as YADE's build writes it, in `dir`, naming `library` as its module folder.
@@ -508,7 +516,8 @@ mod tests {
                 library: library.clone(),
             })
         );
-        let through_env = launcher_python(&launcher(dir.path(), "#!/usr/bin/env python3", &library));
+        let through_env =
+            launcher_python(&launcher(dir.path(), "#!/usr/bin/env python3", &library));
         assert_eq!(
             through_env.map(|p| p.interpreter),
             Some(vec!["/usr/bin/env".to_string(), "python3".to_string()])
@@ -520,12 +529,22 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let library = library_in(dir.path());
         // A wrapper, a launcher whose library folder holds no `yade`, a missing file.
-        assert_eq!(launcher_python(&launcher(dir.path(), "#!/bin/sh", &library)), None);
+        assert_eq!(
+            launcher_python(&launcher(dir.path(), "#!/bin/sh", &library)),
+            None
+        );
         let empty = dir.path().join("empty");
         std::fs::create_dir_all(&empty).unwrap();
-        assert_eq!(launcher_python(&launcher(dir.path(), "#!/usr/bin/python3", &empty)), None);
+        assert_eq!(
+            launcher_python(&launcher(dir.path(), "#!/usr/bin/python3", &empty)),
+            None
+        );
         let wrapper = dir.path().join("wrapper");
-        std::fs::write(&wrapper, "#!/usr/bin/python3\nimport os\nos.execvp('yade', ['yade'])\n").unwrap();
+        std::fs::write(
+            &wrapper,
+            "#!/usr/bin/python3\nimport os\nos.execvp('yade', ['yade'])\n",
+        )
+        .unwrap();
         assert_eq!(launcher_python(&wrapper), None);
         assert_eq!(launcher_python(&dir.path().join("absent")), None);
     }

@@ -39,7 +39,9 @@ impl CalibrationCard for YadeCard {
             t.push("wall radius: Ig2_Wall_Sphere_ScGeom gives the wall the sphere's radius (R* = R/2) unless hertzian=True".into());
             t.push("wall modulus: the wall's material is mixed into E*: give the plate's own (a rigid plate: E = 1e30)".into());
         }
-        t.push("clamp: YADE's laws never attract; the damping is chosen for the clamped law".into());
+        t.push(
+            "clamp: YADE's laws never attract; the damping is chosen for the clamped law".into(),
+        );
         t
     }
 

@@ -21,9 +21,8 @@ use super::python::{Call, Expr, Known, Module, Unresolved, Value, show};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckSource,
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
-    Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
@@ -68,7 +67,11 @@ struct Material {
 
 impl Material {
     fn get(&self, key: &str) -> Option<f64> {
-        self.values.iter().rev().find(|(k, _)| k == key).and_then(|(_, v)| v.number())
+        self.values
+            .iter()
+            .rev()
+            .find(|(k, _)| k == key)
+            .and_then(|(_, v)| v.number())
     }
 
     /// A value with the class's default (`ElastMat`: density 1000, young 1e9, poisson 0.25;
@@ -84,14 +87,21 @@ impl Material {
     }
 
     fn label(&self) -> Option<String> {
-        self.values.iter().find(|(k, _)| k == "label").and_then(|(_, v)| match v {
-            Value::Str(s) => Some(s.clone()),
-            _ => None,
-        })
+        self.values
+            .iter()
+            .find(|(k, _)| k == "label")
+            .and_then(|(_, v)| match v {
+                Value::Str(s) => Some(s.clone()),
+                _ => None,
+            })
     }
 
     fn python(&self) -> String {
-        let args: Vec<String> = self.values.iter().map(|(k, v)| format!("{k}={}", v.python())).collect();
+        let args: Vec<String> = self
+            .values
+            .iter()
+            .map(|(k, v)| format!("{k}={}", v.python()))
+            .collect();
         format!("{}({})", self.class.name(), args.join(", "))
     }
 }
@@ -100,7 +110,11 @@ impl Material {
 #[derive(Clone, Debug, PartialEq)]
 enum Param {
     Value(Value),
-    Match { matches: Vec<(i64, i64, f64)>, algo: String, val: Option<f64> },
+    Match {
+        matches: Vec<(i64, i64, f64)>,
+        algo: String,
+        val: Option<f64>,
+    },
 }
 
 impl Param {
@@ -108,9 +122,15 @@ impl Param {
         match self {
             Param::Value(v) => v.python(),
             Param::Match { matches, algo, val } => {
-                let m: Vec<String> = matches.iter().map(|(a, b, x)| format!("({a}, {b}, {})", exact_number(*x))).collect();
+                let m: Vec<String> = matches
+                    .iter()
+                    .map(|(a, b, x)| format!("({a}, {b}, {})", exact_number(*x)))
+                    .collect();
                 let val = val.map_or(String::new(), |v| format!(", val={}", exact_number(v)));
-                format!("MatchMaker(matches=({},), algo='{algo}'{val})", m.join(", "))
+                format!(
+                    "MatchMaker(matches=({},), algo='{algo}'{val})",
+                    m.join(", ")
+                )
             }
         }
     }
@@ -126,7 +146,11 @@ struct Functor {
 
 impl Functor {
     fn param(&self, key: &str) -> Option<&Param> {
-        self.params.iter().rev().find(|(k, _)| k == key).map(|(_, p)| p)
+        self.params
+            .iter()
+            .rev()
+            .find(|(k, _)| k == key)
+            .map(|(_, p)| p)
     }
 
     fn number(&self, key: &str) -> Option<f64> {
@@ -145,22 +169,42 @@ impl Functor {
     fn pair_value(&self, key: &str, a: u32, b: u32) -> Result<Option<f64>, DeckError> {
         match self.param(key) {
             None | Some(Param::Value(Value::NoneValue)) => Ok(None),
-            Some(Param::Value(v)) => v.number().map(Some).ok_or_else(|| DeckError::unsupported(&self.at, format!("{}'s {key} = {}", self.class, v.python()), "a number or a MatchMaker")),
+            Some(Param::Value(v)) => v.number().map(Some).ok_or_else(|| {
+                DeckError::unsupported(
+                    &self.at,
+                    format!("{}'s {key} = {}", self.class, v.python()),
+                    "a number or a MatchMaker",
+                )
+            }),
             Some(Param::Match { matches, algo, val }) => {
                 let (a, b) = (i64::from(a), i64::from(b));
-                if let Some((_, _, x)) = matches.iter().find(|(i, j, _)| (*i == a && *j == b) || (*i == b && *j == a)) {
+                if let Some((_, _, x)) = matches
+                    .iter()
+                    .find(|(i, j, _)| (*i == a && *j == b) || (*i == b && *j == a))
+                {
                     return Ok(Some(*x));
                 }
                 match (algo.as_str(), val) {
                     ("val", Some(v)) => Ok(Some(*v)),
-                    _ => Err(DeckError::unsupported(&self.at, format!("{}'s {key}: its MatchMaker has no match for the materials {a} and {b} and no fallback YADE can compute without the materials' own values (algo '{algo}')", self.class), "a match for every pair in use, or algo='val' with val=X")),
+                    _ => Err(DeckError::unsupported(
+                        &self.at,
+                        format!(
+                            "{}'s {key}: its MatchMaker has no match for the materials {a} and {b} and no fallback YADE can compute without the materials' own values (algo '{algo}')",
+                            self.class
+                        ),
+                        "a match for every pair in use, or algo='val' with val=X",
+                    )),
                 }
             }
         }
     }
 
     fn python(&self) -> String {
-        let args: Vec<String> = self.params.iter().map(|(k, p)| format!("{k}={}", p.python())).collect();
+        let args: Vec<String> = self
+            .params
+            .iter()
+            .map(|(k, p)| format!("{k}={}", p.python()))
+            .collect();
         format!("{}({})", self.class, args.join(", "))
     }
 }
@@ -246,11 +290,19 @@ impl Known for Knowledge<'_> {
         if call.func == "O.materials.append" {
             return Some(match self.appended.get(&call.at).map(Vec::as_slice) {
                 Some([id]) => Ok(Value::Int(i64::from(*id))),
-                _ => Err(Unresolved(format!("`{}` appends no single material", show(&Expr::Call(call.clone()))))),
+                _ => Err(Unresolved(format!(
+                    "`{}` appends no single material",
+                    show(&Expr::Call(call.clone()))
+                ))),
             });
         }
         (call.name() == "PWaveTimeStep").then(|| {
-            self.pwave.map(Value::Float).ok_or_else(|| Unresolved("PWaveTimeStep() has no sphere of known size before it (YADE would return 1 s)".into()))
+            self.pwave.map(Value::Float).ok_or_else(|| {
+                Unresolved(
+                    "PWaveTimeStep() has no sphere of known size before it (YADE would return 1 s)"
+                        .into(),
+                )
+            })
         })
     }
 }
@@ -263,23 +315,53 @@ struct Script<'a> {
 
 impl Script<'_> {
     fn at(&self, line: usize) -> SourceLine {
-        SourceLine { file: self.path.to_path_buf(), line }
+        SourceLine {
+            file: self.path.to_path_buf(),
+            line,
+        }
     }
 
     /// The value of `expr` (the argument `what` of a call on `line`), or the error naming it.
-    fn value(&self, expr: &Expr, line: usize, known: &dyn Known, what: &str) -> Result<Value, DeckError> {
-        self.module.value(expr, line, known).map_err(|e| DeckError::unsupported(self.at(line), format!("{what} `{}`: {e}", show(expr)), LITERAL))
+    fn value(
+        &self,
+        expr: &Expr,
+        line: usize,
+        known: &dyn Known,
+        what: &str,
+    ) -> Result<Value, DeckError> {
+        self.module.value(expr, line, known).map_err(|e| {
+            DeckError::unsupported(
+                self.at(line),
+                format!("{what} `{}`: {e}", show(expr)),
+                LITERAL,
+            )
+        })
     }
 
-    fn number(&self, expr: &Expr, line: usize, known: &dyn Known, what: &str) -> Result<f64, DeckError> {
+    fn number(
+        &self,
+        expr: &Expr,
+        line: usize,
+        known: &dyn Known,
+        what: &str,
+    ) -> Result<f64, DeckError> {
         let v = self.value(expr, line, known, what)?;
-        v.number().ok_or_else(|| DeckError::unsupported(self.at(line), format!("{what} `{}` is {}, not a number", show(expr), v.python()), LITERAL))
+        v.number().ok_or_else(|| {
+            DeckError::unsupported(
+                self.at(line),
+                format!("{what} `{}` is {}, not a number", show(expr), v.python()),
+                LITERAL,
+            )
+        })
     }
 
     /// The expression a name is bound to, or the expression itself.
     fn through_name(&self, expr: &Expr, line: usize) -> Expr {
         match expr {
-            Expr::Name(n) => self.module.binding(n, line).map_or_else(|_| expr.clone(), |(_, e)| e),
+            Expr::Name(n) => self
+                .module
+                .binding(n, line)
+                .map_or_else(|_| expr.clone(), |(_, e)| e),
             other => other.clone(),
         }
     }
@@ -307,47 +389,103 @@ fn wall_kind(call: &Call) -> Option<(WallKind, Option<usize>)> {
         "wall" if utils => Some((WallKind::Plane, Some(4))),
         "facet" if utils => Some((WallKind::Facet, Some(7))),
         "box" if utils => Some((WallKind::Box, Some(8))),
-        _ if name.starts_with("facet") && matches!(prefix, "" | "geom." | "yade.geom." | "utils.") => Some((WallKind::Facet, None)),
-        "stl" | "gmsh" | "gts" | "unv" if prefix.ends_with("ymport.") => Some((WallKind::Facet, None)),
+        _ if name.starts_with("facet")
+            && matches!(prefix, "" | "geom." | "yade.geom." | "utils.") =>
+        {
+            Some((WallKind::Facet, None))
+        }
+        "stl" | "gmsh" | "gts" | "unv" if prefix.ends_with("ymport.") => {
+            Some((WallKind::Facet, None))
+        }
         _ => None,
     }
 }
 
 fn is_sphere(call: &Call) -> bool {
-    matches!(call.func.as_str(), "sphere" | "utils.sphere" | "yade.utils.sphere")
+    matches!(
+        call.func.as_str(),
+        "sphere" | "utils.sphere" | "yade.utils.sphere"
+    )
 }
 
-const GENERATORS: [&str; 10] = ["makeCloud", "randomDensePack", "regularHexa", "regularOrtho", "randomPeriPack", "toSimulation", "filterSpherePack", "text", "textExt", "textClumps"];
+const GENERATORS: [&str; 10] = [
+    "makeCloud",
+    "randomDensePack",
+    "regularHexa",
+    "regularOrtho",
+    "randomPeriPack",
+    "toSimulation",
+    "filterSpherePack",
+    "text",
+    "textExt",
+    "textClumps",
+];
 
 /// Engines whose settings the impact replaces with its own.
 fn engine_left_out(name: &str) -> Option<&'static str> {
     Some(match name {
-        "ForceResetter" | "InsertionSortCollider" | "SpatialQuickSortCollider" | "PersistentTriangulationCollider" => "the force reset and the collider (the impact sets its own)",
-        "GravityEngine" | "CentralGravityEngine" | "AxialGravityEngine" => "gravity (the impact is a free normal impact)",
-        "PyRunner" | "VTKRecorder" | "SnapshotEngine" | "TorqueRecorder" | "ForceRecorder" | "PositionRecorder" | "TriaxialStateRecorder" => "output and control",
-        _ if name.ends_with("Engine") || name.ends_with("Controller") => "wall and particle motion and other engines (no part of a contact)",
+        "ForceResetter"
+        | "InsertionSortCollider"
+        | "SpatialQuickSortCollider"
+        | "PersistentTriangulationCollider" => {
+            "the force reset and the collider (the impact sets its own)"
+        }
+        "GravityEngine" | "CentralGravityEngine" | "AxialGravityEngine" => {
+            "gravity (the impact is a free normal impact)"
+        }
+        "PyRunner"
+        | "VTKRecorder"
+        | "SnapshotEngine"
+        | "TorqueRecorder"
+        | "ForceRecorder"
+        | "PositionRecorder"
+        | "TriaxialStateRecorder" => "output and control",
+        _ if name.ends_with("Engine") || name.ends_with("Controller") => {
+            "wall and particle motion and other engines (no part of a contact)"
+        }
         _ => return None,
     })
 }
 
 impl YadeDeck {
     /// Resolve the material a body call names (`material=`, default the last appended).
-    fn material_ref(s: &Script, r: &mut Reading, call: &Call, position: Option<usize>) -> Result<u32, DeckError> {
+    fn material_ref(
+        s: &Script,
+        r: &mut Reading,
+        call: &Call,
+        position: Option<usize>,
+    ) -> Result<u32, DeckError> {
         let at = s.at(call.line);
         let count = r.materials.len();
         let by_index = |k: i64, r: &Reading| -> Result<u32, DeckError> {
             let n = i64::try_from(r.materials.len()).unwrap_or(i64::MAX);
             let id = if k < 0 { n + k } else { k };
-            u32::try_from(id).ok().filter(|id| (*id as usize) < r.materials.len()).ok_or_else(|| {
-                DeckError::unsupported(&at, format!("material {k} of `{}`: O.materials holds {n} materials there", call.func), "an id or label of a material appended to O.materials before the body")
-            })
+            u32::try_from(id)
+                .ok()
+                .filter(|id| (*id as usize) < r.materials.len())
+                .ok_or_else(|| {
+                    DeckError::unsupported(
+                        &at,
+                        format!(
+                            "material {k} of `{}`: O.materials holds {n} materials there",
+                            call.func
+                        ),
+                        "an id or label of a material appended to O.materials before the body",
+                    )
+                })
         };
         let Some(expr) = call.arg("material", position) else {
             if count == 0 {
                 // utils.defaultMaterial(), appended as O.materials[0] by the first body.
                 r.materials.push(Material {
                     class: Class::Frict,
-                    values: vec![("density".into(), Value::Float(1e3)), ("young".into(), Value::Float(1e7)), ("poisson".into(), Value::Float(0.3)), ("frictionAngle".into(), Value::Float(0.5)), ("label".into(), Value::Str("defaultMat".into()))],
+                    values: vec![
+                        ("density".into(), Value::Float(1e3)),
+                        ("young".into(), Value::Float(1e7)),
+                        ("poisson".into(), Value::Float(0.3)),
+                        ("frictionAngle".into(), Value::Float(0.5)),
+                        ("label".into(), Value::Str("defaultMat".into())),
+                    ],
                     at: at.clone(),
                 });
             }
@@ -358,7 +496,11 @@ impl YadeDeck {
             if c.func == "O.materials.append" {
                 return match r.appended.get(&c.at).map(Vec::as_slice) {
                     Some([id]) => Ok(*id),
-                    _ => Err(DeckError::unsupported(&at, format!("material `{}`", show(expr)), "one material's id")),
+                    _ => Err(DeckError::unsupported(
+                        &at,
+                        format!("material `{}`", show(expr)),
+                        "one material's id",
+                    )),
                 };
             }
             if is_material_class(&c.func) {
@@ -370,24 +512,59 @@ impl YadeDeck {
                 return appended.ok_or_else(|| DeckError::unsupported(&at, format!("material `{}` is not appended to O.materials (YADE gives it id −1; the check numbers types by their O.materials ids)", show(expr)), "O.materials.append(MATERIAL) before the body, and material=its id, label or name"));
             }
         }
-        let known = Knowledge { appended: &r.appended, pwave: None };
+        let known = Knowledge {
+            appended: &r.appended,
+            pwave: None,
+        };
         match s.value(expr, call.line, &known, "material")? {
             Value::Int(k) => by_index(k, r),
-            Value::Str(label) => r.materials.iter().position(|m| m.label().as_deref() == Some(label.as_str())).and_then(|k| u32::try_from(k).ok()).ok_or_else(|| {
-                DeckError::unsupported(&at, format!("material '{label}': no material of that label in O.materials"), "the label of a material appended before the body")
-            }),
-            other => Err(DeckError::unsupported(&at, format!("material = {}", other.python()), "an O.materials id, a label, or a name bound to an appended material")),
+            Value::Str(label) => r
+                .materials
+                .iter()
+                .position(|m| m.label().as_deref() == Some(label.as_str()))
+                .and_then(|k| u32::try_from(k).ok())
+                .ok_or_else(|| {
+                    DeckError::unsupported(
+                        &at,
+                        format!("material '{label}': no material of that label in O.materials"),
+                        "the label of a material appended before the body",
+                    )
+                }),
+            other => Err(DeckError::unsupported(
+                &at,
+                format!("material = {}", other.python()),
+                "an O.materials id, a label, or a name bound to an appended material",
+            )),
         }
     }
 
     /// A material constructor's values.
     fn material(s: &Script, call: &Call, known: &dyn Known) -> Result<Material, DeckError> {
         let at = s.at(call.line);
-        let class = class_of(&call.func).ok_or_else(|| DeckError::unsupported(&at, format!("material class `{}`", call.func), "FrictMat, ViscElMat"))?;
+        let class = class_of(&call.func).ok_or_else(|| {
+            DeckError::unsupported(
+                &at,
+                format!("material class `{}`", call.func),
+                "FrictMat, ViscElMat",
+            )
+        })?;
         if !call.args.is_empty() {
-            return Err(DeckError::unsupported(&at, format!("positional arguments to {}", call.func), "keyword arguments (young=…, poisson=…, density=…)"));
+            return Err(DeckError::unsupported(
+                &at,
+                format!("positional arguments to {}", call.func),
+                "keyword arguments (young=…, poisson=…, density=…)",
+            ));
         }
-        let values = call.kwargs.iter().map(|(k, e)| Ok((k.clone(), s.value(e, call.line, known, &format!("{}'s {k}", class.name()))?))).collect::<Result<Vec<_>, DeckError>>()?;
+        let values = call
+            .kwargs
+            .iter()
+            .map(|(k, e)| {
+                Ok((
+                    k.clone(),
+                    s.value(e, call.line, known, &format!("{}'s {k}", class.name()))?,
+                ))
+            })
+            .collect::<Result<Vec<_>, DeckError>>()?;
         Ok(Material { class, values, at })
     }
 
@@ -404,9 +581,16 @@ impl YadeDeck {
         for written in items {
             let item = s.through_name(&written, call.line);
             let Expr::Call(c) = &item else {
-                return Err(DeckError::unsupported(s.at(call.line), format!("O.materials.append({})", show(arg)), "O.materials.append(FrictMat(…)) or ViscElMat(…), or of a name assigned one at module level"));
+                return Err(DeckError::unsupported(
+                    s.at(call.line),
+                    format!("O.materials.append({})", show(arg)),
+                    "O.materials.append(FrictMat(…)) or ViscElMat(…), or of a name assigned one at module level",
+                ));
             };
-            let known = Knowledge { appended: &r.appended, pwave: None };
+            let known = Knowledge {
+                appended: &r.appended,
+                pwave: None,
+            };
             let material = Self::material(s, c, &known)?;
             let id = u32::try_from(r.materials.len()).unwrap_or(u32::MAX);
             if let Expr::Name(n) = &written {
@@ -422,17 +606,32 @@ impl YadeDeck {
     fn functors(s: &Script, r: &Reading, call: &Call, k: usize) -> Result<Vec<Functor>, DeckError> {
         let at = s.at(call.line);
         let Some(arg) = call.args.get(k) else {
-            return Err(DeckError::unsupported(&at, "InteractionLoop without its three functor lists".into(), "InteractionLoop([Ig2…], [Ip2…], [Law2…])"));
+            return Err(DeckError::unsupported(
+                &at,
+                "InteractionLoop without its three functor lists".into(),
+                "InteractionLoop([Ig2…], [Ip2…], [Law2…])",
+            ));
         };
         let Expr::Seq(items) = s.through_name(arg, call.line) else {
-            return Err(DeckError::unsupported(&at, format!("functor list `{}`", show(arg)), "a list of functor constructors written in the InteractionLoop, or a name assigned one"));
+            return Err(DeckError::unsupported(
+                &at,
+                format!("functor list `{}`", show(arg)),
+                "a list of functor constructors written in the InteractionLoop, or a name assigned one",
+            ));
         };
-        let known = Knowledge { appended: &r.appended, pwave: None };
+        let known = Knowledge {
+            appended: &r.appended,
+            pwave: None,
+        };
         items
             .iter()
             .map(|item| {
                 let Expr::Call(f) = item else {
-                    return Err(DeckError::unsupported(&at, format!("functor `{}`", show(item)), "a functor constructor, Name(key=value, …)"));
+                    return Err(DeckError::unsupported(
+                        &at,
+                        format!("functor `{}`", show(item)),
+                        "a functor constructor, Name(key=value, …)",
+                    ));
                 };
                 let here = s.at(f.line);
                 let params = f
@@ -440,16 +639,31 @@ impl YadeDeck {
                     .iter()
                     .map(|(key, e)| {
                         let param = match s.through_name(e, f.line) {
-                            Expr::Call(m) if m.name() == "MatchMaker" => Self::match_maker(s, &m, &known)?,
-                            _ => Param::Value(s.value(e, f.line, &known, &format!("{}'s {key}", f.func))?),
+                            Expr::Call(m) if m.name() == "MatchMaker" => {
+                                Self::match_maker(s, &m, &known)?
+                            }
+                            _ => Param::Value(s.value(
+                                e,
+                                f.line,
+                                &known,
+                                &format!("{}'s {key}", f.func),
+                            )?),
                         };
                         Ok((key.clone(), param))
                     })
                     .collect::<Result<Vec<_>, DeckError>>()?;
                 if !f.args.is_empty() {
-                    return Err(DeckError::unsupported(&here, format!("positional arguments to {}", f.func), "keyword arguments"));
+                    return Err(DeckError::unsupported(
+                        &here,
+                        format!("positional arguments to {}", f.func),
+                        "keyword arguments",
+                    ));
                 }
-                Ok(Functor { class: f.name().to_string(), params, at: here })
+                Ok(Functor {
+                    class: f.name().to_string(),
+                    params,
+                    at: here,
+                })
             })
             .collect()
     }
@@ -466,16 +680,36 @@ impl YadeDeck {
                     for item in items {
                         match item {
                             Value::Seq(t) if t.len() == 3 => match (&t[0], &t[1], t[2].number()) {
-                                (Value::Int(a), Value::Int(b), Some(x)) => matches.push((*a, *b, x)),
-                                _ => return Err(DeckError::unsupported(&at, format!("MatchMaker match {}", Value::Seq(t).python()), "(id1, id2, value), ids whole numbers")),
+                                (Value::Int(a), Value::Int(b), Some(x)) => {
+                                    matches.push((*a, *b, x))
+                                }
+                                _ => {
+                                    return Err(DeckError::unsupported(
+                                        &at,
+                                        format!("MatchMaker match {}", Value::Seq(t).python()),
+                                        "(id1, id2, value), ids whole numbers",
+                                    ));
+                                }
                             },
-                            other => return Err(DeckError::unsupported(&at, format!("MatchMaker match {}", other.python()), "(id1, id2, value)")),
+                            other => {
+                                return Err(DeckError::unsupported(
+                                    &at,
+                                    format!("MatchMaker match {}", other.python()),
+                                    "(id1, id2, value)",
+                                ));
+                            }
                         }
                     }
                 }
                 ("algo", Value::Str(a)) => algo = a,
                 ("val", v) if v.number().is_some() => val = v.number(),
-                (key, v) => return Err(DeckError::unsupported(&at, format!("MatchMaker {key}={}", v.python()), "MatchMaker(matches=((id1, id2, value), …), algo='val', val=X)")),
+                (key, v) => {
+                    return Err(DeckError::unsupported(
+                        &at,
+                        format!("MatchMaker {key}={}", v.python()),
+                        "MatchMaker(matches=((id1, id2, value), …), algo='val', val=X)",
+                    ));
+                }
             }
         }
         Ok(Param::Match { matches, algo, val })
@@ -492,26 +726,57 @@ impl YadeDeck {
                 Self::append(s, &mut r, call)?;
             } else if is_sphere(call) {
                 let material = Self::material_ref(s, &mut r, call, Some(7))?;
-                let known = Knowledge { appended: &r.appended, pwave: None };
+                let known = Knowledge {
+                    appended: &r.appended,
+                    pwave: None,
+                };
                 let radius = call
                     .arg("radius", Some(1))
                     .ok_or_else(|| Unresolved("no radius".into()))
                     .and_then(|e| s.module.value(e, call.line, &known))
-                    .and_then(|v| v.number().ok_or_else(|| Unresolved(format!("{} is not a number", v.python()))));
-                if call.arg("fixed", Some(2)).is_some_and(|e| *e == Expr::Bool(true)) {
+                    .and_then(|v| {
+                        v.number()
+                            .ok_or_else(|| Unresolved(format!("{} is not a number", v.python())))
+                    });
+                if call
+                    .arg("fixed", Some(2))
+                    .is_some_and(|e| *e == Expr::Bool(true))
+                {
                     r.leave_out("fixed spheres, checked as free ones", call.line);
                 }
-                r.leave_out("the bodies' positions (the impact places its own)", call.line);
-                r.spheres.push(SphereRead { material, radius, at });
+                r.leave_out(
+                    "the bodies' positions (the impact places its own)",
+                    call.line,
+                );
+                r.spheres.push(SphereRead {
+                    material,
+                    radius,
+                    at,
+                });
             } else if let Some((kind, position)) = wall_kind(call) {
                 if kind == WallKind::Box {
-                    let fixed = call.arg("fixed", Some(4)).is_some_and(|e| *e == Expr::Bool(true)) || call.arg("dynamic", Some(3)).is_some_and(|e| *e == Expr::Bool(false));
+                    let fixed = call
+                        .arg("fixed", Some(4))
+                        .is_some_and(|e| *e == Expr::Bool(true))
+                        || call
+                            .arg("dynamic", Some(3))
+                            .is_some_and(|e| *e == Expr::Bool(false));
                     if !fixed {
-                        return Err(DeckError::unsupported(&at, format!("a free `{}(…)`: a box that moves is a particle the check does not model", call.func), "box(…, fixed=True) as a wall"));
+                        return Err(DeckError::unsupported(
+                            &at,
+                            format!(
+                                "a free `{}(…)`: a box that moves is a particle the check does not model",
+                                call.func
+                            ),
+                            "box(…, fixed=True) as a wall",
+                        ));
                     }
                 }
                 let material = Self::material_ref(s, &mut r, call, position)?;
-                let known = Knowledge { appended: &r.appended, pwave: None };
+                let known = Knowledge {
+                    appended: &r.appended,
+                    pwave: None,
+                };
                 let mass = match kind {
                     WallKind::Box => {
                         let density = r.materials[material as usize].value("density");
@@ -519,32 +784,68 @@ impl YadeDeck {
                             .ok_or_else(|| Unresolved("the box has no extents".into()))
                             .and_then(|e| s.module.value(e, call.line, &known))
                             .and_then(|v| match v {
-                                Value::Seq(x) if x.len() == 3 && x.iter().all(|v| v.number().is_some()) => Ok(8.0 * x.iter().filter_map(Value::number).product::<f64>() * density),
-                                other => Err(Unresolved(format!("its extents {} are not three half-sizes", other.python()))),
+                                Value::Seq(x)
+                                    if x.len() == 3 && x.iter().all(|v| v.number().is_some()) =>
+                                {
+                                    Ok(8.0
+                                        * x.iter().filter_map(Value::number).product::<f64>()
+                                        * density)
+                                }
+                                other => Err(Unresolved(format!(
+                                    "its extents {} are not three half-sizes",
+                                    other.python()
+                                ))),
                             })
                     }
                     _ => Ok(0.0),
                 };
                 if !matches!(name, "wall" | "facet" | "box") {
-                    r.leave_out("the walls' shapes (each met as a flat face of its kind)", call.line);
+                    r.leave_out(
+                        "the walls' shapes (each met as a flat face of its kind)",
+                        call.line,
+                    );
                 }
-                r.leave_out("the bodies' positions (the impact places its own)", call.line);
+                r.leave_out(
+                    "the bodies' positions (the impact places its own)",
+                    call.line,
+                );
                 // Walls of one kind and material (and mass) are one wall to the check.
-                let same = r.walls.iter_mut().find(|w| w.kind == kind && w.material == material && w.mass.as_ref().ok() == mass.as_ref().ok());
+                let same = r.walls.iter_mut().find(|w| {
+                    w.kind == kind
+                        && w.material == material
+                        && w.mass.as_ref().ok() == mass.as_ref().ok()
+                });
                 match same {
                     Some(w) => w.lines.push(call.line),
-                    None => r.walls.push(WallRead { name: format!("{name}:{}", call.line), kind, material, mass, at, lines: vec![call.line] }),
+                    None => r.walls.push(WallRead {
+                        name: format!("{name}:{}", call.line),
+                        kind,
+                        material,
+                        mass,
+                        at,
+                        lines: vec![call.line],
+                    }),
                 }
             } else if name == "InteractionLoop" {
                 if let Some(first) = &r.loop_at {
-                    return Err(DeckError::unsupported(&at, format!("a second InteractionLoop (the first at line {})", first.line), "one InteractionLoop"));
+                    return Err(DeckError::unsupported(
+                        &at,
+                        format!(
+                            "a second InteractionLoop (the first at line {})",
+                            first.line
+                        ),
+                        "one InteractionLoop",
+                    ));
                 }
                 r.geometry = Self::functors(s, &r, call, 0)?;
                 r.physics = Self::functors(s, &r, call, 1)?;
                 r.laws = Self::functors(s, &r, call, 2)?;
                 r.loop_at = Some(at);
             } else if name == "NewtonIntegrator" {
-                let known = Knowledge { appended: &r.appended, pwave: None };
+                let known = Knowledge {
+                    appended: &r.appended,
+                    pwave: None,
+                };
                 let damping = match call.arg("damping", None) {
                     Some(e) => s.number(e, call.line, &known, "NewtonIntegrator's damping")?,
                     None => 0.2,
@@ -555,7 +856,11 @@ impl YadeDeck {
                         &at,
                         format!(
                             "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
-                            if call.arg("damping", None).is_none() { " (its default)" } else { "" }
+                            if call.arg("damping", None).is_none() {
+                                " (its default)"
+                            } else {
+                                ""
+                            }
                         ),
                         "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
                     ));
@@ -565,26 +870,46 @@ impl YadeDeck {
                 }
                 r.newton = Some(at);
             } else if name.ends_with("TimeStepper") {
-                return Err(DeckError::unsupported(&at, format!("{name}: the time step is set while the script runs"), "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep(), without a time stepper in O.engines"));
+                return Err(DeckError::unsupported(
+                    &at,
+                    format!("{name}: the time step is set while the script runs"),
+                    "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep(), without a time stepper in O.engines",
+                ));
             } else if let Some(what) = engine_left_out(name) {
                 r.leave_out(what, call.line);
             } else if GENERATORS.contains(&name) {
                 r.leave_out("spheres made at run time (give their sizes with --particle TYPE:RADIUS:DENSITY, TYPE the material's O.materials id)", call.line);
             } else if matches!(call.func.as_str(), "O.run" | "O.wait" | "O.stopAtIter") {
                 r.leave_out("the run itself", call.line);
-            } else if call.func.starts_with("plot.") || call.func.starts_with("qt.") || call.func.starts_with("O.save") || call.func.starts_with("O.load") {
+            } else if call.func.starts_with("plot.")
+                || call.func.starts_with("qt.")
+                || call.func.starts_with("O.save")
+                || call.func.starts_with("O.load")
+            {
                 r.leave_out("output and control", call.line);
             }
         }
         for (index, st) in s.module.statements.iter().enumerate() {
             let t = super::python::text(&st.tokens);
-            let changed_in_place = t.starts_with("O.dt ") && !t.starts_with("O.dt =") && st.tokens.get(3).is_some_and(|x| matches!(x.tok, super::python::Tok::Op(o) if o.ends_with('=') && o != "=="));
+            let changed_in_place = t.starts_with("O.dt ")
+                && !t.starts_with("O.dt =")
+                && st.tokens.get(3).is_some_and(
+                    |x| matches!(x.tok, super::python::Tok::Op(o) if o.ends_with('=') && o != "=="),
+                );
             if changed_in_place {
-                return Err(DeckError::unsupported(s.at(st.line), format!("`{t}`: the time step changed in place"), "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()"));
+                return Err(DeckError::unsupported(
+                    s.at(st.line),
+                    format!("`{t}`: the time step changed in place"),
+                    "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+                ));
             }
             if t.starts_with("O.dt =") {
                 if st.indent > 0 {
-                    return Err(DeckError::unsupported(s.at(st.line), format!("`{t}` inside a block: the time step is set while the script runs"), "O.dt = … at module level"));
+                    return Err(DeckError::unsupported(
+                        s.at(st.line),
+                        format!("`{t}` inside a block: the time step is set while the script runs"),
+                        "O.dt = … at module level",
+                    ));
                 }
                 let expr = super::python::expression(&st.tokens[4..], index);
                 r.timestep = Some((expr, s.at(st.line)));
@@ -606,26 +931,61 @@ impl YadeDeck {
         let mut push = |t: u32, radius: f64, density: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
             #[allow(clippy::float_cmp)]
-            let known = bodies.iter().any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            let known = bodies
+                .iter()
+                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
             if !known {
                 let (youngs_modulus, poisson_ratio) = elastic(&r.materials[t as usize]);
-                bodies.push(DeckBody { type_id: t, radius, density, mass: sphere_mass(radius, density), youngs_modulus, poisson_ratio, from });
+                bodies.push(DeckBody {
+                    type_id: t,
+                    radius,
+                    density,
+                    mass: sphere_mass(radius, density),
+                    youngs_modulus,
+                    poisson_ratio,
+                    from,
+                });
             }
         };
         for sp in &r.spheres {
             let m = &r.materials[sp.material as usize];
             let radius = sp.radius.clone().map_err(|e| {
-                DeckError::unsupported(&sp.at, format!("the radius of this sphere: {e}"), &format!("{LITERAL}; or give the size with --particle {}:RADIUS:DENSITY", sp.material))
+                DeckError::unsupported(
+                    &sp.at,
+                    format!("the radius of this sphere: {e}"),
+                    &format!(
+                        "{LITERAL}; or give the size with --particle {}:RADIUS:DENSITY",
+                        sp.material
+                    ),
+                )
             })?;
             if !(radius > 0.0 && radius.is_finite()) {
-                return Err(DeckError::unsupported(&sp.at, format!("sphere radius {radius}"), "a positive radius, m"));
+                return Err(DeckError::unsupported(
+                    &sp.at,
+                    format!("sphere radius {radius}"),
+                    "a positive radius, m",
+                ));
             }
             let label = m.label().map_or(String::new(), |l| format!("{l}, "));
-            push(sp.material, radius, m.value("density"), format!("{label}{}", sp.at));
+            push(
+                sp.material,
+                radius,
+                m.value("density"),
+                format!("{label}{}", sp.at),
+            );
         }
         for p in &options.particles {
             let Some(m) = r.materials.get(p.type_id as usize) else {
-                return Err(DeckError::Lacking { file: path.to_path_buf(), what: format!("--particle {}: no material {} in O.materials ({} appended)", p.type_id, p.type_id, r.materials.len()), supported: "TYPE is the material's O.materials id, from 0".into() });
+                return Err(DeckError::Lacking {
+                    file: path.to_path_buf(),
+                    what: format!(
+                        "--particle {}: no material {} in O.materials ({} appended)",
+                        p.type_id,
+                        p.type_id,
+                        r.materials.len()
+                    ),
+                    supported: "TYPE is the material's O.materials id, from 0".into(),
+                });
             };
             let label = m.label().map_or(String::new(), |l| format!("{l}, "));
             push(p.type_id, p.radius, p.density, format!("{label}--particle"));
@@ -683,7 +1043,8 @@ fn viscel_cn_from_en(en: f64, m: f64, kn: f64) -> Option<f64> {
             return None;
         }
         i += 1;
-        let deriv = (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn)) / (-2.0 * eps);
+        let deriv = (viscel_en_from_cn(cn - eps, m, kn) - viscel_en_from_cn(cn + eps, m, kn))
+            / (-2.0 * eps);
         let deriv = if deriv.abs() > 1e-15 { deriv } else { 1e-15 };
         cn -= (en_temp - en) / deriv;
         en_temp = viscel_en_from_cn(cn, m, kn);
@@ -694,7 +1055,12 @@ fn viscel_cn_from_en(en: f64, m: f64, kn: f64) -> Option<f64> {
 
 /// `E*` as `Ip2_FrictMat_FrictMat_MindlinPhys` mixes two materials.
 fn mixed_modulus(a: &Material, b: &Material) -> f64 {
-    let (e1, n1, e2, n2) = (a.value("young"), a.value("poisson"), b.value("young"), b.value("poisson"));
+    let (e1, n1, e2, n2) = (
+        a.value("young"),
+        a.value("poisson"),
+        b.value("young"),
+        b.value("poisson"),
+    );
     e1 * e2 / ((1.0 - n1 * n1) * e2 + (1.0 - n2 * n2) * e1)
 }
 
@@ -718,20 +1084,49 @@ struct PairLaw {
 
 impl YadeDeck {
     /// The `Ip2` functor YADE's dispatcher picks for two material classes, and its `Law2`.
-    fn functors_for<'a>(r: &'a Reading, a: Class, b: Class, at: &SourceLine) -> Result<(&'a Functor, &'a Functor), DeckError> {
+    fn functors_for<'a>(
+        r: &'a Reading,
+        a: Class,
+        b: Class,
+        at: &SourceLine,
+    ) -> Result<(&'a Functor, &'a Functor), DeckError> {
         let takes = |f: &&Functor| match f.class.as_str() {
             "Ip2_ViscElMat_ViscElMat_ViscElPhys" => a == Class::ViscEl && b == Class::ViscEl,
             _ => true,
         };
         let candidates: Vec<&Functor> = r.physics.iter().filter(takes).collect();
         // The dispatcher takes the most specialised functor: ViscElMat's own before FrictMat's.
-        let exact = candidates.iter().find(|f| f.class == "Ip2_ViscElMat_ViscElMat_ViscElPhys");
-        let general: Vec<&&Functor> = candidates.iter().filter(|f| f.class != "Ip2_ViscElMat_ViscElMat_ViscElPhys").collect();
+        let exact = candidates
+            .iter()
+            .find(|f| f.class == "Ip2_ViscElMat_ViscElMat_ViscElPhys");
+        let general: Vec<&&Functor> = candidates
+            .iter()
+            .filter(|f| f.class != "Ip2_ViscElMat_ViscElMat_ViscElPhys")
+            .collect();
         let ip2 = match (exact, general.as_slice()) {
             (Some(f), _) => *f,
             (None, [f]) => **f,
-            (None, []) => return Err(DeckError::unsupported(at, format!("no Ip2 functor in the InteractionLoop takes {}–{}: YADE would make no contact of this pair", a.name(), b.name()), FUNCTORS)),
-            (None, [f, g, ..]) => return Err(DeckError::unsupported(&g.at, format!("{} and {} (line {}) both take FrictMat pairs", g.class, f.class, f.at.line), "one Ip2 functor for FrictMat pairs")),
+            (None, []) => {
+                return Err(DeckError::unsupported(
+                    at,
+                    format!(
+                        "no Ip2 functor in the InteractionLoop takes {}–{}: YADE would make no contact of this pair",
+                        a.name(),
+                        b.name()
+                    ),
+                    FUNCTORS,
+                ));
+            }
+            (None, [f, g, ..]) => {
+                return Err(DeckError::unsupported(
+                    &g.at,
+                    format!(
+                        "{} and {} (line {}) both take FrictMat pairs",
+                        g.class, f.class, f.at.line
+                    ),
+                    "one Ip2 functor for FrictMat pairs",
+                ));
+            }
         };
         let law = match ip2.class.as_str() {
             "Ip2_FrictMat_FrictMat_MindlinPhys" => "Law2_ScGeom_MindlinPhys_Mindlin",
@@ -746,11 +1141,28 @@ impl YadeDeck {
 
     /// The law of `a` against `b` (a ball, or a wall of `wall_kind`), with the dynamic mass
     /// `mass` (reduced for two balls, the ball's at a wall).
-    fn pair_law(r: &Reading, a: &Side, b: &Side, wall: Option<(WallKind, &WallRead)>, mass: f64, geometry: &Functor) -> Result<PairLaw, DeckError> {
+    fn pair_law(
+        r: &Reading,
+        a: &Side,
+        b: &Side,
+        wall: Option<(WallKind, &WallRead)>,
+        mass: f64,
+        geometry: &Functor,
+    ) -> Result<PairLaw, DeckError> {
         let loop_at = r.loop_at.clone().unwrap_or_else(|| a.material.at.clone());
         let (ip2, law2) = Self::functors_for(r, a.material.class, b.material.class, &loop_at)?;
         let r_star = pair_radius(a.radius, b.radius);
-        let ignored: Vec<&str> = ip2.params.iter().map(|(k, _)| k.as_str()).filter(|k| matches!(*k, "es" | "betas" | "eta" | "krot" | "ktwist" | "frictAngle" | "ks" | "et")).collect();
+        let ignored: Vec<&str> = ip2
+            .params
+            .iter()
+            .map(|(k, _)| k.as_str())
+            .filter(|k| {
+                matches!(
+                    *k,
+                    "es" | "betas" | "eta" | "krot" | "ktwist" | "frictAngle" | "ks" | "et"
+                )
+            })
+            .collect();
         let wall_radius_trap = |traps: &mut Vec<String>, model: &str| {
             let Some((kind, w)) = wall else { return };
             let factor = b.radius / a.radius;
@@ -759,7 +1171,10 @@ impl YadeDeck {
                 return;
             }
             let hertz = if model.starts_with("Hertz") {
-                format!(": a Hertz contact {:.1} % longer than on a flat face", 100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0)
+                format!(
+                    ": a Hertz contact {:.1} % longer than on a flat face",
+                    100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0
+                )
             } else {
                 String::new()
             };
@@ -778,30 +1193,53 @@ impl YadeDeck {
                     return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
                 }
                 if law2.flag("nothing") {
-                    return Err(DeckError::unsupported(&law2.at, "nothing=True: the law computes no force".into(), "nothing=False"));
+                    return Err(DeckError::unsupported(
+                        &law2.at,
+                        "nothing=True: the law computes no force".into(),
+                        "nothing=False",
+                    ));
                 }
                 let e_star = mixed_modulus(a.material, b.material);
                 let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
                 let en = ip2.pair_value("en", a.id, b.id)?;
                 let betan = ip2.pair_value("betan", a.id, b.id)?;
                 let beta = match (en, betan) {
-                    (Some(_), Some(_)) => return Err(DeckError::unsupported(&ip2.at, "both en and betan".into(), "one of en, betan (YADE refuses both)")),
+                    (Some(_), Some(_)) => {
+                        return Err(DeckError::unsupported(
+                            &ip2.at,
+                            "both en and betan".into(),
+                            "one of en, betan (YADE refuses both)",
+                        ));
+                    }
                     (Some(e), None) => {
                         if !(e > 0.0 && e <= 1.0) {
-                            return Err(DeckError::unsupported(&ip2.at, format!("en = {e}"), "0 < en <= 1"));
+                            return Err(DeckError::unsupported(
+                                &ip2.at,
+                                format!("en = {e}"),
+                                "0 < en <= 1",
+                            ));
                         }
                         thornton_damping_ratio(e)
                     }
                     (None, Some(b)) => b,
                     (None, None) => 0.0,
                 };
-                let law = DashpotLaw { mass, stiffness: kno, exponent: 1.5, damping: 2.0 * beta * (1.5 * mass * kno).sqrt(), damping_exponent: 0.25, clamp_attractive: true };
+                let law = DashpotLaw {
+                    mass,
+                    stiffness: kno,
+                    exponent: 1.5,
+                    damping: 2.0 * beta * (1.5 * mass * kno).sqrt(),
+                    damping_exponent: 0.25,
+                    clamp_attractive: true,
+                };
                 let mut traps = Vec::new();
                 if let Some(e) = en {
                     let cor = accurate_metrics(&law, 1.0, 1e-12).map_or(f64::NAN, |m| m.cor);
                     let fix = match hertz_input_restitution(e) {
                         Some(x) => format!("the en that realises {e} is {x:.6}"),
-                        None => format!("no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"),
+                        None => format!(
+                            "no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"
+                        ),
                     };
                     traps.push(format!("en → β_n through Thornton et al.'s fit (2013, for the clamped law): en = {e} gives β_n = {beta:.6}, whose law realises {cor:.6} ({:+.2e}); {fix}", cor - e));
                 }
@@ -813,7 +1251,21 @@ impl YadeDeck {
                     Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
                     None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
                 });
-                PairLaw { law, entered: en, model: format!("Hertz–Mindlin{}", if en.is_some() { " en" } else if betan.is_some() { " betan" } else { "" }), traps }
+                PairLaw {
+                    law,
+                    entered: en,
+                    model: format!(
+                        "Hertz–Mindlin{}",
+                        if en.is_some() {
+                            " en"
+                        } else if betan.is_some() {
+                            " betan"
+                        } else {
+                            ""
+                        }
+                    ),
+                    traps,
+                }
             }
             "Ip2_FrictMat_FrictMat_FrictPhys" => {
                 let (ea, eb) = (a.material.value("young"), b.material.value("young"));
@@ -822,12 +1274,24 @@ impl YadeDeck {
                     Some(k) => k,
                     None => 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb),
                 };
-                let law = DashpotLaw { mass, stiffness: kn, exponent: 1.0, damping: 0.0, damping_exponent: 0.0, clamp_attractive: true };
+                let law = DashpotLaw {
+                    mass,
+                    stiffness: kn,
+                    exponent: 1.0,
+                    damping: 0.0,
+                    damping_exponent: 0.0,
+                    clamp_attractive: true,
+                };
                 let traps = vec![
                     format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
                     "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
                 ];
-                PairLaw { law, entered: None, model: "FrictPhys linear".into(), traps }
+                PairLaw {
+                    law,
+                    entered: None,
+                    model: "FrictPhys linear".into(),
+                    traps,
+                }
             }
             _ => Self::viscel_law(ip2, a, b, wall, mass)?,
         };
@@ -842,16 +1306,37 @@ impl YadeDeck {
     // Two materials' values are compared exactly: YADE averages what differs, and mRtype is a
     // whole number.
     #[allow(clippy::float_cmp)]
-    fn viscel_law(ip2: &Functor, a: &Side, b: &Side, wall: Option<(WallKind, &WallRead)>, mass: f64) -> Result<PairLaw, DeckError> {
+    fn viscel_law(
+        ip2: &Functor,
+        a: &Side,
+        b: &Side,
+        wall: Option<(WallKind, &WallRead)>,
+        mass: f64,
+    ) -> Result<PairLaw, DeckError> {
         let (m1, m2) = (a.material, b.material);
         for key in ["kn", "ks", "cn", "cs", "tc", "en", "et"] {
             if m1.value(key).is_finite() != m2.value(key).is_finite() {
-                let (given, lacking) = if m1.value(key).is_finite() { (m1, m2) } else { (m2, m1) };
-                return Err(DeckError::unsupported(&lacking.at, format!("ViscElMat without {key}, met by the ViscElMat of line {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")", given.at.line), "the same set of tc, en, et, kn, cn, ks, cs on every ViscElMat"));
+                let (given, lacking) = if m1.value(key).is_finite() {
+                    (m1, m2)
+                } else {
+                    (m2, m1)
+                };
+                return Err(DeckError::unsupported(
+                    &lacking.at,
+                    format!(
+                        "ViscElMat without {key}, met by the ViscElMat of line {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")",
+                        given.at.line
+                    ),
+                    "the same set of tc, en, et, kn, cn, ks, cs on every ViscElMat",
+                ));
             }
         }
         if m1.value("mRtype") != m2.value("mRtype") {
-            return Err(DeckError::unsupported(&m2.at, "mRtype differs from the other material's (YADE stops)".into(), "the same mRtype, 1 or 2"));
+            return Err(DeckError::unsupported(
+                &m2.at,
+                "mRtype differs from the other material's (YADE stops)".into(),
+                "the same mRtype, 1 or 2",
+            ));
         }
         // The wall's mass 0 becomes the sphere's, as YADE substitutes it.
         let (mass1, mass2) = match (a.mass, b.mass) {
@@ -864,11 +1349,18 @@ impl YadeDeck {
         let averaged = |key: &str| -> Result<(f64, bool), DeckError> {
             Ok(match ip2.pair_value(key, a.id, b.id)? {
                 Some(x) => (x, false),
-                None => ((m1.value(key) + m2.value(key)) / 2.0, m1.value(key) != m2.value(key)),
+                None => (
+                    (m1.value(key) + m2.value(key)) / 2.0,
+                    m1.value(key) != m2.value(key),
+                ),
             })
         };
         let functor_form = ["tc", "en", "et"].iter().all(|k| ip2.param(k).is_some());
-        let (kn, cn, entered, model) = if (m1.value("tc").is_finite() && m1.value("en").is_finite() && m1.value("et").is_finite()) || functor_form {
+        let (kn, cn, entered, model) = if (m1.value("tc").is_finite()
+            && m1.value("en").is_finite()
+            && m1.value("et").is_finite())
+            || functor_form
+        {
             let (tc, tc_mixed) = averaged("tc")?;
             let (en, en_mixed) = averaged("en")?;
             let kn1 = 1.0 / tc / tc * (PI * PI + en.ln().powi(2)) * mass_r * 2.0;
@@ -877,29 +1369,63 @@ impl YadeDeck {
                 traps.push(format!("YADE averages the two materials' values: en = ({} + {})/2 = {en}, tc = ({:e} + {:e})/2 = {tc:e} s", m1.value("en"), m2.value("en"), m1.value("tc"), m2.value("tc")));
             }
             traps.push(format!("tc, en set kn, cn of the linear oscillator that rebounds at en = {en} unclamped; the force is cut at zero (YADE's clamped damping), so the COR comes out higher"));
-            (series(kn1, kn1), series(cn1, cn1), Some(en), "ViscEl tc, en".to_string())
-        } else if ["kn", "ks", "cn", "cs"].iter().all(|k| m1.value(k).is_finite()) {
+            (
+                series(kn1, kn1),
+                series(cn1, cn1),
+                Some(en),
+                "ViscEl tc, en".to_string(),
+            )
+        } else if ["kn", "ks", "cn", "cs"]
+            .iter()
+            .all(|k| m1.value(k).is_finite())
+        {
             traps.push(format!("kn, cn of the two materials in series, 1/(1/a + 1/b): kn = {:.4e} N/m, cn = {:.4e} N·s/m (each material carries twice a like pair's value)", series(m1.value("kn"), m2.value("kn")), series(m1.value("cn"), m2.value("cn"))));
-            traps.push("the force is cut at zero: it never attracts (YADE's clamped damping)".into());
-            (series(m1.value("kn"), m2.value("kn")), series(m1.value("cn"), m2.value("cn")), None, "ViscEl kn, cn".to_string())
+            traps.push(
+                "the force is cut at zero: it never attracts (YADE's clamped damping)".into(),
+            );
+            (
+                series(m1.value("kn"), m2.value("kn")),
+                series(m1.value("cn"), m2.value("cn")),
+                None,
+                "ViscEl kn, cn".to_string(),
+            )
         } else {
             let kn1 = 2.0 * m1.value("young") * a.radius;
             let kn2 = 2.0 * m2.value("young") * b.radius;
             let kn = series(kn1, kn2);
             traps.push(format!("kn = 2 E1 R1 and 2 E2 R2 in series = {kn:.4e} N/m, from the materials' young (ViscElMat's default 1e9 Pa where not given) and the radii the geometry gives them"));
             if m1.value("cn").is_finite() && m1.value("cs").is_finite() {
-                (kn, series(m1.value("cn"), m2.value("cn")), None, "ViscEl young, cn".to_string())
+                (
+                    kn,
+                    series(m1.value("cn"), m2.value("cn")),
+                    None,
+                    "ViscEl young, cn".to_string(),
+                )
             } else if m1.value("en").is_finite() {
                 let (en, en_mixed) = averaged("en")?;
                 if en_mixed {
-                    traps.push(format!("YADE averages the two materials' en: ({} + {})/2 = {en}", m1.value("en"), m2.value("en")));
+                    traps.push(format!(
+                        "YADE averages the two materials' en: ({} + {})/2 = {en}",
+                        m1.value("en"),
+                        m2.value("en")
+                    ));
                 }
                 let c = viscel_cn_from_en(en, mass_r, kn).ok_or_else(|| DeckError::unsupported(&m1.at, format!("en = {en}: YADE's Newton iteration for cn does not converge in 15 steps (it then runs cn = 0, an elastic contact)"), "an en the iteration reaches, or tc, en, et"))?;
                 let realised = viscel_en_from_cn(c, mass_r, kn);
                 traps.push(format!("cn from en by YADE's Newton iteration, stopped within 1 % of en: cn = {c:.6e} N·s/m, whose clamped law realises {realised:.6} on the mass it is tuned for"));
-                (kn, series(2.0 * c, 2.0 * c), Some(en), "ViscEl young, en".to_string())
+                (
+                    kn,
+                    series(2.0 * c, 2.0 * c),
+                    Some(en),
+                    "ViscEl young, en".to_string(),
+                )
             } else {
-                return Err(DeckError::unsupported(&m1.at, "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs".into(), "tc, en, et; or kn, ks, cn, cs; or young with en or with cn, cs (YADE: \"Inconsistent material constants\")"));
+                return Err(DeckError::unsupported(
+                    &m1.at,
+                    "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs"
+                        .into(),
+                    "tc, en, et; or kn, ks, cn, cs; or young with en or with cn, cs (YADE: \"Inconsistent material constants\")",
+                ));
             }
         };
         let tuned_mass = matches!(model.as_str(), "ViscEl tc, en" | "ViscEl young, en");
@@ -910,14 +1436,28 @@ impl YadeDeck {
                 None => {}
             }
         }
-        let law = DashpotLaw { mass, stiffness: kn, exponent: 1.0, damping: cn, damping_exponent: 0.0, clamp_attractive: true };
-        Ok(PairLaw { law, entered, model, traps })
+        let law = DashpotLaw {
+            mass,
+            stiffness: kn,
+            exponent: 1.0,
+            damping: cn,
+            damping_exponent: 0.0,
+            clamp_attractive: true,
+        };
+        Ok(PairLaw {
+            law,
+            entered,
+            model,
+            traps,
+        })
     }
 }
 
 impl DeckReader for YadeDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.contains("O.engines") || text.contains("O.bodies.append") || text.contains("O.materials.append")
+        text.contains("O.engines")
+            || text.contains("O.bodies.append")
+            || text.contains("O.materials.append")
             || text.lines().any(|l| {
                 let l = l.trim_start();
                 l.starts_with("from yade") || l.starts_with("import yade")
@@ -929,31 +1469,79 @@ impl DeckReader for YadeDeck {
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let source = std::fs::read_to_string(path).map_err(|source| DeckError::Read { path: path.to_path_buf(), source })?;
-        let module = Module::read(&source, &options.variables).map_err(|e| {
-            DeckError::unsupported(&SourceLine { file: path.to_path_buf(), line: e.line }, e.what, "Python that scans: closed strings and brackets")
+        let source = std::fs::read_to_string(path).map_err(|source| DeckError::Read {
+            path: path.to_path_buf(),
+            source,
         })?;
-        let s = Script { path, module: &module };
+        let module = Module::read(&source, &options.variables).map_err(|e| {
+            DeckError::unsupported(
+                &SourceLine {
+                    file: path.to_path_buf(),
+                    line: e.line,
+                },
+                e.what,
+                "Python that scans: closed strings and brackets",
+            )
+        })?;
+        let s = Script {
+            path,
+            module: &module,
+        };
         let r = Self::gather(&s, options)?;
-        let lacking = |what: &str, supported: &str| DeckError::Lacking { file: path.to_path_buf(), what: what.into(), supported: supported.into() };
-        let loop_at = r.loop_at.clone().ok_or_else(|| lacking("no InteractionLoop", "O.engines with InteractionLoop([Ig2…], [Ip2…], [Law2…])"))?;
+        let lacking = |what: &str, supported: &str| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: what.into(),
+            supported: supported.into(),
+        };
+        let loop_at = r.loop_at.clone().ok_or_else(|| {
+            lacking(
+                "no InteractionLoop",
+                "O.engines with InteractionLoop([Ig2…], [Ip2…], [Law2…])",
+            )
+        })?;
         if r.newton.is_none() {
-            return Err(lacking("no NewtonIntegrator in O.engines: nothing moves", "NewtonIntegrator(damping=0)"));
+            return Err(lacking(
+                "no NewtonIntegrator in O.engines: nothing moves",
+                "NewtonIntegrator(damping=0)",
+            ));
         }
         for f in r.geometry.iter().chain(&r.physics).chain(&r.laws) {
             let known = [
-                "Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D", "Ig2_Wall_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom6D", "Ig2_Box_Sphere_ScGeom", "Ig2_Box_Sphere_ScGeom6D",
-                "Ip2_FrictMat_FrictMat_MindlinPhys", "Ip2_FrictMat_FrictMat_FrictPhys", "Ip2_ViscElMat_ViscElMat_ViscElPhys",
-                "Law2_ScGeom_MindlinPhys_Mindlin", "Law2_ScGeom_FrictPhys_CundallStrack", "Law2_ScGeom_ViscElPhys_Basic",
+                "Ig2_Sphere_Sphere_ScGeom",
+                "Ig2_Sphere_Sphere_ScGeom6D",
+                "Ig2_Wall_Sphere_ScGeom",
+                "Ig2_Facet_Sphere_ScGeom",
+                "Ig2_Facet_Sphere_ScGeom6D",
+                "Ig2_Box_Sphere_ScGeom",
+                "Ig2_Box_Sphere_ScGeom6D",
+                "Ip2_FrictMat_FrictMat_MindlinPhys",
+                "Ip2_FrictMat_FrictMat_FrictPhys",
+                "Ip2_ViscElMat_ViscElMat_ViscElPhys",
+                "Law2_ScGeom_MindlinPhys_Mindlin",
+                "Law2_ScGeom_FrictPhys_CundallStrack",
+                "Law2_ScGeom_ViscElPhys_Basic",
             ];
             if !known.contains(&f.class.as_str()) {
-                return Err(DeckError::unsupported(&f.at, format!("functor {}", f.class), FUNCTORS));
+                return Err(DeckError::unsupported(
+                    &f.at,
+                    format!("functor {}", f.class),
+                    FUNCTORS,
+                ));
             }
         }
         let mut bodies = Self::bodies(&r, path, options)?;
-        bodies.sort_by(|a, b| a.type_id.cmp(&b.type_id).then(b.radius.total_cmp(&a.radius)));
+        bodies.sort_by(|a, b| {
+            a.type_id
+                .cmp(&b.type_id)
+                .then(b.radius.total_cmp(&a.radius))
+        });
         // The time step, with PWaveTimeStep() over the spheres made before it.
-        let (dt_expr, dt_at) = r.timestep.clone().ok_or_else(|| lacking("no `O.dt = …` (YADE's default step is 1e-8 s)", "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()"))?;
+        let (dt_expr, dt_at) = r.timestep.clone().ok_or_else(|| {
+            lacking(
+                "no `O.dt = …` (YADE's default step is 1e-8 s)",
+                "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+            )
+        })?;
         let mut pwave: Option<(f64, String)> = None;
         let mut consider = |radius: f64, m: &Material, density: f64, from: String| {
             // In YADE's operations: utils.sphere's mass (4/3 π r³ ρ), the density Shop::PWaveTimeStep
@@ -968,26 +1556,50 @@ impl DeckReader for YadeDeck {
         for sp in r.spheres.iter().filter(|sp| sp.at.line < dt_at.line) {
             if let Ok(radius) = sp.radius {
                 let m = &r.materials[sp.material as usize];
-                consider(radius, m, m.value("density"), format!("R {radius} at {}", sp.at));
+                consider(
+                    radius,
+                    m,
+                    m.value("density"),
+                    format!("R {radius} at {}", sp.at),
+                );
             }
         }
         for p in &options.particles {
-            consider(p.radius, &r.materials[p.type_id as usize], p.density, format!("R {} of --particle {}", p.radius, p.type_id));
+            consider(
+                p.radius,
+                &r.materials[p.type_id as usize],
+                p.density,
+                format!("R {} of --particle {}", p.radius, p.type_id),
+            );
         }
-        let known = Knowledge { appended: &r.appended, pwave: pwave.as_ref().map(|p| p.0) };
+        let known = Knowledge {
+            appended: &r.appended,
+            pwave: pwave.as_ref().map(|p| p.0),
+        };
         let timestep = s.number(&dt_expr, dt_at.line, &known, "O.dt")?;
         if !(timestep > 0.0 && timestep.is_finite()) {
-            return Err(DeckError::unsupported(&dt_at, format!("O.dt = {timestep}"), "a positive time step, s"));
+            return Err(DeckError::unsupported(
+                &dt_at,
+                format!("O.dt = {timestep}"),
+                "a positive time step, s",
+            ));
         }
         let uses_pwave = show(&dt_expr).contains("PWaveTimeStep");
         let timestep_from = match &pwave {
             Some((t, from)) if uses_pwave => {
-                let viscel_default = r.materials.iter().any(|m| m.class == Class::ViscEl && m.get("young").is_none());
+                let viscel_default = r
+                    .materials
+                    .iter()
+                    .any(|m| m.class == Class::ViscEl && m.get("young").is_none());
                 format!(
                     "{dt_at}, {}; PWaveTimeStep() = {} s, R/sqrt(E/ρ) of the sphere of {from}{}",
                     show(&dt_expr),
                     exact_number(*t),
-                    if viscel_default { "; a ViscElMat's young there is its default 1e9 Pa, which its tc or kn do not use" } else { "" }
+                    if viscel_default {
+                        "; a ViscElMat's young there is its default 1e9 Pa, which its tc or kn do not use"
+                    } else {
+                        ""
+                    }
                 )
             }
             _ => dt_at.to_string(),
@@ -1003,13 +1615,42 @@ impl DeckReader for YadeDeck {
             for (j, other) in bodies.iter().enumerate().skip(i) {
                 let m_a = &r.materials[body.type_id as usize];
                 let m_b = &r.materials[other.type_id as usize];
-                let geometry = geometry_for(["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"], &loop_at)?;
-                let a = Side { id: body.type_id, material: m_a, radius: body.radius, mass: body.mass };
-                let b = Side { id: other.type_id, material: m_b, radius: other.radius, mass: other.mass };
-                let pair = Self::pair_law(&r, &a, &b, None, reduced_mass(body.mass, other.mass), geometry)?;
+                let geometry = geometry_for(
+                    ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
+                    &loop_at,
+                )?;
+                let a = Side {
+                    id: body.type_id,
+                    material: m_a,
+                    radius: body.radius,
+                    mass: body.mass,
+                };
+                let b = Side {
+                    id: other.type_id,
+                    material: m_b,
+                    radius: other.radius,
+                    mass: other.mass,
+                };
+                let pair = Self::pair_law(
+                    &r,
+                    &a,
+                    &b,
+                    None,
+                    reduced_mass(body.mass, other.mass),
+                    geometry,
+                )?;
                 let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
                 lines.dedup();
-                contacts.push(DeckContact { body: i, partner: Partner::Body(j), types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)], model: pair.model, cor_entered: pair.entered, law: pair.law, traps: pair.traps, lines: lines.into_iter().map(DeckSource::from).collect() });
+                contacts.push(DeckContact {
+                    body: i,
+                    partner: Partner::Body(j),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
+                    model: pair.model,
+                    cor_entered: pair.entered,
+                    law: pair.law,
+                    traps: pair.traps,
+                    lines: lines.into_iter().map(DeckSource::from).collect(),
+                });
             }
         }
         let mut walls = Vec::new();
@@ -1018,7 +1659,9 @@ impl DeckReader for YadeDeck {
             let m_w = &r.materials[wall.material as usize];
             let geometry = geometry_for(wall.kind.geometry(), &wall.at)?;
             let factor = match wall.kind {
-                WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => HERTZIAN_WALL_RADIUS_FACTOR,
+                WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
+                    HERTZIAN_WALL_RADIUS_FACTOR
+                }
                 WallKind::Facet => 2.0,
                 _ => 1.0,
             };
@@ -1026,11 +1669,35 @@ impl DeckReader for YadeDeck {
                 Class::ViscEl if m_w.get("kn").is_some() || m_w.get("tc").is_some() => (None, None),
                 _ => (Some(m_w.value("young")), Some(m_w.value("poisson"))),
             };
-            walls.push(DeckWall { name: wall.name.clone(), type_id: Some(wall.material), youngs_modulus: young, poisson_ratio: poisson, from: wall.at.clone().into() });
+            walls.push(DeckWall {
+                name: wall.name.clone(),
+                type_id: Some(wall.material),
+                youngs_modulus: young,
+                poisson_ratio: poisson,
+                from: wall.at.clone().into(),
+            });
             let (placement, mass) = match wall.kind {
-                WallKind::Plane => (format!("utils.wall(0.0, axis=2, sense=0, material={})", wall.material), None),
-                WallKind::Facet => (format!("utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})", wall.material), None),
-                WallKind::Box => (format!("utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})", wall.material), wall.mass.as_ref().ok().copied()),
+                WallKind::Plane => (
+                    format!(
+                        "utils.wall(0.0, axis=2, sense=0, material={})",
+                        wall.material
+                    ),
+                    None,
+                ),
+                WallKind::Facet => (
+                    format!(
+                        "utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})",
+                        wall.material
+                    ),
+                    None,
+                ),
+                WallKind::Box => (
+                    format!(
+                        "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
+                        wall.material
+                    ),
+                    wall.mass.as_ref().ok().copied(),
+                ),
             };
             let mut snippet = format!("b2 = O.bodies.append({placement})");
             if let Some(m) = mass {
@@ -1043,16 +1710,53 @@ impl DeckReader for YadeDeck {
                 let wall_mass = match (&wall.mass, needs_mass) {
                     (Ok(m), _) => *m,
                     (Err(_), false) => 0.0,
-                    (Err(e), true) => return Err(DeckError::unsupported(&wall.at, format!("a fixed box whose mass ViscElPhys's tuning needs: {e}"), "literal extents")),
+                    (Err(e), true) => {
+                        return Err(DeckError::unsupported(
+                            &wall.at,
+                            format!("a fixed box whose mass ViscElPhys's tuning needs: {e}"),
+                            "literal extents",
+                        ));
+                    }
                 };
-                let a = Side { id: body.type_id, material: m_a, radius: body.radius, mass: body.mass };
-                let b = Side { id: wall.material, material: m_w, radius: factor * body.radius, mass: wall_mass };
-                let pair = Self::pair_law(&r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
+                let a = Side {
+                    id: body.type_id,
+                    material: m_a,
+                    radius: body.radius,
+                    mass: body.mass,
+                };
+                let b = Side {
+                    id: wall.material,
+                    material: m_w,
+                    radius: factor * body.radius,
+                    mass: wall_mass,
+                };
+                let pair =
+                    Self::pair_law(&r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
                 let mut traps = pair.traps;
                 if wall.lines.len() > 1 {
-                    traps.push(format!("{} bodies of this kind and material (lines {}) are one wall here", wall.lines.len(), wall.lines.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")));
+                    traps.push(format!(
+                        "{} bodies of this kind and material (lines {}) are one wall here",
+                        wall.lines.len(),
+                        wall.lines
+                            .iter()
+                            .map(usize::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ));
                 }
-                contacts.push(DeckContact { body: i, partner: Partner::Wall(w), types: [TypeRef::Type(body.type_id), TypeRef::Wall], model: pair.model, cor_entered: pair.entered, law: pair.law, traps, lines: [&m_a.at, &wall.at, &loop_at].into_iter().map(DeckSource::from).collect() });
+                contacts.push(DeckContact {
+                    body: i,
+                    partner: Partner::Wall(w),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    model: pair.model,
+                    cor_entered: pair.entered,
+                    law: pair.law,
+                    traps,
+                    lines: [&m_a.at, &wall.at, &loop_at]
+                        .into_iter()
+                        .map(DeckSource::from)
+                        .collect(),
+                });
             }
         }
         let left_out = r
@@ -1063,7 +1767,11 @@ impl DeckReader for YadeDeck {
                 format!("{what}: {}:{}", path.display(), lines.join(","))
             })
             .collect();
-        let mut common: Vec<String> = r.materials.iter().map(|m| format!("O.materials.append({})", m.python())).collect();
+        let mut common: Vec<String> = r
+            .materials
+            .iter()
+            .map(|m| format!("O.materials.append({})", m.python()))
+            .collect();
         for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
             let items: Vec<String> = list.iter().map(Functor::python).collect();
             common.push(format!("{name} = [{}]", items.join(", ")));
@@ -1077,14 +1785,31 @@ impl DeckReader for YadeDeck {
             contacts,
             representative_velocity: None,
             left_out,
-            transplant: Transplant { before_box: Vec::new(), common, walls: wall_lines, types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX) },
+            transplant: Transplant {
+                before_box: Vec::new(),
+                common,
+                walls: wall_lines,
+                types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
+            },
         })
     }
 
-    fn render(&self, deck: &UserDeck, contact: usize, velocity: f64, steps: u64) -> Result<DeckImpactInput, CodeError> {
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere { radius: b.radius, density: b.density, mass: b.mass, youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN), poisson_ratio: b.poisson_ratio };
+        let sphere = |b: &DeckBody| CodeSphere {
+            radius: b.radius,
+            density: b.density,
+            mass: b.mass,
+            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
+            poisson_ratio: b.poisson_ratio,
+        };
         let (scene, other) = match c.partner {
             Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
             Partner::Wall(_) => (SceneKind::BallPlate, None),
@@ -1117,7 +1842,10 @@ impl DeckReader for YadeDeck {
                 let reach = body.radius + deck.bodies[o].radius;
                 (String::new(), next_up(reach) - reach)
             }
-            Partner::Wall(w) => (deck.transplant.walls[w].clone(), next_up(body.radius) - body.radius),
+            Partner::Wall(w) => (
+                deck.transplant.walls[w].clone(),
+                next_up(body.radius) - body.radius,
+            ),
         };
         let t = |x: TypeRef| match x {
             TypeRef::Type(t) => t.to_string(),
@@ -1132,23 +1860,44 @@ impl DeckReader for YadeDeck {
             ("trajectory", TRAJECTORY_FILE.to_string()),
             ("pair", format!("{} on {}", c.types[0], c.types[1])),
             ("speed", velocity.to_string()),
-            ("scene", if other.is_some() { "ball_ball" } else { "wall" }.to_string()),
+            (
+                "scene",
+                if other.is_some() { "ball_ball" } else { "wall" }.to_string(),
+            ),
             ("timestep", exact_number(deck.timestep)),
             ("steps", steps.to_string()),
             ("radius", exact_number(body.radius)),
             ("mass", exact_number(body.mass)),
             ("material", t(c.types[0])),
             ("velocity", exact_number(v1)),
-            ("other_radius", exact_number(other.map_or(0.0, |o| o.radius))),
+            (
+                "other_radius",
+                exact_number(other.map_or(0.0, |o| o.radius)),
+            ),
             ("other_mass", exact_number(other.map_or(0.0, |o| o.mass))),
             ("other_material", other_material),
             ("other_velocity", exact_number(v2)),
             ("deck_lines", deck.transplant.common.join("\n")),
-            ("wall", if placement.is_empty() { "pass".to_string() } else { placement.replace('\n', "\n    ") }),
+            (
+                "wall",
+                if placement.is_empty() {
+                    "pass".to_string()
+                } else {
+                    placement.replace('\n', "\n    ")
+                },
+            ),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported { code: "yade".into(), case: setup.case_name.clone(), reason: e.to_string() })?;
+        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
+            code: "yade".into(),
+            case: setup.case_name.clone(),
+            reason: e.to_string(),
+        })?;
         Ok(DeckImpactInput {
-            input: RenderedInput { file_name: SCRIPT.into(), text, args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec() },
+            input: RenderedInput {
+                file_name: SCRIPT.into(),
+                text,
+                args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
+            },
             setup,
             start_gap: gap,
         })

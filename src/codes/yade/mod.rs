@@ -36,7 +36,9 @@ pub use super::damping::{
 };
 use super::parse::ParseError;
 use super::template::{exact_number, fill_template};
-use super::{BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput,
+};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
@@ -250,13 +252,9 @@ impl CodeDriver for Yade {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let mut values = self.script_values(setup)?;
-        values.push((
-            "restitution",
-            exact_number(Self::input_restitution(setup)),
-        ));
-        let text =
-            fill_template(TEMPLATE, &values)
-                .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+        values.push(("restitution", exact_number(Self::input_restitution(setup))));
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: SCRIPT.to_string(),
             text,
@@ -358,13 +356,11 @@ pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
             });
         }
         let value = |i: usize| {
-            fields[i]
-                .parse::<f64>()
-                .map_err(|e| ParseError::Row {
-                    file: TRAJECTORY_FILE.to_string(),
-                    line: row + 2,
-                    reason: format!("`{}`: {e}", fields[i]),
-                })
+            fields[i].parse::<f64>().map_err(|e| ParseError::Row {
+                file: TRAJECTORY_FILE.to_string(),
+                line: row + 2,
+                reason: format!("`{}`: {e}", fields[i]),
+            })
         };
         t.time.push(value(it)?);
         t.overlap.push(value(iy)?);

@@ -87,18 +87,19 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
     let mut line = 1;
     let mut at_line_start = true;
     let mut i = 0;
-    let finish = |current: &mut Vec<Token>, statements: &mut Vec<Statement>, start: (usize, usize)| {
-        if !current.is_empty() {
-            for (k, t) in current.iter_mut().enumerate() {
-                t.pos = k;
+    let finish =
+        |current: &mut Vec<Token>, statements: &mut Vec<Statement>, start: (usize, usize)| {
+            if !current.is_empty() {
+                for (k, t) in current.iter_mut().enumerate() {
+                    t.pos = k;
+                }
+                statements.push(Statement {
+                    tokens: std::mem::take(current),
+                    line: start.0,
+                    indent: start.1,
+                });
             }
-            statements.push(Statement {
-                tokens: std::mem::take(current),
-                line: start.0,
-                indent: start.1,
-            });
-        }
-    };
+        };
     while i < chars.len() {
         let c = chars[i];
         if at_line_start && depth == 0 && current.is_empty() {
@@ -142,14 +143,19 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
                 }
                 let word: String = chars[begin..i].iter().collect();
                 let prefix = word.to_ascii_lowercase();
-                let is_prefix = ["r", "b", "u", "f", "rb", "br", "fr", "rf"].contains(&prefix.as_str());
+                let is_prefix =
+                    ["r", "b", "u", "f", "rb", "br", "fr", "rf"].contains(&prefix.as_str());
                 if is_prefix && matches!(chars.get(i), Some('\'' | '"')) {
                     let (tok, next, lines) = string(&chars, i, &prefix, line)?;
                     current.push(Token { tok, line, pos: 0 });
                     line += lines;
                     i = next;
                 } else {
-                    current.push(Token { tok: Tok::Name(word), line, pos: 0 });
+                    current.push(Token {
+                        tok: Tok::Name(word),
+                        line,
+                        pos: 0,
+                    });
                 }
             }
             '\'' | '"' => {
@@ -158,12 +164,16 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
                 line += lines;
                 i = next;
             }
-            _ if c.is_ascii_digit() || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit)) => {
+            _ if c.is_ascii_digit()
+                || (c == '.' && chars.get(i + 1).is_some_and(char::is_ascii_digit)) =>
+            {
                 let begin = i;
-                let hex = c == '0' && matches!(chars.get(i + 1), Some('x' | 'X' | 'o' | 'O' | 'b' | 'B'));
+                let hex =
+                    c == '0' && matches!(chars.get(i + 1), Some('x' | 'X' | 'o' | 'O' | 'b' | 'B'));
                 while i < chars.len() {
                     let d = chars[i];
-                    let exponent_sign = (d == '+' || d == '-') && !hex && matches!(chars[i - 1], 'e' | 'E');
+                    let exponent_sign =
+                        (d == '+' || d == '-') && !hex && matches!(chars[i - 1], 'e' | 'E');
                     if d.is_ascii_alphanumeric() || d == '_' || d == '.' || exponent_sign {
                         i += 1;
                     } else {
@@ -171,7 +181,10 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
                     }
                 }
                 let text: String = chars[begin..i].iter().filter(|d| **d != '_').collect();
-                let tok = number(&text).ok_or_else(|| ScanError { line, what: format!("number `{text}`") })?;
+                let tok = number(&text).ok_or_else(|| ScanError {
+                    line,
+                    what: format!("number `{text}`"),
+                })?;
                 current.push(Token { tok, line, pos: 0 });
             }
             _ => {
@@ -181,22 +194,35 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
                     op(&s).map(|o| (o, n))
                 });
                 let Some((o, n)) = found else {
-                    return Err(ScanError { line, what: format!("character `{c}`") });
+                    return Err(ScanError {
+                        line,
+                        what: format!("character `{c}`"),
+                    });
                 };
                 match o {
                     "(" | "[" | "{" => depth += 1,
                     ")" | "]" | "}" => {
-                        depth = depth.checked_sub(1).ok_or_else(|| ScanError { line, what: format!("`{o}` without its opening bracket") })?;
+                        depth = depth.checked_sub(1).ok_or_else(|| ScanError {
+                            line,
+                            what: format!("`{o}` without its opening bracket"),
+                        })?;
                     }
                     _ => {}
                 }
-                current.push(Token { tok: Tok::Op(o), line, pos: 0 });
+                current.push(Token {
+                    tok: Tok::Op(o),
+                    line,
+                    pos: 0,
+                });
                 i += n;
             }
         }
     }
     if depth > 0 {
-        return Err(ScanError { line, what: "a bracket left open at the end of the file".into() });
+        return Err(ScanError {
+            line,
+            what: "a bracket left open at the end of the file".into(),
+        });
     }
     finish(&mut current, &mut statements, start);
     Ok(statements)
@@ -204,22 +230,35 @@ pub fn scan(source: &str) -> Result<Vec<Statement>, ScanError> {
 
 fn number(text: &str) -> Option<Tok> {
     let lower = text.to_ascii_lowercase();
-    let radix = [("0x", 16), ("0o", 8), ("0b", 2)].into_iter().find(|(p, _)| lower.starts_with(p));
+    let radix = [("0x", 16), ("0o", 8), ("0b", 2)]
+        .into_iter()
+        .find(|(p, _)| lower.starts_with(p));
     if let Some((p, radix)) = radix {
-        return i64::from_str_radix(&lower[p.len()..], radix).ok().map(Tok::Int);
+        return i64::from_str_radix(&lower[p.len()..], radix)
+            .ok()
+            .map(Tok::Int);
     }
     if lower.ends_with('j') {
         return None;
     }
     if lower.chars().all(|c| c.is_ascii_digit()) {
-        return Some(lower.parse::<i64>().map_or_else(|_| Tok::Float(lower.parse().unwrap_or(f64::NAN)), Tok::Int));
+        return Some(
+            lower
+                .parse::<i64>()
+                .map_or_else(|_| Tok::Float(lower.parse().unwrap_or(f64::NAN)), Tok::Int),
+        );
     }
     lower.parse::<f64>().ok().map(Tok::Float)
 }
 
 /// A string literal at `chars[i]` (the quote) with its prefix: the token, the index after it,
 /// and the newlines it spans.
-fn string(chars: &[char], i: usize, prefix: &str, line: usize) -> Result<(Tok, usize, usize), ScanError> {
+fn string(
+    chars: &[char],
+    i: usize,
+    prefix: &str,
+    line: usize,
+) -> Result<(Tok, usize, usize), ScanError> {
     let quote = chars[i];
     let triple = chars.get(i + 1) == Some(&quote) && chars.get(i + 2) == Some(&quote);
     let raw = prefix.contains('r');
@@ -228,11 +267,17 @@ fn string(chars: &[char], i: usize, prefix: &str, line: usize) -> Result<(Tok, u
     let mut lines = 0;
     loop {
         let Some(&c) = chars.get(k) else {
-            return Err(ScanError { line, what: "a string left open at the end of the file".into() });
+            return Err(ScanError {
+                line,
+                what: "a string left open at the end of the file".into(),
+            });
         };
         if c == '\n' {
             if !triple {
-                return Err(ScanError { line, what: "a string left open at the end of its line".into() });
+                return Err(ScanError {
+                    line,
+                    what: "a string left open at the end of its line".into(),
+                });
             }
             lines += 1;
         }
@@ -254,14 +299,20 @@ fn string(chars: &[char], i: usize, prefix: &str, line: usize) -> Result<(Tok, u
             k += 2;
             continue;
         }
-        if c == quote && (!triple || (chars.get(k + 1) == Some(&quote) && chars.get(k + 2) == Some(&quote))) {
+        if c == quote
+            && (!triple || (chars.get(k + 1) == Some(&quote) && chars.get(k + 2) == Some(&quote)))
+        {
             k += if triple { 3 } else { 1 };
             break;
         }
         value.push(c);
         k += 1;
     }
-    let tok = if prefix.contains('f') { Tok::FStr } else { Tok::Str(value) };
+    let tok = if prefix.contains('f') {
+        Tok::FStr
+    } else {
+        Tok::Str(value)
+    };
     Ok((tok, k, lines))
 }
 
@@ -398,7 +449,10 @@ fn dotted(tokens: &[Token], mut k: usize) -> Option<(String, usize)> {
     };
     let mut name = first.clone();
     k += 1;
-    while let (Some(Tok::Op(".")), Some(Tok::Name(next))) = (tokens.get(k).map(|t| &t.tok), tokens.get(k + 1).map(|t| &t.tok)) {
+    while let (Some(Tok::Op(".")), Some(Tok::Name(next))) = (
+        tokens.get(k).map(|t| &t.tok),
+        tokens.get(k + 1).map(|t| &t.tok),
+    ) {
         name.push('.');
         name.push_str(next);
         k += 2;
@@ -414,13 +468,21 @@ fn call_at(tokens: &[Token], k: usize, statement: usize) -> Option<(Call, usize)
         return None;
     }
     let close = closing(tokens, open)?;
-    let mut call = Call { func, args: Vec::new(), kwargs: Vec::new(), line: tokens[k].line, at: (statement, tokens[k].pos) };
+    let mut call = Call {
+        func,
+        args: Vec::new(),
+        kwargs: Vec::new(),
+        line: tokens[k].line,
+        at: (statement, tokens[k].pos),
+    };
     for part in split_commas(&tokens[open + 1..close]) {
         if part.is_empty() {
             continue;
         }
         match (&part[0].tok, part.get(1).map(|t| &t.tok)) {
-            (Tok::Name(key), Some(Tok::Op("="))) => call.kwargs.push((key.clone(), expression(&part[2..], statement))),
+            (Tok::Name(key), Some(Tok::Op("="))) => call
+                .kwargs
+                .push((key.clone(), expression(&part[2..], statement))),
             _ => call.args.push(expression(part, statement)),
         }
     }
@@ -446,7 +508,11 @@ pub fn calls(statement: &Statement, index: usize) -> Vec<Call> {
 
 /// Parse `tokens` as an expression; what the reader does not read is [`Expr::Opaque`].
 pub fn expression(tokens: &[Token], statement: usize) -> Expr {
-    let mut parser = Parser { tokens, k: 0, statement };
+    let mut parser = Parser {
+        tokens,
+        k: 0,
+        statement,
+    };
     match parser.sum() {
         Some(e) if parser.k == tokens.len() => e,
         _ => Expr::Opaque(text(tokens)),
@@ -464,10 +530,16 @@ impl Parser<'_> {
         self.tokens.get(self.k).map(|t| &t.tok)
     }
 
-    fn binary(&mut self, ops: &[&'static str], next: fn(&mut Self) -> Option<Expr>) -> Option<Expr> {
+    fn binary(
+        &mut self,
+        ops: &[&'static str],
+        next: fn(&mut Self) -> Option<Expr>,
+    ) -> Option<Expr> {
         let mut left = next(self)?;
         while let Some(Tok::Op(o)) = self.peek() {
-            let Some(o) = ops.iter().find(|x| *x == o).copied() else { break };
+            let Some(o) = ops.iter().find(|x| *x == o).copied() else {
+                break;
+            };
             self.k += 1;
             let right = next(self)?;
             left = Expr::Binary(o, Box::new(left), Box::new(right));
@@ -553,12 +625,18 @@ impl Parser<'_> {
             Tok::Op(open @ ("(" | "[")) => {
                 let close = closing(self.tokens, self.k)?;
                 let inner = &self.tokens[self.k + 1..close];
-                if inner.iter().any(|t| matches!(&t.tok, Tok::Name(n) if n == "for")) {
+                if inner
+                    .iter()
+                    .any(|t| matches!(&t.tok, Tok::Name(n) if n == "for"))
+                {
                     return None;
                 }
                 let parts = split_commas(inner);
                 let trailing_comma = inner.last().is_some_and(|t| t.tok == Tok::Op(","));
-                let items: Vec<Expr> = parts.iter().map(|p| expression(p, self.statement)).collect();
+                let items: Vec<Expr> = parts
+                    .iter()
+                    .map(|p| expression(p, self.statement))
+                    .collect();
                 self.k = close + 1;
                 if *open == "(" && items.len() == 1 && !trailing_comma {
                     items.into_iter().next()?
@@ -615,7 +693,11 @@ impl Value {
             Value::NoneValue => "None".to_string(),
             Value::Seq(items) => {
                 let inner: Vec<String> = items.iter().map(Value::python).collect();
-                if items.len() == 1 { format!("({},)", inner[0]) } else { format!("({})", inner.join(", ")) }
+                if items.len() == 1 {
+                    format!("({},)", inner[0])
+                } else {
+                    format!("({})", inner.join(", "))
+                }
             }
         }
     }
@@ -665,24 +747,39 @@ impl Module {
             };
             let mut bind = |name: String, b: Binding| bindings.entry(name).or_default().push(b);
             match (name_at(0), t.get(1).map(|x| &x.tok)) {
-                (Some(n), Some(Tok::Op("="))) if s.indent == 0 && !["for", "if", "while"].contains(&n.as_str()) => {
+                (Some(n), Some(Tok::Op("=")))
+                    if s.indent == 0 && !["for", "if", "while"].contains(&n.as_str()) =>
+                {
                     bind(n, Binding::Assigned(s.line, expression(&t[2..], index)));
                 }
-                (Some(n), Some(Tok::Op("="))) => bind(n, Binding::Other(s.line, "assigned inside a block")),
+                (Some(n), Some(Tok::Op("="))) => {
+                    bind(n, Binding::Other(s.line, "assigned inside a block"))
+                }
                 (Some(n), Some(Tok::Op(o))) if o.ends_with('=') && o.len() > 1 && *o != "==" => {
                     bind(n, Binding::Other(s.line, "changed in place"));
                 }
                 (Some(_), Some(Tok::Op(","))) => {
                     if let Some(eq) = t.iter().position(|x| x.tok == Tok::Op("=")) {
                         for part in split_commas(&t[..eq]) {
-                            if let [Token { tok: Tok::Name(m), .. }] = part {
-                                bind(m.clone(), Binding::Other(s.line, "unpacked from a sequence"));
+                            if let [
+                                Token {
+                                    tok: Tok::Name(m), ..
+                                },
+                            ] = part
+                            {
+                                bind(
+                                    m.clone(),
+                                    Binding::Other(s.line, "unpacked from a sequence"),
+                                );
                             }
                         }
                     }
                 }
                 (Some(kw), _) if kw == "for" => {
-                    let end = t.iter().position(|x| x.tok == Tok::Name("in".into())).unwrap_or(t.len());
+                    let end = t
+                        .iter()
+                        .position(|x| x.tok == Tok::Name("in".into()))
+                        .unwrap_or(t.len());
                     for x in &t[1..end] {
                         if let Tok::Name(m) = &x.tok {
                             bind(m.clone(), Binding::Other(s.line, "a loop's variable"));
@@ -706,21 +803,34 @@ impl Module {
                 (n.clone(), value)
             })
             .collect();
-        Ok(Module { statements, bindings, overrides })
+        Ok(Module {
+            statements,
+            bindings,
+            overrides,
+        })
     }
 
     /// Every call of the module with the index of its statement, in the order written.
     pub fn calls(&self) -> Vec<Call> {
-        self.statements.iter().enumerate().flat_map(|(k, s)| calls(s, k)).collect()
+        self.statements
+            .iter()
+            .enumerate()
+            .flat_map(|(k, s)| calls(s, k))
+            .collect()
     }
 
     /// The module-level expression `name` is bound to where line `line` uses it.
     pub fn binding(&self, name: &str, line: usize) -> Result<(usize, Expr), Unresolved> {
         let Some(all) = self.bindings.get(name) else {
-            return Err(Unresolved(format!("`{name}` is not assigned in the script")));
+            return Err(Unresolved(format!(
+                "`{name}` is not assigned in the script"
+            )));
         };
-        if let Some(Binding::Other(at, how)) = all.iter().find(|b| matches!(b, Binding::Other(..))) {
-            return Err(Unresolved(format!("`{name}` is {how} (line {at}): its value is the running script's")));
+        if let Some(Binding::Other(at, how)) = all.iter().find(|b| matches!(b, Binding::Other(..)))
+        {
+            return Err(Unresolved(format!(
+                "`{name}` is {how} (line {at}): its value is the running script's"
+            )));
         }
         let before = all.iter().rev().find_map(|b| match b {
             Binding::Assigned(at, e) if *at < line => Some((*at, e.clone())),
@@ -732,7 +842,8 @@ impl Module {
     /// The value of `expr` written on line `line`.
     pub fn value(&self, expr: &Expr, line: usize, known: &dyn Known) -> Result<Value, Unresolved> {
         let num = |v: Value, what: &Expr| {
-            v.number().ok_or_else(|| Unresolved(format!("`{}` is not a number", show(what))))
+            v.number()
+                .ok_or_else(|| Unresolved(format!("`{}` is not a number", show(what))))
         };
         Ok(match expr {
             Expr::Int(i) => Value::Int(*i),
@@ -740,7 +851,12 @@ impl Module {
             Expr::Str(s) => Value::Str(s.clone()),
             Expr::Bool(b) => Value::Bool(*b),
             Expr::NoneValue => Value::NoneValue,
-            Expr::Seq(items) => Value::Seq(items.iter().map(|e| self.value(e, line, known)).collect::<Result<_, _>>()?),
+            Expr::Seq(items) => Value::Seq(
+                items
+                    .iter()
+                    .map(|e| self.value(e, line, known))
+                    .collect::<Result<_, _>>()?,
+            ),
             Expr::Name(n) => {
                 if let Some(v) = self.overrides.get(n) {
                     return Ok(v.clone());
@@ -749,11 +865,16 @@ impl Module {
                     "math.pi" | "pi" | "numpy.pi" | "np.pi" => Value::Float(std::f64::consts::PI),
                     "math.e" => Value::Float(std::f64::consts::E),
                     "math.inf" | "inf" => Value::Float(f64::INFINITY),
-                    _ if n.contains('.') => return Err(Unresolved(format!("`{n}` is an attribute the reader does not know"))),
+                    _ if n.contains('.') => {
+                        return Err(Unresolved(format!(
+                            "`{n}` is an attribute the reader does not know"
+                        )));
+                    }
                     _ => {
                         // A name's value is resolved where it was assigned.
                         let (at, bound) = self.binding(n, line)?;
-                        self.value(&bound, at, known).map_err(|e| Unresolved(format!("`{n}` (line {at}): {}", e.0)))?
+                        self.value(&bound, at, known)
+                            .map_err(|e| Unresolved(format!("`{n}` (line {at}): {}", e.0)))?
                     }
                 }
             }
@@ -776,7 +897,9 @@ impl Module {
                         "-" => x.checked_sub(*y),
                         "*" => x.checked_mul(*y),
                         "//" if *y != 0 => Some(x.div_euclid(*y)),
-                        "**" if (0..64).contains(y) => u32::try_from(*y).ok().and_then(|p| x.checked_pow(p)),
+                        "**" if (0..64).contains(y) => {
+                            u32::try_from(*y).ok().and_then(|p| x.checked_pow(p))
+                        }
                         _ => None,
                     };
                     if let Some(r) = exact {
@@ -798,11 +921,26 @@ impl Module {
                 if let Some(v) = known.call(c) {
                     return v;
                 }
-                let args = c.args.iter().map(|e| self.value(e, line, known)).collect::<Result<Vec<_>, _>>()?;
-                let f = |k: usize| args.get(k).and_then(Value::number).ok_or_else(|| Unresolved(format!("`{}` takes a number", c.func)));
-                let name = c.func.trim_start_matches("math.").trim_start_matches("numpy.").trim_start_matches("np.");
+                let args = c
+                    .args
+                    .iter()
+                    .map(|e| self.value(e, line, known))
+                    .collect::<Result<Vec<_>, _>>()?;
+                let f = |k: usize| {
+                    args.get(k)
+                        .and_then(Value::number)
+                        .ok_or_else(|| Unresolved(format!("`{}` takes a number", c.func)))
+                };
+                let name = c
+                    .func
+                    .trim_start_matches("math.")
+                    .trim_start_matches("numpy.")
+                    .trim_start_matches("np.");
                 if !c.kwargs.is_empty() && name != "Vector3" {
-                    return Err(Unresolved(format!("`{}(…)` with keywords is not read", c.func)));
+                    return Err(Unresolved(format!(
+                        "`{}(…)` with keywords is not read",
+                        c.func
+                    )));
                 }
                 match name {
                     "sqrt" => Value::Float(f(0)?.sqrt()),
@@ -827,10 +965,19 @@ impl Module {
                         Value::Float(xs.into_iter().reduce(pick).unwrap_or(f64::NAN))
                     }
                     "Vector3" | "Vector3r" if c.kwargs.is_empty() => Value::Seq(args),
-                    _ => return Err(Unresolved(format!("`{}(…)` is a call whose result is the running script's", c.func))),
+                    _ => {
+                        return Err(Unresolved(format!(
+                            "`{}(…)` is a call whose result is the running script's",
+                            c.func
+                        )));
+                    }
                 }
             }
-            Expr::Opaque(t) => return Err(Unresolved(format!("`{t}` is not read (a literal, a name assigned a number at module level, or arithmetic of them is)"))),
+            Expr::Opaque(t) => {
+                return Err(Unresolved(format!(
+                    "`{t}` is not read (a literal, a name assigned a number at module level, or arithmetic of them is)"
+                )));
+            }
         })
     }
 }
@@ -849,7 +996,10 @@ pub fn show(expr: &Expr) -> String {
             parts.extend(c.kwargs.iter().map(|(k, v)| format!("{k}={}", show(v))));
             format!("{}({})", c.func, parts.join(", "))
         }
-        Expr::Seq(items) => format!("({})", items.iter().map(show).collect::<Vec<_>>().join(", ")),
+        Expr::Seq(items) => format!(
+            "({})",
+            items.iter().map(show).collect::<Vec<_>>().join(", ")
+        ),
         Expr::Unary(o, e) => format!("{o}{}", show(e)),
         Expr::Binary(o, a, b) => format!("{} {o} {}", show(a), show(b)),
         Expr::Opaque(t) => t.clone(),
@@ -869,7 +1019,8 @@ mod tests {
 
     #[test]
     fn logical_lines_join_brackets_and_continuations_and_drop_comments() {
-        let s = scan("a = (1 +\n  2)  # c\nb = 3 \\\n + 4; c = 'x#y'\n\ndef f():\n    d = 1\n").unwrap();
+        let s = scan("a = (1 +\n  2)  # c\nb = 3 \\\n + 4; c = 'x#y'\n\ndef f():\n    d = 1\n")
+            .unwrap();
         let lines: Vec<(usize, usize)> = s.iter().map(|x| (x.line, x.indent)).collect();
         assert_eq!(lines, [(1, 0), (3, 0), (4, 0), (6, 0), (7, 4)]);
         assert_eq!(s[2].tokens[2].tok, Tok::Str("x#y".into()));
@@ -890,7 +1041,10 @@ mod tests {
         assert_eq!(v("phi").unwrap(), Value::Float(30f64.to_radians()));
         assert_eq!(v("n").unwrap(), Value::Int(8));
         assert_eq!(v("q").unwrap(), Value::Int(-4));
-        assert_eq!(v("(1, E)").unwrap(), Value::Seq(vec![Value::Int(1), Value::Float(2e11)]));
+        assert_eq!(
+            v("(1, E)").unwrap(),
+            Value::Seq(vec![Value::Int(1), Value::Float(2e11)])
+        );
         let e = v("k").unwrap_err().0;
         assert!(e.contains("assigned inside a block (line 7)"), "{e}");
         let e = v("i").unwrap_err().0;
@@ -909,13 +1063,21 @@ mod tests {
         assert_eq!(names, ["O.bodies.append", "utils.sphere", "range"]);
         let sphere = &found[1];
         assert_eq!(sphere.arg("radius", Some(1)), Some(&Expr::Float(0.01)));
-        assert_eq!(sphere.arg("material", Some(7)), Some(&Expr::Str("steel".into())));
+        assert_eq!(
+            sphere.arg("material", Some(7)),
+            Some(&Expr::Str("steel".into()))
+        );
         assert!(matches!(found[0].args[0], Expr::Opaque(_)));
     }
 
     #[test]
     fn values_are_written_back_as_python_reads_them() {
-        let v = Value::Seq(vec![Value::Int(1), Value::Float(0.1), Value::Str("it's".into()), Value::Bool(true)]);
+        let v = Value::Seq(vec![
+            Value::Int(1),
+            Value::Float(0.1),
+            Value::Str("it's".into()),
+            Value::Bool(true),
+        ]);
         assert_eq!(v.python(), "(1, 1e-1, 'it\\'s', True)");
     }
 }
