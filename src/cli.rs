@@ -246,12 +246,14 @@ pub struct MergeArgs {
 /// `millimpact verify`.
 #[derive(Debug, Args)]
 pub struct VerifyArgs {
-    /// Folder of case files.
-    #[arg(long, default_value = "cases")]
-    pub cases: PathBuf,
-    /// Folder of stored DEM-code references.
-    #[arg(long, default_value = "reference")]
-    pub reference: PathBuf,
+    /// Folder of case files [default: ./cases, else the `cases/` of the repository this build
+    /// was made from].
+    #[arg(long)]
+    pub cases: Option<PathBuf>,
+    /// Folder of stored DEM-code references [default: ./reference, else the `reference/` of the
+    /// repository this build was made from].
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
@@ -316,7 +318,7 @@ pub struct ReferenceArgs {
 /// `millimpact compare`.
 #[derive(Debug, Args)]
 pub struct CompareArgs {
-    /// Case files (default: the canonical ones in cases/).
+    /// Case files [default: the canonical ones, as shipped in cases/ and built in].
     pub cases: Vec<PathBuf>,
     /// Run the codes now instead of reading reference/.
     #[arg(long)]
@@ -324,9 +326,10 @@ pub struct CompareArgs {
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,
-    /// Folder of stored references.
-    #[arg(long, default_value = "reference")]
-    pub reference: PathBuf,
+    /// Folder of stored references [default: ./reference, else the `reference/` of the
+    /// repository this build was made from].
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
     /// Kill a code after this many seconds (with --live).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
@@ -417,7 +420,7 @@ pub struct CalibrateArgs {
 /// `millimpact report`.
 #[derive(Debug, Args)]
 pub struct ReportArgs {
-    /// Case files (default: the canonical ones in cases/).
+    /// Case files [default: the canonical ones, as shipped in cases/ and built in].
     pub cases: Vec<PathBuf>,
     /// Folder to write the report into: a new or empty one, or an earlier report's (replaced
     /// whole); a folder of other files is refused.
@@ -426,9 +429,10 @@ pub struct ReportArgs {
     /// Run the codes now instead of reading reference/.
     #[arg(long)]
     pub live: bool,
-    /// Folder of stored references.
-    #[arg(long, default_value = "reference")]
-    pub reference: PathBuf,
+    /// Folder of stored references [default: ./reference, else the `reference/` of the
+    /// repository this build was made from].
+    #[arg(long)]
+    pub reference: Option<PathBuf>,
     /// Kill a code after this many seconds (with --live, and the decks' runs).
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,

@@ -1,21 +1,19 @@
 //! `millimpact calibrate`.
 
-use std::path::PathBuf;
-
 use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::CalibrateArgs;
 use millimpact::analysis::calibrate::{CalibrateOptions, calibrate as calibrate_case};
 use millimpact::model::case::Case;
+use millimpact::model::shipped::shipped_case;
 use millimpact::output::export;
 
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<CommandOutput> {
-    let path = args
-        .case
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("cases/ball_plate.toml"));
-    let case = Case::load(&path)?;
+    let case = match &args.case {
+        Some(path) => Case::load(path)?,
+        None => shipped_case("ball_plate")?,
+    };
     let restitutions = match (args.cor, args.cor_range) {
         (Some(e), _) => vec![e],
         (None, Some((a, b))) => vec![a, b],

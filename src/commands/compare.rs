@@ -1,6 +1,5 @@
 //! `millimpact compare`.
 
-use std::path::PathBuf;
 use std::time::Duration;
 
 use anyhow::Result;
@@ -10,34 +9,28 @@ use crate::cli::CompareArgs;
 use millimpact::analysis::compare::{CompareOptions, compare as compare_cases};
 use millimpact::error::CheckFailed;
 use millimpact::model::case::Case;
+use millimpact::model::shipped::canonical_cases;
 use millimpact::output::export;
 
-/// The canonical cases compared by default.
-pub const CANONICAL_CASES: [&str; 3] = [
-    "cases/ball_plate.toml",
-    "cases/ball_ball.toml",
-    "cases/rod_end.toml",
-];
-
 pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
-    let paths: Vec<PathBuf> = if args.cases.is_empty() {
-        CANONICAL_CASES.iter().map(PathBuf::from).collect()
+    let cases = if args.cases.is_empty() {
+        canonical_cases()?
     } else {
-        args.cases.clone()
+        args.cases
+            .iter()
+            .map(|p| Case::load(p))
+            .collect::<Result<Vec<_>, _>>()?
     };
-    let cases = paths
-        .iter()
-        .map(|p| Case::load(p))
-        .collect::<Result<Vec<_>, _>>()?;
+    let mut warnings = Vec::new();
     let options = CompareOptions {
         live: args.live,
-        reference: args.reference.clone(),
+        reference: super::reference_folder(args.reference.as_deref(), args.live, &mut warnings)?,
         timeout: Duration::from_secs_f64(args.timeout),
     };
     let report = compare_cases(&cases, &options)?;
     let failures = report.failures();
     Ok(CommandOutput {
-        warnings: Vec::new(),
+        warnings,
         text: export(&report, args.format)?,
         failure: (!failures.is_empty())
             .then(|| CheckFailed(format!("compare --live: {}", failures.join("; ")))),

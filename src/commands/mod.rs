@@ -14,12 +14,12 @@ mod stability;
 mod sweep;
 mod verify;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
-use millimpact::error::CheckFailed;
+use millimpact::error::{CheckFailed, UserError};
 use millimpact::output::files::write_atomic;
 
 /// What a command hands back to `main`: the text for standard output, and whether a check it
@@ -42,6 +42,62 @@ impl CommandOutput {
             warnings: Vec::new(),
         }
     }
+}
+
+/// The folder of shipped data (`cases`, `reference`) a command reads: the one given with
+/// `option`, else `./<name>` where the command runs, else the one in the repository this build
+/// was made from (and a warning saying so), else a user error naming both places looked in.
+fn shipped_folder(
+    given: Option<&Path>,
+    option: &str,
+    name: &str,
+    warnings: &mut Vec<String>,
+) -> Result<PathBuf> {
+    if let Some(folder) = given {
+        if !folder.is_dir() {
+            return Err(UserError::argument(
+                option,
+                folder.display(),
+                format!("an existing folder (of {name} files)"),
+            )
+            .into());
+        }
+        return Ok(folder.to_path_buf());
+    }
+    let here = Path::new(name);
+    if here.is_dir() {
+        return Ok(here.to_path_buf());
+    }
+    let repository = Path::new(env!("CARGO_MANIFEST_DIR")).join(name);
+    if repository.is_dir() {
+        warnings.push(format!(
+            "no `{name}/` here: reading {} (the repository this build was made from)",
+            repository.display()
+        ));
+        return Ok(repository);
+    }
+    Err(UserError::argument(
+        option,
+        "(not given)",
+        format!(
+            "a folder; there is no `{name}/` here nor at {}: run from the repository folder or give {option} DIR",
+            repository.display()
+        ),
+    )
+    .into())
+}
+
+/// The stored references' folder for a command that reads them unless it runs the codes
+/// `live` (then the folder is not read, and is not looked for).
+fn reference_folder(
+    given: Option<&Path>,
+    live: bool,
+    warnings: &mut Vec<String>,
+) -> Result<PathBuf> {
+    if live {
+        return Ok(given.unwrap_or(Path::new("reference")).to_path_buf());
+    }
+    shipped_folder(given, "--reference", "reference", warnings)
 }
 
 /// Run one parsed command.

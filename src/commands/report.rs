@@ -1,6 +1,5 @@
 //! `millimpact report`.
 
-use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use std::io::IsTerminal;
@@ -10,10 +9,10 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CommandOutput, write_output};
 use crate::cli::ReportArgs;
-use millimpact::analysis::compare::CANONICAL_CASES;
 use millimpact::analysis::report::{ReportOptions, ReportTable, add_decks, build_report};
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
+use millimpact::model::shipped::canonical_cases;
 use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
 use millimpact::output::report_page::render_pages;
 
@@ -37,18 +36,18 @@ fn revision() -> Option<String> {
 }
 
 pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
+    let mut warnings = Vec::new();
     // Before any work: a folder that holds someone else's files is refused, never written.
     check_report_dir("--out", &args.out)
         .map_err(|e| UserError::argument(e.option, e.path.display(), e.reason))?;
-    let paths: Vec<PathBuf> = if args.cases.is_empty() {
-        CANONICAL_CASES.iter().map(PathBuf::from).collect()
+    let cases = if args.cases.is_empty() {
+        canonical_cases()?
     } else {
-        args.cases.clone()
+        args.cases
+            .iter()
+            .map(|p| Case::load(p))
+            .collect::<Result<Vec<_>, _>>()?
     };
-    let cases = paths
-        .iter()
-        .map(|p| Case::load(p))
-        .collect::<Result<Vec<_>, _>>()?;
     // The decks are read before any work too: one that cannot be checked runs nothing.
     let given = super::deck::Given {
         particles: &args.deck_particle,
@@ -61,7 +60,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         .collect::<Result<Vec<_>>>()?;
     let options = ReportOptions {
         live: args.live,
-        reference: args.reference.clone(),
+        reference: super::reference_folder(args.reference.as_deref(), args.live, &mut warnings)?,
         timeout: Duration::from_secs_f64(args.timeout),
         revision: revision(),
     };
@@ -84,7 +83,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
             bar.inc(1);
         }
     };
-    let mut report = build_report(Path::new("."), &cases, &options, &mut progress)?;
+    let mut report = build_report(&cases, &options, &mut progress)?;
     let mut checks = Vec::new();
     for (code, deck) in &decks {
         progress(&format!("{}: running {code}", deck.path.display()));
@@ -143,7 +142,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
     let missing = &report.failures;
     Ok(CommandOutput {
-        warnings: Vec::new(),
+        warnings,
         text: format!(
             "report: {} ({} figures, {} tables, {} files)\n",
             out.join("index.html").display(),

@@ -9,10 +9,18 @@ use millimpact::error::CheckFailed;
 use millimpact::output::export;
 
 pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
-    let report = verify_all(&args.cases, &args.reference)?;
+    let mut warnings = Vec::new();
+    let cases = super::shipped_folder(args.cases.as_deref(), "--cases", "cases", &mut warnings)?;
+    let reference = super::shipped_folder(
+        args.reference.as_deref(),
+        "--reference",
+        "reference",
+        &mut warnings,
+    )?;
+    let report = verify_all(&cases, &reference)?;
     let failed = report.failed();
     Ok(CommandOutput {
-        warnings: Vec::new(),
+        warnings,
         text: export(&report, args.format)?,
         failure: (failed > 0).then(|| {
             CheckFailed(format!(

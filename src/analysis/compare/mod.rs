@@ -22,13 +22,6 @@ use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
 
-/// The canonical cases compared by default.
-pub const CANONICAL_CASES: [&str; 3] = [
-    "cases/ball_plate.toml",
-    "cases/ball_ball.toml",
-    "cases/rod_end.toml",
-];
-
 /// One source's figures for one case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SourceRow {

@@ -17,6 +17,7 @@ use crate::codes::{self, CodeName};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw};
+use crate::model::shipped::shipped_case;
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
 use crate::output::{Format, Section, Summary, csv_string, export};
@@ -156,8 +157,8 @@ fn table_from(id: String, s: &Section, command: &str) -> ReportTable {
 /// The paper's Figure 2: the rod end at η = 0.35 with two-sided contact, displacement and
 /// velocity against time, beside the damped harmonic oscillator with the same loss per
 /// half-cycle.
-fn figure_2(root: &Path) -> Result<Vec<ReportFigure>> {
-    let case = Case::load(&root.join("cases/rod_end_bilateral.toml"))?;
+fn figure_2() -> Result<Vec<ReportFigure>> {
+    let case = shipped_case("rod_end_bilateral")?;
     let law = case.law();
     let v0 = case.impact_velocity;
     let settings = Settings {
@@ -235,14 +236,14 @@ fn figure_2(root: &Path) -> Result<Vec<ReportFigure>> {
 
 /// The paper's Figure 3: COR against η, rod (line) and ball (dots) by the paper's RK4, the
 /// closed form, and the small-η line 1 − η.
-fn figure_3(root: &Path) -> Result<ReportFigure> {
+fn figure_3() -> Result<ReportFigure> {
     let etas: Vec<f64> = (0..=19).map(|i| 0.05 * i as f64).collect();
     let mut series = Vec::new();
     for (name, file, style) in [
         ("rod end, rk4 (line)", "rod_end", Style::Line),
         ("ball on plate, rk4 (dots)", "ball_plate", Style::Dots),
     ] {
-        let case = Case::load(&root.join(format!("cases/{file}.toml")))?;
+        let case = shipped_case(file)?;
         let mut pts = Vec::new();
         for &eta in &etas {
             let at = case.with_loss_coefficient(eta);
@@ -442,8 +443,8 @@ fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure>
 /// The COR each code realises against the COR asked of it, as the drivers set the code up and
 /// as a user who takes each code's setting at its word would (LAMMPS `tsuji` with e_in = e,
 /// YADE `en = e`, the clamps on).
-fn realised_vs_requested(root: &Path) -> Result<(ReportFigure, ReportTable)> {
-    let case = Case::load(&root.join("cases/ball_plate.toml"))?;
+fn realised_vs_requested() -> Result<(ReportFigure, ReportTable)> {
+    let case = shipped_case("ball_plate")?;
     let es: Vec<f64> = (0..=13).map(|i| 0.3 + 0.05 * i as f64).collect();
     let mut series: Vec<Series> = Vec::new();
     let mut add = |name: &str, style: Style, f: &dyn Fn(&Case) -> Result<f64>| -> Result<()> {
@@ -551,8 +552,8 @@ fn log10(x: f64) -> f64 {
 
 /// The work–precision diagram on ball_plate: the paper's-law methods swept now, and each DEM
 /// code's stored run at the case's η as one point.
-fn work_precision(root: &Path, reference: &Path) -> Result<ReportFigure> {
-    let case = Case::load(&root.join("cases/ball_plate.toml"))?;
+fn work_precision(reference: &Path) -> Result<ReportFigure> {
+    let case = shipped_case("ball_plate")?;
     let mut series = Vec::new();
     for &m in Method::ALL.iter().filter(|m| m.integrates()) {
         let points = method_sweep(&case, m, 3)?;
@@ -656,7 +657,6 @@ fn stability_map() -> Result<ReportFigure> {
 /// Build the report for `cases`; `progress` is told each stage as it starts (one per case
 /// compared, then one per part).
 pub fn build_report(
-    root: &Path,
     cases: &[Case],
     options: &ReportOptions,
     progress: &mut dyn FnMut(&str),
@@ -693,8 +693,8 @@ pub fn build_report(
         title: "The paper's figures".into(),
         intro: "The law F = C yⁿ (1 + η sign ẏ): its decaying two-sided oscillation (Figure 2) and its COR, which depends on η alone (Figure 3).".into(),
         figures: {
-            let mut f = figure_2(root)?;
-            f.push(figure_3(root)?);
+            let mut f = figure_2()?;
+            f.push(figure_3()?);
             f
         },
         tables: vec![],
@@ -731,7 +731,7 @@ pub fn build_report(
         tables,
     });
     progress("realised against requested COR");
-    let (fig, table) = realised_vs_requested(root)?;
+    let (fig, table) = realised_vs_requested()?;
     parts.push(ReportPart {
         id: "conventions".into(),
         title: "Where each code's convention bites".into(),
@@ -746,7 +746,7 @@ pub fn build_report(
         figures: {
             progress("work–precision and stability");
             vec![
-                work_precision(root, &options.reference)?,
+                work_precision(&options.reference)?,
                 stability_map()?,
             ]
         },
