@@ -1,5 +1,6 @@
-//! The import layers of `src/`, read from the source: every `use` line and every inline
-//! `crate::…` path of every file is resolved to the file it names, and
+//! The import layers of `src/`, read from the source with `syn`: every `use` tree (grouped ones
+//! too) and every path in code and in macro bodies (`crate::…`, `$crate::…`, `super::…`) of
+//! every file is resolved to the file it names, and
 //!
 //! - no library file (anything but `main.rs`, `cli.rs` and `commands/`) imports `cli` or
 //!   `commands`;
@@ -45,96 +46,182 @@ fn module_of(src: &Path, file: &Path) -> Vec<String> {
     parts
 }
 
-/// The code of a file outside its `#[cfg(test)]` module and outside comments.
-fn library_lines(text: &str) -> Vec<&str> {
-    let mut lines = Vec::new();
-    let mut in_tests = false;
-    for line in text.lines() {
-        let trimmed = line.trim_start();
-        if trimmed.starts_with("#[cfg(test)]") {
-            in_tests = true;
-        }
-        if in_tests {
-            // The test module runs to the end of the file (its closing brace at column 0).
-            if line == "}" {
-                in_tests = false;
-            }
-            continue;
-        }
-        if !trimmed.starts_with("//") {
-            lines.push(line);
-        }
-    }
-    lines
+/// Whether an item is compiled for tests only (`#[cfg(test)]`).
+fn test_only(attrs: &[syn::Attribute]) -> bool {
+    attrs.iter().any(|a| {
+        a.path().is_ident("cfg")
+            && a.parse_args::<syn::Meta>()
+                .is_ok_and(|m| m.path().is_ident("test"))
+    })
 }
 
-/// The module paths a file names: `use crate::a::b…`, inline `crate::a::b…`, `super::a…`
-/// in a `use` line or inline, and, in a module's own file, `use child::…` / `child::…` of a declared child.
+/// Every path a file names outside its test-only items, as the words of the path and whether it
+/// came from a `use` (where a bare first word is a child module or an external crate) or from
+/// code (where it is a path of two words or more).
+struct PathCollector {
+    /// `use` trees, expanded: `use crate::{a::b, c}` gives `crate::a::b` and `crate::c`.
+    used: Vec<Vec<String>>,
+    /// Paths in code and in macro bodies (`crate::x::f()`, `$crate::x::Y`).
+    inline: Vec<Vec<String>>,
+}
+
+impl PathCollector {
+    fn use_tree(&mut self, prefix: &mut Vec<String>, tree: &syn::UseTree) {
+        match tree {
+            syn::UseTree::Path(p) => {
+                prefix.push(p.ident.to_string());
+                self.use_tree(prefix, &p.tree);
+                prefix.pop();
+            }
+            syn::UseTree::Name(n) => {
+                let mut path = prefix.clone();
+                if n.ident != "self" {
+                    path.push(n.ident.to_string());
+                }
+                self.used.push(path);
+            }
+            syn::UseTree::Rename(r) => {
+                let mut path = prefix.clone();
+                if r.ident != "self" {
+                    path.push(r.ident.to_string());
+                }
+                self.used.push(path);
+            }
+            syn::UseTree::Glob(_) => self.used.push(prefix.clone()),
+            syn::UseTree::Group(g) => {
+                for item in &g.items {
+                    self.use_tree(prefix, item);
+                }
+            }
+        }
+    }
+
+    /// Paths inside a macro's tokens (`format!("{}", crate::x::f())`, a `macro_rules!` body's
+    /// `$crate::x::Y`), which syn leaves unparsed: every `crate`, `super` or `self` word followed
+    /// by `::` and the words after it.
+    fn tokens(&mut self, tokens: proc_macro2::TokenStream) {
+        use proc_macro2::TokenTree;
+        let trees: Vec<TokenTree> = tokens.into_iter().collect();
+        let mut i = 0;
+        while i < trees.len() {
+            match &trees[i] {
+                TokenTree::Group(g) => self.tokens(g.stream()),
+                TokenTree::Ident(word)
+                    if matches!(word.to_string().as_str(), "crate" | "super" | "self") =>
+                {
+                    let mut path = vec![word.to_string()];
+                    let mut j = i + 1;
+                    loop {
+                        let colons = matches!((trees.get(j), trees.get(j + 1)),
+                            (Some(TokenTree::Punct(a)), Some(TokenTree::Punct(b))) if a.as_char() == ':' && b.as_char() == ':');
+                        match (colons, trees.get(j + 2)) {
+                            (true, Some(TokenTree::Ident(next))) => {
+                                path.push(next.to_string());
+                                j += 3;
+                            }
+                            _ => break,
+                        }
+                    }
+                    if path.len() > 1 {
+                        self.inline.push(path);
+                    }
+                    i = j.max(i + 1);
+                    continue;
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+    }
+}
+
+impl<'ast> syn::visit::Visit<'ast> for PathCollector {
+    fn visit_item(&mut self, item: &'ast syn::Item) {
+        let attrs: &[syn::Attribute] = match item {
+            syn::Item::Mod(m) => &m.attrs,
+            syn::Item::Fn(f) => &f.attrs,
+            syn::Item::Use(u) => &u.attrs,
+            syn::Item::Impl(i) => &i.attrs,
+            syn::Item::Struct(s) => &s.attrs,
+            syn::Item::Const(c) => &c.attrs,
+            syn::Item::Macro(m) => &m.attrs,
+            _ => &[],
+        };
+        if !test_only(attrs) {
+            syn::visit::visit_item(self, item);
+        }
+    }
+
+    fn visit_item_use(&mut self, item: &'ast syn::ItemUse) {
+        self.use_tree(&mut Vec::new(), &item.tree);
+    }
+
+    fn visit_path(&mut self, path: &'ast syn::Path) {
+        if path.segments.len() > 1 {
+            self.inline
+                .push(path.segments.iter().map(|s| s.ident.to_string()).collect());
+        }
+        syn::visit::visit_path(self, path);
+    }
+
+    fn visit_macro(&mut self, mac: &'ast syn::Macro) {
+        self.tokens(mac.tokens.clone());
+        syn::visit::visit_macro(self, mac);
+    }
+}
+
+/// The modules a file declares (`mod x;`, not test-only ones).
+fn declared_children(file: &syn::File) -> BTreeSet<String> {
+    file.items
+        .iter()
+        .filter_map(|item| match item {
+            syn::Item::Mod(m) if m.content.is_none() && !test_only(&m.attrs) => {
+                Some(m.ident.to_string())
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The module paths the file `module` (with its declared `children`) names in `source`,
+/// resolved from the crate's root, and whether each is a parent naming its own child:
+/// `crate::a::b…`, `$crate::a…`, `super::a…` (`super::super::` climbs one more), `self::a…`,
+/// and a declared child's `child::…`, in `use` trees (grouped ones too), in code and in macro
+/// bodies.
 fn referenced_paths(
     module: &[String],
-    lines: &[&str],
+    source: &str,
     children: &BTreeSet<String>,
 ) -> Vec<(Vec<String>, bool)> {
-    let mut out = Vec::new();
-    let path_after = |s: &str| -> Vec<String> {
-        s.split(|c: char| !(c.is_alphanumeric() || c == '_' || c == ':'))
-            .next()
-            .unwrap_or("")
-            .split("::")
-            .filter(|p| !p.is_empty())
-            .map(str::to_string)
-            .collect()
+    let file = syn::parse_file(source).expect("a file of the crate parses");
+    let mut collector = PathCollector {
+        used: Vec::new(),
+        inline: Vec::new(),
     };
-    for line in lines {
-        let mut rest = *line;
-        while let Some(at) = rest.find("crate::") {
-            let before = rest[..at].chars().last();
-            rest = &rest[at + 7..];
-            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == '$') {
-                continue;
+    syn::visit::Visit::visit_file(&mut collector, &file);
+    let mut out = Vec::new();
+    for path in collector.used.iter().chain(&collector.inline) {
+        let Some(first) = path.first() else { continue };
+        match first.as_str() {
+            "crate" => out.push((path[1..].to_vec(), false)),
+            "super" => {
+                let up = path.iter().take_while(|w| *w == "super").count();
+                let mut target = module[..module.len().saturating_sub(up)].to_vec();
+                target.extend(path[up..].iter().cloned());
+                out.push((target, false));
             }
-            out.push((path_after(rest), false));
-        }
-        // Every `super::` path, in a `use` line or inline (`super::x::f()`), names a module
-        // relative to the file's own; `super::super::` climbs one more.
-        let mut rest = *line;
-        while let Some(at) = rest.find("super::") {
-            let before = rest[..at].chars().last();
-            rest = &rest[at + 7..];
-            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
-                continue;
+            "self" => {
+                let mut target = module.to_vec();
+                target.extend(path[1..].iter().cloned());
+                let to_child = path.get(1).is_some_and(|c| children.contains(c));
+                out.push((target, to_child));
             }
-            let mut up = 1;
-            while let Some(after) = rest.strip_prefix("super::") {
-                rest = after;
-                up += 1;
+            child if children.contains(child) => {
+                let mut target = module.to_vec();
+                target.extend(path.iter().cloned());
+                out.push((target, true));
             }
-            let mut path = module[..module.len().saturating_sub(up)].to_vec();
-            path.extend(path_after(rest));
-            out.push((path, false));
-        }
-        let trimmed = line.trim_start();
-        let body = trimmed
-            .strip_prefix("pub use ")
-            .or_else(|| trimmed.strip_prefix("pub(crate) use "))
-            .or_else(|| trimmed.strip_prefix("use "));
-        if let Some(body) = body {
-            if !body.starts_with("super::") && !body.starts_with("crate::") {
-                let first = path_after(body);
-                if first.first().is_some_and(|f| children.contains(f)) {
-                    let mut path = module.to_vec();
-                    path.extend(first);
-                    out.push((path, true));
-                }
-            }
-        } else {
-            for child in children {
-                if line.contains(&format!("{child}::")) {
-                    let mut path = module.to_vec();
-                    path.push(child.clone());
-                    out.push((path, true));
-                }
-            }
+            _ => {}
         }
     }
     out
@@ -166,22 +253,9 @@ fn graph() -> Graph {
     let mut edges = BTreeMap::new();
     for (module, path) in &files {
         let text = std::fs::read_to_string(path).unwrap();
-        let children: BTreeSet<String> = text
-            .lines()
-            .filter_map(|l| {
-                let t = l.trim_start();
-                let t = t.strip_prefix("pub ").unwrap_or(t);
-                let declared = t.strip_prefix("mod ")?;
-                // `mod x;`, or a registry line `mod x { Variant => Driver },` that declares it.
-                declared
-                    .strip_suffix(';')
-                    .or_else(|| declared.split_once(" {").map(|(name, _)| name))
-                    .map(str::to_string)
-            })
-            .collect();
-        let lines = library_lines(&text);
+        let children = declared_children(&syn::parse_file(&text).unwrap());
         let mut targets = BTreeSet::new();
-        for (path, parent_to_child) in referenced_paths(module, &lines, &children) {
+        for (path, parent_to_child) in referenced_paths(module, &text, &children) {
             if let Some(target) = resolve(&path, &files)
                 && &target != module
             {
@@ -304,15 +378,66 @@ fn no_file_level_import_cycle() {
     );
 }
 
+fn words(path: &[&str]) -> Vec<String> {
+    path.iter().map(|w| w.to_string()).collect()
+}
+
 #[test]
 fn an_inline_super_path_is_an_edge() {
-    let module = vec!["codes".to_string(), "liggghts".to_string()];
-    let lines = ["        super::yade::batch::render_batch(setups)"];
-    let paths = referenced_paths(&module, &lines, &BTreeSet::new());
+    let module = words(&["codes", "liggghts"]);
+    let source = "fn f() { super::yade::batch::render_batch(setups) }";
+    let paths = referenced_paths(&module, source, &BTreeSet::new());
     assert!(
         paths
             .iter()
-            .any(|(p, _)| p == &["codes", "yade", "batch", "render_batch"]),
+            .any(|(p, _)| p == &words(&["codes", "yade", "batch", "render_batch"])),
         "{paths:?}"
     );
+}
+
+/// A grouped import names every module in its group, and a `$crate::` path in a macro body is
+/// an edge like any other: each of these would hide an import that climbs the layers.
+#[test]
+fn grouped_imports_and_macro_paths_are_edges() {
+    let module = words(&["model", "law"]);
+    let source = r#"
+        use crate::{analysis::run::{self, IntegrationOptions}, codes};
+        macro_rules! m { () => { $crate::output::export() }; }
+        fn g() { let _ = format!("{}", crate::solve::Method::Rk4); }
+        #[cfg(test)]
+        mod tests { use crate::commands::x; }
+    "#;
+    let paths = referenced_paths(&module, source, &BTreeSet::new());
+    let targets: BTreeSet<Vec<String>> = paths.into_iter().map(|(p, _)| p).collect();
+    for expected in [
+        words(&["analysis", "run"]),
+        words(&["analysis", "run", "IntegrationOptions"]),
+        words(&["codes"]),
+        words(&["output", "export"]),
+        words(&["solve", "Method", "Rk4"]),
+    ] {
+        assert!(targets.contains(&expected), "{expected:?} in {targets:?}");
+    }
+    assert!(
+        !targets
+            .iter()
+            .any(|t| t.first().is_some_and(|w| w == "commands")),
+        "test-only imports are left out: {targets:?}"
+    );
+}
+
+/// A parent naming its declared child (`child::f()`, `pub use child::X`) is told apart.
+#[test]
+fn a_parent_naming_its_child_is_marked() {
+    let module = words(&["codes"]);
+    let children: BTreeSet<String> = ["yade".to_string()].into();
+    let source = "pub use yade::Yade; fn f() { yade::batch::go() }";
+    let paths = referenced_paths(&module, source, &children);
+    assert!(
+        paths
+            .iter()
+            .all(|(p, child)| *child && p[..2] == words(&["codes", "yade"])),
+        "{paths:?}"
+    );
+    assert_eq!(paths.len(), 2, "{paths:?}");
 }
