@@ -6,7 +6,7 @@ use std::process::Stdio;
 use std::time::Instant;
 
 use super::runner::RunOptions;
-use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun};
+use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun, RenderedInput};
 use crate::model::trajectory::check_trajectory;
 use thiserror::Error;
 
@@ -190,6 +190,51 @@ pub fn run_batch_with(
         kept,
     })
 }
+
+/// A batch input made of single inputs in sequence, as LIGGGHTS and LAMMPS run them: each but
+/// the last followed by `clear` (which deletes every atom, fix and setting and restores the
+/// defaults, as a fresh start would), so that every impact steps through its single run's input
+/// and state. `single(i, setup)` is impact `i`'s input, with its own trajectory file; `code`
+/// and `source` name the code and the file that made the batch, in its first line.
+pub fn render_in_sequence(
+    code: &str,
+    source: &str,
+    setups: &[CodeSetup],
+    most: usize,
+    mut single: impl FnMut(usize, &CodeSetup) -> Result<String, BatchError>,
+    args: &[&str],
+) -> Result<RenderedInput, BatchError> {
+    if setups.is_empty() {
+        return Err(BatchError::Empty);
+    }
+    if setups.len() > most {
+        return Err(BatchError::TooMany {
+            count: setups.len(),
+            most,
+            why: "the screen output kept whole",
+        });
+    }
+    let mut decks = Vec::with_capacity(setups.len());
+    for (i, setup) in setups.iter().enumerate() {
+        let mut deck = single(i, setup)?;
+        if !deck.ends_with('\n') {
+            deck.push('\n');
+        }
+        decks.push(deck);
+    }
+    Ok(RenderedInput {
+        file_name: SEQUENCE_INPUT_FILE.into(),
+        text: format!(
+            "# millimpact: {} impacts in one {code} run, one after another, each its single run's input ({source}).\n{}",
+            setups.len(),
+            decks.join("clear\n")
+        ),
+        args: args.iter().map(|a| a.to_string()).collect(),
+    })
+}
+
+/// The input file of a batch made by [`render_in_sequence`].
+pub const SEQUENCE_INPUT_FILE: &str = "batch.in";
 
 /// The loop time of impact `index` (from 0) of a batch whose script prints one
 /// `MILLIMPACT impact=K loop_time=T` line per impact (K from 1), s; `None` where it printed none.

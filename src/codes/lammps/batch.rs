@@ -11,6 +11,7 @@
 
 use std::path::Path;
 
+use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::lammps::{
     Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
 };
@@ -22,7 +23,7 @@ use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput}
 pub const MAX_BATCH: usize = 256;
 
 /// The batch input file.
-pub const BATCH_INPUT_FILE: &str = "batch.in";
+pub const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
 
 /// The trajectory file of impact `i` (from 0) of a batch.
 pub fn batch_trajectory_file(i: usize) -> String {
@@ -31,39 +32,21 @@ pub fn batch_trajectory_file(i: usize) -> String {
 
 /// The batch input for `setups` in `build`: their single inputs in sequence.
 pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the screen output kept whole",
-        });
-    }
     let own_file = format!(" file {TRAJECTORY_FILE} ");
-    let mut decks = Vec::with_capacity(setups.len());
-    for (i, s) in setups.iter().enumerate() {
+    render_in_sequence(
+        "LAMMPS",
+        "src/codes/lammps/batch.rs",
+        setups,
+        MAX_BATCH,
         // The single input names its trajectory file once, in its `fix print`.
-        let mut deck = build.render(s)?.text.replacen(
-            &own_file,
-            &format!(" file {} ", batch_trajectory_file(i)),
-            1,
-        );
-        if !deck.ends_with('\n') {
-            deck.push('\n');
-        }
-        decks.push(deck);
-    }
-    let text = format!(
-        "# millimpact: {} impacts in one LAMMPS run, one after another, each its single run's input (src/codes/lammps/batch.rs).\n{}",
-        setups.len(),
-        decks.join("clear\n")
-    );
-    Ok(RenderedInput {
-        file_name: BATCH_INPUT_FILE.into(),
-        text,
-        args: [
+        |i, setup| {
+            Ok(build.render(setup)?.text.replacen(
+                &own_file,
+                &format!(" file {} ", batch_trajectory_file(i)),
+                1,
+            ))
+        },
+        &[
             "-in",
             BATCH_INPUT_FILE,
             "-log",
@@ -71,10 +54,8 @@ pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput
             "-nocite",
             "-echo",
             "none",
-        ]
-        .map(String::from)
-        .to_vec(),
-    })
+        ],
+    )
 }
 
 /// The `Loop time of` seconds of every run in `log`, in order.

@@ -17,6 +17,7 @@
 
 use std::path::Path;
 
+use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, loop_line, parse_output, version};
 use crate::codes::parse::ParseError;
 use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
@@ -26,7 +27,7 @@ use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, Re
 pub const MAX_BATCH: usize = 256;
 
 /// The batch input file.
-pub const BATCH_INPUT_FILE: &str = "batch.in";
+pub const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
 
 /// The trajectory file of impact `i` (from 0) of a batch.
 pub fn batch_trajectory_file(i: usize) -> String {
@@ -51,44 +52,24 @@ pub fn render_batch_with(
     driver: &dyn CodeDriver,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the screen output kept whole",
-        });
-    }
-    let mut decks = Vec::with_capacity(setups.len());
-    for (i, s) in setups.iter().enumerate() {
-        let single = driver.render(s)?.text;
-        if !single.contains(INITIAL_ROW.0) {
-            return Err(BatchError::Differ {
-                what: "the input's initial row (not the template's)",
-            });
-        }
-        let mut deck = single
-            .replace(INITIAL_ROW.0, INITIAL_ROW.1)
-            .replace(TRAJECTORY_FILE, &batch_trajectory_file(i));
-        if !deck.ends_with('\n') {
-            deck.push('\n');
-        }
-        decks.push(deck);
-    }
-    let text = format!(
-        "# millimpact: {} impacts in one LIGGGHTS run, one after another, each its single run's input (src/codes/liggghts/batch.rs).\n{}",
-        setups.len(),
-        decks.join("clear\n")
-    );
-    Ok(RenderedInput {
-        file_name: BATCH_INPUT_FILE.into(),
-        text,
-        args: ["-in", BATCH_INPUT_FILE, "-log", "none", "-echo", "none"]
-            .map(String::from)
-            .to_vec(),
-    })
+    render_in_sequence(
+        "LIGGGHTS",
+        "src/codes/liggghts/batch.rs",
+        setups,
+        MAX_BATCH,
+        |i, setup| {
+            let single = driver.render(setup)?.text;
+            if !single.contains(INITIAL_ROW.0) {
+                return Err(BatchError::Differ {
+                    what: "the input's initial row (not the template's)",
+                });
+            }
+            Ok(single
+                .replace(INITIAL_ROW.0, INITIAL_ROW.1)
+                .replace(TRAJECTORY_FILE, &batch_trajectory_file(i)))
+        },
+        &["-in", BATCH_INPUT_FILE, "-log", "none", "-echo", "none"],
+    )
 }
 
 /// Each impact's run from a batch: its own trajectory, and its own run's loop time and step
