@@ -56,6 +56,37 @@ pub enum Command {
     /// Measure a build's conventions with short probe runs (LAMMPS builds): each item with
     /// the measured number, the value each hypothesis predicts, and the verdict.
     Probe(ProbeArgs),
+    /// A published benchmark (Chung & Ooi's normal-impact tests 1–3) by the exact solution,
+    /// the paper's law and each code asked for, every figure against its published value.
+    Benchmark(BenchmarkArgs),
+}
+
+/// The benchmarks `millimpact benchmark` runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum BenchmarkName {
+    /// Chung & Ooi (2011), tests 1–3: two spheres head on, a sphere on a rigid plane, the COR
+    /// set from 0.2 to 1.0.
+    ChungOoi,
+}
+
+/// `millimpact benchmark`.
+#[derive(Debug, Args)]
+pub struct BenchmarkArgs {
+    /// The benchmark.
+    #[arg(value_enum)]
+    pub benchmark: BenchmarkName,
+    /// A DEM code to run now, on its own rigid plane; repeat for several.
+    #[arg(long = "code", value_parser = code_parser())]
+    pub codes: Vec<CodeName>,
+    /// Steps per elastic contact time of each code's run.
+    #[arg(long, default_value = "1000", value_parser = clap::value_parser!(u32).range(10..=10_000_000))]
+    pub steps_per_contact: u32,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
+    /// Kill a code after this many seconds.
+    #[arg(long, default_value = "300", value_parser = parse_timeout)]
+    pub timeout: f64,
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {

@@ -165,6 +165,19 @@ fn verify_the_shipped_cases_and_references() {
 }
 
 #[test]
+fn benchmark_chung_ooi_by_the_methods() {
+    for format in Format::ALL {
+        let text = command(&["benchmark", "chung-ooi"], format);
+        check(
+            &format!("benchmark_chung_ooi_{format}"),
+            &text,
+            format,
+            false,
+        );
+    }
+}
+
+#[test]
 fn compare_from_the_stored_references() {
     for format in Format::ALL {
         let text = command(&["compare"], format);

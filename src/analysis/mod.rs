@@ -2,6 +2,7 @@
 //! verification, the attribution of each code's difference, and the comparison, precision,
 //! stability and sweep studies. Typed options in, typed summaries out; nothing here prints.
 
+pub mod benchmark;
 pub mod calibrate;
 pub mod compare;
 pub mod deck;

@@ -1,6 +1,7 @@
 //! One file per subcommand: validated arguments → the library → an exporter. A command
 //! returns its text and, for a check, its verdict; only `main` prints and exits.
 
+mod benchmark;
 mod calibrate;
 mod compare;
 mod deck;
@@ -114,6 +115,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Report(args) => report::report(args),
         Command::Merge(args) => merge::merge(args),
         Command::Probe(args) => probe::probe(args),
+        Command::Benchmark(args) => benchmark::benchmark(args),
         Command::Deck(args) => deck::deck(args),
     }
 }

@@ -1,0 +1,472 @@
+//! Published benchmarks, run by every source the harness has: Chung & Ooi's normal-impact tests
+//! ("Benchmark tests for verifying discrete element modelling codes at particle impact level",
+//! Granular Matter 13 (2011) 643–656), tests 1–3, with the Hertz values the paper tabulates for
+//! them, by the exact closed form, the paper's law stepped by RK4 with the contact's turning
+//! point and end located (`rk4-event`: the paper's fixed-step RK4 ends a contact at the first
+//! step past it, an O(Δt) error in the COR of up to 7e-5 here), and each DEM
+//! code asked for, each code on its own rigid plane (see each code's `CONVENTIONS.md`).
+
+use std::path::Path;
+
+use serde::Serialize;
+use thiserror::Error;
+
+use super::source::Source;
+use super::store::{ReferenceOptions, run_reference};
+use crate::codes::CodeName;
+use crate::model::case::{Case, CaseError};
+use crate::model::exact::{loss_coefficient, paper_impact};
+use crate::model::trajectory::TrajectoryMetrics;
+use crate::output::{Section, Summary};
+use crate::solve::paper::{Settings, solve};
+use crate::solve::{Method, SolveError};
+
+/// The relative tolerance of an elastic figure (peak overlap, peak force, contact time) against
+/// its published value: the paper's tables give three or four figures.
+pub const ELASTIC_TOLERANCE: f64 = 0.01;
+
+/// The tolerance of a realised COR against the COR set, absolute, for the exact solution and
+/// the paper's law stepped by `rk4-event` at its default resolution.
+pub const COR_TOLERANCE_METHOD: f64 = 1e-6;
+
+/// The CORs set in test 3.
+pub const TEST_3_CORS: [f64; 9] = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
+
+/// One material of one test, as the paper gives it.
+#[derive(Clone, Copy, Debug)]
+pub struct PublishedImpact {
+    /// The test's number (1, 2 or 3).
+    pub test: u8,
+    /// The material, as the paper names it.
+    pub material: &'static str,
+    /// The shipped case (`cases/benchmarks/<name>.toml`).
+    pub case: &'static str,
+    /// Its text, built in.
+    text: &'static str,
+    /// Hertz's peak overlap, m.
+    pub peak_overlap: f64,
+    /// Hertz's peak normal force, N.
+    pub peak_force: f64,
+    /// Hertz's contact time, s.
+    pub contact_time: f64,
+}
+
+impl PublishedImpact {
+    /// The case, read from this build.
+    pub fn case(&self) -> Result<Case, CaseError> {
+        Case::parse(
+            self.text,
+            &Path::new("cases/benchmarks").join(format!("{}.toml", self.case)),
+        )
+    }
+}
+
+/// Chung & Ooi's tests 1–3: the Hertz values of their Table 2 to 4 for each material.
+pub const CHUNG_OOI: [PublishedImpact; 6] = [
+    PublishedImpact {
+        test: 1,
+        material: "glass",
+        case: "chung_ooi_1_glass",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_1_glass.toml"),
+        peak_overlap: 274.1e-6,
+        peak_force: 10.70e3,
+        contact_time: 40.35e-6,
+    },
+    PublishedImpact {
+        test: 1,
+        material: "limestone",
+        case: "chung_ooi_1_limestone",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_1_limestone.toml"),
+        peak_overlap: 368.3e-6,
+        peak_force: 7.108e3,
+        contact_time: 54.2e-6,
+    },
+    PublishedImpact {
+        test: 2,
+        material: "aluminium alloy",
+        case: "chung_ooi_2_aluminium",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_2_aluminium.toml"),
+        peak_overlap: 49.7e-6,
+        peak_force: 11.37e3,
+        contact_time: 731.8e-6,
+    },
+    PublishedImpact {
+        test: 2,
+        material: "magnesium alloy",
+        case: "chung_ooi_2_magnesium",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_2_magnesium.toml"),
+        peak_overlap: 52.1e-6,
+        peak_force: 7.233e3,
+        contact_time: 767.2e-6,
+    },
+    PublishedImpact {
+        test: 3,
+        material: "aluminium oxide",
+        case: "chung_ooi_3_alumina",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_3_alumina.toml"),
+        peak_overlap: 8.09e-6,
+        peak_force: 0.615e3,
+        contact_time: 6.11e-6,
+    },
+    PublishedImpact {
+        test: 3,
+        material: "cast iron",
+        case: "chung_ooi_3_cast_iron",
+        text: include_str!("../../../cases/benchmarks/chung_ooi_3_cast_iron.toml"),
+        peak_overlap: 17.19e-6,
+        peak_force: 0.507e3,
+        contact_time: 12.97e-6,
+    },
+];
+
+/// A figure a benchmark row compares.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Quantity {
+    /// The largest overlap, m.
+    PeakOverlap,
+    /// The largest normal force, N.
+    PeakForce,
+    /// First touch until the overlap returns to zero, s.
+    ContactTimeByOverlap,
+    /// First touch until the normal force first returns to zero, s.
+    ContactTimeByForce,
+    /// The realised COR against the COR set (test 3).
+    Cor,
+}
+
+impl Quantity {
+    fn label(self) -> &'static str {
+        match self {
+            Quantity::PeakOverlap => "peak overlap (m)",
+            Quantity::PeakForce => "peak force (N)",
+            Quantity::ContactTimeByOverlap => "contact time, overlap (s)",
+            Quantity::ContactTimeByForce => "contact time, force (s)",
+            Quantity::Cor => "COR",
+        }
+    }
+}
+
+/// One figure of one source against its published value.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchmarkRow {
+    /// The test (1, 2 or 3).
+    pub test: u8,
+    /// The material.
+    pub material: &'static str,
+    /// The source of the value.
+    pub source: Source,
+    /// The figure.
+    pub quantity: Quantity,
+    /// The COR set (test 3's COR rows; 1 for the elastic figures).
+    pub cor_set: f64,
+    /// The paper's value (for a COR row, the COR set), in the quantity's unit.
+    pub published: f64,
+    /// This source's value.
+    pub value: f64,
+    /// `value / published − 1`.
+    pub relative_difference: f64,
+    /// The largest |relative difference| that passes.
+    pub tolerance: f64,
+    /// Whether it is within the tolerance.
+    pub pass: bool,
+}
+
+/// Why a benchmark could not be run.
+#[derive(Debug, Error)]
+pub enum BenchmarkError {
+    /// A built-in case does not read (a fault of the build).
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// The paper's law could not be stepped.
+    #[error("{case}: {source}")]
+    Solve {
+        /// The case.
+        case: String,
+        /// Why.
+        source: SolveError,
+    },
+    /// A code's run failed; its log is kept where the error says.
+    #[error("{code} on {case}: {message}")]
+    Code {
+        /// The code.
+        code: CodeName,
+        /// The case.
+        case: String,
+        /// The code's failure, whole.
+        message: String,
+    },
+}
+
+/// The benchmark's result: every row, sources in the order asked.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchmarkReport {
+    /// The benchmark's name.
+    pub benchmark: &'static str,
+    /// Where its values come from.
+    pub reference: &'static str,
+    /// Every figure of every source.
+    pub rows: Vec<BenchmarkRow>,
+}
+
+impl BenchmarkReport {
+    /// The rows outside their tolerance.
+    pub fn failures(&self) -> Vec<&BenchmarkRow> {
+        self.rows.iter().filter(|r| !r.pass).collect()
+    }
+}
+
+/// Options of a benchmark run.
+#[derive(Clone, Debug, Default)]
+pub struct BenchmarkOptions {
+    /// The codes to run now (none: the exact solution and the paper's law alone).
+    pub codes: Vec<CodeName>,
+    /// How the codes are run (their step, their time limit).
+    pub reference: ReferenceOptions,
+}
+
+fn row(
+    impact: &PublishedImpact,
+    source: Source,
+    quantity: Quantity,
+    cor_set: f64,
+    published: f64,
+    value: f64,
+    tolerance: f64,
+) -> BenchmarkRow {
+    let relative_difference = value / published - 1.0;
+    BenchmarkRow {
+        test: impact.test,
+        material: impact.material,
+        source,
+        quantity,
+        cor_set,
+        published,
+        value,
+        relative_difference,
+        tolerance,
+        pass: relative_difference.abs() <= tolerance,
+    }
+}
+
+/// The elastic figures of `metrics` against the paper's.
+fn elastic_rows(
+    impact: &PublishedImpact,
+    source: Source,
+    metrics: &TrajectoryMetrics,
+) -> Vec<BenchmarkRow> {
+    [
+        (
+            Quantity::PeakOverlap,
+            impact.peak_overlap,
+            metrics.peak_deformation,
+        ),
+        (Quantity::PeakForce, impact.peak_force, metrics.peak_force),
+        (
+            Quantity::ContactTimeByOverlap,
+            impact.contact_time,
+            metrics.contact_time,
+        ),
+        (
+            Quantity::ContactTimeByForce,
+            impact.contact_time,
+            metrics.force_contact_time,
+        ),
+    ]
+    .into_iter()
+    .map(|(q, published, value)| row(impact, source, q, 1.0, published, value, ELASTIC_TOLERANCE))
+    .collect()
+}
+
+/// One source's figures for `case` (at the COR it sets).
+fn figures(
+    source: Source,
+    case: &Case,
+    options: &BenchmarkOptions,
+) -> Result<(TrajectoryMetrics, f64), BenchmarkError> {
+    match source {
+        Source::Method(Method::Exact) => Ok((
+            paper_impact(&case.law(), case.impact_velocity).metrics(),
+            COR_TOLERANCE_METHOD,
+        )),
+        Source::Method(method) => {
+            let settings = Settings {
+                method,
+                ..Settings::default()
+            };
+            let outcome =
+                solve(&case.law(), case.impact_velocity, &settings).map_err(|source| {
+                    BenchmarkError::Solve {
+                        case: case.name.clone(),
+                        source,
+                    }
+                })?;
+            Ok((outcome.figures.metrics(), COR_TOLERANCE_METHOD))
+        }
+        Source::Code(code) => {
+            let record = run_reference(code, case, &options.reference).map_err(|e| {
+                BenchmarkError::Code {
+                    code,
+                    case: case.name.clone(),
+                    message: format!("{e:#}"),
+                }
+            })?;
+            // The step band of this run: the code's own law stepped at its step against that
+            // law exact, plus what its law itself differs from the COR set (a fit's reach).
+            let band = (record.law_at_step.cor - record.law_exact.cor).abs()
+                + (record.law_exact.cor - record.target_restitution).abs()
+                + 1e-9;
+            let metrics = TrajectoryMetrics {
+                cor: record.cor,
+                peak_deformation: record.peak_deformation,
+                peak_force: record.peak_force,
+                contact_time: record.contact_time,
+                force_contact_time: record.force_contact_time,
+                compression_time: record.compression_time,
+            };
+            Ok((metrics, band))
+        }
+    }
+}
+
+/// Run Chung & Ooi's tests 1–3 by the exact solution, the paper's law by `rk4-event`, and
+/// `options.codes`.
+pub fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, BenchmarkError> {
+    let mut sources = vec![
+        Source::Method(Method::Exact),
+        Source::Method(Method::Rk4Event),
+    ];
+    sources.extend(options.codes.iter().map(|c| Source::Code(*c)));
+    let mut rows = Vec::new();
+    for impact in &CHUNG_OOI {
+        let case = impact.case()?;
+        for &source in &sources {
+            let (elastic, _) = figures(source, &case, options)?;
+            rows.extend(elastic_rows(impact, source, &elastic));
+            if impact.test == 3 {
+                for cor_set in TEST_3_CORS {
+                    let at = case.with_loss_coefficient(loss_coefficient(cor_set));
+                    let (metrics, tolerance) = figures(source, &at, options)?;
+                    rows.push(row(
+                        impact,
+                        source,
+                        Quantity::Cor,
+                        cor_set,
+                        cor_set,
+                        metrics.cor,
+                        tolerance / cor_set,
+                    ));
+                }
+            }
+        }
+    }
+    Ok(BenchmarkReport {
+        benchmark: "chung-ooi",
+        reference: "Chung & Ooi, Granular Matter 13 (2011) 643–656, tests 1–3 (Hertz values of its tables)",
+        rows,
+    })
+}
+
+impl Summary for BenchmarkReport {
+    type Record = BenchmarkRow;
+
+    fn records(&self) -> Vec<BenchmarkRow> {
+        self.rows.clone()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let mut out = Vec::new();
+        for impact in &CHUNG_OOI {
+            let mut section = Section::new(
+                Some(format!(
+                    "test {} {} (cases/benchmarks/{}.toml)",
+                    impact.test, impact.material, impact.case
+                )),
+                &[
+                    "source",
+                    "quantity",
+                    "COR set",
+                    "published",
+                    "value",
+                    "difference",
+                    "tolerance",
+                    "verdict",
+                ],
+            );
+            for r in self
+                .rows
+                .iter()
+                .filter(|r| r.test == impact.test && r.material == impact.material)
+            {
+                section.rows.push(vec![
+                    r.source.to_string(),
+                    r.quantity.label().to_string(),
+                    format!("{}", r.cor_set),
+                    format!("{:.6e}", r.published),
+                    format!("{:.6e}", r.value),
+                    format!("{:+.2e}", r.relative_difference),
+                    format!("{:.1e}", r.tolerance),
+                    if r.pass { "pass" } else { "FAIL" }.to_string(),
+                ]);
+            }
+            out.push(section);
+        }
+        out.push(Section::text(vec![
+            format!("values: {}", self.reference),
+            "difference: value / published − 1; elastic figures pass within 1 %; a COR row compares the realised COR with the COR set, within 1e-6 for the methods and within each code's own step band (its law stepped at its step against that law exact, plus its law's own reach) for a code".to_string(),
+            "contact time by overlap: first touch until the overlap returns to zero; by force: until the normal force first returns to zero".to_string(),
+        ]));
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The closed form gives the paper's tabulated values within their rounding (well inside
+    /// 1 %), so the table's values are read right.
+    #[test]
+    fn the_closed_form_meets_every_published_value() {
+        for impact in &CHUNG_OOI {
+            let case = impact.case().unwrap();
+            let exact = paper_impact(&case.law(), case.impact_velocity);
+            for (what, published, value) in [
+                ("peak", impact.peak_overlap, exact.peak_deformation),
+                ("force", impact.peak_force, exact.peak_force),
+                ("time", impact.contact_time, exact.contact_time),
+            ] {
+                let difference = (value / published - 1.0).abs();
+                assert!(
+                    difference < 2e-3,
+                    "{} {what}: {value:e} against {published:e}",
+                    impact.case
+                );
+            }
+        }
+    }
+
+    /// A same-material wall in place of the rigid plane halves E* and fails test 2 (the trap
+    /// the paper warns of: the aluminium force falls to 8.62 kN).
+    #[test]
+    fn a_same_material_wall_fails_test_2() {
+        use crate::model::scene::{Plate, Scene};
+        let impact = CHUNG_OOI[2];
+        let mut case = impact.case().unwrap();
+        let Scene::BallPlate { ball, plate } = &mut case.scene else {
+            panic!("test 2 is a ball on a plane")
+        };
+        *plate = Plate::Elastic(ball.material);
+        let force = paper_impact(&case.law(), case.impact_velocity).peak_force;
+        assert!((force / 8.62e3 - 1.0).abs() < 2e-3, "{force}");
+        assert!((force / impact.peak_force - 1.0).abs() > ELASTIC_TOLERANCE);
+    }
+
+    #[test]
+    fn the_methods_pass_every_row() {
+        let report = chung_ooi(&BenchmarkOptions::default()).unwrap();
+        // 6 materials × 2 sources × 4 elastic figures, and 2 materials × 2 sources × 9 CORs.
+        assert_eq!(report.rows.len(), 6 * 2 * 4 + 2 * 2 * 9);
+        assert!(report.failures().is_empty(), "{:#?}", report.failures());
+    }
+}
