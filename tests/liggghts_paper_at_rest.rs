@@ -172,6 +172,16 @@ run             200
             let rows = run_deck(&deck);
             let last: Vec<&Vec<f64>> = rows.iter().filter(|r| r[0] > 100_000.0).collect();
             assert_eq!(last.len(), 200, "{model} η={eta}: {rows:?}");
+            let worst = |column: usize, reference: f64, load: f64| {
+                last.iter()
+                    .map(|r| (r[column] - reference).abs() / load)
+                    .fold(0.0, f64::max)
+            };
+            println!(
+                "{model} η={eta}: plate force off 2 m g by at most {:.1e} of it, upper ball's net force at most {:.1e} of m g",
+                worst(1, 2.0 * weight, 2.0 * weight),
+                worst(2, 0.0, weight)
+            );
             for row in last {
                 let (floor, upper) = (row[1], row[2]);
                 assert!(
@@ -227,10 +237,12 @@ run             200000
 fn live_a_ball_on_an_incline_holds_below_the_friction_angle() {
     for eta in [0.3, 0.6] {
         let held = incline_travel(eta, 25.0);
+        println!("η={eta}, 25°: moved {held:.3e} m in 0.2 s");
         assert!(held.abs() < 1e-6, "η={eta}, 25°: moved {held} m");
         let angle = 28.0_f64.to_radians();
         let expected = 0.5 * GRAVITY * (angle.sin() - FRICTION * angle.cos()) * 0.2 * 0.2;
         let slid = incline_travel(eta, 28.0);
+        println!("η={eta}, 28°: slid {slid:.4e} m in 0.2 s (Coulomb friction: {expected:.4e} m)");
         assert!(
             (slid - expected).abs() < 0.02 * expected,
             "η={eta}, 28°: slid {slid} m, Coulomb friction gives {expected} m"
@@ -296,9 +308,13 @@ run             5
 #[ignore = "live: runs liggghts-paper (bash scripts/test.sh)"]
 fn live_a_poured_bed_comes_to_rest_as_hertz_does() {
     let weight = 128.0 * ball_mass() * GRAVITY;
-    let (hertz_energy, _) = bed("hertz", 0.3);
+    let (hertz_energy, hertz_floor) = bed("hertz", 0.3);
+    println!("hertz: kinetic energy {hertz_energy:.2e} J after 1 s, floor {hertz_floor:?} N");
     assert!(hertz_energy < 1e-6, "hertz: {hertz_energy} J after 1 s");
     let (paper_energy, floor) = bed("paper", 0.3);
+    println!(
+        "paper: kinetic energy {paper_energy:.2e} J after 1 s, floor {floor:?} N (weight {weight} N)"
+    );
     assert!(paper_energy < 1e-6, "paper: {paper_energy} J after 1 s");
     for pair in floor.windows(2) {
         assert!(
