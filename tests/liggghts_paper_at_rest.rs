@@ -224,7 +224,7 @@ run             200000
     );
     let rows = run_deck(&deck);
     let end = rows.last().unwrap_or_else(|| panic!("no thermo rows"));
-    assert_eq!(end[0], 200_000.0, "{rows:?}");
+    assert!((end[0] - 200_000.0).abs() < 0.5, "{rows:?}");
     end[1]
 }
 
@@ -293,7 +293,10 @@ run             5
     let rows = run_deck(&deck);
     let last: Vec<&Vec<f64>> = rows.iter().filter(|r| r[0] >= 1_000_000.0).collect();
     assert!(last.len() >= 6, "{model}: {rows:?}");
-    assert!(last.iter().all(|r| r[1] == 128.0), "{model}: {rows:?}");
+    assert!(
+        last.iter().all(|r| (r[1] - 128.0).abs() < 0.5),
+        "{model}: {rows:?}"
+    );
     let end = last[last.len() - 1];
     (end[2] + end[3], last.iter().map(|r| r[4]).collect())
 }
