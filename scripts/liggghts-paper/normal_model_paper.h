@@ -29,9 +29,12 @@
 
    Conventions:
    - sign(dy/dt) is taken from the normal relative velocity LIGGGHTS hands
-     the model (sidata.vn, negative while the surfaces approach). At
-     vn == 0 exactly, sign = 0 and the force is the elastic C y^n alone, the
-     mean of the loading and unloading branches.
+     the model (sidata.vn, negative while the surfaces approach), resolved to
+     one step: within the velocity change one step's force jump makes,
+     |vn| < 2 eta C y^n dt / meff (meff: the pair's effective mass, the
+     sphere's at a wall), the sign is replaced by vn over that band, so a
+     contact at rest carries its load on the elastic force C y^n instead of
+     alternating between the branches (branchFactor below says why).
    - The force is never attractive: C y^n (1 - eta) >= 0 while y >= 0. It goes
      to zero continuously as the overlap closes, so the contact ends without
      a force jump and no clamp (limitForce) is needed. The model keeps no
@@ -62,6 +65,7 @@ NORMAL_MODEL(PAPER_LINEAR,paper/linear,41)
 #include "global_properties.h"
 #include "fix_property_global.h"
 #include "force.h"
+#include "update.h"
 #include "error.h"
 
 namespace LIGGGHTS {
@@ -101,12 +105,23 @@ namespace PaperLaw {
     return matrix;
   }
 
-  // 1 + eta sign(dy/dt), with dy/dt = -vn (vn < 0 while approaching); sign(0) = 0.
-  inline double branchFactor(const double eta, const double vn)
+  // 1 + eta s, with s the sign of dy/dt = -vn (vn < 0 while approaching) as one step of
+  // length dt can resolve it. The continuous law is set-valued at dy/dt = 0: a contact at rest
+  // may carry any force between C y^n (1 - eta) and C y^n (1 + eta). One step's force jump
+  // between the branches, 2 eta C y^n, changes the relative normal velocity by
+  // band = 2 eta C y^n dt / meff; a plain sign would flip the branch every step in a resting
+  // contact (its half-step velocity alternates by that much) and the force with it. So s
+  // follows the sign outside the band and is linear inside it, dy/dt / band: the dissipative
+  // force there is meff (dy/dt) / (2 dt), which halves a lone contact's relative normal
+  // velocity per step (a body pressed along one line by three such contacts still comes to
+  // rest), so a resting contact comes to rest and carries its load on the elastic force.
+  inline double branchFactor(const double eta, const double Fn_elastic, const double vn, const double meff, const double dt)
   {
-    if (vn < 0.0) return 1.0 + eta;   // loading
-    if (vn > 0.0) return 1.0 - eta;   // unloading
-    return 1.0;                       // at rest: the elastic force alone
+    const double rate = -vn;
+    const double band = 2.0 * eta * Fn_elastic * dt / meff;
+    if (rate >= band) return 1.0 + eta;   // loading (also eta = 0 or no force: band = 0)
+    if (rate <= -band) return 1.0 - eta;  // unloading
+    return 1.0 + eta * (rate / band);     // within one step of rest
   }
 
   // Adds the normal force Fn (> 0 repulsive) along en, as the stock normal models do
@@ -186,7 +201,7 @@ namespace PaperLaw {
       const double kt = 8.*Geff[itype][jtype]*sqrtval / force->nktv2p;
 
       const double Fn_elastic = kn*deltan;
-      const double Fn = Fn_elastic * PaperLaw::branchFactor(eta[itype][jtype], sidata.vn);
+      const double Fn = Fn_elastic * PaperLaw::branchFactor(eta[itype][jtype], Fn_elastic, sidata.vn, sidata.meff, update->dt);
 
       sidata.Fn = Fn;
       sidata.kn = kn;
@@ -260,7 +275,7 @@ namespace PaperLaw {
       const double kt = k_t[itype][jtype] / force->nktv2p;
 
       const double Fn_elastic = kn*sidata.deltan;
-      const double Fn = Fn_elastic * PaperLaw::branchFactor(eta[itype][jtype], sidata.vn);
+      const double Fn = Fn_elastic * PaperLaw::branchFactor(eta[itype][jtype], Fn_elastic, sidata.vn, sidata.meff, update->dt);
 
       sidata.Fn = Fn;
       sidata.kn = kn;

@@ -12,7 +12,9 @@
 //! is refused), and η is given itself, not a COR: the setup carries the case's η exactly. The
 //! code's own law is the paper's law ([`CodeLaw::Paper`]), so its model difference is zero by
 //! construction and what it differs by is its integration: velocity Verlet with the branch
-//! chosen by the sign of the half-step velocity (`sign 0` gives the elastic force alone), which
+//! chosen by the sign of the half-step velocity, resolved to one step (within the velocity
+//! change one step's force jump makes, the sign becomes linear in the velocity, so a contact at
+//! rest carries the elastic force: [`crate::solve::dashpot::paper_force_in_step`]), which
 //! [`crate::solve::dashpot::step_trajectory`] steps the same way.
 
 use std::path::Path;
