@@ -140,7 +140,10 @@ impl Material {
             let literal = python(value).ok_or_else(|| {
                 DeckError::unsupported(
                     self.at.clone(),
-                    format!("{}'s {key}: an object the impact cannot carry", self.class.name()),
+                    format!(
+                        "{}'s {key}: an object the impact cannot carry",
+                        self.class.name()
+                    ),
                     "numbers, flags and strings",
                 )
             })?;
@@ -460,10 +463,7 @@ impl YadeDeck {
         }
         let engines_at = dump.engines_line;
         let text = std::fs::read_to_string(path).unwrap_or_default();
-        let newton = dump
-            .engines
-            .iter()
-            .any(|e| e.class == "NewtonIntegrator");
+        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
         for (k, engine) in dump.engines.iter().enumerate() {
             let engine_line = line_of(&text, engines_at, &engine.class);
             let at = source(path, engine_line, || format!("O.engines[{k}]"));
@@ -532,7 +532,10 @@ impl YadeDeck {
             } else if engine.class.ends_with("TimeStepper") {
                 return Err(DeckError::unsupported(
                     at,
-                    format!("{}: the time step is set while the script runs", engine.class),
+                    format!(
+                        "{}: the time step is set while the script runs",
+                        engine.class
+                    ),
                     "a fixed O.dt, without a time stepper in O.engines",
                 ));
             } else {
@@ -579,7 +582,10 @@ impl YadeDeck {
                         "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
                     )
                 })?;
-            r.leave_out("the bodies' positions (the impact places its own)", body.line);
+            r.leave_out(
+                "the bodies' positions (the impact places its own)",
+                body.line,
+            );
             let mass = body.mass.unwrap_or(0.0);
             match kind {
                 None => {
@@ -1215,6 +1221,22 @@ impl YadeDeck {
             return Err(lacking(
                 &format!("--var {name}: a YADE script's names are its own, set in the script"),
                 "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
+            ));
+        }
+        if dump.engines_line.is_none() {
+            let before = match &dump.stopped {
+                Some(stop) => format!(
+                    " before the reading stopped at its first step ({}, line {})",
+                    stop.call,
+                    stop.line.map_or("?".into(), |l| l.to_string())
+                ),
+                None => String::new(),
+            };
+            return Err(lacking(
+                &format!(
+                    "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
+                ),
+                "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
             ));
         }
         let r = Self::gather(path, dump, options)?;

@@ -287,7 +287,9 @@ pub fn dump_script(path: &Path) -> Result<String, DeckError> {
     let mut launch = super::batch::launch(executable, &input);
     if launch.args != input.args {
         // Run by the launcher's Python: the dumper's own arguments follow it.
-        launch.args.extend([script_arg.clone(), DUMP_FILE.to_string()]);
+        launch
+            .args
+            .extend([script_arg.clone(), DUMP_FILE.to_string()]);
     }
     let log_path = workdir.join("log.txt");
     let log_file = std::fs::File::create(&log_path).map_err(io("creating the log"))?;
