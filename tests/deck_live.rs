@@ -683,7 +683,13 @@ fn the_2025_build_runs_a_mixed_pair_as_the_mixed_model() {
 fn yade_scripts_with_dumps() -> Vec<(std::path::PathBuf, std::path::PathBuf)> {
     let root = common::root();
     let data = root.join("tests/data/deck/yade");
-    let mut pairs = vec![(root.join(YADE_MILL), data.join("mill.dump.json"))];
+    let mut pairs = vec![
+        (root.join(YADE_MILL), data.join("mill.dump.json")),
+        (
+            root.join("tests/data/deck/yade-capillary.py"),
+            data.join("capillary.dump.json"),
+        ),
+    ];
     let mut scripts: Vec<_> = std::fs::read_dir(&data)
         .unwrap()
         .map(|e| e.unwrap().path())

@@ -80,12 +80,8 @@ fn python(value: &Attribute) -> Option<String> {
                 let [Some(a), Some(b), Some(x)] = triple.as_slice() else {
                     return None;
                 };
-                matches.push(format!(
-                    "({}, {}, {})",
-                    exact_number(*a),
-                    exact_number(*b),
-                    exact_number(*x)
-                ));
+                // The ids are whole numbers YADE keeps as floats: written as ids.
+                matches.push(format!("({a}, {b}, {})", exact_number(*x)));
             }
             let val = m
                 .val
