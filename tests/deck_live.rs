@@ -726,12 +726,16 @@ fn the_recorded_yade_dumps_are_what_yade_dumps_now() {
             std::fs::write(&dump, &live).unwrap();
         }
         let recorded = std::fs::read_to_string(&dump).unwrap();
-        assert_eq!(
+        let (live, recorded) = (
             parse_dump(&script, &live).unwrap(),
             parse_dump(&script, &recorded).unwrap(),
-            "{}",
-            script.display()
         );
+        // Part by part, so that a difference names its part.
+        let at = script.display();
+        assert_eq!(live.materials, recorded.materials, "{at}: materials");
+        assert_eq!(live.engines, recorded.engines, "{at}: engines");
+        assert_eq!(live.bodies, recorded.bodies, "{at}: bodies");
+        assert_eq!(live, recorded, "{at}");
     }
 }
 
@@ -872,4 +876,34 @@ fn a_yade_script_that_runs_before_its_set_up_ends_is_read_up_to_that_line() {
         err.contains("tests/data/deck/yade/runs-early.py: the script sets no O.engines before the reading stopped at its first step (O.run, line 7)"),
         "{err}"
     );
+}
+
+/// The book's YADE error examples (`docs/src/commands/deck.md`, each after a
+/// `<!-- yade deck error: SCRIPT -->` marker) are what `deck` prints on their scripts: exit 2 and
+/// the one line shown.
+#[test]
+#[ignore = "live: runs YADE on the book's YADE error examples"]
+fn the_books_yade_error_examples_are_what_deck_prints() {
+    let root = common::root();
+    let page = std::fs::read_to_string(root.join("docs/src/commands/deck.md")).unwrap();
+    let mut seen = 0;
+    for block in page.split("<!-- yade deck error: ").skip(1) {
+        let script = &block[..block.find(" -->").unwrap()];
+        let body = &block[block.find("```text\n").unwrap() + 8..];
+        let body = &body[..body.find("```").unwrap()];
+        let out = common::millimpact()
+            .current_dir(&root)
+            .args(["deck", script])
+            .output()
+            .unwrap();
+        let printed = format!(
+            "$ millimpact deck {script}\n? {}\n{}",
+            out.status.code().unwrap(),
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(out.stdout.is_empty(), "{script}");
+        assert_eq!(printed, body, "{script}");
+        seen += 1;
+    }
+    assert_eq!(seen, 2);
 }

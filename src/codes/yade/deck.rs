@@ -1486,7 +1486,7 @@ impl DeckReader for YadeDeck {
     }
 
     fn reads(&self) -> &'static str {
-        "YADE scripts, run by YADE up to their first step and read as YADE then holds them (FrictMat/ViscElMat materials, InteractionLoop functors, O.dt, spheres, walls, facets and fixed boxes)"
+        "YADE scripts, set up by YADE and read as it then holds them (FrictMat/ViscElMat materials, InteractionLoop functors, O.dt, spheres, walls, facets, fixed boxes)"
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {

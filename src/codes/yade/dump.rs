@@ -10,7 +10,7 @@
 //! message and the script's line.
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::Duration;
 
@@ -340,14 +340,18 @@ pub fn dump_script(path: &Path) -> Result<String, DeckError> {
             log: keep(scratch),
         }));
     }
-    std::fs::read_to_string(workdir.join(DUMP_FILE)).map_err(|source| {
-        let log = keep(scratch);
-        fault(CodeError::Io {
+    let dump = workdir.join(DUMP_FILE);
+    match std::fs::read_to_string(&dump) {
+        Ok(text) => Ok(text),
+        Err(source) => Err(fault(CodeError::Unparsable {
             code: "yade".into(),
-            context: format!("reading the dump (log kept in {})", log.display()),
-            source,
-        })
-    })
+            reason: crate::codes::ParseError::Read {
+                path: PathBuf::from(DUMP_FILE),
+                source,
+            },
+            log: keep(scratch),
+        })),
+    }
 }
 
 /// The script's line and YADE's message of the exception the dumper printed.

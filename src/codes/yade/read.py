@@ -205,8 +205,10 @@ def engine(e, materials):
         }
     else:
         try:
-            out["attributes"] = plain(e.dict())
-            out["changed"] = changed(e)
+            # A periodic engine's realLast is the wall-clock time it was made at: no set-up.
+            attributes = {k: v for k, v in e.dict().items() if k != "realLast"}
+            out["attributes"] = plain(attributes)
+            out["changed"] = [k for k in changed(e) if k != "realLast"]
         except Exception:
             pass
     return out
