@@ -1451,6 +1451,19 @@ fn a_yade_script_that_runs_before_its_engines_are_set_is_refused_naming_that_lin
 }
 
 #[test]
+fn a_yade_script_that_steps_in_a_loop_is_read_up_to_its_first_step() {
+    let deck = yade_case("steps-in-loop").unwrap();
+    // The edit after the loop is never run: the modulus is the one set up.
+    assert_eq!(deck.bodies[0].youngs_modulus, Some(2e11));
+    assert!(
+        deck.left_out.iter().any(|l| l
+            == "the run itself (the reading stops at the first call that steps the simulation, O.step; the lines after it are not read): tests/data/deck/yade/steps-in-loop.py:16"),
+        "{:?}",
+        deck.left_out
+    );
+}
+
+#[test]
 fn a_yade_dump_that_does_not_read_names_its_field() {
     let e = YadeDeck::read_dump(
         Path::new("s.py"),
