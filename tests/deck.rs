@@ -13,6 +13,7 @@ use common::{millimpact, root};
 use millimpact::analysis::deck::{RecordedRuns, check_deck, read_deck};
 use millimpact::codes::CodeName;
 use millimpact::codes::deck::{DeckOptions, GivenParticle, Partner, TypeRef, UserDeck};
+use millimpact::codes::yade::deck::YadeDeck;
 use millimpact::model::law::DashpotLaw;
 use millimpact::output::{Format, export};
 
@@ -1134,6 +1135,23 @@ fn the_books_kratos_example_is_the_recorded_check() {
 
 const YADE_MILL: &str = "examples/decks/yade-mill/mill.py";
 
+/// The YADE script at `script` (from the project's root) read from the recorded dump of its
+/// set-up `dump` (under `tests/data/deck/yade/`, recorded as its README says): no YADE starts.
+fn yade_read(script: &str, dump: &str, options: &DeckOptions) -> Result<UserDeck, String> {
+    let text = std::fs::read_to_string(root().join("tests/data/deck/yade").join(dump)).unwrap();
+    YadeDeck::read_dump(Path::new(script), &text, options).map_err(|e| e.to_string())
+}
+
+/// A script of `tests/data/deck/yade/` read from its recorded dump.
+fn yade_case(name: &str) -> Result<UserDeck, String> {
+    std::env::set_current_dir(root()).unwrap();
+    yade_read(
+        &format!("tests/data/deck/yade/{name}.py"),
+        &format!("{name}.dump.json"),
+        &DeckOptions::default(),
+    )
+}
+
 /// YADE's `E*` of two materials.
 fn mixed(e1: f64, n1: f64, e2: f64, n2: f64) -> f64 {
     e1 * e2 / ((1.0 - n1 * n1) * e2 + (1.0 - n2 * n2) * e1)
@@ -1142,20 +1160,20 @@ fn mixed(e1: f64, n1: f64, e2: f64, n2: f64) -> f64 {
 #[test]
 fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     use millimpact::codes::yade::thornton_damping_ratio;
-    let (code, deck) = read_deck(&root().join(YADE_MILL), None, &DeckOptions::default()).unwrap();
-    assert_eq!(code, CodeName::Yade);
-    // R_ALUMINA = R_STEEL * 0.625: a module-level formula through another name.
+    std::env::set_current_dir(root()).unwrap();
+    let deck = yade_read(YADE_MILL, "mill.dump.json", &DeckOptions::default()).unwrap();
+    // R_ALUMINA = R_STEEL * 0.625, as YADE holds it.
     let sizes: Vec<(u32, f64, f64)> = deck
         .bodies
         .iter()
         .map(|b| (b.type_id, b.radius, b.density))
         .collect();
     assert_eq!(sizes, [(0, 0.02, 7850.0), (1, 0.02 * 0.625, 3950.0)]);
-    // O.dt = 0.2 * PWaveTimeStep(): the smallest R sqrt(ρ/E) of the spheres, the alumina's.
-    // YADE's own O.dt for this script, as it printed it: the step to the last bit.
+    // O.dt = 0.2 * PWaveTimeStep(): YADE's own O.dt for this script, as it printed it.
     assert_eq!(deck.timestep, 2.5830790342723347e-07);
     assert!(
-        deck.timestep_from.contains("mill.py:47") && deck.timestep_from.contains("PWaveTimeStep"),
+        deck.timestep_from
+            .starts_with("examples/decks/yade-mill/mill.py:47, `O.dt = 0.2 * PWaveTimeStep()`"),
         "{}",
         deck.timestep_from
     );
@@ -1168,7 +1186,7 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
         .iter()
         .map(|c| (c.types, c.cor_entered))
         .collect();
-    // The en of each pair from the MatchMaker, looked up by the materials' ids.
+    // The en of each pair from the MatchMaker, as YADE evaluates it for the materials' ids.
     assert_eq!(
         pairs,
         [
@@ -1186,6 +1204,13 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 3.7e11, 0.22) * r.sqrt();
     let law = deck.contacts[1].law;
     assert!(relative(law.stiffness, k) < 1e-14 && relative(law.mass, m) < 1e-14);
+    // YADE's masses: 4/3 π R³ ρ.
+    assert!(
+        relative(
+            steel.mass,
+            4.0 / 3.0 * std::f64::consts::PI * 0.02f64.powi(3) * 7850.0
+        ) < 1e-14
+    );
     let c = 2.0 * thornton_damping_ratio(0.75) * (1.5 * m * k).sqrt();
     assert!(relative(law.damping, c) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
@@ -1200,63 +1225,83 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
             .iter()
             .any(|t| t.starts_with("wall radius"))
     );
-    // The script's own lines, names resolved, carried into every impact.
+    // What the script set, carried into every impact: its materials and functors.
     let common = deck.transplant.common.join("\n");
     assert!(
-        common.contains("O.materials.append(FrictMat(young=2.1e11, poisson=3e-1, density=7.85e3, frictionAngle=3.490658503988659e-1, label='steel'))"),
+        common.contains("O.materials.append(FrictMat(frictionAngle=3.490658503988659e-1, young=2.1e11, poisson=3e-1, label=\"steel\", density=7.85e3))"),
         "{common}"
     );
     assert!(
-        common.contains("IP2 = [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=((0, 0, 8e-1), (0, 1, 7.5e-1), (1, 1, 7e-1), (0, 2, 6e-1), (1, 2, 5.5e-1),), algo='val', val=7e-1), es=7e-1)]"),
+        common.contains("IP2 = [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(matches=[(0, 0, 8e-1), (0, 1, 7.5e-1), (1, 1, 7e-1), (0, 2, 6e-1), (1, 2, 5.5e-1)], algo=\"val\", val=7e-1), es=MatchMaker(matches=[], algo=\"val\", val=7e-1))]"),
         "{common}"
     );
-    assert!(common.contains("IG2 = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]"));
-    for left in [
-        "gravity",
-        "output and control",
-        "the run itself",
-        "the walls' shapes",
-        "wall and particle motion",
+    assert!(
+        common.contains("IG2 = [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()]"),
+        "{common}"
+    );
+    for (left, line) in [
+        ("gravity", "mill.py:44"),
+        ("output and control", "mill.py:45"),
+        ("the run itself", "mill.py:49"),
+        ("the walls' shapes", "mill.py:22"),
+        ("wall and particle motion", "mill.py:43"),
+        ("the force reset and the collider", "mill.py:36,37"),
     ] {
         assert!(
-            deck.left_out.iter().any(|l| l.starts_with(left)),
+            deck.left_out
+                .iter()
+                .any(|l| l.starts_with(left) && l.ends_with(line)),
             "{left}: {:?}",
             deck.left_out
         );
     }
 }
 
-/// The lines every small YADE script below shares: a steel ball and a wall.
-const YADE_BASE: &str =
-    "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
-O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
-O.bodies.append(wall(-0.01, axis=2, material=steel))
-O.engines = [
-    ForceResetter(),
-    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
-                    [Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)],
-                    [Law2_ScGeom_MindlinPhys_Mindlin()]),
-    NewtonIntegrator(damping=0.0),
-]
-O.dt = 1e-7
-";
+#[test]
+fn a_users_yade_script_is_read_as_yade_holds_it_after_its_set_up() {
+    let deck = yade_case("users").unwrap();
+    // glass's young edited by its index after the loop appended it, the plate's through the
+    // object appended: YADE's values, and the edit said.
+    let glass: Vec<&millimpact::codes::deck::DeckBody> =
+        deck.bodies.iter().filter(|b| b.type_id == 0).collect();
+    assert_eq!(glass.len(), 2);
+    assert!(glass.iter().all(|b| b.youngs_modulus == Some(1e7)));
+    assert_eq!(deck.walls[0].youngs_modulus, Some(5e10));
+    // O.dt = 0.3 * PWaveTimeStep() of the edited glass, as the plain YADE run printed it.
+    assert_eq!(deck.timestep, 2.900123150094541e-07);
+    let radii: Vec<(u32, f64)> = deck.bodies.iter().map(|b| (b.type_id, b.radius)).collect();
+    assert_eq!(radii, [(0, 0.006), (0, 0.004), (1, 0.005)]);
+    let glass_pair = &deck.contacts[0];
+    assert!(
+        glass_pair.traps.iter().any(|t| t
+            == "young of glass (tests/data/deck/yade/users.py:16) was 6.5e10 when appended and is 1e7 after the set-up: the check takes 1e7, as YADE does"),
+        "{:?}",
+        glass_pair.traps
+    );
+    // The MatchMaker built from a dict: glass–steel 0.8, steel–steel 0.7, the wall its val.
+    let en: Vec<(String, Option<f64>)> = deck
+        .contacts
+        .iter()
+        .map(|c| (format!("{}-{}", c.types[0], c.types[1]), c.cor_entered))
+        .collect();
+    for (pair, e) in [("0-0", 0.9), ("0-1", 0.8), ("1-1", 0.7), ("1-wall", 0.6)] {
+        assert!(en.contains(&(pair.to_string(), Some(e))), "{pair}: {en:?}");
+    }
+    assert!(
+        deck.left_out
+            .iter()
+            .any(|l| l.starts_with("the run itself") && l.ends_with("users.py:52")),
+        "{:?}",
+        deck.left_out
+    );
+}
 
 #[test]
 fn yade_viscel_and_frictphys_forms_give_their_laws() {
     let pi2 = std::f64::consts::PI * std::f64::consts::PI;
-    let mass = |r: f64, rho: f64| 4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho;
-    // tc, en, et: en and tc averaged over the two materials; a wall's mass is the sphere's.
-    let tc_en = "a = O.materials.append(ViscElMat(tc=2e-5, en=0.8, et=0.8, density=2500.0))\n\
-b = O.materials.append(ViscElMat(tc=4e-5, en=0.6, et=0.6, density=1100.0))\n\
-O.bodies.append(sphere((0, 0, 0), 0.005, material=a))\n\
-O.bodies.append(sphere((0, 0, 1), 0.004, material=b))\n\
-O.bodies.append(wall(0, axis=2, material=a))\n\
-O.bodies.append(box((0, 0, -0.5), (0.5, 0.5, 0.01), fixed=True, material=b))\n\
-O.engines = [InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom(), Ig2_Box_Sphere_ScGeom()], [Ip2_ViscElMat_ViscElMat_ViscElPhys()], [Law2_ScGeom_ViscElPhys_Basic()]), NewtonIntegrator(damping=0)]\n\
-O.dt = 1e-7\n";
-    let (_d, path) = deck_files(&[("tc_en.py", tc_en)]);
-    let deck = read(&path);
-    let (m1, m2) = (mass(0.005, 2500.0), mass(0.004, 1100.0));
+    let deck = yade_case("viscel-tc-en").unwrap();
+    let mass = |t: u32| deck.bodies.iter().find(|b| b.type_id == t).unwrap().mass;
+    let (m1, m2) = (mass(0), mass(1));
     let tuned = |c: usize, m_r: f64, tc: f64, en: f64| {
         let law = deck.contacts[c].law;
         let kn = m_r * (pi2 + en.ln().powi(2)) / (tc * tc);
@@ -1285,190 +1330,86 @@ O.dt = 1e-7\n";
             .iter()
             .any(|t| t.starts_with("a wall's mass is 0"))
     );
-    // The ball on the fixed box: its own mass 8 · 0.5 · 0.5 · 0.01 · 1100 kg in the tuning.
+    // The ball on the fixed box: its own mass as YADE holds it, 8 · 0.5 · 0.5 · 0.01 · 1100 kg.
     let m_box = 8.0 * 0.5 * 0.5 * 0.01 * 1100.0;
     tuned(5, m1 * m_box / (m1 + m_box), 3e-5, 0.7);
     // kn, cn in series; FrictPhys's linear spring; young and en through YADE's Newton iteration.
-    let kn_cn = YADE_BASE
-        .replace(
-            "FrictMat(young=2e11, poisson=0.3, density=7800)",
-            "ViscElMat(kn=2e6, ks=0, cn=40.0, cs=0)",
-        )
-        .replace(
-            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
-            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
-        )
-        .replace(
-            "Law2_ScGeom_MindlinPhys_Mindlin()",
-            "Law2_ScGeom_ViscElPhys_Basic()",
-        );
-    let (_d, path) = deck_files(&[("kn_cn.py", &kn_cn)]);
-    let law = read(&path).contacts[0].law;
+    let law = yade_case("viscel-kn-cn").unwrap().contacts[0].law;
     assert_eq!((law.stiffness, law.damping), (1e6, 20.0));
-    let frict = YADE_BASE
-        .replace(
-            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
-            "Ip2_FrictMat_FrictMat_FrictPhys()",
-        )
-        .replace(
-            "Law2_ScGeom_MindlinPhys_Mindlin()",
-            "Law2_ScGeom_FrictPhys_CundallStrack()",
-        );
-    let (_d, path) = deck_files(&[("frict.py", &frict)]);
-    let deck = read(&path);
+    let deck = yade_case("frict").unwrap();
     // kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2): E R between two balls and at a wall (refR = R).
     for c in &deck.contacts {
         assert!(relative(c.law.stiffness, 2e11 * 0.01) < 1e-14);
         assert_eq!((c.law.damping, c.cor_entered), (0.0, None));
     }
-    let young = YADE_BASE
-        .replace(
-            "FrictMat(young=2e11, poisson=0.3, density=7800)",
-            "ViscElMat(young=1e8, en=0.5, density=1200)",
-        )
-        .replace(
-            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
-            "Ip2_ViscElMat_ViscElMat_ViscElPhys()",
-        )
-        .replace(
-            "Law2_ScGeom_MindlinPhys_Mindlin()",
-            "Law2_ScGeom_ViscElPhys_Basic()",
-        );
-    let (_d, path) = deck_files(&[("young.py", &young)]);
-    let deck = read(&path);
+    let deck = yade_case("viscel-young").unwrap();
     let law = deck.contacts[0].law;
     assert!(relative(law.stiffness, 1e8 * 0.01) < 1e-14);
     // Within 1 % of en on the mass it is tuned for (m/2 between two equal balls).
-    let m = mass(0.01, 1200.0) / 2.0;
+    let m = deck.bodies[0].mass / 2.0;
     let zeta = law.damping / (2.0 * (m * law.stiffness).sqrt());
     let x = zeta / (1.0 - zeta * zeta).sqrt();
     let e = (-x * (std::f64::consts::PI - 2.0 * x.atan())).exp();
     assert!(relative(e, 0.5) <= 1e-2 && relative(e, 0.5) > 1e-6, "{e}");
 }
 
-/// Each script with one bad line, the line and what its error must say.
+/// Each script of `tests/data/deck/yade/` that YADE sets up but the check cannot take: its
+/// line (0: the file alone) and what its error must say.
 #[test]
-fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is_supported() {
-    let cases: [(&str, &str, &str, usize, &str); 14] = [
+fn yade_set_ups_the_check_cannot_take_are_refused_with_their_line_and_what_is_supported() {
+    let cases: [(&str, usize, &str); 10] = [
         (
-            "step changed in place",
-            "O.dt = 1e-7",
-            "O.dt = 1e-7\nO.dt *= 0.5",
-            12,
-            "the time step changed in place",
+            "refuse-law",
+            9,
+            "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear; supported: Ig2_Sphere_Sphere_ScGeom",
         ),
         (
-            "capillary",
-            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
-            "Ip2_FrictMat_FrictMat_CapillaryPhys()",
-            7,
-            "functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: Ig2_Sphere_Sphere_ScGeom",
-        ),
-        (
-            "law",
-            "Law2_ScGeom_MindlinPhys_Mindlin()",
-            "Law2_ScGeom_MindlinPhys_HertzWithLinearShear()",
+            "refuse-no-law",
             8,
-            "functor Law2_ScGeom_MindlinPhys_HertzWithLinearShear",
-        ),
-        (
-            "no law",
-            "Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)",
-            "Ip2_FrictMat_FrictMat_FrictPhys()",
-            7,
             "without Law2_ScGeom_FrictPhys_CundallStrack",
         ),
+        ("refuse-local-damping", 10, "damping = 0.2 (its default)"),
         (
-            "local damping",
-            "NewtonIntegrator(damping=0.0)",
-            "NewtonIntegrator()",
-            9,
-            "damping = 0.2 (its default)",
+            "refuse-time-stepper",
+            6,
+            "GlobalStiffnessTimeStepper: the time step is set while the script runs",
         ),
         (
-            "time stepper",
-            "ForceResetter()",
-            "GlobalStiffnessTimeStepper()",
-            5,
-            "supported: O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
-        ),
-        (
-            "unresolved value",
-            "young=2e11",
-            "young=E",
-            1,
-            "`E` is not assigned in the script",
-        ),
-        (
-            "radius",
-            "0.01, material=steel",
-            "r, material=steel",
+            "refuse-material-class",
             2,
-            "--particle 0:RADIUS:DENSITY",
+            "material class `CohFrictMat` (O.materials[0]); supported: FrictMat, ViscElMat",
         ),
         (
-            "not appended",
-            "steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))",
-            "steel = FrictMat(young=2e11, poisson=0.3, density=7800)",
-            2,
-            "is not appended to O.materials",
-        ),
-        (
-            "material class",
-            "FrictMat(",
-            "CohFrictMat(",
-            1,
-            "material class `CohFrictMat`; supported: FrictMat, ViscElMat",
-        ),
-        (
-            "step in a block",
-            "O.dt = 1e-7",
-            "if True:\n    O.dt = 1e-7",
-            12,
-            "inside a block",
-        ),
-        (
-            "free box",
-            "wall(-0.01, axis=2, material=steel)",
-            "box((0, 0, -1), (1, 1, 1), material=steel)",
-            3,
+            "refuse-free-box",
+            4,
             "supported: box(…, fixed=True) as a wall",
         ),
         (
-            "match maker",
-            "en=0.5",
-            "en=MatchMaker(matches=((0, 1, 0.5),))",
-            7,
-            "no match for the materials 0 and 0",
+            "refuse-match-maker",
+            8,
+            "its MatchMaker gives YADE no number for the materials 0 and 0",
         ),
         (
-            "no geometry",
-            "Ig2_Wall_Sphere_ScGeom()",
-            "Ig2_Facet_Sphere_ScGeom()",
-            3,
-            "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop (line 6)",
+            "refuse-no-geometry",
+            4,
+            "no Ig2_Wall_Sphere_ScGeom in the InteractionLoop",
         ),
+        (
+            "refuse-not-appended",
+            3,
+            "a Sphere whose material is not in O.materials (its id is -1",
+        ),
+        ("refuse-no-step", 0, "the script sets no O.dt"),
     ];
-    for (what, from, to, line, says) in cases {
-        assert!(YADE_BASE.contains(from), "{what}");
-        let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace(from, to))]);
-        let e = read_deck(&path, None, &DeckOptions::default())
-            .unwrap_err()
-            .to_string();
-        let at = format!("{}:{line}: ", path.display());
-        assert!(e.starts_with(&at) && e.contains(says), "{what}: {e}");
+    for (name, line, says) in cases {
+        let e = yade_case(name).unwrap_err();
+        let at = match line {
+            0 => format!("tests/data/deck/yade/{name}.py: "),
+            _ => format!("tests/data/deck/yade/{name}.py:{line}: "),
+        };
+        assert!(e.starts_with(&at) && e.contains(says), "{name}: {e}");
     }
-    // A script without a time step lacks what every check needs.
-    let (_d, path) = deck_files(&[("bad.py", &YADE_BASE.replace("O.dt = 1e-7\n", ""))]);
-    let e = read_deck(&path, None, &DeckOptions::default())
-        .unwrap_err()
-        .to_string();
-    assert!(e.contains("bad.py: no `O.dt = …`"), "{e}");
-    // The radius given on the command line instead, by the material's O.materials id.
-    let (_d, path) = deck_files(&[(
-        "given.py",
-        &YADE_BASE.replace("0.01, material=steel", "r, material=steel"),
-    )]);
+    // The radius given on the command line replaces the type's, by its O.materials id.
     let options = DeckOptions {
         particles: vec![GivenParticle {
             type_id: 0,
@@ -1477,8 +1418,9 @@ fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is
         }],
         ..DeckOptions::default()
     };
-    let (_, deck) = read_deck(&path, None, &options).unwrap();
-    assert_eq!(deck.bodies[0].radius, 0.02);
+    let deck = yade_read("tests/data/deck/yade/base.py", "base.dump.json", &options).unwrap();
+    let radii: Vec<f64> = deck.bodies.iter().map(|b| b.radius).collect();
+    assert_eq!(radii, [0.02]);
     // A LIGGGHTS deck takes no type 0.
     let e = read_deck(&root().join(MILL), None, &options)
         .unwrap_err()
@@ -1487,22 +1429,67 @@ fn yade_lines_the_check_cannot_read_are_refused_with_their_file_line_and_what_is
         e.contains("--particle 0:0.02:7800: atom types count from 1"),
         "{e}"
     );
+    // --var names nothing in a YADE script.
+    let options = DeckOptions {
+        variables: vec![("E".into(), "1e7".into())],
+        ..DeckOptions::default()
+    };
+    let e = yade_read("tests/data/deck/yade/base.py", "base.dump.json", &options).unwrap_err();
+    assert!(
+        e.contains("--var E: a YADE script's names are its own"),
+        "{e}"
+    );
 }
 
 #[test]
-fn a_yade_script_with_an_unsupported_functor_exits_2_naming_its_line_and_runs_nothing() {
-    let out = millimpact()
-        .current_dir(root())
-        .args(["deck", "tests/data/deck/yade-capillary.py"])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2));
-    assert!(out.stdout.is_empty());
-    let err = String::from_utf8(out.stderr).unwrap();
-    assert_eq!(err.lines().count(), 1, "{err}");
+fn a_yade_script_that_runs_before_its_engines_are_set_is_refused_naming_that_line() {
+    let e = yade_case("runs-early").unwrap_err();
+    assert_eq!(
+        e,
+        "tests/data/deck/yade/runs-early.py: the script sets no O.engines before the reading stopped at its first step (O.run, line 7): YADE's default engines are no contact law of the script's; O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run"
+    );
+}
+
+#[test]
+fn a_yade_script_that_steps_in_a_loop_is_read_up_to_its_first_step() {
+    let deck = yade_case("steps-in-loop").unwrap();
+    // The edit after the loop is never run: the modulus is the one set up.
+    assert_eq!(deck.bodies[0].youngs_modulus, Some(2e11));
     assert!(
-        err.starts_with("error: tests/data/deck/yade-capillary.py:14: functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: "),
-        "{err}"
+        deck.left_out.iter().any(|l| l
+            == "the run itself (the reading stops at the first call that steps the simulation, O.step; the lines after it are not read): tests/data/deck/yade/steps-in-loop.py:16"),
+        "{:?}",
+        deck.left_out
+    );
+}
+
+#[test]
+fn a_yade_dump_that_does_not_read_names_its_field() {
+    let e = YadeDeck::read_dump(
+        Path::new("s.py"),
+        "{\"version\": 1}",
+        &DeckOptions::default(),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.starts_with("s.py: the dump: YADE's dump of the set-up does not read: "),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_yade_script_with_an_unsupported_functor_is_refused_naming_its_line() {
+    std::env::set_current_dir(root()).unwrap();
+    let e = yade_read(
+        "tests/data/deck/yade-capillary.py",
+        "capillary.dump.json",
+        &DeckOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        e.starts_with("tests/data/deck/yade-capillary.py:14: functor Ip2_FrictMat_FrictMat_CapillaryPhys; supported: "),
+        "{e}"
     );
 }
 
@@ -1512,8 +1499,8 @@ fn yade_report() -> millimpact::analysis::deck::DeckReport {
         &std::fs::read_to_string(root().join("tests/data/deck/yade-mill.runs.json")).unwrap(),
     )
     .unwrap();
-    let (code, deck) = read_deck(Path::new(YADE_MILL), None, &DeckOptions::default()).unwrap();
-    let report = check_deck(code, &deck, (vec![4.0], "given".into()), &runs).unwrap();
+    let deck = yade_read(YADE_MILL, "mill.dump.json", &DeckOptions::default()).unwrap();
+    let report = check_deck(CodeName::Yade, &deck, (vec![4.0], "given".into()), &runs).unwrap();
     assert!(report.impacts.iter().all(|i| i.failure.is_none()));
     report
 }

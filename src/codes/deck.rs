@@ -76,6 +76,12 @@ impl From<&SourceLine> for DeckSource {
     }
 }
 
+impl From<&DeckSource> for DeckSource {
+    fn from(source: &DeckSource) -> Self {
+        source.clone()
+    }
+}
+
 impl fmt::Display for DeckSource {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
@@ -121,6 +127,28 @@ pub enum DeckError {
         path: PathBuf,
         /// Why.
         source: std::io::Error,
+    },
+    /// The code that reads the deck stopped it with an error of the deck's own (an exception
+    /// a YADE script raises while YADE sets it up), in the code's own words.
+    #[error("{at}: {code} stops the deck here: {message}")]
+    Raised {
+        /// Where in the deck.
+        at: DeckSource,
+        /// The code.
+        code: String,
+        /// The code's own message.
+        message: String,
+    },
+    /// The code that reads the deck (YADE runs its scripts' set-up) could not run it: missing,
+    /// crashed or past its time limit.
+    #[error("reading {} in {code}: {source}", path.display())]
+    Reader {
+        /// The deck.
+        path: PathBuf,
+        /// The code.
+        code: String,
+        /// Why.
+        source: Box<CodeError>,
     },
     /// No reader takes the file.
     #[error("{}: not a deck of any code this build reads; supported: {supported}", path.display())]

@@ -1,12 +1,14 @@
-//! A YADE user's script (`millimpact deck`): the materials (`FrictMat`, `ViscElMat`) appended
-//! to `O.materials`, the `InteractionLoop`'s functors, `O.dt` (a number, or a multiple of
-//! `PWaveTimeStep()`), the spheres of `sphere(…)` calls with their radii and materials, and the
-//! walls (`wall`, `facet` and the `geom.facet…` shapes, fixed `box`es) with theirs; and the
-//! impact of one pair rendered with those materials and functors transplanted.
+//! A YADE user's script (`millimpact deck`), read as YADE holds it after the script's set-up
+//! ([`super::dump`]: the script run by YADE's own Python with its stepping disarmed, then
+//! dumped): the materials of `O.materials` with every attribute after any later edit, the
+//! `InteractionLoop`'s functors with each `MatchMaker` evaluated per pair of materials,
+//! `O.dt`, and the bodies: spheres with their radii, materials and masses; walls, facets and
+//! fixed boxes with their materials. Then the impact of one pair rendered with those materials
+//! and functors transplanted.
 //!
-//! A Python script cannot be read in general: [`super::python`] reads its literal values and
-//! module-level numeric assignments and executes nothing. What a check needs and the reader
-//! cannot resolve is refused with its file and line; what the check does not need is listed.
+//! What the check cannot take from what YADE holds (a material class, a functor or a law it
+//! does not model, a free box) is refused in one line; what it leaves out (other body shapes,
+//! clumps, gravity, motion engines, the run) is listed, each with its lines.
 //!
 //! The law each functor makes YADE 2023.02a integrate follows its sources
 //! (`pkg/dem/HertzMindlin.cpp`, `pkg/dem/ViscoelasticPM.cpp`, `pkg/dem/ElasticContactLaw.cpp`)
@@ -17,12 +19,12 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
-use super::python::{Call, Expr, Known, Module, Unresolved, Value, show};
+use super::dump::{Attribute, Dump, FunctorDump, MaterialDump, dump_script, line_text, parse_dump};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
@@ -35,8 +37,6 @@ const SCRIPT: &str = "impact.py";
 
 /// The functors whose laws the check knows.
 const FUNCTORS: &str = "Ig2_Sphere_Sphere_ScGeom(6D), Ig2_Wall_Sphere_ScGeom, Ig2_Facet_Sphere_ScGeom(6D), Ig2_Box_Sphere_ScGeom(6D); Ip2_FrictMat_FrictMat_MindlinPhys with Law2_ScGeom_MindlinPhys_Mindlin, Ip2_FrictMat_FrictMat_FrictPhys with Law2_ScGeom_FrictPhys_CundallStrack, Ip2_ViscElMat_ViscElMat_ViscElPhys with Law2_ScGeom_ViscElPhys_Basic";
-/// What a value of the script may be.
-const LITERAL: &str = "a literal number, a name assigned one at module level, or arithmetic of them (math functions included)";
 
 /// YADE's deck reader.
 pub struct YadeDeck;
@@ -57,166 +57,188 @@ impl Class {
     }
 }
 
-/// A material appended to `O.materials`, its values resolved.
+/// A Python literal of a value YADE holds, to carry it into the impact's script; `None` for an
+/// object the impact cannot rebuild.
+fn python(value: &Attribute) -> Option<String> {
+    Some(match value {
+        Attribute::Null => "None".into(),
+        Attribute::Flag(b) => if *b { "True" } else { "False" }.into(),
+        Attribute::Number(x) => exact_number(*x),
+        Attribute::Text(t) => format!("{t:?}"),
+        Attribute::List(items) => {
+            let items: Option<Vec<String>> = items.iter().map(python).collect();
+            let items = items?;
+            if items.len() == 3 {
+                format!("Vector3({})", items.join(", "))
+            } else {
+                format!("[{}]", items.join(", "))
+            }
+        }
+        Attribute::MatchMaker { match_maker: m } => {
+            let mut matches = Vec::new();
+            for triple in &m.matches {
+                let [Some(a), Some(b), Some(x)] = triple.as_slice() else {
+                    return None;
+                };
+                // The ids are whole numbers YADE keeps as floats: written as ids.
+                matches.push(format!("({a}, {b}, {})", exact_number(*x)));
+            }
+            let val = m
+                .val
+                .map_or(String::new(), |v| format!(", val={}", exact_number(v)));
+            format!(
+                "MatchMaker(matches=[{}], algo={:?}{val})",
+                matches.join(", "),
+                m.algo
+            )
+        }
+        Attribute::Object { .. } => return None,
+    })
+}
+
+/// A material of `O.materials`, as YADE holds it after the set-up.
 #[derive(Clone, Debug)]
 struct Material {
     class: Class,
-    values: Vec<(String, Value)>,
-    at: SourceLine,
+    values: BTreeMap<String, Attribute>,
+    /// What the script set (the attributes that differ from a fresh instance's).
+    changed: Vec<String>,
+    /// Attributes that differ from their values when the material was appended: the name, the
+    /// value then and after the set-up.
+    edited: Vec<(String, String, String)>,
+    at: DeckSource,
 }
 
 impl Material {
     fn get(&self, key: &str) -> Option<f64> {
         self.values
-            .iter()
-            .rev()
-            .find(|(k, _)| k == key)
-            .and_then(|(_, v)| v.number())
+            .get(key)
+            .and_then(Attribute::number)
+            .filter(|x| x.is_finite())
     }
 
-    /// A value with the class's default (`ElastMat`: density 1000, young 1e9, poisson 0.25;
-    /// `ViscElMat`'s own: NaN, "not given").
+    /// A value as YADE holds it (NaN where it is "not given").
     fn value(&self, key: &str) -> f64 {
-        self.get(key).unwrap_or(match key {
-            "density" => 1000.0,
-            "young" => 1e9,
-            "poisson" => 0.25,
-            "mRtype" => 1.0,
-            _ => f64::NAN,
-        })
+        self.get(key).unwrap_or(f64::NAN)
     }
 
     fn label(&self) -> Option<String> {
-        self.values
-            .iter()
-            .find(|(k, _)| k == "label")
-            .and_then(|(_, v)| match v {
-                Value::Str(s) => Some(s.clone()),
-                _ => None,
-            })
-    }
-
-    fn python(&self) -> String {
-        let args: Vec<String> = self
-            .values
-            .iter()
-            .map(|(k, v)| format!("{k}={}", v.python()))
-            .collect();
-        format!("{}({})", self.class.name(), args.join(", "))
-    }
-}
-
-/// A functor's parameter: a value, or a `MatchMaker` of per-material-pair values.
-#[derive(Clone, Debug, PartialEq)]
-enum Param {
-    Value(Value),
-    Match {
-        matches: Vec<(i64, i64, f64)>,
-        algo: String,
-        val: Option<f64>,
-    },
-}
-
-impl Param {
-    fn python(&self) -> String {
-        match self {
-            Param::Value(v) => v.python(),
-            Param::Match { matches, algo, val } => {
-                let m: Vec<String> = matches
-                    .iter()
-                    .map(|(a, b, x)| format!("({a}, {b}, {})", exact_number(*x)))
-                    .collect();
-                let val = val.map_or(String::new(), |v| format!(", val={}", exact_number(v)));
-                format!(
-                    "MatchMaker(matches=({},), algo='{algo}'{val})",
-                    m.join(", ")
-                )
-            }
-        }
-    }
-}
-
-/// A functor of the `InteractionLoop`.
-#[derive(Clone, Debug)]
-struct Functor {
-    class: String,
-    params: Vec<(String, Param)>,
-    at: SourceLine,
-}
-
-impl Functor {
-    fn param(&self, key: &str) -> Option<&Param> {
-        self.params
-            .iter()
-            .rev()
-            .find(|(k, _)| k == key)
-            .map(|(_, p)| p)
-    }
-
-    fn number(&self, key: &str) -> Option<f64> {
-        match self.param(key) {
-            Some(Param::Value(v)) => v.number(),
+        match self.values.get("label") {
+            Some(Attribute::Text(s)) if !s.is_empty() => Some(s.clone()),
             _ => None,
         }
     }
 
-    fn flag(&self, key: &str) -> bool {
-        matches!(self.param(key), Some(Param::Value(Value::Bool(true))))
+    fn python(&self) -> Result<String, DeckError> {
+        let mut args = Vec::new();
+        for key in self.changed.iter().filter(|k| *k != "id") {
+            let value = &self.values[key];
+            let literal = python(value).ok_or_else(|| {
+                DeckError::unsupported(
+                    self.at.clone(),
+                    format!(
+                        "{}'s {key}: an object the impact cannot carry",
+                        self.class.name()
+                    ),
+                    "numbers, flags and strings",
+                )
+            })?;
+            args.push(format!("{key}={literal}"));
+        }
+        Ok(format!("{}({})", self.class.name(), args.join(", ")))
+    }
+}
+
+/// A functor of the `InteractionLoop`, as YADE holds it.
+#[derive(Clone, Debug)]
+struct Functor {
+    class: String,
+    dump: FunctorDump,
+    at: DeckSource,
+}
+
+impl Functor {
+    /// A parameter that holds a value (not `None`, not NaN).
+    fn param(&self, key: &str) -> Option<&Attribute> {
+        self.dump
+            .attributes
+            .get(key)
+            .filter(|a| !matches!(a, Attribute::Null))
     }
 
-    /// The parameter's value for the materials `a`, `b` (a `MatchMaker` looked up by id, as
-    /// YADE does), or `None` where it is not given.
+    fn number(&self, key: &str) -> Option<f64> {
+        self.param(key).and_then(Attribute::number)
+    }
+
+    fn flag(&self, key: &str) -> bool {
+        matches!(self.param(key), Some(Attribute::Flag(true)))
+    }
+
+    /// The parameter's value for the materials `a`, `b` (a `MatchMaker` as YADE evaluates it
+    /// for their ids), or `None` where it is not given.
     fn pair_value(&self, key: &str, a: u32, b: u32) -> Result<Option<f64>, DeckError> {
         match self.param(key) {
-            None | Some(Param::Value(Value::NoneValue)) => Ok(None),
-            Some(Param::Value(v)) => v.number().map(Some).ok_or_else(|| {
-                DeckError::unsupported(
-                    &self.at,
-                    format!("{}'s {key} = {}", self.class, v.python()),
-                    "a number or a MatchMaker",
-                )
-            }),
-            Some(Param::Match { matches, algo, val }) => {
-                let (a, b) = (i64::from(a), i64::from(b));
-                if let Some((_, _, x)) = matches
-                    .iter()
-                    .find(|(i, j, _)| (*i == a && *j == b) || (*i == b && *j == a))
-                {
-                    return Ok(Some(*x));
-                }
-                match (algo.as_str(), val) {
-                    ("val", Some(v)) => Ok(Some(*v)),
-                    _ => Err(DeckError::unsupported(
-                        &self.at,
+            None => Ok(None),
+            Some(Attribute::Number(x)) => Ok(Some(*x)),
+            Some(Attribute::MatchMaker { match_maker }) => {
+                let value = self.dump.per_pair.get(key).and_then(|table| {
+                    table
+                        .iter()
+                        .find(|(i, j, _)| *i == i64::from(a) && *j == i64::from(b))
+                        .and_then(|(_, _, x)| *x)
+                });
+                value.map(Some).ok_or_else(|| {
+                    DeckError::unsupported(
+                        self.at.clone(),
                         format!(
-                            "{}'s {key}: its MatchMaker has no match for the materials {a} and {b} and no fallback YADE can compute without the materials' own values (algo '{algo}')",
-                            self.class
+                            "{}'s {key}: its MatchMaker gives YADE no number for the materials {a} and {b} (no match, algo '{}')",
+                            self.class, match_maker.algo
                         ),
                         "a match for every pair in use, or algo='val' with val=X",
-                    )),
-                }
+                    )
+                })
             }
+            Some(other) => Err(DeckError::unsupported(
+                self.at.clone(),
+                format!(
+                    "{}'s {key} = {}",
+                    self.class,
+                    python(other).unwrap_or_else(|| "an object".into())
+                ),
+                "a number or a MatchMaker",
+            )),
         }
     }
 
-    fn python(&self) -> String {
-        let args: Vec<String> = self
-            .params
-            .iter()
-            .map(|(k, p)| format!("{k}={}", p.python()))
-            .collect();
-        format!("{}({})", self.class, args.join(", "))
+    /// The functor as the script set it (its attributes that differ from a fresh instance's).
+    fn python(&self) -> Result<String, DeckError> {
+        let mut args = Vec::new();
+        for key in &self.dump.changed {
+            let value = &self.dump.attributes[key];
+            if matches!(value, Attribute::Null) {
+                continue;
+            }
+            let literal = python(value).ok_or_else(|| {
+                DeckError::unsupported(
+                    self.at.clone(),
+                    format!("{}'s {key}: an object the impact cannot carry", self.class),
+                    "numbers, flags, MatchMakers",
+                )
+            })?;
+            args.push(format!("{key}={literal}"));
+        }
+        Ok(format!("{}({})", self.class, args.join(", ")))
     }
 }
 
 /// What a wall is in YADE, which decides the radius its geometry functor gives it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 enum WallKind {
-    /// `wall(…)`: `Ig2_Wall_Sphere_ScGeom`.
+    /// A `Wall` (`utils.wall`): `Ig2_Wall_Sphere_ScGeom`.
     Plane,
-    /// `facet(…)` and the `geom.facet…`, `ymport` meshes: `Ig2_Facet_Sphere_ScGeom`.
+    /// A `Facet` (`facet`, the `geom.facet…` shapes, `ymport` meshes): `Ig2_Facet_Sphere_ScGeom`.
     Facet,
-    /// A fixed `box(…)`: `Ig2_Box_Sphere_ScGeom`.
+    /// A fixed `Box` (`utils.box`): `Ig2_Box_Sphere_ScGeom`.
     Box,
 }
 
@@ -228,202 +250,96 @@ impl WallKind {
             WallKind::Box => ["Ig2_Box_Sphere_ScGeom", "Ig2_Box_Sphere_ScGeom6D"],
         }
     }
+
+    fn of_shape(shape: &str) -> Option<Self> {
+        match shape {
+            "Wall" => Some(WallKind::Plane),
+            "Facet" => Some(WallKind::Facet),
+            "Box" => Some(WallKind::Box),
+            _ => None,
+        }
+    }
 }
 
-/// A wall as read: its kind, material and (a box's) mass.
+/// Walls of one kind, material and mass: one wall to the check.
 #[derive(Clone, Debug)]
 struct WallRead {
     name: String,
     kind: WallKind,
     material: u32,
-    /// A fixed box's mass, kg (its volume times its material's density), where its extents are
-    /// literal; walls and facets have none.
-    mass: Result<f64, Unresolved>,
-    at: SourceLine,
+    /// Its mass as YADE holds it, kg (a fixed box's volume times its density; 0 for walls and
+    /// facets).
+    mass: f64,
+    at: DeckSource,
     lines: Vec<usize>,
 }
 
-/// A sphere as read.
+/// A sphere as YADE holds it.
 #[derive(Clone, Debug)]
 struct SphereRead {
     material: u32,
-    radius: Result<f64, Unresolved>,
-    at: SourceLine,
+    radius: f64,
+    mass: f64,
+    at: DeckSource,
 }
 
-/// Everything read from the script.
+/// Everything taken from the dump.
 #[derive(Default)]
 struct Reading {
     materials: Vec<Material>,
-    /// `O.materials.append` calls (by where they start) and the ids they return.
-    appended: BTreeMap<(usize, usize), Vec<u32>>,
-    /// Names of material instances appended by name (`O.materials.append(steel)`).
-    named: BTreeMap<String, u32>,
     spheres: Vec<SphereRead>,
     walls: Vec<WallRead>,
     geometry: Vec<Functor>,
     physics: Vec<Functor>,
     laws: Vec<Functor>,
-    loop_at: Option<SourceLine>,
-    newton: Option<SourceLine>,
-    timestep: Option<(Expr, SourceLine)>,
+    loop_at: Option<DeckSource>,
     left_out: BTreeMap<String, Vec<usize>>,
 }
 
 impl Reading {
-    fn leave_out(&mut self, what: &str, line: usize) {
+    fn leave_out(&mut self, what: &str, line: Option<usize>) {
         let lines = self.left_out.entry(what.to_string()).or_default();
-        if !lines.contains(&line) {
+        if let Some(line) = line.filter(|l| !lines.contains(l)) {
             lines.push(line);
         }
     }
 }
 
-/// The reader's own values: the ids `O.materials.append` returns, and `PWaveTimeStep()`.
-struct Knowledge<'a> {
-    appended: &'a BTreeMap<(usize, usize), Vec<u32>>,
-    pwave: Option<f64>,
-}
-
-impl Known for Knowledge<'_> {
-    fn call(&self, call: &Call) -> Option<Result<Value, Unresolved>> {
-        if call.func == "O.materials.append" {
-            return Some(match self.appended.get(&call.at).map(Vec::as_slice) {
-                Some([id]) => Ok(Value::Int(i64::from(*id))),
-                _ => Err(Unresolved(format!(
-                    "`{}` appends no single material",
-                    show(&Expr::Call(call.clone()))
-                ))),
-            });
-        }
-        (call.name() == "PWaveTimeStep").then(|| {
-            self.pwave.map(Value::Float).ok_or_else(|| {
-                Unresolved(
-                    "PWaveTimeStep() has no sphere of known size before it (YADE would return 1 s)"
-                        .into(),
-                )
-            })
-        })
-    }
-}
-
-/// Where the script's names resolve: a deck file and its module.
-struct Script<'a> {
-    path: &'a Path,
-    module: &'a Module,
-}
-
-impl Script<'_> {
-    fn at(&self, line: usize) -> SourceLine {
-        SourceLine {
-            file: self.path.to_path_buf(),
-            line,
-        }
-    }
-
-    /// The value of `expr` (the argument `what` of a call on `line`), or the error naming it.
-    fn value(
-        &self,
-        expr: &Expr,
-        line: usize,
-        known: &dyn Known,
-        what: &str,
-    ) -> Result<Value, DeckError> {
-        self.module.value(expr, line, known).map_err(|e| {
-            DeckError::unsupported(
-                self.at(line),
-                format!("{what} `{}`: {e}", show(expr)),
-                LITERAL,
-            )
-        })
-    }
-
-    fn number(
-        &self,
-        expr: &Expr,
-        line: usize,
-        known: &dyn Known,
-        what: &str,
-    ) -> Result<f64, DeckError> {
-        let v = self.value(expr, line, known, what)?;
-        v.number().ok_or_else(|| {
-            DeckError::unsupported(
-                self.at(line),
-                format!("{what} `{}` is {}, not a number", show(expr), v.python()),
-                LITERAL,
-            )
-        })
-    }
-
-    /// The expression a name is bound to, or the expression itself.
-    fn through_name(&self, expr: &Expr, line: usize) -> Expr {
-        match expr {
-            Expr::Name(n) => self
-                .module
-                .binding(n, line)
-                .map_or_else(|_| expr.clone(), |(_, e)| e),
-            other => other.clone(),
-        }
-    }
-}
-
-fn class_of(func: &str) -> Option<Class> {
-    match func.rsplit('.').next()? {
+fn class_of(name: &str) -> Option<Class> {
+    match name {
         "FrictMat" => Some(Class::Frict),
         "ViscElMat" => Some(Class::ViscEl),
         _ => None,
     }
 }
 
-/// Material-like class names (YADE's materials end in `Mat`).
-fn is_material_class(func: &str) -> bool {
-    let name = func.rsplit('.').next().unwrap_or(func);
-    name.ends_with("Mat") && name.chars().next().is_some_and(char::is_uppercase)
-}
-
-fn wall_kind(call: &Call) -> Option<(WallKind, Option<usize>)> {
-    let name = call.name();
-    let prefix = call.func.strip_suffix(name).unwrap_or("");
-    let utils = matches!(prefix, "" | "utils." | "yade.utils.");
-    match name {
-        "wall" if utils => Some((WallKind::Plane, Some(4))),
-        "facet" if utils => Some((WallKind::Facet, Some(7))),
-        "box" if utils => Some((WallKind::Box, Some(8))),
-        _ if name.starts_with("facet")
-            && matches!(prefix, "" | "geom." | "yade.geom." | "utils.") =>
-        {
-            Some((WallKind::Facet, None))
-        }
-        "stl" | "gmsh" | "gts" | "unv" if prefix.ends_with("ymport.") => {
-            Some((WallKind::Facet, None))
-        }
-        _ => None,
-    }
-}
-
-fn is_sphere(call: &Call) -> bool {
-    matches!(
-        call.func.as_str(),
-        "sphere" | "utils.sphere" | "yade.utils.sphere"
+/// The name of the call on a wall's line that made it (`facetCylinder`, `wall`, `stl`), else
+/// its shape's.
+fn wall_name(path: &Path, line: Option<usize>, kind: WallKind) -> String {
+    let fallback = match kind {
+        WallKind::Plane => "wall",
+        WallKind::Facet => "facet",
+        WallKind::Box => "box",
+    };
+    let called = line.and_then(|l| line_text(path, l)).and_then(|text| {
+        text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .find(|word| {
+                text.contains(&format!("{word}("))
+                    && (word.starts_with("facet")
+                        || matches!(*word, "wall" | "box" | "stl" | "gmsh" | "gts" | "unv"))
+            })
+            .map(str::to_string)
+    });
+    format!(
+        "{}:{}",
+        called.as_deref().unwrap_or(fallback),
+        line.map_or("?".into(), |l| l.to_string())
     )
 }
 
-const GENERATORS: [&str; 10] = [
-    "makeCloud",
-    "randomDensePack",
-    "regularHexa",
-    "regularOrtho",
-    "randomPeriPack",
-    "toSimulation",
-    "filterSpherePack",
-    "text",
-    "textExt",
-    "textClumps",
-];
-
 /// Engines whose settings the impact replaces with its own.
-fn engine_left_out(name: &str) -> Option<&'static str> {
-    Some(match name {
+fn engine_left_out(name: &str) -> &'static str {
+    match name {
         "ForceResetter"
         | "InsertionSortCollider"
         | "SpatialQuickSortCollider"
@@ -440,483 +356,312 @@ fn engine_left_out(name: &str) -> Option<&'static str> {
         | "ForceRecorder"
         | "PositionRecorder"
         | "TriaxialStateRecorder" => "output and control",
-        _ if name.ends_with("Engine") || name.ends_with("Controller") => {
-            "wall and particle motion and other engines (no part of a contact)"
-        }
-        _ => return None,
-    })
+        _ => "wall and particle motion and other engines (no part of a contact)",
+    }
+}
+
+/// The functors the check knows.
+const KNOWN_FUNCTORS: [&str; 13] = [
+    "Ig2_Sphere_Sphere_ScGeom",
+    "Ig2_Sphere_Sphere_ScGeom6D",
+    "Ig2_Wall_Sphere_ScGeom",
+    "Ig2_Facet_Sphere_ScGeom",
+    "Ig2_Facet_Sphere_ScGeom6D",
+    "Ig2_Box_Sphere_ScGeom",
+    "Ig2_Box_Sphere_ScGeom6D",
+    "Ip2_FrictMat_FrictMat_MindlinPhys",
+    "Ip2_FrictMat_FrictMat_FrictPhys",
+    "Ip2_ViscElMat_ViscElMat_ViscElPhys",
+    "Law2_ScGeom_MindlinPhys_Mindlin",
+    "Law2_ScGeom_FrictPhys_CundallStrack",
+    "Law2_ScGeom_ViscElPhys_Basic",
+];
+
+/// The first line from `from` on (from 1) of the script `text` that calls `class` (`class(`):
+/// where an engine or functor set on the `O.engines` line of `from` is written; `from` itself
+/// where none is.
+fn line_of(text: &str, from: Option<usize>, class: &str) -> Option<usize> {
+    let from = from?;
+    let call = format!("{class}(");
+    let found = text
+        .lines()
+        .enumerate()
+        .skip(from.saturating_sub(1))
+        .find(|(_, line)| {
+            line.match_indices(&call).any(|(at, _)| {
+                !line[..at]
+                    .chars()
+                    .next_back()
+                    .is_some_and(|c| c.is_alphanumeric() || c == '_')
+            })
+        })
+        .map(|(i, _)| i + 1);
+    Some(found.unwrap_or(from))
+}
+
+/// A line of the script, or a field of what YADE holds where no line made it.
+fn source(path: &Path, line: Option<usize>, field: impl FnOnce() -> String) -> DeckSource {
+    match line {
+        Some(line) => DeckSource::Line(SourceLine {
+            file: path.to_path_buf(),
+            line,
+        }),
+        None => DeckSource::field(path, field()),
+    }
 }
 
 impl YadeDeck {
-    /// Resolve the material a body call names (`material=`, default the last appended).
-    fn material_ref(
-        s: &Script,
-        r: &mut Reading,
-        call: &Call,
-        position: Option<usize>,
-    ) -> Result<u32, DeckError> {
-        let at = s.at(call.line);
-        let count = r.materials.len();
-        let by_index = |k: i64, r: &Reading| -> Result<u32, DeckError> {
-            let n = i64::try_from(r.materials.len()).unwrap_or(i64::MAX);
-            let id = if k < 0 { n + k } else { k };
-            u32::try_from(id)
-                .ok()
-                .filter(|id| (*id as usize) < r.materials.len())
-                .ok_or_else(|| {
-                    DeckError::unsupported(
-                        &at,
-                        format!(
-                            "material {k} of `{}`: O.materials holds {n} materials there",
-                            call.func
-                        ),
-                        "an id or label of a material appended to O.materials before the body",
-                    )
-                })
-        };
-        let Some(expr) = call.arg("material", position) else {
-            if count == 0 {
-                // utils.defaultMaterial(), appended as O.materials[0] by the first body.
-                r.materials.push(Material {
-                    class: Class::Frict,
-                    values: vec![
-                        ("density".into(), Value::Float(1e3)),
-                        ("young".into(), Value::Float(1e7)),
-                        ("poisson".into(), Value::Float(0.3)),
-                        ("frictionAngle".into(), Value::Float(0.5)),
-                        ("label".into(), Value::Str("defaultMat".into())),
-                    ],
-                    at: at.clone(),
-                });
-            }
-            return by_index(-1, r);
-        };
-        let bound = s.through_name(expr, call.line);
-        if let Expr::Call(c) = &bound {
-            if c.func == "O.materials.append" {
-                return match r.appended.get(&c.at).map(Vec::as_slice) {
-                    Some([id]) => Ok(*id),
-                    _ => Err(DeckError::unsupported(
-                        &at,
-                        format!("material `{}`", show(expr)),
-                        "one material's id",
-                    )),
-                };
-            }
-            if is_material_class(&c.func) {
-                // An instance: appended under its name before, or not at all (YADE gives it id −1).
-                let appended = match expr {
-                    Expr::Name(n) => r.named.get(n).copied(),
-                    _ => None,
-                };
-                return appended.ok_or_else(|| DeckError::unsupported(&at, format!("material `{}` is not appended to O.materials (YADE gives it id −1; the check numbers types by their O.materials ids)", show(expr)), "O.materials.append(MATERIAL) before the body, and material=its id, label or name"));
-            }
-        }
-        let known = Knowledge {
-            appended: &r.appended,
-            pwave: None,
-        };
-        match s.value(expr, call.line, &known, "material")? {
-            Value::Int(k) => by_index(k, r),
-            Value::Str(label) => r
-                .materials
-                .iter()
-                .position(|m| m.label().as_deref() == Some(label.as_str()))
-                .and_then(|k| u32::try_from(k).ok())
-                .ok_or_else(|| {
-                    DeckError::unsupported(
-                        &at,
-                        format!("material '{label}': no material of that label in O.materials"),
-                        "the label of a material appended before the body",
-                    )
-                }),
-            other => Err(DeckError::unsupported(
-                &at,
-                format!("material = {}", other.python()),
-                "an O.materials id, a label, or a name bound to an appended material",
-            )),
-        }
-    }
-
-    /// A material constructor's values.
-    fn material(s: &Script, call: &Call, known: &dyn Known) -> Result<Material, DeckError> {
-        let at = s.at(call.line);
-        let class = class_of(&call.func).ok_or_else(|| {
+    fn material(path: &Path, m: &MaterialDump) -> Result<Material, DeckError> {
+        let at = source(path, m.line, || format!("O.materials[{}]", m.id));
+        let class = class_of(&m.class).ok_or_else(|| {
             DeckError::unsupported(
-                &at,
-                format!("material class `{}`", call.func),
+                at.clone(),
+                format!("material class `{}` (O.materials[{}])", m.class, m.id),
                 "FrictMat, ViscElMat",
             )
         })?;
-        if !call.args.is_empty() {
-            return Err(DeckError::unsupported(
-                &at,
-                format!("positional arguments to {}", call.func),
-                "keyword arguments (young=…, poisson=…, density=…)",
-            ));
-        }
-        let values = call
-            .kwargs
-            .iter()
-            .map(|(k, e)| {
-                Ok((
-                    k.clone(),
-                    s.value(e, call.line, known, &format!("{}'s {k}", class.name()))?,
-                ))
-            })
-            .collect::<Result<Vec<_>, DeckError>>()?;
-        Ok(Material { class, values, at })
-    }
-
-    fn append(s: &Script, r: &mut Reading, call: &Call) -> Result<(), DeckError> {
-        let Some(arg) = call.args.first() else {
-            return Ok(());
+        let shown = |a: Option<&Attribute>| {
+            a.and_then(python)
+                .unwrap_or_else(|| "(not set)".to_string())
         };
-        // A name stays written as it is: an instance appended by name is known by it.
-        let items = match (arg, s.through_name(arg, call.line)) {
-            (_, Expr::Seq(items)) => items,
-            (written, _) => vec![written.clone()],
-        };
-        let mut ids = Vec::new();
-        for written in items {
-            let item = s.through_name(&written, call.line);
-            let Expr::Call(c) = &item else {
-                return Err(DeckError::unsupported(
-                    s.at(call.line),
-                    format!("O.materials.append({})", show(arg)),
-                    "O.materials.append(FrictMat(…)) or ViscElMat(…), or of a name assigned one at module level",
-                ));
-            };
-            let known = Knowledge {
-                appended: &r.appended,
-                pwave: None,
-            };
-            let material = Self::material(s, c, &known)?;
-            let id = u32::try_from(r.materials.len()).unwrap_or(u32::MAX);
-            if let Expr::Name(n) = &written {
-                r.named.insert(n.clone(), id);
-            }
-            ids.push(id);
-            r.materials.push(material);
-        }
-        r.appended.insert(call.at, ids);
-        Ok(())
-    }
-
-    fn functors(s: &Script, r: &Reading, call: &Call, k: usize) -> Result<Vec<Functor>, DeckError> {
-        let at = s.at(call.line);
-        let Some(arg) = call.args.get(k) else {
-            return Err(DeckError::unsupported(
-                &at,
-                "InteractionLoop without its three functor lists".into(),
-                "InteractionLoop([Ig2…], [Ip2…], [Law2…])",
-            ));
-        };
-        let Expr::Seq(items) = s.through_name(arg, call.line) else {
-            return Err(DeckError::unsupported(
-                &at,
-                format!("functor list `{}`", show(arg)),
-                "a list of functor constructors written in the InteractionLoop, or a name assigned one",
-            ));
-        };
-        let known = Knowledge {
-            appended: &r.appended,
-            pwave: None,
-        };
-        items
-            .iter()
-            .map(|item| {
-                let Expr::Call(f) = item else {
-                    return Err(DeckError::unsupported(
-                        &at,
-                        format!("functor `{}`", show(item)),
-                        "a functor constructor, Name(key=value, …)",
-                    ));
-                };
-                let here = s.at(f.line);
-                let params = f
-                    .kwargs
+        let edited = m
+            .appended
+            .as_ref()
+            .map(|then| {
+                m.attributes
                     .iter()
-                    .map(|(key, e)| {
-                        let param = match s.through_name(e, f.line) {
-                            Expr::Call(m) if m.name() == "MatchMaker" => {
-                                Self::match_maker(s, &m, &known)?
-                            }
-                            _ => Param::Value(s.value(
-                                e,
-                                f.line,
-                                &known,
-                                &format!("{}'s {key}", f.func),
-                            )?),
-                        };
-                        Ok((key.clone(), param))
-                    })
-                    .collect::<Result<Vec<_>, DeckError>>()?;
-                if !f.args.is_empty() {
-                    return Err(DeckError::unsupported(
-                        &here,
-                        format!("positional arguments to {}", f.func),
-                        "keyword arguments",
-                    ));
-                }
-                Ok(Functor {
-                    class: f.name().to_string(),
-                    params,
-                    at: here,
-                })
+                    .filter(|(k, now)| then.get(*k) != Some(*now))
+                    .map(|(k, now)| (k.clone(), shown(then.get(k)), shown(Some(now))))
+                    .collect()
             })
-            .collect()
+            .unwrap_or_default();
+        Ok(Material {
+            class,
+            values: m.attributes.clone(),
+            changed: m.changed.clone(),
+            edited,
+            at,
+        })
     }
 
-    fn match_maker(s: &Script, m: &Call, known: &dyn Known) -> Result<Param, DeckError> {
-        let at = s.at(m.line);
-        let mut matches = Vec::new();
-        let mut algo = "avg".to_string();
-        let mut val = None;
-        for (key, e) in &m.kwargs {
-            let v = s.value(e, m.line, known, &format!("MatchMaker's {key}"))?;
-            match (key.as_str(), v) {
-                ("matches", Value::Seq(items)) => {
-                    for item in items {
-                        match item {
-                            Value::Seq(t) if t.len() == 3 => match (&t[0], &t[1], t[2].number()) {
-                                (Value::Int(a), Value::Int(b), Some(x)) => {
-                                    matches.push((*a, *b, x))
-                                }
-                                _ => {
-                                    return Err(DeckError::unsupported(
-                                        &at,
-                                        format!("MatchMaker match {}", Value::Seq(t).python()),
-                                        "(id1, id2, value), ids whole numbers",
-                                    ));
-                                }
-                            },
-                            other => {
-                                return Err(DeckError::unsupported(
-                                    &at,
-                                    format!("MatchMaker match {}", other.python()),
-                                    "(id1, id2, value)",
-                                ));
-                            }
-                        }
-                    }
-                }
-                ("algo", Value::Str(a)) => algo = a,
-                ("val", v) if v.number().is_some() => val = v.number(),
-                (key, v) => {
-                    return Err(DeckError::unsupported(
-                        &at,
-                        format!("MatchMaker {key}={}", v.python()),
-                        "MatchMaker(matches=((id1, id2, value), …), algo='val', val=X)",
-                    ));
-                }
-            }
-        }
-        Ok(Param::Match { matches, algo, val })
-    }
-
-    fn gather(s: &Script, options: &DeckOptions) -> Result<Reading, DeckError> {
+    /// Take the materials, engines, functors and bodies from YADE's dump.
+    fn gather(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<Reading, DeckError> {
         let mut r = Reading::default();
-        let calls = s.module.calls();
-        let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
-        for call in &calls {
-            let at = s.at(call.line);
-            let name = call.name();
-            if call.func == "O.materials.append" {
-                Self::append(s, &mut r, call)?;
-            } else if is_sphere(call) {
-                let material = Self::material_ref(s, &mut r, call, Some(7))?;
-                let known = Knowledge {
-                    appended: &r.appended,
-                    pwave: None,
-                };
-                let radius = call
-                    .arg("radius", Some(1))
-                    .ok_or_else(|| Unresolved("no radius".into()))
-                    .and_then(|e| s.module.value(e, call.line, &known))
-                    .and_then(|v| {
-                        v.number()
-                            .ok_or_else(|| Unresolved(format!("{} is not a number", v.python())))
-                    });
-                if call
-                    .arg("fixed", Some(2))
-                    .is_some_and(|e| *e == Expr::Bool(true))
-                {
-                    r.leave_out("fixed spheres, checked as free ones", call.line);
-                }
-                r.leave_out(
-                    "the bodies' positions (the impact places its own)",
-                    call.line,
-                );
-                r.spheres.push(SphereRead {
-                    material,
-                    radius,
-                    at,
-                });
-            } else if let Some((kind, position)) = wall_kind(call) {
-                if kind == WallKind::Box {
-                    let fixed = call
-                        .arg("fixed", Some(4))
-                        .is_some_and(|e| *e == Expr::Bool(true))
-                        || call
-                            .arg("dynamic", Some(3))
-                            .is_some_and(|e| *e == Expr::Bool(false));
-                    if !fixed {
-                        return Err(DeckError::unsupported(
-                            &at,
-                            format!(
-                                "a free `{}(…)`: a box that moves is a particle the check does not model",
-                                call.func
-                            ),
-                            "box(…, fixed=True) as a wall",
-                        ));
-                    }
-                }
-                let material = Self::material_ref(s, &mut r, call, position)?;
-                let known = Knowledge {
-                    appended: &r.appended,
-                    pwave: None,
-                };
-                let mass = match kind {
-                    WallKind::Box => {
-                        let density = r.materials[material as usize].value("density");
-                        call.arg("extents", Some(1))
-                            .ok_or_else(|| Unresolved("the box has no extents".into()))
-                            .and_then(|e| s.module.value(e, call.line, &known))
-                            .and_then(|v| match v {
-                                Value::Seq(x)
-                                    if x.len() == 3 && x.iter().all(|v| v.number().is_some()) =>
-                                {
-                                    Ok(8.0
-                                        * x.iter().filter_map(Value::number).product::<f64>()
-                                        * density)
-                                }
-                                other => Err(Unresolved(format!(
-                                    "its extents {} are not three half-sizes",
-                                    other.python()
-                                ))),
-                            })
-                    }
-                    _ => Ok(0.0),
-                };
-                if !matches!(name, "wall" | "facet" | "box") {
-                    r.leave_out(
-                        "the walls' shapes (each met as a flat face of its kind)",
-                        call.line,
-                    );
-                }
-                r.leave_out(
-                    "the bodies' positions (the impact places its own)",
-                    call.line,
-                );
-                // Walls of one kind and material (and mass) are one wall to the check.
-                let same = r.walls.iter_mut().find(|w| {
-                    w.kind == kind
-                        && w.material == material
-                        && w.mass.as_ref().ok() == mass.as_ref().ok()
-                });
-                match same {
-                    Some(w) => w.lines.push(call.line),
-                    None => r.walls.push(WallRead {
-                        name: format!("{name}:{}", call.line),
-                        kind,
-                        material,
-                        mass,
-                        at,
-                        lines: vec![call.line],
-                    }),
-                }
-            } else if name == "InteractionLoop" {
+        for (k, m) in dump.materials.iter().enumerate() {
+            if usize::try_from(m.id).ok() != Some(k) {
+                return Err(DeckError::unsupported(
+                    DeckSource::field(path, format!("O.materials[{k}]")),
+                    format!("a material whose id is {}", m.id),
+                    "materials numbered by their place in O.materials, as O.materials.append numbers them",
+                ));
+            }
+            r.materials.push(Self::material(path, m)?);
+        }
+        let engines_at = dump.engines_line;
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
+        for (k, engine) in dump.engines.iter().enumerate() {
+            let engine_line = line_of(&text, engines_at, &engine.class);
+            let at = source(path, engine_line, || format!("O.engines[{k}]"));
+            if let Some(functors) = &engine.functors {
                 if let Some(first) = &r.loop_at {
                     return Err(DeckError::unsupported(
-                        &at,
-                        format!(
-                            "a second InteractionLoop (the first at line {})",
-                            first.line
-                        ),
+                        at,
+                        format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
                         "one InteractionLoop",
                     ));
                 }
-                r.geometry = Self::functors(s, &r, call, 0)?;
-                r.physics = Self::functors(s, &r, call, 1)?;
-                r.laws = Self::functors(s, &r, call, 2)?;
+                let take = |list: &[FunctorDump], what: &str| -> Result<Vec<Functor>, DeckError> {
+                    list.iter()
+                        .enumerate()
+                        .map(|(i, f)| {
+                            let here = source(path, line_of(&text, engine_line, &f.class), || {
+                                format!("O.engines[{k}].{what}[{i}]")
+                            });
+                            if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
+                                return Err(DeckError::unsupported(
+                                    here,
+                                    format!("functor {}", f.class),
+                                    FUNCTORS,
+                                ));
+                            }
+                            Ok(Functor {
+                                class: f.class.clone(),
+                                dump: f.clone(),
+                                at: here,
+                            })
+                        })
+                        .collect()
+                };
+                r.geometry = take(&functors.geometry, "geomDispatcher.functors")?;
+                r.physics = take(&functors.physics, "physDispatcher.functors")?;
+                r.laws = take(&functors.laws, "lawDispatcher.functors")?;
                 r.loop_at = Some(at);
-            } else if name == "NewtonIntegrator" {
-                let known = Knowledge {
-                    appended: &r.appended,
-                    pwave: None,
-                };
-                let damping = match call.arg("damping", None) {
-                    Some(e) => s.number(e, call.line, &known, "NewtonIntegrator's damping")?,
-                    None => 0.2,
-                };
+            } else if engine.class == "NewtonIntegrator" {
+                let damping = engine
+                    .attributes
+                    .get("damping")
+                    .and_then(Attribute::number)
+                    .unwrap_or(0.0);
                 if damping != 0.0 {
                     let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
                     return Err(DeckError::unsupported(
-                        &at,
+                        at,
                         format!(
                             "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
-                            if call.arg("damping", None).is_none() {
-                                " (its default)"
-                            } else {
+                            if engine.changed.iter().any(|c| c == "damping") {
                                 ""
+                            } else {
+                                " (its default)"
                             }
                         ),
                         "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
                     ));
                 }
-                if call.arg("gravity", None).is_some() {
-                    r.leave_out("gravity (the impact is a free normal impact)", call.line);
+                let gravity = match engine.attributes.get("gravity") {
+                    Some(Attribute::List(g)) => g.iter().any(|x| x.number() != Some(0.0)),
+                    _ => false,
+                };
+                if gravity {
+                    r.leave_out("gravity (the impact is a free normal impact)", engine_line);
                 }
-                r.newton = Some(at);
-            } else if name.ends_with("TimeStepper") {
+            } else if engine.class.ends_with("TimeStepper") {
                 return Err(DeckError::unsupported(
-                    &at,
-                    format!("{name}: the time step is set while the script runs"),
-                    "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep(), without a time stepper in O.engines",
+                    at,
+                    format!(
+                        "{}: the time step is set while the script runs",
+                        engine.class
+                    ),
+                    "a fixed O.dt, without a time stepper in O.engines",
                 ));
-            } else if let Some(what) = engine_left_out(name) {
-                r.leave_out(what, call.line);
-            } else if GENERATORS.contains(&name) {
-                r.leave_out("spheres made at run time (give their sizes with --particle TYPE:RADIUS:DENSITY, TYPE the material's O.materials id)", call.line);
-            } else if matches!(call.func.as_str(), "O.run" | "O.wait" | "O.stopAtIter") {
-                r.leave_out("the run itself", call.line);
-            } else if call.func.starts_with("plot.")
-                || call.func.starts_with("qt.")
-                || call.func.starts_with("O.save")
-                || call.func.starts_with("O.load")
-            {
-                r.leave_out("output and control", call.line);
+            } else {
+                r.leave_out(engine_left_out(&engine.class), engine_line);
             }
         }
-        for (index, st) in s.module.statements.iter().enumerate() {
-            let t = super::python::text(&st.tokens);
-            let changed_in_place = t.starts_with("O.dt ")
-                && !t.starts_with("O.dt =")
-                && st.tokens.get(3).is_some_and(
-                    |x| matches!(x.tok, super::python::Tok::Op(o) if o.ends_with('=') && o != "=="),
+        if r.loop_at.is_some() && !newton {
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: "no NewtonIntegrator in O.engines: nothing moves".into(),
+                supported: "NewtonIntegrator(damping=0)".into(),
+            });
+        }
+        let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
+        for body in &dump.bodies {
+            let at = source(path, body.line, || format!("O.bodies[{}]", body.id));
+            let shape = body.shape.as_deref().unwrap_or("no shape");
+            if body.clump {
+                r.leave_out(
+                    "clumps and their members (a clump moves as one body, which one impact of two spheres does not model)",
+                    body.line,
                 );
-            if changed_in_place {
-                return Err(DeckError::unsupported(
-                    s.at(st.line),
-                    format!("`{t}`: the time step changed in place"),
-                    "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
-                ));
+                continue;
             }
-            if t.starts_with("O.dt =") {
-                if st.indent > 0 {
-                    return Err(DeckError::unsupported(
-                        s.at(st.line),
-                        format!("`{t}` inside a block: the time step is set while the script runs"),
-                        "O.dt = … at module level",
-                    ));
+            let kind = WallKind::of_shape(shape);
+            if shape != "Sphere" && kind.is_none() {
+                r.leave_out(
+                    &format!("bodies of shape {shape} (no contact of the check takes them)"),
+                    body.line,
+                );
+                continue;
+            }
+            let material = body
+                .material
+                .and_then(|m| u32::try_from(m).ok())
+                .filter(|m| (*m as usize) < r.materials.len())
+                .ok_or_else(|| {
+                    DeckError::unsupported(
+                        at.clone(),
+                        format!(
+                            "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
+                            body.material.map_or("none".into(), |m| m.to_string())
+                        ),
+                        "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
+                    )
+                })?;
+            r.leave_out(
+                "the bodies' positions (the impact places its own)",
+                body.line,
+            );
+            let mass = body.mass.unwrap_or(0.0);
+            match kind {
+                None => {
+                    if !body.dynamic {
+                        r.leave_out("fixed spheres, checked as free ones", body.line);
+                    }
+                    let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
+                        DeckError::unsupported(
+                            at.clone(),
+                            format!(
+                                "a sphere of radius {}",
+                                body.radius.map_or("NaN".into(), |r| r.to_string())
+                            ),
+                            "a positive radius, m",
+                        )
+                    })?;
+                    if !given.contains(&material) {
+                        r.spheres.push(SphereRead {
+                            material,
+                            radius,
+                            mass,
+                            at,
+                        });
+                    }
                 }
-                let expr = super::python::expression(&st.tokens[4..], index);
-                r.timestep = Some((expr, s.at(st.line)));
+                Some(kind) => {
+                    if kind == WallKind::Box && body.dynamic {
+                        return Err(DeckError::unsupported(
+                            at,
+                            "a free box: a box that moves is a particle the check does not model"
+                                .into(),
+                            "box(…, fixed=True) as a wall",
+                        ));
+                    }
+                    let name = wall_name(path, body.line, kind);
+                    if !(name.starts_with("wall:")
+                        || name.starts_with("facet:")
+                        || name.starts_with("box:"))
+                    {
+                        r.leave_out(
+                            "the walls' shapes (each met as a flat face of its kind)",
+                            body.line,
+                        );
+                    }
+                    // The same number, bit for bit: walls of one mass are one wall.
+                    let same = r.walls.iter_mut().find(|w| {
+                        w.kind == kind
+                            && w.material == material
+                            && w.mass.to_bits() == mass.to_bits()
+                    });
+                    match same {
+                        Some(w) => {
+                            if let Some(line) = body.line.filter(|l| !w.lines.contains(l)) {
+                                w.lines.push(line);
+                            }
+                        }
+                        None => r.walls.push(WallRead {
+                            name,
+                            kind,
+                            material,
+                            mass,
+                            at,
+                            lines: body.line.into_iter().collect(),
+                        }),
+                    }
+                }
             }
         }
-        // A sphere whose size is given on the command line needs none of its own.
-        r.spheres.retain(|sp| !given.contains(&sp.material));
+        if let Some(stopped) = &dump.stopped {
+            r.leave_out(
+                &format!(
+                    "the run itself (the reading stops at the first call that steps the simulation, {}; the lines after it are not read)",
+                    stopped.call
+                ),
+                stopped.line,
+            );
+        }
+        for line in &dump.saved {
+            r.leave_out("O.save (it writes nothing while the script is read)", *line);
+        }
         Ok(r)
     }
 
@@ -928,19 +673,20 @@ impl YadeDeck {
             Class::ViscEl if m.get("kn").is_some() || m.get("tc").is_some() => (None, None),
             _ => (Some(m.value("young")), Some(m.value("poisson"))),
         };
-        let mut push = |t: u32, radius: f64, density: f64, from: String| {
+        let mut push = |t: u32, radius: f64, density: f64, mass: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
-            #[allow(clippy::float_cmp)]
-            let known = bodies
-                .iter()
-                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
+            let known = bodies.iter().any(|b| {
+                b.type_id == t
+                    && b.radius.to_bits() == radius.to_bits()
+                    && b.density.to_bits() == density.to_bits()
+            });
             if !known {
                 let (youngs_modulus, poisson_ratio) = elastic(&r.materials[t as usize]);
                 bodies.push(DeckBody {
                     type_id: t,
                     radius,
                     density,
-                    mass: sphere_mass(radius, density),
+                    mass,
                     youngs_modulus,
                     poisson_ratio,
                     from,
@@ -949,28 +695,12 @@ impl YadeDeck {
         };
         for sp in &r.spheres {
             let m = &r.materials[sp.material as usize];
-            let radius = sp.radius.clone().map_err(|e| {
-                DeckError::unsupported(
-                    &sp.at,
-                    format!("the radius of this sphere: {e}"),
-                    &format!(
-                        "{LITERAL}; or give the size with --particle {}:RADIUS:DENSITY",
-                        sp.material
-                    ),
-                )
-            })?;
-            if !(radius > 0.0 && radius.is_finite()) {
-                return Err(DeckError::unsupported(
-                    &sp.at,
-                    format!("sphere radius {radius}"),
-                    "a positive radius, m",
-                ));
-            }
             let label = m.label().map_or(String::new(), |l| format!("{l}, "));
             push(
                 sp.material,
-                radius,
+                sp.radius,
                 m.value("density"),
+                sp.mass,
                 format!("{label}{}", sp.at),
             );
         }
@@ -988,12 +718,34 @@ impl YadeDeck {
                 });
             };
             let label = m.label().map_or(String::new(), |l| format!("{l}, "));
-            push(p.type_id, p.radius, p.density, format!("{label}--particle"));
+            push(
+                p.type_id,
+                p.radius,
+                p.density,
+                crate::codes::deck::sphere_mass(p.radius, p.density),
+                format!("{label}--particle"),
+            );
         }
         if bodies.is_empty() {
-            return Err(DeckError::Lacking { file: path.to_path_buf(), what: "no sphere of known size (no sphere(center, radius, …) call with a literal radius)".into(), supported: "give the sizes with --particle TYPE:RADIUS:DENSITY, TYPE the material's O.materials id".into() });
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: "no sphere in O.bodies after the set-up".into(),
+                supported: "give the sizes with --particle TYPE:RADIUS:DENSITY, TYPE the material's O.materials id".into(),
+            });
         }
         Ok(bodies)
+    }
+
+    /// The deck YADE's dump `dump_text` (of the script at `path`) describes: what
+    /// [`DeckReader::read`] returns once YADE has run the script's set-up. The fast tests read
+    /// recorded dumps with it.
+    pub fn read_dump(
+        path: &Path,
+        dump_text: &str,
+        options: &DeckOptions,
+    ) -> Result<UserDeck, DeckError> {
+        let dump = parse_dump(path, dump_text)?;
+        Self::from_dump(path, &dump, options)
     }
 }
 
@@ -1088,7 +840,7 @@ impl YadeDeck {
         r: &'a Reading,
         a: Class,
         b: Class,
-        at: &SourceLine,
+        at: &DeckSource,
     ) -> Result<(&'a Functor, &'a Functor), DeckError> {
         let takes = |f: &&Functor| match f.class.as_str() {
             "Ip2_ViscElMat_ViscElMat_ViscElPhys" => a == Class::ViscEl && b == Class::ViscEl,
@@ -1121,8 +873,8 @@ impl YadeDeck {
                 return Err(DeckError::unsupported(
                     &g.at,
                     format!(
-                        "{} and {} (line {}) both take FrictMat pairs",
-                        g.class, f.class, f.at.line
+                        "{} and {} ({}) both take FrictMat pairs",
+                        g.class, f.class, f.at
                     ),
                     "one Ip2 functor for FrictMat pairs",
                 ));
@@ -1153,9 +905,10 @@ impl YadeDeck {
         let (ip2, law2) = Self::functors_for(r, a.material.class, b.material.class, &loop_at)?;
         let r_star = pair_radius(a.radius, b.radius);
         let ignored: Vec<&str> = ip2
-            .params
+            .dump
+            .changed
             .iter()
-            .map(|(k, _)| k.as_str())
+            .map(String::as_str)
             .filter(|k| {
                 matches!(
                     *k,
@@ -1324,8 +1077,8 @@ impl YadeDeck {
                 return Err(DeckError::unsupported(
                     &lacking.at,
                     format!(
-                        "ViscElMat without {key}, met by the ViscElMat of line {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")",
-                        given.at.line
+                        "ViscElMat without {key}, met by the ViscElMat of {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")",
+                        given.at
                     ),
                     "the same set of tc, en, et, kn, cn, ks, cs on every ViscElMat",
                 ));
@@ -1431,7 +1184,7 @@ impl YadeDeck {
         let tuned_mass = matches!(model.as_str(), "ViscEl tc, en" | "ViscEl young, en");
         if tuned_mass {
             match wall {
-                Some((WallKind::Box, w)) => traps.push(format!("the fixed box's own mass ({:.4e} kg) enters the tuning: kn, cn are set for the reduced mass {mass_r:.6e} kg of the ball and the box, not for the ball's {mass:.6e} kg that moves ({:+.2e} relative)", w.mass.as_ref().map_or(f64::NAN, |m| *m), mass_r / mass - 1.0)),
+                Some((WallKind::Box, w)) => traps.push(format!("the fixed box's own mass ({:.4e} kg) enters the tuning: kn, cn are set for the reduced mass {mass_r:.6e} kg of the ball and the box, not for the ball's {mass:.6e} kg that moves ({:+.2e} relative)", w.mass, mass_r / mass - 1.0)),
                 Some(_) => traps.push(format!("a wall's mass is 0, and YADE takes the sphere's for it: kn, cn are tuned for m/2 = {mass_r:.4e} kg while the ball's {mass:.4e} kg moves, so the contact lasts √2 longer and its damping ratio is 1/√2 of the one tuned")),
                 None => {}
             }
@@ -1453,162 +1206,87 @@ impl YadeDeck {
     }
 }
 
-impl DeckReader for YadeDeck {
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.contains("O.engines")
-            || text.contains("O.bodies.append")
-            || text.contains("O.materials.append")
-            || text.lines().any(|l| {
-                let l = l.trim_start();
-                l.starts_with("from yade") || l.starts_with("import yade")
-            })
-    }
-
-    fn reads(&self) -> &'static str {
-        "YADE scripts (FrictMat/ViscElMat materials, InteractionLoop functors, O.dt, sphere/wall/facet/box calls)"
-    }
-
-    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let source = std::fs::read_to_string(path).map_err(|source| DeckError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        let module = Module::read(&source, &options.variables).map_err(|e| {
-            DeckError::unsupported(
-                &SourceLine {
-                    file: path.to_path_buf(),
-                    line: e.line,
-                },
-                e.what,
-                "Python that scans: closed strings and brackets",
-            )
-        })?;
-        let s = Script {
-            path,
-            module: &module,
-        };
-        let r = Self::gather(&s, options)?;
+impl YadeDeck {
+    fn from_dump(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let lacking = |what: &str, supported: &str| DeckError::Lacking {
             file: path.to_path_buf(),
             what: what.into(),
             supported: supported.into(),
         };
+        if let Some((name, _)) = options.variables.first() {
+            return Err(lacking(
+                &format!("--var {name}: a YADE script's names are its own, set in the script"),
+                "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
+            ));
+        }
+        if dump.engines_line.is_none() {
+            let before = match &dump.stopped {
+                Some(stop) => format!(
+                    " before the reading stopped at its first step ({}, line {})",
+                    stop.call,
+                    stop.line.map_or("?".into(), |l| l.to_string())
+                ),
+                None => String::new(),
+            };
+            return Err(lacking(
+                &format!(
+                    "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
+                ),
+                "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
+            ));
+        }
+        let r = Self::gather(path, dump, options)?;
         let loop_at = r.loop_at.clone().ok_or_else(|| {
             lacking(
-                "no InteractionLoop",
+                "no InteractionLoop in O.engines after the set-up",
                 "O.engines with InteractionLoop([Ig2…], [Ip2…], [Law2…])",
             )
         })?;
-        if r.newton.is_none() {
-            return Err(lacking(
-                "no NewtonIntegrator in O.engines: nothing moves",
-                "NewtonIntegrator(damping=0)",
-            ));
-        }
-        for f in r.geometry.iter().chain(&r.physics).chain(&r.laws) {
-            let known = [
-                "Ig2_Sphere_Sphere_ScGeom",
-                "Ig2_Sphere_Sphere_ScGeom6D",
-                "Ig2_Wall_Sphere_ScGeom",
-                "Ig2_Facet_Sphere_ScGeom",
-                "Ig2_Facet_Sphere_ScGeom6D",
-                "Ig2_Box_Sphere_ScGeom",
-                "Ig2_Box_Sphere_ScGeom6D",
-                "Ip2_FrictMat_FrictMat_MindlinPhys",
-                "Ip2_FrictMat_FrictMat_FrictPhys",
-                "Ip2_ViscElMat_ViscElMat_ViscElPhys",
-                "Law2_ScGeom_MindlinPhys_Mindlin",
-                "Law2_ScGeom_FrictPhys_CundallStrack",
-                "Law2_ScGeom_ViscElPhys_Basic",
-            ];
-            if !known.contains(&f.class.as_str()) {
-                return Err(DeckError::unsupported(
-                    &f.at,
-                    format!("functor {}", f.class),
-                    FUNCTORS,
-                ));
-            }
-        }
         let mut bodies = Self::bodies(&r, path, options)?;
         bodies.sort_by(|a, b| {
             a.type_id
                 .cmp(&b.type_id)
                 .then(b.radius.total_cmp(&a.radius))
         });
-        // The time step, with PWaveTimeStep() over the spheres made before it.
-        let (dt_expr, dt_at) = r.timestep.clone().ok_or_else(|| {
+        let dt_line = dump.dt_line.ok_or_else(|| {
             lacking(
-                "no `O.dt = …` (YADE's default step is 1e-8 s)",
+                "the script sets no O.dt (YADE would step at its default)",
                 "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
             )
         })?;
-        let mut pwave: Option<(f64, String)> = None;
-        let mut consider = |radius: f64, m: &Material, density: f64, from: String| {
-            // In YADE's operations: utils.sphere's mass (4/3 π r³ ρ), the density Shop::PWaveTimeStep
-            // forms back from it, and r / sqrt(E/ρ): the step to the last bit.
-            let volume = 4.0 / 3.0 * PI * radius.powf(3.0);
-            let density = volume * density / (4.0 / 3.0 * PI * radius.powf(3.0));
-            let t = radius / (m.value("young") / density).sqrt();
-            if pwave.as_ref().is_none_or(|(best, _)| t < *best) {
-                pwave = Some((t, from));
-            }
+        let dt_at = SourceLine {
+            file: path.to_path_buf(),
+            line: dt_line,
         };
-        for sp in r.spheres.iter().filter(|sp| sp.at.line < dt_at.line) {
-            if let Ok(radius) = sp.radius {
-                let m = &r.materials[sp.material as usize];
-                consider(
-                    radius,
-                    m,
-                    m.value("density"),
-                    format!("R {radius} at {}", sp.at),
-                );
-            }
-        }
-        for p in &options.particles {
-            consider(
-                p.radius,
-                &r.materials[p.type_id as usize],
-                p.density,
-                format!("R {} of --particle {}", p.radius, p.type_id),
-            );
-        }
-        let known = Knowledge {
-            appended: &r.appended,
-            pwave: pwave.as_ref().map(|p| p.0),
-        };
-        let timestep = s.number(&dt_expr, dt_at.line, &known, "O.dt")?;
+        let timestep = dump.dt.unwrap_or(f64::NAN);
         if !(timestep > 0.0 && timestep.is_finite()) {
             return Err(DeckError::unsupported(
                 &dt_at,
-                format!("O.dt = {timestep}"),
+                format!("O.dt = {timestep} after the set-up"),
                 "a positive time step, s",
             ));
         }
-        let uses_pwave = show(&dt_expr).contains("PWaveTimeStep");
-        let timestep_from = match &pwave {
-            Some((t, from)) if uses_pwave => {
-                let viscel_default = r
-                    .materials
-                    .iter()
-                    .any(|m| m.class == Class::ViscEl && m.get("young").is_none());
-                format!(
-                    "{dt_at}, {}; PWaveTimeStep() = {} s, R/sqrt(E/ρ) of the sphere of {from}{}",
-                    show(&dt_expr),
-                    exact_number(*t),
-                    if viscel_default {
-                        "; a ViscElMat's young there is its default 1e9 Pa, which its tc or kn do not use"
-                    } else {
-                        ""
-                    }
-                )
-            }
-            _ => dt_at.to_string(),
+        let timestep_from = match line_text(path, dt_line) {
+            Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
+            None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
         };
         // Contacts: each pair of bodies, then each body against each wall.
-        let geometry_for = |names: [&str; 2], at: &SourceLine| {
+        let geometry_for = |names: [&str; 2], at: &DeckSource| {
             r.geometry.iter().find(|f| names.contains(&f.class.as_str())).ok_or_else(|| {
-                DeckError::unsupported(at, format!("no {} in the InteractionLoop (line {}): YADE would make no contact here", names[0], loop_at.line), FUNCTORS)
+                DeckError::unsupported(at.clone(), format!("no {} in the InteractionLoop ({loop_at}): YADE would make no contact here", names[0]), FUNCTORS)
             })
+        };
+        let edits = |m: &Material| -> Vec<String> {
+            m.edited
+                .iter()
+                .map(|(key, then, now)| {
+                    format!(
+                        "{key} of {} ({}) was {then} when appended and is {now} after the set-up: the check takes {now}, as YADE does",
+                        m.label().unwrap_or_else(|| m.class.name().to_string()),
+                        m.at
+                    )
+                })
+                .collect()
         };
         let mut contacts = Vec::new();
         for (i, body) in bodies.iter().enumerate() {
@@ -1631,7 +1309,7 @@ impl DeckReader for YadeDeck {
                     radius: other.radius,
                     mass: other.mass,
                 };
-                let pair = Self::pair_law(
+                let mut pair = Self::pair_law(
                     &r,
                     &a,
                     &b,
@@ -1639,6 +1317,10 @@ impl DeckReader for YadeDeck {
                     reduced_mass(body.mass, other.mass),
                     geometry,
                 )?;
+                pair.traps.extend(edits(m_a));
+                if body.type_id != other.type_id {
+                    pair.traps.extend(edits(m_b));
+                }
                 let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
                 lines.dedup();
                 contacts.push(DeckContact {
@@ -1649,7 +1331,7 @@ impl DeckReader for YadeDeck {
                     cor_entered: pair.entered,
                     law: pair.law,
                     traps: pair.traps,
-                    lines: lines.into_iter().map(DeckSource::from).collect(),
+                    lines,
                 });
             }
         }
@@ -1674,7 +1356,7 @@ impl DeckReader for YadeDeck {
                 type_id: Some(wall.material),
                 youngs_modulus: young,
                 poisson_ratio: poisson,
-                from: wall.at.clone().into(),
+                from: wall.at.clone(),
             });
             let (placement, mass) = match wall.kind {
                 WallKind::Plane => (
@@ -1696,28 +1378,19 @@ impl DeckReader for YadeDeck {
                         "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
                         wall.material
                     ),
-                    wall.mass.as_ref().ok().copied(),
+                    Some(wall.mass),
                 ),
             };
             let mut snippet = format!("b2 = O.bodies.append({placement})");
             if let Some(m) = mass {
-                snippet.push_str(&format!("\nO.bodies[b2].state.mass = {}  # the script's box: its extents times its density", exact_number(m)));
+                snippet.push_str(&format!(
+                    "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
+                    exact_number(m)
+                ));
             }
             wall_lines.push(snippet);
             for (i, body) in bodies.iter().enumerate() {
                 let m_a = &r.materials[body.type_id as usize];
-                let needs_mass = m_w.class == Class::ViscEl && m_a.class == Class::ViscEl;
-                let wall_mass = match (&wall.mass, needs_mass) {
-                    (Ok(m), _) => *m,
-                    (Err(_), false) => 0.0,
-                    (Err(e), true) => {
-                        return Err(DeckError::unsupported(
-                            &wall.at,
-                            format!("a fixed box whose mass ViscElPhys's tuning needs: {e}"),
-                            "literal extents",
-                        ));
-                    }
-                };
                 let a = Side {
                     id: body.type_id,
                     material: m_a,
@@ -1728,7 +1401,7 @@ impl DeckReader for YadeDeck {
                     id: wall.material,
                     material: m_w,
                     radius: factor * body.radius,
-                    mass: wall_mass,
+                    mass: wall.mass,
                 };
                 let pair =
                     Self::pair_law(&r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
@@ -1744,6 +1417,10 @@ impl DeckReader for YadeDeck {
                             .join(", ")
                     ));
                 }
+                traps.extend(edits(m_a));
+                if wall.material != body.type_id {
+                    traps.extend(edits(m_w));
+                }
                 contacts.push(DeckContact {
                     body: i,
                     partner: Partner::Wall(w),
@@ -1752,10 +1429,7 @@ impl DeckReader for YadeDeck {
                     cor_entered: pair.entered,
                     law: pair.law,
                     traps,
-                    lines: [&m_a.at, &wall.at, &loop_at]
-                        .into_iter()
-                        .map(DeckSource::from)
-                        .collect(),
+                    lines: vec![m_a.at.clone(), wall.at.clone(), loop_at.clone()],
                 });
             }
         }
@@ -1763,17 +1437,22 @@ impl DeckReader for YadeDeck {
             .left_out
             .iter()
             .map(|(what, lines)| {
+                if lines.is_empty() {
+                    return format!("{what}: {}", path.display());
+                }
                 let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
                 format!("{what}: {}:{}", path.display(), lines.join(","))
             })
             .collect();
-        let mut common: Vec<String> = r
-            .materials
-            .iter()
-            .map(|m| format!("O.materials.append({})", m.python()))
-            .collect();
+        let mut common = Vec::new();
+        for m in &r.materials {
+            common.push(format!("O.materials.append({})", m.python()?));
+        }
         for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
-            let items: Vec<String> = list.iter().map(Functor::python).collect();
+            let items = list
+                .iter()
+                .map(Functor::python)
+                .collect::<Result<Vec<_>, _>>()?;
             common.push(format!("{name} = [{}]", items.join(", ")));
         }
         Ok(UserDeck {
@@ -1792,6 +1471,27 @@ impl DeckReader for YadeDeck {
                 types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
             },
         })
+    }
+}
+
+impl DeckReader for YadeDeck {
+    fn recognises(&self, _path: &Path, text: &str) -> bool {
+        text.contains("O.engines")
+            || text.contains("O.bodies.append")
+            || text.contains("O.materials.append")
+            || text.lines().any(|l| {
+                let l = l.trim_start();
+                l.starts_with("from yade") || l.starts_with("import yade")
+            })
+    }
+
+    fn reads(&self) -> &'static str {
+        "YADE scripts, set up by YADE and read as it then holds them (FrictMat/ViscElMat materials, InteractionLoop functors, O.dt, spheres, walls, facets, fixed boxes)"
+    }
+
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
+        let dump = dump_script(path)?;
+        Self::read_dump(path, &dump, options)
     }
 
     fn render(

@@ -27,7 +27,7 @@
 pub mod batch;
 pub mod card;
 pub mod deck;
-pub mod python;
+pub mod dump;
 
 use std::path::Path;
 

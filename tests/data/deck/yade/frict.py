@@ -1,0 +1,12 @@
+# base.py with FrictPhys's linear spring.
+steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
+O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
+O.bodies.append(wall(-0.01, axis=2, material=steel))
+O.engines = [
+    ForceResetter(),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                    [Ip2_FrictMat_FrictMat_FrictPhys()],
+                    [Law2_ScGeom_FrictPhys_CundallStrack()]),
+    NewtonIntegrator(damping=0.0),
+]
+O.dt = 1e-7

@@ -1,0 +1,11 @@
+# base.py with one line changed (a case of tests/deck.rs).
+steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
+O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
+O.bodies.append(wall(-0.01, axis=2, material=steel))
+O.engines = [
+    ForceResetter(),
+    InteractionLoop([Ig2_Sphere_Sphere_ScGeom(), Ig2_Wall_Sphere_ScGeom()],
+                    [Ip2_FrictMat_FrictMat_MindlinPhys(en=0.5)],
+                    [Law2_ScGeom_MindlinPhys_Mindlin()]),
+    NewtonIntegrator(damping=0.0),
+]
