@@ -40,7 +40,7 @@ pub const IMPACTS_PER_START: usize = 150;
 pub const BATCH_SCRIPT: &str = "batch.py";
 
 /// The part of the batch script after its list of impacts.
-const SCRIPT: &str = include_str!("batch.py");
+pub(super) const SCRIPT: &str = include_str!("batch.py");
 
 /// The trajectory file of impact `i` (from 0) of a batch.
 pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
@@ -94,9 +94,10 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
         .fold(0.0f64, f64::max);
     let text = format!(
         "# millimpact: {} impacts side by side in one Kratos DEM stage (src/codes/kratos/batch.rs).\n\
-         # Each impact's values, as the single script is filled with them.\nIMPACTS = [\n{impacts}]\nSPACING = {}\n{SCRIPT}",
+         # Each impact's values, as the single script is filled with them.\nIMPACTS = [\n{impacts}]\nSPACING = {}\n{}",
         setups.len(),
         exact_number(2.0 * reach),
+        super::with_common(SCRIPT),
     );
     Ok(RenderedInput {
         file_name: BATCH_SCRIPT.into(),

@@ -36,7 +36,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::scene::SceneKind;
 
 /// The Python template of one impact with a user's materials.
-const TEMPLATE: &str = include_str!("deck.py");
+pub(super) const TEMPLATE: &str = include_str!("deck.py");
 
 /// The project parameters file a materials file is read with, in its folder.
 pub const PROJECT_FILE: &str = "ProjectParametersDEM.json";
@@ -1471,7 +1471,7 @@ impl DeckReader for KratosDeck {
             // Last: the user's text is filled in after every placeholder.
             ("materials", materials),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
+        let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| CodeError::Unsupported {
             code: "kratos".into(),
             case: setup.case_name.clone(),
             reason: e.to_string(),
