@@ -32,6 +32,7 @@
 pub mod batch;
 pub mod card;
 pub mod deck;
+mod files;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
