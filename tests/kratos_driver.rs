@@ -177,9 +177,16 @@ fn rendered() -> Vec<(Canonical, String)> {
 /// The body of the impact stage's `ReadModelParts`, where the model is built (up to the end
 /// of its class).
 fn read_model_parts(text: &str) -> &str {
-    let class = text.find("class Impact(OneImpact)").expect("the impact's stage");
-    let start = class + text[class..].find("def ReadModelParts").expect("ReadModelParts");
-    let end = text[start..].find("\n\n\n").map_or(text.len(), |e| start + e);
+    let class = text
+        .find("class Impact(OneImpact)")
+        .expect("the impact's stage");
+    let start = class
+        + text[class..]
+            .find("def ReadModelParts")
+            .expect("ReadModelParts");
+    let end = text[start..]
+        .find("\n\n\n")
+        .map_or(text.len(), |e| start + e);
     &text[start..end]
 }
 
