@@ -11,9 +11,6 @@
 # DAMPING_GAMMA from each relation's COEFFICIENT_OF_RESTITUTION and law, as in the user's run.
 # The particles are created with the properties of their material id, a wall of two
 # RigidFace3D3N triangles with the wall material's.
-{{common}}
-from KratosMultiphysics.DEMApplication.materials_assignation_utility import MaterialsAssignationUtility
-
 SCENE = "{{scene}}"  # ball_plate | ball_ball
 DT = {{timestep}}
 STEPS = {{steps}}
@@ -30,6 +27,9 @@ V2 = {{other_velocity}}
 SCHEME = "{{scheme}}"
 # The user's materials, reduced (JSON).
 MATERIALS = {{materials}}
+
+{{common}}
+from KratosMultiphysics.DEMApplication.materials_assignation_utility import MaterialsAssignationUtility
 
 # The wall's half side, 4 R; the sphere comes down onto the middle of one triangle.
 L = 4.0 * R1

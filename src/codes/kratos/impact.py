@@ -5,7 +5,6 @@
 # step, aligned as YADE's: the state the contact law saw in that step and the force it computed
 # from it) and prints MILLIMPACT lines that the driver parses. Writes no other file (no GiD, VTK
 # or graph output, no directories).
-{{common}}
 SCENE = "{{scene}}"  # ball_plate | ball_ball | rod_end
 DT = {{timestep}}
 STEPS = {{steps}}
@@ -35,6 +34,8 @@ KN = {{linear_stiffness}}
 GAMMA = {{damping_gamma}}
 # Translational scheme: Symplectic_Euler (default), Velocity_Verlet, Forward_Euler, Taylor_Scheme.
 SCHEME = "{{scheme}}"
+
+{{common}}
 
 # Property ids: 1 the moving sphere, 2 the wall (ball_plate, rod_end) or the other sphere.
 BALL, OTHER = 1, 2

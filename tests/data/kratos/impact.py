@@ -5,6 +5,36 @@
 # step, aligned as YADE's: the state the contact law saw in that step and the force it computed
 # from it) and prints MILLIMPACT lines that the driver parses. Writes no other file (no GiD, VTK
 # or graph output, no directories).
+SCENE = "ball_plate"  # ball_plate | ball_ball | rod_end
+DT = 3.0596649922225932e-6
+STEPS = 50
+R1 = 2e-2
+M1 = 2.613805087786708e-1
+RHO1 = 7.8e3
+E1 = 2e11
+NU1 = 3e-1
+V1 = 2e0
+R2 = 0e0
+M2 = 0e0
+RHO2 = 0e0
+E2 = 0e0
+NU2 = 0e0
+V2 = 0e0
+WALL_E = 2e11
+WALL_NU = 3e-1
+# COEFFICIENT_OF_RESTITUTION of the contact (ball scenes): Kratos turns it into DAMPING_GAMMA
+# with Thornton's fit (GammaForHertzThornton), as YADE does.
+EN = 6.946306739218823e-1
+# rod_end: the linear spring k (N/m) of DEM_D_Linear_Custom_Constants (K_NORMAL of the contact).
+KN = 0e0
+# The contact's damping ratio DAMPING_GAMMA (dashpot 2 gamma sqrt(m* k_tangent)), set directly
+# after initialisation when >= 0 (rod_end: the linear law's gamma, instead of Kratos' bisection
+# from a restitution coefficient, which stops at a tolerance of 1e-4 in gamma); when negative,
+# the gamma Kratos derives from EN stays.
+GAMMA = -1e0
+# Translational scheme: Symplectic_Euler (default), Velocity_Verlet, Forward_Euler, Taylor_Scheme.
+SCHEME = "Symplectic_Euler"
+
 # ---- The part every millimpact Kratos script shares (src/codes/kratos/common.py, written into
 # ---- each script by the renderer, so that the script runs on its own in its scratch folder).
 # What it sets up, and why (each measured on 10.4.4, see the driver's notes):
@@ -291,35 +321,6 @@ class OneImpact(DEMAnalysisStage):
         print("MILLIMPACT iterations=%d dt=%r" % (steps, dt))
         print("MILLIMPACT loop_time=%r" % loop_time)
 # ---- End of the shared part.
-SCENE = "ball_plate"  # ball_plate | ball_ball | rod_end
-DT = 3.0596649922225932e-6
-STEPS = 50
-R1 = 2e-2
-M1 = 2.613805087786708e-1
-RHO1 = 7.8e3
-E1 = 2e11
-NU1 = 3e-1
-V1 = 2e0
-R2 = 0e0
-M2 = 0e0
-RHO2 = 0e0
-E2 = 0e0
-NU2 = 0e0
-V2 = 0e0
-WALL_E = 2e11
-WALL_NU = 3e-1
-# COEFFICIENT_OF_RESTITUTION of the contact (ball scenes): Kratos turns it into DAMPING_GAMMA
-# with Thornton's fit (GammaForHertzThornton), as YADE does.
-EN = 6.946306739218823e-1
-# rod_end: the linear spring k (N/m) of DEM_D_Linear_Custom_Constants (K_NORMAL of the contact).
-KN = 0e0
-# The contact's damping ratio DAMPING_GAMMA (dashpot 2 gamma sqrt(m* k_tangent)), set directly
-# after initialisation when >= 0 (rod_end: the linear law's gamma, instead of Kratos' bisection
-# from a restitution coefficient, which stops at a tolerance of 1e-4 in gamma); when negative,
-# the gamma Kratos derives from EN stays.
-GAMMA = -1e0
-# Translational scheme: Symplectic_Euler (default), Velocity_Verlet, Forward_Euler, Taylor_Scheme.
-SCHEME = "Symplectic_Euler"
 
 # Property ids: 1 the moving sphere, 2 the wall (ball_plate, rod_end) or the other sphere.
 BALL, OTHER = 1, 2
