@@ -899,7 +899,7 @@ fn bad_kratos_fields_are_refused_with_their_path_and_what_is_supported() {
             }),
             none(),
             "MaterialsDEM.json: material_relations[0].Variables.COEFFICIENT_OF_RESTITUTION: ",
-            "`\"0.7\"` is not a number",
+            "found \"0.7\"; supported: a number",
         ),
         (
             "restitution above 1",

@@ -174,14 +174,31 @@ fn rendered() -> Vec<(Canonical, String)> {
         .collect()
 }
 
-/// The body of the script's `ReadModelParts`, where the model is built.
+/// The body of the impact stage's `ReadModelParts`, where the model is built (up to the end
+/// of its class).
 fn read_model_parts(text: &str) -> &str {
-    let start = text.find("def ReadModelParts").expect("ReadModelParts");
-    let end = start
-        + text[start..]
-            .find("def SetMaterials")
-            .expect("SetMaterials");
+    let class = text
+        .find("class Impact(OneImpact)")
+        .expect("the impact's stage");
+    let start = class
+        + text[class..]
+            .find("def ReadModelParts")
+            .expect("ReadModelParts");
+    let end = text[start..]
+        .find("\n\n\n")
+        .map_or(text.len(), |e| start + e);
     &text[start..end]
+}
+
+/// The body of the script's function `name`, up to the next function.
+fn function<'a>(text: &'a str, name: &str) -> &'a str {
+    let body = &text[text.find(&format!("def {name}(")).expect(name)..];
+    let end = ["\ndef ", "\n    def ", "\nclass "]
+        .iter()
+        .filter_map(|next| body.find(next))
+        .min()
+        .unwrap_or(body.len());
+    &body[..end]
 }
 
 #[test]
@@ -189,7 +206,8 @@ fn the_scheme_and_properties_proxies_are_set_before_any_particle() {
     // Without either, CreateSphericParticle segfaults (exit 139, no message).
     for (which, text) in rendered() {
         let body = read_model_parts(&text);
-        let particle = body.find("CreateSphericParticle(").expect("particles");
+        let particle = body.find("self.place(").expect("particles");
+        assert!(function(&text, "place").contains("CreateSphericParticle("));
         for before in ["ball_material(ball,", "CreatePropertiesProxies(spheres)"] {
             let at = body
                 .find(before)
@@ -201,7 +219,11 @@ fn the_scheme_and_properties_proxies_are_set_before_any_particle() {
         }
         let material = &text[text.find("def ball_material").unwrap()..];
         let material = &material[..material.find("\ndef ").unwrap()];
-        assert!(material.contains("SetTranslationalIntegrationSchemeInProperties(props"));
+        assert!(material.contains("set_scheme(props, scheme)"));
+        assert!(
+            function(&text, "set_scheme")
+                .contains("SetTranslationalIntegrationSchemeInProperties(props")
+        );
     }
 }
 

@@ -1,13 +1,13 @@
 //! Running a batch of independent impacts in one process of a code: the same scratch
 //! directory, time limit and kept log as [`super::run_code`], one parse per impact.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Stdio;
 use std::time::Instant;
 
 use super::runner::RunOptions;
 use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun, RenderedInput};
-use crate::model::trajectory::check_trajectory;
+use crate::model::trajectory::{CodeTrajectory, check_trajectory};
 use thiserror::Error;
 
 /// Why impacts cannot run together in one process of a code.
@@ -248,4 +248,34 @@ pub fn marked_loop_time(log: &str, index: usize) -> Option<f64> {
                 .find_map(|f| f.strip_prefix("loop_time="))
         })
         .and_then(|v| v.parse::<f64>().ok())
+}
+
+/// The trajectory file of impact `index` (from 0) of a batch whose script writes one
+/// `trajectory-K.csv` per impact (K from 1), as YADE's and Kratos' do.
+pub fn marked_trajectory_file(index: usize) -> String {
+    format!("trajectory-{}.csv", index + 1)
+}
+
+/// Each of `impacts` runs of a batch whose script writes [`marked_trajectory_file`]s, read by
+/// `parse` (the code's own trajectory reader), and prints one `MILLIMPACT impact=K loop_time=T`
+/// line per impact ([`marked_loop_time`]); `version` is the build's, as the log says it.
+pub fn parse_marked_batch(
+    impacts: usize,
+    workdir: &Path,
+    log: &str,
+    version: Option<&str>,
+    parse: fn(&str) -> Result<CodeTrajectory, ParseError>,
+) -> Vec<Result<ParsedRun, ParseError>> {
+    (0..impacts)
+        .map(|i| {
+            let path = workdir.join(marked_trajectory_file(i));
+            let text = std::fs::read_to_string(&path)
+                .map_err(|source| ParseError::Read { path, source })?;
+            Ok(ParsedRun {
+                trajectory: parse(&text)?,
+                loop_time: marked_loop_time(log, i),
+                version: version.map(str::to_string),
+            })
+        })
+        .collect()
 }

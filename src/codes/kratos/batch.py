@@ -4,124 +4,13 @@
 # trajectory-K.csv per impact K (from 1) and prints MILLIMPACT lines.
 #
 # Above this script: IMPACTS (each impact's values, as impact.py is filled with them), SPACING.
-import os
-
-os.environ["OMP_NUM_THREADS"] = "1"
-
-import math
-import time
-from importlib.metadata import version
-
-import KratosMultiphysics as KM
+{{common}}
 import numpy as np
-import KratosMultiphysics.DEMApplication as DEM
-from KratosMultiphysics.DEMApplication.DEM_analysis_stage import DEMAnalysisStage
-
-KM.Logger.GetDefaultOutput().SetSeverity(KM.Logger.Severity.WARNING)
-KM.ParallelUtilities.SetNumThreads(1)
 
 FIRST = IMPACTS[0]
 SCHEME = FIRST["scheme"]
 DT = FIRST["timestep"]
 STEPS = max(p["steps"] for p in IMPACTS)
-
-# impact.py's settings, word for word.
-PARAMETERS = """
-{
-    "problem_name"                   : "impact",
-    "do_print_results_option"        : false,
-    "post_gid_option"                : false,
-    "post_vtk_option"                : false,
-    "Dimension"                      : 3,
-    "BoundingBoxOption"              : false,
-    "dem_inlet_option"               : false,
-    "GravityX"                       : 0.0,
-    "GravityY"                       : 0.0,
-    "GravityZ"                       : 0.0,
-    "RotationOption"                 : false,
-    "CleanIndentationsOption"        : false,
-    "EnergyCalculationOption"        : false,
-    "GlobalDamping"                  : 0.0,
-    "VirtualMassCoefficient"         : 1.0,
-    "DeltaOption"                    : "Absolute",
-    "SearchTolerance"                : 0.0,
-    "search_tolerance_against_walls" : 0.0,
-    "NeighbourSearchFrequency"       : 1,
-    "TranslationalIntegrationScheme" : "SCHEME_NAME",
-    "RotationalIntegrationScheme"    : "Direct_Integration",
-    "AutomaticTimestep"              : false,
-    "MaxTimeStep"                    : 1.0,
-    "FinalTime"                      : 1.0,
-    "ControlTime"                    : 1e30,
-    "GraphExportFreq"                : 1e30,
-    "VelTrapGraphExportFreq"         : 1e30,
-    "OutputTimeStep"                 : 1e30,
-    "PostVelocity"                   : false,
-    "ElementType"                    : "SphericPartDEMElement3D",
-    "echo_level"                     : 0,
-    "solver_settings"                : {
-        "strategy"                          : "sphere_strategy",
-        "RemoveBallsInitiallyTouchingWalls" : false,
-        "model_import_settings"             : { "input_type" : "mdpa", "input_filename" : "impact" },
-        "material_import_settings"          : { "materials_filename" : "" }
-    }
-}
-""".replace("SCHEME_NAME", SCHEME)
-
-SCHEMES = {
-    "Symplectic_Euler": DEM.SymplecticEulerScheme,
-    "Velocity_Verlet": DEM.VelocityVerletScheme,
-    "Forward_Euler": DEM.ForwardEulerScheme,
-    "Taylor_Scheme": DEM.TaylorScheme,
-}
-
-
-def ball_material(props, density, young, poisson):
-    props[DEM.PARTICLE_DENSITY] = density
-    props[KM.YOUNG_MODULUS] = young
-    props[KM.POISSON_RATIO] = poisson
-    props[KM.PARTICLE_MATERIAL] = props.Id
-    props[DEM.ROLLING_FRICTION] = 0.0
-    props[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
-    props[DEM.COMPUTE_WEAR] = False
-    props[DEM.DEM_TRANSLATIONAL_INTEGRATION_SCHEME_NAME] = SCHEME
-    props[DEM.DEM_ROTATIONAL_INTEGRATION_SCHEME_NAME] = "Direct_Integration"
-    SCHEMES[SCHEME]().SetTranslationalIntegrationSchemeInProperties(props, False)
-    SCHEMES[SCHEME]().SetRotationalIntegrationSchemeInProperties(props, False)
-
-
-def wall_material(props, young, poisson):
-    props[KM.YOUNG_MODULUS] = young
-    props[KM.POISSON_RATIO] = poisson
-    props[DEM.STATIC_FRICTION] = 0.0
-    props[DEM.DYNAMIC_FRICTION] = 0.0
-    props[DEM.WALL_COHESION] = 0.0
-    props[DEM.COMPUTE_WEAR] = False
-    props[DEM.SEVERITY_OF_WEAR] = 0.0
-    props[DEM.IMPACT_WEAR_SEVERITY] = 0.0
-    props[DEM.BRINELL_HARDNESS] = 200.0
-
-
-def relation(p, props, other_id):
-    """The contact properties of `props` with material `other_id`, as impact.py sets them."""
-    sub = KM.Properties(other_id)
-    sub[DEM.STATIC_FRICTION] = 0.0
-    sub[DEM.DYNAMIC_FRICTION] = 0.0
-    sub[DEM.FRICTION_DECAY] = 500.0
-    sub[DEM.ROLLING_FRICTION] = 0.0
-    sub[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
-    sub[DEM.PARTICLE_COHESION] = 0.0
-    sub[DEM.DEM_ROLLING_FRICTION_MODEL_NAME] = "DEMRollingFrictionModelBounded"
-    if p["scene"] == "rod_end":
-        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Linear_Custom_Constants"
-        sub[DEM.K_NORMAL] = p["linear_stiffness"]
-        sub[DEM.K_TANGENTIAL] = 0.0
-        sub[DEM.COEFFICIENT_OF_RESTITUTION] = 1.0
-    else:
-        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Hertz_viscous_Coulomb"
-        sub[DEM.COEFFICIENT_OF_RESTITUTION] = p["restitution"]
-    props.AddSubProperties(sub)
-
 
 # Impact k (from 0): properties 2k+1 (its ball) and 2k+2 (the other ball), spheres 2k+1 and
 # 2k+2. Two balls sit on the line y = SPACING * k (the coordinate across their line of approach,
@@ -160,15 +49,15 @@ class Batch(DEMAnalysisStage):
         for k, p in enumerate(IMPACTS):
             ball_id, other_id = 2 * k + 1, 2 * k + 2
             ball = spheres.CreateNewProperties(ball_id)
-            ball_material(ball, p["density"], p["young"], p["poisson"])
+            ball_material(ball, p["density"], p["young"], p["poisson"], SCHEME)
             if p["scene"] == "ball_ball":
                 other = spheres.CreateNewProperties(other_id)
-                ball_material(other, p["other_density"], p["other_young"], p["other_poisson"])
+                ball_material(other, p["other_density"], p["other_young"], p["other_poisson"], SCHEME)
                 for a, b in ((ball, ball_id), (ball, other_id), (other, ball_id), (other, other_id)):
-                    relation(p, a, b)
+                    relation(a, b, p["scene"], p["restitution"], p["linear_stiffness"])
             else:
-                relation(p, ball, WALL)
-                relation(p, wall, ball_id)
+                relation(ball, WALL, p["scene"], p["restitution"], p["linear_stiffness"])
+                relation(wall, ball_id, p["scene"], p["restitution"], p["linear_stiffness"])
             made.append((ball, other_id))
         DEM.PropertiesProxiesManager().CreatePropertiesProxies(spheres)
         creator = self.creator_destructor
@@ -190,16 +79,8 @@ class Batch(DEMAnalysisStage):
             n1, n2 = e1.GetNode(0), None if e2 is None else e2.GetNode(0)
             self.impacts.append({"p": p, "e1": e1, "e2": e2, "n1": n1, "n2": n2})
         if WALL_SCENE:
-            walls = self.rigid_face_model_part
-            wall_props = spheres.GetProperties()[WALL]
-            half = WALL_SCALE * LENGTH
-            n = 2 * len(IMPACTS) + 10
-            walls.CreateNewNode(n + 1, -half, -half, 0.0)
-            walls.CreateNewNode(n + 2, half, -half, 0.0)
-            walls.CreateNewNode(n + 3, half, half, 0.0)
-            walls.CreateNewNode(n + 4, -half, half, 0.0)
-            walls.CreateNewCondition("RigidFace3D3N", 1, [n + 1, n + 2, n + 3], wall_props)
-            walls.CreateNewCondition("RigidFace3D3N", 2, [n + 1, n + 3, n + 4], wall_props)
+            # Its nodes numbered after every sphere's.
+            add_wall(self.rigid_face_model_part, spheres.GetProperties()[WALL], WALL_SCALE * LENGTH, 2 * len(IMPACTS) + 11)
         self.model_parts_have_been_read = True
         self.all_model_parts.ComputeMaxIds()
 
@@ -221,12 +102,8 @@ if SCHEME not in SCHEMES:
     raise SystemExit("unknown translational scheme %r" % SCHEME)
 if any(p["scheme"] != SCHEME or p["timestep"] != DT for p in IMPACTS):
     raise SystemExit("a batch runs one scheme and one time step")
-print("MILLIMPACT version=%s dem=%s threads=%d" % (
-    version("KratosMultiphysics"), version("KratosDEMApplication"), KM.ParallelUtilities.GetNumThreads()))
-parameters = KM.Parameters(PARAMETERS)
-parameters["MaxTimeStep"].SetDouble(DT)
-parameters["FinalTime"].SetDouble(DT * STEPS)
-stage = Batch(KM.Model(), parameters)
+print_version()
+stage = Batch(KM.Model(), stage_parameters(SCHEME, DT, STEPS))
 stage.Initialize()
 all_properties = stage.spheres_model_part.GetProperties()
 for k, c in enumerate(stage.impacts):
@@ -241,10 +118,7 @@ for k, c in enumerate(stage.impacts):
         else:
             all_properties[WALL].GetSubProperties(2 * k + 1)[DEM.DAMPING_GAMMA] = gamma
 
-solver = stage._GetSolver()
-strategy = solver.cplusplus_strategy
-walls = stage.rigid_face_model_part
-mesh_mover = solver.dem_fem_utils
+stepper = Stepper(stage, DT)
 # impact.py's step loop, for every impact at once. Each step records every sphere's state
 # before it (position and velocity, read as whole vectors: one call each rather than one per
 # sphere) and its force after it; each impact's rows are then impact.py's, read from them:
@@ -264,13 +138,7 @@ times, positions, velocities, forces = [], [], [], []
 start = time.perf_counter()
 for step in range(STEPS):
     record_state()
-    t = stage.time
-    stage.time = solver.AdvanceInTime(t)
-    mesh_mover.MoveAllMeshes(walls, stage.time, DT)
-    strategy.ResetPrescribedMotionFlagsRespectingImposedDofs()
-    strategy.InitializeSolutionStep()
-    strategy.SolveSolutionStep()
-    strategy.FinalizeSolutionStep()
+    stepper.step()
     forces.append(np.asarray(variables.GetSolutionStepValuesVector(nodes, KM.TOTAL_FORCES, 0, 3)))
 record_state()
 loop_time = (time.perf_counter() - start) / len(IMPACTS)
@@ -307,9 +175,7 @@ for k, c in enumerate(stage.impacts):
         rows = [(s, t[s], overlap[s], speed[s], force[s]) for s in range(steps)]
         if overlap[steps] <= 0.0:
             rows.append((steps, t[steps], overlap[steps], speed[steps], 0.0))
-    with open("trajectory-%d.csv" % (k + 1), "w") as out:
-        out.write("iter,time,overlap,approach_velocity,normal_force\n")
-        out.write("".join("%d,%r,%r,%r,%r\n" % r for r in rows))
+    write_rows("trajectory-%d.csv" % (k + 1), rows)
     said.append("MILLIMPACT impact=%d loop_time=%r" % (k + 1, loop_time))
 # One print: each costs about a millisecond here.
 print("\n".join(said))

@@ -40,12 +40,10 @@ pub const IMPACTS_PER_START: usize = 150;
 pub const BATCH_SCRIPT: &str = "batch.py";
 
 /// The part of the batch script after its list of impacts.
-const SCRIPT: &str = include_str!("batch.py");
+pub(super) const SCRIPT: &str = include_str!("batch.py");
 
 /// The trajectory file of impact `i` (from 0) of a batch.
-pub fn batch_trajectory_file(i: usize) -> String {
-    format!("trajectory-{}.csv", i + 1)
-}
+pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
@@ -96,9 +94,10 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
         .fold(0.0f64, f64::max);
     let text = format!(
         "# millimpact: {} impacts side by side in one Kratos DEM stage (src/codes/kratos/batch.rs).\n\
-         # Each impact's values, as the single script is filled with them.\nIMPACTS = [\n{impacts}]\nSPACING = {}\n{SCRIPT}",
+         # Each impact's values, as the single script is filled with them.\nIMPACTS = [\n{impacts}]\nSPACING = {}\n{}",
         setups.len(),
         exact_number(2.0 * reach),
+        super::with_common(SCRIPT),
     );
     Ok(RenderedInput {
         file_name: BATCH_SCRIPT.into(),
@@ -113,21 +112,13 @@ pub fn parse_batch(
     workdir: &Path,
     log: &str,
 ) -> Vec<Result<ParsedRun, ParseError>> {
-    let version = log_value(log, "version=").map(str::to_string);
-    // `MILLIMPACT impact=K loop_time=T`: the loop's share per impact.
-    let loop_time = |i: usize| crate::codes::batch::marked_loop_time(log, i);
-    (0..setups.len())
-        .map(|i| {
-            let path = workdir.join(batch_trajectory_file(i));
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| ParseError::Read { path, source })?;
-            Ok(ParsedRun {
-                trajectory: parse_trajectory(&text)?,
-                loop_time: loop_time(i),
-                version: version.clone(),
-            })
-        })
-        .collect()
+    crate::codes::batch::parse_marked_batch(
+        setups.len(),
+        workdir,
+        log,
+        log_value(log, "version="),
+        parse_trajectory,
+    )
 }
 
 /// Kratos' batches: many impacts side by side in one stage.

@@ -3,8 +3,10 @@
 //! `material_assignation_table` that says which model parts are particles and which are walls)
 //! and `ProjectParametersDEM.json` beside it (the time step `MaxTimeStep`, the scheme, the
 //! problem name of the `.mdpa` files); the particles' radii from the `DEM.mdpa`'s nodal
-//! `RADIUS`, an inlet's `RADIUS`, or `--particle ID:RADIUS:DENSITY`. The impact of one pair is
-//! rendered with the user's materials transplanted (`deck.py`): the file's own materials and
+//! `RADIUS`, an inlet's `RADIUS`, or `--particle ID:RADIUS:DENSITY`. Both JSON files are read as
+//! the typed records of `files.rs` (a wrong type is refused there, with the field's path); what a
+//! field means for a pair, and whether the pair needs it, is decided here. The impact of one pair
+//! is rendered with the user's materials transplanted (`deck.py`): the file's own materials and
 //! relations, read by Kratos' own `MaterialsAssignationUtility`, so that Kratos derives the
 //! damping from the user's restitution exactly as in the user's run.
 //!
@@ -21,6 +23,10 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
+use super::files::{
+    self, LawName, MaterialId, MaterialRef, MaterialVariable, MaterialsFile, Number, ProjectFile,
+    SteppedLaw,
+};
 use super::{
     LOWEST_RESTITUTION, SCHEME, SCRIPT, UNDAMPED_ABOVE, hertz_damping_gamma, linear_damping_gamma,
     mixed_modulus, particle_mass,
@@ -36,7 +42,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::scene::SceneKind;
 
 /// The Python template of one impact with a user's materials.
-const TEMPLATE: &str = include_str!("deck.py");
+pub(super) const TEMPLATE: &str = include_str!("deck.py");
 
 /// The project parameters file a materials file is read with, in its folder.
 pub const PROJECT_FILE: &str = "ProjectParametersDEM.json";
@@ -66,103 +72,13 @@ pub const LINEAR_RADIUS_FACTOR: f64 = 0.31225;
 /// Kratos' deck reader.
 pub struct KratosDeck;
 
-/// A JSON value of a deck file and where it is: the file and the value's path.
-#[derive(Clone, Debug)]
-struct Node<'a> {
-    file: &'a Path,
-    path: String,
-    value: &'a Value,
-}
-
-impl<'a> Node<'a> {
-    fn root(file: &'a Path, value: &'a Value) -> Self {
-        Node {
-            file,
-            path: String::new(),
-            value,
-        }
-    }
-
-    fn at(&self) -> DeckSource {
-        DeckSource::field(
-            self.file,
-            if self.path.is_empty() {
-                "the file's top level"
-            } else {
-                &self.path
-            },
-        )
-    }
-
-    fn child_path(&self, key: &str) -> String {
-        if self.path.is_empty() {
-            key.to_string()
-        } else {
-            format!("{}.{key}", self.path)
-        }
-    }
-
-    fn key(&self, key: &str) -> Option<Node<'a>> {
-        self.value.get(key).map(|value| Node {
-            file: self.file,
-            path: self.child_path(key),
-            value,
-        })
-    }
-
-    fn require(&self, key: &str, supported: &str) -> Result<Node<'a>, DeckError> {
-        self.key(key).ok_or_else(|| {
-            DeckError::unsupported(
-                DeckSource::field(self.file, self.child_path(key)),
-                format!("no {key}"),
-                supported,
-            )
-        })
-    }
-
-    fn items(&self, supported: &str) -> Result<Vec<Node<'a>>, DeckError> {
-        let list = self
-            .value
-            .as_array()
-            .ok_or_else(|| self.bad("a list", supported))?;
-        Ok(list
-            .iter()
-            .enumerate()
-            .map(|(k, value)| Node {
-                file: self.file,
-                path: format!("{}[{k}]", self.path),
-                value,
-            })
-            .collect())
-    }
-
-    fn bad(&self, expected: &str, supported: &str) -> DeckError {
-        DeckError::unsupported(
-            self.at(),
-            format!("`{}` is not {expected}", self.value),
-            supported,
-        )
-    }
-
-    fn number(&self, supported: &str) -> Result<f64, DeckError> {
-        self.value
-            .as_f64()
-            .filter(|x| x.is_finite())
-            .ok_or_else(|| self.bad("a number", supported))
-    }
-
-    fn string(&self, supported: &str) -> Result<&'a str, DeckError> {
-        self.value
-            .as_str()
-            .ok_or_else(|| self.bad("a string", supported))
-    }
-
-    fn id(&self) -> Result<u32, DeckError> {
-        self.value
-            .as_u64()
-            .and_then(|x| u32::try_from(x).ok())
-            .ok_or_else(|| self.bad("a material id", "a whole number from 0"))
-    }
+/// A field the check needs that is not in the file: where it belongs and what it must hold.
+fn missing(file: &Path, path: String, key: &str, supported: &str) -> DeckError {
+    DeckError::unsupported(
+        DeckSource::field(file, path),
+        format!("no {key}"),
+        supported,
+    )
 }
 
 /// Read a JSON file, or say where it is not JSON.
@@ -209,60 +125,80 @@ fn kind_of(value: &Value) -> Option<FileKind> {
     }
 }
 
-/// A material of the materials file.
-#[derive(Clone, Debug)]
-struct Material<'a> {
-    id: u32,
-    name: Option<String>,
-    node: Node<'a>,
+/// A material of the materials file and where it is.
+#[derive(Clone, Copy, Debug)]
+struct Material<'f> {
+    file: &'f Path,
+    index: usize,
+    typed: &'f files::Material,
 }
 
-impl<'a> Material<'a> {
+impl Material<'_> {
+    fn id(&self) -> MaterialId {
+        self.typed.material_id
+    }
+
     fn label(&self) -> String {
-        match &self.name {
-            Some(n) => format!("{} ({n})", self.id),
-            None => self.id.to_string(),
+        match &self.typed.material_name {
+            Some(n) => format!("{} ({n})", self.id()),
+            None => self.id().to_string(),
         }
     }
 
-    fn variable(&self, name: &str, supported: &str) -> Result<f64, DeckError> {
-        self.node
-            .require("Variables", "a material's Variables")?
-            .require(name, supported)?
-            .number(supported)
+    fn at(&self) -> DeckSource {
+        DeckSource::field(self.file, format!("materials[{}]", self.index))
+    }
+
+    fn variable(&self, variable: MaterialVariable, supported: &str) -> Result<f64, DeckError> {
+        self.typed.variables.get(variable).ok_or_else(|| {
+            missing(
+                self.file,
+                format!("materials[{}].Variables.{}", self.index, variable.name()),
+                variable.name(),
+                supported,
+            )
+        })
     }
 }
 
-/// A material relation: the contact settings of two materials.
-#[derive(Clone, Debug)]
-struct Relation<'a> {
-    ids: [u32; 2],
-    node: Node<'a>,
+/// A material relation (the contact settings of two materials) and where it is.
+#[derive(Clone, Copy, Debug)]
+struct Relation<'f> {
+    file: &'f Path,
+    index: usize,
+    typed: &'f files::Relation,
 }
 
-impl<'a> Relation<'a> {
-    fn variables(&self) -> Result<Node<'a>, DeckError> {
-        self.node.require(
-            "Variables",
-            "a relation's Variables (its law and restitution)",
-        )
+impl Relation<'_> {
+    fn ids(&self) -> [MaterialId; 2] {
+        self.typed.material_ids_list
+    }
+
+    fn at(&self) -> DeckSource {
+        DeckSource::field(self.file, format!("material_relations[{}]", self.index))
+    }
+
+    /// Where its variable `key` is.
+    fn variable_path(&self, key: &str) -> String {
+        format!("material_relations[{}].Variables.{key}", self.index)
     }
 
     /// The relation's constitutive law, if the harness steps it.
-    fn law(&self) -> Result<String, DeckError> {
-        let node = self.variables()?.require(
-            "DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME",
-            &format!("a constitutive law: {LAWS}"),
-        )?;
-        let name = node.string(LAWS)?;
-        if LAWS.split(", ").any(|l| l == name) {
-            Ok(name.to_string())
-        } else {
-            Err(DeckError::unsupported(
-                node.at(),
+    fn law(&self) -> Result<SteppedLaw, DeckError> {
+        const KEY: &str = "DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME";
+        match &self.typed.variables.law {
+            Some(LawName::Stepped(law)) => Ok(*law),
+            Some(LawName::Other(name)) => Err(DeckError::unsupported(
+                DeckSource::field(self.file, self.variable_path(KEY)),
                 format!("{name}, a law whose force the harness does not step"),
                 LAWS,
-            ))
+            )),
+            None => Err(missing(
+                self.file,
+                self.variable_path(KEY),
+                KEY,
+                &format!("a constitutive law: {LAWS}"),
+            )),
         }
     }
 }
@@ -319,25 +255,13 @@ struct Project {
 }
 
 impl Project {
-    fn read(path: &Path, value: &Value) -> Result<(Self, PathBuf), DeckError> {
-        let root = Node::root(path, value);
+    fn read(path: &Path, file: &ProjectFile) -> Result<(Self, PathBuf), DeckError> {
         let folder = path.parent().unwrap_or(Path::new("")).to_path_buf();
-        let text =
-            |key: &str, default: &'static str, supported: &str| -> Result<String, DeckError> {
-                root.key(key).map_or(Ok(default.to_string()), |n| {
-                    n.string(supported).map(str::to_string)
-                })
-            };
-        let number = |key: &str, default: f64| -> Result<(f64, Option<Node<'_>>), DeckError> {
-            match root.key(key) {
-                Some(n) => Ok((n.number("a number")?, Some(n))),
-                None => Ok((default, None)),
-            }
-        };
         let refuse = |key: &str, found: String, supported: &str| {
             DeckError::unsupported(DeckSource::field(path, key), found, supported)
         };
-        let dimension = number("Dimension", 3.0)?.0;
+        let number = |value: Option<Number>, default: f64| value.map_or(default, |n| n.0);
+        let dimension = number(file.dimension, 3.0);
         if !(2.5..=3.5).contains(&dimension) {
             return Err(refuse(
                 "Dimension",
@@ -345,18 +269,22 @@ impl Project {
                 "3 (the 2D laws are not read)",
             ));
         }
-        let element = text("ElementType", "SphericPartDEMElement3D", "an element type")?;
+        let element = file
+            .element_type
+            .as_deref()
+            .unwrap_or("SphericPartDEMElement3D");
         if element != "SphericPartDEMElement3D" {
             return Err(refuse(
                 "ElementType",
-                element.clone(),
+                element.to_string(),
                 "SphericPartDEMElement3D (discontinuum spheres)",
             ));
         }
-        let strategy = root
-            .key("solver_settings")
-            .and_then(|s| s.key("strategy"))
-            .map_or(Ok("sphere_strategy"), |n| n.string("a strategy"))?;
+        let strategy = file
+            .solver_settings
+            .strategy
+            .as_deref()
+            .unwrap_or("sphere_strategy");
         if strategy != "sphere_strategy" {
             return Err(refuse(
                 "solver_settings.strategy",
@@ -364,11 +292,10 @@ impl Project {
                 "sphere_strategy (discontinuum spheres)",
             ));
         }
-        let scheme = text(
-            "TranslationalIntegrationScheme",
-            "Symplectic_Euler",
-            "a scheme",
-        )?;
+        let scheme = file
+            .translational_scheme
+            .as_deref()
+            .unwrap_or("Symplectic_Euler");
         if scheme != SCHEME {
             return Err(refuse(
                 "TranslationalIntegrationScheme",
@@ -376,7 +303,7 @@ impl Project {
                 "Symplectic_Euler (Kratos' default, a leap-frog; Forward_Euler gains energy: an elastic impact rebounds at 1.0056 with 1000 steps per contact)",
             ));
         }
-        let (mass_factor, _) = number("VirtualMassCoefficient", 1.0)?;
+        let mass_factor = number(file.virtual_mass_coefficient, 1.0);
         #[allow(clippy::float_cmp)] // 1.0 is Kratos' default and its only neutral value
         if mass_factor != 1.0 {
             return Err(refuse(
@@ -385,7 +312,7 @@ impl Project {
                 "1.0",
             ));
         }
-        let (timestep, given) = number("MaxTimeStep", DEFAULT_MAX_TIME_STEP)?;
+        let timestep = number(file.max_time_step, DEFAULT_MAX_TIME_STEP);
         if timestep <= 0.0 {
             return Err(refuse(
                 "MaxTimeStep",
@@ -393,70 +320,58 @@ impl Project {
                 "a positive time step, s",
             ));
         }
-        let timestep_from = match given {
-            Some(n) => n.at().to_string(),
+        let timestep_from = match file.max_time_step {
+            Some(_) => DeckSource::field(path, "MaxTimeStep").to_string(),
             None => format!("Kratos' default MaxTimeStep: {} sets none", path.display()),
         };
         let mut left_out = Vec::new();
-        if root
-            .key("AutomaticTimestep")
-            .is_some_and(|n| n.value.as_bool() == Some(true))
-        {
+        if file.automatic_timestep == Some(true) {
             left_out.push(format!(
                 "AutomaticTimestep true ({}): Kratos 10.4.4 reads it nowhere (its stage steps by MaxTimeStep); the impacts run at MaxTimeStep",
                 path.display()
             ));
         }
-        let (global_damping, damping_node) = number("GlobalDamping", 0.0)?;
-        let global_damping = damping_node
-            .filter(|_| global_damping != 0.0)
-            .map(|n| (global_damping, n.at()));
+        let global_damping = file
+            .global_damping
+            .filter(|g| g.0 != 0.0)
+            .map(|g| (g.0, DeckSource::field(path, "GlobalDamping")));
         if let Some((g, at)) = &global_damping {
             left_out.push(format!(
                 "GlobalDamping {g} ({at}): Kratos damps every particle's total force by it; the impacts check the contact alone, without it"
             ));
         }
-        let (frequency, frequency_node) = number(
-            "NeighbourSearchFrequency",
+        let frequency = number(
+            file.neighbour_search_frequency,
             DEFAULT_NEIGHBOUR_SEARCH_FREQUENCY,
-        )?;
-        let search = (frequency > 1.0).then(|| {
-            let tolerance = |key: &str| root.key(key).and_then(|n| n.value.as_f64()).unwrap_or(0.0);
-            Search {
-                frequency,
-                from: frequency_node.map_or_else(
-                    || format!("Kratos' default: {} sets none", path.display()),
-                    |n| n.at().to_string(),
-                ),
-                particles: tolerance("SearchTolerance"),
-                walls: tolerance("search_tolerance_against_walls"),
-                absolute: root
-                    .key("DeltaOption")
-                    .and_then(|n| n.value.as_str())
-                    .is_none_or(|o| o == "Absolute"),
-            }
+        );
+        let search = (frequency > 1.0).then(|| Search {
+            frequency,
+            from: match file.neighbour_search_frequency {
+                Some(_) => DeckSource::field(path, "NeighbourSearchFrequency").to_string(),
+                None => format!("Kratos' default: {} sets none", path.display()),
+            },
+            particles: number(file.search_tolerance, 0.0),
+            walls: number(file.search_tolerance_against_walls, 0.0),
+            absolute: file.delta_option.as_deref().is_none_or(|o| o == "Absolute"),
         });
         left_out.push(format!(
             "gravity, rotation, bounding box, output and the run's length ({}): the impact is one free normal impact",
             path.display()
         ));
-        let problem_name = root
-            .key("problem_name")
-            .map(|n| n.string("the problem's name").map(str::to_string))
-            .transpose()?;
-        let materials = root
-            .key("solver_settings")
-            .and_then(|s| s.key("material_import_settings"))
-            .and_then(|m| m.key("materials_filename"))
-            .map_or(Ok(MATERIALS_FILE), |n| n.string("a file name"))?;
-        let materials = folder.join(materials);
+        let materials = folder.join(
+            file.solver_settings
+                .material_import_settings
+                .materials_filename
+                .as_deref()
+                .unwrap_or(MATERIALS_FILE),
+        );
         Ok((
             Project {
                 timestep,
                 timestep_from,
                 global_damping,
                 search,
-                problem_name,
+                problem_name: file.problem_name.clone(),
                 folder,
                 left_out,
             },
@@ -628,6 +543,14 @@ enum Root {
     Clusters,
 }
 
+/// A model part of the assignation table: its name, where it lives, its entry's index.
+#[derive(Clone, Debug)]
+struct Assigned {
+    name: String,
+    root: Root,
+    index: usize,
+}
+
 fn split_part(name: &str) -> (&str, Option<&str>) {
     match name.split_once('.') {
         Some((root, rest)) => (root, Some(rest)),
@@ -655,16 +578,21 @@ fn pair_law(
     own: (&Material<'_>, f64, f64),
     other: &Side<'_, '_>,
 ) -> Result<PairLaw, DeckError> {
-    let vars = relation.variables()?;
-    let name = relation.law()?;
-    let cor_node = vars.require(
-        "COEFFICIENT_OF_RESTITUTION",
-        "COEFFICIENT_OF_RESTITUTION (Kratos reads a missing one as 0 and damps as at 0.001)",
-    )?;
-    let entered = cor_node.number("a restitution in (0, 1]")?;
+    let vars = &relation.typed.variables;
+    let law_name = relation.law()?;
+    let name = law_name.name().to_string();
+    const COR: &str = "COEFFICIENT_OF_RESTITUTION";
+    let entered = vars.restitution.map(|n| n.0).ok_or_else(|| {
+        missing(
+            relation.file,
+            relation.variable_path(COR),
+            COR,
+            "COEFFICIENT_OF_RESTITUTION (Kratos reads a missing one as 0 and damps as at 0.001)",
+        )
+    })?;
     if !(entered > 0.0 && entered <= 1.0) {
         return Err(DeckError::unsupported(
-            cor_node.at(),
+            DeckSource::field(relation.file, relation.variable_path(COR)),
             format!("{entered}"),
             "a restitution in (0, 1]",
         ));
@@ -679,12 +607,12 @@ fn pair_law(
     let elastic = "YOUNG_MODULUS and POISSON_RATIO (the law mixes both materials' into E*)";
     let modulus = || -> Result<(f64, f64), DeckError> {
         let (e1, nu1) = (
-            material.variable("YOUNG_MODULUS", elastic)?,
-            material.variable("POISSON_RATIO", elastic)?,
+            material.variable(MaterialVariable::YoungModulus, elastic)?,
+            material.variable(MaterialVariable::PoissonRatio, elastic)?,
         );
         let (e2, nu2) = (
-            other_material.variable("YOUNG_MODULUS", elastic)?,
-            other_material.variable("POISSON_RATIO", elastic)?,
+            other_material.variable(MaterialVariable::YoungModulus, elastic)?,
+            other_material.variable(MaterialVariable::PoissonRatio, elastic)?,
         );
         Ok((mixed_modulus(e1, nu1, e2, nu2), e1 / (1.0 - nu1 * nu1)))
     };
@@ -692,13 +620,13 @@ fn pair_law(
         Ok(format!(
             "wall modulus: the wall's material {} is mixed into E* = {e_star:.4e} Pa (E = {:e} Pa, ν = {}), {:.3e} of the particle's own E/(1−ν²) = {rigid:.4e} Pa against a rigid wall",
             other_material.label(),
-            other_material.variable("YOUNG_MODULUS", elastic)?,
-            other_material.variable("POISSON_RATIO", elastic)?,
+            other_material.variable(MaterialVariable::YoungModulus, elastic)?,
+            other_material.variable(MaterialVariable::PoissonRatio, elastic)?,
             e_star / rigid
         ))
     };
-    let law = match name.as_str() {
-        "DEM_D_Hertz_viscous_Coulomb" => {
+    let law = match law_name {
+        SteppedLaw::HertzViscousCoulomb => {
             let (e_star, rigid) = modulus()?;
             if at_wall {
                 traps.push(wall_trap(e_star, rigid)?);
@@ -716,7 +644,7 @@ fn pair_law(
             }
         }
         linear => {
-            let stiffness = if linear == "DEM_D_Linear_viscous_Coulomb" {
+            let stiffness = if linear == SteppedLaw::LinearViscousCoulomb {
                 let (e_star, rigid) = modulus()?;
                 let modified = radius_star * LINEAR_RADIUS_FACTOR;
                 let k = if at_wall {
@@ -736,14 +664,17 @@ fn pair_law(
                 ));
                 k
             } else {
-                let k_node = vars.require(
-                    "K_NORMAL",
-                    "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants",
-                )?;
-                let k = k_node.number("a positive stiffness, N/m")?;
+                let k = vars.k_normal.map(|n| n.0).ok_or_else(|| {
+                    missing(
+                        relation.file,
+                        relation.variable_path("K_NORMAL"),
+                        "K_NORMAL",
+                        "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants",
+                    )
+                })?;
                 if k <= 0.0 {
                     return Err(DeckError::unsupported(
-                        k_node.at(),
+                        DeckSource::field(relation.file, relation.variable_path("K_NORMAL")),
                         format!("{k}"),
                         "a positive stiffness, N/m",
                     ));
@@ -775,19 +706,7 @@ fn pair_law(
         }
     };
     traps.push("clamped: Kratos sets a negative (attractive) total normal force to zero at the end of contact: the COR is the clamped law's".into());
-    let tangential: Vec<&str> = [
-        "STATIC_FRICTION",
-        "DYNAMIC_FRICTION",
-        "ROLLING_FRICTION",
-        "ROLLING_FRICTION_WITH_WALLS",
-    ]
-    .into_iter()
-    .filter(|v| {
-        vars.key(v)
-            .and_then(|n| n.value.as_f64())
-            .is_some_and(|x| x != 0.0)
-    })
-    .collect();
+    let tangential = vars.tangential();
     if !tangential.is_empty() {
         traps.push(format!(
             "{} act on no head-on impact: kept, and they change nothing here",
@@ -804,7 +723,7 @@ fn pair_law(
         name,
         entered,
         traps,
-        at: relation.node.at(),
+        at: relation.at(),
     })
 }
 
@@ -870,12 +789,12 @@ impl KratosDeck {
 /// The deck's particle sizes of one material: `(radius, from)`.
 fn sizes_of(
     material: &Material<'_>,
-    parts: &[(&str, Root, Node<'_>)],
+    parts: &[(&str, Root)],
     mdpa: &mut Option<(PathBuf, Option<Mdpa>)>,
     inlet: &mut Option<(PathBuf, Option<Mdpa>)>,
 ) -> Result<Vec<(f64, String)>, DeckError> {
     let mut sizes = Vec::new();
-    for (name, root, _) in parts {
+    for (name, root) in parts {
         let (_, sub) = split_part(name);
         let slot = match root {
             Root::Spheres => &mut *mdpa,
@@ -909,7 +828,7 @@ fn sizes_of(
                         ),
                         supported: format!(
                             "at most {MAX_SIZES} are checked one by one: give the sizes to check with --particle {}:RADIUS:DENSITY",
-                            material.id
+                            material.id()
                         ),
                     });
                 }
@@ -931,7 +850,7 @@ fn sizes_of(
                         what: format!("no SubModelPart {} for the inlet {name}", sub.unwrap_or("")),
                         supported: format!(
                             "the inlet's RADIUS, or --particle {}:RADIUS:DENSITY",
-                            material.id
+                            material.id()
                         ),
                     })?;
                 let at = SourceLine {
@@ -961,7 +880,7 @@ fn sizes_of(
                         part.data
                             .get("PROBABILITY_DISTRIBUTION")
                             .map_or("normal", String::as_str),
-                        material.id
+                        material.id()
                     )
                 } else {
                     format!("the RADIUS of the inlet {name} ({at})")
@@ -999,7 +918,8 @@ impl DeckReader for KratosDeck {
         }
         let files = Self::files(path, read_json(path)?)?;
         let (project_path, project_value) = files.project;
-        let (project, named_by_project) = Project::read(&project_path, &project_value)?;
+        let project_file: ProjectFile = files::typed(&project_path, &project_value)?;
+        let (project, named_by_project) = Project::read(&project_path, &project_file)?;
         let (materials_path, materials_value) = match files.materials {
             None => {
                 let value = read_json(&named_by_project)?;
@@ -1024,81 +944,77 @@ impl DeckReader for KratosDeck {
                 (named, value)
             }
         };
-        let root = Node::root(&materials_path, &materials_value);
-        let mut materials: Vec<Material<'_>> = Vec::new();
-        for node in root
-            .require("materials", "a list of materials")?
-            .items("a list of materials")?
-        {
-            let id = node.require("material_id", "a material_id")?.id()?;
-            let name = node
-                .key("material_name")
-                .map(|n| n.string("a name").map(str::to_string))
-                .transpose()?;
-            materials.push(Material { id, name, node });
-        }
-        let relations: Vec<Relation<'_>> = root
-            .require(
-                "material_relations",
-                "the material relations (each pair's law and restitution)",
-            )?
-            .items("a list of material relations")?
-            .into_iter()
-            .map(|node| {
-                let ids = node.require("material_ids_list", "material_ids_list [ID, ID]")?;
-                let list = ids.items("material_ids_list [ID, ID]")?;
-                match list.as_slice() {
-                    [a, b] => Ok(Relation {
-                        ids: [a.id()?, b.id()?],
-                        node,
-                    }),
-                    _ => Err(ids.bad("two material ids", "material_ids_list [ID, ID]")),
-                }
+        let file: MaterialsFile = files::typed(&materials_path, &materials_value)?;
+        let file_path = materials_path.as_path();
+        let materials: Vec<Material<'_>> = file
+            .materials
+            .iter()
+            .enumerate()
+            .map(|(index, typed)| Material {
+                file: file_path,
+                index,
+                typed,
             })
-            .collect::<Result<_, DeckError>>()?;
+            .collect();
+        for (k, m) in materials.iter().enumerate() {
+            if let Some(first) = materials[..k].iter().find(|o| o.id() == m.id()) {
+                return Err(DeckError::unsupported(
+                    DeckSource::field(file_path, format!("materials[{k}].material_id")),
+                    format!("{}, which materials[{}] has already", m.id(), first.index),
+                    "one material per material_id",
+                ));
+            }
+        }
+        let relations: Vec<Relation<'_>> = file
+            .material_relations
+            .iter()
+            .enumerate()
+            .map(|(index, typed)| Relation {
+                file: file_path,
+                index,
+                typed,
+            })
+            .collect();
         // Which model parts are particles and which walls, each with its material.
         let parts_supported = "SpheresPart, DEMInletPart and RigidFacePart (ClusterPart is left out), or their sub-model parts";
-        let mut assigned: BTreeMap<u32, Vec<(String, Root, Node<'_>)>> = BTreeMap::new();
+        let mut assigned: BTreeMap<MaterialId, Vec<Assigned>> = BTreeMap::new();
         let mut left_out = project.left_out.clone();
-        let table = root.require(
-            "material_assignation_table",
-            "the material assignation table ([MODEL PART, MATERIAL] pairs)",
-        )?;
-        for entry in table.items("a list of [MODEL PART, MATERIAL] pairs")? {
-            let pair = entry.items("[MODEL PART, MATERIAL]")?;
-            let [part, which] = pair.as_slice() else {
-                return Err(entry.bad("a [MODEL PART, MATERIAL] pair", "[MODEL PART, MATERIAL]"));
+        for (index, entry) in file.material_assignation_table.iter().enumerate() {
+            let entry_at = |k: usize| {
+                DeckSource::field(
+                    file_path,
+                    format!("material_assignation_table[{index}][{k}]"),
+                )
             };
-            let part_name = part.string("a model part's name")?.to_string();
-            let material = match which.value.as_str() {
-                Some(n) => materials
+            let material = match &entry.material {
+                MaterialRef::Name(n) => materials
                     .iter()
-                    .find(|m| m.name.as_deref() == Some(n))
-                    .map(|m| m.id)
+                    .find(|m| m.typed.material_name.as_deref() == Some(n.as_str()))
+                    .map(Material::id)
                     .ok_or_else(|| {
                         DeckError::unsupported(
-                            which.at(),
+                            entry_at(1),
                             format!("material `{n}` is in no material_name"),
                             "the name or id of a material of the file",
                         )
                     })?,
-                None => which.id()?,
+                MaterialRef::Id(id) => *id,
             };
-            if !materials.iter().any(|m| m.id == material) {
+            if !materials.iter().any(|m| m.id() == material) {
                 return Err(DeckError::unsupported(
-                    which.at(),
+                    entry_at(1),
                     format!("material {material} is in no material_id"),
                     "the name or id of a material of the file",
                 ));
             }
-            let root_kind = match split_part(&part_name).0 {
+            let root_kind = match split_part(&entry.part).0 {
                 "SpheresPart" => Root::Spheres,
                 "DEMInletPart" => Root::Inlet,
                 "RigidFacePart" => Root::Walls,
                 "ClusterPart" => Root::Clusters,
                 other => {
                     return Err(DeckError::unsupported(
-                        part.at(),
+                        entry_at(0),
                         format!("model part `{other}`"),
                         parts_supported,
                     ));
@@ -1106,30 +1022,32 @@ impl DeckReader for KratosDeck {
             };
             if root_kind == Root::Clusters {
                 left_out.push(format!(
-                    "clusters ({part_name}, {}): particles of several spheres are not checked",
-                    entry.at()
+                    "clusters ({}, {}): particles of several spheres are not checked",
+                    entry.part,
+                    DeckSource::field(file_path, format!("material_assignation_table[{index}]"))
                 ));
                 continue;
             }
-            assigned
-                .entry(material)
-                .or_default()
-                .push((part_name, root_kind, entry));
+            assigned.entry(material).or_default().push(Assigned {
+                name: entry.part.clone(),
+                root: root_kind,
+                index,
+            });
         }
-        let material_of = |id: u32| {
+        let material_of = |id: MaterialId| {
             materials
                 .iter()
-                .find(|m| m.id == id)
+                .find(|m| m.id() == id)
                 .expect("assigned materials exist")
         };
         // Every relation the check will use names a law it steps, before any size is looked for.
-        let role = |id: u32, wall: bool| {
+        let role = |id: MaterialId, wall: bool| {
             assigned
                 .get(&id)
-                .is_some_and(|ps| ps.iter().any(|(_, r, _)| (*r == Root::Walls) == wall))
+                .is_some_and(|ps| ps.iter().any(|p| (p.root == Root::Walls) == wall))
         };
         for r in &relations {
-            let [a, b] = r.ids;
+            let [a, b] = r.ids();
             if (role(a, false) && (role(b, false) || role(b, true)))
                 || (role(b, false) && role(a, true))
             {
@@ -1143,11 +1061,11 @@ impl DeckReader for KratosDeck {
             None,
         ));
         let mut bodies: Vec<DeckBody> = Vec::new();
-        let given: BTreeSet<u32> = options.particles.iter().map(|p| p.type_id).collect();
+        let given: BTreeSet<MaterialId> = options.particles.iter().map(|p| p.type_id).collect();
         for p in &options.particles {
             let parts = assigned.get(&p.type_id).filter(|ps| {
                 ps.iter()
-                    .any(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet))
+                    .any(|part| matches!(part.root, Root::Spheres | Root::Inlet))
             });
             if parts.is_none() {
                 return Err(DeckError::Lacking {
@@ -1161,7 +1079,8 @@ impl DeckReader for KratosDeck {
                 });
             }
             let material = material_of(p.type_id);
-            let density = material.variable("PARTICLE_DENSITY", "PARTICLE_DENSITY, kg/m³")?;
+            let density =
+                material.variable(MaterialVariable::ParticleDensity, "PARTICLE_DENSITY, kg/m³")?;
             #[allow(clippy::float_cmp)] // the density given must be the material's, bit for bit
             if p.density != density {
                 return Err(DeckError::Lacking {
@@ -1178,21 +1097,21 @@ impl DeckReader for KratosDeck {
             }
         }
         for (id, parts) in &assigned {
-            let particles: Vec<(&str, Root, Node<'_>)> = parts
+            let particles: Vec<(&str, Root)> = parts
                 .iter()
-                .filter(|(_, r, _)| matches!(r, Root::Spheres | Root::Inlet))
-                .map(|(n, r, e)| (n.as_str(), *r, e.clone()))
+                .filter(|p| matches!(p.root, Root::Spheres | Root::Inlet))
+                .map(|p| (p.name.as_str(), p.root))
                 .collect();
             if particles.is_empty() {
                 continue;
             }
             let material = material_of(*id);
             let density = material.variable(
-                "PARTICLE_DENSITY",
+                MaterialVariable::ParticleDensity,
                 "PARTICLE_DENSITY, kg/m³ (a particle material's)",
             )?;
-            let e = material.variable("YOUNG_MODULUS", "YOUNG_MODULUS, Pa")?;
-            let nu = material.variable("POISSON_RATIO", "POISSON_RATIO")?;
+            let e = material.variable(MaterialVariable::YoungModulus, "YOUNG_MODULUS, Pa")?;
+            let nu = material.variable(MaterialVariable::PoissonRatio, "POISSON_RATIO")?;
             let sizes: Vec<(f64, String)> = if given.contains(id) {
                 options
                     .particles
@@ -1249,8 +1168,8 @@ impl DeckReader for KratosDeck {
         for (id, parts) in &assigned {
             let names: Vec<&str> = parts
                 .iter()
-                .filter(|(_, r, _)| *r == Root::Walls)
-                .map(|(n, _, _)| n.as_str())
+                .filter(|p| p.root == Root::Walls)
+                .map(|p| p.name.as_str())
                 .collect();
             if names.is_empty() {
                 continue;
@@ -1259,13 +1178,13 @@ impl DeckReader for KratosDeck {
             walls.push(DeckWall {
                 name: names.join(", "),
                 type_id: Some(*id),
-                youngs_modulus: material.variable("YOUNG_MODULUS", "YOUNG_MODULUS, Pa").ok(),
-                poisson_ratio: material.variable("POISSON_RATIO", "POISSON_RATIO").ok(),
-                from: material.node.at(),
+                youngs_modulus: material.typed.variables.get(MaterialVariable::YoungModulus),
+                poisson_ratio: material.typed.variables.get(MaterialVariable::PoissonRatio),
+                from: material.at(),
             });
         }
-        let relation_of = |a: u32, b: u32| -> Result<&Relation<'_>, DeckError> {
-            relations.iter().find(|r| r.ids == [a, b] || r.ids == [b, a]).ok_or_else(|| DeckError::Lacking {
+        let relation_of = |a: MaterialId, b: MaterialId| -> Result<&Relation<'_>, DeckError> {
+            relations.iter().find(|r| r.ids() == [a, b] || r.ids() == [b, a]).ok_or_else(|| DeckError::Lacking {
                 file: materials_path.clone(),
                 what: format!("no material_relations entry for the materials {} and {}", material_of(a).label(), material_of(b).label()),
                 supported: "a relation (law, COEFFICIENT_OF_RESTITUTION) for every pair of materials that meet, as Kratos needs".into(),
@@ -1282,7 +1201,7 @@ impl DeckReader for KratosDeck {
                         types: [TypeRef; 2],
                         relation: &Relation<'_>,
                         pl: PairLaw| {
-            used_relations.insert(relation.node.path.clone());
+            used_relations.insert(relation.index);
             let mut traps = pl.traps;
             traps.extend(
                 project
@@ -1345,14 +1264,23 @@ impl DeckReader for KratosDeck {
             .map(|b| b.type_id)
             .chain(walls.iter().filter_map(|w| w.type_id))
             .collect();
+        let written = |key: &str, index: usize| materials_value[key][index].clone();
         let reduced = serde_json::json!({
-            "materials": materials.iter().filter(|m| used.contains(&m.id)).map(|m| m.node.value.clone()).collect::<Vec<_>>(),
-            "material_relations": relations.iter().filter(|r| used_relations.contains(&r.node.path)).map(|r| r.node.value.clone()).collect::<Vec<_>>(),
+            "materials": materials.iter().filter(|m| used.contains(&m.id())).map(|m| written("materials", m.index)).collect::<Vec<_>>(),
+            "material_relations": relations.iter().filter(|r| used_relations.contains(&r.index)).map(|r| written("material_relations", r.index)).collect::<Vec<_>>(),
         });
         let unused: Vec<String> = relations
             .iter()
-            .filter(|r| !used_relations.contains(&r.node.path))
-            .map(|r| r.node.path.clone())
+            .filter(|r| !used_relations.contains(&r.index))
+            .map(|r| {
+                let law = r
+                    .typed
+                    .variables
+                    .law
+                    .as_ref()
+                    .map_or("no law", LawName::name);
+                format!("material_relations[{}] ({law})", r.index)
+            })
             .collect();
         if !unused.is_empty() {
             left_out.push(format!(
@@ -1389,8 +1317,8 @@ impl DeckReader for KratosDeck {
                 walls: assigned
                     .values()
                     .flatten()
-                    .filter(|(_, r, _)| *r == Root::Walls)
-                    .map(|(_, _, e)| e.value.to_string())
+                    .filter(|p| p.root == Root::Walls)
+                    .map(|p| written("material_assignation_table", p.index).to_string())
                     .collect(),
                 types: particle_types,
             },
@@ -1471,10 +1399,12 @@ impl DeckReader for KratosDeck {
             // Last: the user's text is filled in after every placeholder.
             ("materials", materials),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
-            code: "kratos".into(),
-            case: setup.case_name.clone(),
-            reason: e.to_string(),
+        let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| {
+            CodeError::Unsupported {
+                code: "kratos".into(),
+                case: setup.case_name.clone(),
+                reason: e.to_string(),
+            }
         })?;
         Ok(DeckImpactInput {
             input: RenderedInput {
@@ -1506,6 +1436,13 @@ mod tests {
             let exact = crate::codes::damping::clamped_linear_damping_ratio(e).unwrap();
             assert!((linear_damping_gamma(e) - exact).abs() < 1e-4, "{e}");
         }
+    }
+
+    /// The laws named in messages are the ones the typed reader takes.
+    #[test]
+    fn the_laws_named_are_the_laws_read() {
+        let names: Vec<&str> = SteppedLaw::ALL.iter().map(|l| l.name()).collect();
+        assert_eq!(names.join(", "), LAWS);
     }
 
     #[test]

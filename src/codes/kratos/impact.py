@@ -5,34 +5,6 @@
 # step, aligned as YADE's: the state the contact law saw in that step and the force it computed
 # from it) and prints MILLIMPACT lines that the driver parses. Writes no other file (no GiD, VTK
 # or graph output, no directories).
-#
-# What it sets up, and why (each measured on 10.4.4, see the driver's notes):
-# - a DEMAnalysisStage subclass that builds its model in ReadModelParts (no mdpa or materials
-#   file): the properties first (with the integration scheme and properties proxies: without
-#   either, CreateSphericParticle segfaults), then the spheres (creator_destructor
-#   .CreateSphericParticle) and, for a plate, a wall of two RigidFace3D3N triangles;
-# - NeighbourSearchFrequency 1 (default 50: the wall contact is found only at step 48);
-# - one OpenMP thread (default two: a one-sphere loop 5-10x slower on this machine);
-# - no gravity, no friction, no rotation, no global damping, no output files;
-# - its own step loop (the stage's costs ~0.65 ms a step, ~90 % of it in Python).
-# Ball scenes: DEM_D_Hertz_viscous_Coulomb, F = k y^1.5 + 2 gamma sqrt(1.5 m* k) y^(1/4) ydot,
-# total normal force clamped at zero, k = (4/3) E* sqrt(R*) (E* mixed with the wall's E and nu,
-# R* = R at the wall), gamma from EN by Thornton's fit. rod_end: DEM_D_Linear_Custom_Constants,
-# F = k y + 2 gamma sqrt(m k) ydot, clamped at zero.
-import os
-
-# One thread: Kratos' default of two OpenMP threads makes a one-sphere loop 5-10x slower. This
-# must be set before Kratos (and its OpenMP runtime) loads; the driver sets it too.
-os.environ["OMP_NUM_THREADS"] = "1"
-
-import math
-import time
-from importlib.metadata import version
-
-import KratosMultiphysics as KM
-import KratosMultiphysics.DEMApplication as DEM
-from KratosMultiphysics.DEMApplication.DEM_analysis_stage import DEMAnalysisStage
-
 SCENE = "{{scene}}"  # ball_plate | ball_ball | rod_end
 DT = {{timestep}}
 STEPS = {{steps}}
@@ -63,199 +35,44 @@ GAMMA = {{damping_gamma}}
 # Translational scheme: Symplectic_Euler (default), Velocity_Verlet, Forward_Euler, Taylor_Scheme.
 SCHEME = "{{scheme}}"
 
-KM.Logger.GetDefaultOutput().SetSeverity(KM.Logger.Severity.WARNING)
-KM.ParallelUtilities.SetNumThreads(1)
-
-PARAMETERS = """
-{
-    "problem_name"                   : "impact",
-    "do_print_results_option"        : false,
-    "post_gid_option"                : false,
-    "post_vtk_option"                : false,
-    "Dimension"                      : 3,
-    "BoundingBoxOption"              : false,
-    "dem_inlet_option"               : false,
-    "GravityX"                       : 0.0,
-    "GravityY"                       : 0.0,
-    "GravityZ"                       : 0.0,
-    "RotationOption"                 : false,
-    "CleanIndentationsOption"        : false,
-    "EnergyCalculationOption"        : false,
-    "GlobalDamping"                  : 0.0,
-    "VirtualMassCoefficient"         : 1.0,
-    "DeltaOption"                    : "Absolute",
-    "SearchTolerance"                : 0.0,
-    "search_tolerance_against_walls" : 0.0,
-    "NeighbourSearchFrequency"       : 1,
-    "TranslationalIntegrationScheme" : "SCHEME_NAME",
-    "RotationalIntegrationScheme"    : "Direct_Integration",
-    "AutomaticTimestep"              : false,
-    "MaxTimeStep"                    : 1.0,
-    "FinalTime"                      : 1.0,
-    "ControlTime"                    : 1e30,
-    "GraphExportFreq"                : 1e30,
-    "VelTrapGraphExportFreq"         : 1e30,
-    "OutputTimeStep"                 : 1e30,
-    "PostVelocity"                   : false,
-    "ElementType"                    : "SphericPartDEMElement3D",
-    "echo_level"                     : 0,
-    "solver_settings"                : {
-        "strategy"                          : "sphere_strategy",
-        "RemoveBallsInitiallyTouchingWalls" : false,
-        "model_import_settings"             : { "input_type" : "mdpa", "input_filename" : "impact" },
-        "material_import_settings"          : { "materials_filename" : "" }
-    }
-}
-""".replace("SCHEME_NAME", SCHEME)
-
-SCHEMES = {
-    "Symplectic_Euler": DEM.SymplecticEulerScheme,
-    "Velocity_Verlet": DEM.VelocityVerletScheme,
-    "Forward_Euler": DEM.ForwardEulerScheme,
-    "Taylor_Scheme": DEM.TaylorScheme,
-}
+{{common}}
 
 # Property ids: 1 the moving sphere, 2 the wall (ball_plate, rod_end) or the other sphere.
 BALL, OTHER = 1, 2
-# The wall: the plane z = 0, a square of side 2 L made of two triangles; the sphere comes down
-# onto the middle of one triangle (away from the shared diagonal), from z > 0.
+# The wall's half side, 4 R; the sphere comes down onto the middle of one triangle.
 L = 4.0 * R1
 CONTACT_X, CONTACT_Y = 0.5 * L, -0.5 * L
 
 
-def ball_material(props, density, young, poisson):
-    props[DEM.PARTICLE_DENSITY] = density
-    props[KM.YOUNG_MODULUS] = young
-    props[KM.POISSON_RATIO] = poisson
-    props[KM.PARTICLE_MATERIAL] = props.Id
-    props[DEM.ROLLING_FRICTION] = 0.0
-    props[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
-    props[DEM.COMPUTE_WEAR] = False
-    props[DEM.DEM_TRANSLATIONAL_INTEGRATION_SCHEME_NAME] = SCHEME
-    props[DEM.DEM_ROTATIONAL_INTEGRATION_SCHEME_NAME] = "Direct_Integration"
-    # The scheme must be in the particle's properties before the particle is created (and the
-    # properties proxies must exist, below): without either, CreateSphericParticle segfaults
-    # (exit 139, no message).
-    SCHEMES[SCHEME]().SetTranslationalIntegrationSchemeInProperties(props, False)
-    SCHEMES[SCHEME]().SetRotationalIntegrationSchemeInProperties(props, False)
-
-
-def wall_material(props, young, poisson):
-    props[KM.YOUNG_MODULUS] = young
-    props[KM.POISSON_RATIO] = poisson
-    props[DEM.STATIC_FRICTION] = 0.0
-    props[DEM.DYNAMIC_FRICTION] = 0.0
-    props[DEM.WALL_COHESION] = 0.0
-    props[DEM.COMPUTE_WEAR] = False
-    props[DEM.SEVERITY_OF_WEAR] = 0.0
-    props[DEM.IMPACT_WEAR_SEVERITY] = 0.0
-    props[DEM.BRINELL_HARDNESS] = 200.0
-
-
-def relation(props, other_id):
-    """The contact properties of `props` with material `other_id` (a sub-property)."""
-    sub = KM.Properties(other_id)
-    sub[DEM.STATIC_FRICTION] = 0.0
-    sub[DEM.DYNAMIC_FRICTION] = 0.0
-    sub[DEM.FRICTION_DECAY] = 500.0
-    sub[DEM.ROLLING_FRICTION] = 0.0
-    sub[DEM.ROLLING_FRICTION_WITH_WALLS] = 0.0
-    sub[DEM.PARTICLE_COHESION] = 0.0
-    sub[DEM.DEM_ROLLING_FRICTION_MODEL_NAME] = "DEMRollingFrictionModelBounded"
-    if SCENE == "rod_end":
-        # k and c set directly: K_NORMAL is read from the contact's sub-properties.
-        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Linear_Custom_Constants"
-        sub[DEM.K_NORMAL] = KN
-        sub[DEM.K_TANGENTIAL] = 0.0
-        sub[DEM.COEFFICIENT_OF_RESTITUTION] = 1.0
-    else:
-        sub[DEM.DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME] = "DEM_D_Hertz_viscous_Coulomb"
-        sub[DEM.COEFFICIENT_OF_RESTITUTION] = EN
-    props.AddSubProperties(sub)
-
-
-class Impact(DEMAnalysisStage):
+class Impact(OneImpact):
     def ReadModelParts(self, max_node_id=0, max_elem_id=0, max_cond_id=0):
         spheres = self.spheres_model_part
         ball = spheres.CreateNewProperties(BALL)
-        ball_material(ball, RHO1, E1, NU1)
+        ball_material(ball, RHO1, E1, NU1, SCHEME)
+        other = spheres.CreateNewProperties(OTHER)
         if SCENE == "ball_ball":
-            other = spheres.CreateNewProperties(OTHER)
-            ball_material(other, RHO2, E2, NU2)
+            ball_material(other, RHO2, E2, NU2, SCHEME)
             for a, b in ((ball, BALL), (ball, OTHER), (other, BALL), (other, OTHER)):
-                relation(a, b)
+                relation(a, b, SCENE, EN, KN)
         else:
-            wall = spheres.CreateNewProperties(OTHER)
-            wall_material(wall, WALL_E, WALL_NU)
-            relation(ball, OTHER)
-            relation(wall, BALL)
+            wall_material(other, WALL_E, WALL_NU)
+            relation(ball, OTHER, SCENE, EN, KN)
+            relation(other, BALL, SCENE, EN, KN)
 
         # The particles read their material through properties proxies: create them before the
         # particles (without them CreateSphericParticle segfaults too).
         DEM.PropertiesProxiesManager().CreatePropertiesProxies(spheres)
-        creator = self.creator_destructor
-        if SCENE == "ball_ball":
-            # Along x, centres R1 + R2 apart plus one ulp: touching but not overlapping. (10.4.4
-            # does not count an overlap of exactly 0 as contact; the ulp guards a build that would,
-            # as LAMMPS 2021 and YADE do.)
-            x2 = math.nextafter(R1 + R2, math.inf)
-            self.e1 = creator.CreateSphericParticle(spheres, 1, KM.Array3([0.0, 0.0, 0.0]), ball, R1, "SphericParticle3D")
-            self.e2 = creator.CreateSphericParticle(spheres, 2, KM.Array3([x2, 0.0, 0.0]), other, R2, "SphericParticle3D")
-        else:
-            z1 = math.nextafter(R1, math.inf)  # one ulp above touching, as for two balls
-            self.e1 = creator.CreateSphericParticle(spheres, 1, KM.Array3([CONTACT_X, CONTACT_Y, z1]), ball, R1, "SphericParticle3D")
-            self.e2 = None
-            walls = self.rigid_face_model_part
-            wall_props = spheres.GetProperties()[OTHER]
-            walls.CreateNewNode(11, -L, -L, 0.0)
-            walls.CreateNewNode(12, L, -L, 0.0)
-            walls.CreateNewNode(13, L, L, 0.0)
-            walls.CreateNewNode(14, -L, L, 0.0)
-            walls.CreateNewCondition("RigidFace3D3N", 1, [11, 12, 13], wall_props)
-            walls.CreateNewCondition("RigidFace3D3N", 2, [11, 13, 14], wall_props)
+        self.place(ball, R1, other, R2, CONTACT_X, CONTACT_Y)
+        if SCENE != "ball_ball":
+            add_wall(self.rigid_face_model_part, spheres.GetProperties()[OTHER], L, 11)
         self.model_parts_have_been_read = True
         self.all_model_parts.ComputeMaxIds()
-
-    def SetMaterials(self):
-        pass  # built in ReadModelParts
-
-    def SetInitialNodalValues(self):
-        super().SetInitialNodalValues()
-        n1 = self.e1.GetNode(0)
-        if SCENE == "ball_ball":
-            n1.SetSolutionStepValue(KM.VELOCITY_X, V1)
-            self.e2.GetNode(0).SetSolutionStepValue(KM.VELOCITY_X, V2)
-        else:
-            n1.SetSolutionStepValue(KM.VELOCITY_Z, -V1)
-
-
-def gap_and_speed(stage):
-    """Overlap and approach speed (positive while the bodies close) of the current state."""
-    n1 = stage.e1.GetNode(0)
-    if SCENE == "ball_ball":
-        n2 = stage.e2.GetNode(0)
-        overlap = (R1 + R2) - (n2.X - n1.X)
-        speed = n1.GetSolutionStepValue(KM.VELOCITY_X) - n2.GetSolutionStepValue(KM.VELOCITY_X)
-    else:
-        overlap = R1 - n1.Z
-        speed = -n1.GetSolutionStepValue(KM.VELOCITY_Z)
-    return overlap, speed
-
-
-def normal_force(stage):
-    """The contact force on the moving sphere along the line of approach, repulsive positive."""
-    f = stage.e1.GetNode(0).GetSolutionStepValue(KM.TOTAL_FORCES)
-    return -f[0] if SCENE == "ball_ball" else f[2]
 
 
 if SCHEME not in SCHEMES:
     raise SystemExit("unknown translational scheme %r" % SCHEME)
-print("MILLIMPACT version=%s dem=%s threads=%d" % (
-    version("KratosMultiphysics"), version("KratosDEMApplication"), KM.ParallelUtilities.GetNumThreads()))
-parameters = KM.Parameters(PARAMETERS)
-parameters["MaxTimeStep"].SetDouble(DT)
-parameters["FinalTime"].SetDouble(DT * STEPS)
-stage = Impact(KM.Model(), parameters)
+print_version()
+stage = Impact(KM.Model(), stage_parameters(SCHEME, DT, STEPS), SCENE, V1, V2)
 stage.Initialize()
 if GAMMA >= 0.0:
     # After Initialize: sphere_strategy writes DAMPING_GAMMA from COEFFICIENT_OF_RESTITUTION
@@ -272,52 +89,4 @@ for n in (stage.e1, stage.e2):
 sub = stage.spheres_model_part.GetProperties()[BALL].GetSubProperties(OTHER)
 if sub.Has(DEM.DAMPING_GAMMA):
     print("MILLIMPACT damping_gamma=%r" % sub[DEM.DAMPING_GAMMA])
-
-solver = stage._GetSolver()
-strategy = solver.cplusplus_strategy
-walls = stage.rigid_face_model_part
-mesh_mover = solver.dem_fem_utils
-rows = []
-# The stage's own RunSolutionLoop costs ~0.65 ms a step, ~90 % of it in Python (two
-# `Parameters.keys()` calls a step, each listing the ~150 settings); this loop makes the same
-# C++ calls as sphere_strategy's AdvanceInTime, Predict, InitializeSolutionStep,
-# SolveSolutionStep and FinalizeSolutionStep (measured: the same trajectory to the last bit).
-#
-# Rows. Symplectic_Euler (and Forward_Euler, Taylor_Scheme): the law of a step sees the current
-# state (x_n, v_n) and the force it computes is read after the step, when the node already holds
-# x_{n+1}, v_{n+1}; a row pairs the state before the step with the force read after it (YADE's
-# rows: the state the law saw and the force it gave). Velocity_Verlet: the force read after a
-# step is F(x_{n+1}, v_{n+1/2}); a row is the state after the step with that force (LAMMPS'
-# rows), after a first row with the initial state.
-verlet = SCHEME == "Velocity_Verlet"
-if verlet:
-    overlap, speed = gap_and_speed(stage)
-    rows.append((0, stage.time, overlap, speed, 0.0))
-start = time.perf_counter()
-for _ in range(STEPS):
-    t = stage.time
-    if not verlet:
-        overlap, speed = gap_and_speed(stage)
-    stage.time = solver.AdvanceInTime(t)
-    mesh_mover.MoveAllMeshes(walls, stage.time, DT)
-    strategy.ResetPrescribedMotionFlagsRespectingImposedDofs()
-    strategy.InitializeSolutionStep()
-    strategy.SolveSolutionStep()
-    strategy.FinalizeSolutionStep()
-    if verlet:
-        overlap, speed = gap_and_speed(stage)
-        rows.append((len(rows), stage.time, overlap, speed, normal_force(stage)))
-    else:
-        rows.append((len(rows), t, overlap, speed, normal_force(stage)))
-loop_time = time.perf_counter() - start
-
-overlap, speed = gap_and_speed(stage)
-with open("trajectory.csv", "w") as out:
-    out.write("iter,time,overlap,approach_velocity,normal_force\n")
-    for r in rows:
-        out.write("%d,%r,%r,%r,%r\n" % r)
-    # The state after the last step; its force is known only out of contact (zero).
-    if overlap <= 0.0 and not verlet:
-        out.write("%d,%r,%r,%r,%r\n" % (len(rows), stage.time, overlap, speed, 0.0))
-print("MILLIMPACT iterations=%d dt=%r" % (STEPS, DT))
-print("MILLIMPACT loop_time=%r" % loop_time)
+stage.run_rows(STEPS, DT, R1, R2, SCHEME == "Velocity_Verlet", "trajectory.csv")

@@ -32,6 +32,7 @@
 pub mod batch;
 pub mod card;
 pub mod deck;
+mod files;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -53,6 +54,16 @@ use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
 const TEMPLATE: &str = include_str!("impact.py");
+
+/// The Python every Kratos script shares (imports, the stage's settings, materials and
+/// relations, the wall, the step loop, the rows), written into each rendered script in place of
+/// its template's `{{common}}` line, so that the script runs on its own in its scratch folder.
+const COMMON: &str = include_str!("common.py");
+
+/// `template` with the shared Python ([`COMMON`]) in place of its `{{common}}` line.
+fn with_common(template: &str) -> String {
+    template.replacen("{{common}}", COMMON.trim_end(), 1)
+}
 
 /// The name of the rendered script in the scratch directory.
 pub const SCRIPT: &str = "impact.py";
@@ -384,7 +395,7 @@ impl CodeDriver for Kratos {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let values = self.script_values(setup)?;
-        let text = fill_template(TEMPLATE, &values)
+        let text = fill_template(&with_common(TEMPLATE), &values)
             .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
         Ok(RenderedInput {
             file_name: SCRIPT.to_string(),
@@ -457,6 +468,19 @@ mod tests {
     /// 40 steps per elastic contact time, 50 steps.
     const SAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/kratos");
     const LOG: &str = include_str!("../../../tests/data/kratos/log.txt");
+
+    /// Each template takes the shared Python once, whole, and the shared Python has no
+    /// placeholder a script's values could fill.
+    #[test]
+    fn every_script_carries_the_shared_python_once() {
+        assert!(!COMMON.contains("{{"));
+        for template in [TEMPLATE, deck::TEMPLATE, batch::SCRIPT] {
+            assert_eq!(template.matches("{{common}}").count(), 1);
+            let whole = with_common(template);
+            assert_eq!(whole.matches(COMMON.trim_end()).count(), 1);
+            assert!(!whole.contains("{{common}}"));
+        }
+    }
 
     fn sample_setup() -> CodeSetup {
         let ball = CodeSphere {

@@ -49,9 +49,7 @@ pub const GROUP: usize = 30;
 pub const BATCH_SCRIPT: &str = "batch.py";
 
 /// The trajectory file of impact `i` (from 0) of a batch.
-pub fn batch_trajectory_file(i: usize) -> String {
-    format!("trajectory-{}.csv", i + 1)
-}
+pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
 
 /// The batch script's start: YADE's library, loaded by the launcher or, run by its Python
 /// alone, by the script.
@@ -363,21 +361,13 @@ pub fn parse_batch(
     workdir: &Path,
     log: &str,
 ) -> Vec<Result<ParsedRun, ParseError>> {
-    let version = log_value(log, "version=").map(str::to_string);
-    // `MILLIMPACT impact=K loop_time=T`: the share of its group's loop, per impact.
-    let loop_time = |i: usize| crate::codes::batch::marked_loop_time(log, i);
-    (0..setups.len())
-        .map(|i| {
-            let path = workdir.join(batch_trajectory_file(i));
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| ParseError::Read { path, source })?;
-            Ok(ParsedRun {
-                trajectory: parse_trajectory(&text)?,
-                loop_time: loop_time(i),
-                version: version.clone(),
-            })
-        })
-        .collect()
+    crate::codes::batch::parse_marked_batch(
+        setups.len(),
+        workdir,
+        log,
+        log_value(log, "version="),
+        parse_trajectory,
+    )
 }
 
 /// Yade's batches: many impacts in one process, side by side in groups.
