@@ -19,7 +19,11 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
-use millimpact::error::{CheckFailed, UserError};
+use millimpact::analysis::run::RunError;
+use millimpact::analysis::store::StoreError;
+use millimpact::analysis::sweep::SweepError;
+use millimpact::error::{Blame, CheckFailed, UserError};
+use millimpact::model::case::CaseError;
 use millimpact::output::files::write_atomic;
 
 /// What a command hands back to `main`: the text for standard output, and whether a check it
@@ -98,6 +102,35 @@ fn reference_folder(
         return Ok(given.unwrap_or(Path::new("reference")).to_path_buf());
     }
     shipped_folder(given, "--reference", "reference", warnings)
+}
+
+/// The exit code of a failed command: 2 for bad input, 1 for everything else (a check that
+/// disagreed among them). Each error in the failure's chain of causes is asked whether it is
+/// the user's ([`Blame`]): a library error that wraps a user error says so, wherever the
+/// command's context put it.
+pub fn exit_code(error: &anyhow::Error) -> u8 {
+    if !error.is::<CheckFailed>() && error.chain().any(is_user_error) {
+        2
+    } else {
+        1
+    }
+}
+
+/// Whether one error of a chain is the user's: asked of every library error type that can
+/// hold a user error (a type missing here would make its user errors exit 1; the
+/// exit-code tests of each type below keep the list whole).
+fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
+    macro_rules! ask {
+        ($($error:ty),+ $(,)?) => {
+            $(
+                if let Some(e) = cause.downcast_ref::<$error>() {
+                    return e.is_user_error();
+                }
+            )+
+        };
+    }
+    ask!(UserError, CaseError, RunError, StoreError, SweepError);
+    false
 }
 
 /// Run one parsed command.
