@@ -19,6 +19,8 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
+use millimpact::analysis::compare::CompareError;
+use millimpact::analysis::report::ReportError;
 use millimpact::analysis::run::RunError;
 use millimpact::analysis::store::StoreError;
 use millimpact::analysis::sweep::SweepError;
@@ -129,7 +131,15 @@ fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
             )+
         };
     }
-    ask!(UserError, CaseError, RunError, StoreError, SweepError);
+    ask!(
+        UserError,
+        CaseError,
+        RunError,
+        StoreError,
+        SweepError,
+        CompareError,
+        ReportError,
+    );
     false
 }
 
