@@ -57,9 +57,9 @@ pub struct CheckFailed(pub String);
 
 /// Whether a failure lies in what the user gave (bad input, exit 2) or elsewhere (exit 1).
 ///
-/// Every library error type answers for itself, a wrapper by asking what it wraps: a user error
-/// wrapped transparently (whose `source()` skips it) is still known as the user's. The binary's
-/// exit code asks each error in a failure's chain.
+/// Each library error type that can hold a user error answers for itself, a wrapper by asking
+/// what it wraps: a user error wrapped transparently (whose `source()` skips it) is still known
+/// as the user's. The binary's exit code asks each error in a failure's chain.
 pub trait Blame {
     /// Whether the failure is the user's: an invalid case, deck or option.
     fn is_user_error(&self) -> bool;

@@ -210,7 +210,7 @@ pub enum SetupError {
         /// The code's name.
         code: &'static str,
         /// Why.
-        source: super::lammps::probe::ProbeError,
+        source: super::ProbeError,
     },
     /// The code's own law could not be integrated to size the run.
     #[error(transparent)]
