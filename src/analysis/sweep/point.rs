@@ -46,6 +46,9 @@ fn method_settings(
     Ok(integration.settings(case, false)?)
 }
 
+/// A method point's law and speed with its solution.
+type Solved = (PaperLaw, f64, Outcome);
+
 /// The rows of method points, in their order, each handed to `emit`: the same rows
 /// [`single_point`] gives each, with the case edited in place from point to point where the
 /// axes allow, and the impacts of one setting solved together ([`solve_many`]: rk4-event in
@@ -63,7 +66,7 @@ pub fn method_rows(
     // Each point's law and speed with its settings, where they could be had; and each
     // point's law and speed with its solution, or its error (set here if it had none).
     let mut prepared: Vec<Option<(PaperLaw, f64, Settings)>> = Vec::new();
-    let mut outcomes: Vec<Option<Result<(PaperLaw, f64, Outcome), SweepError>>> = Vec::new();
+    let mut outcomes: Vec<Option<Result<Solved, SweepError>>> = Vec::new();
     for point in points {
         if stop.load(Ordering::Relaxed) {
             break;
