@@ -5,7 +5,6 @@
 use thiserror::Error;
 
 use crate::model::case::CaseError;
-use crate::solve::SolveError;
 
 /// An error in what the user asked for: exit code 2.
 #[derive(Debug, Error)]
@@ -38,14 +37,6 @@ pub enum UserError {
         /// What is allowed.
         allowed: String,
     },
-    /// The integration cannot be done as asked (a step beyond the stability limit).
-    #[error("{case}: --timestep: {source}")]
-    Unsolvable {
-        /// The case file.
-        case: String,
-        /// Why.
-        source: SolveError,
-    },
 }
 
 impl UserError {
@@ -64,14 +55,46 @@ impl UserError {
 #[error("{0}")]
 pub struct CheckFailed(pub String);
 
-/// The exit code of a failed command: 2 for bad input, 1 for everything else.
-pub fn exit_code(error: &anyhow::Error) -> u8 {
-    let bad_input = error
-        .chain()
-        .any(|cause| cause.is::<UserError>() || cause.is::<CaseError>());
-    if bad_input && !error.is::<CheckFailed>() {
-        2
-    } else {
-        1
+/// Whether a failure lies in what the user gave (bad input, exit 2) or elsewhere (exit 1).
+///
+/// Each library error type that can hold a user error answers for itself, a wrapper by asking
+/// what it wraps: a user error wrapped transparently (whose `source()` skips it) is still known
+/// as the user's. The binary's exit code asks each error in a failure's chain.
+pub trait Blame {
+    /// Whether the failure is the user's: an invalid case, deck or option.
+    fn is_user_error(&self) -> bool;
+}
+
+impl Blame for UserError {
+    fn is_user_error(&self) -> bool {
+        true
+    }
+}
+
+impl Blame for CaseError {
+    fn is_user_error(&self) -> bool {
+        true
+    }
+}
+
+impl Blame for CheckFailed {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
+/// An error with its chain of causes on one line, `outer: cause: inner cause`, as a failure
+/// is written into a row or a finding.
+pub struct Chain<'a>(pub &'a (dyn std::error::Error + 'static));
+
+impl std::fmt::Display for Chain<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.0)?;
+        let mut cause = self.0.source();
+        while let Some(error) = cause {
+            write!(f, ": {error}")?;
+            cause = error.source();
+        }
+        Ok(())
     }
 }

@@ -42,7 +42,7 @@
 //!     .expect("LAMMPS on ball_plate at η = 0.35 is stored");
 //! assert!((record.cor - record.cor_target()).abs() < 1e-3);
 //! assert!((record.peak_deformation / record.law_at_step.peak_deformation - 1.0).abs() < 1e-6);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), millimpact::StoreError>(())
 //! ```
 //!
 //! The whole `verify` check (every shipped case by every method against the closed forms, and
@@ -55,7 +55,27 @@
 //! let report = millimpact::verify(&root.join("cases"), &root.join("reference"))?;
 //! assert!(report.rows.len() > 28);
 //! assert_eq!(report.failed(), 0);
-//! # Ok::<(), anyhow::Error>(())
+//! # Ok::<(), millimpact::StoreError>(())
+//! ```
+//!
+//! The library's errors are typed (`thiserror` enums, one per wing: [`StoreError`] for the
+//! store and `verify`, [`CompareError`], and so on): a test can match the variant and read the
+//! values it carries, and ask [`Blame::is_user_error`] whether the input was at fault (the
+//! command line's exit 2):
+//!
+//! ```
+//! use std::path::Path;
+//!
+//! use millimpact::{Blame, StoreError, verify};
+//!
+//! let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+//! match verify(&root.join("no-such-cases"), &root.join("reference")) {
+//!     Err(error @ StoreError::CasesUnreadable { .. }) => {
+//!         assert!(error.is_user_error());
+//!         assert!(error.to_string().contains("no-such-cases: cannot read the folder"));
+//!     }
+//!     other => panic!("expected CasesUnreadable, got {other:?}"),
+//! }
 //! ```
 //!
 //! Running a code live ([`run_reference`] with [`ReferenceOptions`]) needs the code installed
@@ -70,10 +90,13 @@ pub mod model;
 pub mod output;
 pub mod solve;
 
-pub use analysis::compare::{CompareOptions, CompareReport, compare};
+pub use analysis::compare::{CompareError, CompareOptions, CompareReport, compare};
 pub use analysis::store::verify::{VerifyReport, verify};
-pub use analysis::store::{ReferenceOptions, ReferenceRecord, find_stored, run_reference};
+pub use analysis::store::{
+    ReferenceOptions, ReferenceRecord, StoreError, find_stored, run_reference,
+};
 pub use codes::CodeName;
+pub use error::Blame;
 pub use model::case::{Case, ContactKind};
 pub use model::exact::{ImpactFigures, paper_impact, restitution};
 pub use output::{Format, export};

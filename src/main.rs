@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 use cli::Cli;
-use millimpact::error::exit_code;
+use commands::exit_code;
 
 /// Parse the command line; a usage error is reported on one line (exit 2), like every other
 /// bad input, while help and version print as clap lays them out.

@@ -3,7 +3,11 @@
 
 use serde::Serialize;
 
-use crate::error::UserError;
+use std::path::{Path, PathBuf};
+
+use thiserror::Error;
+
+use crate::error::{Blame, UserError};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact::{self, HertzElastic, ImpactFigures};
 use crate::output::{Section, Summary, sci, seconds, signed};
@@ -645,8 +649,35 @@ pub fn reproduce_arguments(case: &Case, settings: &Settings) -> String {
     text
 }
 
+/// Why a case could not be integrated.
+#[derive(Debug, Error)]
+pub enum RunError {
+    /// The step asked is beyond the method's stability limit: the user's (exit 2).
+    #[error("{}: --timestep: {source}", case.display())]
+    Unsolvable {
+        /// The case file.
+        case: PathBuf,
+        /// The solver's refusal.
+        source: SolveError,
+    },
+    /// The integration failed for another reason.
+    #[error("{}: integration failed", case.display())]
+    Failed {
+        /// The case file.
+        case: PathBuf,
+        /// Why.
+        source: SolveError,
+    },
+}
+
+impl Blame for RunError {
+    fn is_user_error(&self) -> bool {
+        matches!(self, RunError::Unsolvable { .. })
+    }
+}
+
 /// Integrate `case` with `settings` and report against the closed forms.
-pub fn run_case(case: &Case, settings: &Settings) -> anyhow::Result<(RunReport, Outcome)> {
+pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, Outcome), RunError> {
     let outcome = paper::solve(&case.law(), case.impact_velocity, settings)
         .map_err(|e| solve_failure(&case.path, e))?;
     Ok((RunReport::new(case, settings.method, &outcome), outcome))
@@ -654,14 +685,10 @@ pub fn run_case(case: &Case, settings: &Settings) -> anyhow::Result<(RunReport, 
 
 /// The error of a solve of the case read from `path` that failed: a step beyond the
 /// stability limit is the user's (exit 2), any other failure the integration's.
-pub fn solve_failure(path: &std::path::Path, e: SolveError) -> anyhow::Error {
-    match e {
-        SolveError::Unstable { .. } => anyhow::Error::from(UserError::Unsolvable {
-            case: path.display().to_string(),
-            source: e,
-        }),
-        other => {
-            anyhow::Error::from(other).context(format!("{}: integration failed", path.display()))
-        }
+pub fn solve_failure(path: &Path, source: SolveError) -> RunError {
+    let case = path.to_path_buf();
+    match source {
+        SolveError::Unstable { .. } => RunError::Unsolvable { case, source },
+        source => RunError::Failed { case, source },
     }
 }

@@ -31,7 +31,7 @@ use lammps::conventions::Conventions;
 use lammps::probe::{ProbeError, ProbeReport};
 pub use parse::ParseError;
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
-pub use setup::{CodeSetup, CodeSphere, prepare, prepare_with, setup_for_case};
+pub use setup::{CodeSetup, CodeSphere, SetupError, prepare, prepare_with, setup_for_case};
 
 /// What a driver's parser returns.
 #[derive(Clone, Debug, PartialEq)]

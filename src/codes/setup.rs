@@ -4,7 +4,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::CodeDriver;
-use anyhow::Context;
+use thiserror::Error;
 
 use super::lammps::conventions::Conventions;
 use crate::model::case::Case;
@@ -201,6 +201,22 @@ pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
     }
 }
 
+/// Why a code's run could not be set up.
+#[derive(Debug, Error)]
+pub enum SetupError {
+    /// The build's conventions could not be measured.
+    #[error("{code}")]
+    Probe {
+        /// The code's name.
+        code: &'static str,
+        /// Why.
+        source: super::ProbeError,
+    },
+    /// The code's own law could not be integrated to size the run.
+    #[error(transparent)]
+    OwnLaw(#[from] SolveError),
+}
+
 /// The setup of `case` for `driver`, its time step either given or the elastic contact time
 /// over `steps_per_contact`, and its run length the contact time of the code's own law (at
 /// zero step error) plus 5 % and three steps: enough to end the contact, no more. A build with
@@ -211,10 +227,13 @@ pub fn prepare(
     steps_per_contact: Option<u32>,
     timestep: Option<f64>,
     clamp_attractive: bool,
-) -> anyhow::Result<CodeSetup> {
+) -> Result<CodeSetup, SetupError> {
     let conventions = driver
         .measured_conventions()
-        .with_context(|| driver.name())?;
+        .map_err(|source| SetupError::Probe {
+            code: driver.name(),
+            source,
+        })?;
     Ok(prepare_with(
         driver,
         case,

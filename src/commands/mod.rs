@@ -20,7 +20,13 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
-use millimpact::error::{CheckFailed, UserError};
+use millimpact::analysis::compare::CompareError;
+use millimpact::analysis::report::ReportError;
+use millimpact::analysis::run::RunError;
+use millimpact::analysis::store::StoreError;
+use millimpact::analysis::sweep::SweepError;
+use millimpact::error::{Blame, CheckFailed, UserError};
+use millimpact::model::case::CaseError;
 use millimpact::output::files::write_atomic;
 
 /// What a command hands back to `main`: the text for standard output, and whether a check it
@@ -101,6 +107,43 @@ fn reference_folder(
     shipped_folder(given, "--reference", "reference", warnings)
 }
 
+/// The exit code of a failed command: 2 for bad input, 1 for everything else (a check that
+/// disagreed among them). Each error in the failure's chain of causes is asked whether it is
+/// the user's ([`Blame`]): a library error that wraps a user error says so, wherever the
+/// command's context put it.
+pub fn exit_code(error: &anyhow::Error) -> u8 {
+    if !error.is::<CheckFailed>() && error.chain().any(is_user_error) {
+        2
+    } else {
+        1
+    }
+}
+
+/// Whether one error of a chain is the user's: asked of every library error type that can
+/// hold a user error (a type missing here would make its user errors exit 1; the
+/// exit-code tests of each type below keep the list whole).
+fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
+    macro_rules! ask {
+        ($($error:ty),+ $(,)?) => {
+            $(
+                if let Some(e) = cause.downcast_ref::<$error>() {
+                    return e.is_user_error();
+                }
+            )+
+        };
+    }
+    ask!(
+        UserError,
+        CaseError,
+        RunError,
+        StoreError,
+        SweepError,
+        CompareError,
+        ReportError,
+    );
+    false
+}
+
 /// Run one parsed command.
 pub fn dispatch(command: &Command) -> Result<CommandOutput> {
     match command {
@@ -132,4 +175,83 @@ fn check_output(option: &'static str, path: Option<&Path>, inputs: &[&Path]) -> 
 /// Write a file a command was asked for (`what` names it in the error).
 fn write_output(path: &Path, bytes: &[u8], what: &str) -> Result<()> {
     write_atomic(path, bytes).with_context(|| format!("writing the {what} to {}", path.display()))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::PathBuf;
+
+    use anyhow::Context;
+    use millimpact::analysis::run::RunError;
+    use millimpact::solve::SolveError;
+
+    use super::*;
+
+    fn unstable() -> SolveError {
+        SolveError::Unstable {
+            method: "rk4",
+            timestep: 2e-4,
+            omega: 1e5,
+            omega_dt: 20.0,
+            limit: 2.78,
+            max_timestep: 2.78e-5,
+        }
+    }
+
+    fn unsolvable() -> RunError {
+        RunError::Unsolvable {
+            case: PathBuf::from("cases/ball_plate.toml"),
+            source: unstable(),
+        }
+    }
+
+    fn no_reference_folder() -> StoreError {
+        StoreError::NoReferenceFolder {
+            folder: PathBuf::from("no-such-store"),
+        }
+    }
+
+    /// A user error exits 2 however deep a library error wraps it, with or without the
+    /// command's context; every other failure exits 1.
+    #[test]
+    fn the_exit_code_sees_a_user_error_through_every_wrapper() {
+        let user: Vec<anyhow::Error> = vec![
+            UserError::argument("--rtol", 0, "a positive number").into(),
+            CaseError::new("a.toml", "ball.radius", "-1", "a positive number").into(),
+            unsolvable().into(),
+            SweepError::from(unsolvable()).into(),
+            SweepError::from(CaseError::new("s.toml", "axes", "x", "a table")).into(),
+            no_reference_folder().into(),
+            StoreError::from(unsolvable()).into(),
+            CompareError::from(no_reference_folder()).into(),
+            ReportError::from(CompareError::from(no_reference_folder())).into(),
+            ReportError::from(no_reference_folder()).into(),
+            anyhow::Error::from(SweepError::from(no_reference_folder())).context("sweeping"),
+            Err::<(), _>(ReportError::from(no_reference_folder()))
+                .context("building the report")
+                .unwrap_err(),
+        ];
+        for error in &user {
+            assert_eq!(exit_code(error), 2, "{error:#}");
+        }
+        let failed = RunError::Failed {
+            case: PathBuf::from("cases/ball_plate.toml"),
+            source: SolveError::StepBudget {
+                method: "rk4",
+                steps: 10,
+            },
+        };
+        let other: Vec<anyhow::Error> = vec![
+            SweepError::from(failed).into(),
+            StoreError::Read {
+                path: PathBuf::from("reference/lammps/ball_plate.json"),
+                source: std::io::Error::from(std::io::ErrorKind::PermissionDenied),
+            }
+            .into(),
+            CheckFailed("2 checks disagree".into()).into(),
+        ];
+        for error in &other {
+            assert_eq!(exit_code(error), 1, "{error:#}");
+        }
+    }
 }

@@ -101,7 +101,10 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
     };
     // Rows go to standard output as they are done.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let points = match streamed.write(format, &mut out, args.plot.is_some()) {
+    let points = match streamed
+        .write(format, &mut out, args.plot.is_some())
+        .map_err(anyhow::Error::from)
+    {
         Ok(points) => points,
         Err(e) if broken_pipe(&e) => return Ok(CommandOutput::passed(String::new())),
         Err(e) => return Err(e),

@@ -152,60 +152,143 @@ pub fn check_report_dir(option: &'static str, path: &Path) -> Result<(), OutputP
     ))
 }
 
+/// Why a folder could not be written whole by [`replace_dir`]; each names the folder or file
+/// it concerns and keeps the system's error as its source.
+#[derive(Debug, thiserror::Error)]
+pub enum ReplaceDirError {
+    /// The path has no folder name (`/`, or one ending in `..`).
+    #[error("{}: a folder's name is needed", path.display())]
+    NoName {
+        /// The path as resolved.
+        path: std::path::PathBuf,
+    },
+    /// The path could not be made absolute.
+    #[error("resolving {}", path.display())]
+    Resolve {
+        /// The path given.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The parent folder could not be made.
+    #[error("creating {}", path.display())]
+    CreateParent {
+        /// The parent folder.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// No temporary folder could be made beside the output.
+    #[error("making a folder in {}", parent.display())]
+    Temporary {
+        /// The parent folder.
+        parent: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The new folder could not be opened to those who may read its parent.
+    #[error("opening {} to readers", path.display())]
+    Permissions {
+        /// The new folder.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The earlier folder could not be moved aside.
+    #[error("moving the earlier {} aside", path.display())]
+    MoveAside {
+        /// The output folder.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The new folder could not take the output's place.
+    #[error("moving the new {} in", path.display())]
+    MoveIn {
+        /// The output folder.
+        path: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The earlier folder, moved aside, could not be removed.
+    #[error("removing the earlier output, moved to {}", aside.display())]
+    RemoveEarlier {
+        /// Where the earlier folder was moved.
+        aside: std::path::PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+}
+
 /// Write the folder `path` whole: `fill` writes into a fresh folder beside it, which then
 /// takes its place (an earlier folder there is moved aside and removed), so that no file of
 /// an earlier output survives and an interrupted write leaves the earlier folder as it was.
-/// A report's `path` is checked by [`check_report_dir`] first.
-pub fn replace_dir(
+/// A report's `path` is checked by [`check_report_dir`] first. `fill`'s own error type is
+/// kept, and a failure of the folder's handling becomes one of it.
+pub fn replace_dir<E: From<ReplaceDirError>>(
     path: &Path,
-    fill: impl FnOnce(&Path) -> anyhow::Result<()>,
-) -> anyhow::Result<()> {
-    use anyhow::Context;
+    fill: impl FnOnce(&Path) -> Result<(), E>,
+) -> Result<(), E> {
     let path = match std::fs::canonicalize(path) {
         Ok(real) => real,
-        Err(_) => std::path::absolute(path)?,
+        Err(_) => std::path::absolute(path).map_err(|source| ReplaceDirError::Resolve {
+            path: path.to_path_buf(),
+            source,
+        })?,
     };
     let (Some(parent), Some(name)) = (path.parent(), path.file_name()) else {
-        anyhow::bail!("{}: a folder's name is needed", path.display());
+        return Err(ReplaceDirError::NoName { path }.into());
     };
     let name = name.to_string_lossy();
-    std::fs::create_dir_all(parent).with_context(|| format!("creating {}", parent.display()))?;
-    let fresh = tempfile::Builder::new()
-        .prefix(&format!(".{name}.new-"))
-        .tempdir_in(parent)
-        .with_context(|| format!("making a folder in {}", parent.display()))?;
+    std::fs::create_dir_all(parent).map_err(|source| ReplaceDirError::CreateParent {
+        path: parent.to_path_buf(),
+        source,
+    })?;
+    let temporary = |prefix: String| {
+        tempfile::Builder::new()
+            .prefix(&prefix)
+            .tempdir_in(parent)
+            .map_err(|source| ReplaceDirError::Temporary {
+                parent: parent.to_path_buf(),
+                source,
+            })
+    };
+    let fresh = temporary(format!(".{name}.new-"))?;
     fill(fresh.path())?;
     // A temporary folder is private (0700); an output is for everyone who may read its parent.
     #[cfg(unix)]
     {
         use std::os::unix::fs::PermissionsExt;
-        std::fs::set_permissions(fresh.path(), std::fs::Permissions::from_mode(0o755))?;
+        std::fs::set_permissions(fresh.path(), std::fs::Permissions::from_mode(0o755)).map_err(
+            |source| ReplaceDirError::Permissions {
+                path: fresh.path().to_path_buf(),
+                source,
+            },
+        )?;
     }
     let fresh = fresh.keep();
     let earlier = if path.exists() {
         // Renaming a folder onto an empty one replaces it: the earlier folder goes to a free
         // name beside it.
-        let aside = tempfile::Builder::new()
-            .prefix(&format!(".{name}.old-"))
-            .tempdir_in(parent)?
-            .keep();
-        std::fs::rename(&path, &aside)
-            .with_context(|| format!("moving the earlier {} aside", path.display()))?;
+        let aside = temporary(format!(".{name}.old-"))?.keep();
+        std::fs::rename(&path, &aside).map_err(|source| ReplaceDirError::MoveAside {
+            path: path.clone(),
+            source,
+        })?;
         Some(aside)
     } else {
         None
     };
-    if let Err(e) = std::fs::rename(&fresh, &path) {
+    if let Err(source) = std::fs::rename(&fresh, &path) {
         if let Some(aside) = &earlier {
             let _ = std::fs::rename(aside, &path);
         }
         let _ = std::fs::remove_dir_all(&fresh);
-        return Err(anyhow::Error::from(e).context(format!("moving the new {} in", path.display())));
+        return Err(ReplaceDirError::MoveIn { path, source }.into());
     }
     if let Some(aside) = earlier {
-        std::fs::remove_dir_all(&aside).with_context(|| {
-            format!("removing the earlier output, moved to {}", aside.display())
-        })?;
+        std::fs::remove_dir_all(&aside)
+            .map_err(|source| ReplaceDirError::RemoveEarlier { aside, source })?;
     }
     Ok(())
 }

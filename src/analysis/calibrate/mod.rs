@@ -3,17 +3,18 @@
 //! will realise at a time step (its own law, stepped as it steps), the step that keeps the
 //! offset below a tolerance, and the traps the card avoids.
 
-use anyhow::{Context, Result};
 use serde::Serialize;
+use thiserror::Error;
 
 use super::compare::phase::Range;
-use crate::codes::{self, CodeName, setup::elastic_contact_time};
+use crate::codes::{self, CodeName, SetupError, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::law::CodeLaw;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, joules, sci, signed};
+use crate::solve::SolveError;
 use crate::solve::dashpot::{CodeStepping, own_law_metrics};
 
 /// Start phases sampled when a card predicts a stepped COR.
@@ -119,13 +120,39 @@ fn band(law: &CodeLaw, v0: f64, dt: f64, steps: u64, stepping: &CodeStepping) ->
     }
 }
 
+/// Why a code's calibration card could not be made; each variant names the code.
+#[derive(Debug, Error)]
+pub enum CalibrateError {
+    /// The code's run could not be sized from its own law.
+    #[error("{code}: sizing the run from the code's law")]
+    Setup {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SetupError,
+    },
+    /// The code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    OwnLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+}
+
 /// The card of `code` for `case` (already at the COR's η).
-pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) -> Result<Card> {
+pub fn card(
+    code: CodeName,
+    case: &Case,
+    timestep: Option<f64>,
+    tolerance: f64,
+) -> Result<Card, CalibrateError> {
     let driver = code.driver();
     let target = case.restitution();
     let v0 = case.impact_velocity;
     let setup = codes::prepare(driver, case, None, timestep, false)
-        .with_context(|| format!("{code}: sizing the run from the code's law"))?;
+        .map_err(|source| CalibrateError::Setup { code, source })?;
     let law = driver.law(&setup);
     let stepping = driver.stepping(&setup);
     let (settings, unsupported) = match driver.render(&setup) {
@@ -144,7 +171,8 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
         }
         Err(e) => (Vec::new(), Some(e.to_string())),
     };
-    let exact = own_law_metrics(&law, v0, 1e-12)?;
+    let exact = own_law_metrics(&law, v0, 1e-12)
+        .map_err(|source| CalibrateError::OwnLaw { code, source })?;
     // A step too small to count in u64 cannot be run either: saturate, the run refuses it.
     let steps_for = |dt: f64| {
         crate::model::count::ceil_count(1.05 * exact.contact_time / dt)
@@ -211,7 +239,7 @@ pub fn card(code: CodeName, case: &Case, timestep: Option<f64>, tolerance: f64) 
 }
 
 /// Calibrate `case` for every COR in the options.
-pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration> {
+pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration, CalibrateError> {
     let law = case.law();
     let v0 = case.impact_velocity;
     let impact_energy = 0.5 * law.mass * v0 * v0;
@@ -222,7 +250,7 @@ pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration>
         let cards = CodeName::ALL
             .iter()
             .map(|&code| card(code, &at, options.timestep, options.tolerance))
-            .collect::<Result<_>>()?;
+            .collect::<Result<_, _>>()?;
         targets.push(Target {
             restitution: e,
             loss_coefficient: eta,

@@ -7,19 +7,20 @@ pub mod phase;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use anyhow::Result;
 use serde::Serialize;
+use thiserror::Error;
 
-use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord};
+use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord, StoreError};
 use crate::codes::{CodeName, setup_for_case};
+use crate::error::{Blame, Chain};
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
-use crate::model::trajectory::TrajectoryMetrics;
+use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
-use crate::solve::Method;
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
+use crate::solve::{Method, SolveError};
 use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
 
 /// One source's figures for one case.
@@ -178,9 +179,53 @@ impl From<&ModelPoint> for ModelPointRecord {
     }
 }
 
+/// Why a comparison could not be made; each variant names the code or the case.
+#[derive(Debug, Error)]
+pub enum CompareError {
+    /// A code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    OwnLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+    /// A code's own law, stepped as the code steps, gives no impact figures.
+    #[error("{code}: own law stepped")]
+    SteppedLaw {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+    /// The paper's law could not be integrated by the paper's method.
+    #[error("{}: rk4 (the paper's method)", case.display())]
+    PaperMethod {
+        /// The case file.
+        case: PathBuf,
+        /// Why.
+        source: SolveError,
+    },
+    /// A stored reference could not be read.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+}
+
+impl Blame for CompareError {
+    fn is_user_error(&self) -> bool {
+        match self {
+            CompareError::Store(e) => e.is_user_error(),
+            _ => false,
+        }
+    }
+}
+
 /// Each code's law, as its driver sets it up for `case` at each COR in `restitutions`,
 /// against the paper's law at the same COR, both integrated exactly.
-pub fn model_by_restitution(case: &Case, restitutions: &[f64]) -> Result<Vec<ModelPoint>> {
+pub fn model_by_restitution(
+    case: &Case,
+    restitutions: &[f64],
+) -> Result<Vec<ModelPoint>, CompareError> {
     let mut points = Vec::new();
     for &e in restitutions {
         let at = case.with_loss_coefficient(exact::loss_coefficient(e));
@@ -189,7 +234,8 @@ pub fn model_by_restitution(case: &Case, restitutions: &[f64]) -> Result<Vec<Mod
         let setup = setup_for_case(&at, 1.0);
         for &code in CodeName::ALL {
             let law = code.driver().law(&setup);
-            let m = own_law_metrics(&law, at.impact_velocity, 1e-12)?;
+            let m = own_law_metrics(&law, at.impact_velocity, 1e-12)
+                .map_err(|source| CompareError::OwnLaw { code, source })?;
             points.push(ModelPoint {
                 case: case.name.clone(),
                 code,
@@ -251,11 +297,14 @@ fn figures_metrics(f: &ImpactFigures, force_contact_time: f64) -> TrajectoryMetr
 /// give them too.
 pub fn code_attribution(
     r: &ReferenceRecord,
-) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics)> {
-    let own_exact = own_law_metrics(&r.law, r.setup.impact_velocity, 1e-13)?;
-    let own_stepped = phase::stepped_at_phase(r, 0.0)?;
+) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics), CompareError> {
+    let code = r.code;
+    let own_exact = own_law_metrics(&r.law, r.setup.impact_velocity, 1e-13)
+        .map_err(|source| CompareError::OwnLaw { code, source })?;
+    let stepped = |source| CompareError::SteppedLaw { code, source };
+    let own_stepped = phase::stepped_at_phase(r, 0.0).map_err(stepped)?;
     let paper = paper_metrics(&r.paper_exact);
-    let band = phase::start_phase_band(r, &own_exact, DEFAULT_PHASES)?;
+    let band = phase::start_phase_band(r, &own_exact, DEFAULT_PHASES).map_err(stepped)?;
     Ok((
         CodeAttribution {
             code: r.code,
@@ -277,7 +326,7 @@ pub fn compare_case(
     live: bool,
     reference: &Path,
     timeout: Duration,
-) -> Result<CaseComparison> {
+) -> Result<CaseComparison, CompareError> {
     let law = case.law();
     let v0 = case.impact_velocity;
     let exact = exact::paper_impact(&law, v0);
@@ -294,7 +343,10 @@ pub fn compare_case(
         contact: case.contact,
         ..Settings::default()
     };
-    let rk4 = paper::solve(&law, v0, &settings)?;
+    let rk4 = paper::solve(&law, v0, &settings).map_err(|source| CompareError::PaperMethod {
+        case: case.path.clone(),
+        source,
+    })?;
     // The paper's force is repulsive all through the contact: by force as by overlap.
     let f = &rk4.figures;
     rows.push(base.row(
@@ -313,7 +365,7 @@ pub fn compare_case(
             match store::run_reference(code, case, &options) {
                 Ok(r) => Some(r),
                 Err(e) => {
-                    missing.push(format!("{code}: {e:#}"));
+                    missing.push(format!("{code}: {}", Chain(&e)));
                     None
                 }
             }
@@ -430,11 +482,11 @@ impl CompareReport {
 }
 
 /// Compare `cases`.
-pub fn compare(cases: &[Case], options: &CompareOptions) -> Result<CompareReport> {
+pub fn compare(cases: &[Case], options: &CompareOptions) -> Result<CompareReport, CompareError> {
     let cases = cases
         .iter()
         .map(|case| compare_case(case, options.live, &options.reference, options.timeout))
-        .collect::<Result<_>>()?;
+        .collect::<Result<_, _>>()?;
     Ok(CompareReport {
         live: options.live,
         cases,

@@ -22,21 +22,21 @@ use std::collections::BTreeMap;
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use anyhow::{Context, Result};
 use serde::Serialize;
+use thiserror::Error;
 
 use super::source::Source;
-use crate::codes::{self, CodeName, RunOptions};
+use crate::codes::{self, CodeError, CodeName, RunOptions, SetupError};
 use crate::model::case::Case;
 use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
 use crate::model::law::PaperLaw;
-use crate::model::trajectory::trajectory_metrics;
+use crate::model::trajectory::{TrajectoryError, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
-use crate::solve::{Knob, Method, Stats};
+use crate::solve::{Knob, Method, SolveError, Stats};
 
 /// Errors below this are at the rounding floor of double precision for these figures (a few
 /// hundred ulps of an O(1) quantity after thousands of steps): such points say nothing about
@@ -281,6 +281,56 @@ fn median(values: &mut [f64]) -> f64 {
     }
 }
 
+/// Why a precision sweep could not be made; each variant names the method or the code.
+#[derive(Debug, Error)]
+pub enum PrecisionError {
+    /// A method failed at one setting of its knob.
+    #[error("{method} at {at}")]
+    Method {
+        /// The method.
+        method: Method,
+        /// The setting, in words (`rtol 1e-6`).
+        at: String,
+        /// Why.
+        source: SolveError,
+    },
+    /// A method without a knob has no sweep.
+    #[error("precision: {method} has no knob to sweep")]
+    NoKnob {
+        /// The method.
+        method: Method,
+    },
+    /// A code's run could not be set up at a resolution.
+    #[error("{code}: setting up {steps_per_contact} steps per contact")]
+    Setup {
+        /// The code.
+        code: CodeName,
+        /// The resolution.
+        steps_per_contact: u32,
+        /// Why.
+        source: SetupError,
+    },
+    /// A code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    OwnLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+    /// The code failed to run, or its output could not be read.
+    #[error(transparent)]
+    Code(#[from] CodeError),
+    /// The code's trajectory gives no impact figures.
+    #[error("{code}")]
+    Trajectory {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+}
+
 /// One point of `method` on `law` at speed `v0` with `settings`: errors from a warm-up run,
 /// then the median of `repeats` timed batches.
 pub fn method_point(
@@ -290,11 +340,14 @@ pub fn method_point(
     knob: SweepKnob,
     value: f64,
     repeats: u32,
-) -> Result<Point> {
+) -> Result<Point, PrecisionError> {
     let exact = exact::paper_impact(law, v0);
     let started = Instant::now();
-    let warm = paper::solve(law, v0, settings)
-        .with_context(|| format!("{} at {}", settings.method, knob.sentence(value)))?;
+    let warm = paper::solve(law, v0, settings).map_err(|source| PrecisionError::Method {
+        method: settings.method,
+        at: knob.sentence(value),
+        source,
+    })?;
     let single = started.elapsed().max(Duration::from_nanos(50));
     // A run faster than the clock resolves would ask for an unbounded batch: capped.
     let batch = ceil_count(BATCH_TIME.as_secs_f64() / single.as_secs_f64())
@@ -338,7 +391,11 @@ pub fn method_point(
 }
 
 /// The sweep of one method on `case`.
-pub fn method_sweep(case: &Case, method: Method, repeats: u32) -> Result<Vec<Point>> {
+pub fn method_sweep(
+    case: &Case,
+    method: Method,
+    repeats: u32,
+) -> Result<Vec<Point>, PrecisionError> {
     let law = case.law();
     let base = Settings {
         method,
@@ -360,7 +417,7 @@ pub fn method_sweep(case: &Case, method: Method, repeats: u32) -> Result<Vec<Poi
                 )
             })
             .collect(),
-        Knob::None => anyhow::bail!("precision: {method} has no knob to sweep"),
+        Knob::None => Err(PrecisionError::NoKnob { method }),
         Knob::StepsPerPeriod => steps_per_period_sweep()
             .into_iter()
             .map(|n| {
@@ -389,17 +446,22 @@ pub fn code_sweep(
     code: CodeName,
     steps_per_contact: &[u32],
     repeats: u32,
-) -> Result<Vec<Point>> {
+) -> Result<Vec<Point>, PrecisionError> {
     let driver = code.driver();
     let options = RunOptions::default();
     let repeats = repeats.clamp(1, CODE_REPEATS);
     let mut points = Vec::new();
     let mut warmed = false;
     for &spc in steps_per_contact {
-        let setup = codes::prepare(driver, case, Some(spc), None, false)
-            .with_context(|| format!("{}: setting up {} steps per contact", code.name(), spc))?;
+        let setup = codes::prepare(driver, case, Some(spc), None, false).map_err(|source| {
+            PrecisionError::Setup {
+                code,
+                steps_per_contact: spc,
+                source,
+            }
+        })?;
         let reference = own_law_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
-            .with_context(|| format!("{}: its own law at zero step error", code.name()))?;
+            .map_err(|source| PrecisionError::OwnLaw { code, source })?;
         if !warmed {
             // The first start of a code pays for loading its libraries from disk.
             codes::run_code(driver, &setup, &options)?;
@@ -417,7 +479,8 @@ pub fn code_sweep(
             last = Some(run);
         }
         let run = last.expect("at least one run");
-        let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
+        let metrics = trajectory_metrics(&run.trajectory)
+            .map_err(|source| PrecisionError::Trajectory { code, source })?;
         let errors = [
             relative(metrics.cor, reference.cor),
             relative(metrics.peak_deformation, reference.peak_deformation),
@@ -556,7 +619,7 @@ pub fn precision_report(
     code_names: &[CodeName],
     repeats: u32,
     code_steps: &[u32],
-) -> Result<PrecisionReport> {
+) -> Result<PrecisionReport, PrecisionError> {
     let mut points = Vec::new();
     for &method in methods {
         points.extend(method_sweep(case, method, repeats)?);

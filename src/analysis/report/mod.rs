@@ -5,25 +5,26 @@
 use std::path::Path;
 use std::time::Duration;
 
-use anyhow::Result;
 use serde::Serialize;
+use thiserror::Error;
 
-use super::compare::{CompareOptions, ModelPointRecord, compare};
+use super::compare::{CompareError, CompareOptions, ModelPointRecord, compare};
 use super::deck::DeckReport;
-use super::precision::method_sweep;
+use super::precision::{PrecisionError, method_sweep};
 use super::stability::{METHODS, stability_report};
-use super::store;
-use crate::codes::{self, CodeName};
-use crate::model::case::{Case, ContactKind};
+use super::store::{self, StoreError};
+use crate::codes::{self, CodeName, SetupError};
+use crate::error::Blame;
+use crate::model::case::{Case, CaseError, ContactKind};
 use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::shipped::shipped_case;
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
-use crate::output::{Format, Section, Summary, csv_string, export};
-use crate::solve::Method;
+use crate::output::{Format, OutputError, Section, Summary, csv_string, export};
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
+use crate::solve::{Method, SolveError};
 
 /// One figure: the SVG, the data behind it as CSV, and how to reproduce it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -113,9 +114,71 @@ pub struct ReportOptions {
     pub revision: Option<String>,
 }
 
+/// Why the report could not be built; each variant names the case, the code or the part
+/// that failed, or wraps the failure of the analysis it draws on.
+#[derive(Debug, Error)]
+pub enum ReportError {
+    /// A figure or table could not be drawn or written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A built-in case is invalid.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// The paper's law could not be integrated for a figure.
+    #[error("{case}: the paper's law")]
+    PaperLaw {
+        /// The case's name.
+        case: String,
+        /// Why.
+        source: SolveError,
+    },
+    /// A code's run could not be sized from its own law.
+    #[error("{code}: sizing the run from the code's law")]
+    Setup {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SetupError,
+    },
+    /// A code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    OwnLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+    /// A code's card offers a setting to take at its word, but not for this setup.
+    #[error("{code}: no setting to take at its word")]
+    NoSettingAtItsWord {
+        /// The code.
+        code: CodeName,
+    },
+    /// The comparison failed.
+    #[error(transparent)]
+    Compare(#[from] CompareError),
+    /// The work–precision sweep failed.
+    #[error(transparent)]
+    Precision(#[from] PrecisionError),
+    /// The stored references could not be read.
+    #[error(transparent)]
+    Store(#[from] StoreError),
+}
+
+impl Blame for ReportError {
+    fn is_user_error(&self) -> bool {
+        match self {
+            ReportError::Case(_) => true,
+            ReportError::Compare(e) => e.is_user_error(),
+            ReportError::Store(e) => e.is_user_error(),
+            _ => false,
+        }
+    }
+}
+
 /// A figure's points as CSV, one row per point: its series, then `x` and `y` under the
 /// axes' names.
-fn series_csv(x: &str, y: &str, series: &[Series]) -> Result<String> {
+fn series_csv(x: &str, y: &str, series: &[Series]) -> Result<String, OutputError> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer.write_record(["series", x, y])?;
     for s in series {
@@ -123,7 +186,11 @@ fn series_csv(x: &str, y: &str, series: &[Series]) -> Result<String> {
             writer.serialize((&s.name, a, b))?;
         }
     }
-    Ok(String::from_utf8(writer.into_inner()?)?)
+    let bytes = writer
+        .into_inner()
+        .map_err(|e| csv::Error::from(e.into_error()))?;
+    // Names and numbers written from strings and floats: UTF-8 throughout.
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 fn figure(
@@ -132,7 +199,7 @@ fn figure(
     caption: &str,
     command: &str,
     csv_names: (&str, &str),
-) -> Result<ReportFigure> {
+) -> Result<ReportFigure, ReportError> {
     Ok(ReportFigure {
         id: id.to_string(),
         title: chart.title.clone(),
@@ -157,7 +224,7 @@ fn table_from(id: String, s: &Section, command: &str) -> ReportTable {
 /// The paper's Figure 2: the rod end at η = 0.35 with two-sided contact, displacement and
 /// velocity against time, beside the damped harmonic oscillator with the same loss per
 /// half-cycle.
-fn figure_2() -> Result<Vec<ReportFigure>> {
+fn figure_2() -> Result<Vec<ReportFigure>, ReportError> {
     let case = shipped_case("rod_end_bilateral")?;
     let law = case.law();
     let v0 = case.impact_velocity;
@@ -168,7 +235,10 @@ fn figure_2() -> Result<Vec<ReportFigure>> {
         periods: 3.0,
         ..Settings::default()
     };
-    let out = paper::solve(&law, v0, &settings)?;
+    let out = paper::solve(&law, v0, &settings).map_err(|source| ReportError::PaperLaw {
+        case: case.name.clone(),
+        source,
+    })?;
     let e = exact::restitution(law.loss_coefficient);
     let zeta = DashpotLaw::damping_ratio(e);
     let w0 = (law.stiffness / law.mass).sqrt();
@@ -236,7 +306,7 @@ fn figure_2() -> Result<Vec<ReportFigure>> {
 
 /// The paper's Figure 3: COR against η, rod (line) and ball (dots) by the paper's RK4, the
 /// closed form, and the small-η line 1 − η.
-fn figure_3() -> Result<ReportFigure> {
+fn figure_3() -> Result<ReportFigure, ReportError> {
     let etas: Vec<f64> = (0..=19).map(|i| 0.05 * i as f64).collect();
     let mut series = Vec::new();
     for (name, file, style) in [
@@ -253,7 +323,11 @@ fn figure_3() -> Result<ReportFigure> {
             };
             pts.push((
                 eta,
-                paper::solve(&at.law(), at.impact_velocity, &settings)?
+                paper::solve(&at.law(), at.impact_velocity, &settings)
+                    .map_err(|source| ReportError::PaperLaw {
+                        case: case.name.clone(),
+                        source,
+                    })?
                     .figures
                     .cor,
             ));
@@ -286,7 +360,7 @@ fn figure_3() -> Result<ReportFigure> {
 }
 
 /// Force–overlap loops and force–time curves of the paper's law and each code's law.
-fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
+fn force_figures(case: &Case) -> Result<Vec<ReportFigure>, ReportError> {
     let law = case.law();
     let v0 = case.impact_velocity;
     let settings = Settings {
@@ -295,7 +369,10 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
         record: true,
         ..Settings::default()
     };
-    let out = paper::solve(&law, v0, &settings)?;
+    let out = paper::solve(&law, v0, &settings).map_err(|source| ReportError::PaperLaw {
+        case: case.name.clone(),
+        source,
+    })?;
     let (um, kn, us) = (1e6, 1e-3, 1e6);
     let mut loops = vec![Series::new(
         "paper's law",
@@ -315,7 +392,8 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
     )];
     for &code in CodeName::ALL {
         let driver = code.driver();
-        let setup = codes::prepare(driver, case, None, None, false)?;
+        let setup = codes::prepare(driver, case, None, None, false)
+            .map_err(|source| ReportError::Setup { code, source })?;
         let own = driver.law(&setup);
         let t = driver.stepping(&setup).trajectory(
             &own,
@@ -395,7 +473,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>> {
 }
 
 /// The codes' model differences as functions of e (from the compare report's points).
-fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure> {
+fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure, ReportError> {
     let mut series = Vec::new();
     for &code in CodeName::ALL {
         let pts: Vec<_> = c
@@ -443,11 +521,14 @@ fn model_by_e_figure(c: &super::compare::CaseComparison) -> Result<ReportFigure>
 /// The COR each code realises against the COR asked of it, as the drivers set the code up and
 /// as a user who takes each code's setting at its word would (LAMMPS `tsuji` with e_in = e,
 /// YADE `en = e`, the clamps on).
-fn realised_vs_requested() -> Result<(ReportFigure, ReportTable)> {
+fn realised_vs_requested() -> Result<(ReportFigure, ReportTable), ReportError> {
     let case = shipped_case("ball_plate")?;
     let es: Vec<f64> = (0..=13).map(|i| 0.3 + 0.05 * i as f64).collect();
     let mut series: Vec<Series> = Vec::new();
-    let mut add = |name: &str, style: Style, f: &dyn Fn(&Case) -> Result<f64>| -> Result<()> {
+    let mut add = |name: &str,
+                   style: Style,
+                   f: &dyn Fn(&Case) -> Result<f64, ReportError>|
+     -> Result<(), ReportError> {
         let mut pts = Vec::new();
         for &e in &es {
             let at = case.with_loss_coefficient(exact::loss_coefficient(e));
@@ -456,15 +537,18 @@ fn realised_vs_requested() -> Result<(ReportFigure, ReportTable)> {
         series.push(Series::new(name, pts, style));
         Ok(())
     };
-    let cor_of =
-        |law: &CodeLaw, v0: f64| -> Result<f64> { Ok(own_law_metrics(law, v0, 1e-11)?.cor) };
+    let cor_of = |code: CodeName, law: &CodeLaw, v0: f64| -> Result<f64, ReportError> {
+        own_law_metrics(law, v0, 1e-11)
+            .map(|m| m.cor)
+            .map_err(|source| ReportError::OwnLaw { code, source })
+    };
     for &code in CodeName::ALL {
         add(
             &format!("{code}, as the driver sets it"),
             Style::Dots,
             &|at| {
                 let setup = codes::setup_for_case(at, 1.0);
-                cor_of(&code.driver().law(&setup), at.impact_velocity)
+                cor_of(code, &code.driver().law(&setup), at.impact_velocity)
             },
         )?;
     }
@@ -486,8 +570,8 @@ fn realised_vs_requested() -> Result<(ReportFigure, ReportTable)> {
             let setup = codes::setup_for_case(at, 1.0);
             let (_, law) = card
                 .law_at_its_word(&setup)
-                .ok_or_else(|| anyhow::anyhow!("{code}: no setting to take at its word"))?;
-            cor_of(&law.into(), at.impact_velocity)
+                .ok_or(ReportError::NoSettingAtItsWord { code })?;
+            cor_of(code, &law.into(), at.impact_velocity)
         })?;
     }
     let mut clamps: Vec<&str> = Vec::new();
@@ -506,7 +590,11 @@ fn realised_vs_requested() -> Result<(ReportFigure, ReportTable)> {
             Style::Line,
             &|at| {
                 let setup = codes::setup_for_case(at, 1.0);
-                cor_of(&code.driver().law(&setup).clamped(), at.impact_velocity)
+                cor_of(
+                    code,
+                    &code.driver().law(&setup).clamped(),
+                    at.impact_velocity,
+                )
             },
         )?;
     }
@@ -552,7 +640,7 @@ fn log10(x: f64) -> f64 {
 
 /// The work–precision diagram on ball_plate: the paper's-law methods swept now, and each DEM
 /// code's stored run at the case's η as one point.
-fn work_precision(reference: &Path) -> Result<ReportFigure> {
+fn work_precision(reference: &Path) -> Result<ReportFigure, ReportError> {
     let case = shipped_case("ball_plate")?;
     let mut series = Vec::new();
     for &m in Method::ALL.iter().filter(|m| m.integrates()) {
@@ -602,7 +690,7 @@ fn work_precision(reference: &Path) -> Result<ReportFigure> {
 }
 
 /// The stability grid as a map: one row per method, one cell per grid case.
-fn stability_map() -> Result<ReportFigure> {
+fn stability_map() -> Result<ReportFigure, ReportError> {
     let report = stability_report();
     let classes = [
         (
@@ -660,7 +748,7 @@ pub fn build_report(
     cases: &[Case],
     options: &ReportOptions,
     progress: &mut dyn FnMut(&str),
-) -> Result<Report> {
+) -> Result<Report, ReportError> {
     let compare_options = CompareOptions {
         live: options.live,
         reference: options.reference.clone(),
@@ -787,7 +875,7 @@ pub fn build_report(
     let data = vec![
         DataFile {
             name: "compare.json".into(),
-            text: serde_json::to_string_pretty(&compared)? + "\n",
+            text: serde_json::to_string_pretty(&compared).map_err(OutputError::from)? + "\n",
         },
         DataFile {
             name: "compare.csv".into(),
@@ -817,7 +905,10 @@ pub fn build_report(
 /// The report's part on a user's own deck, checked by `deck`: its table of pairs, the traps
 /// its lines meet, the warnings and what the impacts leave out, with the whole check beside it
 /// as `deck-<number>.json` and `.csv` (`number` from 1, in the order the decks were given).
-pub fn deck_part(number: usize, check: &DeckReport) -> Result<(ReportPart, Vec<DataFile>)> {
+pub fn deck_part(
+    number: usize,
+    check: &DeckReport,
+) -> Result<(ReportPart, Vec<DataFile>), OutputError> {
     let command = check.reproduce().to_string();
     let stem = format!("deck-{number}");
     let sections = check.sections();
@@ -922,7 +1013,7 @@ pub fn deck_part(number: usize, check: &DeckReport) -> Result<(ReportPart, Vec<D
 
 /// Add the parts of the users' own decks to `report`, with their data, reproduce commands and
 /// failed runs.
-pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<()> {
+pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<(), OutputError> {
     for (k, check) in checks.iter().enumerate() {
         let (part, data) = deck_part(k + 1, check)?;
         report.parts.push(part);

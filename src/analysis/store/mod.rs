@@ -12,22 +12,176 @@ pub mod verify;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use anyhow::{Context, Result};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
+use thiserror::Error;
 
 use super::tolerance::Differences;
-use crate::codes::{self, CodeName, CodeSetup, RunOptions, run_code};
-use crate::error::UserError;
+use crate::analysis::run::RunError;
+use crate::codes::{self, CodeError, CodeName, CodeSetup, RunOptions, SetupError, run_code};
+use crate::error::Blame;
 use crate::model::case::Case;
+use crate::model::case::CaseError;
 use crate::model::exact::{self, ImpactFigures};
 use crate::model::law::CodeLaw;
 use crate::model::scene::SceneKind;
-use crate::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
+use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
 use crate::output::files::write_atomic;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
+use crate::solve::SolveError;
 use crate::solve::dashpot::{CodeStepping, StepScheme, own_law_metrics};
+
+/// Why a reference could not be run, read or stored, or the store not verified. Each variant
+/// names the code, the file or the folder it concerns.
+#[derive(Debug, Error)]
+pub enum StoreError {
+    /// The code's run could not be sized from its own law.
+    #[error("{code}: sizing the run from the code's law")]
+    Setup {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SetupError,
+    },
+    /// The code failed to run, or its output could not be read.
+    #[error(transparent)]
+    Code(#[from] CodeError),
+    /// The code's trajectory gives no impact figures.
+    #[error("{code}")]
+    Trajectory {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+    /// The code's own law, stepped as the code steps, gives no impact figures.
+    #[error("{code}: own law stepped")]
+    SteppedLaw {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+    /// The code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    ExactLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+    /// A file or folder could not be read.
+    #[error("reading {}", path.display())]
+    Read {
+        /// The file or folder.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// A file is not a stored reference file.
+    #[error("{}: not a reference file", path.display())]
+    NotAReferenceFile {
+        /// The file.
+        path: PathBuf,
+        /// What the JSON reader found.
+        source: serde_json::Error,
+    },
+    /// The store's folder for a code could not be made.
+    #[error("creating {}", path.display())]
+    CreateFolder {
+        /// The folder.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The lock file that serialises saves could not be opened.
+    #[error("opening the lock {}", path.display())]
+    OpenLock {
+        /// The lock file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The lock could not be taken.
+    #[error("locking {}", path.display())]
+    Lock {
+        /// The lock file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The reference file could not be encoded as JSON.
+    #[error("encoding {}", path.display())]
+    Encode {
+        /// The reference file.
+        path: PathBuf,
+        /// Why.
+        source: serde_json::Error,
+    },
+    /// The reference file could not be written.
+    #[error("writing {}", path.display())]
+    Write {
+        /// The reference file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// The reference file holds runs of other bodies under the same case name: the user's.
+    #[error(
+        "--save = {}: holds runs of another `{case}` (other bodies, materials or speed; stored from `{command}`); \
+         store your case under another name, or in a folder of your own with --reference DIR",
+        file.display()
+    )]
+    ForeignRuns {
+        /// The reference file.
+        file: PathBuf,
+        /// The case's name.
+        case: String,
+        /// The command that stored the other runs.
+        command: String,
+    },
+    /// The cases' folder cannot be read: the user's.
+    #[error("--cases = {}: cannot read the folder: {reason}", folder.display())]
+    CasesUnreadable {
+        /// The folder.
+        folder: PathBuf,
+        /// Why.
+        reason: std::io::Error,
+    },
+    /// The cases' folder holds no case file: the user's.
+    #[error("--cases = {}: holds no .toml case files", folder.display())]
+    NoCaseFiles {
+        /// The folder.
+        folder: PathBuf,
+    },
+    /// The stored references' folder is not there: the user's.
+    #[error("--reference = {}: no such folder of stored references", folder.display())]
+    NoReferenceFolder {
+        /// The folder.
+        folder: PathBuf,
+    },
+    /// A case file is invalid: the user's.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// A case could not be integrated.
+    #[error(transparent)]
+    Run(#[from] RunError),
+}
+
+impl Blame for StoreError {
+    fn is_user_error(&self) -> bool {
+        match self {
+            StoreError::ForeignRuns { .. }
+            | StoreError::CasesUnreadable { .. }
+            | StoreError::NoCaseFiles { .. }
+            | StoreError::NoReferenceFolder { .. }
+            | StoreError::Case(_) => true,
+            StoreError::Run(e) => e.is_user_error(),
+            _ => false,
+        }
+    }
+}
 
 /// One run of one code on one case at one η.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -195,7 +349,7 @@ pub fn run_reference(
     code: CodeName,
     case: &Case,
     options: &ReferenceOptions,
-) -> Result<ReferenceRecord> {
+) -> Result<ReferenceRecord, StoreError> {
     let started = std::time::Instant::now();
     let driver = code.driver();
     let setup = codes::prepare(
@@ -205,13 +359,14 @@ pub fn run_reference(
         options.timestep,
         options.clamp_attractive,
     )
-    .with_context(|| format!("{code}: sizing the run from the code's law"))?;
+    .map_err(|source| StoreError::Setup { code, source })?;
     let run_options = RunOptions {
         timeout: options.timeout,
         ..RunOptions::default()
     };
     let run = run_code(driver, &setup, &run_options)?;
-    let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
+    let metrics = trajectory_metrics(&run.trajectory)
+        .map_err(|source| StoreError::Trajectory { code, source })?;
     let law = driver.law(&setup);
     let scheme = driver.step_scheme();
     let stepped = driver.stepping(&setup).trajectory(
@@ -222,8 +377,9 @@ pub fn run_reference(
         0.0,
     );
     let law_at_step =
-        trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
-    let law_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)?;
+        trajectory_metrics(&stepped).map_err(|source| StoreError::SteppedLaw { code, source })?;
+    let law_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)
+        .map_err(|source| StoreError::ExactLaw { code, source })?;
     let command = Invocation::new("reference")
         .option("--code", code)
         .arg(case.path.display())
@@ -280,17 +436,25 @@ pub fn reference_path(folder: &Path, code: CodeName, case: &str) -> PathBuf {
 }
 
 /// Read a stored reference file.
-pub fn load(path: &Path) -> Result<ReferenceFile> {
-    let text =
-        std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-    serde_json::from_str(&text).with_context(|| format!("{}: not a reference file", path.display()))
+pub fn load(path: &Path) -> Result<ReferenceFile, StoreError> {
+    let text = std::fs::read_to_string(path).map_err(|source| StoreError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    serde_json::from_str(&text).map_err(|source| StoreError::NotAReferenceFile {
+        path: path.to_path_buf(),
+        source,
+    })
 }
 
 /// Store `record`, replacing a stored run of the same η.
-pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
+pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf, StoreError> {
     let path = reference_path(folder, record.code, &record.case);
     let dir = path.parent().unwrap_or(folder);
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    std::fs::create_dir_all(dir).map_err(|source| StoreError::CreateFolder {
+        path: dir.to_path_buf(),
+        source,
+    })?;
     // Saves of one record file are serialised across processes, and the file is read under the
     // lock: two saves finishing together both land, neither replaces the other's run.
     let lock_path = dir.join(format!(".{}.lock", record.case));
@@ -299,9 +463,14 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
         .truncate(false)
         .write(true)
         .open(&lock_path)
-        .with_context(|| format!("opening the lock {}", lock_path.display()))?;
-    lock.lock()
-        .with_context(|| format!("locking {}", lock_path.display()))?;
+        .map_err(|source| StoreError::OpenLock {
+            path: lock_path.clone(),
+            source,
+        })?;
+    lock.lock().map_err(|source| StoreError::Lock {
+        path: lock_path.clone(),
+        source,
+    })?;
     let mut file = if path.exists() {
         load(&path)?
     } else {
@@ -316,24 +485,25 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf> {
         .iter()
         .find(|r| !same_bodies(&r.setup, &record.setup))
     {
-        return Err(UserError::argument(
-            "--save",
-            path.display(),
-            format!(
-                "holds runs of another `{}` (other bodies, materials or speed; stored from `{}`); \
-                 store your case under another name, or in a folder of your own with --reference DIR",
-                record.case, other.command
-            ),
-        )
-        .into());
+        return Err(StoreError::ForeignRuns {
+            file: path,
+            case: record.case.clone(),
+            command: other.command.clone(),
+        });
     }
     file.runs
         .retain(|r| (r.loss_coefficient - record.loss_coefficient).abs() > 1e-12);
     file.runs.push(record.clone());
     file.runs
         .sort_by(|a, b| a.loss_coefficient.total_cmp(&b.loss_coefficient));
-    let text = serde_json::to_string_pretty(&file)? + "\n";
-    write_atomic(&path, text.as_bytes()).with_context(|| format!("writing {}", path.display()))?;
+    let text = serde_json::to_string_pretty(&file).map_err(|source| StoreError::Encode {
+        path: path.clone(),
+        source,
+    })? + "\n";
+    write_atomic(&path, text.as_bytes()).map_err(|source| StoreError::Write {
+        path: path.clone(),
+        source,
+    })?;
     drop(lock);
     Ok(path)
 }
@@ -351,7 +521,7 @@ fn same_bodies(a: &CodeSetup, b: &CodeSetup) -> bool {
 }
 
 /// Every stored reference file under `folder`, sorted.
-pub fn stored_files(folder: &Path) -> Result<Vec<PathBuf>> {
+pub fn stored_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let mut files = Vec::new();
     if !folder.is_dir() {
         return Ok(files);
@@ -378,7 +548,7 @@ pub fn find_stored(
     code: CodeName,
     case: &str,
     loss_coefficient: f64,
-) -> Result<Option<ReferenceRecord>> {
+) -> Result<Option<ReferenceRecord>, StoreError> {
     let path = reference_path(folder, code, case);
     if !path.exists() {
         return Ok(None);

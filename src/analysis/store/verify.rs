@@ -3,15 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result};
 use serde::Serialize;
 
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
-use crate::analysis::store::{ReferenceRecord, hex, load, stored_files};
+use crate::analysis::store::{ReferenceRecord, StoreError, hex, load, stored_files};
 use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
-use crate::error::UserError;
+use crate::error::Chain;
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::trajectory::trajectory_metrics;
@@ -118,29 +117,26 @@ impl VerifyReport {
 }
 
 /// The case files in `dir`, sorted by name.
-pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
+pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|e| {
-            UserError::argument(
-                "--cases",
-                dir.display(),
-                format!("cannot read the folder: {e}"),
-            )
+        .map_err(|reason| StoreError::CasesUnreadable {
+            folder: dir.to_path_buf(),
+            reason,
         })?
         .filter_map(|entry| entry.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "toml"))
         .collect();
     files.sort();
     if files.is_empty() {
-        return Err(
-            UserError::argument("--cases", dir.display(), "holds no .toml case files").into(),
-        );
+        return Err(StoreError::NoCaseFiles {
+            folder: dir.to_path_buf(),
+        });
     }
     Ok(files)
 }
 
 /// Check every case in `dir` by every integrating method against the closed forms.
-pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>> {
+pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     let mut rows = Vec::new();
     for path in case_files(dir)? {
         let case = Case::load(&path)?;
@@ -314,14 +310,11 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
 ///   [`STORED_LOSS_COEFFICIENTS`] (for the canonical cases present in `cases`), and no other
 ///   file. Records are the `*.json` files directly in `folder/<code>/`; other files there (the
 ///   conventions notes, probe inputs) are not records.
-pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>> {
+pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     if !folder.is_dir() {
-        return Err(UserError::argument(
-            "--reference",
-            folder.display(),
-            "no such folder of stored references",
-        )
-        .into());
+        return Err(StoreError::NoReferenceFolder {
+            folder: folder.to_path_buf(),
+        });
     }
     let mut rows = Vec::new();
     let mut present = Vec::new();
@@ -343,7 +336,7 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>> {
                     None,
                     Source::Code(code),
                     Check::Store,
-                    Some(format!("{}: {e:#}", path.display())),
+                    Some(format!("{}: {}", path.display(), Chain(&e))),
                 ));
                 continue;
             }
@@ -578,10 +571,12 @@ pub const MAX_STORED_STEPS: u64 = 10_000_000;
 
 /// JSON files in `folder` that are not records: directly in `folder`, or in a folder that is
 /// not a known code's.
-fn stray_files(folder: &Path) -> Result<Vec<PathBuf>> {
+fn stray_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let mut out = Vec::new();
-    let entries =
-        std::fs::read_dir(folder).with_context(|| format!("reading {}", folder.display()))?;
+    let entries = std::fs::read_dir(folder).map_err(|source| StoreError::Read {
+        path: folder.to_path_buf(),
+        source,
+    })?;
     for entry in entries.flatten() {
         let path = entry.path();
         let name = entry.file_name().to_string_lossy().into_owned();
@@ -604,7 +599,7 @@ fn stray_files(folder: &Path) -> Result<Vec<PathBuf>> {
 }
 
 /// `verify`: the cases in `cases` and the stored references in `reference`.
-pub fn verify(cases: &Path, reference: &Path) -> Result<VerifyReport> {
+pub fn verify(cases: &Path, reference: &Path) -> Result<VerifyReport, StoreError> {
     let mut rows = verify_cases(cases)?;
     rows.extend(verify_stored(reference, cases)?);
     Ok(VerifyReport {

@@ -7,15 +7,17 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
-use anyhow::Context;
 use rayon::prelude::*;
 
+use super::error::SweepError;
 use super::grid::{Point, SweepFile};
 use super::point::{GridOptions, single_point};
 use super::row::{CodeFigures, PointFigures, SweepRow};
 use crate::analysis::source::{Resolution, Source};
+use crate::analysis::store::StoreError;
 use crate::codes::batch::run_batch;
 use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
+use crate::error::Chain;
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::trajectory::trajectory_metrics;
@@ -174,9 +176,10 @@ fn batch_figures(
     run: &ParsedRun,
     wall_time: f64,
     batch: usize,
-) -> anyhow::Result<CodeFigures> {
+) -> Result<CodeFigures, StoreError> {
     let driver = code.driver();
-    let metrics = trajectory_metrics(&run.trajectory).with_context(|| format!("{code}"))?;
+    let metrics = trajectory_metrics(&run.trajectory)
+        .map_err(|source| StoreError::Trajectory { code, source })?;
     let law = driver.law(setup);
     let stepped = driver.stepping(setup).trajectory(
         &law,
@@ -186,8 +189,9 @@ fn batch_figures(
         0.0,
     );
     let at_step =
-        trajectory_metrics(&stepped).with_context(|| format!("{code}: own law stepped"))?;
-    let own_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)?;
+        trajectory_metrics(&stepped).map_err(|source| StoreError::SteppedLaw { code, source })?;
+    let own_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)
+        .map_err(|source| StoreError::ExactLaw { code, source })?;
     let paper = case.law();
     Ok(CodeFigures {
         case: case.name.clone(),
@@ -246,11 +250,11 @@ pub fn run_item(
                 }
                 Ok(batch) => {
                     let n = items.len();
-                    let figures: Vec<anyhow::Result<CodeFigures>> = items
+                    let figures: Vec<Result<CodeFigures, SweepError>> = items
                         .iter()
                         .zip(batch.runs)
                         .map(|(p, run)| {
-                            run.map_err(anyhow::Error::from).and_then(|run| {
+                            run.map_err(SweepError::from).and_then(|run| {
                                 batch_figures(
                                     *code,
                                     &p.case,
@@ -259,6 +263,7 @@ pub fn run_item(
                                     batch.wall_time / n as f64,
                                     n,
                                 )
+                                .map_err(SweepError::from)
                             })
                         })
                         .collect();
@@ -274,8 +279,9 @@ pub fn run_item(
                             Err(_) if stop.load(Ordering::SeqCst) => {}
                             Err(e) => {
                                 note(format!(
-                                    "{code}: point {} of a batch ran alone: {e:#}{}",
+                                    "{code}: point {} of a batch ran alone: {}{}",
                                     p.point.index,
+                                    Chain(&e),
                                     batch
                                         .kept
                                         .as_ref()

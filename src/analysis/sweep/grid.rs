@@ -24,11 +24,13 @@ use std::path::{Path, PathBuf};
 use sha2::{Digest, Sha256};
 use toml::{Table, Value};
 
+use super::error::SweepError;
 use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
 use crate::analysis::precision::choice::{Choice, allowed_tolerances, choose, resolution_text};
 use crate::analysis::run::MIN_RTOL;
 pub use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
+use crate::error::Chain;
 use crate::model::case::{Case, CaseError, IN_PLACE_KEYS};
 use crate::solve::{Knob, Method};
 
@@ -624,13 +626,17 @@ impl SweepFile {
     }
 
     /// The row of `point` from its outcome: the figures, or the error.
-    pub fn outcome_row(&self, point: &Point, outcome: anyhow::Result<PointFigures>) -> SweepRow {
+    pub fn outcome_row(
+        &self,
+        point: &Point,
+        outcome: Result<PointFigures, SweepError>,
+    ) -> SweepRow {
         match outcome {
             Ok(figures) => self.row(point, figures, RowStatus::ok()),
             Err(e) => self.row(
                 point,
                 PointFigures::default(),
-                RowStatus::failed(&format!("{e:#}")),
+                RowStatus::failed(&Chain(&e).to_string()),
             ),
         }
     }

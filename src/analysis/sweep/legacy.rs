@@ -6,9 +6,9 @@
 use std::io::Write;
 use std::sync::atomic::AtomicBool;
 
-use anyhow::Result;
 use serde::Serialize;
 
+use super::error::SweepError;
 use crate::analysis::run::{IntegrationOptions, RunReport, SweepRow, run_case, solve_failure};
 use crate::error::UserError;
 use crate::model::case::Case;
@@ -87,7 +87,11 @@ pub struct SweepReport {
 }
 
 /// Run `case` at each η of `values`.
-pub fn sweep(case: &Case, values: &[f64], options: &IntegrationOptions) -> Result<SweepReport> {
+pub fn sweep(
+    case: &Case,
+    values: &[f64],
+    options: &IntegrationOptions,
+) -> Result<SweepReport, SweepError> {
     let mut rows = Vec::with_capacity(values.len());
     for &eta in values {
         let at = case.with_loss_coefficient(eta);
@@ -150,7 +154,11 @@ impl Summary for SweepReport {
 
 /// The rows of `case` at the loss coefficients `values` with `settings`, in order: each the
 /// row of [`run_case`] at that η (rk4-event solves them in lanes, to the same bits).
-pub fn rows_at(case: &Case, values: &[f64], settings: &Settings) -> Result<Vec<SweepRow>> {
+pub fn rows_at(
+    case: &Case,
+    values: &[f64],
+    settings: &Settings,
+) -> Result<Vec<SweepRow>, SweepError> {
     let mut at = case.clone();
     let items: Vec<(PaperLaw, f64)> = values
         .iter()
@@ -196,7 +204,7 @@ pub struct Streamed<'a> {
 impl Streamed<'_> {
     /// Check the options at every η: a bad option or a step beyond the stability limit at any
     /// η is refused before a row is written.
-    pub fn settings(&self) -> Result<Settings> {
+    pub fn settings(&self) -> Result<Settings, SweepError> {
         let mut at = self.case.clone();
         let mut settings = None;
         for eta in (0..self.values.count).map(|i| self.values.get(i)) {
@@ -208,7 +216,7 @@ impl Streamed<'_> {
             check_step(&at.law(), at.impact_velocity, &s)
                 .map_err(|e| solve_failure(&self.case.path, e))?;
         }
-        settings.ok_or_else(|| anyhow::anyhow!("a sweep has at least one value"))
+        settings.ok_or(SweepError::NoValues)
     }
 
     /// Write the rows to `out` in `format`, as they are done; returns the points (η, COR) when
@@ -218,7 +226,7 @@ impl Streamed<'_> {
         format: Format,
         out: &mut dyn Write,
         points: bool,
-    ) -> Result<Vec<(f64, f64)>> {
+    ) -> Result<Vec<(f64, f64)>, SweepError> {
         let settings = self.settings()?;
         let stop = AtomicBool::new(false);
         let mut plotted = Vec::new();
@@ -274,7 +282,7 @@ impl Streamed<'_> {
             _ => String::new(),
         };
         out.write_all(head.as_bytes())?;
-        let work = |range: std::ops::Range<usize>| -> Result<EncodedChunk> {
+        let work = |range: std::ops::Range<usize>| -> Result<EncodedChunk, SweepError> {
             let first = range.start == 0;
             let rows = rows_at(self.case, &self.values.values(range), &settings)?;
             let plotted = if points {

@@ -2,6 +2,7 @@
 //! disk, batches of code points, and the legacy one-axis form.
 
 pub mod batch;
+pub mod error;
 pub mod failed;
 pub mod grid;
 pub mod legacy;
@@ -16,6 +17,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::mpsc;
 
 use crate::analysis::source::Source;
+pub use error::SweepError;
 use grid::{Point, SweepFile};
 use point::{GridOptions, method_rows};
 use row::SweepRow;

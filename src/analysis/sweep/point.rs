@@ -4,11 +4,13 @@
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
+use super::error::SweepError;
 use super::grid::{Point, PointCases, SweepFile};
 use super::row::{CodeFigures, PointFigures, RowStatus, SweepRow};
 use crate::analysis::run::{IntegrationOptions, run_case, solve_failure};
 use crate::analysis::source::{Resolution, Source};
 use crate::analysis::store::{ReferenceOptions, run_reference};
+use crate::error::Chain;
 use crate::model::law::PaperLaw;
 use crate::solve::paper::{Outcome, Settings, solve_many};
 
@@ -30,9 +32,9 @@ fn method_settings(
     point: &Point,
     case: &crate::model::case::Case,
     options: &GridOptions,
-) -> anyhow::Result<Settings> {
+) -> Result<Settings, SweepError> {
     let Source::Method(method) = point.source.source else {
-        anyhow::bail!("point {} is a code's, not a method's", point.index);
+        return Err(SweepError::NotAMethodPoint { point: point.index });
     };
     let integration = IntegrationOptions {
         method,
@@ -43,6 +45,9 @@ fn method_settings(
     };
     Ok(integration.settings(case, false)?)
 }
+
+/// A method point's law and speed with its solution.
+type Solved = (PaperLaw, f64, Outcome);
 
 /// The rows of method points, in their order, each handed to `emit`: the same rows
 /// [`single_point`] gives each, with the case edited in place from point to point where the
@@ -58,45 +63,52 @@ pub fn method_rows(
     emit: &mut dyn FnMut(&SweepRow) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
     let mut cases = PointCases::new(sweep);
-    // Each point's law and speed with its settings, or its error.
-    let mut prepared: Vec<anyhow::Result<(PaperLaw, f64, Settings)>> = Vec::new();
+    // Each point's law and speed with its settings, where they could be had; and each
+    // point's law and speed with its solution, or its error (set here if it had none).
+    let mut prepared: Vec<Option<(PaperLaw, f64, Settings)>> = Vec::new();
+    let mut outcomes: Vec<Option<Result<Solved, SweepError>>> = Vec::new();
     for point in points {
         if stop.load(Ordering::Relaxed) {
             break;
         }
-        prepared.push((|| {
+        let ready = (|| -> Result<_, SweepError> {
             let case = cases.case(point)?;
             let settings = method_settings(point, case, options)?;
             Ok((case.law(), case.impact_velocity, settings))
-        })());
-    }
-    // Each point's law and speed with its solution, or its error.
-    let mut outcomes: Vec<Option<anyhow::Result<(PaperLaw, f64, Outcome)>>> =
-        (0..prepared.len()).map(|_| None).collect();
-    let mut pending: Vec<usize> = (0..prepared.len()).collect();
-    while let Some(&first) = pending.first() {
-        let Ok((_, _, settings)) = &prepared[first] else {
-            if let Err(e) = std::mem::replace(&mut prepared[first], Err(anyhow::anyhow!(""))) {
-                outcomes[first] = Some(Err(e));
+        })();
+        match ready {
+            Ok(ready) => {
+                prepared.push(Some(ready));
+                outcomes.push(None);
             }
+            Err(e) => {
+                prepared.push(None);
+                outcomes.push(Some(Err(e)));
+            }
+        }
+    }
+    let mut pending: Vec<usize> = (0..prepared.len())
+        .filter(|&i| prepared[i].is_some())
+        .collect();
+    while let Some(&first) = pending.first() {
+        let Some((_, _, settings)) = prepared[first] else {
             pending.remove(0);
             continue;
         };
-        let settings = *settings;
         let (same, rest): (Vec<usize>, Vec<usize>) = pending
             .iter()
-            .partition(|&&i| matches!(&prepared[i], Ok((_, _, s)) if *s == settings));
+            .partition(|&&i| matches!(&prepared[i], Some((_, _, s)) if *s == settings));
         pending = rest;
         let items: Vec<(PaperLaw, f64)> = same
             .iter()
-            .filter_map(|&i| prepared[i].as_ref().ok().map(|(law, v0, _)| (*law, *v0)))
+            .filter_map(|&i| prepared[i].map(|(law, v0, _)| (law, v0)))
             .collect();
         for ((&i, &(law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
         {
             outcomes[i] = Some(
                 solved
                     .map(|o| (law, v0, o))
-                    .map_err(|e| solve_failure(&sweep.base_case.path, e)),
+                    .map_err(|e| solve_failure(&sweep.base_case.path, e).into()),
             );
         }
     }
@@ -111,7 +123,7 @@ pub fn method_rows(
             }
             Err(e) => {
                 row.figures = PointFigures::default();
-                row.status = RowStatus::failed(&format!("{e:#}"));
+                row.status = RowStatus::failed(&Chain(&e).to_string());
             }
         }
         emit(&row)?;
@@ -121,7 +133,7 @@ pub fn method_rows(
 
 /// Evaluate one point alone, whoever computes it.
 pub fn single_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> SweepRow {
-    let outcome = (|| -> anyhow::Result<PointFigures> {
+    let outcome = (|| -> Result<PointFigures, SweepError> {
         let case = sweep.case(point)?;
         match point.source.source {
             Source::Method(method) => {

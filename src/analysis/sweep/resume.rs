@@ -10,6 +10,7 @@ use std::path::Path;
 
 use sha2::{Digest, Sha256};
 
+use super::error::SweepError;
 use super::grid::{Point, SweepFile, normal_cell};
 use super::row::{PointFigures, RowStatus};
 use super::rows::{RowFormat, json_cell};
@@ -38,7 +39,7 @@ fn key_of<'a>(cells: impl IntoIterator<Item = &'a str>) -> PointKey {
 /// The keys of `points` of `sweep`, as their rows' keys would be: each point's row written
 /// as the CSV rows are written and read back (through one buffer and one reader per
 /// thousands of points: building a CSV reader costs more than a point's row).
-pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> anyhow::Result<Vec<PointKey>> {
+pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> Result<Vec<PointKey>, SweepError> {
     let columns = sweep.columns();
     let at: Vec<usize> = sweep
         .key_columns()
@@ -156,17 +157,21 @@ struct ReadRow {
 /// Read the output at `path` of `sweep` for resuming: which points are done, and what is
 /// kept. Rows of another sweep, or a file that is not a sweep's output, are refused (exit 2)
 /// naming the file.
-pub fn read_resumed(path: &Path, sweep: &SweepFile) -> anyhow::Result<Resumed> {
+pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepError> {
     let name = path.display().to_string();
     let refuse = |allowed: String| UserError::argument("--resume", &name, allowed);
-    let mut file = std::fs::File::open(path)
-        .map_err(|e| anyhow::anyhow!("reading {}: {e}", path.display()))?;
-    let complete = complete_length(&mut file)?;
-    let total = file.metadata()?.len();
-    file.seek(SeekFrom::Start(0))?;
+    let read = |source| SweepError::Read {
+        path: path.to_path_buf(),
+        source,
+    };
+    let mut file = std::fs::File::open(path).map_err(read)?;
+    let complete = complete_length(&mut file).map_err(read)?;
+    let total = file.metadata().map_err(read)?.len();
+    file.seek(SeekFrom::Start(0)).map_err(read)?;
     let mut reader = BufReader::new(file.take(complete));
     let first = reader
-        .fill_buf()?
+        .fill_buf()
+        .map_err(read)?
         .iter()
         .find(|b| !b.is_ascii_whitespace())
         .copied();
@@ -186,7 +191,7 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> anyhow::Result<Resumed> {
             let mut number = 0usize;
             loop {
                 line.clear();
-                let n = reader.read_line(&mut line)? as u64;
+                let n = reader.read_line(&mut line).map_err(read)? as u64;
                 if n == 0 {
                     break;
                 }

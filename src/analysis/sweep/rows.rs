@@ -5,6 +5,7 @@ use std::collections::HashMap;
 use std::io::Write;
 use std::path::Path;
 
+use super::error::SweepError;
 use super::failed::FailedRows;
 use super::row::{RowStatus, SweepRow};
 use crate::error::UserError;
@@ -145,14 +146,19 @@ pub fn json_cell(value: &serde_json::Value) -> String {
 }
 
 /// Read the rows of a sweep output (CSV or JSON lines, told apart by the first character).
-pub fn read_rows(path: &Path) -> anyhow::Result<Rows> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| anyhow::anyhow!("reading {}: {e}", path.display()))?;
-    parse_rows(complete_lines(&text), &path.display().to_string())
+pub fn read_rows(path: &Path) -> Result<Rows, SweepError> {
+    let text = std::fs::read_to_string(path).map_err(|source| SweepError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(parse_rows(
+        complete_lines(&text),
+        &path.display().to_string(),
+    )?)
 }
 
 /// Parse rows from `text`; `file` names it in errors.
-pub fn parse_rows(text: &str, file: &str) -> anyhow::Result<Rows> {
+pub fn parse_rows(text: &str, file: &str) -> Result<Rows, UserError> {
     let bad = |what: String| UserError::argument(file, "(rows)", what);
     let trimmed = text.trim_start();
     if trimmed.is_empty() {
@@ -368,7 +374,7 @@ pub struct Merged {
 /// Join shard outputs: every shard must hold rows of one sweep (same columns and
 /// fingerprint); rows are sorted by point. A point given more than once is kept once: a row
 /// that computed it before one that failed, else the first given.
-pub fn merge(shards: &[&Path]) -> anyhow::Result<Merged> {
+pub fn merge(shards: &[&Path]) -> Result<Merged, SweepError> {
     let mut joined: Option<Rows> = None;
     let mut fingerprint: Option<(String, String)> = None;
     // Each point's row in `joined`, and whether it is ok.
