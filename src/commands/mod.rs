@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{Context, Result};
 
 use crate::cli::Command;
+use millimpact::analysis::benchmark::BenchmarkError;
 use millimpact::analysis::compare::CompareError;
 use millimpact::analysis::report::ReportError;
 use millimpact::analysis::run::RunError;
@@ -140,6 +141,7 @@ fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
         SweepError,
         CompareError,
         ReportError,
+        BenchmarkError,
     );
     false
 }

@@ -12,8 +12,9 @@ use serde::Serialize;
 use thiserror::Error;
 
 use super::source::Source;
-use super::store::{ReferenceOptions, run_reference};
+use super::store::{ReferenceOptions, StoreError, run_reference};
 use crate::codes::CodeName;
+use crate::error::Blame;
 use crate::model::case::{Case, CaseError};
 use crate::model::exact::{loss_coefficient, paper_impact};
 use crate::model::trajectory::TrajectoryMetrics;
@@ -187,15 +188,25 @@ pub enum BenchmarkError {
         source: SolveError,
     },
     /// A code's run failed; its log is kept where the error says.
-    #[error("{code} on {case}: {message}")]
+    #[error("{code} on {case}")]
     Code {
         /// The code.
         code: CodeName,
         /// The case.
         case: String,
-        /// The code's failure, whole.
-        message: String,
+        /// The code's failure.
+        source: StoreError,
     },
+}
+
+impl Blame for BenchmarkError {
+    fn is_user_error(&self) -> bool {
+        match self {
+            BenchmarkError::Case(_) => true,
+            BenchmarkError::Solve { .. } => false,
+            BenchmarkError::Code { source, .. } => source.is_user_error(),
+        }
+    }
 }
 
 /// The benchmark's result: every row, sources in the order asked.
@@ -304,11 +315,11 @@ fn figures(
             Ok((outcome.figures.metrics(), COR_TOLERANCE_METHOD))
         }
         Source::Code(code) => {
-            let record = run_reference(code, case, &options.reference).map_err(|e| {
+            let record = run_reference(code, case, &options.reference).map_err(|source| {
                 BenchmarkError::Code {
                     code,
                     case: case.name.clone(),
-                    message: format!("{e:#}"),
+                    source,
                 }
             })?;
             // The step band of this run: the code's own law stepped at its step against that
