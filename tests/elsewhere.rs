@@ -9,11 +9,18 @@ use std::path::Path;
 use common::{case_path, root};
 use tempfile::TempDir;
 
-/// `millimpact` run from `folder`, a folder with no `cases/` or `reference/` of its own.
+/// `millimpact` run from `folder`, a folder with no `cases/` or `reference/` of its own, as on
+/// a machine without the DEM codes (so that none is probed: `calibrate` and `report` would
+/// measure a LAMMPS build they find).
 fn millimpact_in(folder: &Path) -> assert_cmd::Command {
     let mut cmd = assert_cmd::Command::cargo_bin("millimpact").unwrap();
-    cmd.current_dir(folder);
+    cmd.current_dir(folder).envs(common::codes_hidden());
     cmd
+}
+
+/// `millimpact` run from the repository's folder, the codes hidden as in [`millimpact_in`].
+fn millimpact_at_root() -> assert_cmd::Command {
+    millimpact_in(&root())
 }
 
 #[test]
@@ -57,7 +64,7 @@ fn verify_from_another_folder_checks_the_repository_and_says_so() {
         let path = root().join(folder).display().to_string();
         assert!(stderr.contains(&path), "{folder}: {stderr}");
     }
-    let from_root = common::stdout(common::millimpact().args(["verify", "--format", "json"]));
+    let from_root = common::stdout(millimpact_at_root().args(["verify", "--format", "json"]));
     let rows = |text: &str| -> usize {
         serde_json::from_str::<serde_json::Value>(text).unwrap()["rows"]
             .as_array()
@@ -109,7 +116,7 @@ fn compare_and_calibrate_without_a_case_read_the_built_in_cases() {
     let here = TempDir::new().unwrap();
     let elsewhere =
         common::stdout(millimpact_in(here.path()).args(["compare", "--format", "json"]));
-    let at_root = common::stdout(common::millimpact().args(["compare", "--format", "json"]));
+    let at_root = common::stdout(millimpact_at_root().args(["compare", "--format", "json"]));
     assert_eq!(without_run_times(&elsewhere), without_run_times(&at_root));
     let elsewhere = common::stdout(millimpact_in(here.path()).args([
         "calibrate",
@@ -118,7 +125,7 @@ fn compare_and_calibrate_without_a_case_read_the_built_in_cases() {
         "--format",
         "json",
     ]));
-    let at_root = common::stdout(common::millimpact().args([
+    let at_root = common::stdout(millimpact_at_root().args([
         "calibrate",
         "--cor",
         "0.6",

@@ -140,9 +140,12 @@ fn trials(dir: &Path) -> Vec<Trial> {
         serde_json::to_string_pretty(&value).unwrap(),
     )
     .unwrap();
+    // The case files (the benchmarks' folder is not among the cases verify reads).
     for entry in std::fs::read_dir(root().join("cases")).unwrap() {
         let entry = entry.unwrap();
-        std::fs::copy(entry.path(), cases.join(entry.file_name())).unwrap();
+        if entry.path().is_file() {
+            std::fs::copy(entry.path(), cases.join(entry.file_name())).unwrap();
+        }
     }
     let rod = std::fs::read_to_string(cases.join("rod_end.toml")).unwrap();
     let edited = rod.replacen("density = 7800.0", "density = 7850.0", 1);
