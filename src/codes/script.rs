@@ -75,6 +75,8 @@ enum Variable {
 #[derive(Debug, Default)]
 pub struct ScriptReader {
     variables: HashMap<String, Variable>,
+    /// Each variable's style and where it was defined (`None`: on the command line).
+    styles: HashMap<String, (String, Option<SourceLine>)>,
     commands: Vec<Command>,
     depth: usize,
 }
@@ -94,6 +96,8 @@ impl ScriptReader {
             reader
                 .variables
                 .insert(name.clone(), Variable::Text(value.clone()));
+            // `-var` makes an index-style variable.
+            reader.styles.insert(name.clone(), ("index".into(), None));
         }
         reader.file(path)?;
         Ok(reader.commands)
@@ -188,9 +192,13 @@ impl ScriptReader {
                 )
             })
         };
+        if self.refuse_restyling(name, style, at)? {
+            return Ok(());
+        }
         match style.as_str() {
             "delete" => {
                 self.variables.remove(name);
+                self.styles.remove(name);
             }
             // Defined once: a second definition is ignored (as LAMMPS does, so that `-var`
             // on the command line wins).
@@ -230,7 +238,63 @@ impl ScriptReader {
                 ));
             }
         }
+        if style != "delete" {
+            self.styles
+                .entry(name.clone())
+                .or_insert_with(|| (style.clone(), Some(at.clone())));
+        }
         Ok(())
+    }
+
+    /// LAMMPS and LIGGGHTS ignore a second definition of a variable in the styles that keep
+    /// their first (`index`, `loop`, `world`, `universe`, `uloop`, `file`, `format`: so that
+    /// `-var` wins), and stop at one in another style unless the variable already has it
+    /// ("Cannot redefine variable as a different style"): `-var` makes an index variable, so
+    /// `--var dt=…` on a deck's `variable dt equal …` stops the code.
+    /// Whether the definition is ignored (the variable exists and the style keeps the first).
+    fn refuse_restyling(
+        &self,
+        name: &str,
+        style: &str,
+        at: &SourceLine,
+    ) -> Result<bool, DeckError> {
+        const KEEP_FIRST: [&str; 7] = [
+            "index", "loop", "world", "universe", "uloop", "file", "format",
+        ];
+        let Some((first, defined)) = self.styles.get(name) else {
+            return Ok(false);
+        };
+        if KEEP_FIRST.contains(&style) {
+            return Ok(true);
+        }
+        if first == style || style == "delete" {
+            return Ok(false);
+        }
+        let (what, supported) = match defined {
+            None => {
+                let value = match self.variables.get(name) {
+                    Some(Variable::Text(text)) => text.clone(),
+                    _ => String::new(),
+                };
+                (
+                    format!(
+                        "variable {name} {style}: --var {name}={value} made `{name}` an index variable (as -var does), and LIGGGHTS and LAMMPS stop at this line (\"Cannot redefine variable as a different style\")"
+                    ),
+                    format!(
+                        "--var only for a variable the deck defines as `variable {name} index …` (or does not define): change this line to `variable {name} index VALUE`, or leave out --var {name} and edit the value here"
+                    ),
+                )
+            }
+            Some(line) => (
+                format!(
+                    "variable {name} {style}: `{name}` is already a {first} variable ({line}), and LIGGGHTS and LAMMPS stop at this line (\"Cannot redefine variable as a different style\")"
+                ),
+                format!(
+                    "a variable redefined in its own style ({first}), or `variable {name} delete` before it"
+                ),
+            ),
+        };
+        Err(DeckError::unsupported(at, what, &supported))
     }
 
     /// The text of variable `name`, used at `at`: a formula evaluated now, written to 15

@@ -148,6 +148,9 @@ struct Reading {
     coeffs: Vec<(String, String, GranularModel, Command)>,
     walls: Vec<WallFix>,
     atoms_of_type: BTreeMap<u32, SourceLine>,
+    /// Types whose atoms a `set … type|type/fraction|type/ratio|type/subset N` made, with
+    /// that line's text.
+    set_made: HashMap<u32, String>,
     atom_types: Vec<u32>,
     set_type: HashMap<u32, [Option<f64>; 3]>,
     set_atom: HashMap<usize, [Option<f64>; 3]>,
@@ -320,10 +323,22 @@ impl LammpsDeck {
                             *s = v.or(*s);
                         }
                     };
-                    match c.word(1, "atom or type")? {
-                        "type" => merge(r.set_type.entry(whole(c.number(2, "the type")?, c, "type")?).or_default()),
-                        "atom" => merge(r.set_atom.entry(whole(c.number(2, "the atom id")?, c, "atom")? as usize).or_default()),
-                        _ => r.leave_out("set commands on groups or regions", c),
+                    // The size the selected atoms have once this line is done, where known.
+                    let selected = match c.word(1, "atom or type")? {
+                        "type" => {
+                            let slot = r.set_type.entry(whole(c.number(2, "the type")?, c, "type")?).or_default();
+                            merge(slot);
+                            Some(*slot)
+                        }
+                        "atom" => {
+                            let slot = r.set_atom.entry(whole(c.number(2, "the atom id")?, c, "atom")? as usize).or_default();
+                            merge(slot);
+                            Some(*slot)
+                        }
+                        _ => None,
+                    };
+                    if !Self::set_makes_types(c, selected, &mut r)? && selected.is_none() {
+                        r.leave_out("set commands on groups or regions", c);
                     }
                 }
                 "region" | "lattice" => r.leave_out("regions (the geometry)", c),
@@ -348,6 +363,43 @@ impl LammpsDeck {
             }
         }
         Ok(r)
+    }
+
+    /// The types `set`'s `type N`, `type/fraction N …`, `type/ratio N …` and `type/subset N …`
+    /// make out of the selected atoms (which keep their size and density, `selected` where
+    /// known); whether the line makes any.
+    fn set_makes_types(
+        c: &Command,
+        selected: Option<[Option<f64>; 3]>,
+        r: &mut Reading,
+    ) -> Result<bool, DeckError> {
+        let mut makes = false;
+        for (k, word) in c.words.iter().enumerate().skip(3) {
+            if !matches!(
+                word.as_str(),
+                "type" | "type/fraction" | "type/ratio" | "type/subset"
+            ) {
+                continue;
+            }
+            let t = whole(c.number(k + 1, "the new atom type")?, c, word)?;
+            makes = true;
+            let exists = r.atoms_of_type.contains_key(&t);
+            r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+            r.set_made.entry(t).or_insert_with(|| c.text.clone());
+            if let Some(size) = selected {
+                let slot = r.set_type.entry(t).or_default();
+                // A type with no atoms yet takes the selected atoms' size whole (a
+                // `set type N …` before this line set no atom of it).
+                if exists {
+                    for (s, v) in slot.iter_mut().zip(size) {
+                        *s = s.or(v);
+                    }
+                } else {
+                    *slot = size;
+                }
+            }
+        }
+        Ok(makes)
     }
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
@@ -407,7 +459,10 @@ impl LammpsDeck {
             }
             if !found {
                 let (radius, density) = size([None; 3]).ok_or_else(|| {
-                    DeckError::unsupported(at, format!("atoms of type {t} are created without a diameter and density (or mass) set for them"), &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"))
+                    DeckError::unsupported(at, match r.set_made.get(t) {
+                        Some(text) => format!("atoms of type {t} come from `{text}` without a diameter and density (or mass) the reader can know for them"),
+                        None => format!("atoms of type {t} are created without a diameter and density (or mass) set for them"),
+                    }, &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"))
                 })?;
                 push(*t, radius, density, format!("set type {t} ({at})"));
             }
