@@ -476,7 +476,7 @@ pub fn check_deck(
                     crate::error::UserError::argument(
                         "--impact-velocity",
                         format!("{v} m/s"),
-                        format!("the contact of {pair} at this speed lasts {contact_time:e} s, {} steps of the deck's Δt = {dt:e} s, beyond the check's limit of {MAX_STEPS} steps; give a faster --impact-velocity", sci_steps(contact_time / dt)),
+                        format!("the contact of {pair} at this speed lasts {contact_time:.6e} s, {} steps of the deck's Δt = {dt:e} s, beyond the check's limit of {MAX_STEPS} steps; give a faster --impact-velocity", sci_steps(contact_time / dt)),
                     )
                 } else {
                     crate::error::UserError::argument(
