@@ -480,10 +480,11 @@ pub fn fifteen_digits(x: f64) -> String {
 }
 
 /// The names a formula may call, with their argument counts.
-const FUNCTIONS: &str = "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+const FUNCTIONS: &str =
+    "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary";
 
 /// What a formula may hold.
-const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary";
 
 /// A formula of an equal-style variable, evaluated by precedence climbing with LAMMPS's
 /// precedences (`||` 1, `&&` 2, `== !=` 3, `< <= > >=` 4, `+ -` 5, `* / %` 6, `^` 7, unary 8,
@@ -689,10 +690,18 @@ impl<'a> Expression<'a> {
     }
 
     fn call(&mut self, name: &str) -> Result<f64, DeckError> {
-        const KNOWN: [&str; 18] = [
+        const KNOWN: [&str; 16] = [
             "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos", "atan", "ceil",
-            "floor", "round", "atan2", "min", "max", "ternary",
+            "floor", "round", "atan2", "ternary",
         ];
+        if name == "min" || name == "max" {
+            // Not the smaller of two numbers: LAMMPS and LIGGGHTS stop at `min(3,4)` ("Invalid
+            // special function").
+            return Err(self.fail(format!(
+                "`{name}()` in `{}`: in LAMMPS and LIGGGHTS {name}() reduces a compute's, fix's or vector variable's values, a value only the running code knows (the codes stop at {name} of numbers: \"Invalid special function\")",
+                self.text
+            )));
+        }
         if !KNOWN.contains(&name) {
             return Err(self.fail(format!(
                 "`{name}()` in `{}`: a function this reader does not evaluate (one of {FUNCTIONS} is)",
@@ -742,8 +751,6 @@ impl<'a> Expression<'a> {
             "floor" => one(f64::floor)?,
             "round" => one(f64::round)?,
             "atan2" => two(f64::atan2)?,
-            "min" => two(f64::min)?,
-            "max" => two(f64::max)?,
             "ternary" => match args[..] {
                 [c, a, b] => {
                     if c != 0.0 {
@@ -809,6 +816,8 @@ mod tests {
             ("1/0", "divide by zero"),
             ("(1+2", "unbalanced"),
             ("v_nope", "no nope"),
+            ("min(3,4)", "min() reduces a compute's"),
+            ("max(1,2)", "max() reduces a compute's"),
         ] {
             let e = eval(text).unwrap_err().to_string();
             assert!(e.contains(word) && e.starts_with("in:1:"), "{text}: {e}");
