@@ -1178,13 +1178,13 @@ fn column_groups(section: &Section, width: usize) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
     let mut current: Vec<usize> = (0..keys).collect();
     let mut used = key_width;
-    for k in keys..widths.len() {
-        if current.len() > keys && used + widths[k] > width {
+    for (k, &column) in widths.iter().enumerate().skip(keys) {
+        if current.len() > keys && used + column > width {
             groups.push(std::mem::replace(&mut current, (0..keys).collect()));
             used = key_width;
         }
         current.push(k);
-        used += widths[k];
+        used += column;
     }
     groups.push(current);
     groups
