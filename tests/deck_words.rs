@@ -374,3 +374,44 @@ fn the_width_is_columns_else_the_terminals_else_none() {
     assert_eq!(table_width(Some("0"), None), None);
     assert_eq!(table_width(None, None), None);
 }
+
+/// `ternary()` came to LAMMPS in 2022: LIGGGHTS 3.8 and the 2021 build stop at it, and so does
+/// the check; the 2025 build evaluates it.
+#[test]
+fn ternary_is_refused_where_the_code_has_none() {
+    let (_d, path) = deck_file(
+        "in.ternary",
+        &HEAD.replace(
+            "timestep 1e-6\n",
+            "variable dt equal ternary(1>2,1e-6,2e-6)\ntimestep ${dt}\n",
+        ),
+    );
+    assert_eq!(
+        read_error(&path, None, &DeckOptions::default()),
+        format!(
+            "{}:11: `ternary()` in `ternary(1>2,1e-6,2e-6)`: LIGGGHTS 3.8 has no such function (it stops: \"Invalid math/group/special function\"); supported: numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary (LAMMPS from 2022)",
+            path.display()
+        )
+    );
+    let lammps = |lines: &str| {
+        format!(
+            "units si\natom_style sphere\ncreate_box 1 box\ncreate_atoms 1 single 0 0 0\n\
+set type 1 diameter 0.004 density 2500\n{lines}pair_style granular\n\
+pair_coeff * * hertz/material 6.3e10 0.8 0.22 damping tsuji tangential linear_nohistory 0 0\n"
+        )
+    };
+    let (_d, path) = deck_file(
+        "in.lammps",
+        &lammps("variable dt equal ternary(1>2,1e-6,2e-6)\ntimestep ${dt}\n"),
+    );
+    let e = read_error(&path, Some(CodeName::Lammps), &DeckOptions::default());
+    assert!(
+        e.starts_with(&format!(
+            "{}:7: `ternary()` in `ternary(1>2,1e-6,2e-6)`: LAMMPS 2021 has no such function",
+            path.display()
+        )),
+        "{e}"
+    );
+    let deck = read(&path, Some(CodeName::Lammps2025), &DeckOptions::default());
+    assert_eq!(deck.timestep, 2e-6);
+}

@@ -77,6 +77,8 @@ pub struct ScriptReader {
     variables: HashMap<String, Variable>,
     /// Each variable's style and where it was defined (`None`: on the command line).
     styles: HashMap<String, (String, Option<SourceLine>)>,
+    /// The code's name and the formula functions it lacks (see [`ScriptReader::read_for`]).
+    lacking: (&'static str, &'static [&'static str]),
     commands: Vec<Command>,
     depth: usize,
 }
@@ -91,7 +93,21 @@ impl ScriptReader {
     /// Read `path` with the variables `preset` defined first (as `-var NAME VALUE` on the
     /// command line defines them), following `include`s.
     pub fn read(path: &Path, preset: &[(String, String)]) -> Result<Vec<Command>, DeckError> {
-        let mut reader = ScriptReader::default();
+        Self::read_for(path, preset, ("", &[]))
+    }
+
+    /// [`ScriptReader::read`] for a code (its name) that lacks some formula functions (the
+    /// 2021 LAMMPS and LIGGGHTS 3.8 have no `ternary()`): a formula that calls one is refused,
+    /// as the code stops at it.
+    pub fn read_for(
+        path: &Path,
+        preset: &[(String, String)],
+        lacking: (&'static str, &'static [&'static str]),
+    ) -> Result<Vec<Command>, DeckError> {
+        let mut reader = ScriptReader {
+            lacking,
+            ..ScriptReader::default()
+        };
         for (name, value) in preset {
             reader
                 .variables
@@ -327,7 +343,9 @@ impl ScriptReader {
         match self.variables.get(name) {
             Some(Variable::Formula(formula, _)) => {
                 let lookup = |v: &str| self.evaluate_variable(v, at, depth + 1);
-                Expression::new(formula, at, &lookup).evaluate()
+                Expression::new(formula, at, &lookup)
+                    .lacking(self.lacking)
+                    .evaluate()
             }
             Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
                 DeckError::unsupported(
@@ -369,7 +387,9 @@ impl ScriptReader {
                         // `$(formula:format)`: the format only changes how it is written.
                         let formula = inner.split(':').next().unwrap_or_default();
                         let lookup = |v: &str| self.evaluate_variable(v, at, 1);
-                        let x = Expression::new(formula, at, &lookup).evaluate()?;
+                        let x = Expression::new(formula, at, &lookup)
+                            .lacking(self.lacking)
+                            .evaluate()?;
                         (format!("{x:e}"), end + 1)
                     }
                     name => (self.value(&name.to_string(), at)?, i + 2),
@@ -480,11 +500,10 @@ pub fn fifteen_digits(x: f64) -> String {
 }
 
 /// The names a formula may call, with their argument counts.
-const FUNCTIONS: &str =
-    "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary";
+const FUNCTIONS: &str = "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary (LAMMPS from 2022)";
 
 /// What a formula may hold.
-const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary";
+const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary (LAMMPS from 2022)";
 
 /// A formula of an equal-style variable, evaluated by precedence climbing with LAMMPS's
 /// precedences (`||` 1, `&&` 2, `== !=` 3, `< <= > >=` 4, `+ -` 5, `* / %` 6, `^` 7, unary 8,
@@ -495,6 +514,7 @@ struct Expression<'a> {
     text: &'a str,
     line: &'a SourceLine,
     lookup: &'a dyn Fn(&str) -> Result<f64, DeckError>,
+    lacking: (&'static str, &'static [&'static str]),
 }
 
 impl<'a> Expression<'a> {
@@ -509,7 +529,14 @@ impl<'a> Expression<'a> {
             text,
             line,
             lookup,
+            lacking: ("", &[]),
         }
+    }
+
+    /// The code (its name) lacks these functions.
+    fn lacking(mut self, lacking: (&'static str, &'static [&'static str])) -> Self {
+        self.lacking = lacking;
+        self
     }
 
     fn evaluate(mut self) -> Result<f64, DeckError> {
@@ -699,6 +726,13 @@ impl<'a> Expression<'a> {
             // special function").
             return Err(self.fail(format!(
                 "`{name}()` in `{}`: in LAMMPS and LIGGGHTS {name}() reduces a compute's, fix's or vector variable's values, a value only the running code knows (the codes stop at {name} of numbers: \"Invalid special function\")",
+                self.text
+            )));
+        }
+        let (code, lacks) = self.lacking;
+        if lacks.contains(&name) {
+            return Err(self.fail(format!(
+                "`{name}()` in `{}`: {code} has no such function (it stops: \"Invalid math/group/special function\")",
                 self.text
             )));
         }

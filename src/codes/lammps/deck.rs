@@ -252,8 +252,15 @@ fn mixed_cor(
 }
 
 impl LammpsDeck {
-    fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
-        let commands = ScriptReader::read(path, &options.variables)?;
+    fn gather(&self, path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
+        // The 2021 build has no ternary() (it came in 2022).
+        let lacking: (&'static str, &'static [&'static str]) =
+            if self.0.name == super::DEBIAN_2021.name {
+                ("LAMMPS 2021", &["ternary"])
+            } else {
+                ("", &[])
+            };
+        let commands = ScriptReader::read_for(path, &options.variables, lacking)?;
         let mut r = Reading::default();
         for c in &commands {
             match c.name() {
@@ -593,7 +600,7 @@ impl DeckReader for LammpsDeck {
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let r = Self::gather(path, options)?;
+        let r = self.gather(path, options)?;
         let lacking = |what: &str, supported: &str| DeckError::Lacking {
             file: path.to_path_buf(),
             what: what.into(),

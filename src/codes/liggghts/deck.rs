@@ -409,7 +409,8 @@ fn constant_after(command: &Command, key: &str) -> Result<Option<f64>, DeckError
 
 impl LiggghtsDeck {
     fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
-        let commands = ScriptReader::read(path, &options.variables)?;
+        let commands =
+            ScriptReader::read_for(path, &options.variables, ("LIGGGHTS 3.8", &["ternary"]))?;
         let mut r = Reading::default();
         for c in &commands {
             match c.name() {
