@@ -415,3 +415,38 @@ pair_coeff * * hertz/material 6.3e10 0.8 0.22 damping tsuji tangential linear_no
     let deck = read(&path, Some(CodeName::Lammps2025), &DeckOptions::default());
     assert_eq!(deck.timestep, 2e-6);
 }
+
+/// A LAMMPS type made by `fix pour` of one size and density gets its rows; a pour over a range
+/// of sizes is named with what to give.
+#[test]
+fn lammps_types_poured_get_their_rows_or_a_line() {
+    let deck = |pour: &str| {
+        format!(
+            "units si\natom_style sphere\ncreate_box 2 box\ncreate_atoms 1 single 0 0 0\n\
+set type 1 diameter 0.01 density 2500\nregion hopper block 0 1 0 1 0 1 units box\n{pour}\ntimestep 1e-6\n\
+pair_style granular\npair_coeff * * hertz/material 6.3e10 0.8 0.22 damping tsuji tangential linear_nohistory 0 0\n"
+        )
+    };
+    let (_d, path) = deck_file(
+        "in.pour",
+        &deck("fix ins all pour 500 2 4767548 region hopper diam one 0.004 dens 7800 7800"),
+    );
+    let read_deck = read(&path, Some(CodeName::Lammps), &DeckOptions::default());
+    let sizes: Vec<(u32, f64, f64)> = read_deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(1, 0.005, 2500.0), (2, 0.002, 7800.0)]);
+    let (_d, path) = deck_file(
+        "in.range",
+        &deck("fix ins all pour 500 2 4767548 region hopper diam range 0.003 0.005 dens 7800 7800"),
+    );
+    assert_eq!(
+        read_error(&path, Some(CodeName::Lammps), &DeckOptions::default()),
+        format!(
+            "{}:7: atoms of type 2 come from `fix ins all pour 500 2 4767548 region hopper diam range 0.003 0.005 dens 7800 7800` without a diameter and density (or mass) the reader can know for them; supported: --particle 2:RADIUS:DENSITY (atoms inserted during the run take no `set`)",
+            path.display()
+        )
+    );
+}

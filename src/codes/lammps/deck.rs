@@ -151,6 +151,8 @@ struct Reading {
     /// Types whose atoms a `set … type|type/fraction|type/ratio|type/subset N` made, with
     /// that line's text.
     set_made: HashMap<u32, String>,
+    /// Types a `fix pour` or `fix deposit` inserts.
+    inserted: Vec<u32>,
     atom_types: Vec<u32>,
     set_type: HashMap<u32, [Option<f64>; 3]>,
     set_atom: HashMap<usize, [Option<f64>; 3]>,
@@ -307,7 +309,7 @@ impl LammpsDeck {
                         return Err(DeckError::unsupported(&c.at, format!("fix {}: an integrator whose step the harness does not model", c.words[3]), "fix nve/sphere"));
                     }
                     "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
-                    "pour" | "deposit" => r.leave_out("particle insertion (give the sizes with --particle TYPE:RADIUS:DENSITY)", c),
+                    "pour" | "deposit" => Self::inserts(c, &mut r)?,
                     _ => r.leave_out("other fixes (no part of a contact)", c),
                 },
                 "create_atoms" => {
@@ -409,6 +411,42 @@ impl LammpsDeck {
         Ok(makes)
     }
 
+    /// `fix ID group pour N TYPE SEED …` and `fix ID group deposit N TYPE M SEED …` make atoms
+    /// of TYPE: a pour of one diameter (`diam one D`, LAMMPS's default 1) and one density
+    /// (`dens RHO RHO`, default 1) gives the type its size; a range of either, or a deposit
+    /// (whose atoms take LAMMPS's defaults), leaves it to `--particle`.
+    fn inserts(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        r.leave_out("particle insertion (the types it makes are read)", c);
+        let t = whole(c.number(5, "the inserted atom type")?, c, "type")?;
+        r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+        r.set_made.entry(t).or_insert_with(|| c.text.clone());
+        r.inserted.push(t);
+        if c.words[3] != "pour" {
+            return Ok(());
+        }
+        let position = |key: &str| c.words.iter().position(|w| w == key);
+        let diameter = match position("diam") {
+            None => Some(1.0),
+            Some(k) if c.words.get(k + 1).is_some_and(|w| w == "one") => {
+                Some(c.number(k + 2, "diam one")?)
+            }
+            Some(_) => None,
+        };
+        let density = match position("dens") {
+            None => Some(1.0),
+            Some(k) => {
+                let (lo, hi) = (c.number(k + 1, "dens")?, c.number(k + 2, "dens")?);
+                // One density only when both bounds are the same number.
+                #[allow(clippy::float_cmp)]
+                (lo == hi).then_some(lo)
+            }
+        };
+        let slot = r.set_type.entry(t).or_default();
+        slot[0] = slot[0].or(diameter);
+        slot[1] = slot[1].or(density);
+        Ok(())
+    }
+
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
         if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
@@ -469,7 +507,11 @@ impl LammpsDeck {
                     DeckError::unsupported(at, match r.set_made.get(t) {
                         Some(text) => format!("atoms of type {t} come from `{text}` without a diameter and density (or mass) the reader can know for them"),
                         None => format!("atoms of type {t} are created without a diameter and density (or mass) set for them"),
-                    }, &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"))
+                    }, &if r.inserted.contains(t) {
+                        format!("--particle {t}:RADIUS:DENSITY (atoms inserted during the run take no `set`)")
+                    } else {
+                        format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY")
+                    })
                 })?;
                 push(*t, radius, density, format!("set type {t} ({at})"));
             }
