@@ -315,6 +315,10 @@ fn a_failed_run_shows_no_figures() {
             assert!(value.is_nan(), "{}: {figure} {value}", i.pair);
         }
     }
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_fraction_failed_{format}"), text);
+    }
     let table = export(&report, Format::Table).unwrap();
     let row = table.lines().find(|l| l.contains("2–wall")).unwrap();
     assert_eq!(
@@ -362,6 +366,10 @@ fn the_table_fits_the_width_it_is_given() {
         };
         assert_eq!(words(&text), words(&full), "{width}");
     }
+    insta::assert_snapshot!(
+        "deck_liggghts_mill_table_at_100",
+        table_at_width(&report, 100).unwrap()
+    );
     // Wide enough, it is the full table.
     assert_eq!(table_at_width(&report, 400).unwrap(), full);
 }
