@@ -160,3 +160,40 @@ fn a_run_liggghts_stops_carries_its_error_line_and_no_figures() {
         "{stderr}"
     );
 }
+
+/// A fault LIGGGHTS finds on one process (`error->one`, here a `create_atoms … random` seed it
+/// refuses) ends it with MPI_Abort, which drops its buffered screen output and writes no log:
+/// the deck's runs keep the ERROR line all the same, and the failure carries it.
+#[test]
+#[ignore = "live: runs LIGGGHTS"]
+fn an_error_liggghts_finds_on_one_process_reaches_the_failure() {
+    use millimpact::analysis::deck::ImpactRunner;
+    use millimpact::codes::CodeError;
+    std::env::set_current_dir(root()).unwrap();
+    let (code, deck) = read_deck(
+        Path::new("tests/data/deck/liggghts-fraction.in"),
+        None,
+        &DeckOptions::default(),
+    )
+    .unwrap();
+    let reader = code.driver().deck().unwrap();
+    let mut impact = reader.render(&deck, 0, 2.0, 100).unwrap();
+    let at = impact.input.text.find("create_atoms").unwrap();
+    impact
+        .input
+        .text
+        .insert_str(at, "create_atoms    1 random 10 42 NULL\n");
+    let error = LiveRunner::default()
+        .run(code, &impact, &deck.contacts[0].law)
+        .unwrap_err();
+    match &error {
+        CodeError::Crashed { said, .. } => assert_eq!(
+            said.as_deref(),
+            Some(
+                "ERROR on proc 0: Random number generation: It is required that the random seed value is > 10000 and a prime number."
+            ),
+            "{error}"
+        ),
+        other => panic!("{other}"),
+    }
+}
