@@ -75,6 +75,10 @@ enum Variable {
 #[derive(Debug, Default)]
 pub struct ScriptReader {
     variables: HashMap<String, Variable>,
+    /// Each variable's style and where it was defined (`None`: on the command line).
+    styles: HashMap<String, (String, Option<SourceLine>)>,
+    /// The code's name and the formula functions it lacks (see [`ScriptReader::read_for`]).
+    lacking: (&'static str, &'static [&'static str]),
     commands: Vec<Command>,
     depth: usize,
 }
@@ -89,11 +93,27 @@ impl ScriptReader {
     /// Read `path` with the variables `preset` defined first (as `-var NAME VALUE` on the
     /// command line defines them), following `include`s.
     pub fn read(path: &Path, preset: &[(String, String)]) -> Result<Vec<Command>, DeckError> {
-        let mut reader = ScriptReader::default();
+        Self::read_for(path, preset, ("", &[]))
+    }
+
+    /// [`ScriptReader::read`] for a code (its name) that lacks some formula functions (the
+    /// 2021 LAMMPS and LIGGGHTS 3.8 have no `ternary()`): a formula that calls one is refused,
+    /// as the code stops at it.
+    pub fn read_for(
+        path: &Path,
+        preset: &[(String, String)],
+        lacking: (&'static str, &'static [&'static str]),
+    ) -> Result<Vec<Command>, DeckError> {
+        let mut reader = ScriptReader {
+            lacking,
+            ..ScriptReader::default()
+        };
         for (name, value) in preset {
             reader
                 .variables
                 .insert(name.clone(), Variable::Text(value.clone()));
+            // `-var` makes an index-style variable.
+            reader.styles.insert(name.clone(), ("index".into(), None));
         }
         reader.file(path)?;
         Ok(reader.commands)
@@ -188,9 +208,13 @@ impl ScriptReader {
                 )
             })
         };
+        if self.refuse_restyling(name, style, at)? {
+            return Ok(());
+        }
         match style.as_str() {
             "delete" => {
                 self.variables.remove(name);
+                self.styles.remove(name);
             }
             // Defined once: a second definition is ignored (as LAMMPS does, so that `-var`
             // on the command line wins).
@@ -230,7 +254,63 @@ impl ScriptReader {
                 ));
             }
         }
+        if style != "delete" {
+            self.styles
+                .entry(name.clone())
+                .or_insert_with(|| (style.clone(), Some(at.clone())));
+        }
         Ok(())
+    }
+
+    /// LAMMPS and LIGGGHTS ignore a second definition of a variable in the styles that keep
+    /// their first (`index`, `loop`, `world`, `universe`, `uloop`, `file`, `format`: so that
+    /// `-var` wins), and stop at one in another style unless the variable already has it
+    /// ("Cannot redefine variable as a different style"): `-var` makes an index variable, so
+    /// `--var dt=…` on a deck's `variable dt equal …` stops the code.
+    /// Whether the definition is ignored (the variable exists and the style keeps the first).
+    fn refuse_restyling(
+        &self,
+        name: &str,
+        style: &str,
+        at: &SourceLine,
+    ) -> Result<bool, DeckError> {
+        const KEEP_FIRST: [&str; 7] = [
+            "index", "loop", "world", "universe", "uloop", "file", "format",
+        ];
+        let Some((first, defined)) = self.styles.get(name) else {
+            return Ok(false);
+        };
+        if KEEP_FIRST.contains(&style) {
+            return Ok(true);
+        }
+        if first == style || style == "delete" {
+            return Ok(false);
+        }
+        let (what, supported) = match defined {
+            None => {
+                let value = match self.variables.get(name) {
+                    Some(Variable::Text(text)) => text.clone(),
+                    _ => String::new(),
+                };
+                (
+                    format!(
+                        "variable {name} {style}: --var {name}={value} made `{name}` an index variable (as -var does), and LIGGGHTS and LAMMPS stop at this line (\"Cannot redefine variable as a different style\")"
+                    ),
+                    format!(
+                        "--var only for a variable the deck defines as `variable {name} index …` (or does not define): change this line to `variable {name} index VALUE`, or leave out --var {name} and edit the value here"
+                    ),
+                )
+            }
+            Some(line) => (
+                format!(
+                    "variable {name} {style}: `{name}` is already a {first} variable ({line}), and LIGGGHTS and LAMMPS stop at this line (\"Cannot redefine variable as a different style\")"
+                ),
+                format!(
+                    "a variable redefined in its own style ({first}), or `variable {name} delete` before it"
+                ),
+            ),
+        };
+        Err(DeckError::unsupported(at, what, &supported))
     }
 
     /// The text of variable `name`, used at `at`: a formula evaluated now, written to 15
@@ -263,7 +343,9 @@ impl ScriptReader {
         match self.variables.get(name) {
             Some(Variable::Formula(formula, _)) => {
                 let lookup = |v: &str| self.evaluate_variable(v, at, depth + 1);
-                Expression::new(formula, at, &lookup).evaluate()
+                Expression::new(formula, at, &lookup)
+                    .lacking(self.lacking)
+                    .evaluate()
             }
             Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
                 DeckError::unsupported(
@@ -305,7 +387,9 @@ impl ScriptReader {
                         // `$(formula:format)`: the format only changes how it is written.
                         let formula = inner.split(':').next().unwrap_or_default();
                         let lookup = |v: &str| self.evaluate_variable(v, at, 1);
-                        let x = Expression::new(formula, at, &lookup).evaluate()?;
+                        let x = Expression::new(formula, at, &lookup)
+                            .lacking(self.lacking)
+                            .evaluate()?;
                         (format!("{x:e}"), end + 1)
                     }
                     name => (self.value(&name.to_string(), at)?, i + 2),
@@ -416,10 +500,10 @@ pub fn fifteen_digits(x: f64) -> String {
 }
 
 /// The names a formula may call, with their argument counts.
-const FUNCTIONS: &str = "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+const FUNCTIONS: &str = "sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary (LAMMPS from 2022)";
 
 /// What a formula may hold.
-const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, min, max, ternary";
+const FORMULA_SUPPORTED: &str = "numbers, PI, v_NAME of numeric variables, ( ), unary - and !, ^, * / %, + -, < <= > >= == !=, && ||, and sqrt, exp, ln, log, abs, sin, cos, tan, asin, acos, atan, atan2, ceil, floor, round, ternary (LAMMPS from 2022)";
 
 /// A formula of an equal-style variable, evaluated by precedence climbing with LAMMPS's
 /// precedences (`||` 1, `&&` 2, `== !=` 3, `< <= > >=` 4, `+ -` 5, `* / %` 6, `^` 7, unary 8,
@@ -430,6 +514,7 @@ struct Expression<'a> {
     text: &'a str,
     line: &'a SourceLine,
     lookup: &'a dyn Fn(&str) -> Result<f64, DeckError>,
+    lacking: (&'static str, &'static [&'static str]),
 }
 
 impl<'a> Expression<'a> {
@@ -444,7 +529,14 @@ impl<'a> Expression<'a> {
             text,
             line,
             lookup,
+            lacking: ("", &[]),
         }
+    }
+
+    /// The code (its name) lacks these functions.
+    fn lacking(mut self, lacking: (&'static str, &'static [&'static str])) -> Self {
+        self.lacking = lacking;
+        self
     }
 
     fn evaluate(mut self) -> Result<f64, DeckError> {
@@ -625,10 +717,25 @@ impl<'a> Expression<'a> {
     }
 
     fn call(&mut self, name: &str) -> Result<f64, DeckError> {
-        const KNOWN: [&str; 18] = [
+        const KNOWN: [&str; 16] = [
             "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos", "atan", "ceil",
-            "floor", "round", "atan2", "min", "max", "ternary",
+            "floor", "round", "atan2", "ternary",
         ];
+        if name == "min" || name == "max" {
+            // Not the smaller of two numbers: LAMMPS and LIGGGHTS stop at `min(3,4)` ("Invalid
+            // special function").
+            return Err(self.fail(format!(
+                "`{name}()` in `{}`: in LAMMPS and LIGGGHTS {name}() reduces a compute's, fix's or vector variable's values, a value only the running code knows (the codes stop at {name} of numbers: \"Invalid special function\")",
+                self.text
+            )));
+        }
+        let (code, lacks) = self.lacking;
+        if lacks.contains(&name) {
+            return Err(self.fail(format!(
+                "`{name}()` in `{}`: {code} has no such function (it stops: \"Invalid math/group/special function\")",
+                self.text
+            )));
+        }
         if !KNOWN.contains(&name) {
             return Err(self.fail(format!(
                 "`{name}()` in `{}`: a function this reader does not evaluate (one of {FUNCTIONS} is)",
@@ -678,8 +785,6 @@ impl<'a> Expression<'a> {
             "floor" => one(f64::floor)?,
             "round" => one(f64::round)?,
             "atan2" => two(f64::atan2)?,
-            "min" => two(f64::min)?,
-            "max" => two(f64::max)?,
             "ternary" => match args[..] {
                 [c, a, b] => {
                     if c != 0.0 {
@@ -745,6 +850,8 @@ mod tests {
             ("1/0", "divide by zero"),
             ("(1+2", "unbalanced"),
             ("v_nope", "no nope"),
+            ("min(3,4)", "min() reduces a compute's"),
+            ("max(1,2)", "max() reduces a compute's"),
         ] {
             let e = eval(text).unwrap_err().to_string();
             assert!(e.contains(word) && e.starts_with("in:1:"), "{text}: {e}");

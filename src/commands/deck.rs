@@ -1,18 +1,24 @@
 //! `millimpact deck`.
 
+use std::io::IsTerminal;
 use std::path::Path;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::DeckArgs;
 use millimpact::analysis::deck::{
-    DeckReport, LiveRunner, check_deck, failures, read_deck, velocities as deck_velocities,
+    DeckReport, ImpactRun, ImpactRunner, LiveRunner, check_deck, failures, read_deck,
+    table_at_width, table_width, velocities as deck_velocities,
 };
+use millimpact::codes::CodeError;
+use millimpact::codes::deck::DeckImpactInput;
 use millimpact::codes::deck::{DeckOptions, GivenParticle, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
 use millimpact::error::{CheckFailed, UserError};
+use millimpact::model::law::DashpotLaw;
+use millimpact::output::Format;
 use millimpact::output::export;
 
 pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
@@ -21,8 +27,17 @@ pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
         variables: &args.variables,
     };
     let (code, deck) = read(&args.deck, args.code, &given)?;
-    let report = check(code, &deck, &args.impact_velocity, &given, args.timeout)?;
-    let text = export(&report, args.format)?;
+    let report = check_with_progress(code, &deck, &args.impact_velocity, &given, args.timeout)?;
+    let columns = std::env::var("COLUMNS").ok();
+    // The terminal's width only when the table goes to one (comfy-table asks the terminal).
+    let terminal = std::io::stdout()
+        .is_terminal()
+        .then(|| comfy_table::Table::new().width())
+        .flatten();
+    let text = match (args.format, table_width(columns.as_deref(), terminal)) {
+        (Format::Table, Some(width)) => table_at_width(&report, width)?,
+        (format, _) => export(&report, format)?,
+    };
     let failed = failures(&report);
     Ok(CommandOutput {
         text,
@@ -65,13 +80,83 @@ pub(super) fn check(
     given: &Given,
     timeout: f64,
 ) -> Result<DeckReport> {
-    let runner = LiveRunner {
+    check_with(code, deck, velocities, given, &live_runner(timeout))
+}
+
+fn live_runner(timeout: f64) -> LiveRunner {
+    LiveRunner {
         options: RunOptions {
             timeout: Duration::from_secs_f64(timeout),
             scratch_parent: None,
         },
+    }
+}
+
+/// [`check`] with a progress bar on standard error while the runs take longer than a second,
+/// when standard error is a terminal (and `CI` is not set).
+fn check_with_progress(
+    code: CodeName,
+    deck: &UserDeck,
+    velocities: &[f64],
+    given: &Given,
+    timeout: f64,
+) -> Result<DeckReport> {
+    let live = live_runner(timeout);
+    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
+        return check_with(code, deck, velocities, given, &live);
+    }
+    let runs = deck.contacts.len() * deck_velocities(deck, velocities).0.len();
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(runs as u64),
+        indicatif::ProgressDrawTarget::hidden(),
+    );
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{bar:40} {pos}/{len} impacts  {per_sec}  ETA {eta}",
+    ) {
+        bar.set_style(style);
+    }
+    let runner = Progress {
+        inner: &live,
+        bar: bar.clone(),
+        started: Instant::now(),
     };
-    let mut report = check_deck(code, deck, deck_velocities(deck, velocities), &runner)?;
+    let report = check_with(code, deck, velocities, given, &runner);
+    bar.finish_and_clear();
+    report
+}
+
+/// A runner that counts its runs on a bar, shown once the runs have taken a second.
+struct Progress<'a> {
+    inner: &'a dyn ImpactRunner,
+    bar: indicatif::ProgressBar,
+    started: Instant,
+}
+
+impl ImpactRunner for Progress<'_> {
+    fn run(
+        &self,
+        code: CodeName,
+        impact: &DeckImpactInput,
+        law: &DashpotLaw,
+    ) -> Result<ImpactRun, CodeError> {
+        let run = self.inner.run(code, impact, law);
+        self.bar.inc(1);
+        if self.bar.is_hidden() && self.started.elapsed() > Duration::from_secs(1) {
+            self.bar
+                .set_draw_target(indicatif::ProgressDrawTarget::stderr());
+        }
+        run
+    }
+}
+
+fn check_with(
+    code: CodeName,
+    deck: &UserDeck,
+    velocities: &[f64],
+    given: &Given,
+    runner: &dyn ImpactRunner,
+) -> Result<DeckReport> {
+    let mut report = check_deck(code, deck, deck_velocities(deck, velocities), runner)?;
     report.given = given
         .particles
         .iter()

@@ -32,7 +32,7 @@ use crate::model::exact;
 use crate::model::law::DashpotLaw;
 use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
 use crate::output::invocation::Invocation;
-use crate::output::{Section, Summary, sci, signed};
+use crate::output::{OutputError, Section, Summary, sci, signed};
 use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
@@ -204,7 +204,20 @@ impl CodeDriver for DeckImpactDriver {
         self.code.binary()
     }
     fn locate(&self) -> Result<crate::codes::Executable, crate::codes::LocateError> {
-        self.code.locate()
+        let mut executable = self.code.locate()?;
+        // LIGGGHTS stops on a fault found by one process (`error->one`: too many sorting bins,
+        // a particle lost) with MPI_Abort, which drops what its buffered standard output still
+        // holds, its `ERROR` line among it, and writes no log file: with standard output line
+        // buffered (coreutils' `stdbuf -oL`, preloaded) the kept log has the code's reason.
+        if Path::new(LINE_BUFFERING).is_file() {
+            executable
+                .env
+                .push(("LD_PRELOAD", std::ffi::OsString::from(LINE_BUFFERING)));
+            executable
+                .env
+                .push(("_STDBUF_O", std::ffi::OsString::from("L")));
+        }
+        Ok(executable)
     }
     fn render(&self, _setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         Ok(self.input.clone())
@@ -235,11 +248,41 @@ impl ImpactRunner for LiveRunner {
             input: impact.input.clone(),
             law: *law,
         };
-        let run = run_code(&driver, &impact.setup, &self.options)?;
+        let run = run_code(&driver, &impact.setup, &self.options).map_err(last_error_line)?;
         Ok(ImpactRun {
             trajectory: run.trajectory,
             code_version: run.code_version,
         })
+    }
+}
+
+/// coreutils' library behind `stdbuf`, which sets a program's standard streams' buffering.
+const LINE_BUFFERING: &str = "/usr/libexec/coreutils/libstdbuf.so";
+
+/// A crashed run with the code's own last `ERROR` line from its kept log: the last one is the
+/// one that stopped it (an earlier one may be a warning's echo).
+fn last_error_line(error: CodeError) -> CodeError {
+    match error {
+        CodeError::Crashed {
+            code,
+            status,
+            said,
+            log,
+        } => {
+            let last = crate::codes::runner::read_log(&log).ok().and_then(|text| {
+                text.lines()
+                    .map(str::trim)
+                    .rfind(|line| line.starts_with("ERROR"))
+                    .map(String::from)
+            });
+            CodeError::Crashed {
+                code,
+                status,
+                said: last.or(said),
+                log,
+            }
+        }
+        other => other,
     }
 }
 
@@ -364,7 +407,7 @@ fn pair_label(deck: &UserDeck, contact: usize) -> String {
 /// deck's own, else [`DEFAULT_VELOCITY`]), with where they come from.
 pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
     if !given.is_empty() {
-        return (given.to_vec(), "given".into());
+        return (given.to_vec(), GIVEN.into());
     }
     let (v, from) = match &deck.representative_velocity {
         Some((v, from)) => (*v, format!("around the deck's {from}")),
@@ -423,14 +466,25 @@ pub fn check_deck(
                 continue;
             }
             let exact = accurate_metrics(&contact.law, v, 1e-12)?;
+            refuse_speed(deck, k, v, exact.peak_deformation, &velocities.1)?;
             let steps = ceil_count(1.05 * exact.contact_time / dt)
                 .map_or(u64::MAX, |n| n.saturating_add(3));
             if steps > MAX_STEPS {
-                return Err(crate::error::UserError::argument(
-                    "timestep",
-                    format!("{dt:e} s ({})", deck.timestep_from),
-                    format!("a step that resolves the contact of {} at {v} m/s ({:e} s) in at most {MAX_STEPS} steps", pair_label(deck, k), exact.contact_time),
-                )
+                let pair = pair_label(deck, k);
+                let contact_time = exact.contact_time;
+                return Err(if velocities.1 == GIVEN {
+                    crate::error::UserError::argument(
+                        "--impact-velocity",
+                        format!("{v} m/s"),
+                        format!("the contact of {pair} at this speed lasts {contact_time:.6e} s, {} steps of the deck's Δt = {dt:e} s, beyond the check's limit of {MAX_STEPS} steps; give a faster --impact-velocity", sci_steps(contact_time / dt)),
+                    )
+                } else {
+                    crate::error::UserError::argument(
+                        "timestep",
+                        format!("{dt:e} s ({})", deck.timestep_from),
+                        format!("a step that resolves the contact of {pair} at {v} m/s ({contact_time:e} s) in at most {MAX_STEPS} steps"),
+                    )
+                }
                 .into());
             }
             let impact = reader.render(deck, k, v, steps)?;
@@ -476,6 +530,87 @@ pub fn check_deck(
         impacts,
         given: Vec::new(),
     })
+}
+
+/// Where given speeds come from (see [`velocities`]).
+const GIVEN: &str = "given";
+
+/// A step count to three digits (`2.50e7`).
+fn sci_steps(steps: f64) -> String {
+    format!("{steps:.2e}")
+}
+
+/// Refuse a speed at which the pair's own law presses the surfaces together by more than the
+/// smaller radius (`peak`, m, the law's peak overlap at `velocity`): no run of it means anything,
+/// and the codes stop or blow up without a word the check could read.
+fn refuse_speed(
+    deck: &UserDeck,
+    contact: usize,
+    velocity: f64,
+    peak: f64,
+    from: &str,
+) -> Result<(), crate::error::UserError> {
+    let c = &deck.contacts[contact];
+    let body = &deck.bodies[c.body];
+    let radius = match c.partner {
+        Partner::Body(o) => body.radius.min(deck.bodies[o].radius),
+        Partner::Wall(_) => body.radius,
+    };
+    if peak <= radius {
+        return Ok(());
+    }
+    let pair = pair_label(deck, contact);
+    // The largest speed the law takes: the peak overlap grows as a power of the speed, so
+    // one bisection on the law's own peak finds it.
+    let limit = largest_speed(&c.law, radius, velocity);
+    let what = format!(
+        "the law of {pair} presses the surfaces {peak:.3e} m together at this speed, beyond the radius {radius} m (the peak overlap {:.3e} × R){}",
+        peak / radius,
+        limit.map_or(String::new(), |v| format!("; it takes at most {v:.3e} m/s"))
+    );
+    Err(if from == GIVEN {
+        crate::error::UserError::argument(
+            "--impact-velocity",
+            format!("{velocity} m/s"),
+            format!("{what}: give a slower --impact-velocity"),
+        )
+    } else {
+        crate::error::UserError::argument(
+            "the default impact speed",
+            format!("{velocity} m/s ({from})"),
+            format!("{what}: give --impact-velocity"),
+        )
+    })
+}
+
+/// The speed at which `law`'s peak overlap is `radius` (m), below `above` (m/s), to three
+/// digits; none where the law's figures cannot be computed.
+fn largest_speed(law: &DashpotLaw, radius: f64, above: f64) -> Option<f64> {
+    let peak = |v: f64| {
+        accurate_metrics(law, v, 1e-9)
+            .ok()
+            .map(|m| m.peak_deformation)
+    };
+    let (mut low, mut high) = (above, above);
+    while peak(low)? > radius {
+        high = low;
+        low /= 10.0;
+        if low < 1e-12 {
+            return None;
+        }
+    }
+    for _ in 0..60 {
+        let mid = (low * high).sqrt();
+        if peak(mid)? > radius {
+            high = mid;
+        } else {
+            low = mid;
+        }
+        if high / low < 1.0 + 1e-4 {
+            break;
+        }
+    }
+    Some(low)
 }
 
 /// The COR of `law` stepped as the code steps the run `impact`, started a further `phase` (m)
@@ -582,20 +717,6 @@ fn impact_row(
     let law = c.law;
     let exact = accurate_metrics(&law, v, 1e-12).ok();
     let cor_law = exact.map_or(f64::NAN, |m| m.cor);
-    let stepping = driver.stepping(&p.impact.setup);
-    let cor_law_stepped = stepped_cor(&law, &stepping, &p.impact, p.steps, 0.0);
-    let mut band = Range {
-        min: f64::INFINITY,
-        max: f64::NEG_INFINITY,
-    };
-    for k in 0..PHASES {
-        let phase = k as f64 / PHASES as f64 * v * dt;
-        let d = stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phase) - cor_law;
-        if d.is_finite() {
-            band.min = band.min.min(d);
-            band.max = band.max.max(d);
-        }
-    }
     let rayleigh = smallest_rayleigh_time(body, partner_body);
     let smaller_radius = partner_body.map_or(body.radius, |o| o.radius.min(body.radius));
     let (metrics, failure) = match run {
@@ -606,6 +727,25 @@ fn impact_row(
         Err(e) => (None, Some(e.to_string())),
     };
     let nan = f64::NAN;
+    // A failed run has no figures: not even the law stepped, which would read as the run's.
+    let mut band = Range { min: nan, max: nan };
+    let mut cor_law_stepped = nan;
+    if metrics.is_some() {
+        let stepping = driver.stepping(&p.impact.setup);
+        cor_law_stepped = stepped_cor(&law, &stepping, &p.impact, p.steps, 0.0);
+        band = Range {
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+        };
+        for k in 0..PHASES {
+            let phase = k as f64 / PHASES as f64 * v * dt;
+            let d = stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phase) - cor_law;
+            if d.is_finite() {
+                band.min = band.min.min(d);
+                band.max = band.max.max(d);
+            }
+        }
+    }
     let cor_realised = metrics.map_or(nan, |m| m.cor);
     let contact_time = metrics.map_or(nan, |m| m.contact_time);
     let peak = metrics.map_or(nan, |m| m.peak_deformation);
@@ -808,6 +948,24 @@ impl Summary for DeckReport {
             ],
         );
         for i in &self.impacts {
+            if i.failure.is_some() {
+                // No figures for a run that failed: why is under warnings.
+                let mut row = vec![
+                    i.pair.clone(),
+                    i.impact_velocity.to_string(),
+                    i.cor_entered.map_or("—".into(), |e| format!("{e}")),
+                    // A planned impact with no steps was never run (its law never separates).
+                    if i.steps == 0 {
+                        "not run (see warnings)"
+                    } else {
+                        "failed (see warnings)"
+                    }
+                    .to_string(),
+                ];
+                row.resize(table.headers.len(), "—".to_string());
+                table.rows.push(row);
+                continue;
+            }
             table.rows.push(vec![
                 i.pair.clone(),
                 i.impact_velocity.to_string(),
@@ -928,4 +1086,133 @@ pub fn failures(report: &DeckReport) -> Vec<String> {
                 .map(|f| format!("{} at {} m/s: {f}", i.pair, i.impact_velocity))
         })
         .collect()
+}
+
+/// The width the table of `deck` is laid out in, in characters: `COLUMNS` where it is set to a
+/// number (`columns`), else the terminal's (`terminal`, when standard output is one); none
+/// (the full table, as every format but the table keeps it) when neither is known, so that a
+/// pipe and a snapshot see the same text whatever the terminal.
+pub fn table_width(columns: Option<&str>, terminal: Option<u16>) -> Option<u16> {
+    columns
+        .and_then(|c| c.trim().parse::<u16>().ok())
+        .filter(|w| *w > 0)
+        .or(terminal)
+}
+
+/// Narrowest layout the table is wrapped into: below it each cell would break inside numbers.
+pub const NARROWEST_TABLE: u16 = 40;
+
+/// The report as a table that fits `width` characters: its cells wrapped where a column is too
+/// wide (comfy-table's dynamic arrangement), and every line of text under it (the traps, the
+/// warnings) wrapped at the width with its indent kept.
+pub fn table_at_width(report: &DeckReport, width: u16) -> Result<String, OutputError> {
+    let width = width.max(NARROWEST_TABLE);
+    let wrap = |line: &str, out: &mut String| {
+        for piece in wrap_line(line, usize::from(width)) {
+            out.push_str(&piece);
+            out.push('\n');
+        }
+    };
+    let mut text = String::new();
+    for section in report.sections() {
+        if let Some(row) = section
+            .rows
+            .iter()
+            .find(|r| r.len() != section.headers.len())
+        {
+            return Err(OutputError::RaggedTable {
+                title: section.title.clone().unwrap_or_default(),
+                expected: section.headers.len(),
+                found: row.len(),
+            });
+        }
+        if let Some(title) = &section.title {
+            wrap(title, &mut text);
+        }
+        if !section.headers.is_empty() {
+            for columns in column_groups(&section, usize::from(width)) {
+                let pick = |row: &[String]| -> Vec<String> {
+                    columns.iter().map(|&k| row[k].clone()).collect()
+                };
+                let mut table = comfy_table::Table::new();
+                table
+                    .load_style(comfy_table::presets::UTF8_FULL_CONDENSED)
+                    .set_content_arrangement(comfy_table::ContentArrangement::Dynamic)
+                    .set_width(width)
+                    .set_header(pick(&section.headers));
+                for row in &section.rows {
+                    table.add_row(pick(row));
+                }
+                text += &format!("{table}\n");
+            }
+        }
+        for line in &section.notes {
+            wrap(line, &mut text);
+        }
+    }
+    for line in report.footer() {
+        wrap(&line, &mut text);
+    }
+    Ok(text)
+}
+
+/// Columns the first two of which (the pair and the speed) name each row.
+const KEY_COLUMNS: usize = 2;
+
+/// The columns of `section` in groups that each fit `width` as one table, the key columns
+/// first in every group: all of them in one where the whole table fits. A column too wide
+/// even beside the keys alone gets a group of its own, and its cells wrap.
+fn column_groups(section: &Section, width: usize) -> Vec<Vec<usize>> {
+    // A column takes its widest cell, a space either side and one border.
+    let column_width = |k: usize| {
+        std::iter::once(&section.headers[k])
+            .chain(section.rows.iter().map(|r| &r[k]))
+            .map(|cell| cell.chars().count())
+            .max()
+            .unwrap_or(0)
+            + 3
+    };
+    let widths: Vec<usize> = (0..section.headers.len()).map(column_width).collect();
+    let keys = KEY_COLUMNS.min(widths.len());
+    let key_width = 1 + widths[..keys].iter().sum::<usize>();
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut current: Vec<usize> = (0..keys).collect();
+    let mut used = key_width;
+    for (k, &column) in widths.iter().enumerate().skip(keys) {
+        if current.len() > keys && used + column > width {
+            groups.push(std::mem::replace(&mut current, (0..keys).collect()));
+            used = key_width;
+        }
+        current.push(k);
+        used += column;
+    }
+    groups.push(current);
+    groups
+}
+
+/// `line` broken at spaces into lines of at most `width` characters (a word longer than that
+/// stands alone), each continuation indented two more than the line's own indent.
+fn wrap_line(line: &str, width: usize) -> Vec<String> {
+    if line.chars().count() <= width {
+        return vec![line.to_string()];
+    }
+    let indent = line.len() - line.trim_start().len();
+    let hanging = " ".repeat(indent + 2);
+    let mut lines = Vec::new();
+    let mut current = line[..indent].to_string();
+    let mut empty = true;
+    for word in line.split_whitespace() {
+        let length = current.chars().count() + usize::from(!empty) + word.chars().count();
+        if !empty && length > width {
+            lines.push(std::mem::replace(&mut current, hanging.clone()));
+            empty = true;
+        }
+        if !empty {
+            current.push(' ');
+        }
+        current.push_str(word);
+        empty = false;
+    }
+    lines.push(current);
+    lines
 }

@@ -148,6 +148,11 @@ struct Reading {
     coeffs: Vec<(String, String, GranularModel, Command)>,
     walls: Vec<WallFix>,
     atoms_of_type: BTreeMap<u32, SourceLine>,
+    /// Types whose atoms a `set … type|type/fraction|type/ratio|type/subset N` made, with
+    /// that line's text.
+    set_made: HashMap<u32, String>,
+    /// Types a `fix pour` or `fix deposit` inserts.
+    inserted: Vec<u32>,
     atom_types: Vec<u32>,
     set_type: HashMap<u32, [Option<f64>; 3]>,
     set_atom: HashMap<usize, [Option<f64>; 3]>,
@@ -249,8 +254,15 @@ fn mixed_cor(
 }
 
 impl LammpsDeck {
-    fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
-        let commands = ScriptReader::read(path, &options.variables)?;
+    fn gather(&self, path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
+        // The 2021 build has no ternary() (it came in 2022).
+        let lacking: (&'static str, &'static [&'static str]) =
+            if self.0.name == super::DEBIAN_2021.name {
+                ("LAMMPS 2021", &["ternary"])
+            } else {
+                ("", &[])
+            };
+        let commands = ScriptReader::read_for(path, &options.variables, lacking)?;
         let mut r = Reading::default();
         for c in &commands {
             match c.name() {
@@ -297,7 +309,7 @@ impl LammpsDeck {
                         return Err(DeckError::unsupported(&c.at, format!("fix {}: an integrator whose step the harness does not model", c.words[3]), "fix nve/sphere"));
                     }
                     "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
-                    "pour" | "deposit" => r.leave_out("particle insertion (give the sizes with --particle TYPE:RADIUS:DENSITY)", c),
+                    "pour" | "deposit" => Self::inserts(c, &mut r)?,
                     _ => r.leave_out("other fixes (no part of a contact)", c),
                 },
                 "create_atoms" => {
@@ -320,10 +332,22 @@ impl LammpsDeck {
                             *s = v.or(*s);
                         }
                     };
-                    match c.word(1, "atom or type")? {
-                        "type" => merge(r.set_type.entry(whole(c.number(2, "the type")?, c, "type")?).or_default()),
-                        "atom" => merge(r.set_atom.entry(whole(c.number(2, "the atom id")?, c, "atom")? as usize).or_default()),
-                        _ => r.leave_out("set commands on groups or regions", c),
+                    // The size the selected atoms have once this line is done, where known.
+                    let selected = match c.word(1, "atom or type")? {
+                        "type" => {
+                            let slot = r.set_type.entry(whole(c.number(2, "the type")?, c, "type")?).or_default();
+                            merge(slot);
+                            Some(*slot)
+                        }
+                        "atom" => {
+                            let slot = r.set_atom.entry(whole(c.number(2, "the atom id")?, c, "atom")? as usize).or_default();
+                            merge(slot);
+                            Some(*slot)
+                        }
+                        _ => None,
+                    };
+                    if !Self::set_makes_types(c, selected, &mut r)? && selected.is_none() {
+                        r.leave_out("set commands on groups or regions", c);
                     }
                 }
                 "region" | "lattice" => r.leave_out("regions (the geometry)", c),
@@ -348,6 +372,79 @@ impl LammpsDeck {
             }
         }
         Ok(r)
+    }
+
+    /// The types `set`'s `type N`, `type/fraction N …`, `type/ratio N …` and `type/subset N …`
+    /// make out of the selected atoms (which keep their size and density, `selected` where
+    /// known); whether the line makes any.
+    fn set_makes_types(
+        c: &Command,
+        selected: Option<[Option<f64>; 3]>,
+        r: &mut Reading,
+    ) -> Result<bool, DeckError> {
+        let mut makes = false;
+        for (k, word) in c.words.iter().enumerate().skip(3) {
+            if !matches!(
+                word.as_str(),
+                "type" | "type/fraction" | "type/ratio" | "type/subset"
+            ) {
+                continue;
+            }
+            let t = whole(c.number(k + 1, "the new atom type")?, c, word)?;
+            makes = true;
+            let exists = r.atoms_of_type.contains_key(&t);
+            r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+            r.set_made.entry(t).or_insert_with(|| c.text.clone());
+            if let Some(size) = selected {
+                let slot = r.set_type.entry(t).or_default();
+                // A type with no atoms yet takes the selected atoms' size whole (a
+                // `set type N …` before this line set no atom of it).
+                if exists {
+                    for (s, v) in slot.iter_mut().zip(size) {
+                        *s = s.or(v);
+                    }
+                } else {
+                    *slot = size;
+                }
+            }
+        }
+        Ok(makes)
+    }
+
+    /// `fix ID group pour N TYPE SEED …` and `fix ID group deposit N TYPE M SEED …` make atoms
+    /// of TYPE: a pour of one diameter (`diam one D`, LAMMPS's default 1) and one density
+    /// (`dens RHO RHO`, default 1) gives the type its size; a range of either, or a deposit
+    /// (whose atoms take LAMMPS's defaults), leaves it to `--particle`.
+    fn inserts(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        r.leave_out("particle insertion (the types it makes are read)", c);
+        let t = whole(c.number(5, "the inserted atom type")?, c, "type")?;
+        r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+        r.set_made.entry(t).or_insert_with(|| c.text.clone());
+        r.inserted.push(t);
+        if c.words[3] != "pour" {
+            return Ok(());
+        }
+        let position = |key: &str| c.words.iter().position(|w| w == key);
+        let diameter = match position("diam") {
+            None => Some(1.0),
+            Some(k) if c.words.get(k + 1).is_some_and(|w| w == "one") => {
+                Some(c.number(k + 2, "diam one")?)
+            }
+            Some(_) => None,
+        };
+        let density = match position("dens") {
+            None => Some(1.0),
+            Some(k) => {
+                let (lo, hi) = (c.number(k + 1, "dens")?, c.number(k + 2, "dens")?);
+                // One density only when both bounds are the same number.
+                #[allow(clippy::float_cmp)]
+                (lo == hi).then_some(lo)
+            }
+        };
+        let slot = r.set_type.entry(t).or_default();
+        slot[0] = slot[0].or(diameter);
+        slot[1] = slot[1].or(density);
+        Ok(())
     }
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
@@ -407,7 +504,14 @@ impl LammpsDeck {
             }
             if !found {
                 let (radius, density) = size([None; 3]).ok_or_else(|| {
-                    DeckError::unsupported(at, format!("atoms of type {t} are created without a diameter and density (or mass) set for them"), &format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"))
+                    DeckError::unsupported(at, match r.set_made.get(t) {
+                        Some(text) => format!("atoms of type {t} come from `{text}` without a diameter and density (or mass) the reader can know for them"),
+                        None => format!("atoms of type {t} are created without a diameter and density (or mass) set for them"),
+                    }, &if r.inserted.contains(t) {
+                        format!("--particle {t}:RADIUS:DENSITY (atoms inserted during the run take no `set`)")
+                    } else {
+                        format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY")
+                    })
                 })?;
                 push(*t, radius, density, format!("set type {t} ({at})"));
             }
@@ -538,7 +642,7 @@ impl DeckReader for LammpsDeck {
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let r = Self::gather(path, options)?;
+        let r = self.gather(path, options)?;
         let lacking = |what: &str, supported: &str| DeckError::Lacking {
             file: path.to_path_buf(),
             what: what.into(),

@@ -135,6 +135,8 @@ struct Reading {
     meshes: HashMap<String, (u32, SourceLine)>,
     templates: Vec<(u32, Option<f64>, Option<f64>, Command)>,
     atoms_of_type: BTreeMap<u32, SourceLine>,
+    /// Types whose atoms a `set … type|type/fraction N` made, with that line's text.
+    set_made: HashMap<u32, String>,
     atom_types: Vec<u32>,
     set_type: HashMap<u32, (Option<f64>, Option<f64>)>,
     set_atom: HashMap<usize, (Option<f64>, Option<f64>)>,
@@ -407,7 +409,8 @@ fn constant_after(command: &Command, key: &str) -> Result<Option<f64>, DeckError
 
 impl LiggghtsDeck {
     fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
-        let commands = ScriptReader::read(path, &options.variables)?;
+        let commands =
+            ScriptReader::read_for(path, &options.variables, ("LIGGGHTS 3.8", &["ternary"]))?;
         let mut r = Reading::default();
         for c in &commands {
             match c.name() {
@@ -597,16 +600,60 @@ impl LiggghtsDeck {
             slot.0 = diameter.or(slot.0);
             slot.1 = density.or(slot.1);
         };
-        match target {
+        // The size the atoms this line selects have once it is done (where the reader knows it).
+        let selected = match target {
             "type" => {
                 let t = type_number(c.number(2, "the atom type")?, c)?;
-                merge(r.set_type.entry(t).or_default());
+                let slot = r.set_type.entry(t).or_default();
+                merge(slot);
+                Some(*slot)
             }
             "atom" => {
                 let id = type_number(c.number(2, "the atom id")?, c)? as usize;
-                merge(r.set_atom.entry(id).or_default());
+                let slot = r.set_atom.entry(id).or_default();
+                merge(slot);
+                Some(*slot)
             }
-            _ => r.leave_out("set commands on groups or regions", c),
+            _ => None,
+        };
+        // `type N` and `type/fraction N FRACTION SEED` make atoms of type N out of the selected
+        // ones, which keep their size and density; LIGGGHTS 3.8 has no type/ratio or
+        // type/subset ("Illegal set command").
+        let mut makes = false;
+        for (k, word) in c.words.iter().enumerate().skip(3) {
+            match word.as_str() {
+                "type" | "type/fraction" => {
+                    let t = type_number(c.number(k + 1, "the new atom type")?, c)?;
+                    makes = true;
+                    let exists =
+                        r.atoms_of_type.contains_key(&t) || r.templates.iter().any(|x| x.0 == t);
+                    r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
+                    r.set_made.entry(t).or_insert_with(|| c.text.clone());
+                    if let Some(size) = selected {
+                        let slot = r.set_type.entry(t).or_default();
+                        // A type with no atoms yet takes the selected atoms' size whole (a
+                        // `set type N …` before this line set no atom of it).
+                        *slot = if exists {
+                            (slot.0.or(size.0), slot.1.or(size.1))
+                        } else {
+                            size
+                        };
+                    }
+                }
+                "type/ratio" | "type/subset" => {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!(
+                            "set … {word}: LIGGGHTS 3.8 has no such keyword (it stops: \"Illegal set command\")"
+                        ),
+                        "set … type N, or type/fraction N FRACTION SEED",
+                    ));
+                }
+                _ => {}
+            }
+        }
+        if selected.is_none() && !makes {
+            r.leave_out("set commands on groups or regions", c);
         }
         Ok(())
     }
@@ -705,9 +752,14 @@ impl LiggghtsDeck {
                     _ => {
                         return Err(DeckError::unsupported(
                             at,
-                            format!(
-                                "atoms of type {t} are created without a diameter and density set for them"
-                            ),
+                            match r.set_made.get(t) {
+                                Some(text) => format!(
+                                    "atoms of type {t} come from `{text}` without a diameter and density the reader can know for them"
+                                ),
+                                None => format!(
+                                    "atoms of type {t} are created without a diameter and density set for them"
+                                ),
+                            },
                             &format!(
                                 "`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"
                             ),
