@@ -141,7 +141,7 @@ pub enum DeckError {
     },
     /// The code that reads the deck (YADE runs its scripts' set-up) could not run it: missing,
     /// crashed or past its time limit.
-    #[error("reading {} in {code}: {source}", path.display())]
+    #[error("reading {} in {code}", path.display())]
     Reader {
         /// The deck.
         path: PathBuf,

@@ -14,7 +14,7 @@ use millimpact::analysis::deck::{
 };
 use millimpact::codes::CodeError;
 use millimpact::codes::deck::DeckImpactInput;
-use millimpact::codes::deck::{DeckOptions, GivenParticle, UserDeck};
+use millimpact::codes::deck::{DeckError, DeckOptions, GivenParticle, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::law::DashpotLaw;
@@ -59,7 +59,8 @@ pub(super) struct Given<'a> {
     pub variables: &'a [(String, String)],
 }
 
-/// Read the deck at `path` (bad input: a [`UserError`], before anything runs).
+/// Read the deck at `path` (bad input: a [`UserError`], before anything runs; a code that reads
+/// the deck and could not run, as YADE setting up a script, is the code's fault: exit 1).
 pub(super) fn read(
     path: &Path,
     code: Option<CodeName>,
@@ -69,7 +70,10 @@ pub(super) fn read(
         particles: given.particles.to_vec(),
         variables: given.variables.to_vec(),
     };
-    Ok(read_deck(path, code, &options).map_err(UserError::from)?)
+    read_deck(path, code, &options).map_err(|error| match error {
+        DeckError::Reader { .. } => anyhow::Error::from(error),
+        error => UserError::from(error).into(),
+    })
 }
 
 /// Check `deck` in its code, now, at `velocities` (empty: the default ones).
