@@ -195,7 +195,7 @@ pub enum BenchmarkError {
         /// The case.
         case: String,
         /// The code's failure.
-        source: StoreError,
+        source: Box<StoreError>,
     },
 }
 
@@ -319,7 +319,7 @@ fn figures(
                 BenchmarkError::Code {
                     code,
                     case: case.name.clone(),
-                    source,
+                    source: Box::new(source),
                 }
             })?;
             // The step band of this run: the code's own law stepped at its step against that
