@@ -527,6 +527,11 @@ fn await_stop() -> ! {
 pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
     #[cfg(unix)]
     std::os::unix::process::CommandExt::process_group(command, 0);
+    // Open MPI processes started alone (the Debian LIGGGHTS and LAMMPS) all put their session
+    // directory at the same place under TMPDIR (`ompi.<host>.<uid>/jf.0/1`), and two starting at
+    // once race on it: one fails `MPI_Init` ("mkdir ... File exists"). The run's own scratch
+    // folder as its TMPDIR gives each process its own, and goes with the scratch folder.
+    command.env("TMPDIR", scratch);
     let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
     if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
         drop(live);
