@@ -1036,11 +1036,23 @@ impl Materials<'_> {
         };
         let eta_p = self.r.property("lossCoefficient", self.path, &needed_by)?;
         let eta = eta_p.of_pair("lossCoefficient", i, j)?;
-        if !(0.0..1.0).contains(&eta) {
+        // liggghts-paper checks every type pair of the table when it sets the model up, not
+        // only the pairs that meet.
+        let columns = eta_p.columns.max(1);
+        if let Some((k, bad)) = eta_p
+            .values
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(0.0..1.0).contains(*v))
+        {
             return Err(DeckError::unsupported(
                 &eta_p.at,
-                format!("lossCoefficient {eta} for the types {i} and {j}"),
-                "0 <= lossCoefficient < 1 (η: liggghts-paper stops otherwise; η >= 1 never separates the bodies, η < 0 creates energy)",
+                format!(
+                    "lossCoefficient {bad} for the types {} and {}",
+                    k / columns + 1,
+                    k % columns + 1
+                ),
+                "0 <= lossCoefficient < 1 for every type pair (η: liggghts-paper stops otherwise; η >= 1 never separates the bodies, η < 0 creates energy)",
             ));
         }
         lines.push(eta_p.at.clone());
