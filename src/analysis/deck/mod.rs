@@ -353,18 +353,11 @@ pub fn read_deck(
         None => CodeName::ALL.to_vec(),
     };
     let supported = || {
-        let mut readers: Vec<(CodeName, &'static str)> = Vec::new();
-        for c in CodeName::ALL {
-            // A build that reads its code's decks with the same reader is named once.
-            if let Some(d) = c.driver().deck()
-                && !readers.iter().any(|(_, reads)| *reads == d.reads())
-            {
-                readers.push((*c, d.reads()));
-            }
-        }
-        readers
+        CodeName::ALL
             .iter()
-            .map(|(c, reads)| format!("{c}: {reads}"))
+            // liggghts-paper reads with LIGGGHTS's reader, named once (as liggghts).
+            .filter(|c| **c != CodeName::LiggghtsPaper)
+            .filter_map(|c| c.driver().deck().map(|d| format!("{c}: {}", d.reads())))
             .collect::<Vec<_>>()
             .join("; ")
     };
