@@ -18,6 +18,7 @@ use millimpact::codes::deck::{DeckOptions, Partner, TypeRef, UserDeck};
 use millimpact::model::exact::restitution;
 use millimpact::model::law::{CodeLaw, PaperLaw};
 use millimpact::model::scene::{pair_radius, reduced_mass};
+use millimpact::output::{Format, export};
 
 const MILL: &str = "tests/data/deck/liggghts-paper/in.paper_mill";
 const ROD: &str = "tests/data/deck/liggghts-paper/in.paper_rod";
@@ -290,5 +291,24 @@ fn the_recorded_paper_runs_check_to_their_closed_forms() {
         // The JSON names the build that ran it.
         let json = serde_json::to_value(&report).unwrap();
         assert_eq!(json["code"], "liggghts-paper");
+    }
+}
+
+/// Every format of the paper mill deck's check, from the runs recorded in liggghts-paper.
+#[test]
+fn snapshots_of_the_paper_mill_deck_in_every_format() {
+    std::env::set_current_dir(root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string(
+            root().join("tests/data/deck/liggghts-paper/paper_mill.runs.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(MILL), None, &DeckOptions::default()).unwrap();
+    let report = check_deck(code, &deck, (vec![2.0], "given".into()), &runs).unwrap();
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_paper_mill_{format}"), text);
     }
 }
