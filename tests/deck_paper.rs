@@ -312,3 +312,30 @@ fn snapshots_of_the_paper_mill_deck_in_every_format() {
         insta::assert_snapshot!(format!("deck_paper_mill_{format}"), text);
     }
 }
+
+/// A deck whose wall alone selects the paper's law runs in liggghts-paper too: its balls keep
+/// their spring–dashpot (the paper build runs the stock models as the stock build does).
+#[test]
+fn a_paper_wall_under_a_hertz_pair_style_runs_both_laws_in_liggghts_paper() {
+    let text = paper_deck(
+        "fix m3 all property/global lossCoefficient peratomtypepair 2 0.35 0.35 0.35 0.35\n\
+fix m4 all property/global coefficientRestitution peratomtypepair 2 0.5 0.5 0.5 0.5\n",
+        "pair_style gran model hertz\n\
+fix w all wall/gran model paper primitive type 2 zplane 0.0",
+    );
+    let (_d, path) = deck_file(&text);
+    let (code, deck) = read_deck(&path, None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::LiggghtsPaper);
+    assert!(matches!(deck.contacts[0].law, CodeLaw::Dashpot(_)));
+    assert_eq!(deck.contacts[0].cor_entered, Some(0.5));
+    assert_eq!(paper(deck.contacts[1].law).loss_coefficient, 0.35);
+    assert_eq!(deck.contacts[1].cor_entered, Some(restitution(0.35)));
+    // Without the paper's wall the same deck stays the stock build's.
+    let stock = text.replace(
+        "fix w all wall/gran model paper primitive type 2 zplane 0.0\n",
+        "",
+    );
+    let (_d, path) = deck_file(&stock);
+    let (code, _) = read_deck(&path, None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Liggghts);
+}
