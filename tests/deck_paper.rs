@@ -97,18 +97,13 @@ fn a_model_paper_deck_runs_in_liggghts_paper_with_each_pairs_eta() {
     let reader = CodeName::LiggghtsPaper.driver().deck().unwrap();
     let wall = deck.contacts.len() - 1;
     let impact = reader.render(&deck, wall, 2.0, 1000).unwrap();
-    assert!(
-        impact
-            .input
-            .text
-            .contains("pair_style      gran model paper tangential history")
-            || impact
-                .input
-                .text
-                .contains("pair_style gran model paper tangential history"),
-        "{}",
-        impact.input.text
-    );
+    let text = &impact.input.text;
+    for line in [
+        "pair_style      gran model paper tangential history",
+        "property/global lossCoefficient peratomtypepair 3",
+    ] {
+        assert!(text.contains(line), "{line}: {text}");
+    }
     assert!(
         impact
             .input
