@@ -118,7 +118,11 @@ fn the_mill_decks_laws_are_liggghts_hertz_with_its_mixed_modulus() {
     let r: f64 = 0.03 * 0.015 / 0.045;
     let m = big.mass * small.mass / (big.mass + small.mass);
     let expected = DashpotLaw::damped_hertz(m, 4.0 / 3.0 * y * r.sqrt(), 0.7);
-    let law = deck.contacts[1].law;
+    let law = deck.contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, expected.stiffness) < 1e-14);
     assert!(relative(law.damping, expected.damping) < 1e-14);
     assert!(relative(law.mass, expected.mass) < 1e-14);
@@ -128,8 +132,18 @@ fn the_mill_decks_laws_are_liggghts_hertz_with_its_mixed_modulus() {
     let wall = &deck.contacts[3];
     assert_eq!(wall.partner, Partner::Wall(0));
     assert_eq!(wall.cor_entered, Some(0.6));
-    assert!(relative(wall.law.stiffness, 4.0 / 3.0 * y_wall * 0.03f64.sqrt()) < 1e-14);
-    assert!(relative(wall.law.mass, big.mass) < 1e-14);
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").stiffness,
+            4.0 / 3.0 * y_wall * 0.03f64.sqrt()
+        ) < 1e-14
+    );
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").mass,
+            big.mass
+        ) < 1e-14
+    );
     assert!(
         wall.traps.iter().any(|t| t.starts_with("wall modulus")),
         "{:?}",
@@ -150,7 +164,11 @@ fn each_normal_model_and_setting_gives_its_law() {
     let deck = read(&path);
     let (y, r, m): (f64, f64, f64) = (2e11 / (2.0 * 0.91), 0.005, mass / 2.0);
     let kn = 16.0 / 15.0 * r.sqrt() * y * (15.0 * m * 4.0 / (16.0 * r.sqrt() * y)).powf(0.2);
-    let law = deck.contacts[0].law;
+    let law = deck.contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(
         relative(law.stiffness, kn) < 1e-13,
         "{} {kn}",
@@ -168,7 +186,11 @@ fix g all property/global gamman_abs peratomtypepair 1 25\nfix gt all property/g
 pair_style gran model hooke/stiffness absolute_damping on limitForce on\npair_coeff * *\n";
     let (_d, path) = deck_files(&[("in.stiff", &format!("{stiff}{atoms}"))]);
     let deck = read(&path);
-    let law = deck.contacts[0].law;
+    let law = deck.contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert_eq!(
         (
             law.stiffness,
@@ -191,7 +213,11 @@ pair_style gran model hooke/stiffness absolute_damping on limitForce on\npair_co
 fix k all property/global kn peratomtypepair 1 1e9\nfix g all property/global gamman peratomtypepair 1 100\n\
 pair_style gran model hertz/stiffness\npair_coeff * *\n";
     let (_d, path) = deck_files(&[("in.hs", &format!("{hs}{atoms}"))]);
-    let law = read(&path).contacts[0].law;
+    let law = read(&path).contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, 1e9 * r.sqrt()) < 1e-14);
     assert!(relative(law.damping, 100.0 * m * r.sqrt()) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.5));
@@ -219,7 +245,18 @@ fix w all wall/gran model hertz primitive type 3 zplane 0.0 limitForce on\n"
         ["fix w all wall/gran model hertz primitive type 3 zplane 0.0 limitForce on"]
     );
     // The wall's own settings: clamped at the wall, not between the balls.
-    assert!(deck.contacts[1].law.clamp_attractive && !deck.contacts[0].law.clamp_attractive);
+    assert!(
+        deck.contacts[1]
+            .law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+            && !deck.contacts[0]
+                .law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .clamp_attractive
+    );
     // Particles given on the command line replace the deck's sizes of their type.
     let options = DeckOptions {
         particles: vec![GivenParticle {
@@ -525,14 +562,39 @@ fn the_lammps_deck_is_read_with_the_builds_conventions() {
     let body = &deck.bodies[0];
     let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22)) * 0.005f64.sqrt();
     let alpha = millimpact::codes::lammps::tsuji_alpha(0.7);
-    assert!(relative(wall.law.stiffness, k) < 1e-14);
-    assert!(relative(wall.law.damping, alpha * (body.mass * k).sqrt()) < 1e-14);
-    assert!(wall.law.clamp_attractive);
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").stiffness,
+            k
+        ) < 1e-14
+    );
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").damping,
+            alpha * (body.mass * k).sqrt()
+        ) < 1e-14
+    );
+    assert!(
+        wall.law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+    );
     assert_eq!(wall.cor_entered, Some(0.7));
     // Two beads: the pair's E/(2(1−ν²)), not clamped.
     let pair = &deck.contacts[0];
     let k = 4.0 / 3.0 * 6.3e10 / (2.0 * (1.0 - 0.22 * 0.22)) * 0.0025f64.sqrt();
-    assert!(relative(pair.law.stiffness, k) < 1e-14 && !pair.law.clamp_attractive);
+    assert!(
+        relative(
+            pair.law.dashpot().expect("a spring–dashpot law").stiffness,
+            k
+        ) < 1e-14
+            && !pair
+                .law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .clamp_attractive
+    );
 }
 
 #[test]
@@ -739,16 +801,39 @@ fn the_kratos_mill_laws_are_the_ones_kratos_integrates() {
     assert_eq!(pair.model, "DEM_D_Hertz_viscous_Coulomb");
     let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 1.8e11, 0.28) * (0.03f64 * 0.02 / 0.05).sqrt();
     let m = steel.mass * chrome.mass / (steel.mass + chrome.mass);
-    assert!(relative(pair.law.stiffness, k) < 1e-14);
-    assert!(relative(pair.law.mass, m) < 1e-14);
+    assert!(
+        relative(
+            pair.law.dashpot().expect("a spring–dashpot law").stiffness,
+            k
+        ) < 1e-14
+    );
+    assert!(relative(pair.law.dashpot().expect("a spring–dashpot law").mass, m) < 1e-14);
     let c = 2.0 * gamma(0.7) * (1.5 * m * k).sqrt();
-    assert!(relative(pair.law.damping, c) < 1e-14);
-    assert_eq!((pair.law.exponent, pair.law.damping_exponent), (1.5, 0.25));
-    assert!(pair.law.clamp_attractive);
+    assert!(relative(pair.law.dashpot().expect("a spring–dashpot law").damping, c) < 1e-14);
+    assert_eq!(
+        (
+            pair.law.dashpot().expect("a spring–dashpot law").exponent,
+            pair.law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .damping_exponent
+        ),
+        (1.5, 0.25)
+    );
+    assert!(
+        pair.law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+    );
     let both = &deck.contacts[2];
     assert!(
         relative(
-            both.law.damping / (1.5 * both.law.mass * both.law.stiffness).sqrt(),
+            both.law.dashpot().expect("a spring–dashpot law").damping
+                / (1.5
+                    * both.law.dashpot().expect("a spring–dashpot law").mass
+                    * both.law.dashpot().expect("a spring–dashpot law").stiffness)
+                    .sqrt(),
             2.0 * gamma(0.65)
         ) < 1e-14
     );
@@ -757,16 +842,40 @@ fn the_kratos_mill_laws_are_the_ones_kratos_integrates() {
     let wall = &deck.contacts[4];
     assert_eq!(wall.model, "DEM_D_Linear_viscous_Coulomb");
     let k = std::f64::consts::PI * mixed(1.8e11, 0.28, 5e7, 0.45) * 0.31225 * 0.02;
-    assert!(relative(wall.law.stiffness, k) < 1e-14);
-    assert!(relative(wall.law.mass, chrome.mass) < 1e-14);
     assert!(
         relative(
-            wall.law.damping,
+            wall.law.dashpot().expect("a spring–dashpot law").stiffness,
+            k
+        ) < 1e-14
+    );
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").mass,
+            chrome.mass
+        ) < 1e-14
+    );
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").damping,
             2.0 * gamma(0.6) * (chrome.mass * k).sqrt()
         ) < 1e-14
     );
-    assert_eq!((wall.law.exponent, wall.law.damping_exponent), (1.0, 0.0));
-    assert!(wall.law.clamp_attractive);
+    assert_eq!(
+        (
+            wall.law.dashpot().expect("a spring–dashpot law").exponent,
+            wall.law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .damping_exponent
+        ),
+        (1.0, 0.0)
+    );
+    assert!(
+        wall.law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+    );
     assert_eq!(wall.cor_entered, Some(0.6));
     for trap in [
         "wall modulus",
@@ -840,9 +949,17 @@ fn kratos_custom_constants_take_k_normal_and_sizes_come_from_an_inlet_or_flags()
         .iter()
         .find(|c| c.types == [TypeRef::Type(1), TypeRef::Wall])
         .unwrap();
-    assert_eq!(wall.law.stiffness, 2e6);
+    assert_eq!(
+        wall.law.dashpot().expect("a spring–dashpot law").stiffness,
+        2e6
+    );
     let gamma = millimpact::codes::kratos::linear_damping_gamma(0.6);
-    assert!(relative(wall.law.damping, 2.0 * gamma * (steel.mass * 2e6).sqrt()) < 1e-14);
+    assert!(
+        relative(
+            wall.law.dashpot().expect("a spring–dashpot law").damping,
+            2.0 * gamma * (steel.mass * 2e6).sqrt()
+        ) < 1e-14
+    );
     // Flags replace a material's sizes; their density must be the material's.
     let options = DeckOptions {
         particles: vec![GivenParticle {
@@ -1202,7 +1319,11 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     let m = steel.mass * alumina.mass / (steel.mass + alumina.mass);
     let r: f64 = 0.02 * 0.0125 / 0.0325;
     let k = 4.0 / 3.0 * mixed(2.1e11, 0.3, 3.7e11, 0.22) * r.sqrt();
-    let law = deck.contacts[1].law;
+    let law = deck.contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, k) < 1e-14 && relative(law.mass, m) < 1e-14);
     // YADE's masses: 4/3 π R³ ρ.
     assert!(
@@ -1216,7 +1337,11 @@ fn the_yade_mill_script_is_read_with_its_match_maker_and_p_wave_step() {
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.25));
     assert!(law.clamp_attractive);
     // Alumina on the drum's facets: the facet's radius is 2R, so R* = 2R/3; the liner mixed in.
-    let wall = deck.contacts[4].law;
+    let wall = deck.contacts[4]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     let k = 4.0 / 3.0 * mixed(3.7e11, 0.22, 2e11, 0.29) * (2.0 * 0.0125 / 3.0f64).sqrt();
     assert!(relative(wall.stiffness, k) < 1e-14 && relative(wall.mass, alumina.mass) < 1e-14);
     assert!(
@@ -1303,7 +1428,11 @@ fn yade_viscel_and_frictphys_forms_give_their_laws() {
     let mass = |t: u32| deck.bodies.iter().find(|b| b.type_id == t).unwrap().mass;
     let (m1, m2) = (mass(0), mass(1));
     let tuned = |c: usize, m_r: f64, tc: f64, en: f64| {
-        let law = deck.contacts[c].law;
+        let law = deck.contacts[c]
+            .law
+            .dashpot()
+            .copied()
+            .expect("a spring–dashpot law");
         let kn = m_r * (pi2 + en.ln().powi(2)) / (tc * tc);
         let cn = -2.0 * en.ln() * m_r / tc;
         assert!(
@@ -1323,7 +1452,16 @@ fn yade_viscel_and_frictphys_forms_give_their_laws() {
     assert_eq!(deck.contacts[1].cor_entered, Some(0.7));
     // The ball on the wall: tuned for m/2, while m moves.
     tuned(3, m1 / 2.0, 2e-5, 0.8);
-    assert!(relative(deck.contacts[3].law.mass, m1) < 1e-14);
+    assert!(
+        relative(
+            deck.contacts[3]
+                .law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .mass,
+            m1
+        ) < 1e-14
+    );
     assert!(
         deck.contacts[3]
             .traps
@@ -1334,16 +1472,35 @@ fn yade_viscel_and_frictphys_forms_give_their_laws() {
     let m_box = 8.0 * 0.5 * 0.5 * 0.01 * 1100.0;
     tuned(5, m1 * m_box / (m1 + m_box), 3e-5, 0.7);
     // kn, cn in series; FrictPhys's linear spring; young and en through YADE's Newton iteration.
-    let law = yade_case("viscel-kn-cn").unwrap().contacts[0].law;
+    let law = yade_case("viscel-kn-cn").unwrap().contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert_eq!((law.stiffness, law.damping), (1e6, 20.0));
     let deck = yade_case("frict").unwrap();
     // kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2): E R between two balls and at a wall (refR = R).
     for c in &deck.contacts {
-        assert!(relative(c.law.stiffness, 2e11 * 0.01) < 1e-14);
-        assert_eq!((c.law.damping, c.cor_entered), (0.0, None));
+        assert!(
+            relative(
+                c.law.dashpot().expect("a spring–dashpot law").stiffness,
+                2e11 * 0.01
+            ) < 1e-14
+        );
+        assert_eq!(
+            (
+                c.law.dashpot().expect("a spring–dashpot law").damping,
+                c.cor_entered
+            ),
+            (0.0, None)
+        );
     }
     let deck = yade_case("viscel-young").unwrap();
-    let law = deck.contacts[0].law;
+    let law = deck.contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, 1e8 * 0.01) < 1e-14);
     // Within 1 % of en on the mass it is tuned for (m/2 between two equal balls).
     let m = deck.bodies[0].mass / 2.0;
@@ -1575,7 +1732,7 @@ fn each_build_mixes_the_pair_of_two_bead_types_as_its_source_does() {
     let e_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
     let k = 4.0 / 3.0 * e_star * r.sqrt();
     let alpha = poly((c1 * c2).sqrt());
-    let law = pair.law;
+    let law = pair.law.dashpot().copied().expect("a spring–dashpot law");
     assert!(relative(law.stiffness, k) < 1e-14, "{} {k}", law.stiffness);
     assert!(relative(law.damping, alpha * (m * k).sqrt()) < 1e-14);
     assert!(relative(law.mass, m) < 1e-14);
@@ -1615,7 +1772,7 @@ fn each_build_mixes_the_pair_of_two_bead_types_as_its_source_does() {
     let stored = |e: f64, nu: f64| 4.0 / 3.0 * e / (2.0 * (1.0 - nu * nu));
     let k = (stored(e1, nu1) * stored(e2, nu2)).sqrt();
     let d = (poly(c1) * poly(c2)).sqrt();
-    let law = pair.law;
+    let law = pair.law.dashpot().copied().expect("a spring–dashpot law");
     assert!(relative(law.stiffness, k) < 1e-14, "{} {k}", law.stiffness);
     assert!(relative(law.damping, d) < 1e-14, "{} {d}", law.damping);
     assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
@@ -1642,13 +1799,21 @@ fn a_hertz_pair_is_mixed_whole_in_2025_and_as_hooke_in_2021() {
     let r: f64 = a.radius * b.radius / (a.radius + b.radius);
     let k = (4e10f64 * 1.3e11).sqrt();
     let d = 3f64.sqrt();
-    let law = new.contacts[1].law;
+    let law = new.contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, k * r.sqrt()) < 1e-14);
     assert!(relative(law.damping, d) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.5, 0.0));
     // limit_damping of type 2's line: on in the 2025 pair, not in the 2021 one.
     assert!(law.clamp_attractive);
-    let law = read_with(CodeName::Lammps, &path).contacts[1].law;
+    let law = read_with(CodeName::Lammps, &path).contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert!(relative(law.stiffness, k) < 1e-14);
     assert!(relative(law.damping, d) < 1e-14);
     assert_eq!((law.exponent, law.damping_exponent), (1.0, 0.0));
@@ -1665,7 +1830,13 @@ pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohis
     );
     let (_d, path) = deck_files(&[("in.ld", &tsuji)]);
     let new = read_with(CodeName::Lammps2025, &path);
-    assert!(new.contacts[1].law.clamp_attractive);
+    assert!(
+        new.contacts[1]
+            .law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+    );
     assert!(
         new.contacts[1]
             .traps
@@ -1673,7 +1844,13 @@ pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohis
             .any(|t| t.starts_with("limit_damping is on in pair_coeff 1 1 only"))
     );
     let old = read_with(CodeName::Lammps, &path);
-    assert!(!old.contacts[1].law.clamp_attractive);
+    assert!(
+        !old.contacts[1]
+            .law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+    );
     assert!(
         old.contacts[1]
             .traps
@@ -1681,14 +1858,29 @@ pair_coeff 2 2 hertz/material 2e11 0.6 0.3 damping tsuji tangential linear_nohis
             .any(|t| t.starts_with("limit_damping of the lines does not reach the mixed pair"))
     );
     // The own pair 1 1 keeps its clamp in both.
-    assert!(new.contacts[0].law.clamp_attractive && old.contacts[0].law.clamp_attractive);
+    assert!(
+        new.contacts[0]
+            .law
+            .dashpot()
+            .expect("a spring–dashpot law")
+            .clamp_attractive
+            && old.contacts[0]
+                .law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .clamp_attractive
+    );
 
     let restitution = two_types(
         "pair_coeff 1 1 hertz/material 6.3e10 0.9 0.22 damping coeff_restitution tangential linear_nohistory 0 0\n\
 pair_coeff 2 2 hertz/material 2e11 0.4 0.3 damping coeff_restitution tangential linear_nohistory 0 0\n",
     );
     let (_d, path) = deck_files(&[("in.cr", &restitution)]);
-    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     let cor = millimpact::solve::dashpot::accurate_metrics(&law, 2.0, 1e-12)
         .unwrap()
         .cor;
@@ -1763,7 +1955,11 @@ pair_coeff 2 1 hooke 9e6 0.1 damping velocity tangential linear_nohistory 0 0\n"
             && e.contains("supported: pair_coeff 1 2"),
         "{e}"
     );
-    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert_eq!((law.stiffness, law.damping), (9e6, 0.1));
 }
 
@@ -1804,7 +2000,12 @@ pair_coeff 2 2 hertz 1.3e11 8e8 damping viscoelastic tangential linear_nohistory
     );
     let (_d, path) = deck_files(&[("in.sticky", &sticky)]);
     let deck = read_with(CodeName::Lammps, &path);
-    let zeta = deck.contacts[1].law.never_separates().unwrap();
+    let zeta = deck.contacts[1]
+        .law
+        .dashpot()
+        .expect("a spring–dashpot law")
+        .never_separates()
+        .unwrap();
     assert!(zeta > 1e5, "{zeta}");
     assert!(
         deck.contacts[1]
@@ -1835,7 +2036,11 @@ pair_coeff 2 2 hertz 1.3e11 8e8 damping viscoelastic tangential linear_nohistory
             .contains("no recorded run")
     );
     // In the 2025 build the pair stays viscoelastic Hertz, and separates.
-    let law = read_with(CodeName::Lammps2025, &path).contacts[1].law;
+    let law = read_with(CodeName::Lammps2025, &path).contacts[1]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     assert_eq!(law.never_separates(), None);
 }
 

@@ -180,9 +180,11 @@ fn the_lammps_granular_deck_realises_its_own_law_and_shows_its_traps() {
         let entered = i.cor_entered.unwrap();
         let exact = millimpact::model::law::DashpotLaw {
             damping: millimpact::codes::lammps::exact_hertz_alpha(entered)
-                * (i.law.mass * i.law.stiffness).sqrt(),
+                * (i.law.dashpot().expect("a spring–dashpot law").mass
+                    * i.law.dashpot().expect("a spring–dashpot law").stiffness)
+                    .sqrt(),
             clamp_attractive: false,
-            ..i.law
+            ..*i.law.dashpot().expect("a spring–dashpot law")
         };
         let cor = millimpact::solve::dashpot::accurate_metrics(&exact, i.impact_velocity, 1e-12)
             .unwrap()
@@ -195,7 +197,11 @@ fn the_lammps_granular_deck_realises_its_own_law_and_shows_its_traps() {
         assert!(i.traps.iter().any(|t| t.starts_with("damping tsuji")));
         if i.wall.is_some() {
             assert!(
-                i.law.clamp_attractive && i.traps.iter().any(|t| t.starts_with("limit_damping"))
+                i.law
+                    .dashpot()
+                    .expect("a spring–dashpot law")
+                    .clamp_attractive
+                    && i.traps.iter().any(|t| t.starts_with("limit_damping"))
             );
         }
     }
@@ -222,9 +228,9 @@ fn the_lammps_granular_deck_in_the_2025_build_follows_its_wall_convention() {
     let e_star = 6.3e10 / (2.0 * (1.0 - 0.22 * 0.22));
     let k = 4.0 / 3.0 * e_star * wall.radius.sqrt();
     assert!(
-        (wall.law.stiffness / k - 1.0).abs() < 1e-14,
+        (wall.law.dashpot().expect("a spring–dashpot law").stiffness / k - 1.0).abs() < 1e-14,
         "{} {k}",
-        wall.law.stiffness
+        wall.law.dashpot().expect("a spring–dashpot law").stiffness
     );
 }
 
@@ -253,22 +259,29 @@ fn the_kratos_mill_realises_its_own_laws_and_shows_kratos_fits() {
         // COR. Hertz: Thornton's fit, off by 1e-4 to 1e-3 in COR, which the compensated
         // restitution removes; linear: the bisection to 1e-4 in γ, which the exact clamped
         // ratio removes.
-        let (exact_damping, hertz) = if i.law.exponent > 1.0 {
-            let en = hertz_input_restitution(entered).unwrap();
-            (
-                2.0 * hertz_damping_gamma(en) * (1.5 * i.law.mass * i.law.stiffness).sqrt(),
-                true,
-            )
-        } else {
-            (
-                2.0 * clamped_linear_damping_ratio(entered).unwrap()
-                    * (i.law.mass * i.law.stiffness).sqrt(),
-                false,
-            )
-        };
+        let (exact_damping, hertz) =
+            if i.law.dashpot().expect("a spring–dashpot law").exponent > 1.0 {
+                let en = hertz_input_restitution(entered).unwrap();
+                (
+                    2.0 * hertz_damping_gamma(en)
+                        * (1.5
+                            * i.law.dashpot().expect("a spring–dashpot law").mass
+                            * i.law.dashpot().expect("a spring–dashpot law").stiffness)
+                            .sqrt(),
+                    true,
+                )
+            } else {
+                (
+                    2.0 * clamped_linear_damping_ratio(entered).unwrap()
+                        * (i.law.dashpot().expect("a spring–dashpot law").mass
+                            * i.law.dashpot().expect("a spring–dashpot law").stiffness)
+                            .sqrt(),
+                    false,
+                )
+            };
         let exact = DashpotLaw {
             damping: exact_damping,
-            ..i.law
+            ..*i.law.dashpot().expect("a spring–dashpot law")
         };
         let cor = accurate_metrics(&exact, i.impact_velocity, 1e-12)
             .unwrap()
@@ -345,12 +358,21 @@ fn kratos_custom_constants_realise_their_k_normal() {
     for i in walls {
         // The relation's K_NORMAL as written, bit for bit.
         #[allow(clippy::float_cmp)]
-        let written = i.law.stiffness == 2e6;
-        assert!(written, "{}", i.law.stiffness);
+        let written = i.law.dashpot().expect("a spring–dashpot law").stiffness == 2e6;
+        assert!(
+            written,
+            "{}",
+            i.law.dashpot().expect("a spring–dashpot law").stiffness
+        );
         assert_eq!(i.model, "DEM_D_Linear_Custom_Constants");
         // Whatever the radius, the contact lasts as long as K_NORMAL and the mass say (to
         // within a step of the clamped law's exact time).
-        let exact = accurate_metrics(&i.law, i.impact_velocity, 1e-12).unwrap();
+        let exact = accurate_metrics(
+            i.law.dashpot().expect("a spring–dashpot law"),
+            i.impact_velocity,
+            1e-12,
+        )
+        .unwrap();
         assert!(
             (i.contact_time - exact.contact_time).abs() <= i.timestep,
             "{}: {} against {}",
@@ -397,8 +419,13 @@ fn the_yade_mill_script_realises_its_own_law_pair_by_pair() {
         );
         let en = hertz_input_restitution(entered).unwrap();
         let compensated = DashpotLaw {
-            damping: 2.0 * thornton_damping_ratio(en) * (1.5 * i.law.mass * i.law.stiffness).sqrt(),
-            ..i.law
+            damping: 2.0
+                * thornton_damping_ratio(en)
+                * (1.5
+                    * i.law.dashpot().expect("a spring–dashpot law").mass
+                    * i.law.dashpot().expect("a spring–dashpot law").stiffness)
+                    .sqrt(),
+            ..*i.law.dashpot().expect("a spring–dashpot law")
         };
         let cor = accurate_metrics(&compensated, i.impact_velocity, 1e-12)
             .unwrap()
@@ -504,7 +531,7 @@ O.dt = 1e-7\n";
                 // wall, m M/(m + M) over m at the box (M = 8 · 0.5 · 0.5 · 0.01 · 1100 kg).
                 let tuned = match i.wall.as_deref() {
                     Some(w) if w.starts_with("wall") => 0.5,
-                    Some(_) => 22.0 / (i.law.mass + 22.0),
+                    Some(_) => 22.0 / (i.law.dashpot().expect("a spring–dashpot law").mass + 22.0),
                     None => 1.0,
                 };
                 let zeta = zeta * tuned.sqrt();
@@ -622,7 +649,16 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
     let (report, runs) = checked_live(MIXED, CodeName::Lammps, &[]);
     assert_eq!(report.impacts.len(), 15);
     for i in mixed_rows(&report) {
-        assert_eq!((i.law.exponent, i.law.damping_exponent), (1.0, 0.0));
+        assert_eq!(
+            (
+                i.law.dashpot().expect("a spring–dashpot law").exponent,
+                i.law
+                    .dashpot()
+                    .expect("a spring–dashpot law")
+                    .damping_exponent
+            ),
+            (1.0, 0.0)
+        );
         assert!(
             i.cor_realised > 1.0 && i.warnings.iter().any(|w| w.starts_with("energy gain")),
             "{}: {} {:?}",
@@ -637,8 +673,22 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
     // not reach it.
     let (report, _) = checked_live(MIXED_HERTZ, CodeName::Lammps, &[1.0, 2.0, 4.0]);
     for i in mixed_rows(&report) {
-        assert_eq!((i.law.exponent, i.law.damping_exponent), (1.0, 0.0));
-        assert!(!i.law.clamp_attractive);
+        assert_eq!(
+            (
+                i.law.dashpot().expect("a spring–dashpot law").exponent,
+                i.law
+                    .dashpot()
+                    .expect("a spring–dashpot law")
+                    .damping_exponent
+            ),
+            (1.0, 0.0)
+        );
+        assert!(
+            !i.law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .clamp_attractive
+        );
         assert!(i.steps_per_contact > 20.0, "{}", i.steps_per_contact);
         let offset = i.cor_realised - i.cor_law;
         assert!(
@@ -659,7 +709,16 @@ fn the_2025_build_runs_a_mixed_pair_as_the_mixed_model() {
     let (report, runs) = checked_live(MIXED, CodeName::Lammps2025, &[]);
     assert_eq!(report.impacts.len(), 15);
     for i in mixed_rows(&report) {
-        assert_eq!((i.law.exponent, i.law.damping_exponent), (1.5, 0.25));
+        assert_eq!(
+            (
+                i.law.dashpot().expect("a spring–dashpot law").exponent,
+                i.law
+                    .dashpot()
+                    .expect("a spring–dashpot law")
+                    .damping_exponent
+            ),
+            (1.5, 0.25)
+        );
         // Neither type's e (0.9, 0.6), nor the mixed e = √0.54 = 0.735 tsuji is given: the fit
         // is √2 short.
         assert!(
@@ -673,8 +732,22 @@ fn the_2025_build_runs_a_mixed_pair_as_the_mixed_model() {
     // Type 2's limit_damping reaches the mixed pair, and cuts its attractive tail.
     let (report, _) = checked_live(MIXED_HERTZ, CodeName::Lammps2025, &[1.0, 2.0, 4.0]);
     for i in mixed_rows(&report) {
-        assert_eq!((i.law.exponent, i.law.damping_exponent), (1.5, 0.0));
-        assert!(i.law.clamp_attractive);
+        assert_eq!(
+            (
+                i.law.dashpot().expect("a spring–dashpot law").exponent,
+                i.law
+                    .dashpot()
+                    .expect("a spring–dashpot law")
+                    .damping_exponent
+            ),
+            (1.5, 0.0)
+        );
+        assert!(
+            i.law
+                .dashpot()
+                .expect("a spring–dashpot law")
+                .clamp_attractive
+        );
     }
 }
 

@@ -269,7 +269,11 @@ fn a_speed_the_law_cannot_take_is_refused_before_anything_runs() {
         )
     );
     // The speed it names is where the law's own peak overlap is the radius.
-    let law = read(&deck, None, &DeckOptions::default()).contacts[0].law;
+    let law = read(&deck, None, &DeckOptions::default()).contacts[0]
+        .law
+        .dashpot()
+        .copied()
+        .expect("a spring–dashpot law");
     let peak = accurate_metrics(&law, 2.362e3, 1e-10)
         .unwrap()
         .peak_deformation;

@@ -15,7 +15,7 @@ use serde::{Serialize, Serializer};
 use thiserror::Error;
 
 use super::{CodeError, CodeSetup, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::CodeLaw;
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -256,8 +256,10 @@ pub struct DeckContact {
     /// The COR the user entered for this pair, where the model takes one.
     pub cor_entered: Option<f64>,
     /// The law the code integrates with the user's lines: its `E*`, `R*`, mass, damping formula
-    /// and clamp, as measured for the installed code (`reference/<code>/CONVENTIONS.md`).
-    pub law: DashpotLaw,
+    /// and clamp, as measured for the installed code (`reference/<code>/CONVENTIONS.md`); the
+    /// paper's law itself where the lines select it (LIGGGHTS `model paper`, run in
+    /// liggghts-paper).
+    pub law: CodeLaw,
     /// The convention traps these lines meet.
     pub traps: Vec<String>,
     /// The lines (or fields) that set this pair's contact.

@@ -17,7 +17,7 @@ use millimpact::codes::deck::DeckImpactInput;
 use millimpact::codes::deck::{DeckError, DeckOptions, GivenParticle, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
 use millimpact::error::{CheckFailed, UserError};
-use millimpact::model::law::DashpotLaw;
+use millimpact::model::law::CodeLaw;
 use millimpact::output::Format;
 use millimpact::output::export;
 
@@ -141,7 +141,7 @@ impl ImpactRunner for Progress<'_> {
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        law: &DashpotLaw,
+        law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError> {
         let run = self.inner.run(code, impact, law);
         self.bar.inc(1);

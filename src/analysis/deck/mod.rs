@@ -29,8 +29,8 @@ use crate::codes::{
 };
 use crate::model::count::ceil_count;
 use crate::model::exact;
-use crate::model::law::DashpotLaw;
-use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
+use crate::model::law::{CodeLaw, DashpotLaw};
+use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{OutputError, Section, Summary, sci, signed};
 use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
@@ -122,7 +122,7 @@ pub struct DeckImpact {
     /// The paper's η that gives the COR realised: `(1 − e²)/(1 + e²)`.
     pub paper_loss_coefficient: f64,
     /// The law the code integrates for the pair.
-    pub law: DashpotLaw,
+    pub law: CodeLaw,
     /// The convention traps the pair's lines meet.
     pub traps: Vec<String>,
     /// What is out of range or worth a look.
@@ -178,7 +178,7 @@ pub trait ImpactRunner: Sync {
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        law: &DashpotLaw,
+        law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError>;
 }
 
@@ -193,7 +193,7 @@ pub struct LiveRunner {
 struct DeckImpactDriver {
     code: &'static dyn CodeDriver,
     input: RenderedInput,
-    law: DashpotLaw,
+    law: CodeLaw,
 }
 
 impl CodeDriver for DeckImpactDriver {
@@ -225,8 +225,8 @@ impl CodeDriver for DeckImpactDriver {
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
         self.code.parse(setup, workdir, log)
     }
-    fn law(&self, _setup: &CodeSetup) -> crate::model::law::CodeLaw {
-        self.law.into()
+    fn law(&self, _setup: &CodeSetup) -> CodeLaw {
+        self.law
     }
     fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
         self.code.trajectory_rows(setup)
@@ -241,7 +241,7 @@ impl ImpactRunner for LiveRunner {
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        law: &DashpotLaw,
+        law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError> {
         let driver = DeckImpactDriver {
             code: code.driver(),
@@ -306,7 +306,7 @@ impl ImpactRunner for RecordedRuns {
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        _law: &DashpotLaw,
+        _law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError> {
         self.runs
             .get(&record_key(impact))
@@ -332,7 +332,7 @@ impl ImpactRunner for Recording<'_> {
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        law: &DashpotLaw,
+        law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError> {
         let run = self.inner.run(code, impact, law)?;
         if let Ok(mut runs) = self.runs.lock() {
@@ -355,6 +355,8 @@ pub fn read_deck(
     let supported = || {
         CodeName::ALL
             .iter()
+            // liggghts-paper reads with LIGGGHTS's reader, named once (as liggghts).
+            .filter(|c| **c != CodeName::LiggghtsPaper)
             .filter_map(|c| c.driver().deck().map(|d| format!("{c}: {}", d.reads())))
             .collect::<Vec<_>>()
             .join("; ")
@@ -368,13 +370,42 @@ pub fn read_deck(
             continue;
         };
         if code.is_some() || reader.recognises(path, &text) {
-            return Ok((c, reader.read(path, options)?));
+            return build_for(c, code, reader.read(path, options)?);
         }
     }
     Err(DeckError::Unrecognised {
         path: path.to_path_buf(),
         supported: supported(),
     })
+}
+
+/// The build that runs `deck`, read by `read_by`'s reader: a LIGGGHTS deck whose lines select
+/// the paper's law (`model paper`, `model paper/linear`) runs in liggghts-paper, the build that
+/// has the model; asked for the stock build (`asked`), such a deck is refused, since the stock
+/// build stops on the unknown model.
+fn build_for(
+    read_by: CodeName,
+    asked: Option<CodeName>,
+    deck: UserDeck,
+) -> Result<(CodeName, UserDeck), DeckError> {
+    let paper = deck
+        .contacts
+        .iter()
+        .find(|c| matches!(c.law, CodeLaw::Paper(_)));
+    match (read_by, paper) {
+        (CodeName::Liggghts, Some(c)) if asked == Some(CodeName::Liggghts) => {
+            Err(DeckError::unsupported(
+                c.lines[0].clone(),
+                format!(
+                    "normal model `{}` with --code liggghts: the stock liggghts build lacks the paper's model",
+                    c.model
+                ),
+                "--code liggghts-paper, or no --code (a deck that selects model paper runs in liggghts-paper)",
+            ))
+        }
+        (CodeName::Liggghts, Some(_)) => Ok((CodeName::LiggghtsPaper, deck)),
+        _ => Ok((read_by, deck)),
+    }
 }
 
 /// The label of a body: its type, with its radius where the type has several sizes.
@@ -457,7 +488,7 @@ pub fn check_deck(
     for (k, contact) in deck.contacts.iter().enumerate() {
         for &v in &velocities.0 {
             // A contact with no end has no step count and nothing a run could measure.
-            if let Some(zeta) = contact.law.never_separates() {
+            if let Some(zeta) = contact.law.dashpot().and_then(DashpotLaw::never_separates) {
                 planned.push(Plan::NeverSeparates {
                     contact: k,
                     velocity: v,
@@ -465,7 +496,7 @@ pub fn check_deck(
                 });
                 continue;
             }
-            let exact = accurate_metrics(&contact.law, v, 1e-12)?;
+            let exact = law_metrics(&contact.law, v, 1e-12)?;
             refuse_speed(deck, k, v, exact.peak_deformation, &velocities.1)?;
             let steps = ceil_count(1.05 * exact.contact_time / dt)
                 .map_or(u64::MAX, |n| n.saturating_add(3));
@@ -585,12 +616,8 @@ fn refuse_speed(
 
 /// The speed at which `law`'s peak overlap is `radius` (m), below `above` (m/s), to three
 /// digits; none where the law's figures cannot be computed.
-fn largest_speed(law: &DashpotLaw, radius: f64, above: f64) -> Option<f64> {
-    let peak = |v: f64| {
-        accurate_metrics(law, v, 1e-9)
-            .ok()
-            .map(|m| m.peak_deformation)
-    };
+fn largest_speed(law: &CodeLaw, radius: f64, above: f64) -> Option<f64> {
+    let peak = |v: f64| law_metrics(law, v, 1e-9).ok().map(|m| m.peak_deformation);
     let (mut low, mut high) = (above, above);
     while peak(low)? > radius {
         high = low;
@@ -613,10 +640,23 @@ fn largest_speed(law: &DashpotLaw, radius: f64, above: f64) -> Option<f64> {
     Some(low)
 }
 
+/// The figures of `law`'s impact at `impact_velocity` (m/s) at zero step error: a
+/// spring–dashpot's solved to `rtol`, the paper's law's in closed form.
+fn law_metrics(
+    law: &CodeLaw,
+    impact_velocity: f64,
+    rtol: f64,
+) -> Result<TrajectoryMetrics, crate::solve::SolveError> {
+    match law {
+        CodeLaw::Dashpot(law) => accurate_metrics(law, impact_velocity, rtol),
+        CodeLaw::Paper(law) => Ok(exact::paper_impact(law, impact_velocity).metrics()),
+    }
+}
+
 /// The COR of `law` stepped as the code steps the run `impact`, started a further `phase` (m)
 /// away than the run itself.
 fn stepped_cor(
-    law: &DashpotLaw,
+    law: &CodeLaw,
     stepping: &CodeStepping,
     impact: &DeckImpactInput,
     steps: u64,
@@ -715,7 +755,7 @@ fn impact_row(
     let v = p.velocity;
     let dt = deck.timestep;
     let law = c.law;
-    let exact = accurate_metrics(&law, v, 1e-12).ok();
+    let exact = law_metrics(&law, v, 1e-12).ok();
     let cor_law = exact.map_or(f64::NAN, |m| m.cor);
     let rayleigh = smallest_rayleigh_time(body, partner_body);
     let smaller_radius = partner_body.map_or(body.radius, |o| o.radius.min(body.radius));

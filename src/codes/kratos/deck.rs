@@ -38,7 +38,7 @@ use crate::codes::deck::{
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::{ContactForce, DashpotLaw};
 use crate::model::scene::SceneKind;
 
 /// The Python template of one impact with a user's materials.
@@ -1216,7 +1216,7 @@ impl DeckReader for KratosDeck {
                 types,
                 model: pl.name,
                 cor_entered: Some(pl.entered),
-                law: pl.law,
+                law: pl.law.into(),
                 traps,
                 lines: vec![pl.at],
             });
@@ -1361,15 +1361,15 @@ impl DeckReader for KratosDeck {
             plate_material: None,
             effective_modulus: None,
             effective_radius: None,
-            reduced_mass: c.law.mass,
-            stiffness: c.law.stiffness,
-            exponent: c.law.exponent,
+            reduced_mass: c.law.mass(),
+            stiffness: c.law.stiffness(),
+            exponent: c.law.exponent(),
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
             loss_coefficient: None,
             timestep: deck.timestep,
             steps,
-            clamp_attractive: c.law.clamp_attractive,
+            clamp_attractive: c.law.clamp_attractive(),
             conventions: None,
         };
         setup.effective_radius = Some(setup.pair_radius());

@@ -24,7 +24,7 @@ use crate::codes::deck::{
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::{ContactForce, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
@@ -828,7 +828,7 @@ impl DeckReader for LammpsDeck {
                     types: [TypeRef::Type(i), TypeRef::Type(j)],
                     model,
                     cor_entered: entered,
-                    law,
+                    law: law.into(),
                     traps,
                     lines,
                 });
@@ -870,7 +870,7 @@ impl DeckReader for LammpsDeck {
                     types: [TypeRef::Type(body.type_id), TypeRef::Wall],
                     model: format!("{} damping {}", wall.model.normal, wall.model.damping),
                     cor_entered: entered,
-                    law,
+                    law: law.into(),
                     traps,
                     lines: vec![wall.at.clone().into()],
                 });
@@ -936,15 +936,15 @@ impl DeckReader for LammpsDeck {
             plate_material: None,
             effective_modulus: None,
             effective_radius: None,
-            reduced_mass: c.law.mass,
-            stiffness: c.law.stiffness,
-            exponent: c.law.exponent,
+            reduced_mass: c.law.mass(),
+            stiffness: c.law.stiffness(),
+            exponent: c.law.exponent(),
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
             loss_coefficient: None,
             timestep: deck.timestep,
             steps,
-            clamp_attractive: c.law.clamp_attractive,
+            clamp_attractive: c.law.clamp_attractive(),
             conventions,
         };
         setup.effective_radius = Some(setup.pair_radius());

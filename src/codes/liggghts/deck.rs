@@ -21,14 +21,19 @@ use crate::codes::deck::{
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::exact;
+use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
 use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
 
 const TEMPLATE: &str = include_str!("deck.in");
 const INPUT_FILE: &str = "impact.in";
 
 /// The normal models whose law the harness knows.
-const NORMAL_MODELS: &str = "model hertz, hooke, hertz/stiffness, hooke/stiffness";
+const NORMAL_MODELS: &str = "model hertz, hooke, hertz/stiffness, hooke/stiffness, paper, paper/linear (the last two run in liggghts-paper)";
+
+/// The paper's normal models (`scripts/liggghts-paper/normal_model_paper.h`), built into
+/// liggghts-paper only.
+const PAPER_MODELS: [&str; 2] = ["paper", "paper/linear"];
 
 /// LIGGGHTS's deck reader.
 pub struct LiggghtsDeck;
@@ -218,7 +223,8 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
         ));
     }
     let supported = ["hertz", "hooke", "hertz/stiffness", "hooke/stiffness"];
-    if !supported.contains(&model.normal.as_str()) {
+    if !supported.contains(&model.normal.as_str()) && !PAPER_MODELS.contains(&model.normal.as_str())
+    {
         return Err(DeckError::unsupported(
             &command.at,
             format!("normal model `{}`", model.normal),
@@ -248,6 +254,18 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
 /// Read `key value` settings from `words[start..]` into `model`.
 fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Result<(), DeckError> {
     let words = &command.words[start..];
+    if PAPER_MODELS.contains(&model.normal.as_str())
+        && let Some(key) = words.first()
+    {
+        return Err(DeckError::unsupported(
+            &command.at,
+            format!(
+                "`{key}` after model {}: the paper's styles take no settings (liggghts-paper stops: \"Unknown argument or wrong keyword order\")",
+                model.normal
+            ),
+            "model paper or paper/linear without limitForce, tangential_damping or other settings (the force never attracts)",
+        ));
+    }
     if !words.len().is_multiple_of(2) {
         return Err(DeckError::unsupported(
             &command.at,
@@ -790,7 +808,7 @@ impl LiggghtsDeck {
 
 /// The law, entered COR and traps of one pair under `model`, `j` the partner's type.
 struct PairLaw {
-    law: DashpotLaw,
+    law: CodeLaw,
     cor_entered: Option<f64>,
     traps: Vec<String>,
     lines: Vec<SourceLine>,
@@ -858,6 +876,9 @@ impl Materials<'_> {
         partner: Option<(f64, f64)>,
         at: &SourceLine,
     ) -> Result<PairLaw, DeckError> {
+        if PAPER_MODELS.contains(&model.normal.as_str()) {
+            return self.paper_law(model, (i, radius, mass), j, partner, at);
+        }
         let needed_by = format!("model {}", model.normal);
         let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
         let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
@@ -872,12 +893,7 @@ impl Materials<'_> {
                 lines.push(e_at);
                 lines.push(e_line);
                 if partner.is_none() {
-                    let own = e1 / (1.0 - nu1 * nu1);
-                    traps.push(format!(
-                        "wall modulus: the wall's type {j} (E = {e2:e} Pa, ν = {nu2}) is mixed into E* = {y_star:.4e} Pa, {:.3e} of the particle's own E/(1−ν²) = {own:.4e} Pa against a rigid wall{}",
-                        y_star / own,
-                        if y_star < 0.99 * own { " (a wall meant rigid needs a far larger E: LIGGGHTS has no rigid wall)" } else { "" }
-                    ));
+                    traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
                 }
                 if model.normal == "hertz" {
                     let k = 4.0 / 3.0 * y_star * r_star.sqrt();
@@ -966,12 +982,114 @@ impl Materials<'_> {
             ));
         }
         Ok(PairLaw {
-            law,
+            law: law.into(),
             cor_entered,
             traps,
             lines,
         })
     }
+
+    /// The paper's law LIGGGHTS integrates under `model paper` (`C = (4/3) E* sqrt(R*)`, formed
+    /// as `model hertz` forms its stiffness, n = 1.5) or `model paper/linear` (`C = kn` of the
+    /// type pair, n = 1), with the pair's `lossCoefficient` η; the COR it is built to realise,
+    /// `sqrt((1 − η)/(1 + η))`, stands as the one entered (the deck gives η, not a COR).
+    fn paper_law(
+        &self,
+        model: &GranModel,
+        (i, radius, mass): (u32, f64, f64),
+        j: u32,
+        partner: Option<(f64, f64)>,
+        at: &SourceLine,
+    ) -> Result<PairLaw, DeckError> {
+        let needed_by = format!("model {}", model.normal);
+        let r_star = partner.map_or(radius, |(r2, _)| pair_radius(radius, r2));
+        // LIGGGHTS's `meff`: the pair's reduced mass, the particle's own at a wall.
+        let m_star = partner.map_or(mass, |(_, m2)| reduced_mass(mass, m2));
+        let mut traps = vec![
+            "lossCoefficient is η itself, not a COR: the law realises sqrt((1 − η)/(1 + η)) whatever the size, mass, material and speed".to_string(),
+        ];
+        let mut lines = vec![at.clone()];
+        let (stiffness, exponent) = if model.normal == "paper" {
+            let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
+            let (e2, nu2, _) = self.modulus(j, &needed_by)?;
+            let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+            lines.push(e_at);
+            if partner.is_none() {
+                traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
+            }
+            (4.0 / 3.0 * y_star * r_star.sqrt(), 1.5)
+        } else {
+            let kn_p = self.r.property("kn", self.path, &needed_by)?;
+            let kn = kn_p.of_pair("kn", i, j)?;
+            // LIGGGHTS stops without kt: the style hands it to the tangential model.
+            let kt_p = self.r.property("kt", self.path, &needed_by)?;
+            kt_p.of_pair("kt", i, j)?;
+            if kn.is_nan() || kn <= 0.0 {
+                return Err(DeckError::unsupported(
+                    &kn_p.at,
+                    format!("kn {kn} for the types {i} and {j}"),
+                    "a positive stiffness kn, N/m",
+                ));
+            }
+            lines.push(kn_p.at.clone());
+            (kn, 1.0)
+        };
+        let eta_p = self.r.property("lossCoefficient", self.path, &needed_by)?;
+        let eta = eta_p.of_pair("lossCoefficient", i, j)?;
+        // liggghts-paper checks every type pair of the table when it sets the model up, not
+        // only the pairs that meet.
+        let columns = eta_p.columns.max(1);
+        if let Some((k, bad)) = eta_p
+            .values
+            .iter()
+            .enumerate()
+            .find(|(_, v)| !(0.0..1.0).contains(*v))
+        {
+            return Err(DeckError::unsupported(
+                &eta_p.at,
+                format!(
+                    "lossCoefficient {bad} for the types {} and {}",
+                    k / columns + 1,
+                    k % columns + 1
+                ),
+                "0 <= lossCoefficient < 1 for every type pair (η: liggghts-paper stops otherwise; η >= 1 never separates the bodies, η < 0 creates energy)",
+            ));
+        }
+        lines.push(eta_p.at.clone());
+        if model.tangential != "no_history" || model.rolling != "off" {
+            traps.push(format!(
+                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
+                model.tangential, model.rolling
+            ));
+        }
+        Ok(PairLaw {
+            law: CodeLaw::Paper(PaperLaw {
+                mass: m_star,
+                stiffness,
+                exponent,
+                loss_coefficient: eta,
+            }),
+            cor_entered: Some(exact::restitution(eta)),
+            traps,
+            lines,
+        })
+    }
+}
+
+/// The trap of a wall's own modulus, which LIGGGHTS mixes into `E*` (`y_star`, Pa) with the
+/// particle's (`own`: its E and ν) as if the wall were a body of type `j` (`wall`: its E and ν).
+fn wall_modulus_trap(j: u32, own: (f64, f64), wall: (f64, f64), y_star: f64) -> String {
+    let ((e1, nu1), (e2, nu2)) = (own, wall);
+    let own = e1 / (1.0 - nu1 * nu1);
+    format!(
+        "wall modulus: the wall's type {j} (E = {e2:e} Pa, ν = {nu2}) is mixed into E* = {y_star:.4e} Pa, {:.3e} of the particle's own E/(1−ν²) = {own:.4e} Pa against a rigid wall{}",
+        y_star / own,
+        if y_star < 0.99 * own {
+            " (a wall meant rigid needs a far larger E: LIGGGHTS has no rigid wall)"
+        } else {
+            ""
+        }
+    )
 }
 
 impl DeckReader for LiggghtsDeck {
@@ -1048,7 +1166,8 @@ impl DeckReader for LiggghtsDeck {
         }
         let mut bodies = Self::bodies(&r, path, options)?;
         let materials = Materials { r: &r, path };
-        let uses_modulus = |m: &GranModel| m.normal == "hertz" || m.normal == "hooke";
+        let uses_modulus =
+            |m: &GranModel| m.normal == "hertz" || m.normal == "hooke" || m.normal == "paper";
         if uses_modulus(&pair_model) || r.walls.iter().any(|w| uses_modulus(&w.model)) {
             for b in &mut bodies {
                 let (e, nu, _) =
@@ -1209,15 +1328,18 @@ impl DeckReader for LiggghtsDeck {
             plate_material: None,
             effective_modulus: None,
             effective_radius: None,
-            reduced_mass: c.law.mass,
-            stiffness: c.law.stiffness,
-            exponent: c.law.exponent,
+            reduced_mass: c.law.mass(),
+            stiffness: c.law.stiffness(),
+            exponent: c.law.exponent(),
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
+            loss_coefficient: match c.law {
+                CodeLaw::Paper(law) => Some(law.loss_coefficient),
+                CodeLaw::Dashpot(_) => None,
+            },
             timestep: deck.timestep,
             steps,
-            clamp_attractive: c.law.clamp_attractive,
+            clamp_attractive: c.law.clamp_attractive(),
             conventions: None,
         };
         setup.effective_radius = Some(setup.pair_radius());

@@ -181,6 +181,12 @@ impl CodeDriver for LiggghtsPaper {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&LiggghtsPaperCard)
     }
+
+    /// A LIGGGHTS user's deck, read as the stock build's (this build runs the stock models as
+    /// Debian's does, and the paper's).
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        Some(&super::deck::LiggghtsDeck)
+    }
 }
 
 /// The paper build's batches: many impacts in one process, its single inputs in sequence (as

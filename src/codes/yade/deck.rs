@@ -28,7 +28,7 @@ use crate::codes::deck::{
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::DashpotLaw;
+use crate::model::law::{ContactForce, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
@@ -1329,7 +1329,7 @@ impl YadeDeck {
                     types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
                     model: pair.model,
                     cor_entered: pair.entered,
-                    law: pair.law,
+                    law: pair.law.into(),
                     traps: pair.traps,
                     lines,
                 });
@@ -1427,7 +1427,7 @@ impl YadeDeck {
                     types: [TypeRef::Type(body.type_id), TypeRef::Wall],
                     model: pair.model,
                     cor_entered: pair.entered,
-                    law: pair.law,
+                    law: pair.law.into(),
                     traps,
                     lines: vec![m_a.at.clone(), wall.at.clone(), loop_at.clone()],
                 });
@@ -1522,15 +1522,15 @@ impl DeckReader for YadeDeck {
             plate_material: None,
             effective_modulus: None,
             effective_radius: None,
-            reduced_mass: c.law.mass,
-            stiffness: c.law.stiffness,
-            exponent: c.law.exponent,
+            reduced_mass: c.law.mass(),
+            stiffness: c.law.stiffness(),
+            exponent: c.law.exponent(),
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
             loss_coefficient: None,
             timestep: deck.timestep,
             steps,
-            clamp_attractive: c.law.clamp_attractive,
+            clamp_attractive: c.law.clamp_attractive(),
             conventions: None,
         };
         setup.effective_radius = Some(setup.pair_radius());
