@@ -6,14 +6,29 @@ use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
-use millimpact::analysis::benchmark::{BenchmarkOptions, chung_ooi};
+use millimpact::analysis::benchmark::{BenchmarkOptions, CodeRuns, STORED_FOLDER, chung_ooi};
 use millimpact::analysis::store::ReferenceOptions;
+use millimpact::codes::CodeName;
 use millimpact::error::CheckFailed;
 use millimpact::output::export;
 
 pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
+    let mut warnings = Vec::new();
+    let codes = if !args.codes.is_empty() {
+        CodeRuns::Live(args.codes.clone())
+    } else if args.live {
+        CodeRuns::Live(CodeName::ALL.to_vec())
+    } else {
+        let reference = super::shipped_folder(
+            args.reference.as_deref(),
+            "--reference",
+            "reference",
+            &mut warnings,
+        )?;
+        CodeRuns::Stored(reference.join(STORED_FOLDER))
+    };
     let options = BenchmarkOptions {
-        codes: args.codes.clone(),
+        codes,
         reference: ReferenceOptions {
             steps_per_contact: Some(args.steps_per_contact),
             timeout: Duration::from_secs_f64(args.timeout),
@@ -24,17 +39,18 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
         BenchmarkName::ChungOoi => chung_ooi(&options)?,
     };
     let failures = report.failures();
-    let failure = (!failures.is_empty()).then(|| {
+    let failure = (!failures.is_empty() || !report.missing.is_empty()).then(|| {
         CheckFailed(format!(
-            "benchmark {}: {} of {} rows outside their tolerance",
+            "benchmark {}: {} of {} rows outside their tolerance, {} stored runs missing",
             report.benchmark,
             failures.len(),
-            report.rows.len()
+            report.rows.len(),
+            report.missing.len()
         ))
     });
     Ok(CommandOutput {
         text: export(&report, args.format)?,
         failure,
-        warnings: Vec::new(),
+        warnings,
     })
 }
