@@ -221,7 +221,7 @@ pub enum BenchmarkError {
     },
     /// A stored run could not be read.
     #[error("reading the stored benchmark runs")]
-    Stored(#[source] StoreError),
+    Stored(#[source] Box<StoreError>),
     /// A code's run failed; its log is kept where the error says.
     #[error("{code} on {case}")]
     Code {
@@ -230,7 +230,7 @@ pub enum BenchmarkError {
         /// The case.
         case: String,
         /// The code's failure.
-        source: StoreError,
+        source: Box<StoreError>,
     },
 }
 
@@ -377,7 +377,7 @@ fn figures(
                 BenchmarkError::Code {
                     code,
                     case: case.name.clone(),
-                    source,
+                    source: Box::new(source),
                 }
             })?;
             Ok(record_figures(&record))
@@ -454,7 +454,7 @@ pub fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, Benchmar
                 (Source::Code(code), CodeRuns::Stored(folder)) => {
                     source_rows(impact, source, |eta| {
                         let stored = find_stored(folder, code, impact.case, eta)
-                            .map_err(BenchmarkError::Stored)?;
+                            .map_err(|e| BenchmarkError::Stored(Box::new(e)))?;
                         if stored.is_none() {
                             missing.push(MissingRun {
                                 code,

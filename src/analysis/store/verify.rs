@@ -795,7 +795,7 @@ impl Summary for VerifyReport {
                 self.cases.display()
             ),
             format!(
-                "reproduce a stored row: the `command` field of {}/CODE/CASE.json",
+                "reproduce a stored row: the `command` field of {0}/CODE/CASE.json ({0}/{STORED_FOLDER}/CODE/CASE.json for the benchmark's runs)",
                 self.reference.display()
             ),
         ]
