@@ -194,3 +194,21 @@ fn live_every_code_passes_on_its_rigid_plane() {
         assert_eq!(of_code.len(), 6 * 4 + 2 * 9, "{code}");
     }
 }
+
+/// `--reference` naming no folder is bad input, in one line naming the option and the value.
+#[test]
+fn a_reference_folder_that_does_not_exist_is_refused_in_one_line() {
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--reference", "no-such-store"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--reference") && stderr.contains("no-such-store"),
+        "{stderr}"
+    );
+}

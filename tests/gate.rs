@@ -369,7 +369,9 @@ fn the_stored_benchmark_runs_are_checked_like_the_store() {
     copy.fails_naming("FAIL kratos chung_ooi_3_cast_iron η=0.6");
     let (_, stdout, _) = copy.verify();
     assert!(
-        stdout.contains("--save --steps-per-contact 1000 --reference"),
+        stdout.contains(
+            "regenerate: millimpact reference --code kratos cases/benchmarks/chung_ooi_3_cast_iron.toml --loss-coefficient 0.6 --steps-per-contact 1000 --save --reference"
+        ),
         "no regenerating command:\n{stdout}"
     );
 
@@ -380,6 +382,11 @@ fn the_stored_benchmark_runs_are_checked_like_the_store() {
     )
     .unwrap();
     copy.fails_naming("no stored run; make it: millimpact reference --code lammps-2025");
+    let (_, stdout, _) = copy.verify();
+    assert!(
+        stdout.contains("chung_ooi_1_glass.toml --loss-coefficient 0 --save --steps-per-contact 1000 --reference"),
+        "no making command:\n{stdout}"
+    );
 
     let copy = Copy::new();
     let path = copy.cases().join("benchmarks/chung_ooi_2_magnesium.toml");

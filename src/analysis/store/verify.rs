@@ -321,7 +321,7 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
         .iter()
         .map(|&case| (case, STORED_LOSS_COEFFICIENTS.to_vec()))
         .collect();
-    check_store(folder, cases, &expected, "")
+    check_store(folder, cases, &expected, "", "")
 }
 
 /// The checks of the stored runs of Chung & Ooi's benchmark, `folder`
@@ -337,21 +337,22 @@ pub fn verify_benchmark_store(folder: &Path, cases: &Path) -> Result<Vec<VerifyR
         .iter()
         .map(|impact| (impact.case, impact.loss_coefficients()))
         .collect();
-    let options = format!(
-        " --steps-per-contact {STEPS_PER_CONTACT} --reference {}",
-        folder.display()
-    );
-    check_store(folder, cases, &expected, &options)
+    // A stored run's command holds its step already; a run to make needs it given.
+    let save_options = format!(" --reference {}", folder.display());
+    let make_options = format!(" --steps-per-contact {STEPS_PER_CONTACT}{save_options}");
+    check_store(folder, cases, &expected, &make_options, &save_options)
 }
 
 /// The checks of the store in `folder` against the cases in `cases`: every record in it, and a
 /// record of every code on each `expected` case (present in `cases`) at each of its η.
-/// `make_options` follow `--save` in the commands that regenerate or make a record.
+/// `make_options` follow `--save` in the command that makes a missing record, `save_options`
+/// in the one that regenerates a stored record (its stored command, which holds its step).
 fn check_store(
     folder: &Path,
     cases: &Path,
     expected: &[(&str, Vec<f64>)],
     make_options: &str,
+    save_options: &str,
 ) -> Result<Vec<VerifyRow>, StoreError> {
     let mut rows = Vec::new();
     let mut present = Vec::new();
@@ -435,7 +436,7 @@ fn check_store(
                 ));
                 continue;
             }
-            let regenerate = format!("{} --save{make_options}", record.command);
+            let regenerate = format!("{} --save{save_options}", record.command);
             let stale = provenance(record, cases);
             rows.push(finding(
                 &name,
