@@ -86,7 +86,7 @@ pub struct BenchmarkArgs {
     /// [default: ./reference, else the `reference/` of the repository this build was made from].
     #[arg(long, conflicts_with_all = ["live", "codes"])]
     pub reference: Option<PathBuf>,
-    /// Steps per elastic contact time of each code's run now.
+    /// Steps per elastic contact time of each code's run now (the stored runs are at 1000).
     #[arg(long, default_value = "1000", value_parser = clap::value_parser!(u32).range(10..=10_000_000))]
     pub steps_per_contact: u32,
     /// Output format.

@@ -212,3 +212,24 @@ fn a_reference_folder_that_does_not_exist_is_refused_in_one_line() {
         "{stderr}"
     );
 }
+
+/// The stored runs are at 1000 steps per contact: another resolution without `--live` or
+/// `--code` is refused in one line, not read at the stored one.
+#[test]
+fn another_resolution_without_running_the_codes_is_refused() {
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--steps-per-contact", "500"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--steps-per-contact")
+            && stderr.contains("500")
+            && stderr.contains("--live"),
+        "{stderr}"
+    );
+}

@@ -6,10 +6,12 @@ use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
-use millimpact::analysis::benchmark::{BenchmarkOptions, CodeRuns, STORED_FOLDER, chung_ooi};
+use millimpact::analysis::benchmark::{
+    BenchmarkOptions, CodeRuns, STEPS_PER_CONTACT, STORED_FOLDER, chung_ooi,
+};
 use millimpact::analysis::store::ReferenceOptions;
 use millimpact::codes::CodeName;
-use millimpact::error::CheckFailed;
+use millimpact::error::{CheckFailed, UserError};
 use millimpact::output::export;
 
 pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
@@ -19,6 +21,17 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
     } else if args.live {
         CodeRuns::Live(CodeName::ALL.to_vec())
     } else {
+        // The stored runs are at one resolution: another is a run now.
+        if args.steps_per_contact != STEPS_PER_CONTACT {
+            return Err(UserError::argument(
+                "--steps-per-contact",
+                args.steps_per_contact,
+                format!(
+                    "{STEPS_PER_CONTACT} when the stored runs are read (their resolution); give --live or --code to run the codes at another"
+                ),
+            )
+            .into());
+        }
         let reference = super::shipped_folder(
             args.reference.as_deref(),
             "--reference",
