@@ -15,3 +15,25 @@ for code in liggghts liggghts-paper yade lammps lammps-2025 kratos; do
     done
   done
 done
+
+# Chung & Ooi's benchmark (`millimpact benchmark chung-ooi`): every code on the six cases of
+# cases/benchmarks/ at 1000 steps per contact, tests 1 and 2 elastic, test 3 at each COR set
+# (η = (1 − e²)/(1 + e²), written to 17 digits so that the run is found at the benchmark's η).
+# They are a store of their own, reference/benchmarks/<code>/<case>.json (reference/README.md).
+for code in liggghts liggghts-paper yade lammps lammps-2025 kratos; do
+  for case in chung_ooi_1_glass chung_ooi_1_limestone chung_ooi_2_aluminium chung_ooi_2_magnesium; do
+    ./target/release/millimpact reference --code "$code" "cases/benchmarks/$case.toml" \
+      --loss-coefficient 0 --steps-per-contact 1000 --save --reference reference/benchmarks \
+      --format json > /dev/null
+    echo "stored $code $case η=0"
+  done
+  for case in chung_ooi_3_alumina chung_ooi_3_cast_iron; do
+    for cor in 0.2 0.3 0.4 0.5 0.6 0.7 0.8 0.9 1.0; do
+      eta=$(awk -v e="$cor" 'BEGIN { printf "%.17g", (1 - e * e) / (1 + e * e) }')
+      ./target/release/millimpact reference --code "$code" "cases/benchmarks/$case.toml" \
+        --loss-coefficient "$eta" --steps-per-contact 1000 --save --reference reference/benchmarks \
+        --format json > /dev/null
+      echo "stored $code $case COR=$cor η=$eta"
+    done
+  done
+done

@@ -75,10 +75,18 @@ pub struct BenchmarkArgs {
     /// The benchmark.
     #[arg(value_enum)]
     pub benchmark: BenchmarkName,
-    /// A DEM code to run now, on its own rigid plane; repeat for several.
+    /// A DEM code to run now, on its own rigid plane, instead of the stored runs; repeat for
+    /// several.
     #[arg(long = "code", value_parser = code_parser())]
     pub codes: Vec<CodeName>,
-    /// Steps per elastic contact time of each code's run.
+    /// Run every code build now instead of reading the stored runs (with --code: those codes).
+    #[arg(long)]
+    pub live: bool,
+    /// Folder of stored DEM-code references, whose `benchmarks/` holds the benchmark's runs
+    /// [default: ./reference, else the `reference/` of the repository this build was made from].
+    #[arg(long, conflicts_with_all = ["live", "codes"])]
+    pub reference: Option<PathBuf>,
+    /// Steps per elastic contact time of each code's run now (the stored runs are at 1000).
     #[arg(long, default_value = "1000", value_parser = clap::value_parser!(u32).range(10..=10_000_000))]
     pub steps_per_contact: u32,
     /// Output format.

@@ -1,13 +1,23 @@
 //! `millimpact benchmark chung-ooi`: Chung & Ooi's tests 1–3 against the values the paper
-//! tabulates, by the methods (fast tier) and by every code build on its own rigid plane (live).
+//! tabulates, by the methods and every code build's stored runs (fast tier, the codes hidden)
+//! and by every code build run now on its own rigid plane (live).
 
 mod common;
 
-use common::{millimpact, stdout};
-use serde_json::Value;
+use std::path::Path;
 
+use common::{millimpact, root, stdout};
+use serde_json::Value;
+use tempfile::TempDir;
+
+/// The benchmark's JSON rows and exit code, the codes hidden (none can start).
 fn rows(args: &[&str]) -> (Vec<Value>, Option<i32>) {
-    let output = millimpact()
+    rows_of(millimpact().envs(common::codes_hidden()), args)
+}
+
+/// The benchmark's JSON rows and exit code, run by `command`.
+fn rows_of(command: &mut assert_cmd::Command, args: &[&str]) -> (Vec<Value>, Option<i32>) {
+    let output = command
         .args(["benchmark", "chung-ooi", "--format", "json"])
         .args(args)
         .output()
@@ -46,22 +56,111 @@ fn every_row_names_its_published_value_and_verdict() {
             "{row}"
         );
     }
-    // Tests 1 and 2 within 1 % in every elastic figure.
+    // Tests 1 and 2 within 1 % in every elastic figure, for every source.
     for row in rows.iter().filter(|r| r["test"] != 3) {
         assert!(
             row["relative_difference"].as_f64().unwrap().abs() < 0.01,
             "{row}"
         );
     }
-    // Test 3: a COR row for each COR set from 0.2 to 1.0, per material and source.
-    let cor_rows = rows.iter().filter(|r| r["quantity"] == "cor").count();
-    assert_eq!(cor_rows, 2 * 2 * 9);
+}
+
+/// Without the codes, every build's figures come from its stored runs: the exact solution,
+/// the paper's law and every build each give every row, and each passes.
+#[test]
+fn every_build_is_read_from_its_stored_runs_without_the_codes() {
+    let (rows, status) = rows(&[]);
+    assert_eq!(status, Some(0));
+    let mut sources = vec!["exact", "rk4-event"];
+    sources.extend(millimpact::CodeName::names());
+    for source in &sources {
+        let of_source: Vec<&Value> = rows.iter().filter(|r| r["source"] == *source).collect();
+        // 6 materials × 4 elastic figures, and 2 materials × 9 COR sets.
+        assert_eq!(of_source.len(), 6 * 4 + 2 * 9, "{source}");
+        for test in [1, 2] {
+            let elastic: Vec<&&Value> = of_source.iter().filter(|r| r["test"] == test).collect();
+            assert_eq!(elastic.len(), 2 * 4, "{source} test {test}");
+            for row in elastic {
+                assert!(
+                    row["relative_difference"].as_f64().unwrap().abs() < 0.01,
+                    "{row}"
+                );
+                assert_eq!(row["pass"], true, "{row}");
+            }
+        }
+        for material in ["aluminium oxide", "cast iron"] {
+            let mut cor_sets: Vec<f64> = of_source
+                .iter()
+                .filter(|r| r["quantity"] == "cor" && r["material"] == material)
+                .map(|r| {
+                    assert!(r["published"].is_f64() && r["value"].is_f64(), "{r}");
+                    assert_eq!(r["pass"], true, "{r}");
+                    r["cor_set"].as_f64().unwrap()
+                })
+                .collect();
+            cor_sets.sort_by(f64::total_cmp);
+            assert_eq!(
+                cor_sets,
+                [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0],
+                "{source} {material}"
+            );
+        }
+    }
+    assert_eq!(rows.len(), sources.len() * (6 * 4 + 2 * 9));
+}
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap().flatten() {
+        let target = to.join(entry.file_name());
+        if entry.path().is_dir() {
+            copy_tree(&entry.path(), &target);
+        } else {
+            std::fs::copy(entry.path(), target).unwrap();
+        }
+    }
+}
+
+/// A stored run that is not there is one line naming the code, the case, the η and the command
+/// that makes it; its rows are left out and the benchmark fails.
+#[test]
+fn a_missing_stored_run_is_named_with_the_command_that_makes_it() {
+    let copy = TempDir::new().unwrap();
+    let reference = copy.path().join("reference");
+    copy_tree(&root().join("reference"), &reference);
+    std::fs::remove_file(reference.join("benchmarks/yade/chung_ooi_2_aluminium.json")).unwrap();
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--reference"])
+        .arg(&reference)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(1));
+    let text = String::from_utf8_lossy(&output.stdout);
+    let lines: Vec<&str> = text
+        .lines()
+        .filter(|l| l.contains("no stored run"))
+        .collect();
+    assert_eq!(lines.len(), 1, "{text}");
+    assert!(
+        lines[0].contains("no stored run of yade on chung_ooi_2_aluminium at η = 0; make it: millimpact reference --code yade cases/benchmarks/chung_ooi_2_aluminium.toml --loss-coefficient 0"),
+        "{}",
+        lines[0]
+    );
+    assert!(lines[0].contains("--save --reference"), "{}", lines[0]);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("1 stored runs missing"), "{stderr}");
 }
 
 #[test]
 fn the_csv_has_one_line_per_row() {
     let (rows, _) = rows(&[]);
-    let text = stdout(millimpact().args(["benchmark", "chung-ooi", "--format", "csv"]));
+    let text = stdout(millimpact().envs(common::codes_hidden()).args([
+        "benchmark",
+        "chung-ooi",
+        "--format",
+        "csv",
+    ]));
     assert_eq!(text.lines().count(), rows.len() + 1);
     assert!(text.starts_with(
         "test,material,source,quantity,cor_set,published,value,relative_difference,tolerance,pass\n"
@@ -85,11 +184,7 @@ fn an_unknown_benchmark_is_refused_in_one_line() {
 #[test]
 #[ignore = "live: runs every DEM code (bash scripts/test.sh)"]
 fn live_every_code_passes_on_its_rigid_plane() {
-    let mut args = Vec::new();
-    for code in millimpact::CodeName::names() {
-        args.extend(["--code", code]);
-    }
-    let (rows, status) = rows(&args);
+    let (rows, status) = rows_of(&mut millimpact(), &["--live"]);
     let failed: Vec<&Value> = rows.iter().filter(|r| r["pass"] != true).collect();
     assert!(failed.is_empty(), "{failed:#?}");
     assert_eq!(status, Some(0));
@@ -98,4 +193,43 @@ fn live_every_code_passes_on_its_rigid_plane() {
         // 6 materials × 4 elastic figures, and 2 materials × 9 COR sets.
         assert_eq!(of_code.len(), 6 * 4 + 2 * 9, "{code}");
     }
+}
+
+/// `--reference` naming no folder is bad input, in one line naming the option and the value.
+#[test]
+fn a_reference_folder_that_does_not_exist_is_refused_in_one_line() {
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--reference", "no-such-store"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--reference") && stderr.contains("no-such-store"),
+        "{stderr}"
+    );
+}
+
+/// The stored runs are at 1000 steps per contact: another resolution without `--live` or
+/// `--code` is refused in one line, not read at the stored one.
+#[test]
+fn another_resolution_without_running_the_codes_is_refused() {
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--steps-per-contact", "500"])
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--steps-per-contact")
+            && stderr.contains("500")
+            && stderr.contains("--live"),
+        "{stderr}"
+    );
 }

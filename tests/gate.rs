@@ -346,3 +346,53 @@ fn a_killed_save_leaves_nothing_verify_trips_over() {
     save(&copy.reference(), &record).unwrap();
     assert_eq!(load(&path).unwrap().runs.len(), stored.runs.len() + 1);
 }
+
+/// The run of a benchmark record file at η.
+fn run_at(value: &mut Value, loss_coefficient: f64) -> &mut Value {
+    value["runs"]
+        .as_array_mut()
+        .unwrap()
+        .iter_mut()
+        .find(|r| (r["loss_coefficient"].as_f64().unwrap() - loss_coefficient).abs() < 1e-12)
+        .unwrap()
+}
+
+/// The stored benchmark runs (`reference/benchmarks/`) are checked as the canonical store is:
+/// a COR moved by 1e-6, a missing run, a benchmark case edited after its runs were stored.
+#[test]
+fn the_stored_benchmark_runs_are_checked_like_the_store() {
+    // Test 3 of cast iron at the COR set 0.5: η = 0.6.
+    let copy = Copy::new();
+    copy.edit("benchmarks/kratos", "chung_ooi_3_cast_iron", |v| {
+        scale(&mut run_at(v, 0.6)["cor"], 1.0 + 1e-6)
+    });
+    copy.fails_naming("FAIL kratos chung_ooi_3_cast_iron η=0.6");
+    let (_, stdout, _) = copy.verify();
+    assert!(
+        stdout.contains(
+            "regenerate: millimpact reference --code kratos cases/benchmarks/chung_ooi_3_cast_iron.toml --loss-coefficient 0.6 --steps-per-contact 1000 --save --reference"
+        ),
+        "no regenerating command:\n{stdout}"
+    );
+
+    let copy = Copy::new();
+    std::fs::remove_file(
+        copy.reference()
+            .join("benchmarks/lammps-2025/chung_ooi_1_glass.json"),
+    )
+    .unwrap();
+    copy.fails_naming("no stored run; make it: millimpact reference --code lammps-2025");
+    let (_, stdout, _) = copy.verify();
+    assert!(
+        stdout.contains("chung_ooi_1_glass.toml --loss-coefficient 0 --save --steps-per-contact 1000 --reference"),
+        "no making command:\n{stdout}"
+    );
+
+    let copy = Copy::new();
+    let path = copy.cases().join("benchmarks/chung_ooi_2_magnesium.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let edited = text.replace("impact_velocity = ", "impact_velocity = 1");
+    assert_ne!(edited, text, "the case was edited");
+    std::fs::write(&path, edited).unwrap();
+    copy.fails_naming("FAIL yade chung_ooi_2_magnesium η=0: stale");
+}

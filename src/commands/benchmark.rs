@@ -6,14 +6,42 @@ use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
-use millimpact::analysis::benchmark::{BenchmarkOptions, chung_ooi};
+use millimpact::analysis::benchmark::{
+    BenchmarkOptions, CodeRuns, STEPS_PER_CONTACT, STORED_FOLDER, chung_ooi,
+};
 use millimpact::analysis::store::ReferenceOptions;
-use millimpact::error::CheckFailed;
+use millimpact::codes::CodeName;
+use millimpact::error::{CheckFailed, UserError};
 use millimpact::output::export;
 
 pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
+    let mut warnings = Vec::new();
+    let codes = if !args.codes.is_empty() {
+        CodeRuns::Live(args.codes.clone())
+    } else if args.live {
+        CodeRuns::Live(CodeName::ALL.to_vec())
+    } else {
+        // The stored runs are at one resolution: another is a run now.
+        if args.steps_per_contact != STEPS_PER_CONTACT {
+            return Err(UserError::argument(
+                "--steps-per-contact",
+                args.steps_per_contact,
+                format!(
+                    "{STEPS_PER_CONTACT} when the stored runs are read (their resolution); give --live or --code to run the codes at another"
+                ),
+            )
+            .into());
+        }
+        let reference = super::shipped_folder(
+            args.reference.as_deref(),
+            "--reference",
+            "reference",
+            &mut warnings,
+        )?;
+        CodeRuns::Stored(reference.join(STORED_FOLDER))
+    };
     let options = BenchmarkOptions {
-        codes: args.codes.clone(),
+        codes,
         reference: ReferenceOptions {
             steps_per_contact: Some(args.steps_per_contact),
             timeout: Duration::from_secs_f64(args.timeout),
@@ -24,17 +52,18 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
         BenchmarkName::ChungOoi => chung_ooi(&options)?,
     };
     let failures = report.failures();
-    let failure = (!failures.is_empty()).then(|| {
+    let failure = (!failures.is_empty() || !report.missing.is_empty()).then(|| {
         CheckFailed(format!(
-            "benchmark {}: {} of {} rows outside their tolerance",
+            "benchmark {}: {} of {} rows outside their tolerance, {} stored runs missing",
             report.benchmark,
             failures.len(),
-            report.rows.len()
+            report.rows.len(),
+            report.missing.len()
         ))
     });
     Ok(CommandOutput {
         text: export(&report, args.format)?,
         failure,
-        warnings: Vec::new(),
+        warnings,
     })
 }

@@ -3,16 +3,17 @@
 //! Granular Matter 13 (2011) 643–656), tests 1–3, with the Hertz values the paper tabulates for
 //! them, by the exact closed form, the paper's law stepped by RK4 with the contact's turning
 //! point and end located (`rk4-event`: the paper's fixed-step RK4 ends a contact at the first
-//! step past it, an O(Δt) error in the COR of up to 7e-5 here), and each DEM
-//! code asked for, each code on its own rigid plane (see each code's `CONVENTIONS.md`).
+//! step past it, an O(Δt) error in the COR of up to 7e-5 here), and every DEM code build, each
+//! on its own rigid plane (see each code's `CONVENTIONS.md`): read from its stored runs
+//! (`reference/benchmarks/<code>/<case>.json`, checked by `verify`), or run now.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 use thiserror::Error;
 
 use super::source::Source;
-use super::store::{ReferenceOptions, StoreError, run_reference};
+use super::store::{ReferenceOptions, ReferenceRecord, StoreError, find_stored, run_reference};
 use crate::codes::CodeName;
 use crate::error::Blame;
 use crate::model::case::{Case, CaseError};
@@ -32,6 +33,14 @@ pub const COR_TOLERANCE_METHOD: f64 = 1e-6;
 
 /// The CORs set in test 3.
 pub const TEST_3_CORS: [f64; 9] = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
+
+/// Steps per elastic contact time of the codes' runs, stored and live by default.
+pub const STEPS_PER_CONTACT: u32 = 1000;
+
+/// The folder of the stored benchmark runs inside a reference store: a store of its own,
+/// `<reference>/benchmarks/<code>/<case>.json`, so that the canonical store's readers (its
+/// whole-ness check, `compare`) see none of it.
+pub const STORED_FOLDER: &str = "benchmarks";
 
 /// One material of one test, as the paper gives it.
 #[derive(Clone, Copy, Debug)]
@@ -53,6 +62,16 @@ pub struct PublishedImpact {
 }
 
 impl PublishedImpact {
+    /// The η of every run of this material: its case's own, and for test 3 the η of each COR
+    /// set (the COR set 1.0 is the case's own η = 0).
+    pub fn loss_coefficients(&self) -> Vec<f64> {
+        if self.test == 3 {
+            TEST_3_CORS.iter().map(|&e| loss_coefficient(e)).collect()
+        } else {
+            vec![0.0]
+        }
+    }
+
     /// The case, read from this build.
     pub fn case(&self) -> Result<Case, CaseError> {
         Case::parse(
@@ -173,6 +192,19 @@ pub struct BenchmarkRow {
     pub pass: bool,
 }
 
+/// A code's run the benchmark needs that the store does not hold.
+#[derive(Clone, Debug, Serialize)]
+pub struct MissingRun {
+    /// The code.
+    pub code: CodeName,
+    /// The case.
+    pub case: &'static str,
+    /// Its η.
+    pub loss_coefficient: f64,
+    /// The command that makes and stores it.
+    pub command: String,
+}
+
 /// Why a benchmark could not be run.
 #[derive(Debug, Error)]
 pub enum BenchmarkError {
@@ -187,6 +219,9 @@ pub enum BenchmarkError {
         /// Why.
         source: SolveError,
     },
+    /// A stored run could not be read.
+    #[error("reading the stored benchmark runs")]
+    Stored(#[source] Box<StoreError>),
     /// A code's run failed; its log is kept where the error says.
     #[error("{code} on {case}")]
     Code {
@@ -203,7 +238,7 @@ impl Blame for BenchmarkError {
     fn is_user_error(&self) -> bool {
         match self {
             BenchmarkError::Case(_) => true,
-            BenchmarkError::Solve { .. } => false,
+            BenchmarkError::Solve { .. } | BenchmarkError::Stored(_) => false,
             BenchmarkError::Code { source, .. } => source.is_user_error(),
         }
     }
@@ -218,6 +253,8 @@ pub struct BenchmarkReport {
     pub reference: &'static str,
     /// Every figure of every source.
     pub rows: Vec<BenchmarkRow>,
+    /// The stored runs it needed and did not find (their code's rows are left out).
+    pub missing: Vec<MissingRun>,
 }
 
 impl BenchmarkReport {
@@ -227,13 +264,34 @@ impl BenchmarkReport {
     }
 }
 
+/// Where the codes' figures come from.
+#[derive(Clone, Debug, Default)]
+pub enum CodeRuns {
+    /// No code: the exact solution and the paper's law alone.
+    #[default]
+    None,
+    /// Every build's stored runs, in this folder (`<reference>/benchmarks`).
+    Stored(PathBuf),
+    /// These codes, run now.
+    Live(Vec<CodeName>),
+}
+
 /// Options of a benchmark run.
 #[derive(Clone, Debug, Default)]
 pub struct BenchmarkOptions {
-    /// The codes to run now (none: the exact solution and the paper's law alone).
-    pub codes: Vec<CodeName>,
-    /// How the codes are run (their step, their time limit).
+    /// The codes' figures: none, stored, or run now.
+    pub codes: CodeRuns,
+    /// How the codes are run now (their step, their time limit).
     pub reference: ReferenceOptions,
+}
+
+/// The command that makes and stores the run of `code` on `case` at η in `folder`.
+pub fn store_command(code: CodeName, case: &str, loss_coefficient: f64, folder: &Path) -> String {
+    format!(
+        "millimpact reference --code {code} cases/benchmarks/{case}.toml --loss-coefficient {loss_coefficient} \
+         --steps-per-contact {STEPS_PER_CONTACT} --save --reference {}",
+        folder.display()
+    )
 }
 
 fn row(
@@ -322,59 +380,104 @@ fn figures(
                     source: Box::new(source),
                 }
             })?;
-            // The step band of this run: the code's own law stepped at its step against that
-            // law exact, plus what its law itself differs from the COR set (a fit's reach).
-            let band = (record.law_at_step.cor - record.law_exact.cor).abs()
-                + (record.law_exact.cor - record.target_restitution).abs()
-                + 1e-9;
-            let metrics = TrajectoryMetrics {
-                cor: record.cor,
-                peak_deformation: record.peak_deformation,
-                peak_force: record.peak_force,
-                contact_time: record.contact_time,
-                force_contact_time: record.force_contact_time,
-                compression_time: record.compression_time,
-            };
-            Ok((metrics, band))
+            Ok(record_figures(&record))
         }
     }
 }
 
-/// Run Chung & Ooi's tests 1–3 by the exact solution, the paper's law by `rk4-event`, and
-/// `options.codes`.
+/// A code's figures from its run, and the COR band its own law and step explain: its own law
+/// stepped at its step against that law exact, plus what its law itself differs from the COR
+/// set (a fit's reach).
+fn record_figures(record: &ReferenceRecord) -> (TrajectoryMetrics, f64) {
+    let band = (record.law_at_step.cor - record.law_exact.cor).abs()
+        + (record.law_exact.cor - record.target_restitution).abs()
+        + 1e-9;
+    let metrics = TrajectoryMetrics {
+        cor: record.cor,
+        peak_deformation: record.peak_deformation,
+        peak_force: record.peak_force,
+        contact_time: record.contact_time,
+        force_contact_time: record.force_contact_time,
+        compression_time: record.compression_time,
+    };
+    (metrics, band)
+}
+
+/// The rows of one source on one material: its elastic figures at the case's own η, and for
+/// test 3 a COR row per COR set. `figures_at` gives the source's figures at an η, or `None`
+/// when it has none there (a stored run missing: no rows then).
+fn source_rows(
+    impact: &PublishedImpact,
+    source: Source,
+    mut figures_at: impl FnMut(f64) -> Result<Option<(TrajectoryMetrics, f64)>, BenchmarkError>,
+) -> Result<Vec<BenchmarkRow>, BenchmarkError> {
+    let mut rows = Vec::new();
+    if let Some((elastic, _)) = figures_at(0.0)? {
+        rows.extend(elastic_rows(impact, source, &elastic));
+    }
+    if impact.test == 3 {
+        for cor_set in TEST_3_CORS {
+            if let Some((metrics, tolerance)) = figures_at(loss_coefficient(cor_set))? {
+                rows.push(row(
+                    impact,
+                    source,
+                    Quantity::Cor,
+                    cor_set,
+                    cor_set,
+                    metrics.cor,
+                    tolerance / cor_set,
+                ));
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// Run Chung & Ooi's tests 1–3 by the exact solution, the paper's law by `rk4-event`, and the
+/// codes of `options.codes`: every build's stored runs, or the codes asked for run now.
 pub fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, BenchmarkError> {
     let mut sources = vec![
         Source::Method(Method::Exact),
         Source::Method(Method::Rk4Event),
     ];
-    sources.extend(options.codes.iter().map(|c| Source::Code(*c)));
+    match &options.codes {
+        CodeRuns::None => {}
+        CodeRuns::Stored(_) => sources.extend(CodeName::ALL.iter().map(|c| Source::Code(*c))),
+        CodeRuns::Live(codes) => sources.extend(codes.iter().map(|c| Source::Code(*c))),
+    }
     let mut rows = Vec::new();
+    let mut missing = Vec::new();
     for impact in &CHUNG_OOI {
         let case = impact.case()?;
         for &source in &sources {
-            let (elastic, _) = figures(source, &case, options)?;
-            rows.extend(elastic_rows(impact, source, &elastic));
-            if impact.test == 3 {
-                for cor_set in TEST_3_CORS {
-                    let at = case.with_loss_coefficient(loss_coefficient(cor_set));
-                    let (metrics, tolerance) = figures(source, &at, options)?;
-                    rows.push(row(
-                        impact,
-                        source,
-                        Quantity::Cor,
-                        cor_set,
-                        cor_set,
-                        metrics.cor,
-                        tolerance / cor_set,
-                    ));
+            let found = match (source, &options.codes) {
+                (Source::Code(code), CodeRuns::Stored(folder)) => {
+                    source_rows(impact, source, |eta| {
+                        let stored = find_stored(folder, code, impact.case, eta)
+                            .map_err(|e| BenchmarkError::Stored(Box::new(e)))?;
+                        if stored.is_none() {
+                            missing.push(MissingRun {
+                                code,
+                                case: impact.case,
+                                loss_coefficient: eta,
+                                command: store_command(code, impact.case, eta, folder),
+                            });
+                        }
+                        Ok(stored.as_ref().map(record_figures))
+                    })?
                 }
-            }
+                _ => source_rows(impact, source, |eta| {
+                    figures(source, &case.with_loss_coefficient(eta), options).map(Some)
+                })?,
+            };
+            rows.extend(found);
         }
     }
     Ok(BenchmarkReport {
         benchmark: "chung-ooi",
         reference: "Chung & Ooi, Granular Matter 13 (2011) 643–656, tests 1–3 (Hertz values of its tables)",
         rows,
+        missing,
     })
 }
 
@@ -421,6 +524,19 @@ impl Summary for BenchmarkReport {
                 ]);
             }
             out.push(section);
+        }
+        if !self.missing.is_empty() {
+            out.push(Section::text(
+                self.missing
+                    .iter()
+                    .map(|m| {
+                        format!(
+                            "no stored run of {} on {} at η = {}; make it: {}",
+                            m.code, m.case, m.loss_coefficient, m.command
+                        )
+                    })
+                    .collect(),
+            ));
         }
         out.push(Section::text(vec![
             format!("values: {}", self.reference),

@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use crate::analysis::benchmark::{CHUNG_OOI, STEPS_PER_CONTACT, STORED_FOLDER};
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
 use crate::analysis::store::{ReferenceRecord, StoreError, hex, load, stored_files};
@@ -316,6 +317,43 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
             folder: folder.to_path_buf(),
         });
     }
+    let expected: Vec<(&str, Vec<f64>)> = CANONICAL_CASES
+        .iter()
+        .map(|&case| (case, STORED_LOSS_COEFFICIENTS.to_vec()))
+        .collect();
+    check_store(folder, cases, &expected, "", "")
+}
+
+/// The checks of the stored runs of Chung & Ooi's benchmark, `folder`
+/// (`<reference>/benchmarks`) against the benchmark's cases in `cases` (`<cases>/benchmarks`),
+/// as [`verify_stored`] checks the canonical store: each run's provenance, its own law
+/// re-stepped now, its law against its target, and the store as a whole (a run of every code
+/// on every benchmark case at every η the benchmark reads, [`PublishedImpact::loss_coefficients`]).
+/// A folder not there is a store missing every run.
+///
+/// [`PublishedImpact::loss_coefficients`]: crate::analysis::benchmark::PublishedImpact::loss_coefficients
+pub fn verify_benchmark_store(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
+    let expected: Vec<(&str, Vec<f64>)> = CHUNG_OOI
+        .iter()
+        .map(|impact| (impact.case, impact.loss_coefficients()))
+        .collect();
+    // A stored run's command holds its step already; a run to make needs it given.
+    let save_options = format!(" --reference {}", folder.display());
+    let make_options = format!(" --steps-per-contact {STEPS_PER_CONTACT}{save_options}");
+    check_store(folder, cases, &expected, &make_options, &save_options)
+}
+
+/// The checks of the store in `folder` against the cases in `cases`: every record in it, and a
+/// record of every code on each `expected` case (present in `cases`) at each of its η.
+/// `make_options` follow `--save` in the command that makes a missing record, `save_options`
+/// in the one that regenerates a stored record (its stored command, which holds its step).
+fn check_store(
+    folder: &Path,
+    cases: &Path,
+    expected: &[(&str, Vec<f64>)],
+    make_options: &str,
+    save_options: &str,
+) -> Result<Vec<VerifyRow>, StoreError> {
     let mut rows = Vec::new();
     let mut present = Vec::new();
     for path in stored_files(folder)? {
@@ -398,7 +436,7 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
                 ));
                 continue;
             }
-            let regenerate = format!("{} --save", record.command);
+            let regenerate = format!("{} --save{save_options}", record.command);
             let stale = provenance(record, cases);
             rows.push(finding(
                 &name,
@@ -526,12 +564,13 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
             });
         }
     }
-    for case in CANONICAL_CASES {
+    for (case, etas) in expected {
+        let case = *case;
         if !cases.join(format!("{case}.toml")).is_file() {
             continue;
         }
         for &code in CodeName::ALL {
-            for eta in STORED_LOSS_COEFFICIENTS {
+            for &eta in etas {
                 let held = present
                     .iter()
                     .any(|(c, n, e)| *c == code && n == case && (e - eta).abs() <= 1e-12);
@@ -542,7 +581,7 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
                         Source::Code(code),
                         Check::Store,
                         Some(format!(
-                            "no stored run; make it: millimpact reference --code {code} {}/{case}.toml --loss-coefficient {eta} --save",
+                            "no stored run; make it: millimpact reference --code {code} {}/{case}.toml --loss-coefficient {eta} --save{make_options}",
                             cases.display()
                         )),
                     ));
@@ -550,7 +589,12 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
             }
         }
     }
-    for extra in stray_files(folder)? {
+    let strays = if folder.is_dir() {
+        stray_files(folder)?
+    } else {
+        Vec::new()
+    };
+    for extra in strays {
         rows.push(finding(
             &extra.display().to_string(),
             None,
@@ -598,10 +642,19 @@ fn stray_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
     Ok(out)
 }
 
-/// `verify`: the cases in `cases` and the stored references in `reference`.
+/// `verify`: the cases in `cases` and the stored references in `reference`, and, where `cases`
+/// holds the benchmark's cases (`benchmarks/`), the stored benchmark runs in
+/// `reference/benchmarks/`.
 pub fn verify(cases: &Path, reference: &Path) -> Result<VerifyReport, StoreError> {
     let mut rows = verify_cases(cases)?;
     rows.extend(verify_stored(reference, cases)?);
+    let benchmark_cases = cases.join(STORED_FOLDER);
+    if benchmark_cases.is_dir() {
+        rows.extend(verify_benchmark_store(
+            &reference.join(STORED_FOLDER),
+            &benchmark_cases,
+        )?);
+    }
     Ok(VerifyReport {
         cases: cases.to_path_buf(),
         reference: reference.to_path_buf(),
@@ -743,7 +796,7 @@ impl Summary for VerifyReport {
                 self.cases.display()
             ),
             format!(
-                "reproduce a stored row: the `command` field of {}/CODE/CASE.json",
+                "reproduce a stored row: the `command` field of {0}/CODE/CASE.json ({0}/{STORED_FOLDER}/CODE/CASE.json for the benchmark's runs)",
                 self.reference.display()
             ),
         ]
