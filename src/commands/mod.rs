@@ -22,6 +22,7 @@ use anyhow::{Context, Result};
 use crate::cli::Command;
 use millimpact::analysis::benchmark::BenchmarkError;
 use millimpact::analysis::compare::CompareError;
+use millimpact::analysis::deck::DeckCheckError;
 use millimpact::analysis::report::ReportError;
 use millimpact::analysis::run::RunError;
 use millimpact::analysis::store::StoreError;
@@ -142,6 +143,7 @@ fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
         CompareError,
         ReportError,
         BenchmarkError,
+        DeckCheckError,
     );
     false
 }
@@ -232,6 +234,12 @@ mod tests {
             Err::<(), _>(ReportError::from(no_reference_folder()))
                 .context("building the report")
                 .unwrap_err(),
+            DeckCheckError::from(UserError::argument(
+                "--impact-velocity",
+                "1e9 m/s",
+                "a speed",
+            ))
+            .into(),
         ];
         for error in &user {
             assert_eq!(exit_code(error), 2, "{error:#}");
@@ -251,6 +259,7 @@ mod tests {
             }
             .into(),
             CheckFailed("2 checks disagree".into()).into(),
+            DeckCheckError::NoReader(millimpact::codes::CodeName::Lammps).into(),
         ];
         for error in &other {
             assert_eq!(exit_code(error), 1, "{error:#}");

@@ -12,9 +12,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Mutex;
 
-use anyhow::Result;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+use thiserror::Error;
 
 use super::compare::phase::Range;
 use super::run::HERTZ_MAX_STRAIN;
@@ -470,6 +470,29 @@ enum Plan {
     },
 }
 
+/// Why a deck's check could not be planned (a run that fails is a row of the report, not this).
+#[derive(Debug, Error)]
+pub enum DeckCheckError {
+    /// The code has no deck reader.
+    #[error("{0} reads no decks")]
+    NoReader(CodeName),
+    /// A pair's own law could not be integrated at zero step error.
+    #[error(transparent)]
+    Law(#[from] crate::solve::SolveError),
+    /// A speed or step the check cannot take (the user's to change).
+    #[error(transparent)]
+    User(#[from] crate::error::UserError),
+    /// An impact's input could not be rendered.
+    #[error(transparent)]
+    Render(#[from] CodeError),
+}
+
+impl crate::error::Blame for DeckCheckError {
+    fn is_user_error(&self) -> bool {
+        matches!(self, DeckCheckError::User(_))
+    }
+}
+
 /// Check `deck` (read by `code`) at `velocities`, running each impact with `runner`. Every
 /// input is rendered before the first run, so that a deck that cannot be rendered runs nothing.
 pub fn check_deck(
@@ -477,11 +500,8 @@ pub fn check_deck(
     deck: &UserDeck,
     velocities: (Vec<f64>, String),
     runner: &dyn ImpactRunner,
-) -> Result<DeckReport> {
-    let reader = code
-        .driver()
-        .deck()
-        .ok_or_else(|| anyhow::anyhow!("{code} reads no decks"))?;
+) -> Result<DeckReport, DeckCheckError> {
+    let reader = code.driver().deck().ok_or(DeckCheckError::NoReader(code))?;
     let driver = code.driver();
     let dt = deck.timestep;
     let mut planned = Vec::new();
