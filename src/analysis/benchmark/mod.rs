@@ -540,7 +540,7 @@ impl Summary for BenchmarkReport {
         }
         out.push(Section::text(vec![
             format!("values: {}", self.reference),
-            "difference: value / published − 1; elastic figures pass within 1 %; a COR row compares the realised COR with the COR set, within 1e-6 for the methods and within each code's own step band (its law stepped at its step against that law exact, plus its law's own reach) for a code".to_string(),
+            "difference: value / published − 1; elastic figures pass within 1 %; a COR row compares the realised COR with the COR set, within 1e-6 for the methods and for a code within what its own law and step explain (the law's reach from the COR set plus that law stepped at the code's step against the law exact, and 1e-9), so a code's COR row fails only when its run leaves its own law stepped".to_string(),
             "contact time by overlap: first touch until the overlap returns to zero; by force: until the normal force first returns to zero".to_string(),
         ]));
         out
