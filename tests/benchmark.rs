@@ -169,14 +169,25 @@ fn the_csv_has_one_line_per_row() {
 
 #[test]
 fn an_unknown_benchmark_is_refused_in_one_line() {
+    let stderr = refused(&["chung-oii"]);
+    assert!(stderr.contains("chung-ooi"), "{stderr}");
+}
+
+/// `benchmark ARGS` with the codes hidden, required to be bad input: exit 2, nothing on
+/// standard output, one line on standard error (returned).
+#[track_caller]
+fn refused(args: &[&str]) -> String {
     let output = millimpact()
-        .args(["benchmark", "chung-oii"])
+        .envs(common::codes_hidden())
+        .arg("benchmark")
+        .args(args)
         .output()
         .unwrap();
-    assert_eq!(output.status.code(), Some(2));
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(output.stdout.is_empty());
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("chung-ooi"), "{stderr}");
+    stderr
 }
 
 /// Every build runs tests 1–3 on its own rigid plane: tests 1 and 2 within 1 % of the paper's
@@ -198,15 +209,7 @@ fn live_every_code_passes_on_its_rigid_plane() {
 /// `--reference` naming no folder is bad input, in one line naming the option and the value.
 #[test]
 fn a_reference_folder_that_does_not_exist_is_refused_in_one_line() {
-    let output = millimpact()
-        .envs(common::codes_hidden())
-        .args(["benchmark", "chung-ooi", "--reference", "no-such-store"])
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(2));
-    assert!(output.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let stderr = refused(&["chung-ooi", "--reference", "no-such-store"]);
     assert!(
         stderr.contains("--reference") && stderr.contains("no-such-store"),
         "{stderr}"
@@ -217,15 +220,7 @@ fn a_reference_folder_that_does_not_exist_is_refused_in_one_line() {
 /// `--code` is refused in one line, not read at the stored one.
 #[test]
 fn another_resolution_without_running_the_codes_is_refused() {
-    let output = millimpact()
-        .envs(common::codes_hidden())
-        .args(["benchmark", "chung-ooi", "--steps-per-contact", "500"])
-        .output()
-        .unwrap();
-    assert_eq!(output.status.code(), Some(2));
-    assert!(output.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    let stderr = refused(&["chung-ooi", "--steps-per-contact", "500"]);
     assert!(
         stderr.contains("--steps-per-contact")
             && stderr.contains("500")
