@@ -186,6 +186,247 @@ pub fn read_table(path: &Path) -> Result<Table, CaseError> {
     parse_toml(path)
 }
 
+/// The base case of a sweep file: its table, its name and where it came from (its own file,
+/// or the sweep file for an inline `[base]`).
+fn read_base(
+    path: &Path,
+    base: Option<&Value>,
+    fail: impl Fn(&str, &str, &str) -> CaseError,
+) -> Result<(Table, String, PathBuf), CaseError> {
+    let stem = |p: &Path| {
+        p.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "case".into())
+    };
+    match base {
+        None => Err(fail(
+            "base",
+            "(missing)",
+            "required: a case file path or a [base] table",
+        )),
+        Some(Value::String(s)) => {
+            let base_path = path.parent().unwrap_or(Path::new("")).join(s);
+            let base = parse_toml(&base_path).map_err(|e| {
+                fail(
+                    "base",
+                    &format!("\"{s}\""),
+                    &format!("a case file relative to the sweep file's folder: {e}"),
+                )
+            })?;
+            let name = stem(&base_path);
+            Ok((base, name, base_path))
+        }
+        Some(Value::Table(t)) => Ok((t.clone(), stem(path), path.to_path_buf())),
+        Some(v) => Err(fail(
+            "base",
+            &v.to_string(),
+            "must be a case file path or a [base] table",
+        )),
+    }
+}
+
+/// What a sweep file's source axes ask for: methods and codes, and the resolutions each kind
+/// runs at (`None`: its default).
+struct SourceAxes {
+    methods: Vec<Method>,
+    codes: Vec<CodeName>,
+    per_period: Vec<Option<u32>>,
+    per_contact: Vec<Option<u32>>,
+    tolerances: Vec<Option<f64>>,
+}
+
+impl Default for SourceAxes {
+    fn default() -> Self {
+        SourceAxes {
+            methods: Vec::new(),
+            codes: Vec::new(),
+            per_period: vec![None],
+            per_contact: vec![None],
+            tolerances: vec![None],
+        }
+    }
+}
+
+impl SourceAxes {
+    /// Read the source axis `key` (one of [`SOURCE_AXES`]); `refuse(value, allowed)` makes its
+    /// error.
+    fn read(
+        &mut self,
+        key: &str,
+        values: &AxisValues,
+        refuse: impl Fn(&Value, &str) -> CaseError,
+    ) -> Result<(), CaseError> {
+        match key {
+            "method" => {
+                for v in values.iter() {
+                    let method = Method::from_name(v.as_str().unwrap_or_default());
+                    self.methods.push(method.ok_or_else(|| {
+                        refuse(
+                            &v,
+                            &format!("a method name; allowed: {}", Method::names().join(", ")),
+                        )
+                    })?);
+                }
+            }
+            "code" => {
+                for v in values.iter() {
+                    let code = CodeName::from_name(v.as_str().unwrap_or_default());
+                    self.codes.push(code.ok_or_else(|| {
+                        refuse(
+                            &v,
+                            &format!("a code name; allowed: {}", CodeName::names().join(", ")),
+                        )
+                    })?);
+                }
+            }
+            "rtol" => {
+                self.tolerances = values
+                    .iter()
+                    .map(|v| match v.as_float() {
+                        Some(r) if (MIN_RTOL..1.0).contains(&r) => Ok(Some(r)),
+                        _ => Err(refuse(
+                            &v,
+                            &format!("numbers in [{MIN_RTOL:e}, 1) (adaptive methods)"),
+                        )),
+                    })
+                    .collect::<Result<_, _>>()?;
+            }
+            _ => {
+                let counts = values
+                    .iter()
+                    .map(|v| match v.as_integer() {
+                        Some(n) if (4..=100_000_000).contains(&n) => Ok(u32::try_from(n).ok()),
+                        _ => Err(refuse(&v, "whole numbers in [4, 100000000]")),
+                    })
+                    .collect::<Result<_, _>>()?;
+                if key == "steps_per_period" {
+                    self.per_period = counts;
+                } else {
+                    self.per_contact = counts;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The method and resolution chosen for the file's `tolerance` (`value`), which may not
+    /// come with an explicit method or resolution axis.
+    fn choose_for_tolerance(
+        &mut self,
+        value: &Value,
+        axes_table: &Table,
+        refuse: impl Fn(&str) -> CaseError,
+    ) -> Result<Choice, CaseError> {
+        let explicit: Vec<&str> = ["method", "steps_per_period", "rtol"]
+            .into_iter()
+            .filter(|k| axes_table.contains_key(*k))
+            .collect();
+        if !explicit.is_empty() {
+            return Err(refuse(&format!(
+                "not with axes.{}: the tolerance chooses the method and its resolution",
+                explicit.join(" or axes.")
+            )));
+        }
+        let Some(x) = value.as_float() else {
+            return Err(refuse(&allowed_tolerances()));
+        };
+        let choice = choose(x).map_err(|e| refuse(&e.allowed))?;
+        self.methods.push(choice.method);
+        match choice.resolution {
+            Resolution::StepsPerPeriod(n) => self.per_period = vec![Some(n)],
+            Resolution::Rtol(r) => self.tolerances = vec![Some(r)],
+            Resolution::StepsPerContact(_) => {}
+        }
+        Ok(choice)
+    }
+
+    /// Every source with each of its resolutions, methods first (`rk4-event` when the file
+    /// names neither a method nor a code); a resolution axis that no source takes is refused.
+    fn sources(
+        mut self,
+        axes_table: &Table,
+        fail: impl Fn(&str, &str, &str) -> CaseError,
+    ) -> Result<Vec<ResolvedSource>, CaseError> {
+        if self.methods.is_empty() && self.codes.is_empty() {
+            self.methods.push(Method::Rk4Event);
+        }
+        let takes = |knob: Knob| self.methods.iter().any(|m| m.descriptor().knob == knob);
+        let unused = [
+            (
+                self.per_period[0].is_some() && !takes(Knob::StepsPerPeriod),
+                "steps_per_period",
+                "applies to fixed-step methods; the sweep has none",
+            ),
+            (
+                self.tolerances[0].is_some() && !takes(Knob::Rtol),
+                "rtol",
+                "applies to adaptive methods; the sweep has none",
+            ),
+            (
+                self.per_contact[0].is_some() && self.codes.is_empty(),
+                "steps_per_contact",
+                "applies to codes; the sweep has none",
+            ),
+        ];
+        if let Some((_, key, allowed)) = unused.iter().find(|(unused, ..)| *unused) {
+            return Err(fail(
+                &format!("axes.{key}"),
+                &axes_table[*key].to_string(),
+                allowed,
+            ));
+        }
+        let mut sources = Vec::new();
+        for &method in &self.methods {
+            let resolutions: Vec<Option<Resolution>> = match method.descriptor().knob {
+                Knob::StepsPerPeriod => self
+                    .per_period
+                    .iter()
+                    .map(|n| n.map(Resolution::StepsPerPeriod))
+                    .collect(),
+                Knob::Rtol => self
+                    .tolerances
+                    .iter()
+                    .map(|r| r.map(Resolution::Rtol))
+                    .collect(),
+                Knob::None => vec![None],
+            };
+            sources.extend(resolutions.into_iter().map(|resolution| ResolvedSource {
+                source: Source::Method(method),
+                resolution,
+            }));
+        }
+        for &code in &self.codes {
+            sources.extend(self.per_contact.iter().map(|n| ResolvedSource {
+                source: Source::Code(code),
+                resolution: n.map(Resolution::StepsPerContact),
+            }));
+        }
+        Ok(sources)
+    }
+}
+
+/// A sweep's fingerprint: its axes and base in normal form (keys sorted, values in TOML's own
+/// notation), so that formatting and comments do not change it, and the tolerance's choice
+/// (rows of another choice, with other bounds, belong to another sweep).
+fn fingerprint(axes_table: Table, base: &Table, tolerance: Option<&Choice>) -> String {
+    let mut normal = Table::new();
+    normal.insert("axes".into(), Value::Table(axes_table));
+    normal.insert("base".into(), Value::Table(base.clone()));
+    if let Some(choice) = tolerance {
+        normal.insert("tolerance".into(), Value::Float(choice.tolerance));
+        normal.insert(
+            "tolerance_choice".into(),
+            Value::String(format!(
+                "{} at {}",
+                choice.method,
+                resolution_text(choice.resolution)
+            )),
+        );
+    }
+    let text = toml::to_string(&normal).unwrap_or_default();
+    hex(&Sha256::digest(text.as_bytes()))[..16].to_string()
+}
+
 /// A number as written in a row: the shortest form that reads back exactly, plain for
 /// moderate magnitudes and with an exponent otherwise.
 pub fn number(x: f64) -> String {
@@ -233,54 +474,17 @@ impl SweepFile {
         let file = path.display().to_string();
         let fail =
             |key: &str, value: &str, allowed: &str| CaseError::new(&file, key, value, allowed);
-        for (key, value) in table {
-            if !SWEEP_KEYS.contains(&key.as_str()) {
-                return Err(fail(
-                    key,
-                    &value.to_string(),
-                    "unknown key; a sweep file takes base (a case file or table), [axes] and tolerance",
-                ));
-            }
+        if let Some((key, value)) = table
+            .iter()
+            .find(|(k, _)| !SWEEP_KEYS.contains(&k.as_str()))
+        {
+            return Err(fail(
+                key,
+                &value.to_string(),
+                "unknown key; a sweep file takes base (a case file or table), [axes] and tolerance",
+            ));
         }
-        let (base, base_name, base_path) = match table.get("base") {
-            None => {
-                return Err(fail(
-                    "base",
-                    "(missing)",
-                    "required: a case file path or a [base] table",
-                ));
-            }
-            Some(Value::String(s)) => {
-                let dir = path.parent().unwrap_or(Path::new(""));
-                let base_path = dir.join(s);
-                let base = parse_toml(&base_path).map_err(|e| {
-                    fail(
-                        "base",
-                        &format!("\"{s}\""),
-                        &format!("a case file relative to the sweep file's folder: {e}"),
-                    )
-                })?;
-                let name = base_path
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| "case".into());
-                (base, name, base_path)
-            }
-            Some(Value::Table(t)) => {
-                let name = path
-                    .file_stem()
-                    .map(|s| s.to_string_lossy().into_owned())
-                    .unwrap_or_else(|| "case".into());
-                (t.clone(), name, path.to_path_buf())
-            }
-            Some(v) => {
-                return Err(fail(
-                    "base",
-                    &v.to_string(),
-                    "must be a case file path or a [base] table",
-                ));
-            }
-        };
+        let (base, base_name, base_path) = read_base(path, table.get("base"), fail)?;
         // The base must itself be a valid case.
         let base_case = Case::from_table(
             &base,
@@ -300,182 +504,42 @@ impl SweepFile {
             }
         };
         let mut axes = Vec::new();
-        let mut methods = Vec::new();
-        let mut codes = Vec::new();
-        let mut per_period: Vec<Option<u32>> = vec![None];
-        let mut per_contact: Vec<Option<u32>> = vec![None];
-        let mut tolerances: Vec<Option<f64>> = vec![None];
+        let mut source_axes = SourceAxes::default();
         let case_keys = crate::model::case::case_keys();
         for (key, value) in &axes_table {
             let full = format!("axes.{key}");
-            let values = axis_values(value, |allowed| fail(&full, &value.to_string(), allowed))?;
+            let refuse = |allowed: &str| fail(&full, &value.to_string(), allowed);
+            let values = axis_values(value, refuse)?;
             if values.is_empty() {
-                return Err(fail(
-                    &full,
-                    &value.to_string(),
-                    "an axis needs at least one value",
-                ));
+                return Err(refuse("an axis needs at least one value"));
             }
-            match key.as_str() {
-                "method" => {
-                    for v in values.iter() {
-                        let name = v.as_str().unwrap_or_default();
-                        let m = Method::from_name(name).ok_or_else(|| {
-                            fail(
-                                &full,
-                                &v.to_string(),
-                                &format!("a method name; allowed: {}", Method::names().join(", ")),
-                            )
-                        })?;
-                        methods.push(m);
-                    }
-                }
-                "code" => {
-                    for v in values.iter() {
-                        let name = v.as_str().unwrap_or_default();
-                        let c = CodeName::from_name(name).ok_or_else(|| {
-                            fail(
-                                &full,
-                                &v.to_string(),
-                                &format!("a code name; allowed: {}", CodeName::names().join(", ")),
-                            )
-                        })?;
-                        codes.push(c);
-                    }
-                }
-                "rtol" => {
-                    let mut rtols = Vec::new();
-                    for v in values.iter() {
-                        match v.as_float() {
-                            Some(r) if (MIN_RTOL..1.0).contains(&r) => rtols.push(Some(r)),
-                            _ => {
-                                return Err(fail(
-                                    &full,
-                                    &v.to_string(),
-                                    &format!("numbers in [{MIN_RTOL:e}, 1) (adaptive methods)"),
-                                ));
-                            }
-                        }
-                    }
-                    tolerances = rtols;
-                }
-                "steps_per_period" | "steps_per_contact" => {
-                    let mut counts = Vec::new();
-                    for v in values.iter() {
-                        match v.as_integer() {
-                            Some(n) if (4..=100_000_000).contains(&n) => {
-                                counts.push(u32::try_from(n).ok())
-                            }
-                            _ => {
-                                return Err(fail(
-                                    &full,
-                                    &v.to_string(),
-                                    "whole numbers in [4, 100000000]",
-                                ));
-                            }
-                        }
-                    }
-                    if key == "steps_per_period" {
-                        per_period = counts;
-                    } else {
-                        per_contact = counts;
-                    }
-                }
-                k if case_keys.iter().any(|c| c == k) => axes.push(Axis {
+            if SOURCE_AXES.contains(&key.as_str()) {
+                source_axes.read(key, &values, |v, allowed| {
+                    fail(&full, &v.to_string(), allowed)
+                })?;
+            } else if case_keys.iter().any(|c| c == key) {
+                axes.push(Axis {
                     key: key.clone(),
                     values,
-                }),
-                _ => {
-                    let mut allowed: Vec<&str> = case_keys.iter().map(String::as_str).collect();
-                    allowed.extend(SOURCE_AXES);
-                    return Err(fail(
-                        &full,
-                        &value.to_string(),
-                        &format!("unknown axis; allowed: {}", allowed.join(", ")),
-                    ));
-                }
+                });
+            } else {
+                let mut allowed: Vec<&str> = case_keys.iter().map(String::as_str).collect();
+                allowed.extend(SOURCE_AXES);
+                return Err(refuse(&format!(
+                    "unknown axis; allowed: {}",
+                    allowed.join(", ")
+                )));
             }
         }
         let tolerance = match table.get("tolerance") {
             None => None,
-            Some(value) => {
-                let refuse = |allowed: &str| fail("tolerance", &value.to_string(), allowed);
-                let explicit: Vec<&str> = ["method", "steps_per_period", "rtol"]
-                    .into_iter()
-                    .filter(|k| axes_table.contains_key(*k))
-                    .collect();
-                if !explicit.is_empty() {
-                    return Err(refuse(&format!(
-                        "not with axes.{}: the tolerance chooses the method and its resolution",
-                        explicit.join(" or axes.")
-                    )));
-                }
-                let Some(x) = value.as_float() else {
-                    return Err(refuse(&allowed_tolerances()));
-                };
-                let choice = choose(x).map_err(|e| refuse(&e.allowed))?;
-                methods.push(choice.method);
-                match choice.resolution {
-                    Resolution::StepsPerPeriod(n) => per_period = vec![Some(n)],
-                    Resolution::Rtol(r) => tolerances = vec![Some(r)],
-                    Resolution::StepsPerContact(_) => {}
-                }
-                Some(choice)
-            }
+            Some(value) => Some(source_axes.choose_for_tolerance(
+                value,
+                &axes_table,
+                |allowed| fail("tolerance", &value.to_string(), allowed),
+            )?),
         };
-        if methods.is_empty() && codes.is_empty() {
-            methods.push(Method::Rk4Event);
-        }
-        if per_period[0].is_some()
-            && !methods
-                .iter()
-                .any(|m| m.descriptor().knob == Knob::StepsPerPeriod)
-        {
-            return Err(fail(
-                "axes.steps_per_period",
-                &axes_table["steps_per_period"].to_string(),
-                "applies to fixed-step methods; the sweep has none",
-            ));
-        }
-        if tolerances[0].is_some() && !methods.iter().any(|m| m.descriptor().knob == Knob::Rtol) {
-            return Err(fail(
-                "axes.rtol",
-                &axes_table["rtol"].to_string(),
-                "applies to adaptive methods; the sweep has none",
-            ));
-        }
-        if per_contact[0].is_some() && codes.is_empty() {
-            return Err(fail(
-                "axes.steps_per_contact",
-                &axes_table["steps_per_contact"].to_string(),
-                "applies to codes; the sweep has none",
-            ));
-        }
-        let mut sources = Vec::new();
-        for &method in &methods {
-            let resolutions: Vec<Option<Resolution>> = match method.descriptor().knob {
-                Knob::StepsPerPeriod => per_period
-                    .iter()
-                    .map(|n| n.map(Resolution::StepsPerPeriod))
-                    .collect(),
-                Knob::Rtol => tolerances.iter().map(|r| r.map(Resolution::Rtol)).collect(),
-                Knob::None => vec![None],
-            };
-            for resolution in resolutions {
-                sources.push(ResolvedSource {
-                    source: Source::Method(method),
-                    resolution,
-                });
-            }
-        }
-        for &code in &codes {
-            for &n in &per_contact {
-                sources.push(ResolvedSource {
-                    source: Source::Code(code),
-                    resolution: n.map(Resolution::StepsPerContact),
-                });
-            }
-        }
+        let sources = source_axes.sources(&axes_table, fail)?;
         let total = axes
             .iter()
             .try_fold(sources.len(), |n, a| n.checked_mul(a.values.len()));
@@ -486,34 +550,15 @@ impl SweepFile {
                 &format!("at most {MAX_POINTS} points"),
             ));
         }
-        // The fingerprint: the sweep's axes and base in normal form (keys sorted, values in
-        // TOML's own notation), so that formatting and comments do not change it.
-        let mut normal = Table::new();
-        normal.insert("axes".into(), Value::Table(axes_table));
-        normal.insert("base".into(), Value::Table(base.clone()));
-        if let Some(choice) = &tolerance {
-            // The choice too: rows of another choice (other bounds) belong to another sweep.
-            normal.insert("tolerance".into(), Value::Float(choice.tolerance));
-            normal.insert(
-                "tolerance_choice".into(),
-                Value::String(format!(
-                    "{} at {}",
-                    choice.method,
-                    resolution_text(choice.resolution)
-                )),
-            );
-        }
-        let text = toml::to_string(&normal).unwrap_or_default();
-        let fingerprint = hex(&Sha256::digest(text.as_bytes()))[..16].to_string();
         let in_place = axes.iter().all(|a| IN_PLACE_KEYS.contains(&a.key.as_str()));
         Ok(SweepFile {
             path: path.to_path_buf(),
+            fingerprint: fingerprint(axes_table, &base, tolerance.as_ref()),
             base,
             base_name,
             base_path,
             axes,
             sources,
-            fingerprint,
             base_case,
             in_place,
             tolerance,
