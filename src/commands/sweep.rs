@@ -196,73 +196,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
     })?;
     let columns = sweep.columns();
     let mut indices: Vec<usize> = sweep.indices(args.shard);
-    let mut resumed = Resumed::default();
-    let out: Box<dyn Write + Send> = match &args.out {
-        None => Box::new(std::io::BufWriter::new(std::io::stdout())),
-        Some(path) => {
-            check_output("--out", Some(path), &[&args.case, &sweep.base_path])?;
-            let held = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
-            if held && !args.resume {
-                return Err(UserError::argument(
-                    "--out",
-                    path.display(),
-                    "the file exists and is not empty: give --resume to continue it, or remove it",
-                )
-                .into());
-            }
-            if held {
-                resumed = read_resumed(path, sweep)?;
-                if let Some(f) = resumed.format {
-                    format = f;
-                }
-                // The points done, by their keys, a block at a time (points are not all held).
-                let mut left = Vec::with_capacity(indices.len());
-                for block in indices.chunks(4096) {
-                    let points: Vec<_> = block.iter().map(|&i| sweep.point(i)).collect();
-                    let keys = point_keys(sweep, &points)?;
-                    left.extend(
-                        block
-                            .iter()
-                            .zip(&keys)
-                            .filter(|(_, k)| !resumed.done.contains(*k))
-                            .map(|(&i, _)| i),
-                    );
-                }
-                indices = left;
-                // Failed rows, a row cut off by a kill and rows a later one replaced go; the
-                // rows kept are copied as they were, and the file is swapped in whole.
-                if resumed.rewrites() {
-                    write_atomic_with(path, |out| resumed.copy_kept(path, out))
-                        .with_context(|| format!("rewriting {}", path.display()))?;
-                }
-                let mut again = Vec::new();
-                if resumed.retried > 0 {
-                    again.push(format!(
-                        "{} failed point{}",
-                        resumed.retried,
-                        if resumed.retried == 1 { "" } else { "s" }
-                    ));
-                }
-                if resumed.torn {
-                    again.push("the point of the last row, cut off mid-line".to_string());
-                }
-                if !again.is_empty() {
-                    eprintln!(
-                        "note: resuming {}: {} rows kept; run again: {}",
-                        path.display(),
-                        resumed.kept_rows,
-                        again.join(", ")
-                    );
-                }
-            }
-            let file = std::fs::OpenOptions::new()
-                .create(true)
-                .append(true)
-                .open(path)
-                .with_context(|| format!("opening {}", path.display()))?;
-            Box::new(std::io::BufWriter::new(file))
-        }
-    };
+    let (out, resumed) = open_rows(args, sweep, &mut format, &mut indices)?;
     let has_codes = sweep
         .sources
         .iter()
@@ -322,15 +256,119 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         }
         return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
     }
+    Ok(outcome(args, &writer, resumed.kept_rows))
+}
+
+/// Where the rows go: standard output, or `--out`, a new file or one continued with
+/// `--resume`: then its rows are read, the points they hold leave `indices`, the format is
+/// the file's own, and the file is rewritten without the rows to run again.
+fn open_rows(
+    args: &SweepArgs,
+    sweep: &SweepFile,
+    format: &mut RowFormat,
+    indices: &mut Vec<usize>,
+) -> Result<(Box<dyn Write + Send>, Resumed)> {
+    let Some(path) = &args.out else {
+        return Ok((
+            Box::new(std::io::BufWriter::new(std::io::stdout())),
+            Resumed::default(),
+        ));
+    };
+    check_output("--out", Some(path), &[&args.case, &sweep.base_path])?;
+    let held = std::fs::metadata(path).is_ok_and(|m| m.len() > 0);
+    if held && !args.resume {
+        return Err(UserError::argument(
+            "--out",
+            path.display(),
+            "the file exists and is not empty: give --resume to continue it, or remove it",
+        )
+        .into());
+    }
+    let resumed = if held {
+        resume(path, sweep, format, indices)?
+    } else {
+        Resumed::default()
+    };
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(path)
+        .with_context(|| format!("opening {}", path.display()))?;
+    Ok((Box::new(std::io::BufWriter::new(file)), resumed))
+}
+
+/// Continue the rows of `path`: the points done leave `indices`, and failed rows, a row cut
+/// off by a kill and rows a later one replaced go (the kept rows are copied as they were and
+/// the file is swapped in whole).
+fn resume(
+    path: &Path,
+    sweep: &SweepFile,
+    format: &mut RowFormat,
+    indices: &mut Vec<usize>,
+) -> Result<Resumed> {
+    let resumed = read_resumed(path, sweep)?;
+    if let Some(f) = resumed.format {
+        *format = f;
+    }
+    // The points done, by their keys, a block at a time (points are not all held).
+    let mut left = Vec::with_capacity(indices.len());
+    for block in indices.chunks(4096) {
+        let points: Vec<_> = block.iter().map(|&i| sweep.point(i)).collect();
+        let keys = point_keys(sweep, &points)?;
+        left.extend(
+            block
+                .iter()
+                .zip(&keys)
+                .filter(|(_, k)| !resumed.done.contains(*k))
+                .map(|(&i, _)| i),
+        );
+    }
+    *indices = left;
+    if resumed.rewrites() {
+        write_atomic_with(path, |out| resumed.copy_kept(path, out))
+            .with_context(|| format!("rewriting {}", path.display()))?;
+    }
+    let mut again = Vec::new();
+    if resumed.retried > 0 {
+        again.push(format!(
+            "{} failed point{}",
+            resumed.retried,
+            if resumed.retried == 1 { "" } else { "s" }
+        ));
+    }
+    if resumed.torn {
+        again.push("the point of the last row, cut off mid-line".to_string());
+    }
+    if !again.is_empty() {
+        eprintln!(
+            "note: resuming {}: {} rows kept; run again: {}",
+            path.display(),
+            resumed.kept_rows,
+            again.join(", ")
+        );
+    }
+    Ok(resumed)
+}
+
+/// How a sweep that wrote its rows ends: passed; interrupted (continue with `--resume`); or
+/// with failed points, which fail the command unless `--allow-failures`. A failed point is a
+/// row like any other: the sweep went on and its output is whole; the exit status says that
+/// it is not all computed.
+fn outcome<W: Write>(args: &SweepArgs, writer: &RowWriter<W>, kept_rows: usize) -> CommandOutput {
     let place = args
         .out
         .as_deref()
         .map(Path::display)
         .map(|d| d.to_string())
         .unwrap_or_else(|| "standard output".into());
-    let points_in_output = resumed.kept_rows + writer.written;
+    let points_in_output = kept_rows + writer.written;
     let failures =
         (!writer.failed.is_empty()).then(|| writer.failed.summary(points_in_output, &place));
+    let failed = |text: String| CommandOutput {
+        warnings: Vec::new(),
+        text: String::new(),
+        failure: Some(CheckFailed(text)),
+    };
     if STOP.load(Ordering::SeqCst) {
         let mut text = format!(
             "interrupted: {} rows written to {place}; continue with --resume",
@@ -339,34 +377,22 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         if let Some(failures) = &failures {
             text = format!("{text} (it retries the failed ones); {failures}");
         }
-        return Ok(CommandOutput {
-            warnings: Vec::new(),
-            text: String::new(),
-            failure: Some(CheckFailed(text)),
-        });
+        return failed(text);
     }
     let Some(failures) = failures else {
-        return Ok(CommandOutput::passed(String::new()));
+        return CommandOutput::passed(String::new());
     };
-    // A failed point is a row like any other: the sweep went on and its output is whole; the
-    // exit status says that it is not all computed.
     if args.allow_failures {
         let mut output = CommandOutput::passed(String::new());
         output.warnings.push(failures);
-        return Ok(output);
+        return output;
     }
     let retry = if args.out.is_some() {
         "; --resume retries them"
     } else {
         "; --out FILE keeps the rows for --resume to retry them"
     };
-    Ok(CommandOutput {
-        warnings: Vec::new(),
-        text: String::new(),
-        failure: Some(CheckFailed(format!(
-            "{failures}{retry}, --allow-failures exits 0"
-        ))),
-    })
+    failed(format!("{failures}{retry}, --allow-failures exits 0"))
 }
 
 /// A progress bar with rate and ETA on a terminal; none when standard error is not one or
