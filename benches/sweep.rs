@@ -32,7 +32,7 @@ use std::time::Duration;
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use millimpact::analysis::run::IntegrationOptions;
 use millimpact::analysis::source::Resolution;
-use millimpact::analysis::sweep::grid::{Point, SweepFile};
+use millimpact::analysis::sweep::grid::{GridPoint, SweepFile};
 use millimpact::analysis::sweep::legacy::{EtaRange, Streamed};
 use millimpact::analysis::sweep::point::{GridOptions, method_rows, single_point};
 use millimpact::analysis::sweep::row::SweepRow;
@@ -61,7 +61,7 @@ fn options() -> GridOptions {
 }
 
 /// Before: a point at a time, its row through a shared writer.
-fn per_point(sweep: &SweepFile, points: &[Point], pool: &rayon::ThreadPool) {
+fn per_point(sweep: &SweepFile, points: &[GridPoint], pool: &rayon::ThreadPool) {
     let writer = RowWriter::new(
         std::io::sink(),
         RowFormat::Csv,
@@ -177,7 +177,7 @@ fn by_csv_records(rows: &[SweepRow]) -> (usize, usize) {
 
 fn rows_1e4(c: &mut Criterion) {
     let sweep = SweepFile::load(&root().join("sweeps/eta.toml")).expect("sweeps/eta.toml");
-    let points: Vec<Point> = sweep.points(None);
+    let points: Vec<GridPoint> = sweep.points(None);
     let mut rows = Vec::with_capacity(points.len());
     method_rows(
         &sweep,
@@ -206,7 +206,7 @@ fn sweep_1e4(c: &mut Criterion) {
     let steps_per_period =
         Resolution::steps_per_period(Some(choice.resolution)).expect("a fixed-step method");
     let indices = sweep.indices(None);
-    let points: Vec<Point> = indices.iter().map(|&i| sweep.point(i)).collect();
+    let points: Vec<GridPoint> = indices.iter().map(|&i| sweep.point(i)).collect();
     let case = sweep.base_case.clone();
     let settings = Settings {
         method: choice.method,

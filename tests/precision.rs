@@ -4,7 +4,7 @@
 mod common;
 
 use common::{millimpact, shipped as case};
-use millimpact::analysis::precision::{self, Point};
+use millimpact::analysis::precision::{self, WorkPrecisionPoint};
 use millimpact::solve::Method;
 use serde_json::Value;
 
@@ -22,7 +22,8 @@ fn run_json(args: &[&str]) -> Value {
 #[test]
 fn rk4_event_converges_at_order_4_in_contact_time_and_5_in_cor_and_peak() {
     for name in ["ball_plate", "rod_end"] {
-        let points: Vec<Point> = precision::method_sweep(&case(name), Method::Rk4Event, 1).unwrap();
+        let points: Vec<WorkPrecisionPoint> =
+            precision::method_sweep(&case(name), Method::Rk4Event, 1).unwrap();
         let q = precision::observed_orders(&points);
         let time = q.contact_time.unwrap();
         assert!(

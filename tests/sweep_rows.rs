@@ -223,7 +223,7 @@ mod encoding {
     //! axis value, empty cells) written by `CsvRecords` equals what `csv::Writer::serialize`
     //! writes for the same typed record, byte for byte, both forms.
 
-    use millimpact::analysis::run::SweepRow as LegacyRow;
+    use millimpact::analysis::run::RunRecord as LegacyRow;
     use millimpact::analysis::sweep::row::{
         AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow,
     };

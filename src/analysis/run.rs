@@ -61,7 +61,7 @@ pub struct RunReport {
     pub stiffness: f64,
     /// How C was computed for a ball scene: "hertz" (`(4/3) E* sqrt(R*)`) or "paper" (the
     /// paper's printed `a E sqrt(R) / (1 - ν²)`); "rod" for the rod's `π D² E / (4H)`.
-    pub stiffness_convention: &'static str,
+    pub stiffness_convention: StiffnessOrigin,
     /// Exponent n.
     pub exponent: f64,
     /// COR.
@@ -193,9 +193,9 @@ impl RunReport {
             mass: law.mass,
             stiffness: law.stiffness,
             stiffness_convention: match (case.scene.kind(), case.stiffness) {
-                (crate::model::scene::SceneKind::RodEnd, _) => "rod",
-                (_, crate::model::scene::StiffnessConvention::Hertz) => "hertz",
-                (_, crate::model::scene::StiffnessConvention::Paper) => "paper",
+                (crate::model::scene::SceneKind::RodEnd, _) => StiffnessOrigin::Rod,
+                (_, crate::model::scene::StiffnessConvention::Hertz) => StiffnessOrigin::Hertz,
+                (_, crate::model::scene::StiffnessConvention::Paper) => StiffnessOrigin::Paper,
             },
             exponent: law.exponent,
             cor: f.cor,
@@ -229,8 +229,8 @@ impl RunReport {
     }
 
     /// The flat row of a sweep (one line of CSV).
-    pub fn row(&self) -> SweepRow {
-        SweepRow {
+    pub fn row(&self) -> RunRecord {
+        RunRecord {
             case: self.case.clone(),
             method: self.method,
             loss_coefficient: self.loss_coefficient,
@@ -331,7 +331,7 @@ impl RunReport {
             text += &format!(", Δt = {} s", sci(dt));
         }
         let mut notes = vec![text];
-        if self.stiffness_convention == "paper" {
+        if self.stiffness_convention == StiffnessOrigin::Paper {
             notes.push("stiffness: the paper's printed coefficient a E sqrt(R) / (1 - ν²), not Hertz's (4/3) E* sqrt(R*)".to_string());
         }
         if let Some(h) = &self.hertz_elastic {
@@ -353,9 +353,22 @@ impl RunReport {
     }
 }
 
-/// One row of `millimpact sweep`.
+/// How a case's contact stiffness `C` was formed (in JSON, its lowercase name).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum StiffnessOrigin {
+    /// Hertz's `(4/3) E* sqrt(R*)`, for a ball scene.
+    Hertz,
+    /// The paper's printed `a E sqrt(R) / (1 - ν²)`, for a ball scene.
+    Paper,
+    /// The rod's `π D² E / (4H)`.
+    Rod,
+}
+
+/// One case by one method, with the exact figures beside: a row of `millimpact run --format
+/// csv` and of a case's η sweep (`millimpact sweep CASE`).
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct SweepRow {
+pub struct RunRecord {
     /// Case name.
     pub case: String,
     /// Method.
@@ -455,9 +468,9 @@ pub fn trajectory_rows(case: &Case, samples: &[Sample]) -> Vec<TrajectoryRow> {
 }
 
 impl Summary for RunReport {
-    type Record = SweepRow;
+    type Record = RunRecord;
 
-    fn records(&self) -> Vec<SweepRow> {
+    fn records(&self) -> Vec<RunRecord> {
         vec![self.row()]
     }
 

@@ -6,7 +6,7 @@ use serde::Serialize;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::{IntegrationArgs, RunArgs};
 use millimpact::analysis::run::{
-    IntegrationOptions, RunReport, SweepRow, reproduce_arguments, run_case, trajectory_rows,
+    IntegrationOptions, RunRecord, RunReport, reproduce_arguments, run_case, trajectory_rows,
 };
 use millimpact::error::UserError;
 use millimpact::model::case::Case;
@@ -33,9 +33,9 @@ struct RunSummary {
 }
 
 impl Summary for RunSummary {
-    type Record = SweepRow;
+    type Record = RunRecord;
 
-    fn records(&self) -> Vec<SweepRow> {
+    fn records(&self) -> Vec<RunRecord> {
         self.report.records()
     }
 

@@ -56,7 +56,7 @@ pub const CODE_REPEATS: u32 = 3;
 
 /// One point of the work–precision diagram.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Point {
+pub struct WorkPrecisionPoint {
     /// The method or code.
     pub source: Source,
     /// What was swept.
@@ -173,7 +173,7 @@ pub struct PrecisionReport {
     /// Case name.
     pub case: String,
     /// Every point, by source then knob.
-    pub points: Vec<Point>,
+    pub points: Vec<WorkPrecisionPoint>,
     /// The observed order of each fixed-step method and each code: that of the contact time,
     /// the slowest-converging figure (see [`ORDER_NOTES`]).
     pub orders: BTreeMap<String, f64>,
@@ -340,7 +340,7 @@ pub fn method_point(
     knob: SweepKnob,
     value: f64,
     repeats: u32,
-) -> Result<Point, PrecisionError> {
+) -> Result<WorkPrecisionPoint, PrecisionError> {
     let exact = exact::paper_impact(law, v0);
     let started = Instant::now();
     let warm = paper::solve(law, v0, settings).map_err(|source| PrecisionError::Method {
@@ -374,7 +374,7 @@ pub fn method_point(
         rhs_evaluations,
         ..
     } = warm.stats;
-    Ok(Point {
+    Ok(WorkPrecisionPoint {
         source: Source::Method(settings.method),
         knob,
         value,
@@ -395,7 +395,7 @@ pub fn method_sweep(
     case: &Case,
     method: Method,
     repeats: u32,
-) -> Result<Vec<Point>, PrecisionError> {
+) -> Result<Vec<WorkPrecisionPoint>, PrecisionError> {
     let law = case.law();
     let base = Settings {
         method,
@@ -446,7 +446,7 @@ pub fn code_sweep(
     code: CodeName,
     steps_per_contact: &[u32],
     repeats: u32,
-) -> Result<Vec<Point>, PrecisionError> {
+) -> Result<Vec<WorkPrecisionPoint>, PrecisionError> {
     let driver = code.driver();
     let options = RunOptions::default();
     let repeats = repeats.clamp(1, CODE_REPEATS);
@@ -486,7 +486,7 @@ pub fn code_sweep(
             relative(metrics.peak_deformation, reference.peak_deformation),
             relative(metrics.contact_time, reference.contact_time),
         ];
-        points.push(Point {
+        points.push(WorkPrecisionPoint {
             source: Source::Code(code),
             knob: SweepKnob::StepsPerContact,
             value: spc as f64,
@@ -526,11 +526,12 @@ pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
 /// the step being `1/value` for steps per period or contact, over the points in the asymptotic
 /// range (error above [`ROUNDING_FLOOR`]; for a method, at least
 /// [`ASYMPTOTIC_STEPS_PER_PERIOD`] steps per period). For dopri5 the slope against `rtol`.
-pub fn observed_orders(points: &[Point]) -> QuantityOrders {
-    let usable =
-        |p: &&Point| p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD;
-    let step = |p: &Point| p.knob.step(p.value);
-    let fit = |error: fn(&Point) -> f64| {
+pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
+    let usable = |p: &&WorkPrecisionPoint| {
+        p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD
+    };
+    let step = |p: &WorkPrecisionPoint| p.knob.step(p.value);
+    let fit = |error: fn(&WorkPrecisionPoint) -> f64| {
         let pairs: Vec<(f64, f64)> = points
             .iter()
             .filter(usable)
@@ -553,8 +554,8 @@ pub fn observed_orders(points: &[Point]) -> QuantityOrders {
 /// late by a fraction of a step that depends on where the grid falls), a least-squares fit of
 /// the raw errors is dragged down by lucky alignments; the envelope measures how the worst case
 /// shrinks, which is what the order of a method promises.
-pub fn envelope_orders(points: &[Point]) -> QuantityOrders {
-    let mut sorted: Vec<Point> = points.to_vec();
+pub fn envelope_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
+    let mut sorted: Vec<WorkPrecisionPoint> = points.to_vec();
     // Finest first: steps per period or contact descending, rtol ascending.
     sorted.sort_by(|a, b| {
         if a.knob == SweepKnob::Rtol {
@@ -575,15 +576,15 @@ pub fn envelope_orders(points: &[Point]) -> QuantityOrders {
     observed_orders(&sorted)
 }
 
-fn targets(points: &[Point]) -> Targets {
-    let is_code = |p: &Point| matches!(p.source, Source::Code(_));
-    let named = |p: &Point, figure: f64| NamedPoint {
+fn targets(points: &[WorkPrecisionPoint]) -> Targets {
+    let is_code = |p: &WorkPrecisionPoint| matches!(p.source, Source::Code(_));
+    let named = |p: &WorkPrecisionPoint, figure: f64| NamedPoint {
         source: p.source,
         knob: p.knob,
         value: p.value,
         figure,
     };
-    let cheapest = |it: &mut dyn Iterator<Item = &Point>| {
+    let cheapest = |it: &mut dyn Iterator<Item = &WorkPrecisionPoint>| {
         it.min_by(|a, b| a.time_s.total_cmp(&b.time_s))
             .map(|p| named(p, p.time_s))
     };
@@ -634,7 +635,7 @@ pub fn precision_report(
     let mut sources: Vec<Source> = points.iter().map(|p| p.source).collect();
     sources.dedup();
     for source in sources {
-        let own: Vec<Point> = points
+        let own: Vec<WorkPrecisionPoint> = points
             .iter()
             .filter(|p| p.source == source)
             .cloned()

@@ -10,7 +10,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::error::SweepError;
-use super::grid::{Point, SweepFile};
+use super::grid::{GridPoint, SweepFile};
 use super::point::{GridOptions, single_point};
 use super::row::{CodeFigures, PointFigures, SweepRow};
 use crate::analysis::source::{Resolution, Source};
@@ -30,7 +30,7 @@ pub const MAX_BATCH_BYTES: f64 = 2e8;
 #[derive(Clone, Debug)]
 pub struct Prepared<'a> {
     /// The point.
-    pub point: &'a Point,
+    pub point: &'a GridPoint,
     /// Its case.
     pub case: Case,
     /// Its setup in the code.
@@ -43,7 +43,7 @@ pub struct Prepared<'a> {
 #[derive(Clone, Debug)]
 pub enum WorkItem<'a> {
     /// A point run alone.
-    Single(&'a Point),
+    Single(&'a GridPoint),
     /// Points run together in one process of `code`.
     Batch {
         /// The code.
@@ -61,14 +61,14 @@ pub enum WorkItem<'a> {
 /// [`BatchRunner::impacts_per_start`]: crate::codes::BatchRunner::impacts_per_start
 pub fn plan<'a>(
     sweep: &SweepFile,
-    points: &[&'a Point],
+    points: &[&'a GridPoint],
     options: &GridOptions,
 ) -> Vec<WorkItem<'a>> {
     let mut work = Vec::new();
     let mut groups: BTreeMap<(CodeName, u64), Vec<Prepared<'a>>> = BTreeMap::new();
     // Sizing a point's run integrates the code's law (and, for some codes, inverts a fit):
     // done on the pool's threads, in point order.
-    let prepare_point = |p: &&'a Point| {
+    let prepare_point = |p: &&'a GridPoint| {
         let started = Instant::now();
         let Source::Code(code) = p.source.source else {
             return None;

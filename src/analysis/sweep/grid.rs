@@ -151,7 +151,7 @@ pub struct SweepFile {
 
 /// One point of the grid.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Point {
+pub struct GridPoint {
     /// Its index in the whole grid (row order of an unsharded sweep).
     pub index: usize,
     /// One value per case axis.
@@ -575,9 +575,9 @@ impl SweepFile {
         self.len() == 0
     }
 
-    /// Point `index` (the last axis varies fastest, the source fastest of all).
-    pub fn point(&self, index: usize) -> Point {
-        let mut point = Point {
+    /// GridPoint `index` (the last axis varies fastest, the source fastest of all).
+    pub fn point(&self, index: usize) -> GridPoint {
+        let mut point = GridPoint {
             index,
             values: Vec::with_capacity(self.axes.len()),
             source: self.sources[0],
@@ -588,7 +588,7 @@ impl SweepFile {
 
     /// Make `point` point `index`, its storage reused (points one after another, as a chunk
     /// of a sweep runs them).
-    pub fn point_into(&self, index: usize, point: &mut Point) {
+    pub fn point_into(&self, index: usize, point: &mut GridPoint) {
         let mut rest = index;
         point.index = index;
         point.source = self.sources[rest % self.sources.len()];
@@ -601,7 +601,7 @@ impl SweepFile {
     }
 
     /// The points of shard `k` of `n` (1-based; every n-th point from the k-th), or all.
-    pub fn points(&self, shard: Option<(usize, usize)>) -> Vec<Point> {
+    pub fn points(&self, shard: Option<(usize, usize)>) -> Vec<GridPoint> {
         let (k, n) = shard.unwrap_or((1, 1));
         (k - 1..self.len())
             .step_by(n)
@@ -632,7 +632,7 @@ impl SweepFile {
     }
 
     /// The row of `point` with `figures` and `status`.
-    pub fn row(&self, point: &Point, figures: PointFigures, status: RowStatus) -> SweepRow {
+    pub fn row(&self, point: &GridPoint, figures: PointFigures, status: RowStatus) -> SweepRow {
         let mut row = SweepRow {
             identity: RowIdentity::default(),
             axes: Vec::with_capacity(self.axes.len()),
@@ -647,7 +647,7 @@ impl SweepFile {
     /// Make `row` the row of `point` (its identity, axis values and source), its storage
     /// reused: a row of this sweep's is made once per chunk and filled point after point.
     /// The figures and status are left to the caller.
-    pub fn set_point(&self, row: &mut SweepRow, point: &Point) {
+    pub fn set_point(&self, row: &mut SweepRow, point: &GridPoint) {
         if row.identity.sweep != self.fingerprint {
             row.identity.sweep.clone_from(&self.fingerprint);
         }
@@ -673,7 +673,7 @@ impl SweepFile {
     /// The row of `point` from its outcome: the figures, or the error.
     pub fn outcome_row(
         &self,
-        point: &Point,
+        point: &GridPoint,
         outcome: Result<PointFigures, SweepError>,
     ) -> SweepRow {
         match outcome {
@@ -688,7 +688,7 @@ impl SweepFile {
 
     /// The parameter cells of `point`, in [`SweepFile::key_columns`] order, in the normal
     /// form rows are matched by.
-    pub fn key_cells(&self, point: &Point) -> Vec<String> {
+    pub fn key_cells(&self, point: &GridPoint) -> Vec<String> {
         let row = self.row(point, PointFigures::default(), RowStatus::default());
         super::row::key_cells(&row.axes, &row.source)
             .iter()
@@ -697,7 +697,7 @@ impl SweepFile {
     }
 
     /// The case at `point`: the base table edited and read strictly.
-    pub fn case(&self, point: &Point) -> Result<Case, CaseError> {
+    pub fn case(&self, point: &GridPoint) -> Result<Case, CaseError> {
         let mut table = self.base.clone();
         for (axis, value) in self.axes.iter().zip(&point.values) {
             let (holder, key) = match axis.key.split_once('.') {
@@ -740,7 +740,7 @@ impl SweepFile {
     }
 
     /// How errors name the case of `point`.
-    pub fn point_file(&self, point: &Point) -> String {
+    pub fn point_file(&self, point: &GridPoint) -> String {
         format!("{} (point {})", self.path.display(), point.index)
     }
 }
@@ -763,7 +763,7 @@ impl<'a> PointCases<'a> {
     }
 
     /// The case at `point`.
-    pub fn case(&mut self, point: &Point) -> Result<&Case, CaseError> {
+    pub fn case(&mut self, point: &GridPoint) -> Result<&Case, CaseError> {
         if !self.sweep.in_place {
             self.case = self.sweep.case(point)?;
             return Ok(&self.case);

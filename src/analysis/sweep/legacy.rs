@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 use serde::Serialize;
 
 use super::error::SweepError;
-use crate::analysis::run::{IntegrationOptions, RunReport, SweepRow, run_case, solve_failure};
+use crate::analysis::run::{IntegrationOptions, RunRecord, RunReport, run_case, solve_failure};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::count::round_count;
@@ -81,7 +81,7 @@ pub fn parse_eta_range(text: &str) -> Result<EtaRange, UserError> {
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SweepReport {
     /// One row per η.
-    pub rows: Vec<SweepRow>,
+    pub rows: Vec<RunRecord>,
     /// The command that reproduces it.
     pub command: String,
 }
@@ -120,7 +120,7 @@ fn title(case: &str, method: &str) -> String {
 }
 
 /// A row's cells in the table people read.
-fn cells(r: &SweepRow) -> Vec<String> {
+fn cells(r: &RunRecord) -> Vec<String> {
     vec![
         r.loss_coefficient.to_string(),
         sci(r.cor),
@@ -132,9 +132,9 @@ fn cells(r: &SweepRow) -> Vec<String> {
 }
 
 impl Summary for SweepReport {
-    type Record = SweepRow;
+    type Record = RunRecord;
 
-    fn records(&self) -> Vec<SweepRow> {
+    fn records(&self) -> Vec<RunRecord> {
         self.rows.clone()
     }
 
@@ -158,7 +158,7 @@ pub fn rows_at(
     case: &Case,
     values: &[f64],
     settings: &Settings,
-) -> Result<Vec<SweepRow>, SweepError> {
+) -> Result<Vec<RunRecord>, SweepError> {
     let mut at = case.clone();
     let items: Vec<(PaperLaw, f64)> = values
         .iter()

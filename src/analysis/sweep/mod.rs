@@ -18,7 +18,7 @@ use std::sync::mpsc;
 
 use crate::analysis::source::Source;
 pub use error::SweepError;
-use grid::{Point, SweepFile};
+use grid::{GridPoint, SweepFile};
 use point::{GridOptions, method_rows};
 use row::SweepRow;
 use rows::{EncodedRows, RowFormat};
@@ -129,7 +129,7 @@ pub fn run_grid(
     let keep = |row: &SweepRow| row.status.is_ok() || !stop.load(Ordering::SeqCst);
     if !methods.is_empty() {
         let work = |range: Range<usize>| -> std::io::Result<EncodedRows> {
-            let points: Vec<Point> = methods[range].iter().map(|&i| sweep.point(i)).collect();
+            let points: Vec<GridPoint> = methods[range].iter().map(|&i| sweep.point(i)).collect();
             let mut encoded = EncodedRows::new(format);
             method_rows(sweep, &points, options, stop, &mut |row| {
                 if keep(row) {
@@ -149,8 +149,8 @@ pub fn run_grid(
         )?;
     }
     if !codes.is_empty() && !stop.load(Ordering::SeqCst) {
-        let points: Vec<Point> = codes.iter().map(|&i| sweep.point(i)).collect();
-        let refs: Vec<&Point> = points.iter().collect();
+        let points: Vec<GridPoint> = codes.iter().map(|&i| sweep.point(i)).collect();
+        let refs: Vec<&GridPoint> = points.iter().collect();
         let work = batch::plan(sweep, &refs, options);
         let next = AtomicUsize::new(0);
         let (tx, rx) = mpsc::channel::<std::io::Result<EncodedRows>>();

@@ -5,7 +5,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 use super::error::SweepError;
-use super::grid::{Point, PointCases, SweepFile};
+use super::grid::{GridPoint, PointCases, SweepFile};
 use super::row::{CodeFigures, PointFigures, RowStatus, SweepRow};
 use crate::analysis::run::{IntegrationOptions, run_case, solve_failure};
 use crate::analysis::source::{Resolution, Source};
@@ -29,7 +29,7 @@ pub struct GridOptions {
 
 /// The solver settings of a method point on `case`.
 fn method_settings(
-    point: &Point,
+    point: &GridPoint,
     case: &crate::model::case::Case,
     options: &GridOptions,
 ) -> Result<Settings, SweepError> {
@@ -57,7 +57,7 @@ type Solved = (PaperLaw, f64, Outcome);
 /// An error of `emit` ends it and is returned.
 pub fn method_rows(
     sweep: &SweepFile,
-    points: &[Point],
+    points: &[GridPoint],
     options: &GridOptions,
     stop: &AtomicBool,
     emit: &mut dyn FnMut(&SweepRow) -> std::io::Result<()>,
@@ -132,7 +132,7 @@ pub fn method_rows(
 }
 
 /// Evaluate one point alone, whoever computes it.
-pub fn single_point(sweep: &SweepFile, point: &Point, options: &GridOptions) -> SweepRow {
+pub fn single_point(sweep: &SweepFile, point: &GridPoint, options: &GridOptions) -> SweepRow {
     let outcome = (|| -> Result<PointFigures, SweepError> {
         let case = sweep.case(point)?;
         match point.source.source {
@@ -188,7 +188,7 @@ mod tests {
             periods: 3.0,
             batch: 1,
         };
-        let points: Vec<Point> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
+        let points: Vec<GridPoint> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
         let stop = AtomicBool::new(false);
         let mut together = Vec::new();
         method_rows(&sweep, &points, &options, &stop, &mut |row| {

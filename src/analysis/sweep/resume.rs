@@ -11,7 +11,7 @@ use std::path::Path;
 use sha2::{Digest, Sha256};
 
 use super::error::SweepError;
-use super::grid::{Point, SweepFile, normal_cell};
+use super::grid::{GridPoint, SweepFile, normal_cell};
 use super::row::{PointFigures, RowStatus};
 use super::rows::{RowFormat, json_cell};
 use crate::error::UserError;
@@ -39,7 +39,7 @@ fn key_of<'a>(cells: impl IntoIterator<Item = &'a str>) -> PointKey {
 /// The keys of `points` of `sweep`, as their rows' keys would be: each point's row written
 /// as the CSV rows are written and read back (through one buffer and one reader per
 /// thousands of points: building a CSV reader costs more than a point's row).
-pub fn point_keys(sweep: &SweepFile, points: &[Point]) -> Result<Vec<PointKey>, SweepError> {
+pub fn point_keys(sweep: &SweepFile, points: &[GridPoint]) -> Result<Vec<PointKey>, SweepError> {
     let columns = sweep.columns();
     let at: Vec<usize> = sweep
         .key_columns()
