@@ -322,6 +322,9 @@ pub struct DeckOptions {
     pub particles: Vec<GivenParticle>,
     /// Variables defined before the deck is read (`-var NAME VALUE`).
     pub variables: Vec<(String, String)>,
+    /// How long a code that reads the deck itself (YADE runs the script's set-up) may take;
+    /// `None`: [`crate::codes::yade::dump::READ_TIME_LIMIT`].
+    pub time_limit: Option<std::time::Duration>,
 }
 
 /// One impact of one pair, ready to run: the input with the user's lines, the setup the run

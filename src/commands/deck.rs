@@ -25,6 +25,7 @@ pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
     let given = Given {
         particles: &args.particle,
         variables: &args.variables,
+        time_limit: Duration::from_secs_f64(args.timeout),
     };
     let (code, deck) = read(&args.deck, args.code, &given)?;
     let report = check_with_progress(code, &deck, &args.impact_velocity, &given, args.timeout)?;
@@ -57,6 +58,8 @@ pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
 pub(super) struct Given<'a> {
     pub particles: &'a [GivenParticle],
     pub variables: &'a [(String, String)],
+    /// The time limit of every code process, the one that reads the deck included.
+    pub time_limit: Duration,
 }
 
 /// Read the deck at `path` (bad input: a [`UserError`], before anything runs; a code that reads
@@ -69,6 +72,7 @@ pub(super) fn read(
     let options = DeckOptions {
         particles: given.particles.to_vec(),
         variables: given.variables.to_vec(),
+        time_limit: Some(given.time_limit),
     };
     read_deck(path, code, &options).map_err(|error| match error {
         DeckError::Reader { .. } => anyhow::Error::from(error),

@@ -52,6 +52,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     let given = super::deck::Given {
         particles: &args.deck_particle,
         variables: &args.deck_variables,
+        time_limit: Duration::from_secs_f64(args.timeout),
     };
     let decks = args
         .decks

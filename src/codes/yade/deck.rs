@@ -19,7 +19,9 @@ use std::collections::BTreeMap;
 use std::f64::consts::PI;
 use std::path::Path;
 
-use super::dump::{Attribute, Dump, FunctorDump, MaterialDump, dump_script, line_text, parse_dump};
+use super::dump::{
+    Attribute, Dump, FunctorDump, MaterialDump, READ_TIME_LIMIT, dump_script, line_text, parse_dump,
+};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
@@ -1490,7 +1492,7 @@ impl DeckReader for YadeDeck {
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let dump = dump_script(path)?;
+        let dump = dump_script(path, options.time_limit.unwrap_or(READ_TIME_LIMIT))?;
         Self::read_dump(path, &dump, options)
     }
 

@@ -30,8 +30,9 @@ pub const READER_FILE: &str = "read.py";
 /// The dump's file name in the scratch folder.
 pub const DUMP_FILE: &str = "dump.json";
 
-/// How long the set-up of a script may take before the reading is stopped: a script's set-up
-/// (bodies made, packings generated) takes seconds; one stuck in a loop of its own is ended.
+/// How long the set-up of a script may take before the reading is stopped, where no time limit
+/// is given (`deck --timeout` gives one): a script's set-up (bodies made, packings generated)
+/// takes seconds; one stuck in a loop of its own is ended.
 pub const READ_TIME_LIMIT: Duration = Duration::from_secs(120);
 
 /// The prefix of the line the dumper prints for an exception of the script.
@@ -242,8 +243,8 @@ pub fn parse_dump(script: &Path, text: &str) -> Result<Dump, DeckError> {
 
 /// Run the script at `path` in YADE up to the end of its set-up and return the dump's JSON
 /// text. The script's own error is [`DeckError::Raised`]; YADE missing, crashing or past
-/// [`READ_TIME_LIMIT`] is [`DeckError::Reader`].
-pub fn dump_script(path: &Path) -> Result<String, DeckError> {
+/// `time_limit` is [`DeckError::Reader`].
+pub fn dump_script(path: &Path, time_limit: Duration) -> Result<String, DeckError> {
     let fault = |source: CodeError| DeckError::Reader {
         path: path.to_path_buf(),
         code: "yade".into(),
@@ -304,12 +305,12 @@ pub fn dump_script(path: &Path) -> Result<String, DeckError> {
         .stdout(Stdio::from(log_file))
         .stderr(Stdio::from(log_err));
     let mut child = spawn_contained(&mut command, &workdir).map_err(io("starting YADE"))?;
-    let status = wait_contained(&mut child, READ_TIME_LIMIT).map_err(io("waiting for YADE"))?;
+    let status = wait_contained(&mut child, time_limit).map_err(io("waiting for YADE"))?;
     let keep = |scratch: tempfile::TempDir| scratch.keep().join("log.txt");
     let Some(status) = status else {
         return Err(fault(CodeError::TimedOut {
             code: "yade".into(),
-            seconds: READ_TIME_LIMIT.as_secs_f64(),
+            seconds: time_limit.as_secs_f64(),
             log: keep(scratch),
         }));
     };
