@@ -1001,5 +1001,8 @@ fn a_yade_script_that_does_not_finish_its_set_up_is_stopped_at_the_decks_timeout
     assert!(out.stdout.is_empty());
     assert!(err.contains("time limit of 3 s"), "{err}");
     assert!(err.contains("log.txt"), "the kept log is named: {err}");
-    assert!(took < 30.0, "stopped at the deck's --timeout, not later: {took} s");
+    assert!(
+        took < 30.0,
+        "stopped at the deck's --timeout, not later: {took} s"
+    );
 }

@@ -23,11 +23,57 @@ use crate::solve::paper::{self, Settings};
 use crate::solve::{Method, SolveError};
 use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
 
+/// What produced a row of figures in a comparison; written (in every format) as its
+/// [`Display`](std::fmt::Display) text.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum CompareSource {
+    /// The paper's law by its closed form.
+    PaperExact,
+    /// The paper's law stepped by the paper's fixed-step RK4.
+    PaperRk4,
+    /// A DEM code's run, with the version it reported.
+    Code {
+        /// The code.
+        code: CodeName,
+        /// Its version, shortened.
+        version: String,
+    },
+    /// The code's own law stepped as the code steps it.
+    CodeLawStepped(CodeName),
+    /// The code's own law integrated to near zero step error.
+    CodeLawExact(CodeName),
+    /// The elastic contact (no loss): Hertz's for a ball scene, else a linear spring.
+    Elastic {
+        /// Whether the contact is Hertz's.
+        hertz: bool,
+    },
+}
+
+impl std::fmt::Display for CompareSource {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CompareSource::PaperExact => f.write_str("paper law, exact"),
+            CompareSource::PaperRk4 => f.write_str("paper law, rk4 (paper's method)"),
+            CompareSource::Code { code, version } => write!(f, "{code} {version}"),
+            CompareSource::CodeLawStepped(code) => write!(f, "{code} law, stepped as {code}"),
+            CompareSource::CodeLawExact(code) => write!(f, "{code} law, exact"),
+            CompareSource::Elastic { hertz: true } => f.write_str("Hertz, elastic"),
+            CompareSource::Elastic { hertz: false } => f.write_str("linear spring, elastic"),
+        }
+    }
+}
+
+impl Serialize for CompareSource {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        serializer.collect_str(self)
+    }
+}
+
 /// One source's figures for one case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SourceRow {
     /// What produced the figures.
-    pub source: String,
+    pub source: CompareSource,
     /// COR.
     pub cor: f64,
     /// Peak deformation, m.
@@ -257,7 +303,12 @@ struct Baseline {
 }
 
 impl Baseline {
-    fn row(&self, source: String, m: &TrajectoryMetrics, run_time: Option<f64>) -> SourceRow {
+    fn row(
+        &self,
+        source: CompareSource,
+        m: &TrajectoryMetrics,
+        run_time: Option<f64>,
+    ) -> SourceRow {
         let rel = |a: f64, b: f64| (a - b) / b;
         let p = &self.paper;
         let fraction = 1.0 - m.cor * m.cor;
@@ -337,7 +388,7 @@ pub fn compare_case(
         elastic,
         impact_energy: 0.5 * law.mass * v0 * v0,
     };
-    let mut rows = vec![base.row("paper law, exact".into(), &base.paper, None)];
+    let mut rows = vec![base.row(CompareSource::PaperExact, &base.paper, None)];
     let settings = Settings {
         method: Method::Rk4,
         contact: case.contact,
@@ -350,7 +401,7 @@ pub fn compare_case(
     // The paper's force is repulsive all through the contact: by force as by overlap.
     let f = &rk4.figures;
     rows.push(base.row(
-        "paper law, rk4 (paper's method)".into(),
+        CompareSource::PaperRk4,
         &figures_metrics(f, f.contact_time),
         Some(rk4.wall_time),
     ));
@@ -391,16 +442,15 @@ pub fn compare_case(
             compression_time: r.compression_time,
         };
         rows.push(base.row(
-            format!("{} {}", r.code, short_version(&r.code_version)),
+            CompareSource::Code {
+                code: r.code,
+                version: short_version(&r.code_version),
+            },
             &code_metrics,
             Some(r.wall_time),
         ));
-        rows.push(base.row(
-            format!("{} law, stepped as {}", r.code, r.code),
-            &own_stepped,
-            None,
-        ));
-        rows.push(base.row(format!("{} law, exact", r.code), &own_exact, None));
+        rows.push(base.row(CompareSource::CodeLawStepped(r.code), &own_stepped, None));
+        rows.push(base.row(CompareSource::CodeLawExact(r.code), &own_exact, None));
         attribution.push(split);
     }
     let elastic_metrics = TrajectoryMetrics {
@@ -412,10 +462,8 @@ pub fn compare_case(
         compression_time: 0.5 * elastic.1,
     };
     rows.push(base.row(
-        if case.scene.effective_modulus().is_some() {
-            "Hertz, elastic".into()
-        } else {
-            "linear spring, elastic".into()
+        CompareSource::Elastic {
+            hertz: case.scene.effective_modulus().is_some(),
         },
         &elastic_metrics,
         None,
@@ -510,7 +558,7 @@ const HEADERS: [&str; 12] = [
 
 fn cells(row: &SourceRow) -> Vec<String> {
     vec![
-        row.source.clone(),
+        row.source.to_string(),
         format!("{:.6}", row.cor),
         sci(row.peak_deformation),
         sci(row.peak_force),
@@ -609,7 +657,7 @@ pub struct CompareRecord {
     /// η.
     pub loss_coefficient: f64,
     /// What produced the figures.
-    pub source: String,
+    pub source: CompareSource,
     /// COR.
     pub cor: f64,
     /// Peak deformation, m.

@@ -8,7 +8,7 @@ use std::time::Duration;
 use serde::Serialize;
 use thiserror::Error;
 
-use super::compare::{CompareError, CompareOptions, ModelPointRecord, compare};
+use super::compare::{CompareError, CompareOptions, CompareSource, ModelPointRecord, compare};
 use super::deck::DeckReport;
 use super::precision::{PrecisionError, method_sweep};
 use super::stability::{METHODS, stability_report};
@@ -408,7 +408,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>, ReportError> {
             .skip(1)
             .position(|&y| y <= 0.0)
             .map_or(t.time.len(), |k| k + 2);
-        let name = format!("{code} law, stepped as {code}");
+        let name = CompareSource::CodeLawStepped(code).to_string();
         loops.push(Series::new(
             name.clone(),
             (0..end)
