@@ -534,13 +534,12 @@ impl Mdpa {
     }
 }
 
-/// Where a model part of the assignation table lives.
+/// Where a model part of the assignation table lives (clusters are left out before it is asked).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Root {
     Spheres,
     Inlet,
     Walls,
-    Clusters,
 }
 
 /// A model part of the assignation table: its name, where it lives, its entry's index.
@@ -892,6 +891,420 @@ fn sizes_of(
     Ok(sizes)
 }
 
+/// The materials file read: its materials and relations, each with where it is, and the model
+/// parts each material is assigned to (particles or walls).
+struct MaterialsSetup<'f> {
+    path: &'f Path,
+    materials: Vec<Material<'f>>,
+    relations: Vec<Relation<'f>>,
+    assigned: BTreeMap<MaterialId, Vec<Assigned>>,
+}
+
+impl<'f> MaterialsSetup<'f> {
+    /// Read `file` (at `path`): one material per id, every assignation naming a material and a
+    /// model part the check knows (clusters are left out, with a line in `left_out`), and every
+    /// relation of a pair that meets naming a law the check steps, before any size is looked
+    /// for.
+    fn read(
+        path: &'f Path,
+        file: &'f MaterialsFile,
+        left_out: &mut Vec<String>,
+    ) -> Result<Self, DeckError> {
+        let materials: Vec<Material<'f>> = file
+            .materials
+            .iter()
+            .enumerate()
+            .map(|(index, typed)| Material {
+                file: path,
+                index,
+                typed,
+            })
+            .collect();
+        for (k, m) in materials.iter().enumerate() {
+            if let Some(first) = materials[..k].iter().find(|o| o.id() == m.id()) {
+                return Err(DeckError::unsupported(
+                    DeckSource::field(path, format!("materials[{k}].material_id")),
+                    format!("{}, which materials[{}] has already", m.id(), first.index),
+                    "one material per material_id",
+                ));
+            }
+        }
+        let relations: Vec<Relation<'f>> = file
+            .material_relations
+            .iter()
+            .enumerate()
+            .map(|(index, typed)| Relation {
+                file: path,
+                index,
+                typed,
+            })
+            .collect();
+        let assigned = assign_parts(path, file, &materials, left_out)?;
+        let setup = MaterialsSetup {
+            path,
+            materials,
+            relations,
+            assigned,
+        };
+        let role = |id: MaterialId, wall: bool| {
+            setup
+                .assigned
+                .get(&id)
+                .is_some_and(|ps| ps.iter().any(|p| (p.root == Root::Walls) == wall))
+        };
+        for r in &setup.relations {
+            let [a, b] = r.ids();
+            if (role(a, false) && (role(b, false) || role(b, true)))
+                || (role(b, false) && role(a, true))
+            {
+                r.law()?;
+            }
+        }
+        Ok(setup)
+    }
+
+    /// The material of `id` (every assigned id has one: [`assign_parts`] checked it).
+    fn material(&self, id: MaterialId) -> &Material<'f> {
+        self.materials
+            .iter()
+            .find(|m| m.id() == id)
+            .expect("assigned materials exist")
+    }
+
+    /// The relation of the materials `a` and `b`, in either order.
+    fn relation(&self, a: MaterialId, b: MaterialId) -> Result<&Relation<'f>, DeckError> {
+        self.relations
+            .iter()
+            .find(|r| r.ids() == [a, b] || r.ids() == [b, a])
+            .ok_or_else(|| DeckError::Lacking {
+                file: self.path.to_path_buf(),
+                what: format!(
+                    "no material_relations entry for the materials {} and {}",
+                    self.material(a).label(),
+                    self.material(b).label()
+                ),
+                supported: "a relation (law, COEFFICIENT_OF_RESTITUTION) for every pair of \
+                            materials that meet, as Kratos needs"
+                    .into(),
+            })
+    }
+
+    /// Each `--particle` names a particle material, with the density Kratos forms its mass
+    /// from.
+    fn check_given(&self, options: &DeckOptions) -> Result<(), DeckError> {
+        for p in &options.particles {
+            let parts = self.assigned.get(&p.type_id).filter(|ps| {
+                ps.iter()
+                    .any(|part| matches!(part.root, Root::Spheres | Root::Inlet))
+            });
+            if parts.is_none() {
+                return Err(DeckError::Lacking {
+                    file: self.path.to_path_buf(),
+                    what: format!(
+                        "--particle {}:{}:{}: material {} is assigned to no particles (SpheresPart, DEMInletPart)",
+                        p.type_id, p.radius, p.density, p.type_id
+                    ),
+                    supported: "the material id of a particle material of the assignation table"
+                        .into(),
+                });
+            }
+            let material = self.material(p.type_id);
+            let density =
+                material.variable(MaterialVariable::ParticleDensity, "PARTICLE_DENSITY, kg/m³")?;
+            #[allow(clippy::float_cmp)] // the density given must be the material's, bit for bit
+            if p.density != density {
+                return Err(DeckError::Lacking {
+                    file: self.path.to_path_buf(),
+                    what: format!(
+                        "--particle {}:{}:{}: material {} has PARTICLE_DENSITY {density}, and Kratos forms the mass from it",
+                        p.type_id,
+                        p.radius,
+                        p.density,
+                        material.label()
+                    ),
+                    supported: format!("--particle {}:{}:{density}", p.type_id, p.radius),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// One body per particle material and size: the sizes given with `--particle`, else those
+    /// of the project's `.mdpa` files (spheres and inlets); a particle material with no size is
+    /// refused, naming where it was looked for.
+    fn bodies(&self, project: &Project, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
+        let problem = project.problem_name.clone().unwrap_or_default();
+        let mut mdpa = Some((project.folder.join(format!("{problem}DEM.mdpa")), None));
+        let mut inlet = Some((
+            project.folder.join(format!("{problem}DEM_Inlet.mdpa")),
+            None,
+        ));
+        let given: BTreeSet<MaterialId> = options.particles.iter().map(|p| p.type_id).collect();
+        let mut bodies: Vec<DeckBody> = Vec::new();
+        for (id, parts) in &self.assigned {
+            let particles: Vec<(&str, Root)> = parts
+                .iter()
+                .filter(|p| matches!(p.root, Root::Spheres | Root::Inlet))
+                .map(|p| (p.name.as_str(), p.root))
+                .collect();
+            if particles.is_empty() {
+                continue;
+            }
+            let material = self.material(*id);
+            let density = material.variable(
+                MaterialVariable::ParticleDensity,
+                "PARTICLE_DENSITY, kg/m³ (a particle material's)",
+            )?;
+            let e = material.variable(MaterialVariable::YoungModulus, "YOUNG_MODULUS, Pa")?;
+            let nu = material.variable(MaterialVariable::PoissonRatio, "POISSON_RATIO")?;
+            let sizes: Vec<(f64, String)> = if given.contains(id) {
+                options
+                    .particles
+                    .iter()
+                    .filter(|p| p.type_id == *id)
+                    .map(|p| (p.radius, "--particle".to_string()))
+                    .collect()
+            } else {
+                sizes_of(material, &particles, &mut mdpa, &mut inlet)?
+            };
+            if sizes.is_empty() {
+                let names: Vec<&str> = particles.iter().map(|p| p.0).collect();
+                return Err(DeckError::Lacking {
+                    file: self.path.to_path_buf(),
+                    what: format!(
+                        "no radius for material {} ({}): no sphere of it in {} nor an inlet RADIUS in {}",
+                        material.label(),
+                        names.join(", "),
+                        mdpa.as_ref()
+                            .map_or(String::new(), |m| m.0.display().to_string()),
+                        inlet
+                            .as_ref()
+                            .map_or(String::new(), |m| m.0.display().to_string())
+                    ),
+                    supported: format!("give its size with --particle {id}:RADIUS:{density}"),
+                });
+            }
+            for (radius, from) in sizes {
+                #[allow(clippy::float_cmp)] // the same radius read twice is the same number
+                let known = bodies
+                    .iter()
+                    .any(|b| b.type_id == *id && b.radius == radius);
+                if !known {
+                    bodies.push(DeckBody {
+                        type_id: *id,
+                        radius,
+                        density,
+                        mass: particle_mass(radius, density),
+                        youngs_modulus: Some(e),
+                        poisson_ratio: Some(nu),
+                        from,
+                    });
+                }
+            }
+        }
+        if bodies.is_empty() {
+            return Err(DeckError::Lacking {
+                file: self.path.to_path_buf(),
+                what: "no particle material in the material_assignation_table (SpheresPart, DEMInletPart)".into(),
+                supported: "assign a material to the particles' model part".into(),
+            });
+        }
+        Ok(bodies)
+    }
+
+    /// One wall per material assigned to rigid faces, its parts named together.
+    fn walls(&self) -> Vec<DeckWall> {
+        let mut walls = Vec::new();
+        for (id, parts) in &self.assigned {
+            let names: Vec<&str> = parts
+                .iter()
+                .filter(|p| p.root == Root::Walls)
+                .map(|p| p.name.as_str())
+                .collect();
+            if names.is_empty() {
+                continue;
+            }
+            let material = self.material(*id);
+            walls.push(DeckWall {
+                name: names.join(", "),
+                type_id: Some(*id),
+                youngs_modulus: material.typed.variables.get(MaterialVariable::YoungModulus),
+                poisson_ratio: material.typed.variables.get(MaterialVariable::PoissonRatio),
+                from: material.at(),
+            });
+        }
+        walls
+    }
+
+    /// Every pair of bodies and every body against every wall, each with its relation's law;
+    /// and the indices of the relations used.
+    fn contacts(
+        &self,
+        project: &Project,
+        bodies: &[DeckBody],
+        walls: &[DeckWall],
+    ) -> Result<(Vec<DeckContact>, BTreeSet<usize>), DeckError> {
+        let mut extra_traps: Vec<String> = Vec::new();
+        if let Some((g, at)) = &project.global_damping {
+            extra_traps.push(format!("GlobalDamping {g} ({at}) is left out: in the simulation it also damps each particle's motion, so its rebounds are lower than the COR here"));
+        }
+        let mut contacts = Vec::new();
+        let mut used_relations = BTreeSet::new();
+        let mut push = |body: usize,
+                        partner: Partner,
+                        types: [TypeRef; 2],
+                        relation: &Relation<'_>,
+                        pl: PairLaw| {
+            used_relations.insert(relation.index);
+            let mut traps = pl.traps;
+            traps.extend(
+                project
+                    .search
+                    .as_ref()
+                    .map(|s| s.trap(matches!(partner, Partner::Wall(_)), project.timestep)),
+            );
+            traps.extend(extra_traps.iter().cloned());
+            contacts.push(DeckContact {
+                body,
+                partner,
+                types,
+                model: pl.name,
+                cor_entered: Some(pl.entered),
+                law: pl.law.into(),
+                traps,
+                lines: vec![pl.at],
+            });
+        };
+        for (a, body) in bodies.iter().enumerate() {
+            let own = (self.material(body.type_id), body.radius, body.mass);
+            for (b, other) in bodies.iter().enumerate().skip(a) {
+                let relation = self.relation(body.type_id, other.type_id)?;
+                let side = Side::Particle(self.material(other.type_id), other.radius, other.mass);
+                let pl = pair_law(relation, own, &side)?;
+                let types = [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)];
+                push(a, Partner::Body(b), types, relation, pl);
+            }
+        }
+        for (w, wall) in walls.iter().enumerate() {
+            let wall_id = wall.type_id.unwrap_or_default();
+            for (a, body) in bodies.iter().enumerate() {
+                let relation = self.relation(body.type_id, wall_id)?;
+                let side = Side::Wall(self.material(wall_id), &wall.name);
+                let own = (self.material(body.type_id), body.radius, body.mass);
+                let pl = pair_law(relation, own, &side)?;
+                let types = [TypeRef::Type(body.type_id), TypeRef::Wall];
+                push(a, Partner::Wall(w), types, relation, pl);
+            }
+        }
+        Ok((contacts, used_relations))
+    }
+
+    /// The materials file reduced to the materials in use and the relations checked, as
+    /// written in `value`; the relations no checked pair uses are listed in `left_out`.
+    fn written_back(
+        &self,
+        value: &Value,
+        used: &BTreeSet<MaterialId>,
+        used_relations: &BTreeSet<usize>,
+        left_out: &mut Vec<String>,
+    ) -> Result<String, DeckError> {
+        let written = |key: &str, index: usize| value[key][index].clone();
+        let reduced = serde_json::json!({
+            "materials": self.materials.iter().filter(|m| used.contains(&m.id())).map(|m| written("materials", m.index)).collect::<Vec<_>>(),
+            "material_relations": self.relations.iter().filter(|r| used_relations.contains(&r.index)).map(|r| written("material_relations", r.index)).collect::<Vec<_>>(),
+        });
+        let unused: Vec<String> = self
+            .relations
+            .iter()
+            .filter(|r| !used_relations.contains(&r.index))
+            .map(|r| {
+                let law = r
+                    .typed
+                    .variables
+                    .law
+                    .as_ref()
+                    .map_or("no law", LawName::name);
+                format!("material_relations[{}] ({law})", r.index)
+            })
+            .collect();
+        if !unused.is_empty() {
+            left_out.push(format!(
+                "relations no checked pair uses ({}: {})",
+                self.path.display(),
+                unused.join(", ")
+            ));
+        }
+        serde_json::to_string_pretty(&reduced).map_err(|e| DeckError::Lacking {
+            file: self.path.to_path_buf(),
+            what: format!("its materials cannot be written back as JSON: {e}"),
+            supported: "plain JSON values".into(),
+        })
+    }
+}
+
+/// Which model parts are particles and which walls, each with its material: the assignation
+/// table read, a material named by name or id, clusters left out with a line in `left_out`.
+fn assign_parts(
+    path: &Path,
+    file: &MaterialsFile,
+    materials: &[Material<'_>],
+    left_out: &mut Vec<String>,
+) -> Result<BTreeMap<MaterialId, Vec<Assigned>>, DeckError> {
+    let parts_supported = "SpheresPart, DEMInletPart and RigidFacePart (ClusterPart is left out), or their sub-model parts";
+    let mut assigned: BTreeMap<MaterialId, Vec<Assigned>> = BTreeMap::new();
+    for (index, entry) in file.material_assignation_table.iter().enumerate() {
+        let entry_at =
+            |k: usize| DeckSource::field(path, format!("material_assignation_table[{index}][{k}]"));
+        let material = match &entry.material {
+            MaterialRef::Name(n) => materials
+                .iter()
+                .find(|m| m.typed.material_name.as_deref() == Some(n.as_str()))
+                .map(Material::id)
+                .ok_or_else(|| {
+                    DeckError::unsupported(
+                        entry_at(1),
+                        format!("material `{n}` is in no material_name"),
+                        "the name or id of a material of the file",
+                    )
+                })?,
+            MaterialRef::Id(id) => *id,
+        };
+        if !materials.iter().any(|m| m.id() == material) {
+            return Err(DeckError::unsupported(
+                entry_at(1),
+                format!("material {material} is in no material_id"),
+                "the name or id of a material of the file",
+            ));
+        }
+        let root = match split_part(&entry.part).0 {
+            "SpheresPart" => Root::Spheres,
+            "DEMInletPart" => Root::Inlet,
+            "RigidFacePart" => Root::Walls,
+            "ClusterPart" => {
+                left_out.push(format!(
+                    "clusters ({}, {}): particles of several spheres are not checked",
+                    entry.part,
+                    DeckSource::field(path, format!("material_assignation_table[{index}]"))
+                ));
+                continue;
+            }
+            other => {
+                return Err(DeckError::unsupported(
+                    entry_at(0),
+                    format!("model part `{other}`"),
+                    parts_supported,
+                ));
+            }
+        };
+        assigned.entry(material).or_default().push(Assigned {
+            name: entry.part.clone(),
+            root,
+            index,
+        });
+    }
+    Ok(assigned)
+}
+
 impl DeckReader for KratosDeck {
     fn recognises(&self, path: &Path, text: &str) -> bool {
         let looks_like =
@@ -945,355 +1358,18 @@ impl DeckReader for KratosDeck {
             }
         };
         let file: MaterialsFile = files::typed(&materials_path, &materials_value)?;
-        let file_path = materials_path.as_path();
-        let materials: Vec<Material<'_>> = file
-            .materials
-            .iter()
-            .enumerate()
-            .map(|(index, typed)| Material {
-                file: file_path,
-                index,
-                typed,
-            })
-            .collect();
-        for (k, m) in materials.iter().enumerate() {
-            if let Some(first) = materials[..k].iter().find(|o| o.id() == m.id()) {
-                return Err(DeckError::unsupported(
-                    DeckSource::field(file_path, format!("materials[{k}].material_id")),
-                    format!("{}, which materials[{}] has already", m.id(), first.index),
-                    "one material per material_id",
-                ));
-            }
-        }
-        let relations: Vec<Relation<'_>> = file
-            .material_relations
-            .iter()
-            .enumerate()
-            .map(|(index, typed)| Relation {
-                file: file_path,
-                index,
-                typed,
-            })
-            .collect();
-        // Which model parts are particles and which walls, each with its material.
-        let parts_supported = "SpheresPart, DEMInletPart and RigidFacePart (ClusterPart is left out), or their sub-model parts";
-        let mut assigned: BTreeMap<MaterialId, Vec<Assigned>> = BTreeMap::new();
         let mut left_out = project.left_out.clone();
-        for (index, entry) in file.material_assignation_table.iter().enumerate() {
-            let entry_at = |k: usize| {
-                DeckSource::field(
-                    file_path,
-                    format!("material_assignation_table[{index}][{k}]"),
-                )
-            };
-            let material = match &entry.material {
-                MaterialRef::Name(n) => materials
-                    .iter()
-                    .find(|m| m.typed.material_name.as_deref() == Some(n.as_str()))
-                    .map(Material::id)
-                    .ok_or_else(|| {
-                        DeckError::unsupported(
-                            entry_at(1),
-                            format!("material `{n}` is in no material_name"),
-                            "the name or id of a material of the file",
-                        )
-                    })?,
-                MaterialRef::Id(id) => *id,
-            };
-            if !materials.iter().any(|m| m.id() == material) {
-                return Err(DeckError::unsupported(
-                    entry_at(1),
-                    format!("material {material} is in no material_id"),
-                    "the name or id of a material of the file",
-                ));
-            }
-            let root_kind = match split_part(&entry.part).0 {
-                "SpheresPart" => Root::Spheres,
-                "DEMInletPart" => Root::Inlet,
-                "RigidFacePart" => Root::Walls,
-                "ClusterPart" => Root::Clusters,
-                other => {
-                    return Err(DeckError::unsupported(
-                        entry_at(0),
-                        format!("model part `{other}`"),
-                        parts_supported,
-                    ));
-                }
-            };
-            if root_kind == Root::Clusters {
-                left_out.push(format!(
-                    "clusters ({}, {}): particles of several spheres are not checked",
-                    entry.part,
-                    DeckSource::field(file_path, format!("material_assignation_table[{index}]"))
-                ));
-                continue;
-            }
-            assigned.entry(material).or_default().push(Assigned {
-                name: entry.part.clone(),
-                root: root_kind,
-                index,
-            });
-        }
-        let material_of = |id: MaterialId| {
-            materials
-                .iter()
-                .find(|m| m.id() == id)
-                .expect("assigned materials exist")
-        };
-        // Every relation the check will use names a law it steps, before any size is looked for.
-        let role = |id: MaterialId, wall: bool| {
-            assigned
-                .get(&id)
-                .is_some_and(|ps| ps.iter().any(|p| (p.root == Root::Walls) == wall))
-        };
-        for r in &relations {
-            let [a, b] = r.ids();
-            if (role(a, false) && (role(b, false) || role(b, true)))
-                || (role(b, false) && role(a, true))
-            {
-                r.law()?;
-            }
-        }
-        let problem = project.problem_name.clone().unwrap_or_default();
-        let mut mdpa = Some((project.folder.join(format!("{problem}DEM.mdpa")), None));
-        let mut inlet = Some((
-            project.folder.join(format!("{problem}DEM_Inlet.mdpa")),
-            None,
-        ));
-        let mut bodies: Vec<DeckBody> = Vec::new();
-        let given: BTreeSet<MaterialId> = options.particles.iter().map(|p| p.type_id).collect();
-        for p in &options.particles {
-            let parts = assigned.get(&p.type_id).filter(|ps| {
-                ps.iter()
-                    .any(|part| matches!(part.root, Root::Spheres | Root::Inlet))
-            });
-            if parts.is_none() {
-                return Err(DeckError::Lacking {
-                    file: materials_path.clone(),
-                    what: format!(
-                        "--particle {}:{}:{}: material {} is assigned to no particles (SpheresPart, DEMInletPart)",
-                        p.type_id, p.radius, p.density, p.type_id
-                    ),
-                    supported: "the material id of a particle material of the assignation table"
-                        .into(),
-                });
-            }
-            let material = material_of(p.type_id);
-            let density =
-                material.variable(MaterialVariable::ParticleDensity, "PARTICLE_DENSITY, kg/m³")?;
-            #[allow(clippy::float_cmp)] // the density given must be the material's, bit for bit
-            if p.density != density {
-                return Err(DeckError::Lacking {
-                    file: materials_path.clone(),
-                    what: format!(
-                        "--particle {}:{}:{}: material {} has PARTICLE_DENSITY {density}, and Kratos forms the mass from it",
-                        p.type_id,
-                        p.radius,
-                        p.density,
-                        material.label()
-                    ),
-                    supported: format!("--particle {}:{}:{density}", p.type_id, p.radius),
-                });
-            }
-        }
-        for (id, parts) in &assigned {
-            let particles: Vec<(&str, Root)> = parts
-                .iter()
-                .filter(|p| matches!(p.root, Root::Spheres | Root::Inlet))
-                .map(|p| (p.name.as_str(), p.root))
-                .collect();
-            if particles.is_empty() {
-                continue;
-            }
-            let material = material_of(*id);
-            let density = material.variable(
-                MaterialVariable::ParticleDensity,
-                "PARTICLE_DENSITY, kg/m³ (a particle material's)",
-            )?;
-            let e = material.variable(MaterialVariable::YoungModulus, "YOUNG_MODULUS, Pa")?;
-            let nu = material.variable(MaterialVariable::PoissonRatio, "POISSON_RATIO")?;
-            let sizes: Vec<(f64, String)> = if given.contains(id) {
-                options
-                    .particles
-                    .iter()
-                    .filter(|p| p.type_id == *id)
-                    .map(|p| (p.radius, "--particle".to_string()))
-                    .collect()
-            } else {
-                sizes_of(material, &particles, &mut mdpa, &mut inlet)?
-            };
-            if sizes.is_empty() {
-                let names: Vec<&str> = particles.iter().map(|p| p.0).collect();
-                return Err(DeckError::Lacking {
-                    file: materials_path.clone(),
-                    what: format!(
-                        "no radius for material {} ({}): no sphere of it in {} nor an inlet RADIUS in {}",
-                        material.label(),
-                        names.join(", "),
-                        mdpa.as_ref()
-                            .map_or(String::new(), |m| m.0.display().to_string()),
-                        inlet
-                            .as_ref()
-                            .map_or(String::new(), |m| m.0.display().to_string())
-                    ),
-                    supported: format!("give its size with --particle {id}:RADIUS:{density}"),
-                });
-            }
-            for (radius, from) in sizes {
-                #[allow(clippy::float_cmp)] // the same radius read twice is the same number
-                let known = bodies
-                    .iter()
-                    .any(|b| b.type_id == *id && b.radius == radius);
-                if !known {
-                    bodies.push(DeckBody {
-                        type_id: *id,
-                        radius,
-                        density,
-                        mass: particle_mass(radius, density),
-                        youngs_modulus: Some(e),
-                        poisson_ratio: Some(nu),
-                        from,
-                    });
-                }
-            }
-        }
-        if bodies.is_empty() {
-            return Err(DeckError::Lacking {
-                file: materials_path.clone(),
-                what: "no particle material in the material_assignation_table (SpheresPart, DEMInletPart)".into(),
-                supported: "assign a material to the particles' model part".into(),
-            });
-        }
-        let mut walls = Vec::new();
-        for (id, parts) in &assigned {
-            let names: Vec<&str> = parts
-                .iter()
-                .filter(|p| p.root == Root::Walls)
-                .map(|p| p.name.as_str())
-                .collect();
-            if names.is_empty() {
-                continue;
-            }
-            let material = material_of(*id);
-            walls.push(DeckWall {
-                name: names.join(", "),
-                type_id: Some(*id),
-                youngs_modulus: material.typed.variables.get(MaterialVariable::YoungModulus),
-                poisson_ratio: material.typed.variables.get(MaterialVariable::PoissonRatio),
-                from: material.at(),
-            });
-        }
-        let relation_of = |a: MaterialId, b: MaterialId| -> Result<&Relation<'_>, DeckError> {
-            relations.iter().find(|r| r.ids() == [a, b] || r.ids() == [b, a]).ok_or_else(|| DeckError::Lacking {
-                file: materials_path.clone(),
-                what: format!("no material_relations entry for the materials {} and {}", material_of(a).label(), material_of(b).label()),
-                supported: "a relation (law, COEFFICIENT_OF_RESTITUTION) for every pair of materials that meet, as Kratos needs".into(),
-            })
-        };
-        let mut extra_traps: Vec<String> = Vec::new();
-        if let Some((g, at)) = &project.global_damping {
-            extra_traps.push(format!("GlobalDamping {g} ({at}) is left out: in the simulation it also damps each particle's motion, so its rebounds are lower than the COR here"));
-        }
-        let mut contacts = Vec::new();
-        let mut used_relations = BTreeSet::new();
-        let mut push = |body: usize,
-                        partner: Partner,
-                        types: [TypeRef; 2],
-                        relation: &Relation<'_>,
-                        pl: PairLaw| {
-            used_relations.insert(relation.index);
-            let mut traps = pl.traps;
-            traps.extend(
-                project
-                    .search
-                    .as_ref()
-                    .map(|s| s.trap(matches!(partner, Partner::Wall(_)), project.timestep)),
-            );
-            traps.extend(extra_traps.iter().cloned());
-            contacts.push(DeckContact {
-                body,
-                partner,
-                types,
-                model: pl.name,
-                cor_entered: Some(pl.entered),
-                law: pl.law.into(),
-                traps,
-                lines: vec![pl.at],
-            });
-        };
-        for (a, body) in bodies.iter().enumerate() {
-            for (b, other) in bodies.iter().enumerate().skip(a) {
-                let relation = relation_of(body.type_id, other.type_id)?;
-                let side = Side::Particle(material_of(other.type_id), other.radius, other.mass);
-                let pl = pair_law(
-                    relation,
-                    (material_of(body.type_id), body.radius, body.mass),
-                    &side,
-                )?;
-                push(
-                    a,
-                    Partner::Body(b),
-                    [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
-                    relation,
-                    pl,
-                );
-            }
-        }
-        for (w, wall) in walls.iter().enumerate() {
-            let wall_id = wall.type_id.unwrap_or_default();
-            for (a, body) in bodies.iter().enumerate() {
-                let relation = relation_of(body.type_id, wall_id)?;
-                let side = Side::Wall(material_of(wall_id), &wall.name);
-                let pl = pair_law(
-                    relation,
-                    (material_of(body.type_id), body.radius, body.mass),
-                    &side,
-                )?;
-                push(
-                    a,
-                    Partner::Wall(w),
-                    [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    relation,
-                    pl,
-                );
-            }
-        }
-        // The file reduced to the materials in use and the relations checked, as written.
-        let used: BTreeSet<u32> = bodies
+        let setup = MaterialsSetup::read(&materials_path, &file, &mut left_out)?;
+        setup.check_given(options)?;
+        let bodies = setup.bodies(&project, options)?;
+        let walls = setup.walls();
+        let (contacts, used_relations) = setup.contacts(&project, &bodies, &walls)?;
+        let used: BTreeSet<MaterialId> = bodies
             .iter()
             .map(|b| b.type_id)
             .chain(walls.iter().filter_map(|w| w.type_id))
             .collect();
-        let written = |key: &str, index: usize| materials_value[key][index].clone();
-        let reduced = serde_json::json!({
-            "materials": materials.iter().filter(|m| used.contains(&m.id())).map(|m| written("materials", m.index)).collect::<Vec<_>>(),
-            "material_relations": relations.iter().filter(|r| used_relations.contains(&r.index)).map(|r| written("material_relations", r.index)).collect::<Vec<_>>(),
-        });
-        let unused: Vec<String> = relations
-            .iter()
-            .filter(|r| !used_relations.contains(&r.index))
-            .map(|r| {
-                let law = r
-                    .typed
-                    .variables
-                    .law
-                    .as_ref()
-                    .map_or("no law", LawName::name);
-                format!("material_relations[{}] ({law})", r.index)
-            })
-            .collect();
-        if !unused.is_empty() {
-            left_out.push(format!(
-                "relations no checked pair uses ({}: {})",
-                materials_path.display(),
-                unused.join(", ")
-            ));
-        }
-        let common = serde_json::to_string_pretty(&reduced).map_err(|e| DeckError::Lacking {
-            file: materials_path.clone(),
-            what: format!("its materials cannot be written back as JSON: {e}"),
-            supported: "plain JSON values".into(),
-        })?;
+        let common = setup.written_back(&materials_value, &used, &used_relations, &mut left_out)?;
         let particle_types = u32::try_from(
             bodies
                 .iter()
@@ -1302,6 +1378,7 @@ impl DeckReader for KratosDeck {
                 .len(),
         )
         .unwrap_or(u32::MAX);
+        let written = |key: &str, index: usize| materials_value[key][index].clone();
         Ok(UserDeck {
             path: path.to_path_buf(),
             timestep: project.timestep,
@@ -1314,7 +1391,8 @@ impl DeckReader for KratosDeck {
             transplant: Transplant {
                 before_box: Vec::new(),
                 common: common.lines().map(str::to_string).collect(),
-                walls: assigned
+                walls: setup
+                    .assigned
                     .values()
                     .flatten()
                     .filter(|p| p.root == Root::Walls)
