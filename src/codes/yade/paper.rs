@@ -43,18 +43,18 @@ use crate::solve::dashpot::{CodeFrame, FrameBody};
 const SCRIPT: &str = include_str!("paper.py");
 
 /// The name of the rendered script in the scratch directory.
-pub const SCRIPT_FILE: &str = "paper.py";
+const SCRIPT_FILE: &str = "paper.py";
 
 /// The trajectory file of a single run.
-pub const TRAJECTORY_FILE: &str = super::TRAJECTORY_FILE;
+const TRAJECTORY_FILE: &str = super::TRAJECTORY_FILE;
 
 /// Most impacts in one batch (the script's size).
-pub const MAX_BATCH: usize = 256;
+const MAX_BATCH: usize = 256;
 
 /// Impacts whose steps cost what one start of YADE does: the start takes about 0.7 s of CPU, an
 /// impact at 1,000 steps per contact about 25 ms of Python hook and stepping (measured on the
 /// Debian build: `cargo bench`-free, by the loop times the runs print).
-pub const IMPACTS_PER_START: usize = 30;
+const IMPACTS_PER_START: usize = 30;
 
 /// Why `--clamp` is refused for this build.
 const CLAMP_REFUSAL: &str = "the paper's force C y^n (1 - eta) never attracts, so there is \
@@ -62,7 +62,7 @@ const CLAMP_REFUSAL: &str = "the paper's force C y^n (1 - eta) never attracts, s
 
 /// The η a setup gives the hook: the case's own, carried by the setup; without it (a bare
 /// [`crate::codes::setup_for_case`] of an older record), the η of its target COR.
-pub fn loss_coefficient(setup: &CodeSetup) -> f64 {
+fn loss_coefficient(setup: &CodeSetup) -> f64 {
     setup
         .loss_coefficient
         .unwrap_or_else(|| exact::loss_coefficient(setup.target_restitution))
@@ -275,7 +275,7 @@ impl CodeDriver for YadePaper {
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
-pub struct YadePaperBatch;
+struct YadePaperBatch;
 
 impl BatchRunner for YadePaperBatch {
     fn max_batch(&self) -> usize {
@@ -323,7 +323,7 @@ impl BatchRunner for YadePaperBatch {
 }
 
 /// The paper build's card: the impact's law as the hook is given it, and the engines.
-pub struct YadePaperCard;
+struct YadePaperCard;
 
 impl CalibrationCard for YadePaperCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {
