@@ -272,6 +272,11 @@ impl CodeDriver for YadePaper {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&YadePaperCard)
     }
+
+    /// The paper's law, as liggghts-paper integrates it (drawn as one in the figures).
+    fn shares_law_with(&self) -> Option<crate::codes::CodeName> {
+        Some(crate::codes::CodeName::LiggghtsPaper)
+    }
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
@@ -327,12 +332,12 @@ struct YadePaperCard;
 
 impl CalibrationCard for YadePaperCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {
-        &["\"stiffness\"", "PyRunner(", "NewtonIntegrator("]
+        &["{\"scene\": ", "PyRunner(", "NewtonIntegrator("]
     }
 
     fn traps(&self, setup: &CodeSetup) -> Vec<String> {
         let mut t = vec![
-            "the hook is a PyRunner(iterPeriod=1) between ForceResetter and NewtonIntegrator: placed after the integrator, its force would kick one step late".into(),
+            "the hook is a PyRunner(iterPeriod=1) between ForceResetter and NewtonIntegrator: placed after the integrator, its force is reset by the next step's ForceResetter before any kick".into(),
             "YADE's own contact must be off for the pair (no collider, or masks that keep the pair apart): else its law adds its force to the hook's".into(),
             "numerical damping: NewtonIntegrator(damping=0.2) is the default; set damping=0".into(),
             "loss coefficient is η itself, not a COR: e = sqrt((1 − η)/(1 + η)), 0 <= η < 1".into(),
@@ -344,7 +349,10 @@ impl CalibrationCard for YadePaperCard {
         if setup.scene == SceneKind::RodEnd {
             t.push("rod: n = 1 with the rod's kn as C".into());
         }
-        t.push("cost: a Python call per step (about 20 µs), a validation build".into());
+        t.push(
+            "cost: a Python call per step, tens of µs: a validation build, not a production one"
+                .into(),
+        );
         t
     }
 }
