@@ -153,16 +153,18 @@ fn its_law_is_the_cases_paper_law_exactly() {
 fn the_frame_is_the_scripts_start() {
     let plate = setup("ball_plate", 0.35);
     let f = code_frame(&plate);
-    assert_eq!(f.reach, 0.02);
-    assert_eq!(f.upper.height, 0.02);
-    assert_eq!(f.upper.velocity, -2.0);
-    assert_eq!(f.upper.mass, plate.sphere.mass);
+    let bits = |x: f64| x.to_bits();
+    assert_eq!(bits(f.reach), bits(0.02));
+    assert_eq!(bits(f.upper.height), bits(0.02));
+    assert_eq!(bits(f.upper.velocity), bits(-2.0));
+    assert_eq!(bits(f.upper.mass), bits(plate.sphere.mass));
     assert!(f.lower.is_none());
     let pair = setup("ball_ball", 0.35);
     let f = code_frame(&pair);
     let lower = f.lower.unwrap();
-    assert_eq!(f.reach - (f.upper.height - lower.height), 0.0);
-    assert_eq!(lower.velocity - f.upper.velocity, 2.0);
+    // Touching, and approaching at the impact speed, both exactly.
+    assert_eq!(bits(f.reach - (f.upper.height - lower.height)), bits(0.0));
+    assert_eq!(bits(lower.velocity - f.upper.velocity), bits(2.0));
     assert_eq!(YadePaper.frame(&pair), Some(f));
 }
 
