@@ -51,10 +51,10 @@ const TRAJECTORY_FILE: &str = super::TRAJECTORY_FILE;
 /// Most impacts in one batch (the script's size).
 const MAX_BATCH: usize = 256;
 
-/// Impacts whose steps cost what one start of YADE does: the start takes about 0.7 s of CPU, an
-/// impact at 1,000 steps per contact about 25 ms of Python hook and stepping (measured on the
-/// Debian build: `cargo bench`-free, by the loop times the runs print).
-const IMPACTS_PER_START: usize = 30;
+/// Impacts whose steps cost what one start of YADE does: a batch's start (importing the
+/// library) takes about 0.7 s of CPU, an impact at 1,000 steps per contact 23–49 ms of hook and
+/// stepping (the loop times of the stored runs in `reference/yade-paper/`).
+const IMPACTS_PER_START: usize = 20;
 
 /// Why `--clamp` is refused for this build.
 const CLAMP_REFUSAL: &str = "the paper's force C y^n (1 - eta) never attracts, so there is \
