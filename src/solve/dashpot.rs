@@ -724,6 +724,43 @@ mod tests {
         }
     }
 
+    /// Leap-frog (YADE) and velocity Verlet (LIGGGHTS) step the paper's law through the same
+    /// positions with the same forces (each force from `x_i` and `v_{i−½}`), and out of contact
+    /// report the same velocity: the same COR to rounding at every start phase, so
+    /// [`paper_cor_step_error`] bounds leap-frog's runs too.
+    #[test]
+    fn leap_frog_and_velocity_verlet_give_the_paper_law_one_cor() {
+        for exponent in [1.5, 1.0] {
+            for eta in [0.0, 0.35, 0.95] {
+                let CodeLaw::Paper(law) = paper(exponent) else {
+                    unreachable!()
+                };
+                let law = CodeLaw::Paper(PaperLaw {
+                    loss_coefficient: eta,
+                    ..law
+                });
+                let v0 = 2.0;
+                let CodeLaw::Paper(plain) = law else {
+                    unreachable!()
+                };
+                let dt = paper_impact(&plain, v0).contact_time / 300.0;
+                for k in 0..8 {
+                    let gap = f64::from(k) / 8.0 * v0 * dt;
+                    let cor = |scheme| {
+                        let t = step_trajectory_from(&law, v0, dt, 400, scheme, gap);
+                        trajectory_metrics(&t).unwrap().cor
+                    };
+                    let (verlet, leap) =
+                        (cor(StepScheme::VelocityVerlet), cor(StepScheme::LeapFrog));
+                    assert!(
+                        (verlet - leap).abs() < 1e-13,
+                        "n={exponent} η={eta} phase {k}/8: {verlet:e} vs {leap:e}"
+                    );
+                }
+            }
+        }
+    }
+
     /// Outside the band the step's force is the coded law's branch; inside it, linear in the
     /// approach rate from `C yⁿ (1 − η)` to `C yⁿ (1 + η)`, the elastic force at rest; η = 0
     /// is the elastic force at every rate.
