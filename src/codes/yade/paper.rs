@@ -4,10 +4,11 @@
 //!
 //! YADE's laws are compiled C++ and its Debian build ships no headers, so the law runs as a
 //! Python call per step: a validation build, not a production one (its cost:
-//! `reference/yade-paper/CONVENTIONS.md` §4). The script has no collider and no `InteractionLoop`, so YADE's own laws never
-//! see the bodies; the hook reads each body's position `x_i` and half-step velocity `v_{i−½}`
-//! (what a compiled law sees), forms the overlap and its rate, adds the force with
-//! `O.forces.addF`, and YADE's leap-frog kicks and drifts with it.
+//! `reference/yade-paper/CONVENTIONS.md` §4). The script has no collider and no
+//! `InteractionLoop`, so YADE's own laws never see the bodies; the hook reads each body's
+//! position `x_i` and half-step velocity `v_{i−½}` (what a compiled law sees), forms the overlap
+//! and its rate, adds the force with `O.forces.addF`, and YADE's leap-frog kicks and drifts with
+//! it.
 //!
 //! - Ball scenes: `C = (4/3) E* sqrt(R*)` as the case forms it ([`CodeSetup::stiffness`]): the
 //!   plate is the plane `z = 0` with its own `E`, `ν` mixed into `E*`, and a rigid plate
