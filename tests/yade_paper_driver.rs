@@ -513,12 +513,18 @@ print('MILLIMPACT weight=%r low=%r high=%r swing=%r' % (weight, min(settled), ma
         [values[0], values[1], values[2], values[3]]
     };
     let [weight, low, high, swing] = run("");
+    eprintln!(
+        "with the band: weight {weight:e} N, force in [{low:e}, {high:e}] N, step to step {swing:e} N"
+    );
     assert!(
         (low - weight).abs() <= 1e-3 * weight && (high - weight).abs() <= 1e-3 * weight,
         "resting force in [{low}, {high}] N against the weight {weight} N"
     );
     assert!(swing <= 1e-3 * weight, "step to step {swing} N");
-    let [weight, _, _, swing] = run(plain);
+    let [weight, low, high, swing] = run(plain);
+    eprintln!(
+        "plain sign: weight {weight:e} N, force in [{low:e}, {high:e}] N, step to step {swing:e} N"
+    );
     assert!(
         swing > 0.3 * weight,
         "a plain sign should alternate: step to step {swing} N, weight {weight} N"
