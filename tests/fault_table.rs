@@ -222,6 +222,11 @@ fn trials(dir: &Path) -> Vec<Trial> {
         ),
         trial(
             "option",
+            "`--clamp` for the paper's law added to YADE by a hook",
+            &["reference", "--code", "yade-paper", &case, "--clamp"],
+        ),
+        trial(
+            "option",
             "steps per period below 4",
             &["run", &case, "--method", "rk4", "--steps-per-period", "2"],
         ),

@@ -60,6 +60,7 @@ fn code_choices_are_the_code_registry() {
             "liggghts",
             "liggghts-paper",
             "yade",
+            "yade-paper",
             "lammps",
             "lammps-2025",
             "kratos"

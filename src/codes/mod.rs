@@ -320,7 +320,7 @@ macro_rules! code_registry {
 
 code_registry! {
     liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
-    yade { Yade => Yade },
+    yade { Yade => Yade, YadePaper => YadePaper },
     lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
     kratos { Kratos => Kratos },
 }
@@ -378,6 +378,7 @@ mod tests {
                 "liggghts",
                 "liggghts-paper",
                 "yade",
+                "yade-paper",
                 "lammps",
                 "lammps-2025",
                 "kratos"

@@ -53,7 +53,7 @@ pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
 
 /// The batch script's start: YADE's library, loaded by the launcher or, run by its Python
 /// alone, by the script.
-const PREAMBLE: &str = r#"import math
+pub(super) const PREAMBLE: &str = r#"import math
 import sys
 import time
 

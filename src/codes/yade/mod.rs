@@ -28,6 +28,9 @@ pub mod batch;
 pub mod card;
 pub mod deck;
 pub mod dump;
+pub mod paper;
+
+pub use paper::YadePaper;
 
 use std::path::Path;
 
