@@ -62,6 +62,7 @@ fn code_choices_are_the_code_registry() {
             "yade",
             "lammps",
             "lammps-2025",
+            "lammps-paper",
             "kratos"
         ]
     );

@@ -321,7 +321,7 @@ macro_rules! code_registry {
 code_registry! {
     liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
     yade { Yade => Yade },
-    lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
+    lammps { Lammps => Lammps, Lammps2025 => Lammps2025, LammpsPaper => LammpsPaper },
     kratos { Kratos => Kratos },
 }
 
@@ -380,6 +380,7 @@ mod tests {
                 "yade",
                 "lammps",
                 "lammps-2025",
+                "lammps-paper",
                 "kratos"
             ]
         );

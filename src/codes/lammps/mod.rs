@@ -34,9 +34,11 @@ pub mod card;
 pub mod conventions;
 pub mod deck;
 pub mod mixing;
+pub mod paper;
 pub mod probe;
 
 pub use build_2025::Lammps2025;
+pub use paper::LammpsPaper;
 
 use std::path::Path;
 
