@@ -378,8 +378,8 @@ pub struct LammpsPaperCard;
 impl CalibrationCard for LammpsPaperCard {
     fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {
         match scene {
-            SceneKind::BallBall => &["plugin load", "comm_modify", "pair_style", "pair_coeff"],
-            SceneKind::BallPlate | SceneKind::RodEnd => &["plugin load", "wall/paper"],
+            SceneKind::BallBall => &["paperplugin.so", "comm_modify", "pair_style", "pair_coeff"],
+            SceneKind::BallPlate | SceneKind::RodEnd => &["paperplugin.so", "wall/paper"],
         }
     }
 
