@@ -106,7 +106,7 @@ fn its_law_is_the_papers_law_with_the_plugins_stiffness() {
                 panic!("{scene}: not the paper's law")
             };
             assert_eq!(loss_coefficient.to_bits(), eta.to_bits(), "{scene} η {eta}");
-            assert_eq!(exponent, s.exponent);
+            assert_eq!(exponent.to_bits(), s.exponent.to_bits());
             assert_eq!(mass.to_bits(), s.pair_mass().to_bits());
             assert_eq!(stiffness.to_bits(), plugin_stiffness(&s).to_bits());
             assert!(
@@ -117,8 +117,11 @@ fn its_law_is_the_papers_law_with_the_plugins_stiffness() {
         }
     }
     // A rigid plate is the stand-in E = 1e30: below the rounding of the ball's own compliance.
-    let steel = 2e11 / (1.0 - 0.09);
-    assert_eq!(plugin_modulus(2e11, 0.3, 1e30, 0.0), steel);
+    let steel: f64 = 2e11 / (1.0 - 0.09);
+    assert_eq!(
+        plugin_modulus(2e11, 0.3, 1e30, 0.0).to_bits(),
+        steel.to_bits()
+    );
 }
 
 /// η outside [0, 1) and a clamp are refused before a run (the plugin stops on the first too;
@@ -357,6 +360,9 @@ impl CodeDriver for Edited {
     }
 }
 
+/// A refused deck: the scene, the edit of its deck, and the start of LAMMPS's ERROR line.
+type Refusal = (&'static str, fn(String) -> String, &'static str);
+
 /// The plugin's refusals stop LAMMPS with its own ERROR line (not a crash), which the harness
 /// passes on and keeps in the log: η out of range (pair and wall), a pair of types without a
 /// pair_coeff, and no ghost velocities.
@@ -364,7 +370,7 @@ impl CodeDriver for Edited {
 #[ignore = "live: runs LAMMPS 2025 with the paper plugin (bash scripts/test.sh)"]
 fn live_the_plugins_errors_are_lammps_errors() {
     require_build();
-    let cases: [(&str, fn(String) -> String, &str); 5] = [
+    let cases: [Refusal; 5] = [
         (
             "ball_ball",
             |t| t.replace("pair_coeff      1 2 3.5e-1", "pair_coeff      1 2 1.2"),
