@@ -449,6 +449,7 @@ fn live_newton_pair_on_and_off_give_the_same_run() {
 struct Bed {
     kinetic_start: f64,
     kinetic_end: f64,
+    largest_pair_force: f64,
     free_cor: f64,
 }
 
@@ -513,14 +514,16 @@ fn run_bed(newton: &str, processes: u32) -> Bed {
     Bed {
         kinetic_start: kinetic[0],
         kinetic_end: kinetic[1],
+        largest_pair_force: numbers("FMAX ")[0],
         free_cor: cor[0],
     }
 }
 
 /// A bed of 250 spheres poured into a box of wall/paper planes under gravity runs without an
-/// error in one and two processes, newton_pair on and off, and loses 99 % of its kinetic energy
-/// from 0.05 s to 0.45 s; the free pair above it meets at the step band of its own law (it gains
-/// no energy: COR below 1), the same in every run.
+/// error in one and two processes, newton_pair on and off: it loses 99 % of its kinetic energy
+/// from 0.05 s to 0.45 s, `compute pair/local` reads its contact forces (through the pair
+/// style's `single()`), and the free pair above it meets within the step band of its own law
+/// (it gains no energy: COR below 1), the same in every run.
 #[test]
 #[ignore = "live: runs LAMMPS 2025 with the paper plugin (bash scripts/test.sh)"]
 fn live_a_poured_bed_settles_and_a_free_pair_inside_its_run_keeps_the_law() {
@@ -552,6 +555,14 @@ fn live_a_poured_bed_settles_and_a_free_pair_inside_its_run_keeps_the_law() {
             "newton {newton}, {processes} processes: {} J of {} J left",
             bed.kinetic_end,
             bed.kinetic_start
+        );
+        // compute pair/local reads the forces through the pair style's single(): some contact
+        // carries more than a sphere's weight, none the whole bed's.
+        let weight = mass * 9.81;
+        assert!(
+            bed.largest_pair_force > weight && bed.largest_pair_force < 250.0 * weight,
+            "newton {newton}, {processes}: largest pair force {} N (a sphere weighs {weight} N)",
+            bed.largest_pair_force
         );
         assert!(bed.free_cor < 1.0);
         assert!(
