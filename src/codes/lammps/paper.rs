@@ -45,6 +45,8 @@ const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
 pub const INSTALL_DIR: &str = "lammps-paper";
 /// The plugin inside [`INSTALL_DIR`].
 pub const PLUGIN_PATH: &str = "lib/paperplugin.so";
+/// The plugin's file name, as the decks load it.
+pub const PLUGIN_FILE: &str = "paperplugin.so";
 /// The folder of [`PLUGIN_PATH`], put ahead of the library path so that the decks' `plugin
 /// load paperplugin.so` finds it.
 const PLUGIN_FOLDER: &str = "lib";
@@ -324,6 +326,14 @@ impl CodeDriver for LammpsPaper {
 
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&LammpsPaperCard)
+    }
+
+    /// A LAMMPS user's deck, read as LAMMPS 2025 reads it (this build is that binary with the
+    /// plugin); a deck that selects the plugin's styles is read with the plugin's rules.
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        static DECK: crate::codes::lammps::deck::LammpsDeck =
+            crate::codes::lammps::deck::LammpsDeck(&build_2025::JUL_2025, &LammpsPaper);
+        Some(&DECK)
     }
 }
 
