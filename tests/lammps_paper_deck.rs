@@ -19,7 +19,7 @@ use millimpact::analysis::deck::{
 };
 use millimpact::codes::CodeName;
 use millimpact::codes::deck::{DeckOptions, TypeRef};
-use millimpact::codes::lammps::paper::plugin_modulus;
+use millimpact::codes::lammps::paper_plugin_modulus as plugin_modulus;
 use millimpact::model::exact::restitution;
 use millimpact::model::law::CodeLaw;
 use millimpact::model::scene::{pair_radius, reduced_mass};

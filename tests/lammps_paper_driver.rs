@@ -10,7 +10,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use millimpact::codes::lammps::paper::{LammpsPaper, plugin_modulus, plugin_stiffness};
+use millimpact::codes::lammps::paper::{LammpsPaper, plugin_stiffness};
+use millimpact::codes::lammps::paper_plugin_modulus as plugin_modulus;
 use millimpact::codes::{
     CodeDriver, CodeError, CodeSetup, LocateError, ParseError, ParsedRun, RenderedInput,
     RunOptions, prepare_with, run_code,

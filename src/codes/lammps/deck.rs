@@ -12,8 +12,8 @@
 //! 2021 build `pair_coeff J I` with `J > I`) is refused with its lines.
 //!
 //! A deck that selects the paper's law through its plugin (`pair_style paper` or
-//! `paper/linear`, `fix wall/paper`; [`super::paper`]) is read with the plugin's own rules
-//! ([`LammpsDeck::read_paper`]): each pair's law is the paper's, with η and the materials (or
+//! `paper/linear`, `fix wall/paper`; the driver `lammps-paper`) is read with the plugin's own rules
+//! (`LammpsDeck::read_paper`): each pair's law is the paper's, with η and the materials (or
 //! `kn`) of its `pair_coeff`, every pair of types must have one, and the impacts run in
 //! lammps-paper.
 
@@ -209,7 +209,7 @@ fn paper_coeff(
         } else {
             (e1, nu1)
         };
-        PaperStiffness::Hertz(super::paper::plugin_modulus(e1, nu1, e2, nu2))
+        PaperStiffness::Hertz(super::paper_plugin_modulus(e1, nu1, e2, nu2))
     };
     Ok(PaperCoeff { eta, stiffness })
 }
@@ -882,10 +882,7 @@ impl LammpsDeck {
                 format!("{what}: {}:{}", file.display(), lines.join(","))
             })
             .collect();
-        let mut common = vec![format!(
-            "plugin          load {}",
-            super::paper::PLUGIN_FILE
-        )];
+        let mut common = vec![format!("plugin          load {}", super::PAPER_PLUGIN_FILE)];
         common.extend(r.pair.iter().map(|c| c.text.clone()));
         common.extend(r.paper_coeffs.iter().map(|x| x.3.text.clone()));
         Ok(UserDeck {

@@ -71,6 +71,17 @@ pub const LOG_FILE: &str = "log.lammps";
 /// does not count touching starts touching, as the stepped law does.
 pub const START_GAP: f64 = 1e-12;
 
+/// The file name of the paper's law as a LAMMPS plugin (`scripts/lammps-paper/`), as the
+/// decks load it: `plugin load paperplugin.so`, found on the library path
+/// ([`paper::LammpsPaper`] puts the project's build there).
+pub const PAPER_PLUGIN_FILE: &str = "paperplugin.so";
+
+/// The effective modulus of two materials as the paper plugin forms it (and `hertz/material`
+/// mixes two materials): `1/((1−ν1²)/E1 + (1−ν2²)/E2)`, Pa, with the plugin's operations.
+pub fn paper_plugin_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+    1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+}
+
 /// The Debian LAMMPS driver (binary `lmp` on PATH).
 pub struct Lammps;
 

@@ -25,7 +25,9 @@ use std::path::{Path, PathBuf};
 use crate::codes::batch::{BatchError, render_in_sequence};
 use crate::codes::lammps::batch::{MAX_BATCH, batch_trajectory_file, parse_batch};
 use crate::codes::lammps::build_2025::{self, venv_executable};
-use crate::codes::lammps::{INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, parse_run};
+use crate::codes::lammps::{
+    INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
+};
 use crate::codes::liggghts::paper::loss_coefficient;
 use crate::codes::liggghts::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
@@ -45,8 +47,6 @@ const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
 pub const INSTALL_DIR: &str = "lammps-paper";
 /// The plugin inside [`INSTALL_DIR`].
 pub const PLUGIN_PATH: &str = "lib/paperplugin.so";
-/// The plugin's file name, as the decks load it.
-pub const PLUGIN_FILE: &str = "paperplugin.so";
 /// The folder of [`PLUGIN_PATH`], put ahead of the library path so that the decks' `plugin
 /// load paperplugin.so` finds it.
 const PLUGIN_FOLDER: &str = "lib";
@@ -57,12 +57,6 @@ pub struct LammpsPaper;
 /// Why `--clamp` is refused for this build.
 const CLAMP_REFUSAL: &str = "pair paper and fix wall/paper take no clamp: their force C y^n \
                              (1 - eta) never attracts, so there is nothing to clamp";
-
-/// The effective modulus of two materials as the plugin forms it (and `hertz/material` mixes
-/// two materials): `1/((1−ν1²)/E1 + (1−ν2²)/E2)`, Pa.
-pub fn plugin_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
-    1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
-}
 
 /// The materials `(E, ν)` of the two bodies of a ball scene as the deck gives them: the sphere's,
 /// then the plate's (a rigid plate's stand-in) or the second sphere's.
@@ -79,13 +73,13 @@ fn materials(setup: &CodeSetup) -> Option<[(f64, f64); 2]> {
 }
 
 /// The stiffness `C` the plugin computes for `setup`, with its operations: `(4/3) E* sqrt(R*)`
-/// with [`plugin_modulus`] and `R* = r` at the wall, `r1 r2 / (r1 + r2)` between two spheres
+/// with [`paper_plugin_modulus`] and `R* = r` at the wall, `r1 r2 / (r1 + r2)` between two spheres
 /// (N/m^1.5); the rod's `kn` as given (N/m).
 pub fn plugin_stiffness(setup: &CodeSetup) -> f64 {
     let Some([(e1, nu1), (e2, nu2)]) = materials(setup) else {
         return setup.stiffness;
     };
-    let modulus = plugin_modulus(e1, nu1, e2, nu2);
+    let modulus = paper_plugin_modulus(e1, nu1, e2, nu2);
     let r1 = setup.sphere.radius;
     let r_star = match setup.other_sphere {
         Some(o) if setup.scene == SceneKind::BallBall => r1 * o.radius / (r1 + o.radius),
