@@ -23,7 +23,7 @@ codes=${4:-all}
 scenes=${5:-all}
 repeats=${6:-3}
 modes=${7:-batched}
-[ "$codes" = all ] && codes="liggghts liggghts-paper yade yade-paper lammps lammps-2025 kratos"
+[ "$codes" = all ] && codes="liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos"
 [ "$scenes" = all ] && scenes="ball_plate ball_ball rod_end"
 if [[ " $modes " == *" before "* ]] && [ ! -x "${BEFORE:-}" ]; then
   echo "mode before needs BEFORE=/path/to/an/older/millimpact" >&2

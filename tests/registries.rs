@@ -63,6 +63,7 @@ fn code_choices_are_the_code_registry() {
             "yade-paper",
             "lammps",
             "lammps-2025",
+            "lammps-paper",
             "kratos"
         ]
     );

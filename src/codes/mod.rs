@@ -321,7 +321,7 @@ macro_rules! code_registry {
 code_registry! {
     liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
     yade { Yade => Yade, YadePaper => YadePaper },
-    lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
+    lammps { Lammps => Lammps, Lammps2025 => Lammps2025, LammpsPaper => LammpsPaper },
     kratos { Kratos => Kratos },
 }
 
@@ -381,6 +381,7 @@ mod tests {
                 "yade-paper",
                 "lammps",
                 "lammps-2025",
+                "lammps-paper",
                 "kratos"
             ]
         );

@@ -355,8 +355,8 @@ pub fn read_deck(
     let supported = || {
         CodeName::ALL
             .iter()
-            // liggghts-paper reads with LIGGGHTS's reader, named once (as liggghts).
-            .filter(|c| **c != CodeName::LiggghtsPaper)
+            // The paper builds read with their stock build's reader, named once (as it).
+            .filter(|c| **c != CodeName::LiggghtsPaper && **c != CodeName::LammpsPaper)
             .filter_map(|c| c.driver().deck().map(|d| format!("{c}: {}", d.reads())))
             .collect::<Vec<_>>()
             .join("; ")
@@ -404,6 +404,17 @@ fn build_for(
             ))
         }
         (CodeName::Liggghts, Some(_)) => Ok((CodeName::LiggghtsPaper, deck)),
+        (CodeName::Lammps | CodeName::Lammps2025, Some(c)) if asked == Some(read_by) => {
+            Err(DeckError::unsupported(
+                c.lines[0].clone(),
+                format!(
+                    "`{}` with --code {read_by}: the plain build has not loaded the paper plugin",
+                    c.model
+                ),
+                "--code lammps-paper, or no --code (a deck that selects the paper plugin's styles runs in lammps-paper)",
+            ))
+        }
+        (CodeName::Lammps | CodeName::Lammps2025, Some(_)) => Ok((CodeName::LammpsPaper, deck)),
         _ => Ok((read_by, deck)),
     }
 }

@@ -10,6 +10,12 @@
 //! sets is mixed from the types' own lines as the build mixes it ([`super::mixing`]), and
 //! what LAMMPS refuses (lines of different forms to mix, a type without its own line, in the
 //! 2021 build `pair_coeff J I` with `J > I`) is refused with its lines.
+//!
+//! A deck that selects the paper's law through its plugin (`pair_style paper` or
+//! `paper/linear`, `fix wall/paper`; the driver `lammps-paper`) is read with the plugin's own rules
+//! (`LammpsDeck::read_paper`): each pair's law is the paper's, with η and the materials (or
+//! `kn`) of its `pair_coeff`, every pair of types must have one, and the impacts run in
+//! lammps-paper.
 
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
@@ -24,7 +30,8 @@ use crate::codes::deck::{
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{ContactForce, DashpotLaw};
+use crate::model::exact;
+use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
 use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
@@ -139,6 +146,85 @@ struct WallFix {
     geometry: String,
 }
 
+/// The contact stiffness a line of the paper plugin gives.
+#[derive(Clone, Copy, Debug)]
+enum PaperStiffness {
+    /// `pair_style paper`, `wall/paper hertz`: `C = (4/3) E* sqrt(R*)` with this E*, Pa.
+    Hertz(f64),
+    /// `pair_style paper/linear`, `wall/paper linear`: `C = kn`, N/m.
+    Linear(f64),
+}
+
+/// What a `pair_coeff` or `fix wall/paper` line of the paper plugin sets: η and the stiffness.
+#[derive(Clone, Copy, Debug)]
+struct PaperCoeff {
+    eta: f64,
+    stiffness: PaperStiffness,
+}
+
+/// Read the plugin's coefficients from `c.words[start..end]`: `eta E nu [E2 nu2]` (Hertz,
+/// `E2 nu2` allowed where `two_materials`) or `eta kn` (linear), checked as the plugin checks
+/// them.
+fn paper_coeff(
+    c: &Command,
+    start: usize,
+    end: usize,
+    linear: bool,
+    two_materials: bool,
+) -> Result<PaperCoeff, DeckError> {
+    let form = match (linear, two_materials) {
+        (true, _) => "eta kn",
+        (false, true) => "eta E nu [E2 nu2]",
+        (false, false) => "eta E nu Ewall nuwall",
+    };
+    let counts: &[usize] = match (linear, two_materials) {
+        (true, _) => &[2],
+        (false, true) => &[3, 5],
+        (false, false) => &[5],
+    };
+    if !counts.contains(&(end.saturating_sub(start))) {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("`{}`", c.text),
+            &format!("the paper plugin's {form}"),
+        ));
+    }
+    let values = (start..end)
+        .map(|k| c.number(k, form))
+        .collect::<Result<Vec<_>, _>>()?;
+    let eta = values[0];
+    if !(0.0..1.0).contains(&eta) {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("eta = {eta}"),
+            "0 <= eta < 1 (the plugin stops the run otherwise: eta >= 1 never separates the bodies, eta < 0 creates energy)",
+        ));
+    }
+    let stiffness = if linear {
+        PaperStiffness::Linear(values[1])
+    } else {
+        let (e1, nu1) = (values[1], values[2]);
+        let (e2, nu2) = if values.len() == 5 {
+            (values[3], values[4])
+        } else {
+            (e1, nu1)
+        };
+        PaperStiffness::Hertz(super::paper_plugin_modulus(e1, nu1, e2, nu2))
+    };
+    Ok(PaperCoeff { eta, stiffness })
+}
+
+/// A `fix wall/paper` as read.
+#[derive(Clone, Debug)]
+struct PaperWall {
+    id: String,
+    coeff: PaperCoeff,
+    /// The model's words (`hertz eta E nu Ewall nuwall`, `linear eta kn`).
+    model: Vec<String>,
+    at: SourceLine,
+    geometry: String,
+}
+
 #[derive(Default)]
 struct Reading {
     units: Option<Command>,
@@ -158,6 +244,10 @@ struct Reading {
     set_atom: HashMap<usize, [Option<f64>; 3]>,
     timestep: Option<(f64, SourceLine)>,
     left_out: BTreeMap<String, (std::path::PathBuf, Vec<usize>)>,
+    /// `pair_style paper` (`Some(false)`) or `paper/linear` (`Some(true)`).
+    paper_linear: Option<bool>,
+    paper_coeffs: Vec<(String, String, PaperCoeff, Command)>,
+    paper_walls: Vec<PaperWall>,
 }
 
 impl Reading {
@@ -270,9 +360,19 @@ impl LammpsDeck {
                 "atom_style" => r.atom_style = Some(c.clone()),
                 "create_box" => r.types = Some(whole(c.number(1, "the number of atom types")?, c, "create_box")?),
                 "timestep" => r.timestep = Some((c.number(1, "the time step")?, c.at.clone())),
+                "plugin" => r.leave_out("plugin commands (the impact loads the paper plugin itself)", c),
+                "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
+                    r.paper_linear = Some(c.words[1] == "paper/linear");
+                    r.pair = Some(c.clone());
+                }
+                "pair_coeff" if r.paper_linear.is_some() => {
+                    let linear = r.paper_linear == Some(true);
+                    let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
+                    r.paper_coeffs.push((c.word(1, "I")?.to_string(), c.word(2, "J")?.to_string(), coeff, c.clone()));
+                }
                 "pair_style" => {
                     if c.word(1, "a pair style")? != "granular" {
-                        return Err(DeckError::unsupported(&c.at, format!("pair_style {}", c.words[1]), "pair_style granular"));
+                        return Err(DeckError::unsupported(&c.at, format!("pair_style {}", c.words[1]), "pair_style granular, or paper and paper/linear of the paper plugin"));
                     }
                     r.pair = Some(c.clone());
                 }
@@ -287,6 +387,24 @@ impl LammpsDeck {
                     r.coeffs.push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
                 }
                 "fix" => match c.word(3, "the fix style")? {
+                    "wall/paper" => {
+                        let planes = ["xplane", "yplane", "zplane"];
+                        let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
+                            DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
+                        })?;
+                        let linear = match c.word(4, "hertz or linear")? {
+                            "hertz" => false,
+                            "linear" => true,
+                            other => return Err(DeckError::unsupported(&c.at, format!("wall/paper model `{other}`"), "hertz, linear")),
+                        };
+                        r.paper_walls.push(PaperWall {
+                            id: c.words[1].clone(),
+                            coeff: paper_coeff(c, 5, k, linear, false)?,
+                            model: c.words[4..k].to_vec(),
+                            at: c.at.clone(),
+                            geometry: c.words[k..].join(" "),
+                        });
+                    }
                     "wall/gran" | "wall/gran/region" => {
                         if c.word(4, "granular")? != "granular" {
                             return Err(DeckError::unsupported(&c.at, format!("fix {} {}", c.words[3], c.words[4]), "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS"));
@@ -626,11 +744,174 @@ impl LammpsDeck {
     }
 }
 
+impl LammpsDeck {
+    /// A deck of the paper plugin: each pair of particle types by its `pair_coeff` (every pair
+    /// of the box's types must have one, as the plugin requires: η has no mixing rule), each
+    /// type against each `fix wall/paper`; the law the paper's with the plugin's stiffness
+    /// (`(4/3) E* sqrt(R*)` or `kn`), the reduced mass and η, the COR entered its closed form.
+    fn read_paper(
+        r: Reading,
+        path: &Path,
+        options: &DeckOptions,
+        types: u32,
+        (timestep, timestep_at): (f64, SourceLine),
+    ) -> Result<UserDeck, DeckError> {
+        if let Some((_, _, _, c)) = r.coeffs.first() {
+            return Err(DeckError::unsupported(
+                &c.at,
+                "granular lines beside the paper plugin's".into(),
+                "one contact law per deck: pair_style paper with fix wall/paper, or pair_style granular with fix wall/gran granular",
+            ));
+        }
+        if let Some(w) = r.walls.first() {
+            return Err(DeckError::unsupported(
+                &w.at,
+                "fix wall/gran beside the paper plugin's styles".into(),
+                "fix wall/paper with pair_style paper",
+            ));
+        }
+        let lacking = |what: String, supported: &str| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what,
+            supported: supported.into(),
+        };
+        // The line that sets the pair i ≤ j: the last whose I holds i and whose J holds j, as
+        // the plugin sets [i][j] for i in I and i ≤ j in J.
+        let coeff_for = |i: u32, j: u32| {
+            r.paper_coeffs
+                .iter()
+                .rev()
+                .find(|(a, b, _, _)| covers(a, i, types) && covers(b, j, types))
+        };
+        if r.paper_linear.is_some() {
+            for i in 1..=types {
+                for j in i..=types {
+                    if coeff_for(i, j).is_none() {
+                        return Err(lacking(
+                            format!("no pair_coeff for atom types {i} {j}"),
+                            "a pair_coeff for every pair of types, I <= J (the plugin stops otherwise: eta has no mixing rule)",
+                        ));
+                    }
+                }
+            }
+        }
+        let bodies = Self::bodies(&r, path, options)?;
+        let law = |coeff: &PaperCoeff, r_star: f64, mass: f64| {
+            let (stiffness, exponent) = match coeff.stiffness {
+                PaperStiffness::Hertz(modulus) => (4.0 / 3.0 * modulus * r_star.sqrt(), 1.5),
+                PaperStiffness::Linear(kn) => (kn, 1.0),
+            };
+            CodeLaw::Paper(PaperLaw {
+                mass,
+                stiffness,
+                exponent,
+                loss_coefficient: coeff.eta,
+            })
+        };
+        let eta_trap = |eta: f64| {
+            format!(
+                "eta is η itself, not a COR: {eta} gives e = sqrt((1 − η)/(1 + η)) = {:.6}",
+                exact::restitution(eta)
+            )
+        };
+        let mut contacts = Vec::new();
+        if let Some(linear) = r.paper_linear {
+            for (a, body) in bodies.iter().enumerate() {
+                for (b, other) in bodies.iter().enumerate().skip(a) {
+                    let (i, j) = (body.type_id, other.type_id);
+                    let Some((_, _, coeff, c)) = coeff_for(i.min(j), i.max(j)) else {
+                        unreachable!("every pair of types was checked above")
+                    };
+                    contacts.push(DeckContact {
+                        body: a,
+                        partner: Partner::Body(b),
+                        types: [TypeRef::Type(i), TypeRef::Type(j)],
+                        model: if linear { "paper/linear" } else { "paper" }.into(),
+                        cor_entered: Some(exact::restitution(coeff.eta)),
+                        law: law(
+                            coeff,
+                            pair_radius(body.radius, other.radius),
+                            reduced_mass(body.mass, other.mass),
+                        ),
+                        traps: vec![eta_trap(coeff.eta)],
+                        lines: vec![c.at.clone().into()],
+                    });
+                }
+            }
+        }
+        let mut walls = Vec::new();
+        let mut wall_lines = Vec::new();
+        for (w, wall) in r.paper_walls.iter().enumerate() {
+            walls.push(DeckWall {
+                name: wall.id.clone(),
+                type_id: None,
+                youngs_modulus: None,
+                poisson_ratio: None,
+                from: wall.at.clone().into(),
+            });
+            // The impact's sphere is in group all; the wall acts on it whatever the deck's group.
+            wall_lines.push(format!(
+                "fix {} all wall/paper {} zplane 0 NULL",
+                wall.id,
+                wall.model.join(" ")
+            ));
+            for (a, body) in bodies.iter().enumerate() {
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Wall(w),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    model: format!("wall/paper {}", wall.model[0]),
+                    cor_entered: Some(exact::restitution(wall.coeff.eta)),
+                    law: law(&wall.coeff, body.radius, body.mass),
+                    traps: vec![
+                        eta_trap(wall.coeff.eta),
+                        format!(
+                            "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
+                            wall.geometry
+                        ),
+                    ],
+                    lines: vec![wall.at.clone().into()],
+                });
+            }
+        }
+        let left_out = r
+            .left_out
+            .iter()
+            .map(|(what, (file, lines))| {
+                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+                format!("{what}: {}:{}", file.display(), lines.join(","))
+            })
+            .collect();
+        let mut common = vec![format!("plugin          load {}", super::PAPER_PLUGIN_FILE)];
+        common.extend(r.pair.iter().map(|c| c.text.clone()));
+        common.extend(r.paper_coeffs.iter().map(|x| x.3.text.clone()));
+        Ok(UserDeck {
+            path: path.to_path_buf(),
+            timestep,
+            timestep_from: timestep_at.to_string(),
+            bodies,
+            walls,
+            contacts,
+            representative_velocity: None,
+            left_out,
+            transplant: Transplant {
+                before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
+                common,
+                walls: wall_lines,
+                types,
+            },
+        })
+    }
+}
+
 impl DeckReader for LammpsDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.lines().any(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
-            matches!(w.as_slice(), ["pair_style", "granular", ..])
+            matches!(
+                w.as_slice(),
+                ["pair_style", "granular" | "paper" | "paper/linear", ..]
+            ) || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
                 || (w.first() == Some(&"fix")
                     && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
                     && w.get(4) == Some(&"granular"))
@@ -638,7 +919,7 @@ impl DeckReader for LammpsDeck {
     }
 
     fn reads(&self) -> &'static str {
-        "LAMMPS inputs (pair_style granular, fix wall/gran granular)"
+        "LAMMPS inputs (pair_style granular, fix wall/gran granular; the paper plugin's pair_style paper, paper/linear and fix wall/paper)"
     }
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
@@ -680,6 +961,9 @@ impl DeckReader for LammpsDeck {
                 format!("timestep {timestep}"),
                 "a positive time step, s",
             ));
+        }
+        if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
+            return Self::read_paper(r, path, options, types, (timestep, timestep_at));
         }
         let mixing = self.0.mixing;
         // Each line's I J as the build reads them: J < I swapped where the build reorders, else
@@ -941,7 +1225,10 @@ impl DeckReader for LammpsDeck {
             exponent: c.law.exponent(),
             impact_velocity: velocity,
             target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
+            loss_coefficient: match c.law {
+                CodeLaw::Paper(law) => Some(law.loss_coefficient),
+                CodeLaw::Dashpot(_) => None,
+            },
             timestep: deck.timestep,
             steps,
             clamp_attractive: c.law.clamp_attractive(),

@@ -34,9 +34,11 @@ pub mod card;
 pub mod conventions;
 pub mod deck;
 pub mod mixing;
+pub mod paper;
 pub mod probe;
 
 pub use build_2025::Lammps2025;
+pub use paper::LammpsPaper;
 
 use std::path::Path;
 
@@ -68,6 +70,17 @@ pub const LOG_FILE: &str = "log.lammps";
 /// approach. A gap this small moves the contact start by far less than a step. A build that
 /// does not count touching starts touching, as the stepped law does.
 pub const START_GAP: f64 = 1e-12;
+
+/// The file name of the paper's law as a LAMMPS plugin (`scripts/lammps-paper/`), as the
+/// decks load it: `plugin load paperplugin.so`, found on the library path
+/// ([`paper::LammpsPaper`] puts the project's build there).
+pub const PAPER_PLUGIN_FILE: &str = "paperplugin.so";
+
+/// The effective modulus of two materials as the paper plugin forms it (and `hertz/material`
+/// mixes two materials): `1/((1−ν1²)/E1 + (1−ν2²)/E2)`, Pa, with the plugin's operations.
+pub fn paper_plugin_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+    1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
+}
 
 /// The Debian LAMMPS driver (binary `lmp` on PATH).
 pub struct Lammps;

