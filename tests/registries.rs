@@ -62,7 +62,8 @@ fn code_choices_are_the_code_registry() {
             "yade",
             "lammps",
             "lammps-2025",
-            "kratos"
+            "kratos",
+            "kratos-paper"
         ]
     );
     assert_eq!(choices("reference", "--code"), registry, "reference --code");

@@ -322,7 +322,7 @@ code_registry! {
     liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
     yade { Yade => Yade },
     lammps { Lammps => Lammps, Lammps2025 => Lammps2025 },
-    kratos { Kratos => Kratos },
+    kratos { Kratos => Kratos, KratosPaper => KratosPaper },
 }
 
 impl CodeName {
@@ -380,7 +380,8 @@ mod tests {
                 "yade",
                 "lammps",
                 "lammps-2025",
-                "kratos"
+                "kratos",
+                "kratos-paper"
             ]
         );
         for &code in CodeName::ALL {
