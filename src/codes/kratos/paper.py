@@ -149,7 +149,6 @@ for k, c in enumerate(stage.impacts):
         other = None
         mass = m1
     laws.append((p, one, other, mass, p["stiffness"], p["exponent"], p["loss_coefficient"]))
-    print("MILLIMPACT impact=%d mass=%r" % (k + 1, mass))
 weights = np.zeros(3 * len(column))
 for node in nodes:
     weights[column[node.Id] + 2] = -GRAVITY * masses[node.Id]
@@ -204,5 +203,6 @@ said = ["MILLIMPACT iterations=%d dt=%r force_mismatch=%r" % (STEPS, DT, mismatc
 for k, law in enumerate(laws):
     # Its own steps' rows, then the state after them.
     write_rows("trajectory-%d.csv" % (k + 1), rows[k][: law[0]["steps"] + 1])
-    said.append("MILLIMPACT impact=%d loop_time=%r" % (k + 1, loop_time))
+    # The mass the band divided by, beside Kratos' loop time.
+    said.append("MILLIMPACT impact=%d loop_time=%r mass=%r" % (k + 1, loop_time, law[3]))
 print("\n".join(said))
