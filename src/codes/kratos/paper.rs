@@ -42,18 +42,18 @@ use crate::model::scene::SceneKind;
 use crate::solve::dashpot::StepScheme;
 
 /// The part of the script after its list of impacts.
-pub const SCRIPT: &str = include_str!("paper.py");
+const SCRIPT: &str = include_str!("paper.py");
 
 /// The name of the rendered script in the scratch directory.
-pub const SCRIPT_FILE: &str = "paper.py";
+const SCRIPT_FILE: &str = "paper.py";
 
 /// Most impacts in one script.
-pub const MAX_BATCH: usize = 256;
+const MAX_BATCH: usize = 256;
 
 /// Impacts whose steps cost what one start of Kratos does (importing Kratos and initialising
 /// the stage, about 0.3 s of CPU; an impact at 1000 steps per contact costs about 20 ms of
 /// its batch, the hook's Python call a step included).
-pub const IMPACTS_PER_START: usize = 15;
+const IMPACTS_PER_START: usize = 15;
 
 /// Why `--clamp` is refused for this build.
 const CLAMP_REFUSAL: &str = "the paper's law applied through EXTERNAL_APPLIED_FORCE is C y^n \
@@ -99,7 +99,7 @@ impl KratosPaper {
 
     /// The paper's law the hook applies for `setup`: `C` as the module says, Kratos' masses,
     /// the setup's η.
-    pub fn paper_law(&self, setup: &CodeSetup) -> PaperLaw {
+    fn paper_law(&self, setup: &CodeSetup) -> PaperLaw {
         let stiffness = match setup.scene {
             SceneKind::RodEnd => setup.stiffness,
             SceneKind::BallPlate | SceneKind::BallBall => hertz_stiffness(setup),
@@ -113,10 +113,7 @@ impl KratosPaper {
     }
 
     /// The values of one impact in the script's list, or why the setup cannot run.
-    pub fn script_values(
-        &self,
-        setup: &CodeSetup,
-    ) -> Result<Vec<(&'static str, String)>, CodeError> {
+    fn script_values(&self, setup: &CodeSetup) -> Result<Vec<(&'static str, String)>, CodeError> {
         self.validate(setup)?;
         let law = self.paper_law(setup);
         let s = setup.sphere;
@@ -206,7 +203,7 @@ pub fn render_script(setups: &[CodeSetup], gravity: f64) -> Result<RenderedInput
 /// Each impact's run from a script's `log` and files in `workdir`: refused as a whole when the
 /// script ran another number of steps than the longest setup's, or when a stock law added a
 /// force of its own.
-pub fn parse_runs(
+fn parse_runs(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
@@ -317,10 +314,16 @@ impl CodeDriver for KratosPaper {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&KratosPaperCard)
     }
+
+    /// The law liggghts-paper integrates, stepped through the same positions (symplectic
+    /// Euler and velocity Verlet see the same state): drawn as one in the figures.
+    fn shares_law_with(&self) -> Option<crate::codes::CodeName> {
+        Some(crate::codes::CodeName::LiggghtsPaper)
+    }
 }
 
 /// Many impacts side by side in one stage: any scenes, one time step.
-pub struct KratosPaperBatch;
+struct KratosPaperBatch;
 
 impl BatchRunner for KratosPaperBatch {
     fn max_batch(&self) -> usize {
@@ -346,11 +349,12 @@ impl BatchRunner for KratosPaperBatch {
 }
 
 /// The card: the impact's values and the line that hands Kratos the force.
-pub struct KratosPaperCard;
+struct KratosPaperCard;
 
 impl CalibrationCard for KratosPaperCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {
-        &["\"loss_coefficient\"", "EXTERNAL_APPLIED_FORCE, applied"]
+        // The impact's line of the list, and the line that hands Kratos the force.
+        &["{\"scene\": ", "EXTERNAL_APPLIED_FORCE, applied"]
     }
 
     fn traps(&self, setup: &CodeSetup) -> Vec<String> {
