@@ -9,8 +9,9 @@
 //! ẏ resolved within one step's band, so a contact at rest carries its elastic force; never
 //! attractive). No stock law acts: there are no wall conditions (the plate is the plane z = 0
 //! of the hook) and the two balls meet under a linear law of zero stiffness and damping; each
-//! run checks this (a node's `TOTAL_FORCES` is the applied force to the bit, else the run is
-//! refused, [`ParseError::ForeignForce`]). A validation build: one Python call per step.
+//! run checks this (a node's `TOTAL_FORCES` is the applied force, plus the weight under
+//! gravity, to the rounding of Kratos' sum, else the run is refused,
+//! [`ParseError::ForeignForce`]). A validation build: one Python call per step.
 //!
 //! - Ball scenes: `C = (4/3) E* sqrt(R*)`, `E*` mixed from the ball's and the plate's (or the
 //!   other ball's) `E`, `ν` as Kratos' Hertz law mixes them, a rigid plate as the stock driver
