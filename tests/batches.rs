@@ -126,6 +126,9 @@ batch_tests! {
     liggghts_paper_ball_plate: CodeName::LiggghtsPaper, "ball_plate", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
     liggghts_paper_ball_ball: CodeName::LiggghtsPaper, "ball_ball", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
     liggghts_paper_rod_end: CodeName::LiggghtsPaper, "rod_end", "live: runs LIGGGHTS with the paper's law (bash scripts/test.sh)";
+    kratos_paper_ball_plate: CodeName::KratosPaper, "ball_plate", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
+    kratos_paper_ball_ball: CodeName::KratosPaper, "ball_ball", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
+    kratos_paper_rod_end: CodeName::KratosPaper, "rod_end", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
 }
 
 /// YADE's batches run by the launcher's Python (its library, without the launcher's shell);
