@@ -7,8 +7,9 @@
 #   bash scripts/fast-tier.sh --without-codes  # no DEM code, sweep tool or browser reachable at all
 #
 # The tripwires shadow `liggghts`, `yade`, `lmp`, GNU `parallel`, Slurm, munge and Chromium on
-# PATH, and stand in for the project's own builds (MILLIMPACT_CODES_DIR: the Kratos python, the
-# LAMMPS 2025 binary and LIGGGHTS with the paper's law); MILLIMPACT_<CODE>_BINARY is unset.
+# PATH, and stand in for the project's own builds (MILLIMPACT_CODES_DIR: the Kratos python, which
+# kratos and kratos-paper both run, the LAMMPS 2025 binary and LIGGGHTS with the paper's law);
+# MILLIMPACT_<CODE>_BINARY is unset.
 # `--without-codes` instead leaves those programs out of PATH (a copy of PATH's folders without
 # them) and points MILLIMPACT_CODES_DIR at an empty folder: the fast tier as a machine without
 # the codes runs it.

@@ -6,7 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-dem-codes.sh
 cargo build --release --quiet
-for code in liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos; do
+for code in liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos kratos-paper; do
   for case in ball_plate ball_ball rod_end; do
     for eta in 0 0.35 0.7; do
       ./target/release/millimpact reference --code "$code" "cases/$case.toml" \
@@ -20,7 +20,7 @@ done
 # cases/benchmarks/ at 1000 steps per contact, tests 1 and 2 elastic, test 3 at each COR set
 # (η = (1 − e²)/(1 + e²), written to 17 digits so that the run is found at the benchmark's η).
 # They are a store of their own, reference/benchmarks/<code>/<case>.json (reference/README.md).
-for code in liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos; do
+for code in liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos kratos-paper; do
   for case in chung_ooi_1_glass chung_ooi_1_limestone chung_ooi_2_aluminium chung_ooi_2_magnesium; do
     ./target/release/millimpact reference --code "$code" "cases/benchmarks/$case.toml" \
       --loss-coefficient 0 --steps-per-contact 1000 --save --reference reference/benchmarks \

@@ -132,6 +132,9 @@ batch_tests! {
     lammps_paper_ball_plate: CodeName::LammpsPaper, "ball_plate", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
     lammps_paper_ball_ball: CodeName::LammpsPaper, "ball_ball", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
     lammps_paper_rod_end: CodeName::LammpsPaper, "rod_end", "live: runs LAMMPS 2025 with the paper's law plugin (bash scripts/test.sh)";
+    kratos_paper_ball_plate: CodeName::KratosPaper, "ball_plate", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
+    kratos_paper_ball_ball: CodeName::KratosPaper, "ball_ball", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
+    kratos_paper_rod_end: CodeName::KratosPaper, "rod_end", "live: runs Kratos with the paper's law (bash scripts/test.sh)";
 }
 
 /// YADE's batches run by the launcher's Python (its library, without the launcher's shell);

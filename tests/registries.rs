@@ -64,7 +64,8 @@ fn code_choices_are_the_code_registry() {
             "lammps",
             "lammps-2025",
             "lammps-paper",
-            "kratos"
+            "kratos",
+            "kratos-paper"
         ]
     );
     assert_eq!(choices("reference", "--code"), registry, "reference --code");

@@ -322,7 +322,7 @@ code_registry! {
     liggghts { Liggghts => Liggghts, LiggghtsPaper => LiggghtsPaper },
     yade { Yade => Yade, YadePaper => YadePaper },
     lammps { Lammps => Lammps, Lammps2025 => Lammps2025, LammpsPaper => LammpsPaper },
-    kratos { Kratos => Kratos },
+    kratos { Kratos => Kratos, KratosPaper => KratosPaper },
 }
 
 impl CodeName {
@@ -382,7 +382,8 @@ mod tests {
                 "lammps",
                 "lammps-2025",
                 "lammps-paper",
-                "kratos"
+                "kratos",
+                "kratos-paper"
             ]
         );
         for &code in CodeName::ALL {

@@ -70,6 +70,16 @@ pub enum ParseError {
         /// As written.
         value: String,
     },
+    /// A force the run should not have had: a stock contact law acted beside a force the
+    /// harness applies itself (kratos-paper), by up to `mismatch` N beyond the rounding of the
+    /// code's own sum.
+    #[error(
+        "a stock contact law acted: a node's total force differed from the applied force by {mismatch:e} N beyond rounding"
+    )]
+    ForeignForce {
+        /// The largest difference beyond rounding, N.
+        mismatch: f64,
+    },
     /// The trajectory cannot give an impact's figures.
     #[error(transparent)]
     Trajectory(#[from] TrajectoryError),

@@ -33,6 +33,9 @@ pub mod batch;
 pub mod card;
 pub mod deck;
 mod files;
+pub mod paper;
+
+pub use paper::KratosPaper;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -225,6 +228,21 @@ fn dynamic_mass(setup: &CodeSetup) -> f64 {
     }
 }
 
+/// The Hertz stiffness `(4/3) E* sqrt(R*)` of a ball scene as Kratos' Hertz law forms it: `E*`
+/// mixed from both materials ([`mixed_modulus`]), `R*` the pair's, the ball's own at the flat
+/// wall.
+fn hertz_stiffness(setup: &CodeSetup) -> f64 {
+    let s = setup.sphere;
+    let (e2, nu2) = second_material(setup);
+    let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+    let radius = match (setup.scene, setup.other_sphere) {
+        (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
+        // RigidFace3D3N is flat: the sphere's own radius.
+        _ => s.radius,
+    };
+    4.0 / 3.0 * modulus * radius.sqrt()
+}
+
 /// The `COEFFICIENT_OF_RESTITUTION` the driver gives a ball scene's contact.
 fn input_restitution(setup: &CodeSetup) -> f64 {
     hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
@@ -283,16 +301,7 @@ impl Kratos {
                 clamp_attractive: true,
             },
             SceneKind::BallPlate | SceneKind::BallBall => {
-                let s = setup.sphere;
-                let (e2, nu2) = second_material(setup);
-                let modulus =
-                    mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
-                let radius = match (setup.scene, setup.other_sphere) {
-                    (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
-                    // RigidFace3D3N is flat: the sphere's own radius.
-                    _ => s.radius,
-                };
-                let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
+                let stiffness = hertz_stiffness(setup);
                 let gamma = hertz_damping_gamma(input_restitution(setup));
                 DashpotLaw {
                     mass,
