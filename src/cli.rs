@@ -587,6 +587,10 @@ pub struct MillArgs {
     /// Kill a run after this many seconds.
     #[arg(long, default_value = "3600", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// Keep every run's folder (its input, log and the files it wrote) in this folder
+    /// [default: a run's folder is removed once read, kept only when the run fails].
+    #[arg(long, value_name = "DIR")]
+    pub keep: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,

@@ -31,6 +31,7 @@ pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
         jobs: 2,
         hertz_code: args.code,
+        keep: args.keep.clone(),
     };
     let report = run_mill(&deck, &options, &|_| {})?;
     Ok(CommandOutput::passed(export(&report, args.format)?))

@@ -97,6 +97,9 @@ pub struct MillOptions {
     pub timeout: Duration,
     /// Runs at once.
     pub jobs: usize,
+    /// A folder to keep every run's folder in (`<law>-seed<k>-…`: its input, log and the files
+    /// it wrote); `None`: a run's folder is removed after it is read, kept only on a failure.
+    pub keep: Option<PathBuf>,
     /// The build that runs damped Hertz (liggghts, or liggghts-paper, which has it too); the
     /// paper's law runs in liggghts-paper.
     pub hertz_code: CodeName,
@@ -248,9 +251,11 @@ fn run_one(
             .env
             .push(("_STDBUF_O", std::ffi::OsString::from("L")));
     }
+    let parent = options.keep.clone().unwrap_or_else(std::env::temp_dir);
+    std::fs::create_dir_all(&parent).map_err(io("creating the folder for the runs"))?;
     let scratch = tempfile::Builder::new()
-        .prefix(&format!("millimpact-mill-{law}-seed{seed}-"))
-        .tempdir()
+        .prefix(&format!("{law}-seed{seed}-"))
+        .tempdir_in(&parent)
         .map_err(io("creating a scratch folder"))?;
     let folder = scratch.path().to_path_buf();
     std::fs::write(folder.join("in.mill"), deck.render(law, plan))
@@ -298,6 +303,9 @@ fn run_one(
         Ok(mut result) => {
             result.wall_time = wall_time;
             result.code = code.name().to_string();
+            if options.keep.is_some() {
+                let _ = scratch.keep();
+            }
             Ok(result)
         }
         Err(mut error) => {
@@ -393,6 +401,28 @@ fn read_run(
         rest_fractions,
         wall_time: 0.0,
     })
+}
+
+/// The comparison from runs already made and kept (`MillOptions::keep`): each run's law, seed
+/// and folder. What the fast tests read instead of running the codes.
+pub fn report_from_folders(
+    deck: &MillDeck,
+    options: &MillOptions,
+    folders: &[(MillLaw, usize, String, PathBuf)],
+) -> Result<MillReport, MillError> {
+    let (base, transient) = plan(deck, options)?;
+    let mut runs = Vec::new();
+    for (law, seed, code, folder) in folders {
+        let plan = MillPlan {
+            seed: *seed,
+            ..base.clone()
+        };
+        let mut run = read_run(deck, *law, &plan, folder)?;
+        run.code = code.clone();
+        runs.push(run);
+    }
+    runs.sort_by_key(|r| (r.seed, r.law != deck.law));
+    Ok(report::summarise(deck, &base, transient, options, &runs))
 }
 
 /// Run the comparison: both laws, every seed, `options.jobs` runs at once; `progress` is told
