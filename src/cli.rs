@@ -578,9 +578,10 @@ pub struct MillArgs {
     /// half the rotation if shorter].
     #[arg(long)]
     pub transient: Option<f64>,
-    /// Rotation time at the end over which contacts are recorded for the spectra, s (0: none).
-    #[arg(long = "spectra-time", default_value = "0.1")]
-    pub spectra_time: f64,
+    /// Rotation time at the end over which contacts are recorded for the spectra, s (0: none)
+    /// [default: 0.1 s, or half the rotation if that is shorter].
+    #[arg(long = "spectra-time")]
+    pub spectra_time: Option<f64>,
     /// Record contacts every this many steps.
     #[arg(long = "contact-every", default_value = "5")]
     pub contact_every: u64,

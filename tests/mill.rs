@@ -21,7 +21,7 @@ fn options() -> MillOptions {
         time: Some(0.05),
         seeds: 1,
         transient: None,
-        spectra_time: 0.0003,
+        spectra_time: Some(0.0003),
         contact_every: 10,
         timeout: Duration::from_secs(60),
         jobs: 2,

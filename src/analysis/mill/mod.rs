@@ -89,8 +89,9 @@ pub struct MillOptions {
     /// Rotation time left out of the power and energy means as the start-up, s (`None`: one
     /// revolution of the drum, or half the rotation if that is shorter).
     pub transient: Option<f64>,
-    /// Rotation time at the end over which contacts are recorded for the spectra, s.
-    pub spectra_time: f64,
+    /// Rotation time at the end over which contacts are recorded for the spectra, s (`None`:
+    /// 0.1 s, or half the rotation if that is shorter).
+    pub spectra_time: Option<f64>,
     /// Contacts are recorded every this many steps.
     pub contact_every: u64,
     /// Each run is killed after this long.
@@ -182,11 +183,12 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
             format!("at least 0 and below the rotation run, {rotation} s"),
         ));
     }
-    let spectra_steps = deck.steps_for(options.spectra_time);
-    if !(options.spectra_time >= 0.0) || spectra_steps > rotation_steps {
+    let spectra_time = options.spectra_time.unwrap_or(0.1_f64.min(rotation / 2.0));
+    let spectra_steps = deck.steps_for(spectra_time);
+    if !(spectra_time >= 0.0) || spectra_steps > rotation_steps {
         return Err(refuse(
             "--spectra-time",
-            options.spectra_time.to_string(),
+            spectra_time.to_string(),
             format!("at least 0 and at most the rotation run, {rotation} s"),
         ));
     }
