@@ -3,6 +3,9 @@
 //! `millimpact mill examples/mill/in.mill --time 0.05 --spectra-time 0.0003 --contact-every 10
 //! --keep DIR` (in `tests/data/mill/`), in every format.
 
+// A value read from a deck is the number written in it, bit for bit: compared exactly.
+#![allow(clippy::float_cmp)]
+
 mod common;
 
 use std::path::{Path, PathBuf};

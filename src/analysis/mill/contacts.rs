@@ -255,7 +255,8 @@ impl Recorded<'_> {
                 let atom = id(r[14]);
                 let (t, m) = self.type_and_mass(atom)?;
                 let normal = unit(sub(&r[3..6], &r[0..3]));
-                let wall = self.wall_velocity(id(r[12]) as usize, &r[0..3]);
+                let mesh = usize::try_from(id(r[12])).unwrap_or(usize::MAX);
+                let wall = self.wall_velocity(mesh, &r[0..3]);
                 let vn = dot(&sub(&r[9..12], &wall), &normal);
                 let force = dot(&r[15..18], &r[15..18]).sqrt();
                 samples.push((

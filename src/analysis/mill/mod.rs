@@ -142,7 +142,7 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
         None => deck.rotation_steps,
         Some(t) => {
             let steps = deck.steps_for(t);
-            if !(t > 0.0) || steps == 0 || steps > deck.rotation_steps {
+            if t.is_nan() || t <= 0.0 || steps == 0 || steps > deck.rotation_steps {
                 return Err(refuse(
                     "--time",
                     t.to_string(),
@@ -185,7 +185,7 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
     }
     let spectra_time = options.spectra_time.unwrap_or(0.1_f64.min(rotation / 2.0));
     let spectra_steps = deck.steps_for(spectra_time);
-    if !(spectra_time >= 0.0) || spectra_steps > rotation_steps {
+    if spectra_time.is_nan() || spectra_time < 0.0 || spectra_steps > rotation_steps {
         return Err(refuse(
             "--spectra-time",
             spectra_time.to_string(),

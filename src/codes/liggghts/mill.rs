@@ -179,7 +179,10 @@ fn run_steps(c: &Command) -> Result<u64, DeckError> {
 /// The `N×N` table of a `fix … property/global NAME peratomtypepair N …` line.
 fn pair_table(c: &Command, name: &str, types: u32) -> Result<Vec<f64>, DeckError> {
     let n = c.number(6, "the number of columns")?;
-    if n != f64::from(types) {
+    // A count written in the deck: whole, compared exactly.
+    #[allow(clippy::float_cmp)]
+    let other = n != f64::from(types);
+    if other {
         return Err(DeckError::unsupported(
             &c.at,
             format!("{name} is a {n}×{n} table, the deck has {types} types"),
@@ -611,10 +614,10 @@ impl MillDeck {
                     } else {
                         Some(4)
                     };
-                    if let (Some(k), Some(seed)) = (k, seeds.next()) {
-                        if k < words.len() {
-                            words[k] = seed.to_string();
-                        }
+                    if let (Some(k), Some(seed)) = (k, seeds.next())
+                        && k < words.len()
+                    {
+                        words[k] = seed.to_string();
                     }
                     out.push(join_quoted(&words, c));
                 }
