@@ -181,16 +181,23 @@ pub struct MillReport {
     pub left_out: Vec<String>,
 }
 
-/// Collisions per second of `runs` whose event passes `keep`, with a Poisson error.
+/// Collisions per second of `runs` whose event passes `keep`: with one run, its rate and a
+/// Poisson error; with several (seeds), the mean of their rates and the error from their
+/// spread, which also holds what Poisson's leaves out (the charge's arrangement differs from
+/// run to run, and one window sees one arrangement).
 fn rate(runs: &[&RunResult], window: f64, keep: impl Fn(&super::ContactEvent) -> bool) -> Estimate {
-    let count = runs
+    let counts: Vec<f64> = runs
         .iter()
-        .map(|r| r.events.iter().filter(|e| keep(e)).count())
-        .sum::<usize>() as f64;
-    let time = window * runs.len() as f64;
+        .map(|r| r.events.iter().filter(|e| keep(e)).count() as f64)
+        .collect();
+    if counts.len() > 1 {
+        let rates: Vec<f64> = counts.iter().map(|c| c / window).collect();
+        return spread(&rates);
+    }
+    let count: f64 = counts.iter().sum();
     Estimate {
-        mean: count / time,
-        standard_error: count.sqrt() / time,
+        mean: count / window,
+        standard_error: count.sqrt() / window,
     }
 }
 
@@ -493,7 +500,7 @@ impl Summary for MillReport {
                 ]);
             }
             spectra.notes = vec![
-                "a contact is seen only every recorded step: one shorter than the interval can be missed, its v_n is taken up to one interval into it and its peak is the largest force recorded; the wall is the last mesh wall/gran fix (LIGGGHTS's wall/gran/local records that one); standard errors are Poisson's".into(),
+                "a contact is seen only every recorded step: one shorter than the interval can be missed, its v_n is taken up to one interval into it and its peak is the largest force recorded; the wall is the last mesh wall/gran fix (LIGGGHTS's wall/gran/local records that one); standard errors are Poisson's for one run (they leave out that one window sees one arrangement of the charge), from the runs' spread with --seeds".into(),
             ];
             sections.push(spectra);
         }
