@@ -290,3 +290,28 @@ fn mill_snapshots_in_every_format() {
         insta::assert_snapshot!(format!("mill_example_{format:?}").to_lowercase(), text);
     }
 }
+
+#[test]
+fn a_paper_deck_is_switched_to_hertz_at_the_cor_its_eta_gives() {
+    let (_dir, path) = edited(|t| {
+        t.replace("model hertz", "model paper").replace(
+            "coefficientRestitution peratomtypepair 3 &\n                0.50 0.55 0.45 &\n                0.55 0.60 0.45 &\n                0.45 0.45 0.45",
+            "lossCoefficient peratomtypepair 3 0.6 0.6 0.6 0.6 0.6 0.6 0.6 0.6 0.3",
+        )
+    });
+    let deck = MillDeck::read(&path).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(deck.law, MillLaw::Paper);
+    assert_eq!(deck.restitution[0], 0.5);
+    assert!((deck.restitution[8] - (0.7_f64 / 1.3).sqrt()).abs() < 1e-15);
+    let text = deck.render(MillLaw::Hertz, &plan());
+    let cor = text
+        .lines()
+        .find(|l| l.contains("property/global coefficientRestitution"))
+        .expect("a coefficientRestitution table");
+    assert!(
+        cor.ends_with(&format!("5e-1 {:e}", (0.7_f64 / 1.3).sqrt())),
+        "{cor}"
+    );
+    assert!(text.contains("pair_style gran model hertz tangential history rolling_friction cdt"));
+    assert!(!text.contains("model paper"));
+}
