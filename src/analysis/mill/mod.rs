@@ -147,7 +147,7 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
                     "--time",
                     t.to_string(),
                     format!(
-                        "a rotation time above one step and at most the deck's own {written} s ({} steps of {} s from {})",
+                        "a rotation time above one step and at most the deck's own {written} s ({} steps of {:e} s from {})",
                         deck.rotation_steps, deck.timestep, deck.rotation_from
                     ),
                 ));
