@@ -39,6 +39,7 @@ fn plan() -> MillPlan {
         spectra_steps: 200,
         contact_every: 5,
         print_every: 10,
+        position_every: 100,
         seed: 0,
     }
 }

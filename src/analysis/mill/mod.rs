@@ -5,6 +5,7 @@
 //! the liner, and the fraction of contacts at rest, each with its standard error, and the
 //! difference between the laws with its own.
 
+mod charge;
 mod contacts;
 mod report;
 
@@ -22,7 +23,8 @@ pub use report::{
 
 use crate::codes::deck::DeckError;
 use crate::codes::liggghts::mill::{
-    ATOMS_FILE, ENERGY_FILE, MAX_SEEDS, MillDeck, MillLaw, MillPlan, PAIRS_FILE, WALLS_FILE,
+    ATOMS_FILE, ENERGY_FILE, MAX_SEEDS, MillDeck, MillLaw, MillPlan, PAIRS_FILE, POSITIONS_FILE,
+    WALLS_FILE,
 };
 use crate::codes::runner::{error_line, read_log, spawn_contained, wait_contained};
 use crate::codes::{CodeError, CodeName};
@@ -125,6 +127,9 @@ pub struct RunResult {
     pub events: Vec<ContactEvent>,
     /// Per recorded frame, the fraction of its contacts at rest.
     pub rest_fractions: Vec<f64>,
+    /// Rotation time of each positions frame, s, with the charge's toe and shoulder angles,
+    /// degrees from the bottom (empty where the deck has no gravity).
+    pub angles: Vec<(f64, f64, f64)>,
     /// Wall time, s.
     pub wall_time: f64,
 }
@@ -205,6 +210,7 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
             spectra_steps,
             contact_every: options.contact_every,
             print_every: (rotation_steps / 2000).max(1),
+            position_every: (rotation_steps / 200).max(1),
             seed: 0,
         },
         transient,
@@ -394,9 +400,20 @@ fn read_run(
     } else {
         (Vec::new(), Vec::new())
     };
+    let mut angles = Vec::new();
+    if let (Some(gravity), Some(drum)) = (deck.gravity, deck.rotating.first()) {
+        let frames = charge::read_positions(&read(POSITIONS_FILE)?)
+            .map_err(|(line, reason)| output(POSITIONS_FILE, line, reason))?;
+        for (step, particles) in frames {
+            if let Some((toe, shoulder)) = charge::toe_and_shoulder(drum, gravity, &particles) {
+                angles.push(((step - atoms.start_step) * deck.timestep, toe, shoulder));
+            }
+        }
+    }
     Ok(RunResult {
         law,
         code: String::new(),
+        angles,
         seed,
         series,
         events,

@@ -250,6 +250,29 @@ pub(super) fn summarise(
         over_runs(&written, energy),
         over_runs(&switched, energy),
     );
+    if runs.iter().all(|r| !r.angles.is_empty()) {
+        let angle = |r: &RunResult, pick: fn(&(f64, f64, f64)) -> f64| {
+            r.angles
+                .iter()
+                .filter(|a| a.0 > transient)
+                .map(pick)
+                .collect::<Vec<f64>>()
+        };
+        let toe = |r: &RunResult| angle(r, |a| a.1);
+        let shoulder = |r: &RunResult| angle(r, |a| a.2);
+        push(
+            "shoulder angle (from the bottom, rising side positive)",
+            "deg",
+            over_runs(&written, shoulder),
+            over_runs(&switched, shoulder),
+        );
+        push(
+            "toe angle (from the bottom, rising side positive)",
+            "deg",
+            over_runs(&written, toe),
+            over_runs(&switched, toe),
+        );
+    }
     let mut spectra = Vec::new();
     if plan.spectra_steps > 0 {
         let rest = |r: &RunResult| r.rest_fractions.clone();

@@ -32,6 +32,9 @@ pub const ATOMS_FILE: &str = "millimpact_atoms.txt";
 pub const PAIRS_FILE: &str = "millimpact_pairs.txt";
 /// Particle–wall contacts (the last mesh wall/gran fix), every few steps over the window.
 pub const WALLS_FILE: &str = "millimpact_walls.txt";
+/// Particle positions (id, x, y, z, radius), at [`MillPlan::position_every`] steps through
+/// the rotation, where the deck has gravity: the charge's toe and shoulder.
+pub const POSITIONS_FILE: &str = "millimpact_positions.txt";
 
 /// Seeds (primes above 10000, as LIGGGHTS's random seeds must be) that replace a deck's
 /// insertion seeds for its second and later seeds.
@@ -103,6 +106,8 @@ pub struct MillPlan {
     pub contact_every: u64,
     /// Power and kinetic energy are printed every this many steps.
     pub print_every: u64,
+    /// Particle positions are dumped every this many steps (where the deck has gravity).
+    pub position_every: u64,
     /// Which seed: 0 runs the deck's own insertion seeds, k > 0 replaces them.
     pub seed: usize,
 }
@@ -139,6 +144,8 @@ pub struct MillDeck {
     pub insertion_seeds: usize,
     /// What of the deck the instrumented runs leave out (its own output files), with lines.
     pub left_out: Vec<String>,
+    /// The direction of gravity (`fix … gravity G vector X Y Z`), a unit vector, where set.
+    pub gravity: Option<[f64; 3]>,
     commands: Vec<Command>,
     first_run: usize,
     rotation_start: usize,
@@ -244,6 +251,7 @@ impl MillDeck {
         let mut rotation_steps = 0;
         let mut insertion_seeds = 0;
         let mut left_out: Vec<String> = Vec::new();
+        let mut gravity = None;
         let mut tables: Vec<(&str, Vec<f64>, SourceLine)> = Vec::new();
         for (index, c) in commands.iter().enumerate() {
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
@@ -327,6 +335,15 @@ impl MillDeck {
                 {
                     insertion_seeds += 1;
                 }
+                "fix" if style == "gravity" => {
+                    if let Some(k) = c.words.iter().position(|w| w == "vector") {
+                        gravity = unit([
+                            c.number(k + 1, "gravity's direction")?,
+                            c.number(k + 2, "gravity's direction")?,
+                            c.number(k + 3, "gravity's direction")?,
+                        ]);
+                    }
+                }
                 "fix" if is_property(c, "coefficientRestitution") => tables.push((
                     "coefficientRestitution",
                     pair_table(c, "coefficientRestitution", types)?,
@@ -397,6 +414,7 @@ impl MillDeck {
             tangential_and_rolling: tangential_and_rolling.unwrap_or_default(),
             insertion_seeds,
             left_out,
+            gravity,
             commands,
             first_run,
             rotation_start,
@@ -698,7 +716,7 @@ impl MillDeck {
             .iter()
             .flat_map(|r| (4..=6).map(move |k| format!("$(f_{}[{k}])", r.mesh)))
             .collect();
-        vec![
+        let mut lines = vec![
             "compute millimpact_rke all erotate/sphere".into(),
             format!("dump millimpact_atoms all custom 1000000000 {ATOMS_FILE} id type mass radius"),
             "dump_modify millimpact_atoms first yes".into(),
@@ -707,7 +725,14 @@ impl MillDeck {
                 plan.print_every,
                 torques.join(" ")
             ),
-        ]
+        ];
+        if self.gravity.is_some() {
+            lines.push(format!(
+                "dump millimpact_positions all custom {} {POSITIONS_FILE} id x y z radius",
+                plan.position_every
+            ));
+        }
+        lines
     }
 
     /// The contact dumps of the spectra window.
