@@ -122,3 +122,47 @@ pub fn toe_and_shoulder(
     near.sort_by(f64::total_cmp);
     Some((quantile(&near, 0.05), quantile(&near, 0.95)))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::codes::deck::SourceLine;
+
+    /// A drum about +y turning at +9 rad/s, gravity −z: the bottom moves toward −x (ω ŷ × −ẑ),
+    /// so the rising side is −x. A charge of balls on the shell from 30° before the bottom to
+    /// 60° past it on the rising side, and balls inside it: toe −30°, shoulder 60°.
+    #[test]
+    fn toe_and_shoulder_of_a_charge_on_the_shell() {
+        let drum = RotatingMesh {
+            mesh: "drum".into(),
+            origin: [0.0; 3],
+            axis: [0.0, 1.0, 0.0],
+            angular_velocity: 9.0,
+            from: SourceLine {
+                file: "in.mill".into(),
+                line: 1,
+            },
+        };
+        let (radius, shell) = (0.005, 0.07);
+        let mut particles = Vec::new();
+        for k in 0..=90 {
+            let angle = f64::from(k - 30).to_radians();
+            let r = shell - radius;
+            // Rising side is −x: the angle runs from −z toward −x.
+            particles.push([-r * angle.sin(), 0.0, -r * angle.cos(), radius]);
+            particles.push([-0.5 * r * angle.sin(), 0.0, -0.5 * r * angle.cos(), radius]);
+        }
+        let (toe, shoulder) = toe_and_shoulder(&drum, [0.0, 0.0, -1.0], &particles).unwrap();
+        assert!((toe - -25.0).abs() < 1.01, "toe {toe}");
+        assert!((shoulder - 55.0).abs() < 1.01, "shoulder {shoulder}");
+        // Turning the other way, the sides swap.
+        let back = RotatingMesh {
+            angular_velocity: -9.0,
+            ..drum
+        };
+        let (toe, shoulder) = toe_and_shoulder(&back, [0.0, 0.0, -1.0], &particles).unwrap();
+        assert!((toe - -55.0).abs() < 1.01 && (shoulder - 25.0).abs() < 1.01);
+        // Gravity along the axis has no bottom.
+        assert_eq!(toe_and_shoulder(&back, [0.0, 1.0, 0.0], &particles), None);
+    }
+}
