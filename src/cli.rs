@@ -59,6 +59,11 @@ pub enum Command {
     /// A published benchmark (Chung & Ooi's normal-impact tests 1–3) by the exact solution,
     /// the paper's law and each code asked for, every figure against its published value.
     Benchmark(BenchmarkArgs),
+    /// Run a user's whole LIGGGHTS mill deck twice at once: as written and with every contact
+    /// line switched between damped Hertz and the paper's law at each pair's COR; the power
+    /// draw, kinetic energy, collision spectra and contacts at rest under each, with the
+    /// difference and its standard error.
+    Mill(MillArgs),
 }
 
 /// The benchmarks `millimpact benchmark` runs.
@@ -548,6 +553,45 @@ pub struct DeckArgs {
     /// Kill a code after this many seconds.
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// Output format.
+    #[arg(long, value_parser = format_parser(), default_value = "table")]
+    pub format: Format,
+}
+
+/// `millimpact mill`.
+#[derive(Debug, Args)]
+pub struct MillArgs {
+    /// The deck: a LIGGGHTS input script with a drum turned by `fix move/mesh … rotate` and a
+    /// `run` after it (model hertz or model paper).
+    pub deck: PathBuf,
+    /// The build that runs the damped-Hertz runs (the paper's law always runs in
+    /// liggghts-paper).
+    #[arg(long, value_parser = code_parser(), default_value = "liggghts")]
+    pub code: CodeName,
+    /// Rotation time to run, s [default: the deck's own runs after the fix move/mesh].
+    #[arg(long, value_parser = parse_positive)]
+    pub time: Option<f64>,
+    /// Runs per law, each with its own insertion seeds (1: the deck's own seeds).
+    #[arg(long, default_value = "1")]
+    pub seeds: usize,
+    /// Rotation time left out of the power and energy means, s [default: one revolution, or
+    /// half the rotation if shorter].
+    #[arg(long)]
+    pub transient: Option<f64>,
+    /// Rotation time at the end over which contacts are recorded for the spectra, s (0: none)
+    /// [default: 0.1 s, or half the rotation if that is shorter].
+    #[arg(long = "spectra-time")]
+    pub spectra_time: Option<f64>,
+    /// Record contacts every this many steps.
+    #[arg(long = "contact-every", default_value = "5")]
+    pub contact_every: u64,
+    /// Kill a run after this many seconds.
+    #[arg(long, default_value = "3600", value_parser = parse_timeout)]
+    pub timeout: f64,
+    /// Keep every run's folder (its input, log and the files it wrote) in this folder
+    /// [default: a run's folder is removed once read, kept only when the run fails].
+    #[arg(long, value_name = "DIR")]
+    pub keep: Option<PathBuf>,
     /// Output format.
     #[arg(long, value_parser = format_parser(), default_value = "table")]
     pub format: Format,

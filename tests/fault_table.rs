@@ -338,6 +338,16 @@ fn trials(dir: &Path) -> Vec<Trial> {
             &["deck", "cases/ball_plate.toml"],
         ),
         trial(
+            "mill",
+            "a deck with no rotating mesh",
+            &["mill", "tests/data/deck/liggghts-paper/in.paper_mill"],
+        ),
+        trial(
+            "mill",
+            "a rotation time beyond the deck's own",
+            &["mill", "examples/mill/in.mill", "--time", "5"],
+        ),
+        trial(
             "output path",
             "a symbolic link",
             &["run", &case, "--trajectory", &link],

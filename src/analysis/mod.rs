@@ -6,6 +6,7 @@ pub mod benchmark;
 pub mod calibrate;
 pub mod compare;
 pub mod deck;
+pub mod mill;
 pub mod precision;
 pub mod probe;
 pub mod report;

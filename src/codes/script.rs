@@ -81,6 +81,9 @@ pub struct ScriptReader {
     lacking: (&'static str, &'static [&'static str]),
     commands: Vec<Command>,
     depth: usize,
+    /// Whether `variable` lines are kept among the commands (a whole deck written out again
+    /// needs them: `v_NAME` references are resolved by the code at run time).
+    keep_variables: bool,
 }
 
 /// Most nested includes followed (a file that includes itself stops here).
@@ -115,6 +118,22 @@ impl ScriptReader {
             // `-var` makes an index-style variable.
             reader.styles.insert(name.clone(), ("index".into(), None));
         }
+        reader.file(path)?;
+        Ok(reader.commands)
+    }
+
+    /// [`ScriptReader::read_for`] keeping the `variable` lines among the commands (with their
+    /// `${…}` substituted as the code substitutes them when it reads the line), so that the
+    /// commands written out in order are the deck the code reads.
+    pub fn read_whole(
+        path: &Path,
+        lacking: (&'static str, &'static [&'static str]),
+    ) -> Result<Vec<Command>, DeckError> {
+        let mut reader = ScriptReader {
+            lacking,
+            keep_variables: true,
+            ..ScriptReader::default()
+        };
         reader.file(path)?;
         Ok(reader.commands)
     }
@@ -178,7 +197,17 @@ impl ScriptReader {
                 self.depth -= 1;
                 result
             }
-            "variable" => self.define(&words, &at),
+            "variable" => {
+                self.define(&words, &at)?;
+                if self.keep_variables {
+                    self.commands.push(Command {
+                        at,
+                        words,
+                        text: text.trim().to_string(),
+                    });
+                }
+                Ok(())
+            }
             _ => {
                 self.commands.push(Command {
                     at,

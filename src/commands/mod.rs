@@ -6,6 +6,7 @@ mod calibrate;
 mod compare;
 mod deck;
 mod merge;
+mod mill;
 mod precision;
 mod probe;
 mod reference;
@@ -23,6 +24,7 @@ use crate::cli::Command;
 use millimpact::analysis::benchmark::BenchmarkError;
 use millimpact::analysis::compare::CompareError;
 use millimpact::analysis::deck::DeckCheckError;
+use millimpact::analysis::mill::MillError;
 use millimpact::analysis::report::ReportError;
 use millimpact::analysis::run::RunError;
 use millimpact::analysis::store::StoreError;
@@ -144,6 +146,7 @@ fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
         ReportError,
         BenchmarkError,
         DeckCheckError,
+        MillError,
     );
     false
 }
@@ -164,6 +167,7 @@ pub fn dispatch(command: &Command) -> Result<CommandOutput> {
         Command::Probe(args) => probe::probe(args),
         Command::Benchmark(args) => benchmark::benchmark(args),
         Command::Deck(args) => deck::deck(args),
+        Command::Mill(args) => mill::mill(args),
     }
 }
 

@@ -40,16 +40,16 @@ pub struct LiggghtsDeck;
 
 /// A `model …` specification of `pair_style gran` or `fix wall/gran`, with its settings.
 #[derive(Clone, Debug, PartialEq)]
-struct GranModel {
-    normal: String,
-    tangential: String,
+pub(super) struct GranModel {
+    pub(super) normal: String,
+    pub(super) tangential: String,
     cohesion: String,
-    rolling: String,
+    pub(super) rolling: String,
     surface: String,
     /// The words of the model specification (`model hertz tangential history …`).
     spec: Vec<String>,
     /// `key value` settings after the wall or pair arguments.
-    settings: Vec<(String, String)>,
+    pub(super) settings: Vec<(String, String)>,
 }
 
 impl GranModel {
@@ -116,14 +116,16 @@ impl Property {
 
 /// A wall fix as read.
 #[derive(Clone, Debug)]
-struct WallFix {
+pub(super) struct WallFix {
     id: String,
     group: String,
-    model: GranModel,
+    pub(super) model: GranModel,
     wall_type: u32,
     at: SourceLine,
     /// What of the wall's definition the plane leaves out.
     geometry: String,
+    /// The mesh/surface fixes it meets (none for a primitive wall).
+    pub(super) meshes: Vec<String>,
 }
 
 /// Everything the reader gathers in one pass.
@@ -185,7 +187,7 @@ const MODEL_KEYWORDS: [&str; 5] = [
 
 /// Read `model X [tangential Y] [cohesion Z] [rolling_friction R] [surface S]` from
 /// `words[start..]`; returns the model and the index after it.
-fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), DeckError> {
+pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), DeckError> {
     let mut k = start;
     let mut model = GranModel {
         normal: String::new(),
@@ -252,7 +254,11 @@ fn read_model(command: &Command, start: usize) -> Result<(GranModel, usize), Dec
 }
 
 /// Read `key value` settings from `words[start..]` into `model`.
-fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Result<(), DeckError> {
+pub(super) fn read_settings(
+    command: &Command,
+    start: usize,
+    model: &mut GranModel,
+) -> Result<(), DeckError> {
     let words = &command.words[start..];
     if PAPER_MODELS.contains(&model.normal.as_str())
         && let Some(key) = words.first()
@@ -291,7 +297,7 @@ fn read_settings(command: &Command, start: usize, model: &mut GranModel) -> Resu
 }
 
 /// Read `fix ID group wall/gran …`.
-fn read_wall(
+pub(super) fn read_wall(
     command: &Command,
     meshes: &HashMap<String, (u32, SourceLine)>,
 ) -> Result<WallFix, DeckError> {
@@ -397,6 +403,7 @@ fn read_wall(
         wall_type,
         at: command.at.clone(),
         geometry,
+        meshes: mesh_names,
     })
 }
 

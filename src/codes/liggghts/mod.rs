@@ -14,6 +14,7 @@
 pub mod batch;
 pub mod card;
 pub mod deck;
+pub mod mill;
 pub mod paper;
 
 pub use paper::LiggghtsPaper;

@@ -1,0 +1,496 @@
+//! A user's whole mill run under two laws, and what changes (`millimpact mill`): the deck as
+//! written and the deck switched between damped Hertz and the paper's law at equal COR per type
+//! pair ([`MillDeck`]), each run in its own process (both at once), and per law the power the
+//! drum draws, the charge's kinetic energy, the collision spectra per pair of types and against
+//! the liner, and the fraction of contacts at rest, each with its standard error, and the
+//! difference between the laws with its own.
+
+mod charge;
+mod contacts;
+mod report;
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+use thiserror::Error;
+
+pub use contacts::{ContactEvent, ContactSample, ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED};
+pub use report::{
+    Estimate, MillRecord, MillReport, MillRun, QuantityRow, SpectrumRow, Verdict, difference,
+};
+
+use crate::codes::deck::DeckError;
+use crate::codes::liggghts::mill::{
+    ATOMS_FILE, ENERGY_FILE, MAX_SEEDS, MillDeck, MillLaw, MillPlan, PAIRS_FILE, POSITIONS_FILE,
+    WALLS_FILE,
+};
+use crate::codes::runner::{error_line, read_log, spawn_contained, wait_contained};
+use crate::codes::{CodeError, CodeName};
+
+/// Why a mill comparison did not come to a result.
+#[derive(Debug, Error)]
+pub enum MillError {
+    /// The deck cannot be run as the comparison needs (the user's: exit 2).
+    #[error(transparent)]
+    Deck(#[from] DeckError),
+    /// An option does not fit the deck (the user's: exit 2).
+    #[error("{deck}: {option} = {value}: {allowed}")]
+    Option {
+        /// The deck.
+        deck: PathBuf,
+        /// The option.
+        option: &'static str,
+        /// Its value.
+        value: String,
+        /// What is allowed.
+        allowed: String,
+    },
+    /// A run of the deck failed (the code's fault or the deck's at run time: exit 1).
+    #[error("the {law} run (seed {seed})")]
+    Run {
+        /// The law of the run.
+        law: MillLaw,
+        /// Its seed.
+        seed: usize,
+        /// Why.
+        source: CodeError,
+    },
+    /// A file a run wrote cannot be read.
+    #[error("the {law} run (seed {seed}): {} line {line}: {reason}; run folder kept in {}", file.display(), folder.display())]
+    Output {
+        /// The law of the run.
+        law: MillLaw,
+        /// Its seed.
+        seed: usize,
+        /// The file.
+        file: PathBuf,
+        /// The line, from 1 (0: the file as a whole).
+        line: usize,
+        /// What was wrong.
+        reason: String,
+        /// The kept run folder.
+        folder: PathBuf,
+    },
+}
+
+impl crate::error::Blame for MillError {
+    fn is_user_error(&self) -> bool {
+        matches!(self, MillError::Deck(_) | MillError::Option { .. })
+    }
+}
+
+/// What the command line asks of a comparison.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MillOptions {
+    /// Rotation time run, s (`None`: the deck's own).
+    pub time: Option<f64>,
+    /// Runs per law, each with its own insertion seeds (1: the deck's own).
+    pub seeds: usize,
+    /// Rotation time left out of the power and energy means as the start-up, s (`None`: one
+    /// revolution of the drum, or half the rotation if that is shorter).
+    pub transient: Option<f64>,
+    /// Rotation time at the end over which contacts are recorded for the spectra, s (`None`:
+    /// 0.1 s, or half the rotation if that is shorter).
+    pub spectra_time: Option<f64>,
+    /// Contacts are recorded every this many steps.
+    pub contact_every: u64,
+    /// Each run is killed after this long.
+    pub timeout: Duration,
+    /// Runs at once.
+    pub jobs: usize,
+    /// A folder to keep every run's folder in (`<law>-seed<k>-…`: its input, log and the files
+    /// it wrote); `None`: a run's folder is removed after it is read, kept only on a failure.
+    pub keep: Option<PathBuf>,
+    /// The build that runs damped Hertz (liggghts, or liggghts-paper, which has it too); the
+    /// paper's law runs in liggghts-paper.
+    pub hertz_code: CodeName,
+}
+
+/// Power and energy are averaged over this many consecutive blocks of the measured time.
+pub const BLOCKS: usize = 5;
+
+/// What one run gave.
+#[derive(Clone, Debug)]
+pub struct RunResult {
+    /// The law.
+    pub law: MillLaw,
+    /// The build that ran it.
+    pub code: String,
+    /// The seed.
+    pub seed: usize,
+    /// Rotation time of each printed row, s, with the power the drum draws, W, and the
+    /// kinetic energy of the charge (translational and rotational), J.
+    pub series: Vec<(f64, f64, f64)>,
+    /// The contacts first seen in the spectra window.
+    pub events: Vec<ContactEvent>,
+    /// Per recorded frame, the fraction of its contacts at rest.
+    pub rest_fractions: Vec<f64>,
+    /// Rotation time of each positions frame, s, with the charge's toe and shoulder angles,
+    /// degrees from the bottom (empty where the deck has no gravity).
+    pub angles: Vec<(f64, f64, f64)>,
+    /// Wall time, s.
+    pub wall_time: f64,
+}
+
+/// The plan each run follows, checked against the deck.
+pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), MillError> {
+    let refuse = |option: &'static str, value: String, allowed: String| MillError::Option {
+        deck: deck.path.clone(),
+        option,
+        value,
+        allowed,
+    };
+    let written = deck.rotation_steps as f64 * deck.timestep;
+    let rotation_steps = match options.time {
+        None => deck.rotation_steps,
+        Some(t) => {
+            let steps = deck.steps_for(t);
+            if t.is_nan() || t <= 0.0 || steps == 0 || steps > deck.rotation_steps {
+                return Err(refuse(
+                    "--time",
+                    t.to_string(),
+                    format!(
+                        "a rotation time above one step and at most the deck's own {written} s ({} steps of {:e} s from {})",
+                        deck.rotation_steps, deck.timestep, deck.rotation_from
+                    ),
+                ));
+            }
+            steps
+        }
+    };
+    if options.seeds == 0 || options.seeds > MAX_SEEDS {
+        return Err(refuse(
+            "--seeds",
+            options.seeds.to_string(),
+            format!("1 to {MAX_SEEDS} runs per law"),
+        ));
+    }
+    if options.seeds > 1 && deck.insertion_seeds == 0 {
+        return Err(refuse(
+            "--seeds",
+            options.seeds.to_string(),
+            "1: the deck inserts no particles with a seed (no fix insert/… or particletemplate), so every run would be the same".into(),
+        ));
+    }
+    let rotation = rotation_steps as f64 * deck.timestep;
+    let revolution = deck
+        .rotating
+        .iter()
+        .map(|r| 2.0 * std::f64::consts::PI / r.angular_velocity.abs())
+        .fold(f64::INFINITY, f64::min);
+    let transient = options.transient.unwrap_or(revolution.min(rotation / 2.0));
+    if !(0.0..rotation).contains(&transient) {
+        return Err(refuse(
+            "--transient",
+            transient.to_string(),
+            format!("at least 0 and below the rotation run, {rotation} s"),
+        ));
+    }
+    let spectra_time = options.spectra_time.unwrap_or(0.1_f64.min(rotation / 2.0));
+    let spectra_steps = deck.steps_for(spectra_time);
+    if spectra_time.is_nan() || spectra_time < 0.0 || spectra_steps > rotation_steps {
+        return Err(refuse(
+            "--spectra-time",
+            spectra_time.to_string(),
+            format!("at least 0 and at most the rotation run, {rotation} s"),
+        ));
+    }
+    if options.contact_every == 0 {
+        return Err(refuse(
+            "--contact-every",
+            "0".into(),
+            "a whole number of steps from 1".into(),
+        ));
+    }
+    Ok((
+        MillPlan {
+            rotation_steps,
+            spectra_steps,
+            contact_every: options.contact_every,
+            print_every: (rotation_steps / 2000).max(1),
+            position_every: (rotation_steps / 200).max(1),
+            seed: 0,
+        },
+        transient,
+    ))
+}
+
+/// coreutils' library behind `stdbuf`: LIGGGHTS's standard output line-buffered, so that a
+/// run stopped by `MPI_Abort` still leaves its `ERROR` line in the kept log.
+const LINE_BUFFERING: &str = "/usr/libexec/coreutils/libstdbuf.so";
+
+/// Run one law with one seed in a scratch folder (kept, with its `log.txt`, when anything
+/// fails), and read what it wrote.
+fn run_one(
+    deck: &MillDeck,
+    law: MillLaw,
+    plan: &MillPlan,
+    options: &MillOptions,
+) -> Result<RunResult, MillError> {
+    let (seed, timeout) = (plan.seed, options.timeout);
+    let code = match law {
+        MillLaw::Hertz => options.hertz_code,
+        MillLaw::Paper => CodeName::LiggghtsPaper,
+    };
+    let fail = |source: CodeError| MillError::Run { law, seed, source };
+    let io = |context: &str| {
+        let context = context.to_string();
+        move |source| {
+            fail(CodeError::Io {
+                code: code.name().into(),
+                context,
+                source,
+            })
+        }
+    };
+    let mut executable = code.driver().locate().map_err(|looked| {
+        fail(CodeError::MissingBinary {
+            code: code.name().into(),
+            looked,
+        })
+    })?;
+    if Path::new(LINE_BUFFERING).is_file() {
+        executable
+            .env
+            .push(("LD_PRELOAD", std::ffi::OsString::from(LINE_BUFFERING)));
+        executable
+            .env
+            .push(("_STDBUF_O", std::ffi::OsString::from("L")));
+    }
+    let parent = options.keep.clone().unwrap_or_else(std::env::temp_dir);
+    std::fs::create_dir_all(&parent).map_err(io("creating the folder for the runs"))?;
+    let scratch = tempfile::Builder::new()
+        .prefix(&format!("{law}-seed{seed}-"))
+        .tempdir_in(&parent)
+        .map_err(io("creating a scratch folder"))?;
+    let folder = scratch.path().to_path_buf();
+    std::fs::write(folder.join("in.mill"), deck.render(law, plan))
+        .map_err(io("writing the input"))?;
+    let log_path = folder.join("log.txt");
+    let log = std::fs::File::create(&log_path).map_err(io("creating the log"))?;
+    let log_err = log.try_clone().map_err(io("duplicating the log"))?;
+    let mut command = executable.command();
+    command
+        .args(["-in", "in.mill", "-log", "none"])
+        .current_dir(&folder)
+        .stdin(std::process::Stdio::null())
+        .stdout(std::process::Stdio::from(log))
+        .stderr(std::process::Stdio::from(log_err));
+    let started = Instant::now();
+    let mut child = spawn_contained(&mut command, &folder).map_err(io("starting the code"))?;
+    let status = wait_contained(&mut child, timeout).map_err(io("waiting for the code"))?;
+    let wall_time = started.elapsed().as_secs_f64();
+    let Some(status) = status else {
+        let log = scratch.keep().join("log.txt");
+        return Err(fail(CodeError::TimedOut {
+            code: code.name().into(),
+            seconds: timeout.as_secs_f64(),
+            log,
+        }));
+    };
+    let text = read_log(&log_path).map_err(io("reading the log"))?;
+    if !status.success() {
+        // The last ERROR line is the one that stopped it.
+        let said = text
+            .lines()
+            .map(str::trim)
+            .rfind(|l| l.starts_with("ERROR"))
+            .map(String::from)
+            .or_else(|| error_line(&text));
+        let log = scratch.keep().join("log.txt");
+        return Err(fail(CodeError::Crashed {
+            code: code.name().into(),
+            status: status.to_string(),
+            said,
+            log,
+        }));
+    }
+    match read_run(deck, law, plan, &folder) {
+        Ok(mut result) => {
+            result.wall_time = wall_time;
+            result.code = code.name().to_string();
+            if options.keep.is_some() {
+                let _ = scratch.keep();
+            }
+            Ok(result)
+        }
+        Err(mut error) => {
+            let kept = scratch.keep();
+            if let MillError::Output { folder, .. } = &mut error {
+                *folder = kept;
+            }
+            Err(error)
+        }
+    }
+}
+
+/// Read the files of a finished run in `folder`.
+fn read_run(
+    deck: &MillDeck,
+    law: MillLaw,
+    plan: &MillPlan,
+    folder: &Path,
+) -> Result<RunResult, MillError> {
+    let seed = plan.seed;
+    let output = |file: &str, line: usize, reason: String| MillError::Output {
+        law,
+        seed,
+        file: PathBuf::from(file),
+        line,
+        reason,
+        folder: folder.to_path_buf(),
+    };
+    let read = |file: &str| {
+        std::fs::read_to_string(folder.join(file)).map_err(|e| output(file, 0, e.to_string()))
+    };
+    let atoms = contacts::read_atoms(&read(ATOMS_FILE)?)
+        .map_err(|(line, reason)| output(ATOMS_FILE, line, reason))?;
+    let mut series = Vec::new();
+    for (k, line) in read(ENERGY_FILE)?.lines().enumerate() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let values: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .map_err(|e| output(ENERGY_FILE, k + 1, format!("`{line}`: {e}")))?;
+        if values.len() != 3 + 3 * deck.rotating.len() {
+            return Err(output(
+                ENERGY_FILE,
+                k + 1,
+                format!(
+                    "{} values, expected {} (step, ke, rotational ke, three torque components per rotating mesh)",
+                    values.len(),
+                    3 + 3 * deck.rotating.len()
+                ),
+            ));
+        }
+        let time = (values[0] - atoms.start_step) * deck.timestep;
+        // The torque on the mesh is what the charge exerts; the drive supplies its opposite.
+        let power: f64 = deck
+            .rotating
+            .iter()
+            .enumerate()
+            .map(|(m, r)| {
+                let t = &values[3 + 3 * m..6 + 3 * m];
+                -(t[0] * r.axis[0] + t[1] * r.axis[1] + t[2] * r.axis[2]) * r.angular_velocity
+            })
+            .sum();
+        series.push((time, power, values[1] + values[2]));
+    }
+    let (events, rest_fractions) = if plan.spectra_steps > 0 {
+        let recorded = contacts::Recorded {
+            atoms: &atoms,
+            deck,
+        };
+        let pairs = contacts::read_frames(&read(PAIRS_FILE)?)
+            .map_err(|(line, reason)| output(PAIRS_FILE, line, reason))?;
+        let walls = if deck.recorded_wall_meshes.is_empty() {
+            Vec::new()
+        } else {
+            contacts::read_frames(&read(WALLS_FILE)?)
+                .map_err(|(line, reason)| output(WALLS_FILE, line, reason))?
+        };
+        recorded
+            .track(&pairs, &walls)
+            .map_err(|reason| output(PAIRS_FILE, 0, reason))?
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let mut angles = Vec::new();
+    if let (Some(gravity), Some(drum)) = (deck.gravity, deck.rotating.first()) {
+        let frames = charge::read_positions(&read(POSITIONS_FILE)?)
+            .map_err(|(line, reason)| output(POSITIONS_FILE, line, reason))?;
+        for (step, particles) in frames {
+            if let Some((toe, shoulder)) = charge::toe_and_shoulder(drum, gravity, &particles) {
+                angles.push(((step - atoms.start_step) * deck.timestep, toe, shoulder));
+            }
+        }
+    }
+    Ok(RunResult {
+        law,
+        code: String::new(),
+        angles,
+        seed,
+        series,
+        events,
+        rest_fractions,
+        wall_time: 0.0,
+    })
+}
+
+/// The comparison from runs already made and kept (`MillOptions::keep`): each run's law, seed
+/// and folder. What the fast tests read instead of running the codes.
+pub fn report_from_folders(
+    deck: &MillDeck,
+    options: &MillOptions,
+    folders: &[(MillLaw, usize, String, PathBuf)],
+) -> Result<MillReport, MillError> {
+    let (base, transient) = plan(deck, options)?;
+    let mut runs = Vec::new();
+    for (law, seed, code, folder) in folders {
+        let plan = MillPlan {
+            seed: *seed,
+            ..base.clone()
+        };
+        let mut run = read_run(deck, *law, &plan, folder)?;
+        run.code = code.clone();
+        runs.push(run);
+    }
+    runs.sort_by_key(|r| (r.seed, r.law != deck.law));
+    Ok(report::summarise(deck, &base, transient, options, &runs))
+}
+
+/// Run the comparison: both laws, every seed, `options.jobs` runs at once; `progress` is told
+/// of each finished run.
+pub fn run_mill(
+    deck: &MillDeck,
+    options: &MillOptions,
+    progress: &(dyn Fn(&RunResult) + Sync),
+) -> Result<MillReport, MillError> {
+    let (base, transient) = plan(deck, options)?;
+    let laws = [deck.law, deck.law.other()];
+    let jobs: Vec<(MillLaw, MillPlan)> = (0..options.seeds)
+        .flat_map(|seed| laws.iter().map(move |&law| (law, seed)))
+        .map(|(law, seed)| {
+            (
+                law,
+                MillPlan {
+                    seed,
+                    ..base.clone()
+                },
+            )
+        })
+        .collect();
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Result<RunResult, MillError>>> = Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..options.jobs.max(1) {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, Ordering::SeqCst);
+                    let Some((law, plan)) = jobs.get(k) else {
+                        break;
+                    };
+                    let result = run_one(deck, *law, plan, options);
+                    if let Ok(run) = &result {
+                        progress(run);
+                    }
+                    results
+                        .lock()
+                        .unwrap_or_else(|e| e.into_inner())
+                        .push(result);
+                }
+            });
+        }
+    });
+    let mut runs = Vec::new();
+    for result in results.into_inner().unwrap_or_else(|e| e.into_inner()) {
+        runs.push(result?);
+    }
+    runs.sort_by_key(|r| (r.seed, r.law != deck.law));
+    Ok(report::summarise(deck, &base, transient, options, &runs))
+}

@@ -1,0 +1,556 @@
+//! The comparison's figures, with their uncertainty: block means (or means over seeds) and
+//! standard errors per law, and each difference between the laws with its standard error.
+
+use serde::Serialize;
+
+use super::contacts::{ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED, bin};
+use super::{BLOCKS, MillOptions, RunResult};
+use crate::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
+use crate::output::{Section, Summary};
+
+/// A mean with its standard error.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Estimate {
+    /// The mean.
+    pub mean: f64,
+    /// Its standard error.
+    pub standard_error: f64,
+}
+
+/// Whether a difference stands out of its uncertainty.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Verdict {
+    /// More than two standard errors from zero.
+    Resolved,
+    /// Within two standard errors of zero.
+    NotResolved,
+}
+
+impl std::fmt::Display for Verdict {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            Verdict::Resolved => "resolved",
+            Verdict::NotResolved => "not resolved",
+        })
+    }
+}
+
+/// `b − a` with the standard error of independent estimates, and whether it is resolved.
+pub fn difference(a: Estimate, b: Estimate) -> (Estimate, Verdict) {
+    let d = Estimate {
+        mean: b.mean - a.mean,
+        standard_error: a.standard_error.hypot(b.standard_error),
+    };
+    let verdict = if d.mean.abs() > 2.0 * d.standard_error {
+        Verdict::Resolved
+    } else {
+        Verdict::NotResolved
+    };
+    (d, verdict)
+}
+
+/// The mean of `values` and its standard error from `BLOCKS` consecutive blocks.
+fn block_estimate(values: &[f64]) -> Estimate {
+    let size = values.len() / BLOCKS;
+    if size == 0 {
+        return spread(values);
+    }
+    let means: Vec<f64> = values
+        .chunks(size)
+        .take(BLOCKS)
+        .map(|b| b.iter().sum::<f64>() / b.len() as f64)
+        .collect();
+    spread(&means)
+}
+
+/// The mean of independent `values` and its standard error.
+fn spread(values: &[f64]) -> Estimate {
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let variance = values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0);
+    Estimate {
+        mean,
+        standard_error: (variance / n).sqrt(),
+    }
+}
+
+/// Per law, one figure's estimate: over blocks of one run, or over the runs' own means.
+fn over_runs(runs: &[&RunResult], figure: impl Fn(&RunResult) -> Vec<f64>) -> Estimate {
+    if runs.len() == 1 {
+        block_estimate(&figure(runs[0]))
+    } else {
+        let means: Vec<f64> = runs
+            .iter()
+            .map(|r| {
+                let v = figure(r);
+                v.iter().sum::<f64>() / v.len() as f64
+            })
+            .collect();
+        spread(&means)
+    }
+}
+
+/// One figure under both laws.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct QuantityRow {
+    /// What is measured.
+    pub quantity: String,
+    /// Its unit.
+    pub unit: String,
+    /// Under the deck's own law.
+    pub written: Estimate,
+    /// Under the switched law.
+    pub switched: Estimate,
+    /// Switched minus written.
+    pub difference: Estimate,
+    /// Whether the difference is resolved.
+    pub verdict: Verdict,
+}
+
+/// One bin of a collision spectrum under both laws: collisions per second (per run).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SpectrumRow {
+    /// The pair of types (`"1-2"`, `"1-wall"`).
+    pub pair: String,
+    /// `impact_energy` (J, `½ m* v_n²` at first contact) or `peak_force` (N).
+    pub spectrum: String,
+    /// The bin's lower edge (`None`: from zero).
+    pub low: Option<f64>,
+    /// Its upper edge (`None`: unbounded).
+    pub high: Option<f64>,
+    /// Collisions per second under the deck's own law, with a Poisson standard error.
+    pub written: Estimate,
+    /// Under the switched law.
+    pub switched: Estimate,
+    /// Switched minus written.
+    pub difference: Estimate,
+    /// Whether the difference is resolved.
+    pub verdict: Verdict,
+}
+
+/// One run as it went.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MillRun {
+    /// The law.
+    pub law: MillLaw,
+    /// The build.
+    pub code: String,
+    /// The seed (0: the deck's own).
+    pub seed: usize,
+    /// Collisions first seen in the window.
+    pub collisions: usize,
+    /// Wall time, s.
+    pub wall_time: f64,
+}
+
+/// The comparison.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MillReport {
+    /// The deck.
+    pub deck: String,
+    /// The deck's own law.
+    pub written_law: MillLaw,
+    /// The law it is switched to.
+    pub switched_law: MillLaw,
+    /// The tangential and rolling models, kept in both.
+    pub tangential_and_rolling: String,
+    /// The time step, s.
+    pub timestep: f64,
+    /// Settling steps run as written before rotation.
+    pub settling_steps: u64,
+    /// Rotation steps run.
+    pub rotation_steps: u64,
+    /// Where rotation starts in the deck.
+    pub rotation_from: String,
+    /// Rotation time left out of the power and energy means, s.
+    pub transient: f64,
+    /// The time over which contacts are recorded, s (the end of the rotation).
+    pub spectra_window: f64,
+    /// Contacts recorded every this many steps.
+    pub contact_every: u64,
+    /// Runs per law.
+    pub seeds: usize,
+    /// The figures.
+    pub quantities: Vec<QuantityRow>,
+    /// The collision spectra.
+    pub spectra: Vec<SpectrumRow>,
+    /// The runs.
+    pub runs: Vec<MillRun>,
+    /// What the runs leave out of the deck.
+    pub left_out: Vec<String>,
+}
+
+/// Collisions per second of `runs` whose event passes `keep`: with one run, its rate and a
+/// Poisson error; with several (seeds), the mean of their rates and the error from their
+/// spread, which also holds what Poisson's leaves out (the charge's arrangement differs from
+/// run to run, and one window sees one arrangement).
+fn rate(runs: &[&RunResult], window: f64, keep: impl Fn(&super::ContactEvent) -> bool) -> Estimate {
+    let counts: Vec<f64> = runs
+        .iter()
+        .map(|r| r.events.iter().filter(|e| keep(e)).count() as f64)
+        .collect();
+    if counts.len() > 1 {
+        let rates: Vec<f64> = counts.iter().map(|c| c / window).collect();
+        return spread(&rates);
+    }
+    let count: f64 = counts.iter().sum();
+    Estimate {
+        mean: count / window,
+        standard_error: count.sqrt() / window,
+    }
+}
+
+fn edges(edges: &[f64], k: usize) -> (Option<f64>, Option<f64>) {
+    (k.checked_sub(1).map(|j| edges[j]), edges.get(k).copied())
+}
+
+/// The report of finished runs.
+pub(super) fn summarise(
+    deck: &MillDeck,
+    plan: &MillPlan,
+    transient: f64,
+    options: &MillOptions,
+    runs: &[RunResult],
+) -> MillReport {
+    let (written_law, switched_law) = (deck.law, deck.law.other());
+    let of = |law: MillLaw| runs.iter().filter(|r| r.law == law).collect::<Vec<_>>();
+    let (written, switched) = (of(written_law), of(switched_law));
+    let measured = |r: &RunResult, pick: fn(&(f64, f64, f64)) -> f64| {
+        r.series
+            .iter()
+            .filter(|s| s.0 > transient)
+            .map(pick)
+            .collect::<Vec<f64>>()
+    };
+    let window = plan.spectra_steps as f64 * deck.timestep;
+    let mut quantities = Vec::new();
+    let mut push = |quantity: &str, unit: &str, a: Estimate, b: Estimate| {
+        let (difference, verdict) = difference(a, b);
+        quantities.push(QuantityRow {
+            quantity: quantity.into(),
+            unit: unit.into(),
+            written: a,
+            switched: b,
+            difference,
+            verdict,
+        });
+    };
+    let power = |r: &RunResult| measured(r, |s| s.1);
+    let energy = |r: &RunResult| measured(r, |s| s.2);
+    push(
+        "power draw",
+        "W",
+        over_runs(&written, power),
+        over_runs(&switched, power),
+    );
+    push(
+        "mean kinetic energy",
+        "J",
+        over_runs(&written, energy),
+        over_runs(&switched, energy),
+    );
+    if runs.iter().all(|r| !r.angles.is_empty()) {
+        let angle = |r: &RunResult, pick: fn(&(f64, f64, f64)) -> f64| {
+            r.angles
+                .iter()
+                .filter(|a| a.0 > transient)
+                .map(pick)
+                .collect::<Vec<f64>>()
+        };
+        let toe = |r: &RunResult| angle(r, |a| a.1);
+        let shoulder = |r: &RunResult| angle(r, |a| a.2);
+        push(
+            "shoulder angle (from the bottom, rising side positive)",
+            "deg",
+            over_runs(&written, shoulder),
+            over_runs(&switched, shoulder),
+        );
+        push(
+            "toe angle (from the bottom, rising side positive)",
+            "deg",
+            over_runs(&written, toe),
+            over_runs(&switched, toe),
+        );
+    }
+    let mut spectra = Vec::new();
+    if plan.spectra_steps > 0 {
+        let rest = |r: &RunResult| r.rest_fractions.clone();
+        push(
+            "collisions per second",
+            "1/s",
+            rate(&written, window, |_| true),
+            rate(&switched, window, |_| true),
+        );
+        push(
+            &format!("fraction of contacts at rest (|v_n| < {REST_SPEED} m/s)"),
+            "1",
+            over_runs(&written, rest),
+            over_runs(&switched, rest),
+        );
+        let mut pairs: Vec<String> = runs
+            .iter()
+            .flat_map(|r| r.events.iter().map(|e| e.pair.clone()))
+            .collect();
+        pairs.sort();
+        pairs.dedup();
+        for pair in &pairs {
+            for (spectrum, bins) in [
+                ("impact_energy", &ENERGY_BINS_J[..]),
+                ("peak_force", &FORCE_BINS_N[..]),
+            ] {
+                for k in 0..=bins.len() {
+                    let keep = |e: &super::ContactEvent| {
+                        e.pair == *pair
+                            && bin(
+                                if spectrum == "impact_energy" {
+                                    e.impact_energy
+                                } else {
+                                    e.peak_force
+                                },
+                                bins,
+                            ) == k
+                    };
+                    let (a, b) = (rate(&written, window, keep), rate(&switched, window, keep));
+                    let (difference, verdict) = difference(a, b);
+                    let (low, high) = edges(bins, k);
+                    spectra.push(SpectrumRow {
+                        pair: pair.clone(),
+                        spectrum: spectrum.into(),
+                        low,
+                        high,
+                        written: a,
+                        switched: b,
+                        difference,
+                        verdict,
+                    });
+                }
+            }
+        }
+    }
+    MillReport {
+        deck: deck.path.display().to_string(),
+        written_law,
+        switched_law,
+        tangential_and_rolling: deck.tangential_and_rolling.clone(),
+        timestep: deck.timestep,
+        settling_steps: deck.settling_steps,
+        rotation_steps: plan.rotation_steps,
+        rotation_from: deck.rotation_from.to_string(),
+        transient,
+        spectra_window: window,
+        contact_every: plan.contact_every,
+        seeds: options.seeds,
+        quantities,
+        spectra,
+        runs: runs
+            .iter()
+            .map(|r| MillRun {
+                law: r.law,
+                code: r.code.clone(),
+                seed: r.seed,
+                collisions: r.events.len(),
+                wall_time: r.wall_time,
+            })
+            .collect(),
+        left_out: deck.left_out.clone(),
+    }
+}
+
+/// One CSV row: a figure or a spectrum bin.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MillRecord {
+    /// `quantity` or `spectrum`.
+    pub kind: &'static str,
+    /// The figure, or the spectrum (`impact_energy`, `peak_force`).
+    pub quantity: String,
+    /// The pair of types, for a spectrum bin.
+    pub pair: Option<String>,
+    /// The bin's lower edge.
+    pub low: Option<f64>,
+    /// The bin's upper edge.
+    pub high: Option<f64>,
+    /// The unit.
+    pub unit: String,
+    /// The deck's own law.
+    pub written_law: MillLaw,
+    /// Its value.
+    pub written: f64,
+    /// Its standard error.
+    pub written_standard_error: f64,
+    /// The switched law.
+    pub switched_law: MillLaw,
+    /// Its value.
+    pub switched: f64,
+    /// Its standard error.
+    pub switched_standard_error: f64,
+    /// Switched minus written.
+    pub difference: f64,
+    /// Its standard error.
+    pub difference_standard_error: f64,
+    /// Whether the difference is resolved.
+    pub verdict: Verdict,
+}
+
+fn pm(e: Estimate) -> String {
+    format!("{:.4e} ± {:.1e}", e.mean, e.standard_error)
+}
+
+fn edge(x: Option<f64>) -> String {
+    x.map_or("-".into(), |x| format!("{x:e}"))
+}
+
+impl Summary for MillReport {
+    type Record = MillRecord;
+
+    fn records(&self) -> Vec<MillRecord> {
+        let quantities = self.quantities.iter().map(|q| MillRecord {
+            kind: "quantity",
+            quantity: q.quantity.clone(),
+            pair: None,
+            low: None,
+            high: None,
+            unit: q.unit.clone(),
+            written_law: self.written_law,
+            written: q.written.mean,
+            written_standard_error: q.written.standard_error,
+            switched_law: self.switched_law,
+            switched: q.switched.mean,
+            switched_standard_error: q.switched.standard_error,
+            difference: q.difference.mean,
+            difference_standard_error: q.difference.standard_error,
+            verdict: q.verdict,
+        });
+        let spectra = self.spectra.iter().map(|s| MillRecord {
+            kind: "spectrum",
+            quantity: s.spectrum.clone(),
+            pair: Some(s.pair.clone()),
+            low: s.low,
+            high: s.high,
+            unit: "1/s".into(),
+            written_law: self.written_law,
+            written: s.written.mean,
+            written_standard_error: s.written.standard_error,
+            switched_law: self.switched_law,
+            switched: s.switched.mean,
+            switched_standard_error: s.switched.standard_error,
+            difference: s.difference.mean,
+            difference_standard_error: s.difference.standard_error,
+            verdict: s.verdict,
+        });
+        quantities.chain(spectra).collect()
+    }
+
+    fn sections(&self) -> Vec<Section> {
+        let code = |law: MillLaw| {
+            self.runs
+                .iter()
+                .find(|r| r.law == law)
+                .map_or(String::new(), |r| r.code.clone())
+        };
+        let written = format!("model {} ({})", self.written_law, code(self.written_law));
+        let switched = format!("model {} ({})", self.switched_law, code(self.switched_law));
+        let mut figures = Section::new(
+            Some(format!(
+                "{}: {} (as written) against {} (switched at each pair's COR), {}",
+                self.deck, written, switched, self.tangential_and_rolling
+            )),
+            &[
+                "quantity",
+                "unit",
+                &written,
+                &switched,
+                "difference",
+                "verdict",
+            ],
+        );
+        for q in &self.quantities {
+            figures.rows.push(vec![
+                q.quantity.clone(),
+                q.unit.clone(),
+                pm(q.written),
+                pm(q.switched),
+                pm(q.difference),
+                q.verdict.to_string(),
+            ]);
+        }
+        let uncertainty = if self.seeds > 1 {
+            format!(
+                "means over {} seeds, standard errors from their spread",
+                self.seeds
+            )
+        } else {
+            format!(
+                "block means over {BLOCKS} consecutive blocks, standard errors from their spread"
+            )
+        };
+        figures.notes = vec![format!(
+            "Δt {:e} s; {} settling steps as written, then {} rotation steps (from {}); power and energy after the first {:.4} s of rotation, {uncertainty}; a difference within two standard errors is not resolved",
+            self.timestep,
+            self.settling_steps,
+            self.rotation_steps,
+            self.rotation_from,
+            self.transient
+        )];
+        let mut sections = vec![figures];
+        if !self.spectra.is_empty() {
+            let mut spectra = Section::new(
+                Some(format!(
+                    "collisions per second, by the impact energy ½ m* v_n² at first contact (J) and the peak normal force (N); contacts recorded every {} steps over the last {:.4} s",
+                    self.contact_every, self.spectra_window
+                )),
+                &[
+                    "pair",
+                    "spectrum",
+                    "from",
+                    "to",
+                    &written,
+                    &switched,
+                    "difference",
+                    "verdict",
+                ],
+            );
+            for s in &self.spectra {
+                spectra.rows.push(vec![
+                    s.pair.clone(),
+                    s.spectrum.clone(),
+                    edge(s.low),
+                    edge(s.high),
+                    pm(s.written),
+                    pm(s.switched),
+                    pm(s.difference),
+                    s.verdict.to_string(),
+                ]);
+            }
+            spectra.notes = vec![
+                "a contact is seen only every recorded step: one shorter than the interval can be missed, its v_n is taken up to one interval into it and its peak is the largest force recorded; the wall is the last mesh wall/gran fix (LIGGGHTS's wall/gran/local records that one); standard errors are Poisson's for one run (they leave out that one window sees one arrangement of the charge), from the runs' spread with --seeds".into(),
+            ];
+            sections.push(spectra);
+        }
+        let mut runs = Section::new(
+            Some("runs".into()),
+            &["law", "code", "seed", "collisions", "wall time (s)"],
+        );
+        for r in &self.runs {
+            runs.rows.push(vec![
+                r.law.to_string(),
+                r.code.clone(),
+                r.seed.to_string(),
+                r.collisions.to_string(),
+                format!("{:.1}", r.wall_time),
+            ]);
+        }
+        if !self.left_out.is_empty() {
+            runs.notes = vec![format!(
+                "left out (output only): {}",
+                self.left_out.join("; ")
+            )];
+        }
+        sections.push(runs);
+        sections
+    }
+
+    fn footer(&self) -> Vec<String> {
+        vec![format!("reproduce: millimpact mill {}", self.deck)]
+    }
+}

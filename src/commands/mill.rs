@@ -1,0 +1,38 @@
+//! `millimpact mill`.
+
+use std::time::Duration;
+
+use anyhow::Result;
+
+use super::CommandOutput;
+use crate::cli::MillArgs;
+use millimpact::analysis::mill::{MillOptions, run_mill};
+use millimpact::codes::CodeName;
+use millimpact::codes::liggghts::mill::MillDeck;
+use millimpact::error::UserError;
+use millimpact::output::export;
+
+pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
+    if !matches!(args.code, CodeName::Liggghts | CodeName::LiggghtsPaper) {
+        return Err(UserError::argument(
+            "--code",
+            args.code,
+            "liggghts or liggghts-paper (mill runs LIGGGHTS decks)",
+        )
+        .into());
+    }
+    let deck = MillDeck::read(&args.deck).map_err(UserError::from)?;
+    let options = MillOptions {
+        time: args.time,
+        seeds: args.seeds,
+        transient: args.transient,
+        spectra_time: args.spectra_time,
+        contact_every: args.contact_every,
+        timeout: Duration::from_secs_f64(args.timeout),
+        jobs: 2,
+        hertz_code: args.code,
+        keep: args.keep.clone(),
+    };
+    let report = run_mill(&deck, &options, &|_| {})?;
+    Ok(CommandOutput::passed(export(&report, args.format)?))
+}
