@@ -95,6 +95,11 @@ pub struct BenchmarkArgs {
     /// Kill a code after this many seconds.
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// Write test 3's COR chart into this folder (it must exist): `cor-chart-<case>.svg` and
+    /// `.csv` per material, every source's COR against the COR set, and `cor-chart-typed.svg`
+    /// and `.csv`, each code's law with the COR typed in directly.
+    #[arg(long, value_name = "DIR")]
+    pub chart: Option<PathBuf>,
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {

@@ -301,3 +301,84 @@ fn another_resolution_without_running_the_codes_is_refused() {
         "{stderr}"
     );
 }
+
+/// `--chart DIR` writes test 3's COR chart beside the table: per material an SVG and the CSV of
+/// its points (every source at each COR set, as the table's COR rows give it), and the typed
+/// laws' figure with theirs; the table itself is unchanged.
+#[test]
+fn the_cor_chart_is_written_with_its_data() {
+    let folder = TempDir::new().unwrap();
+    let output = millimpact()
+        .envs(common::codes_hidden())
+        .args(["benchmark", "chung-ooi", "--format", "json", "--chart"])
+        .arg(folder.path())
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(0));
+    let rows: Vec<Value> = serde_json::from_slice::<Value>(&output.stdout).unwrap()["rows"]
+        .as_array()
+        .unwrap()
+        .clone();
+    let mut names: Vec<String> = std::fs::read_dir(folder.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "cor-chart-chung_ooi_3_alumina.csv",
+            "cor-chart-chung_ooi_3_alumina.svg",
+            "cor-chart-chung_ooi_3_cast_iron.csv",
+            "cor-chart-chung_ooi_3_cast_iron.svg",
+            "cor-chart-typed.csv",
+            "cor-chart-typed.svg",
+        ]
+    );
+    for (case, material) in [
+        ("chung_ooi_3_alumina", "aluminium oxide"),
+        ("chung_ooi_3_cast_iron", "cast iron"),
+    ] {
+        let csv =
+            std::fs::read_to_string(folder.path().join(format!("cor-chart-{case}.csv"))).unwrap();
+        let mut lines = csv.lines();
+        assert_eq!(
+            lines.next(),
+            Some("curve,series,material,cor_set,cor,deviation")
+        );
+        let cor_rows: Vec<&Value> = rows
+            .iter()
+            .filter(|r| r["quantity"] == "cor" && r["material"] == material)
+            .collect();
+        let points: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+        assert_eq!(points.len(), cor_rows.len(), "{case}");
+        for (point, row) in points.iter().zip(&cor_rows) {
+            assert_eq!(point[0], "run");
+            assert_eq!(point[1], row["source"].as_str().unwrap());
+            let value: f64 = point[4].parse().unwrap();
+            // The CSV holds the shortest text that reads back to the same double.
+            assert_eq!(
+                value.to_bits(),
+                row["value"].as_f64().unwrap().to_bits(),
+                "{case} {point:?}"
+            );
+        }
+        let svg =
+            std::fs::read_to_string(folder.path().join(format!("cor-chart-{case}.svg"))).unwrap();
+        assert!(svg.starts_with("<svg") && svg.contains(material), "{case}");
+    }
+    let typed = std::fs::read_to_string(folder.path().join("cor-chart-typed.csv")).unwrap();
+    // Four laws at 81 CORs each.
+    assert_eq!(typed.lines().count(), 1 + 4 * 81);
+    assert!(typed.lines().skip(1).all(|l| l.starts_with("typed,")));
+}
+
+/// `--chart` naming no folder is bad input, refused before anything runs or is written.
+#[test]
+fn a_chart_folder_that_does_not_exist_is_refused_in_one_line() {
+    let stderr = refused(&["chung-ooi", "--chart", "no-such-folder"]);
+    assert!(
+        stderr.contains("--chart") && stderr.contains("no-such-folder"),
+        "{stderr}"
+    );
+}

@@ -12,6 +12,8 @@
 //! the published values; their closed-form difference shows the code doing what that wall
 //! means.
 
+pub mod cor_chart;
+
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
