@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{BenchmarkReport, CHUNG_OOI, Quantity};
+use super::{BenchmarkError, BenchmarkReport, CHUNG_OOI, Quantity};
 use crate::codes::damping::thornton_damping_ratio;
 use crate::codes::lammps::tsuji_alpha;
 use crate::model::law::DashpotLaw;
@@ -123,11 +123,15 @@ pub struct CorChart {
     pub points: Vec<CorPoint>,
 }
 
-/// A figure of the chart: its file stem, the SVG and the CSV of its points.
+/// A figure of the chart: its file stem, title and caption, the SVG and the CSV of its points.
 #[derive(Clone, Debug)]
 pub struct ChartFigure {
     /// File stem (`<stem>.svg`, `<stem>.csv`).
     pub stem: String,
+    /// Its title.
+    pub title: String,
+    /// What it shows.
+    pub caption: String,
     /// The figure.
     pub svg: String,
     /// Its points.
@@ -157,7 +161,7 @@ fn merge_coinciding(series: Vec<Series>) -> Vec<Series> {
 }
 
 /// The chart of `report`'s test-3 COR rows, with the typed laws beside them.
-pub fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, SolveError> {
+pub fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, BenchmarkError> {
     let mut points: Vec<CorPoint> = report
         .rows
         .iter()
@@ -173,7 +177,10 @@ pub fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, SolveError> {
         .collect();
     for law in TypedLaw::ALL {
         for cor_set in typed_cors() {
-            let cor = law.cor(cor_set)?;
+            let cor = law.cor(cor_set).map_err(|source| BenchmarkError::Solve {
+                case: format!("{} typed {cor_set}", law.label()),
+                source,
+            })?;
             points.push(CorPoint {
                 curve: Curve::Typed,
                 series: law.label().to_string(),
@@ -234,6 +241,8 @@ impl CorChart {
                 .collect();
             figures.push(ChartFigure {
                 stem: format!("cor-chart-{}", impact.case),
+                title: chart.title.clone(),
+                caption: format!("Chung & Ooi's test 3, {}: the COR each source realises minus the COR set, at each COR set. The paper's law (η = (1 − e²)/(1 + e²)) exactly, by rk4-event and in liggghts-paper; each other code as its driver sets it up, from its stored run at 1,000 steps per contact: what is left is each code's step.", impact.material),
                 svg: chart_svg(&chart, 960, 520)?,
                 csv: csv_string(&points)?,
             });
@@ -251,6 +260,8 @@ impl CorChart {
             .collect();
         figures.push(ChartFigure {
             stem: "cor-chart-typed".into(),
+            title: chart.title.clone(),
+            caption: "The COR each code's law realises when the COR is typed into it directly, minus the COR typed (exact, integrated to 1e-12; the COR of these laws depends on neither material nor speed): Thornton's fit (YADE, Kratos), tsuji's fit without its √2 (LAMMPS), the clamp of limitForce / limit_damping, and unclamped damped Hertz, which realises what is typed.".into(),
             svg: chart_svg(&chart, 960, 520)?,
             csv: csv_string(&points)?,
         });
