@@ -8,8 +8,8 @@ use std::time::Duration;
 use serde::Serialize;
 use thiserror::Error;
 
-use super::benchmark::{self, BenchmarkError, BenchmarkOptions, CodeRuns};
 use super::benchmark::cor_chart::cor_chart;
+use super::benchmark::{self, BenchmarkError, BenchmarkOptions, CodeRuns};
 use super::compare::{CompareError, CompareOptions, ModelPointRecord, compare};
 use super::deck::DeckReport;
 use super::precision::{PrecisionError, method_sweep};
