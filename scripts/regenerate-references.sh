@@ -19,9 +19,12 @@ done
 # Chung & Ooi's benchmark (`millimpact benchmark chung-ooi`): every code on the six cases of
 # cases/benchmarks/ at 1000 steps per contact, tests 1 and 2 elastic, test 3 at each COR set
 # (η = (1 − e²)/(1 + e²), written to 17 digits so that the run is found at the benchmark's η).
-# They are a store of their own, reference/benchmarks/<code>/<case>.json (reference/README.md).
+# Test 2 runs twice: on each code's rigid plane, and on the same-material wall (the trap, the
+# *_same_material cases). They are a store of their own, reference/benchmarks/<code>/<case>.json
+# (reference/README.md). A new code build joins by its name in this list.
 for code in liggghts liggghts-paper yade yade-paper lammps lammps-2025 lammps-paper kratos kratos-paper; do
-  for case in chung_ooi_1_glass chung_ooi_1_limestone chung_ooi_2_aluminium chung_ooi_2_magnesium; do
+  for case in chung_ooi_1_glass chung_ooi_1_limestone chung_ooi_2_aluminium chung_ooi_2_magnesium \
+    chung_ooi_2_aluminium_same_material chung_ooi_2_magnesium_same_material; do
     ./target/release/millimpact reference --code "$code" "cases/benchmarks/$case.toml" \
       --loss-coefficient 0 --steps-per-contact 1000 --save --reference reference/benchmarks \
       --format json > /dev/null

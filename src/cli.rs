@@ -100,6 +100,11 @@ pub struct BenchmarkArgs {
     /// Kill a code after this many seconds.
     #[arg(long, default_value = "300", value_parser = parse_timeout)]
     pub timeout: f64,
+    /// Write test 3's COR chart into this folder (it must exist): `cor-chart-<case>.svg` and
+    /// `.csv` per material, every source's COR against the COR set, and `cor-chart-typed.svg`
+    /// and `.csv`, each code's law with the COR typed in directly.
+    #[arg(long, value_name = "DIR")]
+    pub chart: Option<PathBuf>,
 }
 
 fn method_parser() -> impl TypedValueParser<Value = Method> {
@@ -439,6 +444,60 @@ fn parse_positive(text: &str) -> Result<f64, String> {
     }
 }
 
+/// Impact speeds given at once: one, or `A:B:N`, N log-spaced from A to B, m/s.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Speeds(pub Vec<f64>);
+
+/// Most speeds one `A:B:N` may ask for: each is one run per pair.
+const MAX_SPEEDS: u32 = 1000;
+
+/// `V` or `A:B:N`: `A` and `B` positive speeds, `B > A`, `2 <= N <= 1000`; the speeds are
+/// `A (B/A)^(i/(N−1))`, the last exactly `B`.
+fn parse_speeds(text: &str) -> Result<Speeds, String> {
+    let parts: Vec<&str> = text.split(':').collect();
+    let [a, b, n] = parts.as_slice() else {
+        return match parts.as_slice() {
+            [one] => parse_positive(one)
+                .map(|v| Speeds(vec![v]))
+                .map_err(|_| format!("`{text}`: allowed: a positive speed, m/s, or A:B:N")),
+            _ => Err(format!(
+                "`{text}`: allowed: a positive speed, m/s, or A:B:N (N speeds log-spaced from A to B m/s)"
+            )),
+        };
+    };
+    let speed = |what: &str, part: &str| {
+        parse_positive(part).map_err(|_| {
+            format!("`{text}`: {what} of A:B:N is `{part}`; allowed: a positive speed, m/s")
+        })
+    };
+    let (low, high) = (speed("A", a)?, speed("B", b)?);
+    if high <= low {
+        return Err(format!(
+            "`{text}`: B = {high} m/s is not above A = {low} m/s; allowed: A < B"
+        ));
+    }
+    let count: u32 = n
+        .trim()
+        .parse()
+        .ok()
+        .filter(|k| (2..=MAX_SPEEDS).contains(k))
+        .ok_or_else(|| {
+            format!("`{text}`: N of A:B:N is `{n}`; allowed: a whole number from 2 to {MAX_SPEEDS}")
+        })?;
+    let last = f64::from(count - 1);
+    Ok(Speeds(
+        (0..count)
+            .map(|i| {
+                if i == count - 1 {
+                    high
+                } else {
+                    low * (high / low).powf(f64::from(i) / last)
+                }
+            })
+            .collect(),
+    ))
+}
+
 /// `millimpact calibrate`.
 #[derive(Debug, Args)]
 pub struct CalibrateArgs {
@@ -536,10 +595,11 @@ pub struct DeckArgs {
     /// The deck: a LIGGGHTS or LAMMPS input script, a Kratos MaterialsDEM.json or
     /// ProjectParametersDEM.json, or a YADE Python script.
     pub deck: PathBuf,
-    /// Impact speed, m/s; repeat for several [default: half, once and twice a representative
-    /// speed: the deck's own, else 2 m/s].
-    #[arg(long = "impact-velocity", value_parser = parse_positive)]
-    pub impact_velocity: Vec<f64>,
+    /// Impact speed, m/s, or `A:B:N`, N speeds log-spaced from A to B m/s (the COR against
+    /// speed); repeat for several [default: half, once and twice a representative speed: the
+    /// deck's own, else 2 m/s].
+    #[arg(long = "impact-velocity", value_name = "V|A:B:N", value_parser = parse_speeds)]
+    pub impact_velocity: Vec<Speeds>,
     /// The code (build) that reads and runs the deck [default: the first whose input it is].
     #[arg(long, value_parser = code_parser())]
     pub code: Option<CodeName>,

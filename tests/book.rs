@@ -179,6 +179,37 @@ fn the_books_figures_are_what_report_draws() {
     }
 }
 
+/// The COR chart on the benchmark's page, as `benchmark chung-ooi --chart` draws it from the
+/// stored runs.
+#[test]
+fn the_books_cor_chart_is_what_benchmark_draws() {
+    let dir = tempfile::TempDir::new().unwrap();
+    millimpact(&[
+        "benchmark",
+        "chung-ooi",
+        "--format",
+        "csv",
+        "--chart",
+        dir.path().to_str().unwrap(),
+    ]);
+    for name in ["cor-chart-chung_ooi_3_alumina.svg", "cor-chart-typed.svg"] {
+        let drawn = std::fs::read(dir.path().join(name)).unwrap();
+        let path = root().join("docs/src/figures").join(name);
+        if std::fs::read(&path).ok().as_deref() == Some(drawn.as_slice()) {
+            continue;
+        }
+        if update() {
+            std::fs::write(&path, &drawn).unwrap();
+            continue;
+        }
+        panic!(
+            "{} differs from the {name} that `millimpact benchmark chung-ooi --chart DIR` \
+             draws now; rerun with UPDATE_BOOK=1 and review it",
+            path.display()
+        );
+    }
+}
+
 /// The subcommands `millimpact --help` lists, `help` left out.
 fn subcommands() -> Vec<String> {
     let help = millimpact(&["--help"]);

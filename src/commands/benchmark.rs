@@ -6,6 +6,7 @@ use anyhow::Result;
 
 use super::CommandOutput;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
+use millimpact::analysis::benchmark::cor_chart::cor_chart;
 use millimpact::analysis::benchmark::{
     BenchmarkOptions, CodeRuns, STEPS_PER_CONTACT, STORED_FOLDER, chung_ooi,
 };
@@ -48,9 +49,39 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
             ..ReferenceOptions::default()
         },
     };
+    if let Some(folder) = &args.chart
+        && !folder.is_dir()
+    {
+        return Err(UserError::argument(
+            "--chart",
+            folder.display(),
+            "an existing folder (millimpact does not create it)",
+        )
+        .into());
+    }
     let report = match args.benchmark {
         BenchmarkName::ChungOoi => chung_ooi(&options)?,
     };
+    if let Some(folder) = &args.chart {
+        let figures = cor_chart(&report)?.figures()?;
+        let mut files = Vec::new();
+        for figure in figures {
+            for (extension, text) in [("svg", figure.svg), ("csv", figure.csv)] {
+                let path = folder.join(format!("{}.{extension}", figure.stem));
+                super::check_output("--chart", Some(&path), &[])?;
+                files.push((path, text));
+            }
+        }
+        // Every path checked before any is written: a refused one leaves the folder as it was.
+        for (path, text) in &files {
+            super::write_output(path, text.as_bytes(), "COR chart")?;
+        }
+        warnings.push(format!(
+            "the COR chart of test 3: {} files in {}",
+            files.len(),
+            folder.display()
+        ));
+    }
     let failures = report.failures();
     let failure = (!failures.is_empty() || !report.missing.is_empty()).then(|| {
         CheckFailed(format!(

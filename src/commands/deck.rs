@@ -28,7 +28,12 @@ pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
         time_limit: Duration::from_secs_f64(args.timeout),
     };
     let (code, deck) = read(&args.deck, args.code, &given)?;
-    let report = check_with_progress(code, &deck, &args.impact_velocity, &given, args.timeout)?;
+    let velocities: Vec<f64> = args
+        .impact_velocity
+        .iter()
+        .flat_map(|speeds| speeds.0.iter().copied())
+        .collect();
+    let report = check_with_progress(code, &deck, &velocities, &given, args.timeout)?;
     let columns = std::env::var("COLUMNS").ok();
     // The terminal's width only when the table goes to one (comfy-table asks the terminal).
     let terminal = std::io::stdout()

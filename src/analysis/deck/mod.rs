@@ -8,6 +8,8 @@
 //! against the radius, the steps per contact and the COR band they leave, the step against the
 //! Rayleigh time, the traps the lines meet, and the paper's η for the COR realised.
 
+pub mod speed;
+
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Mutex;
@@ -156,6 +158,9 @@ pub struct DeckReport {
     pub left_out: Vec<String>,
     /// One entry per pair and velocity.
     pub impacts: Vec<DeckImpact>,
+    /// Per pair checked at two speeds or more: its COR against the speed, realised and exact
+    /// (empty at one speed).
+    pub cor_against_speed: Vec<speed::SpeedCurve>,
     /// The command line's additions, for the reproduce line.
     #[serde(skip)]
     pub given: Vec<(&'static str, String)>,
@@ -577,7 +582,15 @@ pub fn check_deck(
         })
         .collect();
     let version = rows.iter().find_map(|(_, v)| v.clone());
-    let impacts: Vec<DeckImpact> = rows.into_iter().map(|(row, _)| row).collect();
+    let mut impacts: Vec<DeckImpact> = rows.into_iter().map(|(row, _)| row).collect();
+    let cor_against_speed = speed::speed_curves(&impacts);
+    for curve in &cor_against_speed {
+        if let Some(trap) = curve.trap() {
+            for impact in impacts.iter_mut().filter(|i| i.pair == curve.pair) {
+                impact.traps.push(trap.clone());
+            }
+        }
+    }
     Ok(DeckReport {
         deck: deck.path.display().to_string(),
         code,
@@ -590,6 +603,7 @@ pub fn check_deck(
         walls: deck.walls.clone(),
         left_out: deck.left_out.clone(),
         impacts,
+        cor_against_speed,
         given: Vec::new(),
     })
 }
@@ -1062,6 +1076,9 @@ impl Summary for DeckReport {
         }
         table.notes.push("model: the COR of the code's own law (what these lines make it integrate) − the COR entered; integration: that law stepped as the code steps − the law exact; remainder: the run − the law stepped (absolute COR differences); the band: the step's COR error over where the first contact falls within a step".into());
         let mut out = vec![table];
+        if !self.cor_against_speed.is_empty() {
+            out.push(speed_section(&self.cor_against_speed));
+        }
         let mut bodies = vec!["particles:".to_string()];
         for b in &self.bodies {
             let material = match (b.youngs_modulus, b.poisson_ratio) {
@@ -1128,6 +1145,51 @@ impl Summary for DeckReport {
     fn footer(&self) -> Vec<String> {
         vec![format!("reproduce: {}", self.reproduce())]
     }
+}
+
+/// The COR against the speed, per pair: realised, the law's exact curve, Müller & Pöschel's
+/// closed form where the law is viscoelastic.
+fn speed_section(curves: &[speed::SpeedCurve]) -> Section {
+    let mut section = Section::new(
+        Some("COR against impact speed".to_string()),
+        &[
+            "pair",
+            "v0 (m/s)",
+            "COR realised",
+            "law, exact",
+            "realised − law",
+            "Müller & Pöschel",
+            "closed form − law",
+        ],
+    );
+    for curve in curves {
+        for (k, &v) in curve.speeds.iter().enumerate() {
+            let closed = curve.cor_closed_form.as_ref().map(|c| c[k]);
+            let (realised, law) = (curve.cor_realised[k], curve.cor_law[k]);
+            section.rows.push(vec![
+                curve.pair.clone(),
+                v.to_string(),
+                if realised.is_finite() {
+                    format!("{realised:.6}")
+                } else {
+                    "—".into()
+                },
+                format!("{law:.6}"),
+                if realised.is_finite() {
+                    signed(realised - law)
+                } else {
+                    "—".into()
+                },
+                closed.map_or("—".into(), |c| format!("{c:.6}")),
+                closed.map_or("—".into(), |c| signed(c - law)),
+            ]);
+        }
+    }
+    section.notes.push(format!(
+        "law, exact: the pair's own law integrated at zero step error at each speed; a law whose COR spreads by more than {:e} over the speeds is named under traps; Müller & Pöschel: their [3/6] Padé approximant of the viscoelastic COR (Phys. Rev. E 84, 021302, 2011), which ends a collision where the force vanishes, i.e. the clamped law's (`limit_damping`)",
+        speed::SPEED_DEPENDENCE
+    ));
+    section
 }
 
 impl DeckReport {

@@ -8,6 +8,8 @@ use std::time::Duration;
 use serde::Serialize;
 use thiserror::Error;
 
+use super::benchmark::cor_chart::cor_chart;
+use super::benchmark::{self, BenchmarkError, BenchmarkOptions, CodeRuns};
 use super::compare::{CompareError, CompareOptions, CompareSource, ModelPointRecord, compare};
 use super::deck::DeckReport;
 use super::precision::{PrecisionError, method_sweep};
@@ -163,6 +165,9 @@ pub enum ReportError {
     /// The stored references could not be read.
     #[error(transparent)]
     Store(#[from] StoreError),
+    /// The benchmark's COR chart could not be built.
+    #[error(transparent)]
+    Benchmark(#[from] BenchmarkError),
 }
 
 impl Blame for ReportError {
@@ -171,6 +176,7 @@ impl Blame for ReportError {
             ReportError::Case(_) => true,
             ReportError::Compare(e) => e.is_user_error(),
             ReportError::Store(e) => e.is_user_error(),
+            ReportError::Benchmark(e) => e.is_user_error(),
             _ => false,
         }
     }
@@ -742,6 +748,28 @@ fn stability_map() -> Result<ReportFigure, ReportError> {
     })
 }
 
+/// Chung & Ooi's test 3 as `benchmark chung-ooi --chart` draws it, from the benchmark's stored
+/// runs under `reference` (a build without them is left out of the figure).
+fn benchmark_cor_chart(reference: &Path) -> Result<Vec<ReportFigure>, ReportError> {
+    let options = BenchmarkOptions {
+        codes: CodeRuns::Stored(reference.join(benchmark::STORED_FOLDER)),
+        ..BenchmarkOptions::default()
+    };
+    let report = benchmark::chung_ooi(&options)?;
+    Ok(cor_chart(&report)?
+        .figures()?
+        .into_iter()
+        .map(|f| ReportFigure {
+            id: f.stem,
+            title: f.title,
+            caption: f.caption,
+            svg: f.svg,
+            csv: f.csv,
+            command: "millimpact benchmark chung-ooi --chart DIR".into(),
+        })
+        .collect())
+}
+
 /// Build the report for `cases`; `progress` is told each stage as it starts (one per case
 /// compared, then one per part).
 pub fn build_report(
@@ -820,11 +848,13 @@ pub fn build_report(
     });
     progress("realised against requested COR");
     let (fig, table) = realised_vs_requested()?;
+    let mut figures = vec![fig];
+    figures.extend(benchmark_cor_chart(&options.reference)?);
     parts.push(ReportPart {
         id: "conventions".into(),
         title: "Where each code's convention bites".into(),
-        intro: "The COR each code realises against the COR asked of it, set up as the drivers set it and as a user who takes each setting at its word would.".into(),
-        figures: vec![fig],
+        intro: "The COR each code realises against the COR asked of it, set up as the drivers set it and as a user who takes each setting at its word would; then Chung & Ooi's test 3 in every build, from the benchmark's stored runs.".into(),
+        figures,
         tables: vec![table],
     });
     parts.push(ReportPart {

@@ -1,0 +1,96 @@
+//! `deck --impact-velocity A:B:N` in the fast tier: the check of a viscoelastic LAMMPS deck at
+//! five speeds from the runs recorded by `tests/deck_speed_live.rs`, in every format, and the
+//! values the option refuses.
+
+mod common;
+
+use std::path::Path;
+
+use millimpact::analysis::deck::{RecordedRuns, check_deck, read_deck};
+use millimpact::codes::CodeName;
+use millimpact::codes::deck::DeckOptions;
+use millimpact::output::{Format, export};
+
+const DECK: &str = "tests/data/deck/lammps-viscoelastic.in";
+
+/// Every format of the viscoelastic deck's check at 0.5, 1, 2, 4 and 8 m/s: per pair its COR
+/// against the speed, the law's exact curve, Müller & Pöschel's closed form, and the trap line
+/// with the spread.
+#[test]
+fn snapshots_of_the_cor_against_speed_in_every_format() {
+    std::env::set_current_dir(common::root()).unwrap();
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string("tests/data/deck/lammps-viscoelastic.runs.json").unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(DECK), None, &DeckOptions::default()).unwrap();
+    assert_eq!(code, CodeName::Lammps);
+    let speeds = vec![0.5, 1.0, 2.0, 4.0, 8.0];
+    let report = check_deck(code, &deck, (speeds, "given".into()), &runs).unwrap();
+    assert!(report.impacts.iter().all(|i| i.failure.is_none()));
+    assert_eq!(report.cor_against_speed.len(), 2);
+    for curve in &report.cor_against_speed {
+        assert!(curve.depends_on_speed, "{curve:?}");
+        let trap = curve.trap().unwrap();
+        assert!(
+            trap.contains(&format!("spread {:.3e}", curve.spread)),
+            "{trap}"
+        );
+    }
+    for format in Format::ALL {
+        let text = export(&report, format).unwrap();
+        insta::assert_snapshot!(format!("deck_lammps_viscoelastic_speeds_{format}"), text);
+    }
+}
+
+/// A deck whose law's COR does not depend on the speed gets no speed trap however many speeds
+/// are asked: the LAMMPS granular example's tsuji law (damped Hertz, speed-free) from its
+/// recorded runs would need runs at several speeds, so the check is on the curve itself.
+#[test]
+fn a_speed_free_law_has_no_speed_trap() {
+    use millimpact::analysis::deck::speed::{SPEED_DEPENDENCE, SpeedCurve};
+    let curve = SpeedCurve {
+        pair: "1–1".into(),
+        speeds: vec![1.0, 2.0],
+        cor_realised: vec![0.5, 0.5],
+        cor_law: vec![0.5, 0.5 + 1e-12],
+        cor_closed_form: None,
+        spread: 1e-12,
+        depends_on_speed: 1e-12 > SPEED_DEPENDENCE,
+    };
+    assert_eq!(curve.trap(), None);
+}
+
+/// Bad `--impact-velocity` values: one line naming the value and what is allowed, exit 2,
+/// nothing on standard output, no code started.
+#[test]
+fn bad_speed_ranges_are_refused_in_one_line() {
+    for (value, says) in [
+        ("0:1:3", "A of A:B:N is `0`"),
+        ("-1:1:3", "A of A:B:N is `-1`"),
+        ("2:1:3", "B = 1 m/s is not above A = 2 m/s"),
+        ("1:1:3", "B = 1 m/s is not above A = 1 m/s"),
+        ("1:2:1", "N of A:B:N is `1`"),
+        ("1:2:x", "N of A:B:N is `x`"),
+        ("1:2:2.5", "N of A:B:N is `2.5`"),
+        ("1:inf:3", "B of A:B:N is `inf`"),
+        ("a:2:3", "A of A:B:N is `a`"),
+        ("1:2", "allowed: a positive speed, m/s, or A:B:N"),
+        ("1:2:3:4", "allowed: a positive speed, m/s, or A:B:N"),
+        ("fast", "allowed: a positive speed, m/s, or A:B:N"),
+    ] {
+        let output = common::millimpact()
+            .envs(common::codes_hidden())
+            .args(["deck", DECK, &format!("--impact-velocity={value}")])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(output.status.code(), Some(2), "{value}: {stderr}");
+        assert!(output.stdout.is_empty(), "{value}");
+        assert_eq!(stderr.lines().count(), 1, "{value}: {stderr}");
+        assert!(
+            stderr.contains("--impact-velocity") && stderr.contains(says),
+            "{value}: {stderr}"
+        );
+    }
+}
