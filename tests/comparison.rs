@@ -231,7 +231,10 @@ fn model_differences_shrink_towards_the_elastic_limit() {
         .iter()
         .filter(|c| c.driver().takes_loss_coefficient())
         .count();
-    assert!(paper_builds >= 3, "liggghts-paper, yade-paper and lammps-paper at least");
+    assert!(
+        paper_builds >= 3,
+        "liggghts-paper, yade-paper and lammps-paper at least"
+    );
     let (paper, points): (Vec<_>, Vec<_>) = all
         .into_iter()
         .partition(|p| p.code.driver().takes_loss_coefficient());

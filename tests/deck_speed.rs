@@ -99,3 +99,52 @@ fn bad_speed_ranges_are_refused_in_one_line() {
         );
     }
 }
+
+/// The report's part on a deck checked at several speeds draws each pair's realised COR against
+/// the speed beside its law's exact curve and Müller & Pöschel's closed form, from the check's
+/// own figures (the CSV beside the figure holds them), and says that the COR depends on speed.
+#[test]
+fn the_reports_deck_part_draws_the_cor_against_speed() {
+    std::env::set_current_dir(common::root()).unwrap();
+    for (variable, missing) in common::codes_hidden() {
+        // SAFETY: this file's tests set only these variables, each to the same value.
+        unsafe { std::env::set_var(variable, missing) };
+    }
+    let runs: RecordedRuns = serde_json::from_str(
+        &std::fs::read_to_string("tests/data/deck/lammps-viscoelastic.runs.json").unwrap(),
+    )
+    .unwrap();
+    let (code, deck) = read_deck(Path::new(DECK), None, &DeckOptions::default()).unwrap();
+    let speeds = vec![0.5, 1.0, 2.0, 4.0, 8.0];
+    let report = check_deck(code, &deck, (speeds.clone(), "given".into()), &runs).unwrap();
+    let (part, _) = millimpact::analysis::report::deck_part(1, &report).unwrap();
+    let [figure] = part.figures.as_slice() else {
+        panic!(
+            "one figure: {:?}",
+            part.figures.iter().map(|f| &f.id).collect::<Vec<_>>()
+        );
+    };
+    assert_eq!(figure.id, "deck-1-cor-against-speed");
+    assert!(figure.svg.starts_with("<svg"), "{}", &figure.svg[..40]);
+    assert!(figure.caption.contains("spread"), "{}", figure.caption);
+    let mut rows = csv::Reader::from_reader(figure.csv.as_bytes());
+    let rows: Vec<(String, f64, f64)> = rows.deserialize().map(Result::unwrap).collect();
+    for curve in &report.cor_against_speed {
+        let drawn = |suffix: &str| -> Vec<(f64, f64)> {
+            rows.iter()
+                .filter(|(name, ..)| name == &format!("{}: {suffix}", curve.pair))
+                .map(|(_, v, e)| (*v, *e))
+                .collect()
+        };
+        let realised = drawn(&format!("realised in {code}"));
+        assert_eq!(realised.len(), speeds.len(), "{}", curve.pair);
+        for ((v, e), (&speed, &cor)) in realised
+            .iter()
+            .zip(curve.speeds.iter().zip(&curve.cor_realised))
+        {
+            assert_eq!((v.to_bits(), e.to_bits()), (speed.to_bits(), cor.to_bits()));
+        }
+        assert_eq!(drawn("its law, exact").len(), speeds.len());
+        assert_eq!(drawn("Müller & Pöschel's closed form").len(), speeds.len());
+    }
+}

@@ -938,7 +938,7 @@ pub fn build_report(
 pub fn deck_part(
     number: usize,
     check: &DeckReport,
-) -> Result<(ReportPart, Vec<DataFile>), OutputError> {
+) -> Result<(ReportPart, Vec<DataFile>), ReportError> {
     let command = check.reproduce().to_string();
     let stem = format!("deck-{number}");
     let sections = check.sections();
@@ -1025,7 +1025,9 @@ pub fn deck_part(
                 .join(", "),
             check.velocities_from,
         ),
-        figures: vec![],
+        figures: cor_against_speed_figure(&stem, check, &command)?
+            .into_iter()
+            .collect(),
         tables,
     };
     let data = vec![
@@ -1041,9 +1043,74 @@ pub fn deck_part(
     Ok((part, data))
 }
 
+/// The COR each pair of a deck realises against the impact speed, beside its law's exact COR
+/// (and Müller & Pöschel's closed form where the law is viscoelastic): a figure where the check
+/// ran more than one speed.
+fn cor_against_speed_figure(
+    stem: &str,
+    check: &DeckReport,
+    command: &str,
+) -> Result<Option<ReportFigure>, ReportError> {
+    let curves = &check.cor_against_speed;
+    if curves.is_empty() || check.velocities.len() < 2 {
+        return Ok(None);
+    }
+    let mut series = Vec::new();
+    for curve in curves {
+        let points = |cor: &[f64]| -> Vec<(f64, f64)> {
+            curve
+                .speeds
+                .iter()
+                .zip(cor)
+                .filter(|(_, e)| e.is_finite())
+                .map(|(&v, &e)| (v, e))
+                .collect()
+        };
+        series.push(Series::new(
+            format!("{}: realised in {}", curve.pair, check.code),
+            points(&curve.cor_realised),
+            Style::Dots,
+        ));
+        series.push(Series::new(
+            format!("{}: its law, exact", curve.pair),
+            points(&curve.cor_law),
+            Style::Line,
+        ));
+        if let Some(closed) = &curve.cor_closed_form {
+            series.push(Series::new(
+                format!("{}: Müller & Pöschel's closed form", curve.pair),
+                points(closed),
+                Style::Thin,
+            ));
+        }
+    }
+    let dependent: Vec<String> = curves.iter().filter_map(|c| c.trap()).collect();
+    let caption = if dependent.is_empty() {
+        "The COR each pair realises in the code (dots) against the impact speed, beside its law's exact COR (line): the law's COR does not depend on the speed here.".to_string()
+    } else {
+        format!(
+            "The COR each pair realises in the code (dots) against the impact speed, beside its law's exact COR (line) and, for viscoelastic damping, Müller & Pöschel's closed form (thin). {}",
+            dependent.join(" ")
+        )
+    };
+    figure(
+        &format!("{stem}-cor-against-speed"),
+        Chart {
+            title: format!("COR against impact speed, {}", check.deck),
+            x_label: "impact speed v0 (m/s)".into(),
+            y_label: "coefficient of restitution e (–)".into(),
+            series,
+        },
+        &caption,
+        command,
+        ("v0_m_per_s", "cor"),
+    )
+    .map(Some)
+}
+
 /// Add the parts of the users' own decks to `report`, with their data, reproduce commands and
 /// failed runs.
-pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<(), OutputError> {
+pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<(), ReportError> {
     for (k, check) in checks.iter().enumerate() {
         let (part, data) = deck_part(k + 1, check)?;
         report.parts.push(part);
