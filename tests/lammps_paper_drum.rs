@@ -10,6 +10,8 @@ use std::f64::consts::PI;
 use millimpact::codes::CodeDriver;
 use millimpact::codes::lammps::paper::LammpsPaper;
 use millimpact::codes::lammps::paper_plugin_modulus as plugin_modulus;
+use millimpact::model::exact;
+use millimpact::model::law::PaperLaw;
 
 mod common;
 
@@ -23,6 +25,8 @@ const SMALLEST_RADIUS: f64 = 0.004;
 const LARGEST_RADIUS: f64 = 0.006;
 const DENSITY: f64 = 7800.0;
 const ETA: f64 = 0.6;
+const DRUM_RADIUS: f64 = 0.08;
+const TIMESTEP: f64 = 2e-6;
 
 fn deck_text() -> String {
     std::fs::read_to_string(root().join(DECK)).unwrap()
@@ -42,6 +46,7 @@ fn the_drum_deck_selects_the_plugin_between_balls_and_the_stock_law_on_the_liner
         "pair_coeff      1 1 0.6 2e11 0.3",
         "fix             integrate all nve/sphere",
         "timestep        2e-6",
+        "variable        drum_radius equal 0.08",
     ] {
         assert!(lines.contains(&wanted), "{DECK}: no `{wanted}`");
     }
@@ -130,16 +135,42 @@ fn ball_mass(radius: f64) -> f64 {
     4.0 / 3.0 * PI * radius.powi(3) * DENSITY
 }
 
-/// The largest force the paper's law gives when two of the largest balls meet at `speed`:
-/// loading on `(1+η) C yⁿ` stores the approach energy, the peak is `(1+η) C y_maxⁿ`.
-fn head_on_peak_force(speed: f64) -> f64 {
-    let mass = ball_mass(LARGEST_RADIUS) / 2.0;
-    let stiffness = 4.0 / 3.0
-        * plugin_modulus(2e11, 0.3, 2e11, 0.3)
-        * (LARGEST_RADIUS * LARGEST_RADIUS / (2.0 * LARGEST_RADIUS)).sqrt();
-    let loading = (1.0 + ETA) * stiffness;
-    let peak_overlap = (0.5 * mass * speed * speed / (loading / 2.5)).powf(1.0 / 2.5);
-    loading * peak_overlap.powf(1.5)
+/// The paper's law between two balls of `radius` (steel, η = 0.6, the plugin's stiffness).
+fn ball_pair_law(radius: f64) -> PaperLaw {
+    PaperLaw {
+        mass: ball_mass(radius) / 2.0,
+        stiffness: 4.0 / 3.0 * plugin_modulus(2e11, 0.3, 2e11, 0.3) * (radius / 2.0).sqrt(),
+        exponent: 1.5,
+        loss_coefficient: ETA,
+    }
+}
+
+/// The shell's speed in the deck: 75 % of the critical `sqrt(g / (R_drum - r_mean))`, times
+/// the drum's radius.
+fn shell_speed() -> f64 {
+    0.75 * (9.81f64 / (DRUM_RADIUS - 0.005)).sqrt() * DRUM_RADIUS
+}
+
+/// The deck's step resolves the stiffest contact, two of the smallest balls, under the paper's
+/// law: at least 10 steps a contact and 4 in its loading, at the shell speed and at 3 × it (the
+/// speed bound of the live test). The figures printed are the deck header's.
+#[test]
+fn the_drum_step_resolves_the_stiffest_contact() {
+    let law = ball_pair_law(SMALLEST_RADIUS);
+    for speed in [shell_speed(), 3.0 * shell_speed()] {
+        let impact = exact::paper_impact(&law, speed);
+        let steps = impact.contact_time / TIMESTEP;
+        let loading = impact.compression_time / TIMESTEP;
+        println!(
+            "two {SMALLEST_RADIUS} m balls at {speed:.3} m/s: contact {:.3e} s, {steps:.1} \
+             steps, {loading:.1} in loading",
+            impact.contact_time
+        );
+        assert!(
+            steps >= 10.0 && loading >= 4.0,
+            "{steps} steps, {loading} loading"
+        );
+    }
 }
 
 /// The drum runs in the installed LAMMPS 2025 with the plugin: exit 0 with every ball kept
@@ -198,12 +229,18 @@ fn live_a_drum_of_300_balls_turns_and_lifts_its_charge_under_the_paper_law() {
 
     let omega_and_shell = numbers(&text, "OMEGA ");
     let shell_speed = omega_and_shell[1];
+    assert!(
+        (shell_speed - self::shell_speed()).abs() < 1e-5,
+        "the deck's shell speed {shell_speed} m/s, not {} m/s",
+        self::shell_speed()
+    );
     let settled = numbers(&text, "SETTLED ");
     let (settled_energy, settled_angle) = (settled[0], settled[1]);
 
     let radial = all().map(|r| r.radial_reach).fold(f64::MIN, f64::max);
     let axial = all().map(|r| r.axial_reach).fold(f64::MIN, f64::max);
-    let fastest = all().map(|r| r.fastest).fold(f64::MIN, f64::max);
+    let fastest_settling = settle.iter().map(|r| r.fastest).fold(f64::MIN, f64::max);
+    let fastest_turning = rotate.iter().map(|r| r.fastest).fold(f64::MIN, f64::max);
     let second_half: Vec<Row> = rotate[rotate.len() / 2..].to_vec();
     let mean =
         |f: fn(&Row) -> f64| second_half.iter().map(f).sum::<f64>() / second_half.len() as f64;
@@ -220,7 +257,8 @@ fn live_a_drum_of_300_balls_turns_and_lifts_its_charge_under_the_paper_law() {
         .map(|r| r.largest_pair_force)
         .fold(f64::MIN, f64::max);
     let settled_force = settle.last().unwrap().largest_pair_force;
-    let force_bound = head_on_peak_force(2.0 * 3.0 * shell_speed);
+    let force_bound =
+        exact::paper_impact(&ball_pair_law(LARGEST_RADIUS), 2.0 * 3.0 * shell_speed).peak_force;
     let small_weight = ball_mass(SMALLEST_RADIUS) * 9.81;
 
     println!(
@@ -240,19 +278,23 @@ fn live_a_drum_of_300_balls_turns_and_lifts_its_charge_under_the_paper_law() {
         rotating_energy / settled_energy
     );
     println!(
-        "whole run: fastest ball {fastest:.3} m/s ({:.2} × shell speed), largest reach beyond \
-         the shell {radial:e} m, beyond an end cap {axial:e} m; pair forces from {smallest_force} \
-         to {largest_force:.1} N (bound {force_bound:.0} N, {} rows)",
-        fastest / shell_speed,
+        "fastest ball {fastest_settling:.3} m/s settling ({:.2} × shell speed), \
+         {fastest_turning:.3} m/s turning ({:.2} ×); largest reach beyond the shell {radial:.2e} \
+         m, beyond an end cap {axial:.2e} m; pair forces from {smallest_force} to \
+         {largest_force:.1} N (bound {force_bound:.0} N, {} rows)",
+        fastest_settling / shell_speed,
+        fastest_turning / shell_speed,
         with_pairs.len()
     );
 
     assert!(radial < 1e-5, "a ball {radial} m beyond the shell");
     assert!(axial < 1e-5, "a ball {axial} m beyond an end cap");
-    assert!(
-        fastest < 3.0 * shell_speed,
-        "a ball at {fastest} m/s, above 3 × the shell speed {shell_speed} m/s"
-    );
+    for fastest in [fastest_settling, fastest_turning] {
+        assert!(
+            fastest < 3.0 * shell_speed,
+            "a ball at {fastest} m/s, above 3 × the shell speed {shell_speed} m/s"
+        );
+    }
     assert!(
         settled_angle.abs() < 5.0,
         "the settled charge's centre {settled_angle}° off the bottom"
