@@ -120,6 +120,46 @@ fn thermo_tables(text: &str) -> Vec<Vec<Row>> {
     tables
 }
 
+/// Lines of a recorded run of the deck (LAMMPS 2025 with the plugin): two rows of each thermo
+/// table, the lines that end each run and the summary lines between them.
+const RECORDED_SCREEN: &str = "\
+   Step          Time          KinEng      v_com_angle     c_fastest      c_reach[1]     c_reach[2]    c_pair_force  c_pair_force_max
+         0  0 0 -50.362 0 -0.00868798 -0.00133992 1e+20 -1e+20
+     40000  0.08 0.311724 -1.46724 0.850081 -1.03651e-05 -1.88989e-05 0 8.05112
+Loop time of 8.79369 on 1 procs for 100000 steps with 300 atoms
+
+SETTLED ke 0.00397797 angle -0.392742
+OMEGA 8.57759 rad/s shell speed 0.686207 m/s
+   Step          Time          KinEng      v_com_angle     c_fastest      c_reach[1]     c_reach[2]    c_pair_force  c_pair_force_max
+    100000  0.2 0.00397797 -0.392742 0.384528 5.19877e-07 4.32962e-07 0 2.26215
+    250000  0.5 0.137696 69.7447 0.991838 1.10898e-07 2.49679e-07 0 14.6654
+Loop time of 18.5351 on 1 procs for 150000 steps with 300 atoms
+";
+
+/// The screen output is read as the live test reads it: one table per run with every column
+/// in place (the ±1e20 of a reduction over no pairs kept for the test to leave out), and the
+/// summary lines' numbers without their words.
+#[test]
+fn the_drums_screen_output_is_read_into_its_tables_and_figures() {
+    let tables = thermo_tables(RECORDED_SCREEN);
+    assert_eq!(tables.iter().map(Vec::len).collect::<Vec<_>>(), [2, 2]);
+    let empty = tables[0][0];
+    assert!(empty.smallest_pair_force > 1e19 && empty.largest_pair_force < -1e19);
+    assert!(empty.radial_reach < 0.0 && empty.centre_angle_degrees < -50.0);
+    let last = tables[1][1];
+    assert_eq!(last.time.to_bits(), 0.5f64.to_bits());
+    assert_eq!(last.kinetic_energy.to_bits(), 0.137696f64.to_bits());
+    assert_eq!(last.centre_angle_degrees.to_bits(), 69.7447f64.to_bits());
+    assert_eq!(last.fastest.to_bits(), 0.991838f64.to_bits());
+    assert_eq!(last.axial_reach.to_bits(), 2.49679e-7f64.to_bits());
+    assert_eq!(last.largest_pair_force.to_bits(), 14.6654f64.to_bits());
+    assert_eq!(numbers(RECORDED_SCREEN, "OMEGA "), [8.57759, 0.686207]);
+    assert_eq!(
+        numbers(RECORDED_SCREEN, "SETTLED "),
+        [0.00397797, -0.392742]
+    );
+}
+
 /// The numbers after `prefix` on the line that starts with it, words that are not numbers left
 /// out (`OMEGA 8.57 rad/s shell speed 0.686 m/s` gives `[8.57, 0.686]`).
 fn numbers(text: &str, prefix: &str) -> Vec<f64> {
