@@ -109,7 +109,7 @@ fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
         };
         let err = KratosPaper.render(&bad).unwrap_err();
         assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= loss coefficient < 1")),
+            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
             "{eta}: {err}"
         );
     }

@@ -148,7 +148,7 @@ fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
         };
         let err = LiggghtsPaper.render(&bad).unwrap_err();
         assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= lossCoefficient < 1")),
+            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
             "{eta}: {err}"
         );
     }

@@ -284,6 +284,49 @@ pub trait CalibrationCard: Send + Sync {
     }
 }
 
+/// The η a build with the paper's law is given for `setup`: the case's own, carried by the
+/// setup; for a setup made without it (a bare [`setup_for_case`] of an older record), the η of
+/// its target COR, `(1 − e²)/(1 + e²)`, which may differ from the case's in the last bit.
+pub fn paper_loss_coefficient(setup: &CodeSetup) -> f64 {
+    setup
+        .loss_coefficient
+        .unwrap_or_else(|| crate::model::exact::loss_coefficient(setup.target_restitution))
+}
+
+/// What every build with the paper's law refuses before it runs, in this order: η outside
+/// `[0, 1)`, a clamp (`clamp_refusal` says why the build has none), no positive time step or no
+/// steps, and a ball pair without its second ball.
+pub(crate) fn refuse_for_paper_law(
+    code: &str,
+    setup: &CodeSetup,
+    clamp_refusal: &str,
+) -> Result<(), CodeError> {
+    let refuse = |reason: String| {
+        Err(CodeError::Unsupported {
+            code: code.into(),
+            case: setup.case_name.clone(),
+            reason,
+        })
+    };
+    let eta = paper_loss_coefficient(setup);
+    if !(0.0..1.0).contains(&eta) {
+        return refuse(format!(
+            "the paper's law requires 0 <= eta < 1, got {eta} (eta >= 1 never separates the \
+             bodies, eta < 0 creates energy)"
+        ));
+    }
+    if setup.clamp_attractive {
+        return refuse(clamp_refusal.to_string());
+    }
+    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
+        return refuse("time step and step count must be positive".into());
+    }
+    if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
+        return refuse("ball_ball needs a second sphere".into());
+    }
+    Ok(())
+}
+
 pub mod kratos;
 pub mod lammps;
 pub mod liggghts;

@@ -29,7 +29,6 @@ use std::path::Path;
 
 use super::{dynamic_mass, hertz_stiffness};
 use crate::codes::batch::{BatchError, parse_marked_batch};
-use crate::codes::liggghts::paper::loss_coefficient;
 use crate::codes::parse::ParseError;
 use crate::codes::runner::{self, find_codes_dir};
 use crate::codes::template::exact_number;
@@ -38,6 +37,7 @@ use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParsedRun, RenderedInput,
 };
+use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::StepScheme;
@@ -74,29 +74,10 @@ impl KratosPaper {
         }
     }
 
-    /// What the build refuses before it runs: η outside `[0, 1)`, a clamp, no steps, a ball
-    /// pair without its second ball.
+    /// What the build refuses before it runs: what every build of the paper's law refuses
+    /// ([`refuse_for_paper_law`]).
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let eta = loss_coefficient(setup);
-        if !(0.0..1.0).contains(&eta) {
-            return Err(self.unsupported(
-                setup,
-                format!("the paper's law requires 0 <= loss coefficient < 1, got {eta}"),
-            ));
-        }
-        if setup.clamp_attractive {
-            return Err(self.unsupported(setup, CLAMP_REFUSAL.to_string()));
-        }
-        if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-            return Err(self.unsupported(
-                setup,
-                "time step and step count must be positive".to_string(),
-            ));
-        }
-        if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
-            return Err(self.unsupported(setup, "ball_ball needs a second sphere".to_string()));
-        }
-        Ok(())
+        refuse_for_paper_law(self.name(), setup, CLAMP_REFUSAL)
     }
 
     /// The paper's law the hook applies for `setup`: `C` as the module says, Kratos' masses,
@@ -110,7 +91,7 @@ impl KratosPaper {
             mass: dynamic_mass(setup),
             stiffness,
             exponent: setup.exponent,
-            loss_coefficient: loss_coefficient(setup),
+            loss_coefficient: paper_loss_coefficient(setup),
         }
     }
 

@@ -28,7 +28,6 @@ use crate::codes::lammps::build_2025::{self, venv_executable};
 use crate::codes::lammps::{
     INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
 };
-use crate::codes::liggghts::paper::loss_coefficient;
 use crate::codes::liggghts::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::{exact_number, fill_template};
@@ -36,6 +35,7 @@ use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParseError, ParsedRun, RenderedInput,
 };
+use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::{CodeFrame, FrameBody};
@@ -97,27 +97,18 @@ impl LammpsPaper {
         }
     }
 
-    /// What the plugin refuses, reported before it is run: η outside `[0, 1)` (the plugin
-    /// stops the run on it too), a clamp, no steps.
+    /// What the plugin refuses, reported before it is run: what every build of the paper's
+    /// law refuses ([`refuse_for_paper_law`]; the plugin stops the run on η out of range too),
+    /// and a ball scene without both bodies' materials.
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let eta = loss_coefficient(setup);
-        if !(0.0..1.0).contains(&eta) {
-            return Err(self.unsupported(
-                setup,
-                format!("the paper's law requires 0 <= eta < 1, got {eta}"),
-            ));
-        }
-        if setup.clamp_attractive {
-            return Err(self.unsupported(setup, CLAMP_REFUSAL.to_string()));
-        }
-        if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
-            return Err(self.unsupported(setup, "no steps or no positive timestep".into()));
-        }
+        refuse_for_paper_law(self.name(), setup, CLAMP_REFUSAL)?;
         if setup.scene != SceneKind::RodEnd && materials(setup).is_none() {
-            return Err(self.unsupported(
-                setup,
-                "a ball scene needs both bodies' Young's modulus and Poisson's ratio".into(),
-            ));
+            return Err(CodeError::Unsupported {
+                code: self.name().into(),
+                case: setup.case_name.clone(),
+                reason: "a ball scene needs both bodies' Young's modulus and Poisson's ratio"
+                    .into(),
+            });
         }
         Ok(())
     }
@@ -125,7 +116,7 @@ impl LammpsPaper {
     /// The wall's model arguments after `wall/paper`: `hertz η E ν E_wall ν_wall` or
     /// `linear η kn`.
     fn wall_model(setup: &CodeSetup) -> String {
-        let eta = exact_number(loss_coefficient(setup));
+        let eta = exact_number(paper_loss_coefficient(setup));
         match materials(setup) {
             Some([(e1, nu1), (e2, nu2)]) => format!(
                 "hertz {eta} {} {} {} {}",
@@ -141,7 +132,7 @@ impl LammpsPaper {
     /// The pair coefficients of two balls (types 1 and 2): each type with itself, then the
     /// pair with both materials.
     fn pair_coeffs(setup: &CodeSetup) -> String {
-        let eta = exact_number(loss_coefficient(setup));
+        let eta = exact_number(paper_loss_coefficient(setup));
         let Some([(e1, nu1), (e2, nu2)]) = materials(setup) else {
             return String::new();
         };
@@ -272,7 +263,7 @@ impl CodeDriver for LammpsPaper {
             mass: setup.pair_mass(),
             stiffness: plugin_stiffness(setup),
             exponent: setup.exponent,
-            loss_coefficient: loss_coefficient(setup),
+            loss_coefficient: paper_loss_coefficient(setup),
         })
     }
 

@@ -31,7 +31,7 @@ use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParseError, ParsedRun, RenderedInput,
 };
-use crate::model::exact;
+use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::CodeFrame;
@@ -41,47 +41,26 @@ pub const INSTALL_DIR: &str = "liggghts-paper";
 /// The executable inside [`INSTALL_DIR`].
 pub const BINARY_PATH: &str = "bin/liggghts-paper";
 
-/// The η a setup gives the code: the case's own, carried by the setup; for a setup made
-/// without it (a bare [`crate::codes::setup_for_case`] of an older record), the η of its
-/// target COR, `(1 − e²)/(1 + e²)`, which may differ from the case's in the last bit.
-pub fn loss_coefficient(setup: &CodeSetup) -> f64 {
-    setup
-        .loss_coefficient
-        .unwrap_or_else(|| exact::loss_coefficient(setup.target_restitution))
-}
-
 /// LIGGGHTS with the paper's law.
 pub struct LiggghtsPaper;
 
 impl LiggghtsPaper {
-    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason,
-        }
-    }
-
-    /// What the model refuses, reported before it is run: η outside `[0, 1)` (the header
-    /// stops the run on it too) and a clamp (the styles have no `limitForce`).
+    /// What the model refuses, reported before it is run: what every build of the paper's
+    /// law refuses ([`refuse_for_paper_law`]: η outside `[0, 1)`, which the header stops the
+    /// run on too, and a clamp, since the styles have no `limitForce`), and what the stock
+    /// LIGGGHTS deck needs of a scene.
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let eta = loss_coefficient(setup);
-        if !(0.0..1.0).contains(&eta) {
-            return Err(self.unsupported(
-                setup,
-                format!("model paper requires 0 <= lossCoefficient < 1, got {eta}"),
-            ));
-        }
-        if setup.clamp_attractive {
-            return Err(self.unsupported(setup, CLAMP_REFUSAL.to_string()));
-        }
+        refuse_for_paper_law(self.name(), setup, CLAMP_REFUSAL)?;
         validate_scene(self.name(), setup)
     }
 
     /// `model paper` with the materials for the balls, `model paper/linear` with the rod's
     /// `kn` for the rod; η per type pair, no friction.
     fn contact_model(&self, setup: &CodeSetup) -> ContactModel {
-        let eta = pair_property("lossCoefficient", &exact_number(loss_coefficient(setup)));
+        let eta = pair_property(
+            "lossCoefficient",
+            &exact_number(paper_loss_coefficient(setup)),
+        );
         let friction = pair_property("coefficientFriction", "0");
         match setup.scene {
             SceneKind::RodEnd => ContactModel {
@@ -158,7 +137,7 @@ impl CodeDriver for LiggghtsPaper {
             mass: code_effective_mass(setup),
             stiffness: code_stiffness(setup),
             exponent: setup.exponent,
-            loss_coefficient: loss_coefficient(setup),
+            loss_coefficient: paper_loss_coefficient(setup),
         })
     }
 

@@ -35,7 +35,7 @@ use crate::codes::{
     BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, Launch,
     ParseError, ParsedRun, RenderedInput,
 };
-use crate::model::exact;
+use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::{CodeFrame, FrameBody};
@@ -60,14 +60,6 @@ const IMPACTS_PER_START: usize = 20;
 /// Why `--clamp` is refused for this build.
 const CLAMP_REFUSAL: &str = "the paper's force C y^n (1 - eta) never attracts, so there is \
                              nothing to clamp";
-
-/// The η a setup gives the hook: the case's own, carried by the setup; without it (a bare
-/// [`crate::codes::setup_for_case`] of an older record), the η of its target COR.
-fn loss_coefficient(setup: &CodeSetup) -> f64 {
-    setup
-        .loss_coefficient
-        .unwrap_or_else(|| exact::loss_coefficient(setup.target_restitution))
-}
 
 /// The start of a run of the script in YADE's coordinates, mirrored (every coordinate negated,
 /// which is exact; [`crate::solve::dashpot::step_in_leap_frog_frame`]): sphere 1 at `−r1` below
@@ -109,37 +101,10 @@ pub fn code_frame(setup: &CodeSetup) -> CodeFrame {
 pub struct YadePaper;
 
 impl YadePaper {
-    fn unsupported(&self, setup: &CodeSetup, reason: impl Into<String>) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason: reason.into(),
-        }
-    }
-
-    /// What the hook cannot run, said before YADE starts: η outside `[0, 1)`, a clamp, no
-    /// positive step, a two-ball scene without its second ball.
+    /// What the hook cannot run, said before YADE starts: what every build of the paper's law
+    /// refuses ([`refuse_for_paper_law`]).
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let eta = loss_coefficient(setup);
-        if !(0.0..1.0).contains(&eta) {
-            return Err(self.unsupported(
-                setup,
-                format!(
-                    "the paper's law requires 0 <= loss coefficient < 1, got {eta} (eta >= 1 \
-                     never separates the bodies, eta < 0 creates energy)"
-                ),
-            ));
-        }
-        if setup.clamp_attractive {
-            return Err(self.unsupported(setup, CLAMP_REFUSAL));
-        }
-        if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-            return Err(self.unsupported(setup, "time step and step count must be positive"));
-        }
-        if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
-            return Err(self.unsupported(setup, "ball_ball needs a second sphere"));
-        }
-        Ok(())
+        refuse_for_paper_law(self.name(), setup, CLAMP_REFUSAL)
     }
 
     /// The paper's law the hook evaluates for `setup`: the case's `C`, `n`, reduced mass and η.
@@ -148,7 +113,7 @@ impl YadePaper {
             mass: setup.reduced_mass,
             stiffness: setup.stiffness,
             exponent: setup.exponent,
-            loss_coefficient: loss_coefficient(setup),
+            loss_coefficient: paper_loss_coefficient(setup),
         }
     }
 
