@@ -462,3 +462,38 @@ pair_style granular\npair_coeff * * hertz/material 6.3e10 0.8 0.22 damping tsuji
         )
     );
 }
+
+/// A build that reads no decks (its law is a hook the harness adds), named with `--code`: one
+/// line saying so and naming the builds that read decks, exit 2, before anything is read or run
+/// (not "not a deck of any code", which a deck of its own code would wrongly be told).
+#[test]
+fn a_build_that_reads_no_decks_is_named_as_such() {
+    for (deck, code) in [
+        ("examples/decks/yade-mill/mill.py", "yade-paper"),
+        (
+            "examples/decks/kratos-mill/MaterialsDEM.json",
+            "kratos-paper",
+        ),
+    ] {
+        let path = root().join(deck);
+        let (status, stdout, stderr) = deck_command(&[path.to_str().unwrap(), "--code", code]);
+        assert_eq!(status, Some(2), "{stderr}");
+        assert!(stdout.is_empty(), "{stdout}");
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&format!("--code {code} reads no decks")),
+            "{stderr}"
+        );
+        let readers = stderr
+            .rsplit_once("the builds that read decks: ")
+            .unwrap()
+            .1
+            .trim();
+        let named: Vec<&str> = readers.split(", ").collect();
+        assert!(
+            named.contains(&"yade") && named.contains(&"kratos"),
+            "{readers}"
+        );
+        assert!(!named.contains(&code), "{readers}");
+    }
+}

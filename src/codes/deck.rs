@@ -150,6 +150,17 @@ pub enum DeckError {
         /// Why.
         source: Box<CodeError>,
     },
+    /// The build named with `--code` reads no decks: its law is one a user's own lines cannot
+    /// select (a hook the harness adds), so a deck of its code is read by the stock build.
+    #[error("{}: --code {code} reads no decks (its law is added by the harness, not selected by a deck's lines); the builds that read decks: {readers}", path.display())]
+    NoReader {
+        /// The deck.
+        path: PathBuf,
+        /// The build named.
+        code: String,
+        /// The builds that read decks.
+        readers: String,
+    },
     /// No reader takes the file.
     #[error("{}: not a deck of any code this build reads; supported: {supported}", path.display())]
     Unrecognised {

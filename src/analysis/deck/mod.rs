@@ -366,6 +366,18 @@ pub fn read_deck(
             .collect::<Vec<_>>()
             .join("; ")
     };
+    if let Some(c) = code.filter(|c| c.driver().deck().is_none()) {
+        return Err(DeckError::NoReader {
+            path: path.to_path_buf(),
+            code: c.to_string(),
+            readers: CodeName::ALL
+                .iter()
+                .filter(|c| c.driver().deck().is_some())
+                .map(|c| c.name())
+                .collect::<Vec<_>>()
+                .join(", "),
+        });
+    }
     let text = std::fs::read_to_string(path).map_err(|source| DeckError::Read {
         path: path.to_path_buf(),
         source,
