@@ -195,13 +195,21 @@ fn id(x: f64) -> u64 {
     x.round().max(0.0) as u64
 }
 
+/// A contact dump names an atom the atoms file does not hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("atom {atom} is not in the atoms file")]
+pub struct UnknownAtom {
+    /// The atom's id.
+    pub atom: u64,
+}
+
 impl Recorded<'_> {
-    fn type_and_mass(&self, atom: u64) -> Result<(u32, f64), String> {
+    fn type_and_mass(&self, atom: u64) -> Result<(u32, f64), UnknownAtom> {
         self.atoms
             .by_id
             .get(&atom)
             .copied()
-            .ok_or_else(|| format!("atom {atom} is not in the atoms file"))
+            .ok_or(UnknownAtom { atom })
     }
 
     /// The velocity of the recorded wall at `point` (its meshes' rotation; the dump writes 0).
@@ -222,7 +230,7 @@ impl Recorded<'_> {
         &self,
         pairs: &[Frame],
         walls: &[Frame],
-    ) -> Result<(Vec<ContactEvent>, Vec<f64>), String> {
+    ) -> Result<(Vec<ContactEvent>, Vec<f64>), UnknownAtom> {
         let mut open: HashMap<Key, Open> = HashMap::new();
         let mut events = Vec::new();
         let mut rest = Vec::new();

@@ -396,7 +396,7 @@ fn read_run(
         };
         recorded
             .track(&pairs, &walls)
-            .map_err(|reason| output(PAIRS_FILE, 0, reason))?
+            .map_err(|unknown| output(PAIRS_FILE, 0, unknown.to_string()))?
     } else {
         (Vec::new(), Vec::new())
     };
