@@ -552,6 +552,19 @@ pub struct ReportArgs {
     /// A variable defined before each deck is read, `NAME=VALUE`, as `deck --var`.
     #[arg(long = "deck-var", value_name = "NAME=VALUE", value_parser = parse_variable)]
     pub deck_variables: Vec<(String, String)>,
+    /// A LIGGGHTS mill deck of your own to run under both laws as `mill` runs it (its code runs
+    /// now), in a part of its own; repeat for several.
+    #[arg(long = "mill", value_name = "FILE")]
+    pub mills: Vec<PathBuf>,
+    /// Rotation time to run of each mill, s, as `mill --time` [default: the deck's own].
+    #[arg(long = "mill-time", value_name = "SECONDS", value_parser = parse_positive)]
+    pub mill_time: Option<f64>,
+    /// Runs per law of each mill, as `mill --seeds`.
+    #[arg(long = "mill-seeds", value_name = "N", default_value = "1")]
+    pub mill_seeds: usize,
+    /// Kill a mill's run after this many seconds, as `mill --timeout`.
+    #[arg(long = "mill-timeout", value_name = "SECONDS", default_value = "3600", value_parser = parse_timeout)]
+    pub mill_timeout: f64,
 }
 
 /// `TYPE:RADIUS:DENSITY`: a particle size and density for a deck that computes them.
@@ -643,7 +656,7 @@ pub struct MillArgs {
     #[arg(long = "spectra-time")]
     pub spectra_time: Option<f64>,
     /// Record contacts every this many steps.
-    #[arg(long = "contact-every", default_value = "5")]
+    #[arg(long = "contact-every", default_value_t = millimpact::analysis::mill::DEFAULT_CONTACT_EVERY)]
     pub contact_every: u64,
     /// Kill a run after this many seconds.
     #[arg(long, default_value = "3600", value_parser = parse_timeout)]

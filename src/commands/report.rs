@@ -9,7 +9,11 @@ use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CommandOutput, write_output};
 use crate::cli::ReportArgs;
-use millimpact::analysis::report::{ReportOptions, ReportTable, add_decks, build_report};
+use millimpact::analysis::mill::{MillError, MillOptions, plan, run_mill};
+use millimpact::analysis::report::{
+    ReportOptions, ReportTable, add_decks, add_mills, build_report,
+};
+use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::model::shipped::canonical_cases;
@@ -59,6 +63,35 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         .iter()
         .map(|path| super::deck::read(path, None, &given))
         .collect::<Result<Vec<_>>>()?;
+    // And the mills: a deck or an option that cannot run is refused before any work.
+    let mills = args
+        .mills
+        .iter()
+        .map(|path| {
+            let deck = MillDeck::read(path).map_err(UserError::from)?;
+            let options = MillOptions {
+                time: args.mill_time,
+                seeds: args.mill_seeds,
+                timeout: Duration::from_secs_f64(args.mill_timeout),
+                ..MillOptions::defaults()
+            };
+            // Named as the report spells its options.
+            plan(&deck, &options).map_err(|e| match e {
+                MillError::Option {
+                    deck,
+                    option,
+                    value,
+                    allowed,
+                } => anyhow::Error::from(UserError::argument(
+                    &option.replacen("--", "--mill-", 1),
+                    value,
+                    format!("{}: {allowed}", deck.display()),
+                )),
+                other => other.into(),
+            })?;
+            Ok((deck, options))
+        })
+        .collect::<Result<Vec<_>>>()?;
     let options = ReportOptions {
         live: args.live,
         reference: super::reference_folder(args.reference.as_deref(), args.live, &mut warnings)?,
@@ -68,8 +101,8 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     // A progress bar on a terminal, none when output is piped or under CI.
     let interactive = std::io::stderr().is_terminal()
         && std::env::var_os("CI").is_none()
-        && (args.live || !args.decks.is_empty());
-    let stages = cases.len() as u64 + 4 + decks.len() as u64;
+        && (args.live || !args.decks.is_empty() || !args.mills.is_empty());
+    let stages = cases.len() as u64 + 4 + decks.len() as u64 + mills.len() as u64;
     let bar = interactive.then(|| {
         let bar = ProgressBar::new(stages);
         bar.set_style(
@@ -97,6 +130,12 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         )?);
     }
     add_decks(&mut report, &checks)?;
+    let mut compared = Vec::new();
+    for (deck, options) in &mills {
+        progress(&format!("{}: running both laws", deck.path.display()));
+        compared.push(run_mill(deck, options, &|_| {})?);
+    }
+    add_mills(&mut report, &compared)?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
     }

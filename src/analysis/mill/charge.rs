@@ -9,13 +9,20 @@
 use crate::codes::liggghts::mill::RotatingMesh;
 
 /// `(line, reason)` of a file that cannot be read.
-pub type ReadFault = (usize, String);
+pub(super) type ReadFault = (usize, String);
 
-/// One frame of the positions dump: its step, and per particle its position (m) and radius (m).
-pub type Positions = (f64, Vec<[f64; 4]>);
+/// One frame of the positions dump.
+pub(super) struct Positions {
+    /// Its step.
+    pub step: f64,
+    /// Per particle, its id.
+    pub ids: Vec<u64>,
+    /// Per particle (as `ids`), its position (m) and radius (m).
+    pub particles: Vec<[f64; 4]>,
+}
 
 /// Read a `dump custom … id x y z radius` file.
-pub fn read_positions(text: &str) -> Result<Vec<Positions>, ReadFault> {
+pub(super) fn read_positions(text: &str) -> Result<Vec<Positions>, ReadFault> {
     let lines: Vec<&str> = text.lines().collect();
     let mut frames = Vec::new();
     let mut k = 0;
@@ -36,6 +43,7 @@ pub fn read_positions(text: &str) -> Result<Vec<Positions>, ReadFault> {
         let n = n as usize;
         let first = k + 9;
         let mut rows = Vec::with_capacity(n);
+        let mut ids = Vec::with_capacity(n);
         for j in first..first + n {
             let words: Vec<f64> = lines
                 .get(j)
@@ -50,9 +58,16 @@ pub fn read_positions(text: &str) -> Result<Vec<Positions>, ReadFault> {
                     format!("{} columns, expected id x y z radius", words.len()),
                 ));
             }
+            // LIGGGHTS writes the id as a whole number.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            ids.push(words[0] as u64);
             rows.push([words[1], words[2], words[3], words[4]]);
         }
-        frames.push((step, rows));
+        frames.push(Positions {
+            step,
+            ids,
+            particles: rows,
+        });
         k = first + n;
     }
     Ok(frames)
@@ -79,13 +94,40 @@ fn quantile(sorted: &[f64], q: f64) -> f64 {
     sorted[rank]
 }
 
-/// Toe and shoulder of one frame, degrees from the bottom (toe negative, shoulder positive on
-/// the rising side), or `None` when the frame holds no particle or gravity runs along the axis.
-pub fn toe_and_shoulder(
+/// The power the drive supplies to hold the charge's weight off the bottom, W, from one frame:
+/// turning steadily, the drum's torque on the charge balances, in the mean, the torque of the
+/// charge's weight about the axis, so the drive supplies `−ω (Σ mᵢ (rᵢ − o) × g)·a`. A route
+/// to the power draw from positions and masses alone, apart from the forces on the mesh; it
+/// leaves out the torque of anything that does not turn with the drum, and the changes of the
+/// charge's angular momentum, which average out over a steady rotation.
+pub(super) fn weight_power(
+    drum: &RotatingMesh,
+    gravity: [f64; 3],
+    charge: &[(f64, [f64; 3])],
+) -> f64 {
+    let torque = charge.iter().fold([0.0; 3], |sum, (mass, position)| {
+        let arm = [
+            position[0] - drum.origin[0],
+            position[1] - drum.origin[1],
+            position[2] - drum.origin[2],
+        ];
+        let t = cross(&arm, &gravity);
+        [
+            sum[0] + mass * t[0],
+            sum[1] + mass * t[1],
+            sum[2] + mass * t[2],
+        ]
+    });
+    -dot(&torque, &drum.axis) * drum.angular_velocity
+}
+
+/// Each particle's place in the drum's cross-section, m: across (toward the rising side) and
+/// up (against gravity), from the axis; `None` where gravity runs along the axis.
+pub(super) fn section(
     drum: &RotatingMesh,
     gravity: [f64; 3],
     particles: &[[f64; 4]],
-) -> Option<(f64, f64)> {
+) -> Option<Vec<[f64; 2]>> {
     let a = drum.axis;
     let along = dot(&gravity, &a);
     let down = [
@@ -94,21 +136,42 @@ pub fn toe_and_shoulder(
         gravity[2] - along * a[2],
     ];
     let size = dot(&down, &down).sqrt();
-    if size < 1e-9 || particles.is_empty() {
+    if size <= 1e-9 * gravity.iter().map(|g| g.abs()).fold(0.0, f64::max) {
         return None;
     }
     let down = down.map(|x| x / size);
     // The shell's bottom moves along ω a × down: that side rises.
     let rising = cross(&a, &down).map(|x| x * drum.angular_velocity.signum());
-    let polar: Vec<(f64, f64)> = particles
+    Some(
+        particles
+            .iter()
+            .map(|p| {
+                let r = [
+                    p[0] - drum.origin[0],
+                    p[1] - drum.origin[1],
+                    p[2] - drum.origin[2],
+                ];
+                [dot(&r, &rising), -dot(&r, &down)]
+            })
+            .collect(),
+    )
+}
+
+/// Toe and shoulder of one frame, degrees from the bottom (toe negative, shoulder positive on
+/// the rising side), or `None` when the frame holds no particle or gravity runs along the axis.
+pub(super) fn toe_and_shoulder(
+    drum: &RotatingMesh,
+    gravity: [f64; 3],
+    particles: &[[f64; 4]],
+) -> Option<(f64, f64)> {
+    if particles.is_empty() {
+        return None;
+    }
+    let polar: Vec<(f64, f64)> = section(drum, gravity, particles)?
         .iter()
-        .map(|p| {
-            let r = [
-                p[0] - drum.origin[0],
-                p[1] - drum.origin[1],
-                p[2] - drum.origin[2],
-            ];
-            let (x, y) = (dot(&r, &down), dot(&r, &rising));
+        .zip(particles)
+        .map(|(&[y, up], p)| {
+            let x = -up;
             ((x * x + y * y).sqrt() + p[3], y.atan2(x).to_degrees())
         })
         .collect();
@@ -164,5 +227,33 @@ mod tests {
         assert!((toe - -55.0).abs() < 1.01 && (shoulder - 25.0).abs() < 1.01);
         // Gravity along the axis has no bottom.
         assert_eq!(toe_and_shoulder(&back, [0.0, 1.0, 0.0], &particles), None);
+    }
+
+    /// A drum about +y at +9 rad/s, gravity −9.81 ẑ: its rising side is −x. A 2 kg charge held
+    /// 0.03 m toward the rising side needs ω m g d = 9 × 2 × 9.81 × 0.03 W; toward the falling
+    /// side the weight would drive the drum (negative power); along the axis or straight below
+    /// it, nothing.
+    #[test]
+    fn weight_power_is_the_torque_of_the_lifted_charge_times_the_speed() {
+        let drum = RotatingMesh {
+            mesh: "drum".into(),
+            origin: [0.0, 0.5, 0.0],
+            axis: [0.0, 1.0, 0.0],
+            angular_velocity: 9.0,
+            from: SourceLine {
+                file: "in.mill".into(),
+                line: 1,
+            },
+        };
+        let g = [0.0, 0.0, -9.81];
+        let lifted = weight_power(
+            &drum,
+            g,
+            &[(1.5, [-0.03, 0.2, -0.05]), (0.5, [-0.03, 0.9, 0.01])],
+        );
+        approx::assert_relative_eq!(lifted, 9.0 * 2.0 * 9.81 * 0.03, max_relative = 1e-14);
+        let falling = weight_power(&drum, g, &[(2.0, [0.03, 0.0, -0.05])]);
+        approx::assert_relative_eq!(falling, -lifted, max_relative = 1e-14);
+        assert!(weight_power(&drum, g, &[(2.0, [0.0, 3.0, -0.06])]).abs() < 1e-15);
     }
 }

@@ -18,7 +18,8 @@ use thiserror::Error;
 
 pub use contacts::{ContactEvent, ContactSample, ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED};
 pub use report::{
-    Estimate, MillRecord, MillReport, MillRun, QuantityRow, SpectrumRow, Verdict, difference,
+    Estimate, MillRecord, MillReport, MillRun, PowerBalance, ProfilePoint, QuantityRow,
+    SpectrumRow, TRACE_POINTS, TracePoint, Verdict, WEIGHT_POWER, difference,
 };
 
 use crate::codes::deck::DeckError;
@@ -108,6 +109,27 @@ pub struct MillOptions {
     pub hertz_code: CodeName,
 }
 
+/// Contacts are recorded every this many steps unless asked otherwise.
+pub const DEFAULT_CONTACT_EVERY: u64 = 5;
+
+impl MillOptions {
+    /// What `millimpact mill DECK` runs with no option: the deck's own rotation and seeds, the
+    /// default transient and spectra window, both runs at once, an hour's limit per run.
+    pub fn defaults() -> MillOptions {
+        MillOptions {
+            time: None,
+            seeds: 1,
+            transient: None,
+            spectra_time: None,
+            contact_every: DEFAULT_CONTACT_EVERY,
+            timeout: Duration::from_secs(3600),
+            jobs: 2,
+            keep: None,
+            hertz_code: CodeName::Liggghts,
+        }
+    }
+}
+
 /// Power and energy are averaged over this many consecutive blocks of the measured time.
 pub const BLOCKS: usize = 5;
 
@@ -130,6 +152,13 @@ pub struct RunResult {
     /// Rotation time of each positions frame, s, with the charge's toe and shoulder angles,
     /// degrees from the bottom (empty where the deck has no gravity).
     pub angles: Vec<(f64, f64, f64)>,
+    /// Rotation time of each positions frame, s, with the power the drive supplies to hold the
+    /// charge's weight where it is, W (the torque balance; empty where the deck has no gravity
+    /// or its rotating meshes do not all turn as one drum).
+    pub weight_power: Vec<(f64, f64)>,
+    /// The charge in the drum's cross-section at the end of the run (empty where the deck has
+    /// no gravity).
+    pub profile: Vec<ProfilePoint>,
     /// Wall time, s.
     pub wall_time: f64,
 }
@@ -401,12 +430,60 @@ fn read_run(
         (Vec::new(), Vec::new())
     };
     let mut angles = Vec::new();
+    let mut weight_power = Vec::new();
+    let mut profile = Vec::new();
     if let (Some(gravity), Some(drum)) = (deck.gravity, deck.rotating.first()) {
         let frames = charge::read_positions(&read(POSITIONS_FILE)?)
             .map_err(|(line, reason)| output(POSITIONS_FILE, line, reason))?;
-        for (step, particles) in frames {
-            if let Some((toe, shoulder)) = charge::toe_and_shoulder(drum, gravity, &particles) {
-                angles.push(((step - atoms.start_step) * deck.timestep, toe, shoulder));
+        // The torque balance holds for the charge as a whole only where every rotating mesh
+        // turns with the drum.
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()));
+        let one_drum = deck.rotating.iter().all(|r| {
+            close(r.angular_velocity, drum.angular_velocity)
+                && (0..3).all(|k| close(r.axis[k], drum.axis[k]))
+                && (0..3).all(|k| {
+                    // Another point on the same axis is the same axis.
+                    let offset: Vec<f64> = (0..3).map(|j| r.origin[j] - drum.origin[j]).collect();
+                    let along: f64 = (0..3).map(|j| offset[j] * drum.axis[j]).sum();
+                    close(offset[k] - along * drum.axis[k], 0.0)
+                })
+        });
+        if let Some(last) = frames.last() {
+            profile = charge::section(drum, gravity, &last.particles)
+                .unwrap_or_default()
+                .into_iter()
+                .map(|[across, up]| ProfilePoint { across, up })
+                .collect();
+        }
+        for frame in frames {
+            let time = (frame.step - atoms.start_step) * deck.timestep;
+            if let Some((toe, shoulder)) = charge::toe_and_shoulder(drum, gravity, &frame.particles)
+            {
+                angles.push((time, toe, shoulder));
+            }
+            if one_drum {
+                let charge = frame
+                    .ids
+                    .iter()
+                    .zip(&frame.particles)
+                    .map(|(id, p)| {
+                        atoms
+                            .by_id
+                            .get(id)
+                            .map(|&(_, mass)| (mass, [p[0], p[1], p[2]]))
+                    })
+                    .collect::<Option<Vec<_>>>()
+                    .ok_or_else(|| {
+                        output(
+                            POSITIONS_FILE,
+                            0,
+                            format!(
+                                "step {}: a particle that is not in {ATOMS_FILE}",
+                                frame.step
+                            ),
+                        )
+                    })?;
+                weight_power.push((time, charge::weight_power(drum, gravity, &charge)));
             }
         }
     }
@@ -414,6 +491,8 @@ fn read_run(
         law,
         code: String::new(),
         angles,
+        weight_power,
+        profile,
         seed,
         series,
         events,

@@ -1,15 +1,20 @@
 //! The comparison's figures, with their uncertainty: block means (or means over seeds) and
 //! standard errors per law, and each difference between the laws with its standard error.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::contacts::{ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED, bin};
-use super::{BLOCKS, MillOptions, RunResult};
+use super::{BLOCKS, DEFAULT_CONTACT_EVERY, MillOptions, RunResult};
+use crate::codes::CodeName;
 use crate::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
+use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary};
 
+/// The quantity of the power draw from the torque balance of the charge's weight.
+pub const WEIGHT_POWER: &str = "power draw by the torque balance (ω × the weight's torque)";
+
 /// A mean with its standard error.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Estimate {
     /// The mean.
     pub mean: f64,
@@ -18,7 +23,7 @@ pub struct Estimate {
 }
 
 /// Whether a difference stands out of its uncertainty.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
     /// More than two standard errors from zero.
@@ -50,18 +55,41 @@ pub fn difference(a: Estimate, b: Estimate) -> (Estimate, Verdict) {
     (d, verdict)
 }
 
-/// The mean of `values` and its standard error from `BLOCKS` consecutive blocks.
-fn block_estimate(values: &[f64]) -> Estimate {
+/// The means of `BLOCKS` consecutive blocks of `values` (the values themselves where there
+/// are fewer).
+fn block_means(values: &[f64]) -> Vec<f64> {
     let size = values.len() / BLOCKS;
     if size == 0 {
-        return spread(values);
+        return values.to_vec();
     }
-    let means: Vec<f64> = values
+    values
         .chunks(size)
         .take(BLOCKS)
         .map(|b| b.iter().sum::<f64>() / b.len() as f64)
-        .collect();
-    spread(&means)
+        .collect()
+}
+
+/// The mean of `values` and its standard error from `BLOCKS` consecutive blocks.
+fn block_estimate(values: &[f64]) -> Estimate {
+    spread(&block_means(values))
+}
+
+/// Per law, the mean of `a − b` with its standard error, paired: block by block within one run
+/// (the two series cover the same stretch of time), run by run over seeds.
+fn paired(
+    runs: &[&RunResult],
+    a: impl Fn(&RunResult) -> Vec<f64>,
+    b: impl Fn(&RunResult) -> Vec<f64>,
+) -> Estimate {
+    let mean = |v: &[f64]| v.iter().sum::<f64>() / v.len() as f64;
+    if runs.len() == 1 {
+        let (a, b) = (block_means(&a(runs[0])), block_means(&b(runs[0])));
+        let d: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x - y).collect();
+        spread(&d)
+    } else {
+        let d: Vec<f64> = runs.iter().map(|r| mean(&a(r)) - mean(&b(r))).collect();
+        spread(&d)
+    }
 }
 
 /// The mean of independent `values` and its standard error.
@@ -92,7 +120,7 @@ fn over_runs(runs: &[&RunResult], figure: impl Fn(&RunResult) -> Vec<f64>) -> Es
 }
 
 /// One figure under both laws.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct QuantityRow {
     /// What is measured.
     pub quantity: String,
@@ -108,8 +136,30 @@ pub struct QuantityRow {
     pub verdict: Verdict,
 }
 
+/// The two routes to the power draw set against each other, per law: the power from the torque
+/// on the rotating meshes minus the power from the torque balance of the charge's weight, W,
+/// with its standard error (paired: block by block, or run by run over seeds). In a steady
+/// rotation they agree but for what turns the charge apart from the drum (a wall that stands
+/// still) and the charge's angular momentum, which averages out.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct PowerBalance {
+    /// Under the deck's own law.
+    pub written: Estimate,
+    /// Under the switched law.
+    pub switched: Estimate,
+}
+
+impl PowerBalance {
+    /// Whether both laws' routes agree within two standard errors.
+    pub fn closes(&self) -> bool {
+        [self.written, self.switched]
+            .iter()
+            .all(|d| d.mean.abs() <= 2.0 * d.standard_error)
+    }
+}
+
 /// One bin of a collision spectrum under both laws: collisions per second (per run).
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct SpectrumRow {
     /// The pair of types (`"1-2"`, `"1-wall"`).
     pub pair: String,
@@ -129,8 +179,34 @@ pub struct SpectrumRow {
     pub verdict: Verdict,
 }
 
+/// A run's power and energy are traced over this many equal stretches of the rotation.
+pub const TRACE_POINTS: usize = 100;
+
+/// A run's power and energy over one stretch of the rotation (means over the stretch).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct TracePoint {
+    /// The stretch's middle, s from the start of the rotation.
+    pub time: f64,
+    /// Power from the torque on the rotating meshes, W (`None`: no row printed in the stretch).
+    pub power: Option<f64>,
+    /// Power from the torque balance of the charge's weight, W (`None`: no positions frame in
+    /// the stretch, or the deck has no gravity).
+    pub weight_power: Option<f64>,
+    /// Kinetic energy of the charge, J (`None`: no row printed in the stretch).
+    pub kinetic_energy: Option<f64>,
+}
+
+/// A particle's place in the drum's cross-section at the end of a run, m from the axis.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct ProfilePoint {
+    /// Across, toward the side the shell rises on.
+    pub across: f64,
+    /// Up, against gravity.
+    pub up: f64,
+}
+
 /// One run as it went.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MillRun {
     /// The law.
     pub law: MillLaw,
@@ -142,10 +218,52 @@ pub struct MillRun {
     pub collisions: usize,
     /// Wall time, s.
     pub wall_time: f64,
+    /// Power and kinetic energy through the rotation, in `TRACE_POINTS` stretches.
+    pub trace: Vec<TracePoint>,
+    /// The charge in the drum's cross-section at the end of the run.
+    pub profile: Vec<ProfilePoint>,
+}
+
+/// The mean of the values of `series` whose time falls in each of `TRACE_POINTS` stretches of
+/// `[0, rotation)`.
+fn stretch_means<T>(
+    series: &[T],
+    rotation: f64,
+    at: impl Fn(&T) -> (f64, f64),
+) -> Vec<Option<f64>> {
+    let mut sums = vec![(0.0, 0usize); TRACE_POINTS];
+    for (time, value) in series.iter().map(at) {
+        let k = (time / rotation * TRACE_POINTS as f64).floor();
+        if (0.0..TRACE_POINTS as f64).contains(&k) {
+            // A stretch index below TRACE_POINTS.
+            #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+            let slot = &mut sums[k as usize];
+            slot.0 += value;
+            slot.1 += 1;
+        }
+    }
+    sums.into_iter()
+        .map(|(sum, n)| (n > 0).then(|| sum / n as f64))
+        .collect()
+}
+
+/// `run`'s power and energy in `TRACE_POINTS` stretches of a rotation `rotation` s long.
+fn trace(run: &RunResult, rotation: f64) -> Vec<TracePoint> {
+    let power = stretch_means(&run.series, rotation, |s| (s.0, s.1));
+    let energy = stretch_means(&run.series, rotation, |s| (s.0, s.2));
+    let weight = stretch_means(&run.weight_power, rotation, |s| *s);
+    (0..TRACE_POINTS)
+        .map(|k| TracePoint {
+            time: (k as f64 + 0.5) * rotation / TRACE_POINTS as f64,
+            power: power[k],
+            weight_power: weight[k],
+            kinetic_energy: energy[k],
+        })
+        .collect()
 }
 
 /// The comparison.
-#[derive(Clone, Debug, PartialEq, Serialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct MillReport {
     /// The deck.
     pub deck: String,
@@ -171,8 +289,13 @@ pub struct MillReport {
     pub contact_every: u64,
     /// Runs per law.
     pub seeds: usize,
+    /// The command that reproduces it.
+    pub reproduce: String,
     /// The figures.
     pub quantities: Vec<QuantityRow>,
+    /// How far the power from the torque on the rotating meshes and the power from the torque
+    /// balance of the charge's weight are apart, per law (`None` where the deck has no gravity).
+    pub power_balance: Option<PowerBalance>,
     /// The collision spectra.
     pub spectra: Vec<SpectrumRow>,
     /// The runs.
@@ -244,6 +367,22 @@ pub(super) fn summarise(
         over_runs(&written, power),
         over_runs(&switched, power),
     );
+    let held = |r: &RunResult| {
+        r.weight_power
+            .iter()
+            .filter(|s| s.0 > transient)
+            .map(|s| s.1)
+            .collect::<Vec<f64>>()
+    };
+    let weighed = runs.iter().all(|r| !r.weight_power.is_empty());
+    if weighed {
+        push(
+            WEIGHT_POWER,
+            "W",
+            over_runs(&written, held),
+            over_runs(&switched, held),
+        );
+    }
     push(
         "mean kinetic energy",
         "J",
@@ -328,7 +467,26 @@ pub(super) fn summarise(
             }
         }
     }
+    let power_balance = weighed.then(|| PowerBalance {
+        written: paired(&written, power, held),
+        switched: paired(&switched, power, held),
+    });
+    let code_given = (options.hertz_code != CodeName::Liggghts).then_some(options.hertz_code);
+    let reproduce = Invocation::new("mill")
+        .arg(deck.path.display())
+        .option_if("--code", code_given)
+        .option_if("--time", options.time)
+        .option_if("--seeds", (options.seeds > 1).then_some(options.seeds))
+        .option_if("--transient", options.transient)
+        .option_if("--spectra-time", options.spectra_time)
+        .option_if(
+            "--contact-every",
+            (options.contact_every != DEFAULT_CONTACT_EVERY).then_some(options.contact_every),
+        )
+        .to_string();
     MillReport {
+        reproduce,
+        power_balance,
         deck: deck.path.display().to_string(),
         written_law,
         switched_law,
@@ -351,6 +509,8 @@ pub(super) fn summarise(
                 seed: r.seed,
                 collisions: r.events.len(),
                 wall_time: r.wall_time,
+                trace: trace(r, plan.rotation_steps as f64 * deck.timestep),
+                profile: r.profile.clone(),
             })
             .collect(),
         left_out: deck.left_out.clone(),
@@ -492,6 +652,28 @@ impl Summary for MillReport {
             self.rotation_from,
             self.transient
         )];
+        if let Some(balance) = self.power_balance {
+            let mesh = self.quantities.iter().find(|q| q.quantity == "power draw");
+            let relative = |d: Estimate, of: Option<f64>| {
+                of.map_or(String::new(), |p| {
+                    format!(" ({:+.0} % of {:.3} W)", 100.0 * d.mean / p, p)
+                })
+            };
+            figures.notes.push(format!(
+                "power balance, the torque on the rotating meshes minus the torque balance of the charge's weight: {} W{} under {}, {} W{} under {}: {}; in a steady rotation the two differ only by what turns the charge apart from the drum and by the charge's angular momentum, which averages out",
+                pm(balance.written),
+                relative(balance.written, mesh.map(|q| q.written.mean)),
+                self.written_law,
+                pm(balance.switched),
+                relative(balance.switched, mesh.map(|q| q.switched.mean)),
+                self.switched_law,
+                if balance.closes() {
+                    "it closes within two standard errors"
+                } else {
+                    "it does not close within two standard errors"
+                }
+            ));
+        }
         let mut sections = vec![figures];
         if !self.spectra.is_empty() {
             let mut spectra = Section::new(
@@ -551,6 +733,6 @@ impl Summary for MillReport {
     }
 
     fn footer(&self) -> Vec<String> {
-        vec![format!("reproduce: millimpact mill {}", self.deck)]
+        vec![format!("reproduce: {}", self.reproduce)]
     }
 }

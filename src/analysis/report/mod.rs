@@ -2,11 +2,15 @@
 //! each with the data behind it and the command that reproduces it. From stored references it
 //! runs no DEM code.
 
+mod mill;
+
 use std::path::Path;
 use std::time::Duration;
 
 use serde::Serialize;
 use thiserror::Error;
+
+pub use mill::{add_mills, mill_part};
 
 use super::benchmark::cor_chart::cor_chart;
 use super::benchmark::{self, BenchmarkError, BenchmarkOptions, CodeRuns};

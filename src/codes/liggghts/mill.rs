@@ -11,7 +11,7 @@
 
 use std::path::{Path, PathBuf};
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::deck::{LiggghtsDeck, read_model, read_settings, read_wall};
 use crate::codes::deck::{DeckError, DeckOptions, DeckReader, SourceLine};
@@ -47,7 +47,7 @@ const SEEDS: [u64; 24] = [
 pub const MAX_SEEDS: usize = 4;
 
 /// A normal contact law the mill comparison runs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MillLaw {
     /// LIGGGHTS's damped Hertz, `model hertz` with `coefficientRestitution` (stock LIGGGHTS).
@@ -144,7 +144,8 @@ pub struct MillDeck {
     pub insertion_seeds: usize,
     /// What of the deck the instrumented runs leave out (its own output files), with lines.
     pub left_out: Vec<String>,
-    /// The direction of gravity (`fix … gravity G vector X Y Z`), a unit vector, where set.
+    /// Gravity's acceleration (`fix … gravity G vector X Y Z`: `G` along the unit vector of
+    /// `X Y Z`), m/s², where set.
     pub gravity: Option<[f64; 3]>,
     commands: Vec<Command>,
     first_run: usize,
@@ -337,11 +338,13 @@ impl MillDeck {
                 }
                 "fix" if style == "gravity" => {
                     if let Some(k) = c.words.iter().position(|w| w == "vector") {
+                        let magnitude = c.number(4, "gravity's magnitude")?;
                         gravity = unit([
                             c.number(k + 1, "gravity's direction")?,
                             c.number(k + 2, "gravity's direction")?,
                             c.number(k + 3, "gravity's direction")?,
-                        ]);
+                        ])
+                        .map(|direction| direction.map(|x| x * magnitude));
                     }
                 }
                 "fix" if is_property(c, "coefficientRestitution") => tables.push((
