@@ -80,7 +80,7 @@ fn the_mill_deck_is_read_through_its_include_and_variables() {
     // The include's property lines, variables substituted; the mesh wall made a plane.
     let common = deck.transplant.common.join("\n");
     assert!(
-        common.contains("youngsModulus peratomtype 2e11 2e11 5e7"),
+        common.contains("youngsModulus peratomtype 200000000000 200000000000 50000000"),
         "{common}"
     );
     assert!(
@@ -554,7 +554,7 @@ fn the_lammps_deck_is_read_with_the_builds_conventions() {
     assert_eq!(
         deck.transplant.walls,
         [
-            "fix floor all wall/gran granular hertz/material 6.3e10 7e-1 2.2e-1 damping tsuji tangential mindlin NULL 1.0 0.5 limit_damping zplane 0 NULL"
+            "fix floor all wall/gran granular hertz/material 63000000000 0.7 0.22 damping tsuji tangential mindlin NULL 1.0 0.5 limit_damping zplane 0 NULL"
         ]
     );
     // The ball on the floor: the 2021 wall's E/(2(1−ν)), R* = R, m* = m, tsuji's α(e_in), clamped.

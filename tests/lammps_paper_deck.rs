@@ -111,7 +111,7 @@ fn a_plugin_deck_runs_in_lammps_paper_with_each_pairs_eta_and_materials() {
     );
     assert_eq!(
         deck.transplant.walls,
-        ["fix liner all wall/paper hertz 0.25 2e11 0.3 2e11 0.3 zplane 0 NULL"]
+        ["fix liner all wall/paper hertz 0.25 200000000000 0.3 200000000000 0.3 zplane 0 NULL"]
     );
 }
 

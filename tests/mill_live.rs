@@ -161,3 +161,63 @@ fn live_the_shipped_drum_mesh_is_what_its_script_writes() {
         .unwrap();
     assert!(status.success());
 }
+
+/// `report --mill` from a folder outside the repository, on an absolute deck path, as a user
+/// runs it: the part's figures and data are written, and its JSON is `mill`'s.
+#[test]
+#[ignore = "live: runs liggghts and liggghts-paper on examples/mill/in.mill for 0.3 s of rotation"]
+fn live_report_mill_writes_the_mills_part_from_another_folder() {
+    let elsewhere = tempfile::tempdir().unwrap();
+    let deck = root().join("examples/mill/in.mill");
+    let output = millimpact()
+        .current_dir(elsewhere.path())
+        .args(["report"])
+        .arg(root().join("cases/ball_plate.toml"))
+        .arg("--mill")
+        .arg(&deck)
+        .args(["--mill-time", "0.3", "--out", "report"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let out = elsewhere.path().join("report");
+    for name in [
+        "mill-1-power.svg",
+        "mill-1-power.csv",
+        "mill-1-impact-energy.svg",
+        "mill-1-peak-force.svg",
+        "mill-1-charge.svg",
+        "mill-1-figures.csv",
+        "mill-1-spectra.csv",
+        "mill-1-runs.csv",
+        "mill-1.csv",
+    ] {
+        assert!(out.join(name).is_file(), "{name} not written");
+    }
+    let mill: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("mill-1.json")).unwrap()).unwrap();
+    assert_eq!(
+        mill["reproduce"],
+        format!("millimpact mill {} --time 0.3", deck.display())
+    );
+    let runs = mill["runs"].as_array().unwrap();
+    assert_eq!(runs.len(), 2);
+    for run in runs {
+        // Both routes to the power through the whole rotation, and the charge's 100 balls.
+        let trace = run["trace"].as_array().unwrap();
+        assert_eq!(trace.len(), 100);
+        assert!(trace.iter().all(|t| t["power"].is_number()), "{run}");
+        assert!(
+            trace
+                .iter()
+                .filter(|t| t["weight_power"].is_number())
+                .count()
+                >= 50,
+            "{run}"
+        );
+        assert_eq!(run["profile"].as_array().unwrap().len(), 100);
+    }
+    let index = std::fs::read_to_string(out.join("index.md")).unwrap();
+    assert!(index.contains("Your mill:"), "no mill part in index.md");
+    assert!(index.contains("mill-1-power.svg"));
+}

@@ -419,7 +419,7 @@ impl ScriptReader {
                         let x = Expression::new(formula, at, &lookup)
                             .lacking(self.lacking)
                             .evaluate()?;
-                        (format!("{x:e}"), end + 1)
+                        (printf_g(x, 20), end + 1)
                     }
                     name => (self.value(&name.to_string(), at)?, i + 2),
                 };
@@ -515,17 +515,51 @@ fn unclosed(at: &SourceLine) -> DeckError {
     )
 }
 
-/// A value written to 15 significant digits (LAMMPS's `%.15g` for `${NAME}` of an equal-style
-/// variable): the number the code reads back.
-pub fn fifteen_digits(x: f64) -> String {
-    let text = format!("{x:.14e}");
-    match text.split_once('e') {
-        Some((mantissa, exponent)) if mantissa.contains('.') => {
-            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
-            format!("{mantissa}e{exponent}")
-        }
-        _ => text,
+/// A value as C's `printf("%.{precision}g")` writes it: `precision` significant digits, in
+/// fixed notation unless the exponent is below −4 or at least `precision`, trailing zeros left
+/// out. What the codes write for `${NAME}` (`%.15g`) and `$(formula)` (`%.20g`), and so what
+/// they read back: a `run ${n}` of 150000 is `run 150000`, where `1.5e5` would run one step.
+pub fn printf_g(x: f64, precision: usize) -> String {
+    if !x.is_finite() {
+        return if x.is_nan() {
+            "nan".into()
+        } else if x > 0.0 {
+            "inf".into()
+        } else {
+            "-inf".into()
+        };
     }
+    let precision = precision.max(1);
+    let scientific = format!("{x:.*e}", precision - 1);
+    let Some((mantissa, exponent)) = scientific.split_once('e') else {
+        return scientific;
+    };
+    let exponent: i64 = exponent.parse().unwrap_or(0);
+    let trim = |digits: &str| -> String {
+        if digits.contains('.') {
+            digits
+                .trim_end_matches('0')
+                .trim_end_matches('.')
+                .to_string()
+        } else {
+            digits.to_string()
+        }
+    };
+    let limit = i64::try_from(precision).unwrap_or(i64::MAX);
+    if exponent < -4 || exponent >= limit {
+        let sign = if exponent < 0 { '-' } else { '+' };
+        format!("{}e{sign}{:02}", trim(mantissa), exponent.abs())
+    } else {
+        // At most `precision` + 4 decimals here.
+        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+        let decimals = (limit - 1 - exponent) as usize;
+        trim(&format!("{x:.decimals$}"))
+    }
+}
+
+/// A value as `${NAME}` of an equal-style variable writes it (`%.15g`).
+pub fn fifteen_digits(x: f64) -> String {
+    printf_g(x, 15)
 }
 
 /// The names a formula may call, with their argument counts.
@@ -892,8 +926,19 @@ mod tests {
         let third = 1.0 / 3.0;
         let x: f64 = fifteen_digits(third).parse().unwrap();
         assert!((x - third).abs() < 1e-15 && (x - third).abs() > 0.0);
-        assert_eq!(fifteen_digits(2e11), "2e11");
-        assert_eq!(fifteen_digits(0.25), "2.5e-1");
+        assert_eq!(fifteen_digits(2e11), "200000000000");
+        assert_eq!(fifteen_digits(0.25), "0.25");
+        // A step count stays a whole number in digits (LIGGGHTS runs `1.5e5` as one step).
+        assert_eq!(fifteen_digits(0.15 / 1e-6), "150000");
+        assert_eq!(fifteen_digits(1e15), "1e+15");
+        assert_eq!(fifteen_digits(123456789012345.0), "123456789012345");
+        assert_eq!(fifteen_digits(-2.5e-5), "-2.5e-05");
+        assert_eq!(fifteen_digits(1e-4), "0.0001");
+        assert_eq!(fifteen_digits(0.0), "0");
+        // Rounding that carries into the next power of ten changes the notation, as in C.
+        assert_eq!(fifteen_digits(999_999_999_999_999.9), "1e+15");
+        assert_eq!(printf_g(0.1, 20), "0.10000000000000000555");
+        assert_eq!(printf_g(150000.0, 20), "150000");
     }
 
     #[test]
