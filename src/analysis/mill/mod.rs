@@ -58,6 +58,23 @@ pub enum MillError {
         /// Why.
         source: CodeError,
     },
+    /// A run lost particles on the way (a deck that lets LIGGGHTS drop the atoms that leave the
+    /// box, `thermo_modify lost ignore`): its figures would be of another charge.
+    #[error("the {law} run (seed {seed}) lost {} of its {had} particles by step {step} (they left the simulation box and the deck lets LIGGGHTS drop them, as `thermo_modify lost ignore` does); its figures would be of another charge; run folder kept in {}", had - has, folder.display())]
+    LostAtoms {
+        /// The law of the run.
+        law: MillLaw,
+        /// Its seed.
+        seed: usize,
+        /// The step of the first frame short of particles.
+        step: f64,
+        /// Particles at the start of the rotation.
+        had: usize,
+        /// Particles in that frame.
+        has: usize,
+        /// The kept run folder.
+        folder: PathBuf,
+    },
     /// A file a run wrote cannot be read.
     #[error("the {law} run (seed {seed}): {} line {line}: {reason}; run folder kept in {}", file.display(), folder.display())]
     Output {
@@ -347,7 +364,9 @@ fn run_one(
         }
         Err(mut error) => {
             let kept = scratch.keep();
-            if let MillError::Output { folder, .. } = &mut error {
+            if let MillError::Output { folder, .. } | MillError::LostAtoms { folder, .. } =
+                &mut error
+            {
                 *folder = kept;
             }
             Err(error)
@@ -396,6 +415,11 @@ fn read_run(
                     3 + 3 * deck.rotating.len()
                 ),
             ));
+        }
+        // Each torque is a mean over the steps since the print before; the first print
+        // after the rotation starts has no full interval behind it (LIGGGHTS writes 0).
+        if values[0] - atoms.start_step < plan.print_every as f64 {
+            continue;
         }
         let time = (values[0] - atoms.start_step) * deck.timestep;
         // The torque on the mesh is what the charge exerts; the drive supplies its opposite.
@@ -456,6 +480,16 @@ fn read_run(
                 .collect();
         }
         for frame in frames {
+            if frame.ids.len() < atoms.by_id.len() {
+                return Err(MillError::LostAtoms {
+                    law,
+                    seed,
+                    step: frame.step,
+                    had: atoms.by_id.len(),
+                    has: frame.ids.len(),
+                    folder: folder.to_path_buf(),
+                });
+            }
             let time = (frame.step - atoms.start_step) * deck.timestep;
             if let Some((toe, shoulder)) = charge::toe_and_shoulder(drum, gravity, &frame.particles)
             {

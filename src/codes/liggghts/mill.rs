@@ -714,19 +714,30 @@ impl MillDeck {
 
     /// What records power and kinetic energy from the start of rotation.
     fn recording(&self, plan: &MillPlan) -> Vec<String> {
+        // The torque on a mesh is a train of impacts, each a few tens of steps long: a value
+        // every `print_every` steps only samples it, so each printed torque is the mean over
+        // every step since the last print.
         let torques: Vec<String> = self
             .rotating
             .iter()
-            .flat_map(|r| (4..=6).map(move |k| format!("$(f_{}[{k}])", r.mesh)))
+            .flat_map(|r| (4..=6).map(move |k| format!("f_{}[{k}]", r.mesh)))
+            .collect();
+        let averaged: Vec<String> = (1..=torques.len())
+            .map(|k| format!("$(f_millimpact_torque[{k}])"))
             .collect();
         let mut lines = vec![
             "compute millimpact_rke all erotate/sphere".into(),
             format!("dump millimpact_atoms all custom 1000000000 {ATOMS_FILE} id type mass radius"),
             "dump_modify millimpact_atoms first yes".into(),
             format!(
+                "fix millimpact_torque all ave/time 1 {every} {every} {}",
+                torques.join(" "),
+                every = plan.print_every
+            ),
+            format!(
                 "fix millimpact_energy all print {} \"$(step) $(ke) $(c_millimpact_rke) {}\" file {ENERGY_FILE} screen no",
                 plan.print_every,
-                torques.join(" ")
+                averaged.join(" ")
             ),
         ];
         if self.gravity.is_some() {
