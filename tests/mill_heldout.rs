@@ -6,8 +6,9 @@
 //! The measurement does not go through millimpact: two decks beside it
 //! (`in.drum.measure-hertz`, `in.drum.measure-paper`, the latter `model paper` at
 //! η = (1 − e²)/(1 + e²) = 0.6 in liggghts-paper) print the torque on each mesh and the
-//! charge's centre of mass with `thermo`, and this file reads their logs: power as
-//! `−τ_axis ω` over the window the mill command averages (after one revolution), and, as a
+//! charge's centre of mass with `thermo`, each also averaged over every step between prints,
+//! and this file reads their logs: power as `−τ_axis ω` over the window the mill command
+//! averages (after one revolution), and, as a
 //! second route, the torque balance of the charge in steady state, `ω M g d`, `d` the centre of
 //! mass's offset from the axis toward the rising side.
 
@@ -165,10 +166,14 @@ fn blocked(values: &[f64]) -> Blocked {
 /// What one measurement deck's log says about the rotation after its transient.
 #[derive(Debug)]
 struct Measured {
-    /// `−(τ_shell + τ_caps)·x̂ ω`, W.
+    /// `−(τ_shell + τ_caps)·x̂ ω` with the torques averaged over every step, W.
     torque_power: Blocked,
-    /// `ω M g y_cm`, W: the drive's torque that holds the charge's centre of mass at `y_cm`
-    /// toward the rising side (+y for a drum turning right-handed about +x, gravity −z).
+    /// The same from the torques at the printed steps alone (every 500 steps), W: a sample of
+    /// a train of impacts, as the mill command samples it.
+    sampled_power: Blocked,
+    /// `ω M g y_cm`, W, `y_cm` averaged over every step: the drive's torque that holds the
+    /// charge's centre of mass at `y_cm` toward the rising side (+y for a drum turning
+    /// right-handed about +x, gravity −z).
     balance_power: Blocked,
     /// The mean offset of the centre of mass toward the rising side, m.
     offset: f64,
@@ -199,20 +204,22 @@ fn measure(log: &str, timestep: f64) -> Measured {
     let mass = rotation.rows[0][rotation.column("mass")];
     // The mill command's default transient: one revolution, or half the rotation if shorter.
     let transient = (2.0 * std::f64::consts::PI / omega).min((end - start) * timestep / 2.0);
-    let (shell, caps, y) = (
+    // `tq` is the deck's `fix ave/time 1 500 500 f_shell[4] f_caps[4] c_cm[2]`.
+    let (shell, caps, shell_mean, caps_mean, y) = (
         rotation.column("shell[4]"),
         rotation.column("caps[4]"),
-        rotation.column("cm[2]"),
+        rotation.column("tq[1]"),
+        rotation.column("tq[2]"),
+        rotation.column("tq[3]"),
     );
     let window: Vec<&Vec<f64>> = rotation
         .rows
         .iter()
         .filter(|r| (r[step] - start) * timestep > transient)
         .collect();
-    let torque: Vec<f64> = window
-        .iter()
-        .map(|r| -(r[shell] + r[caps]) * omega)
-        .collect();
+    let power = |a: usize, b: usize| -> Vec<f64> {
+        window.iter().map(|r| -(r[a] + r[b]) * omega).collect()
+    };
     let balance: Vec<f64> = window
         .iter()
         .map(|r| omega * mass * GRAVITY * r[y])
@@ -220,7 +227,8 @@ fn measure(log: &str, timestep: f64) -> Measured {
     let offset = window.iter().map(|r| r[y]).sum::<f64>() / window.len() as f64;
     let settled = settling.column("Step");
     Measured {
-        torque_power: blocked(&torque),
+        torque_power: blocked(&power(shell_mean, caps_mean)),
+        sampled_power: blocked(&power(shell, caps)),
         balance_power: blocked(&balance),
         offset,
         settling_steps: settling.rows.last().unwrap()[settled] - settling.rows[0][settled],
@@ -343,12 +351,15 @@ fn live_the_heldout_drum_power_agrees_with_an_independent_measurement() {
         let torque = m.torque_power;
         let balance = m.balance_power;
         println!(
-            "{law}: mill {mill:.4} ± {error:.4} W; torque on the meshes {:.4} ± {:.4} W (mill/measured − 1 = {:+.3}); \
+            "{law}: mill {mill:.4} ± {error:.4} W; torque on the meshes {:.4} ± {:.4} W (mill/measured − 1 = {:+.3}), \
+             sampled every 500 steps {:.4} ± {:.4} W; \
              ω M g d {:.4} ± {:.4} W with d = {:.2} mm (torque/balance − 1 = {:+.3}); \
              {} samples, {} settling steps, measurement run {seconds:.1} s (LIGGGHTS's loop time)",
             torque.mean,
             torque.standard_error,
             mill / torque.mean - 1.0,
+            m.sampled_power.mean,
+            m.sampled_power.standard_error,
             balance.mean,
             balance.standard_error,
             m.offset * 1e3,
