@@ -316,3 +316,74 @@ fn a_paper_deck_is_switched_to_hertz_at_the_cor_its_eta_gives() {
     assert!(text.contains("pair_style gran model hertz tangential history rolling_friction cdt"));
     assert!(!text.contains("model paper"));
 }
+
+/// A run whose positions dump loses a particle on the way (a deck with `thermo_modify lost
+/// ignore`) stops the comparison, naming how many of how many and the step.
+#[test]
+fn a_run_that_loses_particles_stops_the_comparison() {
+    let deck = MillDeck::read(Path::new(EXAMPLE)).unwrap();
+    let data = root().join("tests/data/mill");
+    let copy = tempfile::tempdir().unwrap();
+    for law in ["hertz-seed0", "paper-seed0"] {
+        let to = copy.path().join(law);
+        std::fs::create_dir(&to).unwrap();
+        for entry in std::fs::read_dir(data.join(law)).unwrap() {
+            let entry = entry.unwrap();
+            std::fs::copy(entry.path(), to.join(entry.file_name())).unwrap();
+        }
+    }
+    // The last frame of the paper run's positions with its last particle gone.
+    let positions = copy.path().join("paper-seed0/millimpact_positions.txt");
+    let text = std::fs::read_to_string(&positions).unwrap();
+    let last = text.rfind("ITEM: TIMESTEP").unwrap();
+    let step: &str = text[last..].lines().nth(1).unwrap();
+    let mut frame: Vec<&str> = text[last..].lines().collect();
+    assert_eq!(frame[3], "100");
+    frame[3] = "99";
+    frame.pop();
+    std::fs::write(
+        &positions,
+        format!("{}{}\n", &text[..last], frame.join("\n")),
+    )
+    .unwrap();
+    let error = report_from_folders(
+        &deck,
+        &options(),
+        &[
+            (
+                MillLaw::Hertz,
+                0,
+                "liggghts".into(),
+                copy.path().join("hertz-seed0"),
+            ),
+            (
+                MillLaw::Paper,
+                0,
+                "liggghts-paper".into(),
+                copy.path().join("paper-seed0"),
+            ),
+        ],
+    )
+    .unwrap_err();
+    let text = error.to_string();
+    assert!(
+        matches!(
+            error,
+            millimpact::analysis::mill::MillError::LostAtoms {
+                had: 100,
+                has: 99,
+                law: MillLaw::Paper,
+                ..
+            }
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains(&format!("lost 1 of its 100 particles by step {step}")),
+        "{text}"
+    );
+    assert!(
+        !millimpact::error::Blame::is_user_error(&error),
+        "a run-time fault: exit 1"
+    );
+}
