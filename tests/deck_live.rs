@@ -1006,3 +1006,31 @@ fn a_yade_script_that_does_not_finish_its_set_up_is_stopped_at_the_decks_timeout
         "stopped at the deck's --timeout, not later: {took} s"
     );
 }
+
+/// A YADE script named without its folder, read from that folder as users run it, that reads
+/// a file beside it by a relative path: the scratch folder YADE runs in links the script's
+/// folder, found from the working folder.
+#[test]
+#[ignore = "live: runs YADE on a script that reads a file beside it"]
+fn a_yade_script_named_without_its_folder_finds_the_files_beside_it() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        common::root().join("tests/data/deck/yade/base.py"),
+        dir.path().join("scene.py"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("main.py"),
+        "exec(open('scene.py').read())\n",
+    )
+    .unwrap();
+    let output = common::millimpact()
+        .current_dir(dir.path())
+        .args(["deck", "main.py", "--code", "yade", "--format", "json"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["timestep"].as_f64(), Some(1e-7), "{report}");
+}

@@ -221,3 +221,20 @@ fn live_report_mill_writes_the_mills_part_from_another_folder() {
     assert!(index.contains("Your mill:"), "no mill part in index.md");
     assert!(index.contains("mill-1-power.svg"));
 }
+
+/// `millimpact mill in.mill` from the deck's own folder, as users run it: the mesh files are
+/// found from the working folder (the deck's path has no folder part).
+#[test]
+#[ignore = "live: runs liggghts and liggghts-paper on examples/mill/in.mill for 0.01 s of rotation"]
+fn live_a_deck_named_without_its_folder_runs_from_that_folder() {
+    let output = millimpact()
+        .current_dir(root().join("examples/mill"))
+        .args(["mill", "in.mill", "--time", "0.01", "--format", "json"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(report["deck"], "in.mill");
+    assert_eq!(report["runs"].as_array().unwrap().len(), 2);
+}

@@ -552,7 +552,12 @@ impl MillDeck {
     /// The deck under `law`, instrumented as `plan` says: the input LIGGGHTS reads in the
     /// scratch folder (mesh files named by their absolute paths).
     pub fn render(&self, law: MillLaw, plan: &MillPlan) -> String {
-        let folder = self.path.parent().unwrap_or(Path::new("."));
+        // A deck named without a folder (`in.mill`) is in the working folder: its parent is
+        // the empty path, which names no folder to make absolute.
+        let folder = match self.path.parent() {
+            Some(parent) if !parent.as_os_str().is_empty() => parent,
+            _ => Path::new("."),
+        };
         let folder = std::fs::canonicalize(folder).unwrap_or_else(|_| folder.to_path_buf());
         let n = self.types;
         let mut out = vec![format!(

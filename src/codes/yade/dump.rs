@@ -369,10 +369,16 @@ fn raised(log: &str) -> Option<(Option<usize>, String)> {
 /// the scratch folder. An entry that cannot be linked is left out: the script then says which
 /// file it misses.
 fn link_script_folder(script: &Path, workdir: &Path) {
-    let Some(folder) = script.parent() else {
+    // A script named without a folder is in the working folder; the links must point at
+    // absolute paths, since they are read from the scratch folder.
+    let folder = match script.parent() {
+        Some(parent) if !parent.as_os_str().is_empty() => parent,
+        _ => Path::new("."),
+    };
+    let Ok(folder) = std::fs::canonicalize(folder) else {
         return;
     };
-    let Ok(entries) = std::fs::read_dir(folder) else {
+    let Ok(entries) = std::fs::read_dir(&folder) else {
         return;
     };
     for entry in entries.flatten() {
