@@ -33,13 +33,12 @@ use super::{
 };
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{ContactForce, DashpotLaw};
-use crate::model::scene::SceneKind;
+use crate::codes::{CodeError, RenderedInput};
+use crate::model::law::DashpotLaw;
 
 /// The Python template of one impact with a user's materials.
 pub(super) const TEMPLATE: &str = include_str!("deck.py");
@@ -1412,45 +1411,11 @@ impl DeckReader for KratosDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let (other, other_material) = match c.partner {
+            Partner::Body(o) => (Some(&deck.bodies[o]), deck.bodies[o].type_id),
+            Partner::Wall(w) => (None, deck.walls[w].type_id.unwrap_or_default()),
         };
-        let (scene, other, other_material) = match c.partner {
-            Partner::Body(o) => (
-                SceneKind::BallBall,
-                Some(&deck.bodies[o]),
-                deck.bodies[o].type_id,
-            ),
-            Partner::Wall(w) => (
-                SceneKind::BallPlate,
-                None,
-                deck.walls[w].type_id.unwrap_or_default(),
-            ),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let (v1, v2) = setup.centre_of_mass_velocities();
         // The script starts the bodies one ulp apart (`math.nextafter`), as the driver does.
         let reach = body.radius + other.map_or(0.0, |o| o.radius);
@@ -1464,7 +1429,7 @@ impl DeckReader for KratosDeck {
             }
         })?;
         let values = [
-            ("scene", scene.name().to_string()),
+            ("scene", setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
             ("steps", steps.to_string()),
             ("material", body.type_id.to_string()),

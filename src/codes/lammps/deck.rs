@@ -24,15 +24,15 @@ use super::conventions::{Conventions, exact_hertz_alpha};
 use super::mixing::{Coefficients, GranularModel};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
-    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
-use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
-use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
+use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
@@ -1200,41 +1200,18 @@ impl DeckReader for LammpsDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: f64::NAN,
-            poisson_ratio: None,
-        };
-        let (scene, other) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
+        let other = match c.partner {
+            Partner::Body(o) => Some(&deck.bodies[o]),
+            Partner::Wall(_) => None,
         };
         let conventions = self.1.measured_conventions().ok().flatten();
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: deck.timestep,
+        let setup = deck.impact_setup(
+            contact,
+            velocity,
             steps,
-            clamp_attractive: c.law.clamp_attractive(),
+            BodyElasticity::Withheld,
             conventions,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        );
         // A build that counts touching as contact starts a hair before touch, as its driver does.
         let gap = self.0.start_gap(&setup);
         let (v1, v2) = setup.centre_of_mass_velocities();

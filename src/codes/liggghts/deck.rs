@@ -15,15 +15,15 @@ use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
-    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
-use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
+use crate::model::scene::{pair_radius, reduced_mass};
 
 const TEMPLATE: &str = include_str!("deck.in");
 const INPUT_FILE: &str = "impact.in";
@@ -1311,45 +1311,11 @@ impl DeckReader for LiggghtsDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let wall_line = match c.partner {
+            Partner::Body(_) => None,
+            Partner::Wall(w) => Some(deck.transplant.walls[w].clone()),
         };
-        let case_name = format!("deck-{contact}-{}-{}", c.types[0], c.types[1]);
-        let (scene, other_sphere, wall_line) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&deck.bodies[o])), None),
-            Partner::Wall(w) => (
-                SceneKind::BallPlate,
-                None,
-                Some(deck.transplant.walls[w].clone()),
-            ),
-        };
-        let mut setup = CodeSetup {
-            case_name,
-            scene,
-            sphere: sphere(body),
-            other_sphere,
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let gap = super::contact_gap(&setup);
         let (v1, v2) = setup.centre_of_mass_velocities();
         let r1 = body.radius;

@@ -25,13 +25,13 @@ use super::dump::{
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{ContactForce, DashpotLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::codes::{CodeError, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
 const TEMPLATE: &str = include_str!("deck.py");
@@ -1505,37 +1505,11 @@ impl DeckReader for YadeDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let other = match c.partner {
+            Partner::Body(o) => Some(&deck.bodies[o]),
+            Partner::Wall(_) => None,
         };
-        let (scene, other) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let (v1, v2) = setup.centre_of_mass_velocities();
         // The script starts the bodies one ulp apart (YADE's laws act at zero overlap).
         let next_up = |x: f64| f64::from_bits(x.to_bits() + 1);
