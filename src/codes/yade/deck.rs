@@ -20,7 +20,8 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::dump::{
-    Attribute, Dump, FunctorDump, MaterialDump, READ_TIME_LIMIT, dump_script, line_text, parse_dump,
+    Attribute, BodyDump, Dump, EngineDump, FunctorDump, MaterialDump, READ_TIME_LIMIT, dump_script,
+    line_text, parse_dump,
 };
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
@@ -305,6 +306,243 @@ impl Reading {
             lines.push(line);
         }
     }
+
+    /// Take the InteractionLoop's functors from the engines, refuse what changes the contact
+    /// law or the step (local damping, a time stepper), and leave out the rest with its line.
+    fn take_engines(&mut self, path: &Path, dump: &Dump) -> Result<(), DeckError> {
+        let engines_at = dump.engines_line;
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
+        for (k, engine) in dump.engines.iter().enumerate() {
+            let engine_line = line_of(&text, engines_at, &engine.class);
+            let at = source(path, engine_line, || format!("O.engines[{k}]"));
+            if let Some(functors) = &engine.functors {
+                if let Some(first) = &self.loop_at {
+                    return Err(DeckError::unsupported(
+                        at,
+                        format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
+                        "one InteractionLoop",
+                    ));
+                }
+                let take = |list: &[FunctorDump], what: &str| {
+                    known_functors(
+                        path,
+                        &text,
+                        engine_line,
+                        list,
+                        &format!("O.engines[{k}].{what}"),
+                    )
+                };
+                self.geometry = take(&functors.geometry, "geomDispatcher.functors")?;
+                self.physics = take(&functors.physics, "physDispatcher.functors")?;
+                self.laws = take(&functors.laws, "lawDispatcher.functors")?;
+                self.loop_at = Some(at);
+            } else if engine.class == "NewtonIntegrator" {
+                self.take_newton(engine, at, engine_line)?;
+            } else if engine.class.ends_with("TimeStepper") {
+                return Err(DeckError::unsupported(
+                    at,
+                    format!(
+                        "{}: the time step is set while the script runs",
+                        engine.class
+                    ),
+                    "a fixed O.dt, without a time stepper in O.engines",
+                ));
+            } else {
+                self.leave_out(engine_left_out(&engine.class), engine_line);
+            }
+        }
+        if self.loop_at.is_some() && !newton {
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: "no NewtonIntegrator in O.engines: nothing moves".into(),
+                supported: "NewtonIntegrator(damping=0)".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Refuse a NewtonIntegrator with local damping; leave its gravity out.
+    fn take_newton(
+        &mut self,
+        engine: &EngineDump,
+        at: DeckSource,
+        engine_line: Option<usize>,
+    ) -> Result<(), DeckError> {
+        let damping = engine
+            .attributes
+            .get("damping")
+            .and_then(Attribute::number)
+            .unwrap_or(0.0);
+        if damping != 0.0 {
+            let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
+            return Err(DeckError::unsupported(
+                at,
+                format!(
+                    "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
+                    if engine.changed.iter().any(|c| c == "damping") {
+                        ""
+                    } else {
+                        " (its default)"
+                    }
+                ),
+                "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
+            ));
+        }
+        let gravity = match engine.attributes.get("gravity") {
+            Some(Attribute::List(g)) => g.iter().any(|x| x.number() != Some(0.0)),
+            _ => false,
+        };
+        if gravity {
+            self.leave_out("gravity (the impact is a free normal impact)", engine_line);
+        }
+        Ok(())
+    }
+
+    /// Take one body: a sphere (unless its material's size is `given`), or a wall of one kind,
+    /// material and mass; clumps and other shapes are left out with their line.
+    fn take_body(&mut self, path: &Path, body: &BodyDump, given: &[u32]) -> Result<(), DeckError> {
+        let at = source(path, body.line, || format!("O.bodies[{}]", body.id));
+        let shape = body.shape.as_deref().unwrap_or("no shape");
+        if body.clump {
+            self.leave_out(
+                "clumps and their members (a clump moves as one body, which one impact of two spheres does not model)",
+                body.line,
+            );
+            return Ok(());
+        }
+        let kind = WallKind::of_shape(shape);
+        if shape != "Sphere" && kind.is_none() {
+            self.leave_out(
+                &format!("bodies of shape {shape} (no contact of the check takes them)"),
+                body.line,
+            );
+            return Ok(());
+        }
+        let material = body
+            .material
+            .and_then(|m| u32::try_from(m).ok())
+            .filter(|m| (*m as usize) < self.materials.len())
+            .ok_or_else(|| {
+                DeckError::unsupported(
+                    at.clone(),
+                    format!(
+                        "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
+                        body.material.map_or("none".into(), |m| m.to_string())
+                    ),
+                    "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
+                )
+            })?;
+        self.leave_out(
+            "the bodies' positions (the impact places its own)",
+            body.line,
+        );
+        let mass = body.mass.unwrap_or(0.0);
+        match kind {
+            None => {
+                if !body.dynamic {
+                    self.leave_out("fixed spheres, checked as free ones", body.line);
+                }
+                let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
+                    DeckError::unsupported(
+                        at.clone(),
+                        format!(
+                            "a sphere of radius {}",
+                            body.radius.map_or("NaN".into(), |r| r.to_string())
+                        ),
+                        "a positive radius, m",
+                    )
+                })?;
+                if !given.contains(&material) {
+                    self.spheres.push(SphereRead {
+                        material,
+                        radius,
+                        mass,
+                        at,
+                    });
+                }
+            }
+            Some(kind) => self.take_wall(path, body, kind, material, at)?,
+        }
+        Ok(())
+    }
+
+    /// Take a wall body: walls of one kind, material and mass (the same number, bit for bit)
+    /// are one wall; a box that moves is refused.
+    fn take_wall(
+        &mut self,
+        path: &Path,
+        body: &BodyDump,
+        kind: WallKind,
+        material: u32,
+        at: DeckSource,
+    ) -> Result<(), DeckError> {
+        let mass = body.mass.unwrap_or(0.0);
+        if kind == WallKind::Box && body.dynamic {
+            return Err(DeckError::unsupported(
+                at,
+                "a free box: a box that moves is a particle the check does not model".into(),
+                "box(…, fixed=True) as a wall",
+            ));
+        }
+        let name = wall_name(path, body.line, kind);
+        if !(name.starts_with("wall:") || name.starts_with("facet:") || name.starts_with("box:")) {
+            self.leave_out(
+                "the walls' shapes (each met as a flat face of its kind)",
+                body.line,
+            );
+        }
+        let same = self.walls.iter_mut().find(|w| {
+            w.kind == kind && w.material == material && w.mass.to_bits() == mass.to_bits()
+        });
+        match same {
+            Some(w) => {
+                if let Some(line) = body.line.filter(|l| !w.lines.contains(l)) {
+                    w.lines.push(line);
+                }
+            }
+            None => self.walls.push(WallRead {
+                name,
+                kind,
+                material,
+                mass,
+                at,
+                lines: body.line.into_iter().collect(),
+            }),
+        }
+        Ok(())
+    }
+}
+
+/// The functors of one of the InteractionLoop's lists (`list`, at `what` in `O.engines`), each
+/// with its line; one the check does not know is refused.
+fn known_functors(
+    path: &Path,
+    text: &str,
+    engine_line: Option<usize>,
+    list: &[FunctorDump],
+    what: &str,
+) -> Result<Vec<Functor>, DeckError> {
+    list.iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let here = source(path, line_of(text, engine_line, &f.class), || {
+                format!("{what}[{i}]")
+            });
+            if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
+                return Err(DeckError::unsupported(
+                    here,
+                    format!("functor {}", f.class),
+                    FUNCTORS,
+                ));
+            }
+            Ok(Functor {
+                class: f.class.clone(),
+                dump: f.clone(),
+                at: here,
+            })
+        })
+        .collect()
 }
 
 fn class_of(name: &str) -> Option<Class> {
@@ -459,198 +697,10 @@ impl YadeDeck {
             }
             r.materials.push(Self::material(path, m)?);
         }
-        let engines_at = dump.engines_line;
-        let text = std::fs::read_to_string(path).unwrap_or_default();
-        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
-        for (k, engine) in dump.engines.iter().enumerate() {
-            let engine_line = line_of(&text, engines_at, &engine.class);
-            let at = source(path, engine_line, || format!("O.engines[{k}]"));
-            if let Some(functors) = &engine.functors {
-                if let Some(first) = &r.loop_at {
-                    return Err(DeckError::unsupported(
-                        at,
-                        format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
-                        "one InteractionLoop",
-                    ));
-                }
-                let take = |list: &[FunctorDump], what: &str| -> Result<Vec<Functor>, DeckError> {
-                    list.iter()
-                        .enumerate()
-                        .map(|(i, f)| {
-                            let here = source(path, line_of(&text, engine_line, &f.class), || {
-                                format!("O.engines[{k}].{what}[{i}]")
-                            });
-                            if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
-                                return Err(DeckError::unsupported(
-                                    here,
-                                    format!("functor {}", f.class),
-                                    FUNCTORS,
-                                ));
-                            }
-                            Ok(Functor {
-                                class: f.class.clone(),
-                                dump: f.clone(),
-                                at: here,
-                            })
-                        })
-                        .collect()
-                };
-                r.geometry = take(&functors.geometry, "geomDispatcher.functors")?;
-                r.physics = take(&functors.physics, "physDispatcher.functors")?;
-                r.laws = take(&functors.laws, "lawDispatcher.functors")?;
-                r.loop_at = Some(at);
-            } else if engine.class == "NewtonIntegrator" {
-                let damping = engine
-                    .attributes
-                    .get("damping")
-                    .and_then(Attribute::number)
-                    .unwrap_or(0.0);
-                if damping != 0.0 {
-                    let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
-                    return Err(DeckError::unsupported(
-                        at,
-                        format!(
-                            "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
-                            if engine.changed.iter().any(|c| c == "damping") {
-                                ""
-                            } else {
-                                " (its default)"
-                            }
-                        ),
-                        "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
-                    ));
-                }
-                let gravity = match engine.attributes.get("gravity") {
-                    Some(Attribute::List(g)) => g.iter().any(|x| x.number() != Some(0.0)),
-                    _ => false,
-                };
-                if gravity {
-                    r.leave_out("gravity (the impact is a free normal impact)", engine_line);
-                }
-            } else if engine.class.ends_with("TimeStepper") {
-                return Err(DeckError::unsupported(
-                    at,
-                    format!(
-                        "{}: the time step is set while the script runs",
-                        engine.class
-                    ),
-                    "a fixed O.dt, without a time stepper in O.engines",
-                ));
-            } else {
-                r.leave_out(engine_left_out(&engine.class), engine_line);
-            }
-        }
-        if r.loop_at.is_some() && !newton {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: "no NewtonIntegrator in O.engines: nothing moves".into(),
-                supported: "NewtonIntegrator(damping=0)".into(),
-            });
-        }
+        r.take_engines(path, dump)?;
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for body in &dump.bodies {
-            let at = source(path, body.line, || format!("O.bodies[{}]", body.id));
-            let shape = body.shape.as_deref().unwrap_or("no shape");
-            if body.clump {
-                r.leave_out(
-                    "clumps and their members (a clump moves as one body, which one impact of two spheres does not model)",
-                    body.line,
-                );
-                continue;
-            }
-            let kind = WallKind::of_shape(shape);
-            if shape != "Sphere" && kind.is_none() {
-                r.leave_out(
-                    &format!("bodies of shape {shape} (no contact of the check takes them)"),
-                    body.line,
-                );
-                continue;
-            }
-            let material = body
-                .material
-                .and_then(|m| u32::try_from(m).ok())
-                .filter(|m| (*m as usize) < r.materials.len())
-                .ok_or_else(|| {
-                    DeckError::unsupported(
-                        at.clone(),
-                        format!(
-                            "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
-                            body.material.map_or("none".into(), |m| m.to_string())
-                        ),
-                        "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
-                    )
-                })?;
-            r.leave_out(
-                "the bodies' positions (the impact places its own)",
-                body.line,
-            );
-            let mass = body.mass.unwrap_or(0.0);
-            match kind {
-                None => {
-                    if !body.dynamic {
-                        r.leave_out("fixed spheres, checked as free ones", body.line);
-                    }
-                    let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
-                        DeckError::unsupported(
-                            at.clone(),
-                            format!(
-                                "a sphere of radius {}",
-                                body.radius.map_or("NaN".into(), |r| r.to_string())
-                            ),
-                            "a positive radius, m",
-                        )
-                    })?;
-                    if !given.contains(&material) {
-                        r.spheres.push(SphereRead {
-                            material,
-                            radius,
-                            mass,
-                            at,
-                        });
-                    }
-                }
-                Some(kind) => {
-                    if kind == WallKind::Box && body.dynamic {
-                        return Err(DeckError::unsupported(
-                            at,
-                            "a free box: a box that moves is a particle the check does not model"
-                                .into(),
-                            "box(…, fixed=True) as a wall",
-                        ));
-                    }
-                    let name = wall_name(path, body.line, kind);
-                    if !(name.starts_with("wall:")
-                        || name.starts_with("facet:")
-                        || name.starts_with("box:"))
-                    {
-                        r.leave_out(
-                            "the walls' shapes (each met as a flat face of its kind)",
-                            body.line,
-                        );
-                    }
-                    // The same number, bit for bit: walls of one mass are one wall.
-                    let same = r.walls.iter_mut().find(|w| {
-                        w.kind == kind
-                            && w.material == material
-                            && w.mass.to_bits() == mass.to_bits()
-                    });
-                    match same {
-                        Some(w) => {
-                            if let Some(line) = body.line.filter(|l| !w.lines.contains(l)) {
-                                w.lines.push(line);
-                            }
-                        }
-                        None => r.walls.push(WallRead {
-                            name,
-                            kind,
-                            material,
-                            mass,
-                            at,
-                            lines: body.line.into_iter().collect(),
-                        }),
-                    }
-                }
-            }
+            r.take_body(path, body, &given)?;
         }
         if let Some(stopped) = &dump.stopped {
             r.leave_out(
@@ -1210,36 +1260,11 @@ impl YadeDeck {
 
 impl YadeDeck {
     fn from_dump(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let lacking = |what: &str, supported: &str| DeckError::Lacking {
-            file: path.to_path_buf(),
-            what: what.into(),
-            supported: supported.into(),
-        };
-        if let Some((name, _)) = options.variables.first() {
-            return Err(lacking(
-                &format!("--var {name}: a YADE script's names are its own, set in the script"),
-                "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
-            ));
-        }
-        if dump.engines_line.is_none() {
-            let before = match &dump.stopped {
-                Some(stop) => format!(
-                    " before the reading stopped at its first step ({}, line {})",
-                    stop.call,
-                    stop.line.map_or("?".into(), |l| l.to_string())
-                ),
-                None => String::new(),
-            };
-            return Err(lacking(
-                &format!(
-                    "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
-                ),
-                "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
-            ));
-        }
+        refuse_before_reading(path, dump, options)?;
         let r = Self::gather(path, dump, options)?;
         let loop_at = r.loop_at.clone().ok_or_else(|| {
             lacking(
+                path,
                 "no InteractionLoop in O.engines after the set-up",
                 "O.engines with InteractionLoop([Ig2…], [Ip2…], [Law2…])",
             )
@@ -1250,54 +1275,44 @@ impl YadeDeck {
                 .cmp(&b.type_id)
                 .then(b.radius.total_cmp(&a.radius))
         });
-        let dt_line = dump.dt_line.ok_or_else(|| {
-            lacking(
-                "the script sets no O.dt (YADE would step at its default)",
-                "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
-            )
-        })?;
-        let dt_at = SourceLine {
-            file: path.to_path_buf(),
-            line: dt_line,
-        };
-        let timestep = dump.dt.unwrap_or(f64::NAN);
-        if !(timestep > 0.0 && timestep.is_finite()) {
-            return Err(DeckError::unsupported(
-                &dt_at,
-                format!("O.dt = {timestep} after the set-up"),
-                "a positive time step, s",
-            ));
-        }
-        let timestep_from = match line_text(path, dt_line) {
-            Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
-            None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
-        };
+        let (timestep, timestep_from) = dump_timestep(path, dump)?;
         // Contacts: each pair of bodies, then each body against each wall.
-        let geometry_for = |names: [&str; 2], at: &DeckSource| {
-            r.geometry.iter().find(|f| names.contains(&f.class.as_str())).ok_or_else(|| {
-                DeckError::unsupported(at.clone(), format!("no {} in the InteractionLoop ({loop_at}): YADE would make no contact here", names[0]), FUNCTORS)
-            })
-        };
-        let edits = |m: &Material| -> Vec<String> {
-            m.edited
-                .iter()
-                .map(|(key, then, now)| {
-                    format!(
-                        "{key} of {} ({}) was {then} when appended and is {now} after the set-up: the check takes {now}, as YADE does",
-                        m.label().unwrap_or_else(|| m.class.name().to_string()),
-                        m.at
-                    )
-                })
-                .collect()
-        };
+        let mut contacts = Self::body_contacts(&r, &bodies, &loop_at)?;
+        let (walls, wall_lines) = Self::wall_contacts(&r, &bodies, &loop_at, &mut contacts)?;
+        Ok(UserDeck {
+            path: path.to_path_buf(),
+            timestep,
+            timestep_from,
+            bodies,
+            walls,
+            contacts,
+            representative_velocity: None,
+            left_out: left_out_lines(&r, path),
+            transplant: Transplant {
+                before_box: Vec::new(),
+                common: common_lines(&r)?,
+                walls: wall_lines,
+                types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
+            },
+        })
+    }
+
+    /// Each pair of bodies with the law YADE's functors give their two materials.
+    fn body_contacts(
+        r: &Reading,
+        bodies: &[DeckBody],
+        loop_at: &DeckSource,
+    ) -> Result<Vec<DeckContact>, DeckError> {
         let mut contacts = Vec::new();
         for (i, body) in bodies.iter().enumerate() {
             for (j, other) in bodies.iter().enumerate().skip(i) {
                 let m_a = &r.materials[body.type_id as usize];
                 let m_b = &r.materials[other.type_id as usize];
                 let geometry = geometry_for(
+                    r,
                     ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
-                    &loop_at,
+                    loop_at,
+                    loop_at,
                 )?;
                 let a = Side {
                     id: body.type_id,
@@ -1312,16 +1327,16 @@ impl YadeDeck {
                     mass: other.mass,
                 };
                 let mut pair = Self::pair_law(
-                    &r,
+                    r,
                     &a,
                     &b,
                     None,
                     reduced_mass(body.mass, other.mass),
                     geometry,
                 )?;
-                pair.traps.extend(edits(m_a));
+                pair.traps.extend(edit_traps(m_a));
                 if body.type_id != other.type_id {
-                    pair.traps.extend(edits(m_b));
+                    pair.traps.extend(edit_traps(m_b));
                 }
                 let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
                 lines.dedup();
@@ -1337,11 +1352,22 @@ impl YadeDeck {
                 });
             }
         }
+        Ok(contacts)
+    }
+
+    /// The script's walls, with each body's contact against each pushed onto `contacts`; the
+    /// walls and the Python each impact carries to place its wall.
+    fn wall_contacts(
+        r: &Reading,
+        bodies: &[DeckBody],
+        loop_at: &DeckSource,
+        contacts: &mut Vec<DeckContact>,
+    ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
             let m_w = &r.materials[wall.material as usize];
-            let geometry = geometry_for(wall.kind.geometry(), &wall.at)?;
+            let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
             let factor = match wall.kind {
                 WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
                     HERTZIAN_WALL_RADIUS_FACTOR
@@ -1360,37 +1386,7 @@ impl YadeDeck {
                 poisson_ratio: poisson,
                 from: wall.at.clone(),
             });
-            let (placement, mass) = match wall.kind {
-                WallKind::Plane => (
-                    format!(
-                        "utils.wall(0.0, axis=2, sense=0, material={})",
-                        wall.material
-                    ),
-                    None,
-                ),
-                WallKind::Facet => (
-                    format!(
-                        "utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})",
-                        wall.material
-                    ),
-                    None,
-                ),
-                WallKind::Box => (
-                    format!(
-                        "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
-                        wall.material
-                    ),
-                    Some(wall.mass),
-                ),
-            };
-            let mut snippet = format!("b2 = O.bodies.append({placement})");
-            if let Some(m) = mass {
-                snippet.push_str(&format!(
-                    "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
-                    exact_number(m)
-                ));
-            }
-            wall_lines.push(snippet);
+            wall_lines.push(wall_placement(wall));
             for (i, body) in bodies.iter().enumerate() {
                 let m_a = &r.materials[body.type_id as usize];
                 let a = Side {
@@ -1405,8 +1401,7 @@ impl YadeDeck {
                     radius: factor * body.radius,
                     mass: wall.mass,
                 };
-                let pair =
-                    Self::pair_law(&r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
+                let pair = Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
                 let mut traps = pair.traps;
                 if wall.lines.len() > 1 {
                     traps.push(format!(
@@ -1419,9 +1414,9 @@ impl YadeDeck {
                             .join(", ")
                     ));
                 }
-                traps.extend(edits(m_a));
+                traps.extend(edit_traps(m_a));
                 if wall.material != body.type_id {
-                    traps.extend(edits(m_w));
+                    traps.extend(edit_traps(m_w));
                 }
                 contacts.push(DeckContact {
                     body: i,
@@ -1435,45 +1430,178 @@ impl YadeDeck {
                 });
             }
         }
-        let left_out = r
-            .left_out
-            .iter()
-            .map(|(what, lines)| {
-                if lines.is_empty() {
-                    return format!("{what}: {}", path.display());
-                }
-                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-                format!("{what}: {}:{}", path.display(), lines.join(","))
-            })
-            .collect();
-        let mut common = Vec::new();
-        for m in &r.materials {
-            common.push(format!("O.materials.append({})", m.python()?));
-        }
-        for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
-            let items = list
-                .iter()
-                .map(Functor::python)
-                .collect::<Result<Vec<_>, _>>()?;
-            common.push(format!("{name} = [{}]", items.join(", ")));
-        }
-        Ok(UserDeck {
-            path: path.to_path_buf(),
-            timestep,
-            timestep_from,
-            bodies,
-            walls,
-            contacts,
-            representative_velocity: None,
-            left_out,
-            transplant: Transplant {
-                before_box: Vec::new(),
-                common,
-                walls: wall_lines,
-                types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
-            },
-        })
+        Ok((walls, wall_lines))
     }
+}
+
+/// The error of a script that lacks `what`, naming what is `supported`.
+fn lacking(path: &Path, what: &str, supported: &str) -> DeckError {
+    DeckError::Lacking {
+        file: path.to_path_buf(),
+        what: what.into(),
+        supported: supported.into(),
+    }
+}
+
+/// Refuse what no reading of the dump can mend: `--var` (a script's names are its own) and a
+/// script that sets no engines before its first step.
+fn refuse_before_reading(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<(), DeckError> {
+    if let Some((name, _)) = options.variables.first() {
+        return Err(lacking(
+            path,
+            &format!("--var {name}: a YADE script's names are its own, set in the script"),
+            "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
+        ));
+    }
+    if dump.engines_line.is_none() {
+        let before = match &dump.stopped {
+            Some(stop) => format!(
+                " before the reading stopped at its first step ({}, line {})",
+                stop.call,
+                stop.line.map_or("?".into(), |l| l.to_string())
+            ),
+            None => String::new(),
+        };
+        return Err(lacking(
+            path,
+            &format!(
+                "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
+            ),
+            "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
+        ));
+    }
+    Ok(())
+}
+
+/// `O.dt` as YADE holds it after the set-up, s, and where the script sets it; refused where
+/// the script sets none or it is not positive.
+fn dump_timestep(path: &Path, dump: &Dump) -> Result<(f64, String), DeckError> {
+    let dt_line = dump.dt_line.ok_or_else(|| {
+        lacking(
+            path,
+            "the script sets no O.dt (YADE would step at its default)",
+            "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        )
+    })?;
+    let dt_at = SourceLine {
+        file: path.to_path_buf(),
+        line: dt_line,
+    };
+    let timestep = dump.dt.unwrap_or(f64::NAN);
+    if !(timestep > 0.0 && timestep.is_finite()) {
+        return Err(DeckError::unsupported(
+            &dt_at,
+            format!("O.dt = {timestep} after the set-up"),
+            "a positive time step, s",
+        ));
+    }
+    let timestep_from = match line_text(path, dt_line) {
+        Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
+        None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
+    };
+    Ok((timestep, timestep_from))
+}
+
+/// The InteractionLoop's geometry functor of one of `names` (the first one named in the error),
+/// for a contact defined `at`.
+fn geometry_for<'r>(
+    r: &'r Reading,
+    names: [&str; 2],
+    at: &DeckSource,
+    loop_at: &DeckSource,
+) -> Result<&'r Functor, DeckError> {
+    r.geometry
+        .iter()
+        .find(|f| names.contains(&f.class.as_str()))
+        .ok_or_else(|| {
+            DeckError::unsupported(
+                at.clone(),
+                format!(
+                    "no {} in the InteractionLoop ({loop_at}): YADE would make no contact here",
+                    names[0]
+                ),
+                FUNCTORS,
+            )
+        })
+}
+
+/// A trap line for each attribute of `m` the script changed after appending it.
+fn edit_traps(m: &Material) -> Vec<String> {
+    m.edited
+        .iter()
+        .map(|(key, then, now)| {
+            format!(
+                "{key} of {} ({}) was {then} when appended and is {now} after the set-up: the check takes {now}, as YADE does",
+                m.label().unwrap_or_else(|| m.class.name().to_string()),
+                m.at
+            )
+        })
+        .collect()
+}
+
+/// The Python that places `wall` in an impact's script (a box with its mass as YADE holds it).
+fn wall_placement(wall: &WallRead) -> String {
+    let (placement, mass) = match wall.kind {
+        WallKind::Plane => (
+            format!(
+                "utils.wall(0.0, axis=2, sense=0, material={})",
+                wall.material
+            ),
+            None,
+        ),
+        WallKind::Facet => (
+            format!(
+                "utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})",
+                wall.material
+            ),
+            None,
+        ),
+        WallKind::Box => (
+            format!(
+                "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
+                wall.material
+            ),
+            Some(wall.mass),
+        ),
+    };
+    let mut snippet = format!("b2 = O.bodies.append({placement})");
+    if let Some(m) = mass {
+        snippet.push_str(&format!(
+            "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
+            exact_number(m)
+        ));
+    }
+    snippet
+}
+
+/// What the script holds that the impacts leave out, one line per kind with its lines.
+fn left_out_lines(r: &Reading, path: &Path) -> Vec<String> {
+    r.left_out
+        .iter()
+        .map(|(what, lines)| {
+            if lines.is_empty() {
+                return format!("{what}: {}", path.display());
+            }
+            let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+            format!("{what}: {}:{}", path.display(), lines.join(","))
+        })
+        .collect()
+}
+
+/// The script's materials and functors as the Python each impact's script starts from.
+fn common_lines(r: &Reading) -> Result<Vec<String>, DeckError> {
+    let mut common = Vec::new();
+    for m in &r.materials {
+        common.push(format!("O.materials.append({})", m.python()?));
+    }
+    for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
+        let items = list
+            .iter()
+            .map(Functor::python)
+            .collect::<Result<Vec<_>, _>>()?;
+        common.push(format!("{name} = [{}]", items.join(", ")));
+    }
+    Ok(common)
 }
 
 impl DeckReader for YadeDeck {
