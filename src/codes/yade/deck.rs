@@ -801,6 +801,39 @@ impl YadeDeck {
     }
 }
 
+/// The trap of a wall whose geometry functor gives it a radius `b.radius` (a multiple of the
+/// ball's), not a flat face's, for a law of `model`.
+fn wall_radius_trap(
+    traps: &mut Vec<String>,
+    model: &str,
+    (kind, w): (WallKind, &WallRead),
+    a: &Side,
+    b: &Side,
+    geometry: &Functor,
+) {
+    let factor = b.radius / a.radius;
+    // A hertzian wall's 1e8 R is a flat face to 1e-8; tc, en or kn, cn take no radius.
+    if factor >= 1e3 || matches!(model, "ViscEl tc, en" | "ViscEl kn, cn") {
+        return;
+    }
+    let hertz = if model.starts_with("Hertz") {
+        format!(
+            ": a Hertz contact {:.1} % longer than on a flat face",
+            100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0
+        )
+    } else {
+        String::new()
+    };
+    traps.push(format!(
+        "wall radius: {} gives {} ({}) the radius {factor} R, so R* = {:.4} R, not a flat face's R{hertz}{}",
+        geometry.class,
+        w.name,
+        match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box" },
+        factor / (1.0 + factor),
+        if kind == WallKind::Box { "" } else { " (hertzian=True gives it 1e8 R)" }
+    ));
+}
+
 /// `contactParameterCalculation` of ViscoelasticPM.cpp: two values in series, a zero one left out.
 fn series(a: f64, b: f64) -> f64 {
     let inverse = (if a != 0.0 { 1.0 / a } else { 0.0 }) + (if b != 0.0 { 1.0 / b } else { 0.0 });
@@ -968,144 +1001,141 @@ impl YadeDeck {
                 )
             })
             .collect();
-        let wall_radius_trap = |traps: &mut Vec<String>, model: &str| {
-            let Some((kind, w)) = wall else { return };
-            let factor = b.radius / a.radius;
-            // A hertzian wall's 1e8 R is a flat face to 1e-8; tc, en or kn, cn take no radius.
-            if factor >= 1e3 || matches!(model, "ViscEl tc, en" | "ViscEl kn, cn") {
-                return;
-            }
-            let hertz = if model.starts_with("Hertz") {
-                format!(
-                    ": a Hertz contact {:.1} % longer than on a flat face",
-                    100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0
-                )
-            } else {
-                String::new()
-            };
-            traps.push(format!(
-                "wall radius: {} gives {} ({}) the radius {factor} R, so R* = {:.4} R, not a flat face's R{hertz}{}",
-                geometry.class,
-                w.name,
-                match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box" },
-                factor / (1.0 + factor),
-                if kind == WallKind::Box { "" } else { " (hertzian=True gives it 1e8 R)" }
-            ));
-        };
         let mut out = match ip2.class.as_str() {
             "Ip2_FrictMat_FrictMat_MindlinPhys" => {
-                if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
-                    return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
-                }
-                if law2.flag("nothing") {
-                    return Err(DeckError::unsupported(
-                        &law2.at,
-                        "nothing=True: the law computes no force".into(),
-                        "nothing=False",
-                    ));
-                }
-                let e_star = mixed_modulus(a.material, b.material);
-                let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
-                let en = ip2.pair_value("en", a.id, b.id)?;
-                let betan = ip2.pair_value("betan", a.id, b.id)?;
-                let beta = match (en, betan) {
-                    (Some(_), Some(_)) => {
-                        return Err(DeckError::unsupported(
-                            &ip2.at,
-                            "both en and betan".into(),
-                            "one of en, betan (YADE refuses both)",
-                        ));
-                    }
-                    (Some(e), None) => {
-                        if !(e > 0.0 && e <= 1.0) {
-                            return Err(DeckError::unsupported(
-                                &ip2.at,
-                                format!("en = {e}"),
-                                "0 < en <= 1",
-                            ));
-                        }
-                        thornton_damping_ratio(e)
-                    }
-                    (None, Some(b)) => b,
-                    (None, None) => 0.0,
-                };
-                let law = DashpotLaw {
-                    mass,
-                    stiffness: kno,
-                    exponent: 1.5,
-                    damping: 2.0 * beta * (1.5 * mass * kno).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                };
-                let mut traps = Vec::new();
-                if let Some(e) = en {
-                    let cor = accurate_metrics(&law, 1.0, 1e-12).map_or(f64::NAN, |m| m.cor);
-                    let fix = match hertz_input_restitution(e) {
-                        Some(x) => format!("the en that realises {e} is {x:.6}"),
-                        None => format!(
-                            "no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"
-                        ),
-                    };
-                    traps.push(format!("en → β_n through Thornton et al.'s fit (2013, for the clamped law): en = {e} gives β_n = {beta:.6}, whose law realises {cor:.6} ({:+.2e}); {fix}", cor - e));
-                }
-                if betan.is_some() {
-                    traps.push(format!("betan given: c = 2 β_n sqrt(1.5 M k) with β_n = {beta} (the ratio to the tangent stiffness's critical damping, not to a linear spring's)"));
-                }
-                traps.push("the normal force is cut at zero: it never attracts (YADE's clamped damping), so the COR is higher than the same dashpot's without the cut".into());
-                traps.push(match wall {
-                    Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
-                    None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
-                });
-                PairLaw {
-                    law,
-                    entered: en,
-                    model: format!(
-                        "Hertz–Mindlin{}",
-                        if en.is_some() {
-                            " en"
-                        } else if betan.is_some() {
-                            " betan"
-                        } else {
-                            ""
-                        }
-                    ),
-                    traps,
-                }
+                Self::mindlin_law(ip2, law2, a, b, wall, mass, r_star)?
             }
-            "Ip2_FrictMat_FrictMat_FrictPhys" => {
-                let (ea, eb) = (a.material.value("young"), b.material.value("young"));
-                let (ra, rb) = (a.radius, b.radius);
-                let kn = match ip2.pair_value("kn", a.id, b.id)? {
-                    Some(k) => k,
-                    None => 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb),
-                };
-                let law = DashpotLaw {
-                    mass,
-                    stiffness: kn,
-                    exponent: 1.0,
-                    damping: 0.0,
-                    damping_exponent: 0.0,
-                    clamp_attractive: true,
-                };
-                let traps = vec![
-                    format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
-                    "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
-                ];
-                PairLaw {
-                    law,
-                    entered: None,
-                    model: "FrictPhys linear".into(),
-                    traps,
-                }
-            }
+            "Ip2_FrictMat_FrictMat_FrictPhys" => Self::frict_law(ip2, a, b, mass)?,
             _ => Self::viscel_law(ip2, a, b, wall, mass)?,
         };
         if !ignored.is_empty() {
             out.traps.push(format!("{} of {} (tangential, rolling and friction settings) act on no head-on impact: kept, and they change nothing here", ignored.join(", "), ip2.class));
         }
         let model = out.model.clone();
-        wall_radius_trap(&mut out.traps, &model);
+        if let Some(wall) = wall {
+            wall_radius_trap(&mut out.traps, &model, wall, a, b, geometry);
+        }
         Ok(out)
+    }
+
+    /// Hertz–Mindlin (`Ip2_FrictMat_FrictMat_MindlinPhys`): `(4/3) E* sqrt(R*)`, damped by
+    /// `betan` or by `en` through Thornton's fit, clamped; what YADE refuses or the check does
+    /// not model (adhesion, `nothing`) is refused.
+    fn mindlin_law(
+        ip2: &Functor,
+        law2: &Functor,
+        a: &Side,
+        b: &Side,
+        wall: Option<(WallKind, &WallRead)>,
+        mass: f64,
+        r_star: f64,
+    ) -> Result<PairLaw, DeckError> {
+        if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
+            return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
+        }
+        if law2.flag("nothing") {
+            return Err(DeckError::unsupported(
+                &law2.at,
+                "nothing=True: the law computes no force".into(),
+                "nothing=False",
+            ));
+        }
+        let e_star = mixed_modulus(a.material, b.material);
+        let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
+        let en = ip2.pair_value("en", a.id, b.id)?;
+        let betan = ip2.pair_value("betan", a.id, b.id)?;
+        let beta = match (en, betan) {
+            (Some(_), Some(_)) => {
+                return Err(DeckError::unsupported(
+                    &ip2.at,
+                    "both en and betan".into(),
+                    "one of en, betan (YADE refuses both)",
+                ));
+            }
+            (Some(e), None) => {
+                if !(e > 0.0 && e <= 1.0) {
+                    return Err(DeckError::unsupported(
+                        &ip2.at,
+                        format!("en = {e}"),
+                        "0 < en <= 1",
+                    ));
+                }
+                thornton_damping_ratio(e)
+            }
+            (None, Some(b)) => b,
+            (None, None) => 0.0,
+        };
+        let law = DashpotLaw {
+            mass,
+            stiffness: kno,
+            exponent: 1.5,
+            damping: 2.0 * beta * (1.5 * mass * kno).sqrt(),
+            damping_exponent: 0.25,
+            clamp_attractive: true,
+        };
+        let mut traps = Vec::new();
+        if let Some(e) = en {
+            let cor = accurate_metrics(&law, 1.0, 1e-12).map_or(f64::NAN, |m| m.cor);
+            let fix = match hertz_input_restitution(e) {
+                Some(x) => format!("the en that realises {e} is {x:.6}"),
+                None => format!(
+                    "no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"
+                ),
+            };
+            traps.push(format!("en → β_n through Thornton et al.'s fit (2013, for the clamped law): en = {e} gives β_n = {beta:.6}, whose law realises {cor:.6} ({:+.2e}); {fix}", cor - e));
+        }
+        if betan.is_some() {
+            traps.push(format!("betan given: c = 2 β_n sqrt(1.5 M k) with β_n = {beta} (the ratio to the tangent stiffness's critical damping, not to a linear spring's)"));
+        }
+        traps.push("the normal force is cut at zero: it never attracts (YADE's clamped damping), so the COR is higher than the same dashpot's without the cut".into());
+        traps.push(match wall {
+            Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
+            None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
+        });
+        Ok(PairLaw {
+            law,
+            entered: en,
+            model: format!(
+                "Hertz–Mindlin{}",
+                if en.is_some() {
+                    " en"
+                } else if betan.is_some() {
+                    " betan"
+                } else {
+                    ""
+                }
+            ),
+            traps,
+        })
+    }
+
+    /// `Ip2_FrictMat_FrictMat_FrictPhys`: a linear spring from the materials' moduli and the
+    /// radii, undamped, clamped.
+    fn frict_law(ip2: &Functor, a: &Side, b: &Side, mass: f64) -> Result<PairLaw, DeckError> {
+        let (ea, eb) = (a.material.value("young"), b.material.value("young"));
+        let (ra, rb) = (a.radius, b.radius);
+        let kn = match ip2.pair_value("kn", a.id, b.id)? {
+            Some(k) => k,
+            None => 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb),
+        };
+        let law = DashpotLaw {
+            mass,
+            stiffness: kn,
+            exponent: 1.0,
+            damping: 0.0,
+            damping_exponent: 0.0,
+            clamp_attractive: true,
+        };
+        let traps = vec![
+            format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
+            "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
+        ];
+        Ok(PairLaw {
+            law,
+            entered: None,
+            model: "FrictPhys linear".into(),
+            traps,
+        })
     }
 
     // Two materials' values are compared exactly: YADE averages what differs, and mRtype is a
