@@ -24,7 +24,8 @@ use millimpact::solve::dashpot::{StepScheme, step_trajectory_from};
 mod common;
 
 use common::paper_build::{
-    ETAS, SCENES, assert_cor_within_the_step_band, assert_run_is_the_law_stepped, stepped,
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, stepped,
 };
 use common::{millimpact, root, shipped};
 
@@ -127,17 +128,7 @@ fn its_law_is_the_papers_law_with_the_plugins_stiffness() {
 /// a clamp has nothing to cut).
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
-    for eta in [1.0, 1.2, -0.1] {
-        let s = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..setup("ball_plate", 0.35)
-        };
-        let err = LammpsPaper.render(&s).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&LammpsPaper, &setup("ball_plate", 0.35));
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..setup("ball_ball", 0.35)

@@ -26,8 +26,8 @@ mod common;
 
 use common::codes::{Canonical, code_setup};
 use common::paper_build::{
-    ETAS, SCENES, assert_cor_within_the_step_band, assert_run_is_the_law_stepped,
-    predicted_cor_error, stepped,
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, clamp_refused_in_one_line, predicted_cor_error, stepped,
 };
 use common::{millimpact, shipped};
 
@@ -140,17 +140,7 @@ fn the_setup_carries_the_cases_eta_itself() {
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
     let good = setup("ball_plate", 0.35);
-    for eta in [1.0, 1.2, -0.1, f64::NAN] {
-        let bad = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..good.clone()
-        };
-        let err = LiggghtsPaper.render(&bad).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{eta}: {err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&LiggghtsPaper, &good);
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..good.clone()
@@ -164,20 +154,8 @@ fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
 /// `reference --code liggghts-paper --clamp` is bad input (exit 2), refused before any run.
 #[test]
 fn clamp_is_bad_input_for_the_paper_build() {
-    let out = millimpact()
-        .args([
-            "reference",
-            "--code",
-            "liggghts-paper",
-            "cases/ball_plate.toml",
-            "--clamp",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = clamp_refused_in_one_line("liggghts-paper");
     assert!(stderr.contains("--clamp = liggghts-paper"), "{stderr}");
-    assert!(out.stdout.is_empty());
 }
 
 /// Its law is the paper's with LIGGGHTS's own mass and stiffness (to rounding the case's): no

@@ -12,7 +12,7 @@ use std::process::Command;
 use millimpact::codes::batch::run_batch;
 use millimpact::codes::yade::paper::{YadePaper, code_frame};
 use millimpact::codes::yade::{Yade, parse_trajectory};
-use millimpact::codes::{CodeDriver, CodeError, CodeSetup, RunOptions, prepare_with};
+use millimpact::codes::{CodeDriver, CodeSetup, RunOptions, prepare_with};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
 use millimpact::model::law::CodeLaw;
@@ -22,7 +22,8 @@ use millimpact::solve::dashpot::{StepScheme, own_law_metrics};
 mod common;
 
 use common::paper_build::{
-    ETAS, SCENES, assert_cor_within_the_step_band, assert_run_is_the_law_stepped,
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, clamp_refused_in_one_line,
 };
 use common::{millimpact, root, shipped};
 
@@ -159,38 +160,14 @@ fn the_frame_is_the_scripts_start() {
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
     let good = setup("ball_plate", 0.35);
-    for eta in [1.0, 1.2, -0.1, f64::NAN] {
-        let bad = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..good.clone()
-        };
-        let err = YadePaper.render(&bad).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{eta}: {err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&YadePaper, &good);
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..good
     };
     let err = YadePaper.render(&clamped).unwrap_err().to_string();
     assert!(err.contains("never attracts"), "{err}");
-    let out = millimpact()
-        .args([
-            "reference",
-            "--code",
-            "yade-paper",
-            "cases/ball_plate.toml",
-            "--clamp",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(out.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("yade-paper"), "{stderr}");
+    clamp_refused_in_one_line("yade-paper");
 }
 
 /// A batch holds every impact of one time step in one scene (one group), a new group at each

@@ -3,7 +3,7 @@
 //! (the run is the law stepped; its COR lies in the band the law stepped over 32 start phases
 //! spans, within the step error predicted for velocity Verlet).
 
-use millimpact::codes::{CodeDriver, CodeSetup};
+use millimpact::codes::{CodeDriver, CodeError, CodeSetup};
 use millimpact::model::exact;
 use millimpact::model::law::CodeLaw;
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
@@ -93,4 +93,42 @@ pub fn assert_cor_within_the_step_band(
         lo.abs().max(hi.abs()) <= bound,
         "{label}: band [{lo:e}, {hi:e}] beyond the predicted {bound:e}"
     );
+}
+
+/// Assert that the build refuses to render `good` with η of 1, above 1, below 0 or NaN, as
+/// unsupported, naming the range `0 <= eta < 1`.
+pub fn assert_refuses_eta_outside_its_range(build: &impl CodeDriver, good: &CodeSetup) {
+    for eta in [1.0, 1.2, -0.1, f64::NAN] {
+        let bad = CodeSetup {
+            loss_coefficient: Some(eta),
+            ..good.clone()
+        };
+        let err = build.render(&bad).unwrap_err();
+        assert!(
+            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
+            "{} η={eta}: {err}",
+            build.name()
+        );
+    }
+}
+
+/// Run `reference --code CODE cases/ball_plate.toml --clamp` and assert it is bad input: exit
+/// 2, nothing on stdout, one line on stderr naming the build; that line.
+pub fn clamp_refused_in_one_line(code: &str) -> String {
+    let out = super::millimpact()
+        .args([
+            "reference",
+            "--code",
+            code,
+            "cases/ball_plate.toml",
+            "--clamp",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    assert!(out.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains(code), "{stderr}");
+    stderr
 }
