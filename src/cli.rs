@@ -1,8 +1,10 @@
-//! Command-line definitions (clap only). The choices of `--method`, `--code` and `--format`
-//! come from the registries that own them; values are checked by typed parsers here, so that
-//! a bad value is refused before any work, in one line.
+//! The command line: its definitions (clap, here alone), and [`parse`], which reads it or
+//! reports a usage error in one line. The choices of `--method`, `--code`
+//! and `--format` come from the registries that own them; values are checked by typed parsers
+//! here, so that a bad value is refused before any work, in one line.
 
 use std::path::PathBuf;
+use std::process::ExitCode;
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use clap::{Args, Parser, Subcommand};
@@ -10,6 +12,34 @@ use clap::{Args, Parser, Subcommand};
 use millimpact::codes::CodeName;
 use millimpact::output::Format;
 use millimpact::solve::Method;
+
+/// Parse the command line; a usage error is reported on one line (exit 2), like every other
+/// bad input, while help and version print as clap lays them out.
+pub(crate) fn parse() -> Result<Cli, ExitCode> {
+    use clap::error::ErrorKind;
+    match Cli::try_parse() {
+        Ok(cli) => Ok(cli),
+        Err(error) => match error.kind() {
+            ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => error.exit(),
+            _ => {
+                let text = error.render().to_string();
+                let line: Vec<&str> = text
+                    .lines()
+                    .map(str::trim)
+                    .filter(|l| {
+                        !l.is_empty()
+                            && !l.starts_with("Usage:")
+                            && !l.starts_with("For more information")
+                    })
+                    .collect();
+                eprintln!("{} (see millimpact --help)", line.join(" "));
+                Err(ExitCode::from(2))
+            }
+        },
+    }
+}
 
 /// millimpact: checks the contact law of grinding bodies against exact closed forms and
 /// against the DEM codes LIGGGHTS, YADE, LAMMPS and Kratos.

@@ -2,9 +2,9 @@
 //! = η × gradient of the elastic energy), against exact closed forms and the DEM codes
 //! LIGGGHTS, YADE, LAMMPS and Kratos.
 //!
-//! Layers point one way: [`model`] ← [`mod@solve`] ← [`codes`] ← [`analysis`] ← the binary's commands;
-//! [`output`] and [`error`] know nothing of the commands; the command line (clap) belongs to the
-//! binary.
+//! Layers point one way: [`model`] ← [`mod@solve`] ← [`codes`] ← [`analysis`] ← the commands;
+//! [`output`] and [`error`] know nothing of the commands; the command line (clap) and the
+//! commands are private modules, run through [`run_command_line`], the binary's one call.
 //!
 //! # A regression test of your own
 //!
@@ -83,12 +83,28 @@
 
 #![warn(missing_docs)]
 
+// The commands name the library as its users do (`millimpact::…`).
+extern crate self as millimpact;
+
 pub mod analysis;
 pub mod codes;
 pub mod error;
 pub mod model;
 pub mod output;
 pub mod solve;
+
+mod cli;
+mod commands;
+
+/// Run the `millimpact` command line of this process (its arguments, standard output and
+/// error) and return its exit code: 0, 1 for a check that disagreed or a run that failed, 2
+/// for bad input (one line naming the file, field or flag), 141 when standard output closed.
+pub fn run_command_line() -> std::process::ExitCode {
+    match cli::parse() {
+        Ok(cli) => commands::run(&cli),
+        Err(code) => code,
+    }
+}
 
 pub use analysis::compare::{CompareError, CompareOptions, CompareReport, compare};
 pub use analysis::store::verify::{VerifyReport, verify};

@@ -25,12 +25,11 @@ use millimpact::solve::dashpot::{
 
 mod common;
 
+use common::paper_build::{
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, clamp_refused_in_one_line,
+};
 use common::{millimpact, root, shipped};
-
-const SCENES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
-
-/// η over [0, 0.95]: elastic, the paper's 0.35, and up to a COR of 0.16.
-const ETAS: [f64; 6] = [0.0, 0.2, 0.35, 0.5, 0.7, 0.95];
 
 /// The recorded run: ball_plate at η = 0.35, the default step, 60 steps.
 const SAMPLE: &str = "tests/data/kratos-paper";
@@ -102,38 +101,14 @@ fn the_script_carries_each_impact_and_no_stock_wall() {
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
     let good = setup("ball_plate", 0.35);
-    for eta in [1.0, 1.2, -0.1, f64::NAN] {
-        let bad = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..good.clone()
-        };
-        let err = KratosPaper.render(&bad).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{eta}: {err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&KratosPaper, &good);
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..good
     };
     let err = KratosPaper.render(&clamped).unwrap_err().to_string();
     assert!(err.contains("never attracts"), "{err}");
-    let out = millimpact()
-        .args([
-            "reference",
-            "--code",
-            "kratos-paper",
-            "cases/ball_plate.toml",
-            "--clamp",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(out.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("kratos-paper"), "{stderr}");
+    clamp_refused_in_one_line("kratos-paper");
 }
 
 /// Its law is the paper's with Kratos' own masses and the stiffness of Kratos' Hertz law (the
@@ -344,23 +319,6 @@ fn run(setup: &CodeSetup) -> TrajectoryMetrics {
     trajectory_metrics(&run.trajectory).unwrap()
 }
 
-/// The law stepped as Kratos steps it, from `phase` of a step before touch.
-fn stepped(setup: &CodeSetup, phase: f64) -> TrajectoryMetrics {
-    let law = KratosPaper.law(setup);
-    let (dt, v0) = (setup.timestep, setup.impact_velocity);
-    let t = KratosPaper
-        .stepping(setup)
-        .trajectory(&law, v0, dt, setup.steps + 2, phase * v0 * dt);
-    trajectory_metrics(&t).unwrap()
-}
-
-fn predicted_cor_error(setup: &CodeSetup) -> f64 {
-    let CodeLaw::Paper(law) = KratosPaper.law(setup) else {
-        unreachable!("the build's law is the paper's")
-    };
-    paper_cor_step_error(&law, setup.impact_velocity, setup.timestep)
-}
-
 /// Each run and the harness's stepping of the law (leap-frog, from touch) agree to 1e-12 in
 /// COR (and peak overlap, contact time, peak force, relative) for the three scenes, η from 0 to
 /// 0.95 at the default step and at 200 and 4000 steps per contact; and the realised COR lies
@@ -378,36 +336,9 @@ fn live_runs_equal_the_stepping_and_keep_to_the_step_band() {
     for (scene, eta, spc) in settings {
         let s = setup_at(scene, eta, spc);
         let code = run(&s);
-        let law = stepped(&s, 0.0);
-        let rel = |a: f64, b: f64| ((a - b) / b).abs();
-        for (what, a, b) in [
-            ("COR", code.cor, law.cor),
-            ("peak overlap", code.peak_deformation, law.peak_deformation),
-            ("contact time", code.contact_time, law.contact_time),
-            ("peak force", code.peak_force, law.peak_force),
-        ] {
-            assert!(
-                rel(a, b) <= 1e-12,
-                "{scene} η={eta} {spc:?}: {what} {a:e} (run) vs {b:e} (stepped), {:.2e}",
-                rel(a, b)
-            );
-        }
-        let e = exact::restitution(eta);
-        let offset = code.cor - e;
-        let phases: Vec<f64> = (0..32)
-            .map(|k| stepped(&s, f64::from(k) / 32.0).cor - e)
-            .collect();
-        let lo = phases.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = phases.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        assert!(
-            offset >= lo - 1e-12 && offset <= hi + 1e-12,
-            "{scene} η={eta} {spc:?}: COR offset {offset:e} outside [{lo:e}, {hi:e}]"
-        );
-        let bound = predicted_cor_error(&s);
-        assert!(
-            lo.abs().max(hi.abs()) <= bound,
-            "{scene} η={eta} {spc:?}: band [{lo:e}, {hi:e}] beyond the predicted {bound:e}"
-        );
+        let label = format!("{scene} η={eta} {spc:?}");
+        assert_run_is_the_law_stepped(&KratosPaper, &s, &code, &label);
+        assert_cor_within_the_step_band(&KratosPaper, &s, eta, code.cor, &label);
     }
 }
 

@@ -19,16 +19,15 @@ use millimpact::codes::{
 use millimpact::model::exact;
 use millimpact::model::law::{CodeLaw, PaperLaw};
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
-use millimpact::solve::dashpot::{StepScheme, paper_cor_step_error, step_trajectory_from};
+use millimpact::solve::dashpot::{StepScheme, step_trajectory_from};
 
 mod common;
 
+use common::paper_build::{
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, stepped,
+};
 use common::{millimpact, root, shipped};
-
-const SCENES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
-
-/// η over [0, 0.95]: elastic, the paper's 0.35, and up to a COR of 0.16.
-const ETAS: [f64; 6] = [0.0, 0.2, 0.35, 0.5, 0.7, 0.95];
 
 /// The setup of a shipped case at η and `steps_per_contact` (the default 1000 when `None`),
 /// as `reference` makes it.
@@ -129,17 +128,7 @@ fn its_law_is_the_papers_law_with_the_plugins_stiffness() {
 /// a clamp has nothing to cut).
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
-    for eta in [1.0, 1.2, -0.1] {
-        let s = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..setup("ball_plate", 0.35)
-        };
-        let err = LammpsPaper.render(&s).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&LammpsPaper, &setup("ball_plate", 0.35));
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..setup("ball_ball", 0.35)
@@ -199,7 +188,7 @@ fn a_recorded_run_is_read_and_is_the_law_stepped() {
     let input = std::fs::read_to_string(dir.join("impact.in")).unwrap();
     assert_eq!(input, LammpsPaper.render(&s).unwrap().text);
     let code = trajectory_metrics(&run.trajectory).unwrap();
-    let law = stepped(&s, 0.0);
+    let law = stepped(&LammpsPaper, &s, 0.0);
     assert!(
         (code.cor - law.cor).abs() < 1e-12,
         "{} vs {}",
@@ -230,26 +219,6 @@ fn run(setup: &CodeSetup) -> TrajectoryMetrics {
     trajectory_metrics(&run.trajectory).unwrap()
 }
 
-/// The plugin's law stepped as LAMMPS steps it, from the start `phase` of a step before the
-/// deck's own start (0: the deck's start, in its coordinates).
-fn stepped(setup: &CodeSetup, phase: f64) -> TrajectoryMetrics {
-    let law = LammpsPaper.law(setup);
-    let v0 = setup.impact_velocity;
-    let dt = setup.timestep;
-    let trajectory =
-        LammpsPaper
-            .stepping(setup)
-            .trajectory(&law, v0, dt, setup.steps + 2, phase * v0 * dt);
-    trajectory_metrics(&trajectory).unwrap()
-}
-
-fn predicted_cor_error(setup: &CodeSetup) -> f64 {
-    let CodeLaw::Paper(law) = LammpsPaper.law(setup) else {
-        unreachable!("the plugin's law is the paper's")
-    };
-    paper_cor_step_error(&law, setup.impact_velocity, setup.timestep)
-}
-
 /// At 250, 1000 and 4000 steps per elastic contact time, for the three scenes and η in
 /// [0, 0.95]: the run is the harness's stepping of the plugin's law to 1e-12 (COR, peak
 /// overlap, contact time, peak force), and its COR lies in the band the law stepped over 32
@@ -264,36 +233,9 @@ fn live_runs_are_the_law_stepped_and_within_the_step_band() {
             for eta in ETAS {
                 let s = setup_at(scene, eta, Some(steps));
                 let code = run(&s);
-                let law = stepped(&s, 0.0);
-                let rel = |a: f64, b: f64| ((a - b) / b).abs();
-                for (what, a, b) in [
-                    ("COR", code.cor, law.cor),
-                    ("peak overlap", code.peak_deformation, law.peak_deformation),
-                    ("contact time", code.contact_time, law.contact_time),
-                    ("peak force", code.peak_force, law.peak_force),
-                ] {
-                    assert!(
-                        rel(a, b) <= 1e-12,
-                        "{scene} η={eta} {steps}: {what} {a:e} (run) vs {b:e} (stepped), {:.2e}",
-                        rel(a, b)
-                    );
-                }
-                let e = exact::restitution(eta);
-                let phases: Vec<f64> = (0..32)
-                    .map(|k| stepped(&s, f64::from(k) / 32.0).cor - e)
-                    .collect();
-                let lo = phases.iter().copied().fold(f64::INFINITY, f64::min);
-                let hi = phases.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-                let offset = code.cor - e;
-                assert!(
-                    offset >= lo - 1e-12 && offset <= hi + 1e-12,
-                    "{scene} η={eta} {steps}: COR offset {offset:e} outside [{lo:e}, {hi:e}]"
-                );
-                let bound = predicted_cor_error(&s);
-                assert!(
-                    lo.abs().max(hi.abs()) <= bound,
-                    "{scene} η={eta} {steps}: band [{lo:e}, {hi:e}] beyond {bound:e}"
-                );
+                let label = format!("{scene} η={eta} {steps}");
+                assert_run_is_the_law_stepped(&LammpsPaper, &s, &code, &label);
+                assert_cor_within_the_step_band(&LammpsPaper, &s, eta, code.cor, &label);
             }
         }
     }

@@ -20,17 +20,16 @@ use millimpact::model::exact::{self, paper_impact};
 use millimpact::model::law::{CodeLaw, PaperLaw};
 use millimpact::model::scene::SceneKind;
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
-use millimpact::solve::dashpot::{own_law_metrics, paper_cor_step_error};
+use millimpact::solve::dashpot::own_law_metrics;
 
 mod common;
 
 use common::codes::{Canonical, code_setup};
+use common::paper_build::{
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, clamp_refused_in_one_line, predicted_cor_error, stepped,
+};
 use common::{millimpact, shipped};
-
-const SCENES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
-
-/// η over [0, 0.95]: elastic, the paper's 0.35, and up to a COR of 0.16.
-const ETAS: [f64; 6] = [0.0, 0.2, 0.35, 0.5, 0.7, 0.95];
 
 /// The setup of a shipped case at η, as `reference` makes it (default step: the elastic
 /// contact time over 1000), without a probe.
@@ -141,17 +140,7 @@ fn the_setup_carries_the_cases_eta_itself() {
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
     let good = setup("ball_plate", 0.35);
-    for eta in [1.0, 1.2, -0.1, f64::NAN] {
-        let bad = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..good.clone()
-        };
-        let err = LiggghtsPaper.render(&bad).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{eta}: {err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&LiggghtsPaper, &good);
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..good.clone()
@@ -165,20 +154,8 @@ fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
 /// `reference --code liggghts-paper --clamp` is bad input (exit 2), refused before any run.
 #[test]
 fn clamp_is_bad_input_for_the_paper_build() {
-    let out = millimpact()
-        .args([
-            "reference",
-            "--code",
-            "liggghts-paper",
-            "cases/ball_plate.toml",
-            "--clamp",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = clamp_refused_in_one_line("liggghts-paper");
     assert!(stderr.contains("--clamp = liggghts-paper"), "{stderr}");
-    assert!(out.stdout.is_empty());
 }
 
 /// Its law is the paper's with LIGGGHTS's own mass and stiffness (to rounding the case's): no
@@ -294,17 +271,6 @@ fn run(setup: &CodeSetup) -> TrajectoryMetrics {
     trajectory_metrics(&run.trajectory).unwrap()
 }
 
-fn stepped(setup: &CodeSetup, phase: f64) -> TrajectoryMetrics {
-    let law = LiggghtsPaper.law(setup);
-    let dt = setup.timestep;
-    let v0 = setup.impact_velocity;
-    let trajectory =
-        LiggghtsPaper
-            .stepping(setup)
-            .trajectory(&law, v0, dt, setup.steps + 2, phase * v0 * dt);
-    trajectory_metrics(&trajectory).unwrap()
-}
-
 /// The run and the harness's stepping of the paper's law as LIGGGHTS steps it (velocity Verlet
 /// in its own coordinates, the branch from the half-step velocity) agree to 1e-12 in COR and
 /// peak overlap (and in contact time and peak force), for the three scenes and η in [0, 0.95].
@@ -316,31 +282,9 @@ fn live_run_equals_the_rust_stepping() {
         for eta in ETAS {
             let s = setup(scene, eta);
             let code = run(&s);
-            let law = stepped(&s, 0.0);
-            let rel = |a: f64, b: f64| ((a - b) / b).abs();
-            for (what, a, b) in [
-                ("COR", code.cor, law.cor),
-                ("peak overlap", code.peak_deformation, law.peak_deformation),
-                ("contact time", code.contact_time, law.contact_time),
-                ("peak force", code.peak_force, law.peak_force),
-            ] {
-                assert!(
-                    rel(a, b) <= 1e-12,
-                    "{scene} η={eta}: {what} {a:e} (run) vs {b:e} (stepped), {:.2e}",
-                    rel(a, b)
-                );
-            }
+            assert_run_is_the_law_stepped(&LiggghtsPaper, &s, &code, &format!("{scene} η={eta}"));
         }
     }
-}
-
-/// The COR error velocity Verlet can make on the paper's law at `setup`'s step
-/// ([`paper_cor_step_error`]).
-fn predicted_cor_error(setup: &CodeSetup) -> f64 {
-    let CodeLaw::Paper(law) = LiggghtsPaper.law(setup) else {
-        unreachable!("the paper build's law is the paper's")
-    };
-    paper_cor_step_error(&law, setup.impact_velocity, setup.timestep)
 }
 
 /// The realised COR is `sqrt((1−η)/(1+η))` to within the step error predicted for the step:
@@ -353,21 +297,13 @@ fn live_cor_is_the_closed_form_within_the_predicted_step_error() {
     for scene in SCENES {
         for eta in ETAS {
             let s = setup(scene, eta);
-            let e = exact::restitution(eta);
-            let offset = run(&s).cor - e;
-            let phases: Vec<f64> = (0..32)
-                .map(|k| stepped(&s, f64::from(k) / 32.0).cor - e)
-                .collect();
-            let lo = phases.iter().copied().fold(f64::INFINITY, f64::min);
-            let hi = phases.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            assert!(
-                offset >= lo - 1e-12 && offset <= hi + 1e-12,
-                "{scene} η={eta}: COR offset {offset:e} outside the predicted [{lo:e}, {hi:e}]"
-            );
-            let bound = predicted_cor_error(&s);
-            assert!(
-                lo.abs().max(hi.abs()) <= bound,
-                "{scene} η={eta}: band [{lo:e}, {hi:e}] beyond the predicted {bound:e}"
+            let cor = run(&s).cor;
+            assert_cor_within_the_step_band(
+                &LiggghtsPaper,
+                &s,
+                eta,
+                cor,
+                &format!("{scene} η={eta}"),
             );
         }
     }
@@ -386,7 +322,7 @@ fn live_cor_converges_with_the_step() {
     for spc in [250, 1000, 4000] {
         let s = prepare_with(&LiggghtsPaper, &case, Some(spc), None, false, None).unwrap();
         let worst = (0..32)
-            .map(|k| (stepped(&s, f64::from(k) / 32.0).cor - e).abs())
+            .map(|k| (stepped(&LiggghtsPaper, &s, f64::from(k) / 32.0).cor - e).abs())
             .fold(0.0, f64::max);
         let offset = (run(&s).cor - e).abs();
         assert!(offset <= worst + 1e-12, "{spc}: {offset:e} > {worst:e}");
@@ -395,7 +331,7 @@ fn live_cor_converges_with_the_step() {
             worst * 10.0 < previous,
             "{spc}: {worst:e} after {previous:e}"
         );
-        let bound = predicted_cor_error(&s);
+        let bound = predicted_cor_error(&LiggghtsPaper, &s);
         assert!(
             worst <= bound,
             "{spc}: {worst:e} beyond the predicted {bound:e}"
@@ -621,7 +557,7 @@ fn realised(scene: &str, eta: f64, steps_per_contact: Option<u32>) -> (f64, f64)
     let record = millimpact::run_reference(millimpact::CodeName::LiggghtsPaper, &case, &options)
         .unwrap_or_else(|e| panic!("{scene} η={eta}: {e:#}"));
     let offset = record.cor - exact::restitution(eta);
-    (offset, predicted_cor_error(&record.setup))
+    (offset, predicted_cor_error(&LiggghtsPaper, &record.setup))
 }
 
 fn cor_by_eta_table() -> String {

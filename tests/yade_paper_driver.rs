@@ -12,21 +12,20 @@ use std::process::Command;
 use millimpact::codes::batch::run_batch;
 use millimpact::codes::yade::paper::{YadePaper, code_frame};
 use millimpact::codes::yade::{Yade, parse_trajectory};
-use millimpact::codes::{CodeDriver, CodeError, CodeSetup, RunOptions, prepare_with};
+use millimpact::codes::{CodeDriver, CodeSetup, RunOptions, prepare_with};
 use millimpact::model::case::Case;
 use millimpact::model::exact;
 use millimpact::model::law::CodeLaw;
 use millimpact::model::trajectory::{TrajectoryMetrics, trajectory_metrics};
-use millimpact::solve::dashpot::{StepScheme, own_law_metrics, paper_cor_step_error};
+use millimpact::solve::dashpot::{StepScheme, own_law_metrics};
 
 mod common;
 
+use common::paper_build::{
+    ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
+    assert_run_is_the_law_stepped, clamp_refused_in_one_line,
+};
 use common::{millimpact, root, shipped};
-
-const SCENES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
-
-/// η over [0, 0.95]: elastic, the paper's 0.35, and up to a COR of 0.16.
-const ETAS: [f64; 6] = [0.0, 0.2, 0.35, 0.5, 0.7, 0.95];
 
 /// The book's page with the lines a YADE user puts in their own script.
 const CHAPTER: &str = "docs/src/paper-law-in-dem.md";
@@ -40,17 +39,6 @@ fn setup_at(scene: &str, eta: f64, per_contact: Option<u32>) -> CodeSetup {
 
 fn setup(scene: &str, eta: f64) -> CodeSetup {
     setup_at(scene, eta, None)
-}
-
-/// `law` stepped as YADE steps it for `setup`, started `phase` of a step further away.
-fn stepped(setup: &CodeSetup, phase: f64) -> TrajectoryMetrics {
-    let law = YadePaper.law(setup);
-    let (dt, v0) = (setup.timestep, setup.impact_velocity);
-    let trajectory =
-        YadePaper
-            .stepping(setup)
-            .trajectory(&law, v0, dt, setup.steps + 2, phase * v0 * dt);
-    trajectory_metrics(&trajectory).unwrap()
 }
 
 fn relative(a: f64, b: f64) -> f64 {
@@ -172,38 +160,14 @@ fn the_frame_is_the_scripts_start() {
 #[test]
 fn the_driver_refuses_eta_out_of_range_and_a_clamp() {
     let good = setup("ball_plate", 0.35);
-    for eta in [1.0, 1.2, -0.1, f64::NAN] {
-        let bad = CodeSetup {
-            loss_coefficient: Some(eta),
-            ..good.clone()
-        };
-        let err = YadePaper.render(&bad).unwrap_err();
-        assert!(
-            matches!(&err, CodeError::Unsupported { reason, .. } if reason.contains("0 <= eta < 1")),
-            "{eta}: {err}"
-        );
-    }
+    assert_refuses_eta_outside_its_range(&YadePaper, &good);
     let clamped = CodeSetup {
         clamp_attractive: true,
         ..good
     };
     let err = YadePaper.render(&clamped).unwrap_err().to_string();
     assert!(err.contains("never attracts"), "{err}");
-    let out = millimpact()
-        .args([
-            "reference",
-            "--code",
-            "yade-paper",
-            "cases/ball_plate.toml",
-            "--clamp",
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(2), "{out:?}");
-    assert!(out.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
-    assert!(stderr.contains("yade-paper"), "{stderr}");
+    clamp_refused_in_one_line("yade-paper");
 }
 
 /// A batch holds every impact of one time step in one scene (one group), a new group at each
@@ -354,22 +318,11 @@ fn live_run_equals_the_rust_stepping() {
         }
     }
     for (s, code) in setups.iter().zip(runs(&setups)) {
-        let law = stepped(s, 0.0);
-        for (what, a, b) in [
-            ("COR", code.cor, law.cor),
-            ("peak overlap", code.peak_deformation, law.peak_deformation),
-            ("peak force", code.peak_force, law.peak_force),
-            ("contact time", code.contact_time, law.contact_time),
-        ] {
-            assert!(
-                relative(a, b) <= 1e-12,
-                "{} η={:?} {} steps: {what} {a:e} (run) vs {b:e} (stepped), {:.2e}",
-                s.case_name,
-                s.loss_coefficient,
-                s.steps,
-                relative(a, b)
-            );
-        }
+        let label = format!(
+            "{} η={:?} {} steps",
+            s.case_name, s.loss_coefficient, s.steps
+        );
+        assert_run_is_the_law_stepped(&YadePaper, s, &code, &label);
     }
 }
 
@@ -387,27 +340,8 @@ fn live_cor_is_the_closed_form_within_the_predicted_step_error() {
         .collect();
     for (s, code) in setups.iter().zip(runs(&setups)) {
         let eta = s.loss_coefficient.unwrap();
-        let e = exact::restitution(eta);
-        let offset = code.cor - e;
-        let phases: Vec<f64> = (0..32)
-            .map(|k| stepped(s, f64::from(k) / 32.0).cor - e)
-            .collect();
-        let lo = phases.iter().copied().fold(f64::INFINITY, f64::min);
-        let hi = phases.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        assert!(
-            offset >= lo - 1e-12 && offset <= hi + 1e-12,
-            "{} η={eta}: COR offset {offset:e} outside the predicted [{lo:e}, {hi:e}]",
-            s.case_name
-        );
-        let CodeLaw::Paper(law) = YadePaper.law(s) else {
-            unreachable!()
-        };
-        let bound = paper_cor_step_error(&law, s.impact_velocity, s.timestep);
-        assert!(
-            lo.abs().max(hi.abs()) <= bound,
-            "{} η={eta}: band [{lo:e}, {hi:e}] beyond the predicted {bound:e}",
-            s.case_name
-        );
+        let label = format!("{} η={eta}", s.case_name);
+        assert_cor_within_the_step_band(&YadePaper, s, eta, code.cor, &label);
     }
 }
 

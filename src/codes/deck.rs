@@ -14,8 +14,10 @@ use std::path::{Path, PathBuf};
 use serde::{Serialize, Serializer};
 use thiserror::Error;
 
-use super::{CodeError, CodeSetup, RenderedInput};
-use crate::model::law::CodeLaw;
+use super::lammps::conventions::Conventions;
+use super::{CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::model::law::{CodeLaw, ContactForce};
+use crate::model::scene::SceneKind;
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -348,6 +350,74 @@ pub struct DeckImpactInput {
     pub setup: CodeSetup,
     /// The gap between the surfaces at `t = 0`, m (the code's law is stepped from it).
     pub start_gap: f64,
+}
+
+/// Which elastic constants of its bodies a deck's impact setup carries.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum BodyElasticity {
+    /// The deck's own Young's modulus and Poisson's ratio of each type, where it gives them.
+    FromDeck,
+    /// None: the setup's law is the deck's contact lines alone, so no convention the driver
+    /// forms from a sphere's own constants (its calibration card's traps) applies.
+    Withheld,
+}
+
+impl UserDeck {
+    /// The setup of the impact of `self.contacts[contact]` at `velocity` (m/s), run for `steps`
+    /// steps of the deck's own time step: the pair's bodies, its law's mass, stiffness, exponent
+    /// and clamp, its entered COR and, for the paper's law, its η; `conventions` as the build
+    /// measured them, where the driver uses them.
+    pub(crate) fn impact_setup(
+        &self,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+        elasticity: BodyElasticity,
+        conventions: Option<Conventions>,
+    ) -> CodeSetup {
+        let c = &self.contacts[contact];
+        let sphere = |b: &DeckBody| CodeSphere {
+            radius: b.radius,
+            density: b.density,
+            mass: b.mass,
+            youngs_modulus: match elasticity {
+                BodyElasticity::FromDeck => b.youngs_modulus.unwrap_or(f64::NAN),
+                BodyElasticity::Withheld => f64::NAN,
+            },
+            poisson_ratio: match elasticity {
+                BodyElasticity::FromDeck => b.poisson_ratio,
+                BodyElasticity::Withheld => None,
+            },
+        };
+        let (scene, other_sphere) = match c.partner {
+            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&self.bodies[o]))),
+            Partner::Wall(_) => (SceneKind::BallPlate, None),
+        };
+        let mut setup = CodeSetup {
+            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
+            scene,
+            sphere: sphere(&self.bodies[c.body]),
+            other_sphere,
+            plate_material: None,
+            effective_modulus: None,
+            effective_radius: None,
+            reduced_mass: c.law.mass(),
+            stiffness: c.law.stiffness(),
+            exponent: c.law.exponent(),
+            impact_velocity: velocity,
+            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
+            loss_coefficient: match c.law {
+                CodeLaw::Paper(law) => Some(law.loss_coefficient),
+                CodeLaw::Dashpot(_) => None,
+            },
+            timestep: self.timestep,
+            steps,
+            clamp_attractive: c.law.clamp_attractive(),
+            conventions,
+        };
+        setup.effective_radius = Some(setup.pair_radius());
+        setup
+    }
 }
 
 /// A code's capability to read its users' decks and run one pair's impact with their lines.

@@ -57,6 +57,48 @@ impl Command {
     }
 }
 
+/// Refuse a script whose `units` line is not `si` (`code`'s default, `lj`, where it has none).
+pub(crate) fn check_si_units(
+    units: Option<&Command>,
+    path: &Path,
+    code: &str,
+) -> Result<(), DeckError> {
+    match units {
+        Some(c) if c.words.get(1).is_some_and(|u| u == "si") => Ok(()),
+        Some(c) => Err(DeckError::unsupported(
+            &c.at,
+            format!("units {}", c.words.get(1).map_or("", String::as_str)),
+            "units si",
+        )),
+        None => Err(DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: format!("no `units` line ({code}'s default is lj)"),
+            supported: "units si".into(),
+        }),
+    }
+}
+
+/// The script's time step, s, with where it is set; refused where it is missing or not
+/// positive.
+pub(crate) fn checked_timestep(
+    timestep: Option<&(f64, SourceLine)>,
+    path: &Path,
+) -> Result<(f64, SourceLine), DeckError> {
+    let (timestep, timestep_at) = timestep.cloned().ok_or_else(|| DeckError::Lacking {
+        file: path.to_path_buf(),
+        what: "no timestep".into(),
+        supported: "timestep DT (s)".into(),
+    })?;
+    if timestep.is_nan() || timestep <= 0.0 {
+        return Err(DeckError::unsupported(
+            &timestep_at,
+            format!("timestep {timestep}"),
+            "a positive time step, s",
+        ));
+    }
+    Ok((timestep, timestep_at))
+}
+
 /// A number as LAMMPS's `numeric()` accepts it (no trailing text).
 pub fn parse_number(word: &str) -> Option<f64> {
     word.trim().parse::<f64>().ok().filter(|x| x.is_finite())

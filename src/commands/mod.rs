@@ -16,11 +16,13 @@ mod stability;
 mod sweep;
 mod verify;
 
+use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::process::ExitCode;
 
 use anyhow::{Context, Result};
 
-use crate::cli::Command;
+use crate::cli::{Cli, Command};
 use millimpact::analysis::benchmark::BenchmarkError;
 use millimpact::analysis::compare::CompareError;
 use millimpact::analysis::deck::DeckCheckError;
@@ -32,6 +34,54 @@ use millimpact::analysis::sweep::SweepError;
 use millimpact::error::{Blame, CheckFailed, UserError};
 use millimpact::model::case::CaseError;
 use millimpact::output::files::write_atomic;
+
+/// Write the command's text; a closed pipe or a full disk is one line and exit 1, not a panic.
+fn print(text: &str) -> Result<(), std::io::Error> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())?;
+    out.flush()
+}
+
+/// Run the parsed command line: dispatch the command, print its output and warnings, and map
+/// a failure to its exit code (2 for bad input, 1 for a failed check or a run that failed).
+pub(crate) fn run(cli: &Cli) -> ExitCode {
+    // Ctrl-C or SIGTERM ends the DEM codes running now (their whole process groups) and removes
+    // their scratch directories; a sweep installs its own handler, which keeps its finished rows.
+    if !matches!(cli.command, Command::Sweep(_)) {
+        let _ = ctrlc::set_handler(|| crate::codes::runner::stop_all_codes_and_exit(130));
+    }
+    match dispatch(&cli.command) {
+        Ok(output) => {
+            for warning in &output.warnings {
+                eprintln!("warning: {warning}");
+            }
+            if let Err(error) = print(&output.text) {
+                if error.kind() == std::io::ErrorKind::BrokenPipe {
+                    // The reader has gone (`| head`): what it read is what it wanted.
+                    return ExitCode::from(141);
+                }
+                eprintln!("error: writing standard output: {error}");
+                return ExitCode::from(1);
+            }
+            match output.failure {
+                Some(failure) => {
+                    eprintln!("error: {failure}");
+                    ExitCode::from(1)
+                }
+                None => ExitCode::SUCCESS,
+            }
+        }
+        Err(error) => {
+            let code = exit_code(&error);
+            if code == 2 {
+                eprintln!("error: {error}");
+            } else {
+                eprintln!("error: {error:#}");
+            }
+            ExitCode::from(code)
+        }
+    }
+}
 
 /// What a command hands back to `main`: the text for standard output, and whether a check it
 /// ran disagreed (the text is printed either way).

@@ -361,209 +361,258 @@ fn check_store(
             .parent()
             .and_then(|d| d.file_name())
             .and_then(|n| CodeName::from_name(&n.to_string_lossy()));
-        let name = path
-            .file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_default();
         let Some(code) = code else { continue };
-        let file = match load(&path) {
-            Ok(file) => file,
-            Err(e) => {
-                rows.push(finding(
-                    &name,
-                    None,
-                    Source::Code(code),
-                    Check::Store,
-                    Some(format!("{}: {}", path.display(), Chain(&e))),
-                ));
-                continue;
-            }
-        };
-        if file.code != code || file.case != name {
+        check_stored_file(&path, code, cases, save_options, &mut rows, &mut present);
+    }
+    rows.extend(missing_runs(expected, cases, &present, make_options));
+    let strays = if folder.is_dir() {
+        stray_files(folder)?
+    } else {
+        Vec::new()
+    };
+    for extra in strays {
+        rows.push(finding(
+            &extra.display().to_string(),
+            None,
+            Source::Code(CodeName::ALL[0]),
+            Check::Store,
+            Some(format!(
+                "{} is not a record of a known code (records are reference/<code>/<case>.json)",
+                extra.display()
+            )),
+        ));
+    }
+    Ok(rows)
+}
+
+/// The checks of the record file at `path`, filed under `code`: that it loads, holds runs of
+/// that code on its own case, has its case file in `cases`, and each run's checks
+/// ([`check_stored_run`]); each run's code, case and η is added to `present`.
+fn check_stored_file(
+    path: &Path,
+    code: CodeName,
+    cases: &Path,
+    save_options: &str,
+    rows: &mut Vec<VerifyRow>,
+    present: &mut Vec<(CodeName, String, f64)>,
+) {
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let store_finding =
+        |detail: String| finding(&name, None, Source::Code(code), Check::Store, Some(detail));
+    let file = match load(path) {
+        Ok(file) => file,
+        Err(e) => {
+            rows.push(store_finding(format!("{}: {}", path.display(), Chain(&e))));
+            return;
+        }
+    };
+    if file.code != code || file.case != name {
+        rows.push(store_finding(format!(
+            "{} holds {} on {}, not {code} on {name}",
+            path.display(),
+            file.code,
+            file.case
+        )));
+        return;
+    }
+    if file.runs.is_empty() {
+        rows.push(store_finding(format!("{} holds no runs", path.display())));
+    }
+    if !cases.join(format!("{name}.toml")).is_file() {
+        rows.push(store_finding(format!(
+            "{} has no case file {name}.toml in {}",
+            path.display(),
+            cases.display()
+        )));
+        return;
+    }
+    for record in &file.runs {
+        present.push((record.code, record.case.clone(), record.loss_coefficient));
+        if record.code != code || record.case != name {
             rows.push(finding(
                 &name,
-                None,
-                Source::Code(code),
+                Some(record.loss_coefficient),
+                Source::Code(record.code),
                 Check::Store,
                 Some(format!(
-                    "{} holds {} on {}, not {code} on {name}",
-                    path.display(),
-                    file.code,
-                    file.case
+                    "a run of {} on {} filed under {}",
+                    record.code,
+                    record.case,
+                    path.display()
                 )),
             ));
             continue;
         }
-        if file.runs.is_empty() {
-            rows.push(finding(
-                &name,
-                None,
-                Source::Code(code),
-                Check::Store,
-                Some(format!("{} holds no runs", path.display())),
-            ));
-        }
-        if !cases.join(format!("{name}.toml")).is_file() {
-            rows.push(finding(
-                &name,
-                None,
-                Source::Code(code),
-                Check::Store,
-                Some(format!(
-                    "{} has no case file {name}.toml in {}",
-                    path.display(),
-                    cases.display()
-                )),
-            ));
-            continue;
-        }
-        for record in &file.runs {
-            let eta = Some(record.loss_coefficient);
-            let source = Source::Code(record.code);
-            present.push((record.code, record.case.clone(), record.loss_coefficient));
-            if record.code != code || record.case != name {
-                rows.push(finding(
-                    &name,
-                    eta,
-                    source,
-                    Check::Store,
-                    Some(format!(
-                        "a run of {} on {} filed under {}",
-                        record.code,
-                        record.case,
-                        path.display()
-                    )),
-                ));
-                continue;
-            }
-            let regenerate = format!("{} --save{save_options}", record.command);
-            let stale = provenance(record, cases);
-            rows.push(finding(
-                &name,
+        check_stored_run(record, &name, cases, save_options, rows);
+    }
+}
+
+/// The checks of one stored run of the case `name`: its provenance against the case file and
+/// this build, its own law re-stepped now against its stored figures, and its law against the
+/// COR it was asked for.
+fn check_stored_run(
+    record: &ReferenceRecord,
+    name: &str,
+    cases: &Path,
+    save_options: &str,
+    rows: &mut Vec<VerifyRow>,
+) {
+    let eta = Some(record.loss_coefficient);
+    let source = Source::Code(record.code);
+    let regenerate = format!("{} --save{save_options}", record.command);
+    let stale = provenance(record, cases);
+    rows.push(finding(
+        name,
+        eta,
+        source,
+        Check::Provenance,
+        (!stale.is_empty())
+            .then(|| format!("stale: {}; regenerate: {regenerate}", stale.join("; "))),
+    ));
+    if record.steps > MAX_STORED_STEPS {
+        rows.push(finding(
+            name,
+            eta,
+            source,
+            Check::OwnLawStepped,
+            Some(format!(
+                "steps = {} is above the {MAX_STORED_STEPS} a stored run may have",
+                record.steps
+            )),
+        ));
+        return;
+    }
+    rows.push(own_law_stepped_row(record, name, &regenerate));
+    rows.push(target_row(record, name));
+}
+
+/// The stored run's figures against its own law stepped now as the code steps, each within
+/// [`REMAINDER_TOLERANCE`]; a failure says how to regenerate the run.
+fn own_law_stepped_row(record: &ReferenceRecord, name: &str, regenerate: &str) -> VerifyRow {
+    let eta = Some(record.loss_coefficient);
+    let source = Source::Code(record.code);
+    let stepped = record.stepping().trajectory(
+        &record.law,
+        record.setup.impact_velocity,
+        record.timestep,
+        record.steps,
+        0.0,
+    );
+    let now = match trajectory_metrics(&stepped) {
+        Ok(now) => now,
+        Err(e) => {
+            return finding(
+                name,
                 eta,
                 source,
-                Check::Provenance,
-                (!stale.is_empty())
-                    .then(|| format!("stale: {}; regenerate: {regenerate}", stale.join("; "))),
-            ));
-            if record.steps > MAX_STORED_STEPS {
-                rows.push(finding(
-                    &name,
-                    eta,
-                    source,
-                    Check::OwnLawStepped,
-                    Some(format!(
-                        "steps = {} is above the {MAX_STORED_STEPS} a stored run may have",
-                        record.steps
-                    )),
-                ));
-                continue;
-            }
-            let stepped = record.stepping().trajectory(
-                &record.law,
-                record.setup.impact_velocity,
-                record.timestep,
-                record.steps,
-                0.0,
+                Check::OwnLawStepped,
+                Some(format!("own law stepped now: {e}")),
             );
-            match trajectory_metrics(&stepped) {
-                Ok(now) => {
-                    let differences = Differences {
-                        cor: relative(record.cor, now.cor),
-                        peak_deformation: relative(record.peak_deformation, now.peak_deformation),
-                        contact_time: relative(record.contact_time, now.contact_time),
-                    };
-                    let tolerance = Tolerance {
-                        cor: REMAINDER_TOLERANCE,
-                        peak_deformation: REMAINDER_TOLERANCE,
-                        contact_time: REMAINDER_TOLERANCE,
-                    };
-                    // The figures the table has no column for are held to the same bound; one
-                    // that fails is named with its difference in the row's detail.
-                    let unshown: Vec<String> = [
-                        ("peak force", record.peak_force, now.peak_force),
-                        (
-                            "contact time by force",
-                            record.force_contact_time,
-                            now.force_contact_time,
-                        ),
-                        (
-                            "compression time",
-                            record.compression_time,
-                            now.compression_time,
-                        ),
-                    ]
-                    .into_iter()
-                    .filter_map(|(figure, stored, stepped)| {
-                        if stored.is_nan() {
-                            Some(format!("{figure} not stored"))
-                        } else {
-                            let d = relative(stored, stepped);
-                            (d.is_nan() || d.abs() > REMAINDER_TOLERANCE).then(|| {
-                                format!("{figure} {d:+.2e} (allowed {REMAINDER_TOLERANCE:.1e})")
-                            })
-                        }
-                    })
-                    .collect();
-                    let pass = tolerance.admits(&differences) && unshown.is_empty();
-                    let detail = (!pass).then(|| {
-                        let mut detail = unshown.join("; ");
-                        if !detail.is_empty() {
-                            detail += "; ";
-                        }
-                        detail + &format!("regenerate: {regenerate}")
-                    });
-                    rows.push(VerifyRow {
-                        case: name.clone(),
-                        loss_coefficient: eta,
-                        source,
-                        stored: true,
-                        check: Check::OwnLawStepped,
-                        pass,
-                        differences,
-                        tolerance,
-                        detail,
-                    });
-                }
-                Err(e) => rows.push(finding(
-                    &name,
-                    eta,
-                    source,
-                    Check::OwnLawStepped,
-                    Some(format!("own law stepped now: {e}")),
-                )),
-            }
-            let realised = own_law_metrics(&record.law, record.setup.impact_velocity, 1e-13)
-                .map(|m| m.cor)
-                .unwrap_or(f64::NAN);
-            let differences = Differences {
-                cor: realised - record.cor_target(),
-                peak_deformation: NOT_APPLICABLE,
-                contact_time: NOT_APPLICABLE,
-            };
-            let pass = differences.cor.abs() <= TARGET_TOLERANCE;
-            rows.push(VerifyRow {
-                case: name.clone(),
-                loss_coefficient: eta,
-                source,
-                stored: true,
-                check: Check::Target,
-                pass,
-                differences,
-                tolerance: Tolerance {
-                    cor: TARGET_TOLERANCE,
-                    peak_deformation: NOT_APPLICABLE,
-                    contact_time: NOT_APPLICABLE,
-                },
-                detail: (!pass).then(|| {
-                    format!(
-                        "its own law realises {realised}, the code was asked for {}",
-                        record.cor_target()
-                    )
-                }),
-            });
         }
+    };
+    let differences = Differences {
+        cor: relative(record.cor, now.cor),
+        peak_deformation: relative(record.peak_deformation, now.peak_deformation),
+        contact_time: relative(record.contact_time, now.contact_time),
+    };
+    let tolerance = Tolerance {
+        cor: REMAINDER_TOLERANCE,
+        peak_deformation: REMAINDER_TOLERANCE,
+        contact_time: REMAINDER_TOLERANCE,
+    };
+    // The figures the table has no column for are held to the same bound; one
+    // that fails is named with its difference in the row's detail.
+    let unshown: Vec<String> = [
+        ("peak force", record.peak_force, now.peak_force),
+        (
+            "contact time by force",
+            record.force_contact_time,
+            now.force_contact_time,
+        ),
+        (
+            "compression time",
+            record.compression_time,
+            now.compression_time,
+        ),
+    ]
+    .into_iter()
+    .filter_map(|(figure, stored, stepped)| {
+        if stored.is_nan() {
+            Some(format!("{figure} not stored"))
+        } else {
+            let d = relative(stored, stepped);
+            (d.is_nan() || d.abs() > REMAINDER_TOLERANCE)
+                .then(|| format!("{figure} {d:+.2e} (allowed {REMAINDER_TOLERANCE:.1e})"))
+        }
+    })
+    .collect();
+    let pass = tolerance.admits(&differences) && unshown.is_empty();
+    let detail = (!pass).then(|| {
+        let mut detail = unshown.join("; ");
+        if !detail.is_empty() {
+            detail += "; ";
+        }
+        detail + &format!("regenerate: {regenerate}")
+    });
+    VerifyRow {
+        case: name.to_string(),
+        loss_coefficient: eta,
+        source,
+        stored: true,
+        check: Check::OwnLawStepped,
+        pass,
+        differences,
+        tolerance,
+        detail,
     }
+}
+
+/// The COR the stored run's own law realises, exactly, against the COR the code was asked for,
+/// within [`TARGET_TOLERANCE`].
+fn target_row(record: &ReferenceRecord, name: &str) -> VerifyRow {
+    let realised = own_law_metrics(&record.law, record.setup.impact_velocity, 1e-13)
+        .map(|m| m.cor)
+        .unwrap_or(f64::NAN);
+    let differences = Differences {
+        cor: realised - record.cor_target(),
+        peak_deformation: NOT_APPLICABLE,
+        contact_time: NOT_APPLICABLE,
+    };
+    let pass = differences.cor.abs() <= TARGET_TOLERANCE;
+    VerifyRow {
+        case: name.to_string(),
+        loss_coefficient: Some(record.loss_coefficient),
+        source: Source::Code(record.code),
+        stored: true,
+        check: Check::Target,
+        pass,
+        differences,
+        tolerance: Tolerance {
+            cor: TARGET_TOLERANCE,
+            peak_deformation: NOT_APPLICABLE,
+            contact_time: NOT_APPLICABLE,
+        },
+        detail: (!pass).then(|| {
+            format!(
+                "its own law realises {realised}, the code was asked for {}",
+                record.cor_target()
+            )
+        }),
+    }
+}
+
+/// A finding for each run of every code on each `expected` case (present in `cases`) at each
+/// of its η that the store does not hold, with the command that makes it.
+fn missing_runs(
+    expected: &[(&str, Vec<f64>)],
+    cases: &Path,
+    present: &[(CodeName, String, f64)],
+    make_options: &str,
+) -> Vec<VerifyRow> {
+    let mut rows = Vec::new();
     for (case, etas) in expected {
         let case = *case;
         if !cases.join(format!("{case}.toml")).is_file() {
@@ -589,24 +638,7 @@ fn check_store(
             }
         }
     }
-    let strays = if folder.is_dir() {
-        stray_files(folder)?
-    } else {
-        Vec::new()
-    };
-    for extra in strays {
-        rows.push(finding(
-            &extra.display().to_string(),
-            None,
-            Source::Code(CodeName::ALL[0]),
-            Check::Store,
-            Some(format!(
-                "{} is not a record of a known code (records are reference/<code>/<case>.json)",
-                extra.display()
-            )),
-        ));
-    }
-    Ok(rows)
+    rows
 }
 
 /// Most steps a stored run may claim before it is re-stepped (10⁷: a thousand times the

@@ -33,13 +33,12 @@ use super::{
 };
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{ContactForce, DashpotLaw};
-use crate::model::scene::SceneKind;
+use crate::codes::{CodeError, RenderedInput};
+use crate::model::law::DashpotLaw;
 
 /// The Python template of one impact with a user's materials.
 pub(super) const TEMPLATE: &str = include_str!("deck.py");
@@ -580,22 +579,7 @@ fn pair_law(
     let vars = &relation.typed.variables;
     let law_name = relation.law()?;
     let name = law_name.name().to_string();
-    const COR: &str = "COEFFICIENT_OF_RESTITUTION";
-    let entered = vars.restitution.map(|n| n.0).ok_or_else(|| {
-        missing(
-            relation.file,
-            relation.variable_path(COR),
-            COR,
-            "COEFFICIENT_OF_RESTITUTION (Kratos reads a missing one as 0 and damps as at 0.001)",
-        )
-    })?;
-    if !(entered > 0.0 && entered <= 1.0) {
-        return Err(DeckError::unsupported(
-            DeckSource::field(relation.file, relation.variable_path(COR)),
-            format!("{entered}"),
-            "a restitution in (0, 1]",
-        ));
-    }
+    let entered = entered_restitution(relation)?;
     let (material, radius, mass) = own;
     let (radius_star, mass_star, other_material) = match other {
         Side::Particle(m, r, m2) => (radius * r / (radius + r), 1.0 / (1.0 / mass + 1.0 / m2), *m),
@@ -663,37 +647,14 @@ fn pair_law(
                 ));
                 k
             } else {
-                let k = vars.k_normal.map(|n| n.0).ok_or_else(|| {
-                    missing(
-                        relation.file,
-                        relation.variable_path("K_NORMAL"),
-                        "K_NORMAL",
-                        "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants",
-                    )
-                })?;
-                if k <= 0.0 {
-                    return Err(DeckError::unsupported(
-                        DeckSource::field(relation.file, relation.variable_path("K_NORMAL")),
-                        format!("{k}"),
-                        "a positive stiffness, N/m",
-                    ));
-                }
+                let k = custom_stiffness(relation)?;
                 traps.push(format!(
                     "stiffness: K_NORMAL = {k:e} N/m from the relation, whatever the sizes and moduli (the contact time is π sqrt(M/k) for every radius)"
                 ));
                 k
             };
             let gamma = linear_damping_gamma(entered);
-            traps.push(format!(
-                "damping ratio by bisection: Kratos solves γ from COEFFICIENT_OF_RESTITUTION {entered} on the clamped linear dashpot only to 1e-4 in γ (RootByBisection): γ = {gamma}{}",
-                if entered > UNDAMPED_ABOVE {
-                    " (above 0.999 it takes γ = 0: an elastic contact)"
-                } else if entered < LOWEST_RESTITUTION {
-                    " (below 0.001 it solves for 0.001)"
-                } else {
-                    ""
-                }
-            ));
+            traps.push(linear_damping_trap(entered, gamma));
             DashpotLaw {
                 mass: mass_star,
                 stiffness,
@@ -724,6 +685,68 @@ fn pair_law(
         traps,
         at: relation.at(),
     })
+}
+
+/// The relation's `COEFFICIENT_OF_RESTITUTION`, refused where missing (Kratos reads it as 0)
+/// or outside (0, 1].
+fn entered_restitution(relation: &Relation<'_>) -> Result<f64, DeckError> {
+    const COR: &str = "COEFFICIENT_OF_RESTITUTION";
+    let entered = relation.typed.variables.restitution.map(|n| n.0).ok_or_else(|| {
+        missing(
+            relation.file,
+            relation.variable_path(COR),
+            COR,
+            "COEFFICIENT_OF_RESTITUTION (Kratos reads a missing one as 0 and damps as at 0.001)",
+        )
+    })?;
+    if !(entered > 0.0 && entered <= 1.0) {
+        return Err(DeckError::unsupported(
+            DeckSource::field(relation.file, relation.variable_path(COR)),
+            format!("{entered}"),
+            "a restitution in (0, 1]",
+        ));
+    }
+    Ok(entered)
+}
+
+/// `DEM_D_Linear_Custom_Constants`' stiffness, N/m: the relation's `K_NORMAL`, refused where
+/// missing or not positive.
+fn custom_stiffness(relation: &Relation<'_>) -> Result<f64, DeckError> {
+    let k = relation
+        .typed
+        .variables
+        .k_normal
+        .map(|n| n.0)
+        .ok_or_else(|| {
+            missing(
+                relation.file,
+                relation.variable_path("K_NORMAL"),
+                "K_NORMAL",
+                "K_NORMAL, the normal stiffness in N/m, for DEM_D_Linear_Custom_Constants",
+            )
+        })?;
+    if k <= 0.0 {
+        return Err(DeckError::unsupported(
+            DeckSource::field(relation.file, relation.variable_path("K_NORMAL")),
+            format!("{k}"),
+            "a positive stiffness, N/m",
+        ));
+    }
+    Ok(k)
+}
+
+/// The trap of Kratos' linear damping: γ solved by bisection to 1e-4, and its cut-offs.
+fn linear_damping_trap(entered: f64, gamma: f64) -> String {
+    format!(
+        "damping ratio by bisection: Kratos solves γ from COEFFICIENT_OF_RESTITUTION {entered} on the clamped linear dashpot only to 1e-4 in γ (RootByBisection): γ = {gamma}{}",
+        if entered > UNDAMPED_ABOVE {
+            " (above 0.999 it takes γ = 0: an elastic contact)"
+        } else if entered < LOWEST_RESTITUTION {
+            " (below 0.001 it solves for 0.001)"
+        } else {
+            ""
+        }
+    )
 }
 
 /// The trap of Kratos' Hertz damping: Thornton's fit, its cut-offs, and the restitution to
@@ -1412,45 +1435,11 @@ impl DeckReader for KratosDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let (other, other_material) = match c.partner {
+            Partner::Body(o) => (Some(&deck.bodies[o]), deck.bodies[o].type_id),
+            Partner::Wall(w) => (None, deck.walls[w].type_id.unwrap_or_default()),
         };
-        let (scene, other, other_material) = match c.partner {
-            Partner::Body(o) => (
-                SceneKind::BallBall,
-                Some(&deck.bodies[o]),
-                deck.bodies[o].type_id,
-            ),
-            Partner::Wall(w) => (
-                SceneKind::BallPlate,
-                None,
-                deck.walls[w].type_id.unwrap_or_default(),
-            ),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let (v1, v2) = setup.centre_of_mass_velocities();
         // The script starts the bodies one ulp apart (`math.nextafter`), as the driver does.
         let reach = body.radius + other.map_or(0.0, |o| o.radius);
@@ -1464,7 +1453,7 @@ impl DeckReader for KratosDeck {
             }
         })?;
         let values = [
-            ("scene", scene.name().to_string()),
+            ("scene", setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
             ("steps", steps.to_string()),
             ("material", body.type_id.to_string()),

@@ -21,18 +21,18 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
-use super::mixing::{Coefficients, GranularModel};
+use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
-    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
-use crate::codes::script::{Command, ScriptReader};
+use crate::codes::script::{Command, ScriptReader, check_si_units, checked_timestep};
 use crate::codes::template::exact_number;
-use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
-use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
+use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
@@ -289,6 +289,129 @@ fn covers(range: &str, t: u32, types: u32) -> bool {
             (Some(lo), Some(hi)) => (lo..=hi).contains(&t),
             _ => false,
         },
+    }
+}
+
+/// The error of a deck that lacks `what`, naming what is `supported`.
+fn lacking(path: &Path, what: &str, supported: &str) -> DeckError {
+    DeckError::Lacking {
+        file: path.to_path_buf(),
+        what: what.into(),
+        supported: supported.into(),
+    }
+}
+
+/// What the deck holds that the impacts leave out, one line per kind with its lines.
+fn left_out_lines(r: &Reading) -> Vec<String> {
+    r.left_out
+        .iter()
+        .map(|(what, (file, lines))| {
+            let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+            format!("{what}: {}:{}", file.display(), lines.join(","))
+        })
+        .collect()
+}
+
+/// The deck's `pair_coeff` lines of `pair_style granular`, each `I J` as the build reads it.
+struct PairCoeffLines<'a> {
+    lines: Vec<(&'a str, &'a str, &'a GranularModel, &'a Command)>,
+    /// The number of atom types of the box.
+    types: u32,
+}
+
+impl<'a> PairCoeffLines<'a> {
+    /// Each line's I J as the build reads them: J < I swapped where the build reorders, else
+    /// refused (the build sets no pair for it).
+    fn as_the_build_reads(
+        r: &'a Reading,
+        mixing: PairMixing,
+        types: u32,
+    ) -> Result<Self, DeckError> {
+        let mut lines = Vec::new();
+        for (a, b, model, c) in &r.coeffs {
+            match (a.parse::<u32>(), b.parse::<u32>()) {
+                (Ok(i), Ok(j)) if j < i => {
+                    if !mixing.reorders_types() {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!(
+                                "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
+                            ),
+                            &format!("pair_coeff {b} {a}"),
+                        ));
+                    }
+                    lines.push((b.as_str(), a.as_str(), model, c));
+                }
+                _ => lines.push((a.as_str(), b.as_str(), model, c)),
+            }
+        }
+        Ok(Self { lines, types })
+    }
+
+    /// The line that sets the pair i, j: the last whose I holds the smaller type and whose J
+    /// the larger (LAMMPS sets [i][j] for i in I and i ≤ j in J).
+    fn for_pair(&self, i: u32, j: u32) -> Option<(&'a GranularModel, &'a Command)> {
+        let (p, q) = (i.min(j), i.max(j));
+        self.lines
+            .iter()
+            .rev()
+            .find(|(a, b, _, _)| covers(a, p, self.types) && covers(b, q, self.types))
+            .map(|&(_, _, m, c)| (m, c))
+    }
+
+    /// What LAMMPS refuses before it runs: a type without its own line, two lines of
+    /// different forms to mix. Every type of the box counts, in use or not.
+    fn check_every_pair_is_set(&self, path: &Path) -> Result<(), DeckError> {
+        let types = self.types;
+        for t in 1..=types {
+            if self.for_pair(t, t).is_none() {
+                return Err(lacking(
+                    path,
+                    &format!("no pair_coeff sets the type {t} with itself"),
+                    &format!(
+                        "a pair_coeff {t} {t} (LAMMPS refuses a deck that leaves one unset: \"All pair coeffs are not set\"), or * *"
+                    ),
+                ));
+            }
+        }
+        for i in 1..=types {
+            for j in i + 1..=types {
+                if self.for_pair(i, j).is_some() {
+                    continue;
+                }
+                if let (Some((a, at_a)), Some((b, at_b))) =
+                    (self.for_pair(i, i), self.for_pair(j, j))
+                    && a.form() != b.form()
+                {
+                    return Err(DeckError::unsupported(
+                        &at_b.at,
+                        format!(
+                            "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
+                            at_a.at,
+                            a.form(),
+                            b.form()
+                        ),
+                        &format!(
+                            "a pair_coeff {i} {j} of its own, or the same normal, damping, tangential, rolling and twisting models in {i} {i} and {j} {j}"
+                        ),
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// A type's material, where its own pair_coeff gives one (hertz/material E d ν).
+    fn give_materials(&self, bodies: &mut [DeckBody]) {
+        for b in bodies {
+            if let Some((m, _)) = self
+                .for_pair(b.type_id, b.type_id)
+                .filter(|(m, _)| m.normal == "hertz/material")
+            {
+                b.youngs_modulus = Some(m.values[0]);
+                b.poisson_ratio = Some(m.values[2]);
+            }
+        }
     }
 }
 
@@ -745,6 +868,142 @@ impl LammpsDeck {
 }
 
 impl LammpsDeck {
+    /// Each pair of bodies with the law its `pair_coeff` line gives it, or the build mixes from
+    /// the two types' own lines.
+    fn body_contacts(
+        &self,
+        conventions: &Conventions,
+        coeffs: &PairCoeffLines<'_>,
+        bodies: &[DeckBody],
+        path: &Path,
+    ) -> Result<Vec<DeckContact>, DeckError> {
+        let mut contacts = Vec::new();
+        for (a, body) in bodies.iter().enumerate() {
+            for (b, other) in bodies.iter().enumerate().skip(a) {
+                let (i, j) = (body.type_id, other.type_id);
+                let (coefficients, model, mut traps, lines, at, mixed) = match coeffs.for_pair(i, j)
+                {
+                    Some((model, c)) => {
+                        let (coefficients, traps) = model.coefficients(conventions, false);
+                        (
+                            coefficients,
+                            format!("{} damping {}", model.normal, model.damping),
+                            traps,
+                            vec![c.at.clone().into()],
+                            &c.at,
+                            false,
+                        )
+                    }
+                    None => {
+                        let own = |t: u32| {
+                            coeffs.for_pair(t, t).ok_or_else(|| lacking(path, &format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"))
+                        };
+                        let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
+                        let pair = self.0.mixing.mix(
+                            conventions,
+                            (i.min(j), ma, &ca.at.to_string()),
+                            (i.max(j), mb, &cb.at.to_string()),
+                        );
+                        (
+                            pair.coefficients,
+                            pair.model,
+                            pair.traps,
+                            vec![ca.at.clone().into(), cb.at.clone().into()],
+                            &cb.at,
+                            true,
+                        )
+                    }
+                };
+                let (law, entered, law_traps) = self.law(
+                    conventions,
+                    &coefficients,
+                    (body.radius, body.mass),
+                    Some((other.radius, other.mass)),
+                    at,
+                )?;
+                traps.extend(law_traps);
+                // A mixed pair has no COR of its own: what it realises is said in its traps.
+                let entered = if mixed {
+                    traps.push(mixed_cor(
+                        &law,
+                        entered,
+                        [i, j],
+                        [coeffs.for_pair(i, i), coeffs.for_pair(j, j)].map(|o| o.map(|(m, _)| m)),
+                    ));
+                    None
+                } else {
+                    entered
+                };
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Body(b),
+                    types: [TypeRef::Type(i), TypeRef::Type(j)],
+                    model,
+                    cor_entered: entered,
+                    law: law.into(),
+                    traps,
+                    lines,
+                });
+            }
+        }
+        Ok(contacts)
+    }
+
+    /// The deck's `fix wall/gran granular` walls, each met as the plane `zplane 0 NULL`, with
+    /// each body's contact against each pushed onto `contacts`; the walls and the line each
+    /// impact carries for its wall.
+    fn wall_contacts(
+        &self,
+        r: &Reading,
+        conventions: &Conventions,
+        bodies: &[DeckBody],
+        contacts: &mut Vec<DeckContact>,
+    ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
+        let mut walls = Vec::new();
+        let mut wall_lines = Vec::new();
+        for (w, wall) in r.walls.iter().enumerate() {
+            walls.push(DeckWall {
+                name: wall.id.clone(),
+                type_id: None,
+                youngs_modulus: None,
+                poisson_ratio: None,
+                from: wall.at.clone().into(),
+            });
+            wall_lines.push(format!(
+                "fix {} {} wall/gran granular {} zplane 0 NULL",
+                wall.id,
+                wall.group,
+                wall.model.words.join(" ")
+            ));
+            for (a, body) in bodies.iter().enumerate() {
+                let (coefficients, mut traps) = wall.model.coefficients(conventions, true);
+                let (law, entered, law_traps) = self.law(
+                    conventions,
+                    &coefficients,
+                    (body.radius, body.mass),
+                    None,
+                    &wall.at,
+                )?;
+                traps.extend(law_traps);
+                traps.push(format!(
+                    "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
+                    wall.geometry
+                ));
+                contacts.push(DeckContact {
+                    body: a,
+                    partner: Partner::Wall(w),
+                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                    model: format!("{} damping {}", wall.model.normal, wall.model.damping),
+                    cor_entered: entered,
+                    law: law.into(),
+                    traps,
+                    lines: vec![wall.at.clone().into()],
+                });
+            }
+        }
+        Ok((walls, wall_lines))
+    }
+
     /// A deck of the paper plugin: each pair of particle types by its `pair_coeff` (every pair
     /// of the box's types must have one, as the plugin requires: η has no mixing rule), each
     /// type against each `fix wall/paper`; the law the paper's with the plugin's stiffness
@@ -874,14 +1133,7 @@ impl LammpsDeck {
                 });
             }
         }
-        let left_out = r
-            .left_out
-            .iter()
-            .map(|(what, (file, lines))| {
-                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-                format!("{what}: {}:{}", file.display(), lines.join(","))
-            })
-            .collect();
+        let left_out = left_out_lines(&r);
         let mut common = vec![format!("plugin          load {}", super::PAPER_PLUGIN_FILE)];
         common.extend(r.pair.iter().map(|c| c.text.clone()));
         common.extend(r.paper_coeffs.iter().map(|x| x.3.text.clone()));
@@ -924,114 +1176,21 @@ impl DeckReader for LammpsDeck {
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let r = self.gather(path, options)?;
-        let lacking = |what: &str, supported: &str| DeckError::Lacking {
-            file: path.to_path_buf(),
-            what: what.into(),
-            supported: supported.into(),
-        };
-        match &r.units {
-            Some(c) if c.words.get(1).is_some_and(|u| u == "si") => {}
-            Some(c) => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    format!("units {}", c.words.get(1).map_or("", String::as_str)),
-                    "units si",
-                ));
-            }
-            None => {
-                return Err(lacking(
-                    "no `units` line (LAMMPS's default is lj)",
-                    "units si",
-                ));
-            }
-        }
+        check_si_units(r.units.as_ref(), path, "LAMMPS")?;
         let types = r.types.ok_or_else(|| {
             lacking(
+                path,
                 "no create_box (the number of atom types)",
                 "create_box N REGION",
             )
         })?;
-        let (timestep, timestep_at) = r
-            .timestep
-            .clone()
-            .ok_or_else(|| lacking("no timestep", "timestep DT (s)"))?;
-        if timestep.is_nan() || timestep <= 0.0 {
-            return Err(DeckError::unsupported(
-                &timestep_at,
-                format!("timestep {timestep}"),
-                "a positive time step, s",
-            ));
-        }
+        let (timestep, timestep_at) = checked_timestep(r.timestep.as_ref(), path)?;
         if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
             return Self::read_paper(r, path, options, types, (timestep, timestep_at));
         }
-        let mixing = self.0.mixing;
-        // Each line's I J as the build reads them: J < I swapped where the build reorders, else
-        // refused (the build sets no pair for it).
-        let mut coeffs = Vec::new();
-        for (a, b, model, c) in &r.coeffs {
-            match (a.parse::<u32>(), b.parse::<u32>()) {
-                (Ok(i), Ok(j)) if j < i => {
-                    if !mixing.reorders_types() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!(
-                                "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
-                            ),
-                            &format!("pair_coeff {b} {a}"),
-                        ));
-                    }
-                    coeffs.push((b.as_str(), a.as_str(), model, c));
-                }
-                _ => coeffs.push((a.as_str(), b.as_str(), model, c)),
-            }
-        }
-        // The line that sets the pair i, j: the last whose I holds the smaller type and whose J
-        // the larger (LAMMPS sets [i][j] for i in I and i ≤ j in J).
-        let coeff_for = |i: u32, j: u32| {
-            let (p, q) = (i.min(j), i.max(j));
-            coeffs
-                .iter()
-                .rev()
-                .find(|(a, b, _, _)| covers(a, p, types) && covers(b, q, types))
-                .map(|&(_, _, m, c)| (m, c))
-        };
-        // What LAMMPS refuses before it runs: a type without its own line, two lines of
-        // different forms to mix. Every type of the box counts, in use or not.
+        let coeffs = PairCoeffLines::as_the_build_reads(&r, self.0.mixing, types)?;
         if r.pair.is_some() {
-            for t in 1..=types {
-                if coeff_for(t, t).is_none() {
-                    return Err(lacking(
-                        &format!("no pair_coeff sets the type {t} with itself"),
-                        &format!(
-                            "a pair_coeff {t} {t} (LAMMPS refuses a deck that leaves one unset: \"All pair coeffs are not set\"), or * *"
-                        ),
-                    ));
-                }
-            }
-            for i in 1..=types {
-                for j in i + 1..=types {
-                    if coeff_for(i, j).is_some() {
-                        continue;
-                    }
-                    if let (Some((a, at_a)), Some((b, at_b))) = (coeff_for(i, i), coeff_for(j, j))
-                        && a.form() != b.form()
-                    {
-                        return Err(DeckError::unsupported(
-                            &at_b.at,
-                            format!(
-                                "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
-                                at_a.at,
-                                a.form(),
-                                b.form()
-                            ),
-                            &format!(
-                                "a pair_coeff {i} {j} of its own, or the same normal, damping, tangential, rolling and twisting models in {i} {i} and {j} {j}"
-                            ),
-                        ));
-                    }
-                }
-            }
+            coeffs.check_every_pair_is_set(path)?;
         }
         // The conventions of the build that will run it: its probe, else its fallback.
         let conventions = self
@@ -1041,133 +1200,9 @@ impl DeckReader for LammpsDeck {
             .flatten()
             .unwrap_or(self.0.fallback);
         let mut bodies = Self::bodies(&r, path, options)?;
-        // A type's material, where its own pair_coeff gives one (hertz/material E d ν).
-        for b in &mut bodies {
-            if let Some((m, _)) =
-                coeff_for(b.type_id, b.type_id).filter(|(m, _)| m.normal == "hertz/material")
-            {
-                b.youngs_modulus = Some(m.values[0]);
-                b.poisson_ratio = Some(m.values[2]);
-            }
-        }
-        let mut contacts = Vec::new();
-        for (a, body) in bodies.iter().enumerate() {
-            for (b, other) in bodies.iter().enumerate().skip(a) {
-                let (i, j) = (body.type_id, other.type_id);
-                let (coefficients, model, mut traps, lines, at, mixed) = match coeff_for(i, j) {
-                    Some((model, c)) => {
-                        let (coefficients, traps) = model.coefficients(&conventions, false);
-                        (
-                            coefficients,
-                            format!("{} damping {}", model.normal, model.damping),
-                            traps,
-                            vec![c.at.clone().into()],
-                            &c.at,
-                            false,
-                        )
-                    }
-                    None => {
-                        let own = |t: u32| {
-                            coeff_for(t, t).ok_or_else(|| lacking(&format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"))
-                        };
-                        let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
-                        let pair = mixing.mix(
-                            &conventions,
-                            (i.min(j), ma, &ca.at.to_string()),
-                            (i.max(j), mb, &cb.at.to_string()),
-                        );
-                        (
-                            pair.coefficients,
-                            pair.model,
-                            pair.traps,
-                            vec![ca.at.clone().into(), cb.at.clone().into()],
-                            &cb.at,
-                            true,
-                        )
-                    }
-                };
-                let (law, entered, law_traps) = self.law(
-                    &conventions,
-                    &coefficients,
-                    (body.radius, body.mass),
-                    Some((other.radius, other.mass)),
-                    at,
-                )?;
-                traps.extend(law_traps);
-                // A mixed pair has no COR of its own: what it realises is said in its traps.
-                let entered = if mixed {
-                    traps.push(mixed_cor(
-                        &law,
-                        entered,
-                        [i, j],
-                        [coeff_for(i, i), coeff_for(j, j)].map(|o| o.map(|(m, _)| m)),
-                    ));
-                    None
-                } else {
-                    entered
-                };
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Body(b),
-                    types: [TypeRef::Type(i), TypeRef::Type(j)],
-                    model,
-                    cor_entered: entered,
-                    law: law.into(),
-                    traps,
-                    lines,
-                });
-            }
-        }
-        let mut walls = Vec::new();
-        let mut wall_lines = Vec::new();
-        for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall {
-                name: wall.id.clone(),
-                type_id: None,
-                youngs_modulus: None,
-                poisson_ratio: None,
-                from: wall.at.clone().into(),
-            });
-            wall_lines.push(format!(
-                "fix {} {} wall/gran granular {} zplane 0 NULL",
-                wall.id,
-                wall.group,
-                wall.model.words.join(" ")
-            ));
-            for (a, body) in bodies.iter().enumerate() {
-                let (coefficients, mut traps) = wall.model.coefficients(&conventions, true);
-                let (law, entered, law_traps) = self.law(
-                    &conventions,
-                    &coefficients,
-                    (body.radius, body.mass),
-                    None,
-                    &wall.at,
-                )?;
-                traps.extend(law_traps);
-                traps.push(format!(
-                    "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
-                    wall.geometry
-                ));
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Wall(w),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    model: format!("{} damping {}", wall.model.normal, wall.model.damping),
-                    cor_entered: entered,
-                    law: law.into(),
-                    traps,
-                    lines: vec![wall.at.clone().into()],
-                });
-            }
-        }
-        let left_out = r
-            .left_out
-            .iter()
-            .map(|(what, (file, lines))| {
-                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-                format!("{what}: {}:{}", file.display(), lines.join(","))
-            })
-            .collect();
+        coeffs.give_materials(&mut bodies);
+        let mut contacts = self.body_contacts(&conventions, &coeffs, &bodies, path)?;
+        let (walls, wall_lines) = self.wall_contacts(&r, &conventions, &bodies, &mut contacts)?;
         let mut common = Vec::new();
         if let Some(c) = &r.pair {
             common.push(c.text.clone());
@@ -1181,7 +1216,7 @@ impl DeckReader for LammpsDeck {
             walls,
             contacts,
             representative_velocity: None,
-            left_out,
+            left_out: left_out_lines(&r),
             transplant: Transplant {
                 before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
                 common,
@@ -1200,41 +1235,18 @@ impl DeckReader for LammpsDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: f64::NAN,
-            poisson_ratio: None,
-        };
-        let (scene, other) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
+        let other = match c.partner {
+            Partner::Body(o) => Some(&deck.bodies[o]),
+            Partner::Wall(_) => None,
         };
         let conventions = self.1.measured_conventions().ok().flatten();
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: deck.timestep,
+        let setup = deck.impact_setup(
+            contact,
+            velocity,
             steps,
-            clamp_attractive: c.law.clamp_attractive(),
+            BodyElasticity::Withheld,
             conventions,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        );
         // A build that counts touching as contact starts a hair before touch, as its driver does.
         let gap = self.0.start_gap(&setup);
         let (v1, v2) = setup.centre_of_mass_velocities();

@@ -15,15 +15,15 @@ use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall, Partner,
-    SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
 };
-use crate::codes::script::{Command, ScriptReader};
+use crate::codes::script::{Command, ScriptReader, check_si_units, checked_timestep};
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeDriver, CodeError, CodeSetup, CodeSphere, RenderedInput};
+use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
-use crate::model::law::{CodeLaw, ContactForce, DashpotLaw, PaperLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
+use crate::model::scene::{pair_radius, reduced_mass};
 
 const TEMPLATE: &str = include_str!("deck.in");
 const INPUT_FILE: &str = "impact.in";
@@ -1117,64 +1117,21 @@ impl DeckReader for LiggghtsDeck {
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let r = Self::gather(path, options)?;
-        match &r.units {
-            Some(c) if c.words.get(1).is_some_and(|u| u == "si") => {}
-            Some(c) => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    format!("units {}", c.words.get(1).map_or("", String::as_str)),
-                    "units si",
-                ));
-            }
-            None => {
-                return Err(DeckError::Lacking {
-                    file: path.to_path_buf(),
-                    what: "no `units` line (LIGGGHTS's default is lj)".into(),
-                    supported: "units si".into(),
-                });
-            }
-        }
+        check_si_units(r.units.as_ref(), path, "LIGGGHTS")?;
         let (types, _) = r.types.clone().ok_or_else(|| DeckError::Lacking {
             file: path.to_path_buf(),
             what: "no create_box (the number of atom types)".into(),
             supported: "create_box N REGION".into(),
         })?;
-        let (timestep, timestep_at) = r.timestep.clone().ok_or_else(|| DeckError::Lacking {
-            file: path.to_path_buf(),
-            what: "no timestep".into(),
-            supported: "timestep DT (s)".into(),
-        })?;
-        if timestep.is_nan() || timestep <= 0.0 {
-            return Err(DeckError::unsupported(
-                &timestep_at,
-                format!("timestep {timestep}"),
-                "a positive time step, s",
-            ));
-        }
+        let (timestep, timestep_at) = checked_timestep(r.timestep.as_ref(), path)?;
         let (pair_model, pair_command) = r.pair.clone().ok_or_else(|| DeckError::Lacking {
             file: path.to_path_buf(),
             what: "no pair_style gran line".into(),
             supported: "pair_style gran model …".into(),
         })?;
-        for t in r
-            .templates
-            .iter()
-            .map(|x| x.0)
-            .chain(r.atoms_of_type.keys().copied())
-            .chain(r.walls.iter().map(|w| w.wall_type))
-        {
-            if t > types {
-                return Err(DeckError::Lacking {
-                    file: path.to_path_buf(),
-                    what: format!("type {t} is used but create_box declares {types} types"),
-                    supported: "types from 1 to create_box's N".into(),
-                });
-            }
-        }
+        check_types_declared(&r, types, path)?;
         let mut bodies = Self::bodies(&r, path, options)?;
         let materials = Materials { r: &r, path };
-        let uses_modulus =
-            |m: &GranModel| m.normal == "hertz" || m.normal == "hooke" || m.normal == "paper";
         if uses_modulus(&pair_model) || r.walls.iter().any(|w| uses_modulus(&w.model)) {
             for b in &mut bodies {
                 let (e, nu, _) =
@@ -1183,90 +1140,9 @@ impl DeckReader for LiggghtsDeck {
                 b.poisson_ratio = Some(nu);
             }
         }
-        let mut walls = Vec::new();
-        let mut wall_lines = Vec::new();
-        for w in &r.walls {
-            let (e, nu) = if uses_modulus(&w.model) {
-                let (e, nu, _) =
-                    materials.modulus(w.wall_type, &format!("model {}", w.model.normal))?;
-                (Some(e), Some(nu))
-            } else {
-                (None, None)
-            };
-            walls.push(DeckWall {
-                name: w.id.clone(),
-                type_id: Some(w.wall_type),
-                youngs_modulus: e,
-                poisson_ratio: nu,
-                from: w.at.clone().into(),
-            });
-            let settings: Vec<String> = w
-                .model
-                .settings
-                .iter()
-                .flat_map(|(k, v)| [k.clone(), v.clone()])
-                .collect();
-            wall_lines.push(
-                format!(
-                    "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
-                    w.id,
-                    w.group,
-                    w.model.spec.join(" "),
-                    w.wall_type,
-                    settings.join(" ")
-                )
-                .trim_end()
-                .to_string(),
-            );
-        }
-        let mut contacts = Vec::new();
-        for (a, body) in bodies.iter().enumerate() {
-            for (b, other) in bodies.iter().enumerate().skip(a) {
-                let pl = materials.pair_law(
-                    &pair_model,
-                    (body.type_id, body.radius, body.mass),
-                    other.type_id,
-                    Some((other.radius, other.mass)),
-                    &pair_command.at,
-                )?;
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Body(b),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
-                    model: pair_model.normal.clone(),
-                    cor_entered: pl.cor_entered,
-                    law: pl.law,
-                    traps: pl.traps,
-                    lines: pl.lines.into_iter().map(Into::into).collect(),
-                });
-            }
-        }
-        for (a, body) in bodies.iter().enumerate() {
-            for (w, wall) in r.walls.iter().enumerate() {
-                let pl = materials.pair_law(
-                    &wall.model,
-                    (body.type_id, body.radius, body.mass),
-                    wall.wall_type,
-                    None,
-                    &wall.at,
-                )?;
-                let mut traps = pl.traps;
-                traps.push(format!(
-                    "wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)",
-                    wall.geometry
-                ));
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Wall(w),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    model: wall.model.normal.clone(),
-                    cor_entered: pl.cor_entered,
-                    law: pl.law,
-                    traps,
-                    lines: pl.lines.into_iter().map(Into::into).collect(),
-                });
-            }
-        }
+        let (walls, wall_lines) = deck_walls(&r, &materials)?;
+        let mut contacts = body_contacts(&materials, &bodies, &pair_model, &pair_command)?;
+        contacts.extend(wall_contacts(&r, &materials, &bodies)?);
         let representative_velocity = r.properties.get("characteristicVelocity").and_then(|p| {
             p.values
                 .first()
@@ -1311,45 +1187,11 @@ impl DeckReader for LiggghtsDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let wall_line = match c.partner {
+            Partner::Body(_) => None,
+            Partner::Wall(w) => Some(deck.transplant.walls[w].clone()),
         };
-        let case_name = format!("deck-{contact}-{}-{}", c.types[0], c.types[1]);
-        let (scene, other_sphere, wall_line) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&deck.bodies[o])), None),
-            Partner::Wall(w) => (
-                SceneKind::BallPlate,
-                None,
-                Some(deck.transplant.walls[w].clone()),
-            ),
-        };
-        let mut setup = CodeSetup {
-            case_name,
-            scene,
-            sphere: sphere(body),
-            other_sphere,
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let gap = super::contact_gap(&setup);
         let (v1, v2) = setup.centre_of_mass_velocities();
         let r1 = body.radius;
@@ -1435,6 +1277,145 @@ impl DeckReader for LiggghtsDeck {
             start_gap: gap,
         })
     }
+}
+
+/// Refuse a type that a template, an atom or a wall uses beyond the `types` create_box
+/// declares.
+fn check_types_declared(r: &Reading, types: u32, path: &Path) -> Result<(), DeckError> {
+    for t in r
+        .templates
+        .iter()
+        .map(|x| x.0)
+        .chain(r.atoms_of_type.keys().copied())
+        .chain(r.walls.iter().map(|w| w.wall_type))
+    {
+        if t > types {
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: format!("type {t} is used but create_box declares {types} types"),
+                supported: "types from 1 to create_box's N".into(),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Whether a normal model takes its stiffness from the types' Young's moduli.
+fn uses_modulus(m: &GranModel) -> bool {
+    m.normal == "hertz" || m.normal == "hooke" || m.normal == "paper"
+}
+
+/// The deck's walls, with their materials where their model uses one, and the line each
+/// impact carries for its wall (met as the plane `zplane 0.0`).
+fn deck_walls(
+    r: &Reading,
+    materials: &Materials<'_>,
+) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
+    let mut walls = Vec::new();
+    let mut wall_lines = Vec::new();
+    for w in &r.walls {
+        let (e, nu) = if uses_modulus(&w.model) {
+            let (e, nu, _) =
+                materials.modulus(w.wall_type, &format!("model {}", w.model.normal))?;
+            (Some(e), Some(nu))
+        } else {
+            (None, None)
+        };
+        walls.push(DeckWall {
+            name: w.id.clone(),
+            type_id: Some(w.wall_type),
+            youngs_modulus: e,
+            poisson_ratio: nu,
+            from: w.at.clone().into(),
+        });
+        let settings: Vec<String> = w
+            .model
+            .settings
+            .iter()
+            .flat_map(|(k, v)| [k.clone(), v.clone()])
+            .collect();
+        wall_lines.push(
+            format!(
+                "fix {} {} wall/gran {} primitive type {} zplane 0.0 {}",
+                w.id,
+                w.group,
+                w.model.spec.join(" "),
+                w.wall_type,
+                settings.join(" ")
+            )
+            .trim_end()
+            .to_string(),
+        );
+    }
+    Ok((walls, wall_lines))
+}
+
+/// Each pair of bodies with the law the deck's `pair_style gran` line gives it.
+fn body_contacts(
+    materials: &Materials<'_>,
+    bodies: &[DeckBody],
+    pair_model: &GranModel,
+    pair_command: &Command,
+) -> Result<Vec<DeckContact>, DeckError> {
+    let mut contacts = Vec::new();
+    for (a, body) in bodies.iter().enumerate() {
+        for (b, other) in bodies.iter().enumerate().skip(a) {
+            let pl = materials.pair_law(
+                pair_model,
+                (body.type_id, body.radius, body.mass),
+                other.type_id,
+                Some((other.radius, other.mass)),
+                &pair_command.at,
+            )?;
+            contacts.push(DeckContact {
+                body: a,
+                partner: Partner::Body(b),
+                types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
+                model: pair_model.normal.clone(),
+                cor_entered: pl.cor_entered,
+                law: pl.law,
+                traps: pl.traps,
+                lines: pl.lines.into_iter().map(Into::into).collect(),
+            });
+        }
+    }
+    Ok(contacts)
+}
+
+/// Each body against each wall, with the law the wall's own model gives it.
+fn wall_contacts(
+    r: &Reading,
+    materials: &Materials<'_>,
+    bodies: &[DeckBody],
+) -> Result<Vec<DeckContact>, DeckError> {
+    let mut contacts = Vec::new();
+    for (a, body) in bodies.iter().enumerate() {
+        for (w, wall) in r.walls.iter().enumerate() {
+            let pl = materials.pair_law(
+                &wall.model,
+                (body.type_id, body.radius, body.mass),
+                wall.wall_type,
+                None,
+                &wall.at,
+            )?;
+            let mut traps = pl.traps;
+            traps.push(format!(
+                "wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)",
+                wall.geometry
+            ));
+            contacts.push(DeckContact {
+                body: a,
+                partner: Partner::Wall(w),
+                types: [TypeRef::Type(body.type_id), TypeRef::Wall],
+                model: wall.model.normal.clone(),
+                cor_entered: pl.cor_entered,
+                law: pl.law,
+                traps,
+                lines: pl.lines.into_iter().map(Into::into).collect(),
+            });
+        }
+    }
+    Ok(contacts)
 }
 
 /// The model specification of the deck's `pair_style gran` line (`model hertz tangential …`),

@@ -20,18 +20,19 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::dump::{
-    Attribute, Dump, FunctorDump, MaterialDump, READ_TIME_LIMIT, dump_script, line_text, parse_dump,
+    Attribute, BodyDump, Dump, EngineDump, FunctorDump, MaterialDump, READ_TIME_LIMIT, dump_script,
+    line_text, parse_dump,
 };
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
+    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{ContactForce, DashpotLaw};
-use crate::model::scene::{SceneKind, pair_radius, reduced_mass};
+use crate::codes::{CodeError, RenderedInput};
+use crate::model::law::DashpotLaw;
+use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
 const TEMPLATE: &str = include_str!("deck.py");
@@ -305,6 +306,243 @@ impl Reading {
             lines.push(line);
         }
     }
+
+    /// Take the InteractionLoop's functors from the engines, refuse what changes the contact
+    /// law or the step (local damping, a time stepper), and leave out the rest with its line.
+    fn take_engines(&mut self, path: &Path, dump: &Dump) -> Result<(), DeckError> {
+        let engines_at = dump.engines_line;
+        let text = std::fs::read_to_string(path).unwrap_or_default();
+        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
+        for (k, engine) in dump.engines.iter().enumerate() {
+            let engine_line = line_of(&text, engines_at, &engine.class);
+            let at = source(path, engine_line, || format!("O.engines[{k}]"));
+            if let Some(functors) = &engine.functors {
+                if let Some(first) = &self.loop_at {
+                    return Err(DeckError::unsupported(
+                        at,
+                        format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
+                        "one InteractionLoop",
+                    ));
+                }
+                let take = |list: &[FunctorDump], what: &str| {
+                    known_functors(
+                        path,
+                        &text,
+                        engine_line,
+                        list,
+                        &format!("O.engines[{k}].{what}"),
+                    )
+                };
+                self.geometry = take(&functors.geometry, "geomDispatcher.functors")?;
+                self.physics = take(&functors.physics, "physDispatcher.functors")?;
+                self.laws = take(&functors.laws, "lawDispatcher.functors")?;
+                self.loop_at = Some(at);
+            } else if engine.class == "NewtonIntegrator" {
+                self.take_newton(engine, at, engine_line)?;
+            } else if engine.class.ends_with("TimeStepper") {
+                return Err(DeckError::unsupported(
+                    at,
+                    format!(
+                        "{}: the time step is set while the script runs",
+                        engine.class
+                    ),
+                    "a fixed O.dt, without a time stepper in O.engines",
+                ));
+            } else {
+                self.leave_out(engine_left_out(&engine.class), engine_line);
+            }
+        }
+        if self.loop_at.is_some() && !newton {
+            return Err(DeckError::Lacking {
+                file: path.to_path_buf(),
+                what: "no NewtonIntegrator in O.engines: nothing moves".into(),
+                supported: "NewtonIntegrator(damping=0)".into(),
+            });
+        }
+        Ok(())
+    }
+
+    /// Refuse a NewtonIntegrator with local damping; leave its gravity out.
+    fn take_newton(
+        &mut self,
+        engine: &EngineDump,
+        at: DeckSource,
+        engine_line: Option<usize>,
+    ) -> Result<(), DeckError> {
+        let damping = engine
+            .attributes
+            .get("damping")
+            .and_then(Attribute::number)
+            .unwrap_or(0.0);
+        if damping != 0.0 {
+            let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
+            return Err(DeckError::unsupported(
+                at,
+                format!(
+                    "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
+                    if engine.changed.iter().any(|c| c == "damping") {
+                        ""
+                    } else {
+                        " (its default)"
+                    }
+                ),
+                "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
+            ));
+        }
+        let gravity = match engine.attributes.get("gravity") {
+            Some(Attribute::List(g)) => g.iter().any(|x| x.number() != Some(0.0)),
+            _ => false,
+        };
+        if gravity {
+            self.leave_out("gravity (the impact is a free normal impact)", engine_line);
+        }
+        Ok(())
+    }
+
+    /// Take one body: a sphere (unless its material's size is `given`), or a wall of one kind,
+    /// material and mass; clumps and other shapes are left out with their line.
+    fn take_body(&mut self, path: &Path, body: &BodyDump, given: &[u32]) -> Result<(), DeckError> {
+        let at = source(path, body.line, || format!("O.bodies[{}]", body.id));
+        let shape = body.shape.as_deref().unwrap_or("no shape");
+        if body.clump {
+            self.leave_out(
+                "clumps and their members (a clump moves as one body, which one impact of two spheres does not model)",
+                body.line,
+            );
+            return Ok(());
+        }
+        let kind = WallKind::of_shape(shape);
+        if shape != "Sphere" && kind.is_none() {
+            self.leave_out(
+                &format!("bodies of shape {shape} (no contact of the check takes them)"),
+                body.line,
+            );
+            return Ok(());
+        }
+        let material = body
+            .material
+            .and_then(|m| u32::try_from(m).ok())
+            .filter(|m| (*m as usize) < self.materials.len())
+            .ok_or_else(|| {
+                DeckError::unsupported(
+                    at.clone(),
+                    format!(
+                        "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
+                        body.material.map_or("none".into(), |m| m.to_string())
+                    ),
+                    "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
+                )
+            })?;
+        self.leave_out(
+            "the bodies' positions (the impact places its own)",
+            body.line,
+        );
+        let mass = body.mass.unwrap_or(0.0);
+        match kind {
+            None => {
+                if !body.dynamic {
+                    self.leave_out("fixed spheres, checked as free ones", body.line);
+                }
+                let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
+                    DeckError::unsupported(
+                        at.clone(),
+                        format!(
+                            "a sphere of radius {}",
+                            body.radius.map_or("NaN".into(), |r| r.to_string())
+                        ),
+                        "a positive radius, m",
+                    )
+                })?;
+                if !given.contains(&material) {
+                    self.spheres.push(SphereRead {
+                        material,
+                        radius,
+                        mass,
+                        at,
+                    });
+                }
+            }
+            Some(kind) => self.take_wall(path, body, kind, material, at)?,
+        }
+        Ok(())
+    }
+
+    /// Take a wall body: walls of one kind, material and mass (the same number, bit for bit)
+    /// are one wall; a box that moves is refused.
+    fn take_wall(
+        &mut self,
+        path: &Path,
+        body: &BodyDump,
+        kind: WallKind,
+        material: u32,
+        at: DeckSource,
+    ) -> Result<(), DeckError> {
+        let mass = body.mass.unwrap_or(0.0);
+        if kind == WallKind::Box && body.dynamic {
+            return Err(DeckError::unsupported(
+                at,
+                "a free box: a box that moves is a particle the check does not model".into(),
+                "box(…, fixed=True) as a wall",
+            ));
+        }
+        let name = wall_name(path, body.line, kind);
+        if !(name.starts_with("wall:") || name.starts_with("facet:") || name.starts_with("box:")) {
+            self.leave_out(
+                "the walls' shapes (each met as a flat face of its kind)",
+                body.line,
+            );
+        }
+        let same = self.walls.iter_mut().find(|w| {
+            w.kind == kind && w.material == material && w.mass.to_bits() == mass.to_bits()
+        });
+        match same {
+            Some(w) => {
+                if let Some(line) = body.line.filter(|l| !w.lines.contains(l)) {
+                    w.lines.push(line);
+                }
+            }
+            None => self.walls.push(WallRead {
+                name,
+                kind,
+                material,
+                mass,
+                at,
+                lines: body.line.into_iter().collect(),
+            }),
+        }
+        Ok(())
+    }
+}
+
+/// The functors of one of the InteractionLoop's lists (`list`, at `what` in `O.engines`), each
+/// with its line; one the check does not know is refused.
+fn known_functors(
+    path: &Path,
+    text: &str,
+    engine_line: Option<usize>,
+    list: &[FunctorDump],
+    what: &str,
+) -> Result<Vec<Functor>, DeckError> {
+    list.iter()
+        .enumerate()
+        .map(|(i, f)| {
+            let here = source(path, line_of(text, engine_line, &f.class), || {
+                format!("{what}[{i}]")
+            });
+            if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
+                return Err(DeckError::unsupported(
+                    here,
+                    format!("functor {}", f.class),
+                    FUNCTORS,
+                ));
+            }
+            Ok(Functor {
+                class: f.class.clone(),
+                dump: f.clone(),
+                at: here,
+            })
+        })
+        .collect()
 }
 
 fn class_of(name: &str) -> Option<Class> {
@@ -459,198 +697,10 @@ impl YadeDeck {
             }
             r.materials.push(Self::material(path, m)?);
         }
-        let engines_at = dump.engines_line;
-        let text = std::fs::read_to_string(path).unwrap_or_default();
-        let newton = dump.engines.iter().any(|e| e.class == "NewtonIntegrator");
-        for (k, engine) in dump.engines.iter().enumerate() {
-            let engine_line = line_of(&text, engines_at, &engine.class);
-            let at = source(path, engine_line, || format!("O.engines[{k}]"));
-            if let Some(functors) = &engine.functors {
-                if let Some(first) = &r.loop_at {
-                    return Err(DeckError::unsupported(
-                        at,
-                        format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
-                        "one InteractionLoop",
-                    ));
-                }
-                let take = |list: &[FunctorDump], what: &str| -> Result<Vec<Functor>, DeckError> {
-                    list.iter()
-                        .enumerate()
-                        .map(|(i, f)| {
-                            let here = source(path, line_of(&text, engine_line, &f.class), || {
-                                format!("O.engines[{k}].{what}[{i}]")
-                            });
-                            if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
-                                return Err(DeckError::unsupported(
-                                    here,
-                                    format!("functor {}", f.class),
-                                    FUNCTORS,
-                                ));
-                            }
-                            Ok(Functor {
-                                class: f.class.clone(),
-                                dump: f.clone(),
-                                at: here,
-                            })
-                        })
-                        .collect()
-                };
-                r.geometry = take(&functors.geometry, "geomDispatcher.functors")?;
-                r.physics = take(&functors.physics, "physDispatcher.functors")?;
-                r.laws = take(&functors.laws, "lawDispatcher.functors")?;
-                r.loop_at = Some(at);
-            } else if engine.class == "NewtonIntegrator" {
-                let damping = engine
-                    .attributes
-                    .get("damping")
-                    .and_then(Attribute::number)
-                    .unwrap_or(0.0);
-                if damping != 0.0 {
-                    let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
-                    return Err(DeckError::unsupported(
-                        at,
-                        format!(
-                            "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
-                            if engine.changed.iter().any(|c| c == "damping") {
-                                ""
-                            } else {
-                                " (its default)"
-                            }
-                        ),
-                        "NewtonIntegrator(damping=0) (give it to check the contacts alone)",
-                    ));
-                }
-                let gravity = match engine.attributes.get("gravity") {
-                    Some(Attribute::List(g)) => g.iter().any(|x| x.number() != Some(0.0)),
-                    _ => false,
-                };
-                if gravity {
-                    r.leave_out("gravity (the impact is a free normal impact)", engine_line);
-                }
-            } else if engine.class.ends_with("TimeStepper") {
-                return Err(DeckError::unsupported(
-                    at,
-                    format!(
-                        "{}: the time step is set while the script runs",
-                        engine.class
-                    ),
-                    "a fixed O.dt, without a time stepper in O.engines",
-                ));
-            } else {
-                r.leave_out(engine_left_out(&engine.class), engine_line);
-            }
-        }
-        if r.loop_at.is_some() && !newton {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: "no NewtonIntegrator in O.engines: nothing moves".into(),
-                supported: "NewtonIntegrator(damping=0)".into(),
-            });
-        }
+        r.take_engines(path, dump)?;
         let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
         for body in &dump.bodies {
-            let at = source(path, body.line, || format!("O.bodies[{}]", body.id));
-            let shape = body.shape.as_deref().unwrap_or("no shape");
-            if body.clump {
-                r.leave_out(
-                    "clumps and their members (a clump moves as one body, which one impact of two spheres does not model)",
-                    body.line,
-                );
-                continue;
-            }
-            let kind = WallKind::of_shape(shape);
-            if shape != "Sphere" && kind.is_none() {
-                r.leave_out(
-                    &format!("bodies of shape {shape} (no contact of the check takes them)"),
-                    body.line,
-                );
-                continue;
-            }
-            let material = body
-                .material
-                .and_then(|m| u32::try_from(m).ok())
-                .filter(|m| (*m as usize) < r.materials.len())
-                .ok_or_else(|| {
-                    DeckError::unsupported(
-                        at.clone(),
-                        format!(
-                            "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
-                            body.material.map_or("none".into(), |m| m.to_string())
-                        ),
-                        "O.materials.append(MATERIAL) before the body, and material=its id, label or the material",
-                    )
-                })?;
-            r.leave_out(
-                "the bodies' positions (the impact places its own)",
-                body.line,
-            );
-            let mass = body.mass.unwrap_or(0.0);
-            match kind {
-                None => {
-                    if !body.dynamic {
-                        r.leave_out("fixed spheres, checked as free ones", body.line);
-                    }
-                    let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
-                        DeckError::unsupported(
-                            at.clone(),
-                            format!(
-                                "a sphere of radius {}",
-                                body.radius.map_or("NaN".into(), |r| r.to_string())
-                            ),
-                            "a positive radius, m",
-                        )
-                    })?;
-                    if !given.contains(&material) {
-                        r.spheres.push(SphereRead {
-                            material,
-                            radius,
-                            mass,
-                            at,
-                        });
-                    }
-                }
-                Some(kind) => {
-                    if kind == WallKind::Box && body.dynamic {
-                        return Err(DeckError::unsupported(
-                            at,
-                            "a free box: a box that moves is a particle the check does not model"
-                                .into(),
-                            "box(…, fixed=True) as a wall",
-                        ));
-                    }
-                    let name = wall_name(path, body.line, kind);
-                    if !(name.starts_with("wall:")
-                        || name.starts_with("facet:")
-                        || name.starts_with("box:"))
-                    {
-                        r.leave_out(
-                            "the walls' shapes (each met as a flat face of its kind)",
-                            body.line,
-                        );
-                    }
-                    // The same number, bit for bit: walls of one mass are one wall.
-                    let same = r.walls.iter_mut().find(|w| {
-                        w.kind == kind
-                            && w.material == material
-                            && w.mass.to_bits() == mass.to_bits()
-                    });
-                    match same {
-                        Some(w) => {
-                            if let Some(line) = body.line.filter(|l| !w.lines.contains(l)) {
-                                w.lines.push(line);
-                            }
-                        }
-                        None => r.walls.push(WallRead {
-                            name,
-                            kind,
-                            material,
-                            mass,
-                            at,
-                            lines: body.line.into_iter().collect(),
-                        }),
-                    }
-                }
-            }
+            r.take_body(path, body, &given)?;
         }
         if let Some(stopped) = &dump.stopped {
             r.leave_out(
@@ -749,6 +799,39 @@ impl YadeDeck {
         let dump = parse_dump(path, dump_text)?;
         Self::from_dump(path, &dump, options)
     }
+}
+
+/// The trap of a wall whose geometry functor gives it a radius `b.radius` (a multiple of the
+/// ball's), not a flat face's, for a law of `model`.
+fn wall_radius_trap(
+    traps: &mut Vec<String>,
+    model: &str,
+    (kind, w): (WallKind, &WallRead),
+    a: &Side,
+    b: &Side,
+    geometry: &Functor,
+) {
+    let factor = b.radius / a.radius;
+    // A hertzian wall's 1e8 R is a flat face to 1e-8; tc, en or kn, cn take no radius.
+    if factor >= 1e3 || matches!(model, "ViscEl tc, en" | "ViscEl kn, cn") {
+        return;
+    }
+    let hertz = if model.starts_with("Hertz") {
+        format!(
+            ": a Hertz contact {:.1} % longer than on a flat face",
+            100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0
+        )
+    } else {
+        String::new()
+    };
+    traps.push(format!(
+        "wall radius: {} gives {} ({}) the radius {factor} R, so R* = {:.4} R, not a flat face's R{hertz}{}",
+        geometry.class,
+        w.name,
+        match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box" },
+        factor / (1.0 + factor),
+        if kind == WallKind::Box { "" } else { " (hertzian=True gives it 1e8 R)" }
+    ));
 }
 
 /// `contactParameterCalculation` of ViscoelasticPM.cpp: two values in series, a zero one left out.
@@ -918,144 +1001,141 @@ impl YadeDeck {
                 )
             })
             .collect();
-        let wall_radius_trap = |traps: &mut Vec<String>, model: &str| {
-            let Some((kind, w)) = wall else { return };
-            let factor = b.radius / a.radius;
-            // A hertzian wall's 1e8 R is a flat face to 1e-8; tc, en or kn, cn take no radius.
-            if factor >= 1e3 || matches!(model, "ViscEl tc, en" | "ViscEl kn, cn") {
-                return;
-            }
-            let hertz = if model.starts_with("Hertz") {
-                format!(
-                    ": a Hertz contact {:.1} % longer than on a flat face",
-                    100.0 * ((1.0 + factor) / factor).powf(0.2) - 100.0
-                )
-            } else {
-                String::new()
-            };
-            traps.push(format!(
-                "wall radius: {} gives {} ({}) the radius {factor} R, so R* = {:.4} R, not a flat face's R{hertz}{}",
-                geometry.class,
-                w.name,
-                match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box" },
-                factor / (1.0 + factor),
-                if kind == WallKind::Box { "" } else { " (hertzian=True gives it 1e8 R)" }
-            ));
-        };
         let mut out = match ip2.class.as_str() {
             "Ip2_FrictMat_FrictMat_MindlinPhys" => {
-                if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
-                    return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
-                }
-                if law2.flag("nothing") {
-                    return Err(DeckError::unsupported(
-                        &law2.at,
-                        "nothing=True: the law computes no force".into(),
-                        "nothing=False",
-                    ));
-                }
-                let e_star = mixed_modulus(a.material, b.material);
-                let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
-                let en = ip2.pair_value("en", a.id, b.id)?;
-                let betan = ip2.pair_value("betan", a.id, b.id)?;
-                let beta = match (en, betan) {
-                    (Some(_), Some(_)) => {
-                        return Err(DeckError::unsupported(
-                            &ip2.at,
-                            "both en and betan".into(),
-                            "one of en, betan (YADE refuses both)",
-                        ));
-                    }
-                    (Some(e), None) => {
-                        if !(e > 0.0 && e <= 1.0) {
-                            return Err(DeckError::unsupported(
-                                &ip2.at,
-                                format!("en = {e}"),
-                                "0 < en <= 1",
-                            ));
-                        }
-                        thornton_damping_ratio(e)
-                    }
-                    (None, Some(b)) => b,
-                    (None, None) => 0.0,
-                };
-                let law = DashpotLaw {
-                    mass,
-                    stiffness: kno,
-                    exponent: 1.5,
-                    damping: 2.0 * beta * (1.5 * mass * kno).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                };
-                let mut traps = Vec::new();
-                if let Some(e) = en {
-                    let cor = accurate_metrics(&law, 1.0, 1e-12).map_or(f64::NAN, |m| m.cor);
-                    let fix = match hertz_input_restitution(e) {
-                        Some(x) => format!("the en that realises {e} is {x:.6}"),
-                        None => format!(
-                            "no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"
-                        ),
-                    };
-                    traps.push(format!("en → β_n through Thornton et al.'s fit (2013, for the clamped law): en = {e} gives β_n = {beta:.6}, whose law realises {cor:.6} ({:+.2e}); {fix}", cor - e));
-                }
-                if betan.is_some() {
-                    traps.push(format!("betan given: c = 2 β_n sqrt(1.5 M k) with β_n = {beta} (the ratio to the tangent stiffness's critical damping, not to a linear spring's)"));
-                }
-                traps.push("the normal force is cut at zero: it never attracts (YADE's clamped damping), so the COR is higher than the same dashpot's without the cut".into());
-                traps.push(match wall {
-                    Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
-                    None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
-                });
-                PairLaw {
-                    law,
-                    entered: en,
-                    model: format!(
-                        "Hertz–Mindlin{}",
-                        if en.is_some() {
-                            " en"
-                        } else if betan.is_some() {
-                            " betan"
-                        } else {
-                            ""
-                        }
-                    ),
-                    traps,
-                }
+                Self::mindlin_law(ip2, law2, a, b, wall, mass, r_star)?
             }
-            "Ip2_FrictMat_FrictMat_FrictPhys" => {
-                let (ea, eb) = (a.material.value("young"), b.material.value("young"));
-                let (ra, rb) = (a.radius, b.radius);
-                let kn = match ip2.pair_value("kn", a.id, b.id)? {
-                    Some(k) => k,
-                    None => 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb),
-                };
-                let law = DashpotLaw {
-                    mass,
-                    stiffness: kn,
-                    exponent: 1.0,
-                    damping: 0.0,
-                    damping_exponent: 0.0,
-                    clamp_attractive: true,
-                };
-                let traps = vec![
-                    format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
-                    "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
-                ];
-                PairLaw {
-                    law,
-                    entered: None,
-                    model: "FrictPhys linear".into(),
-                    traps,
-                }
-            }
+            "Ip2_FrictMat_FrictMat_FrictPhys" => Self::frict_law(ip2, a, b, mass)?,
             _ => Self::viscel_law(ip2, a, b, wall, mass)?,
         };
         if !ignored.is_empty() {
             out.traps.push(format!("{} of {} (tangential, rolling and friction settings) act on no head-on impact: kept, and they change nothing here", ignored.join(", "), ip2.class));
         }
         let model = out.model.clone();
-        wall_radius_trap(&mut out.traps, &model);
+        if let Some(wall) = wall {
+            wall_radius_trap(&mut out.traps, &model, wall, a, b, geometry);
+        }
         Ok(out)
+    }
+
+    /// Hertz–Mindlin (`Ip2_FrictMat_FrictMat_MindlinPhys`): `(4/3) E* sqrt(R*)`, damped by
+    /// `betan` or by `en` through Thornton's fit, clamped; what YADE refuses or the check does
+    /// not model (adhesion, `nothing`) is refused.
+    fn mindlin_law(
+        ip2: &Functor,
+        law2: &Functor,
+        a: &Side,
+        b: &Side,
+        wall: Option<(WallKind, &WallRead)>,
+        mass: f64,
+        r_star: f64,
+    ) -> Result<PairLaw, DeckError> {
+        if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
+            return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
+        }
+        if law2.flag("nothing") {
+            return Err(DeckError::unsupported(
+                &law2.at,
+                "nothing=True: the law computes no force".into(),
+                "nothing=False",
+            ));
+        }
+        let e_star = mixed_modulus(a.material, b.material);
+        let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
+        let en = ip2.pair_value("en", a.id, b.id)?;
+        let betan = ip2.pair_value("betan", a.id, b.id)?;
+        let beta = match (en, betan) {
+            (Some(_), Some(_)) => {
+                return Err(DeckError::unsupported(
+                    &ip2.at,
+                    "both en and betan".into(),
+                    "one of en, betan (YADE refuses both)",
+                ));
+            }
+            (Some(e), None) => {
+                if !(e > 0.0 && e <= 1.0) {
+                    return Err(DeckError::unsupported(
+                        &ip2.at,
+                        format!("en = {e}"),
+                        "0 < en <= 1",
+                    ));
+                }
+                thornton_damping_ratio(e)
+            }
+            (None, Some(b)) => b,
+            (None, None) => 0.0,
+        };
+        let law = DashpotLaw {
+            mass,
+            stiffness: kno,
+            exponent: 1.5,
+            damping: 2.0 * beta * (1.5 * mass * kno).sqrt(),
+            damping_exponent: 0.25,
+            clamp_attractive: true,
+        };
+        let mut traps = Vec::new();
+        if let Some(e) = en {
+            let cor = accurate_metrics(&law, 1.0, 1e-12).map_or(f64::NAN, |m| m.cor);
+            let fix = match hertz_input_restitution(e) {
+                Some(x) => format!("the en that realises {e} is {x:.6}"),
+                None => format!(
+                    "no en below 1 realises {e} (the fit's damping does not vanish as en → 1)"
+                ),
+            };
+            traps.push(format!("en → β_n through Thornton et al.'s fit (2013, for the clamped law): en = {e} gives β_n = {beta:.6}, whose law realises {cor:.6} ({:+.2e}); {fix}", cor - e));
+        }
+        if betan.is_some() {
+            traps.push(format!("betan given: c = 2 β_n sqrt(1.5 M k) with β_n = {beta} (the ratio to the tangent stiffness's critical damping, not to a linear spring's)"));
+        }
+        traps.push("the normal force is cut at zero: it never attracts (YADE's clamped damping), so the COR is higher than the same dashpot's without the cut".into());
+        traps.push(match wall {
+            Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
+            None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
+        });
+        Ok(PairLaw {
+            law,
+            entered: en,
+            model: format!(
+                "Hertz–Mindlin{}",
+                if en.is_some() {
+                    " en"
+                } else if betan.is_some() {
+                    " betan"
+                } else {
+                    ""
+                }
+            ),
+            traps,
+        })
+    }
+
+    /// `Ip2_FrictMat_FrictMat_FrictPhys`: a linear spring from the materials' moduli and the
+    /// radii, undamped, clamped.
+    fn frict_law(ip2: &Functor, a: &Side, b: &Side, mass: f64) -> Result<PairLaw, DeckError> {
+        let (ea, eb) = (a.material.value("young"), b.material.value("young"));
+        let (ra, rb) = (a.radius, b.radius);
+        let kn = match ip2.pair_value("kn", a.id, b.id)? {
+            Some(k) => k,
+            None => 2.0 * ea * ra * eb * rb / (ea * ra + eb * rb),
+        };
+        let law = DashpotLaw {
+            mass,
+            stiffness: kn,
+            exponent: 1.0,
+            damping: 0.0,
+            damping_exponent: 0.0,
+            clamp_attractive: true,
+        };
+        let traps = vec![
+            format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
+            "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
+        ];
+        Ok(PairLaw {
+            law,
+            entered: None,
+            model: "FrictPhys linear".into(),
+            traps,
+        })
     }
 
     // Two materials' values are compared exactly: YADE averages what differs, and mRtype is a
@@ -1210,36 +1290,11 @@ impl YadeDeck {
 
 impl YadeDeck {
     fn from_dump(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let lacking = |what: &str, supported: &str| DeckError::Lacking {
-            file: path.to_path_buf(),
-            what: what.into(),
-            supported: supported.into(),
-        };
-        if let Some((name, _)) = options.variables.first() {
-            return Err(lacking(
-                &format!("--var {name}: a YADE script's names are its own, set in the script"),
-                "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
-            ));
-        }
-        if dump.engines_line.is_none() {
-            let before = match &dump.stopped {
-                Some(stop) => format!(
-                    " before the reading stopped at its first step ({}, line {})",
-                    stop.call,
-                    stop.line.map_or("?".into(), |l| l.to_string())
-                ),
-                None => String::new(),
-            };
-            return Err(lacking(
-                &format!(
-                    "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
-                ),
-                "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
-            ));
-        }
+        refuse_before_reading(path, dump, options)?;
         let r = Self::gather(path, dump, options)?;
         let loop_at = r.loop_at.clone().ok_or_else(|| {
             lacking(
+                path,
                 "no InteractionLoop in O.engines after the set-up",
                 "O.engines with InteractionLoop([Ig2…], [Ip2…], [Law2…])",
             )
@@ -1250,54 +1305,44 @@ impl YadeDeck {
                 .cmp(&b.type_id)
                 .then(b.radius.total_cmp(&a.radius))
         });
-        let dt_line = dump.dt_line.ok_or_else(|| {
-            lacking(
-                "the script sets no O.dt (YADE would step at its default)",
-                "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
-            )
-        })?;
-        let dt_at = SourceLine {
-            file: path.to_path_buf(),
-            line: dt_line,
-        };
-        let timestep = dump.dt.unwrap_or(f64::NAN);
-        if !(timestep > 0.0 && timestep.is_finite()) {
-            return Err(DeckError::unsupported(
-                &dt_at,
-                format!("O.dt = {timestep} after the set-up"),
-                "a positive time step, s",
-            ));
-        }
-        let timestep_from = match line_text(path, dt_line) {
-            Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
-            None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
-        };
+        let (timestep, timestep_from) = dump_timestep(path, dump)?;
         // Contacts: each pair of bodies, then each body against each wall.
-        let geometry_for = |names: [&str; 2], at: &DeckSource| {
-            r.geometry.iter().find(|f| names.contains(&f.class.as_str())).ok_or_else(|| {
-                DeckError::unsupported(at.clone(), format!("no {} in the InteractionLoop ({loop_at}): YADE would make no contact here", names[0]), FUNCTORS)
-            })
-        };
-        let edits = |m: &Material| -> Vec<String> {
-            m.edited
-                .iter()
-                .map(|(key, then, now)| {
-                    format!(
-                        "{key} of {} ({}) was {then} when appended and is {now} after the set-up: the check takes {now}, as YADE does",
-                        m.label().unwrap_or_else(|| m.class.name().to_string()),
-                        m.at
-                    )
-                })
-                .collect()
-        };
+        let mut contacts = Self::body_contacts(&r, &bodies, &loop_at)?;
+        let (walls, wall_lines) = Self::wall_contacts(&r, &bodies, &loop_at, &mut contacts)?;
+        Ok(UserDeck {
+            path: path.to_path_buf(),
+            timestep,
+            timestep_from,
+            bodies,
+            walls,
+            contacts,
+            representative_velocity: None,
+            left_out: left_out_lines(&r, path),
+            transplant: Transplant {
+                before_box: Vec::new(),
+                common: common_lines(&r)?,
+                walls: wall_lines,
+                types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
+            },
+        })
+    }
+
+    /// Each pair of bodies with the law YADE's functors give their two materials.
+    fn body_contacts(
+        r: &Reading,
+        bodies: &[DeckBody],
+        loop_at: &DeckSource,
+    ) -> Result<Vec<DeckContact>, DeckError> {
         let mut contacts = Vec::new();
         for (i, body) in bodies.iter().enumerate() {
             for (j, other) in bodies.iter().enumerate().skip(i) {
                 let m_a = &r.materials[body.type_id as usize];
                 let m_b = &r.materials[other.type_id as usize];
                 let geometry = geometry_for(
+                    r,
                     ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
-                    &loop_at,
+                    loop_at,
+                    loop_at,
                 )?;
                 let a = Side {
                     id: body.type_id,
@@ -1312,16 +1357,16 @@ impl YadeDeck {
                     mass: other.mass,
                 };
                 let mut pair = Self::pair_law(
-                    &r,
+                    r,
                     &a,
                     &b,
                     None,
                     reduced_mass(body.mass, other.mass),
                     geometry,
                 )?;
-                pair.traps.extend(edits(m_a));
+                pair.traps.extend(edit_traps(m_a));
                 if body.type_id != other.type_id {
-                    pair.traps.extend(edits(m_b));
+                    pair.traps.extend(edit_traps(m_b));
                 }
                 let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
                 lines.dedup();
@@ -1337,11 +1382,22 @@ impl YadeDeck {
                 });
             }
         }
+        Ok(contacts)
+    }
+
+    /// The script's walls, with each body's contact against each pushed onto `contacts`; the
+    /// walls and the Python each impact carries to place its wall.
+    fn wall_contacts(
+        r: &Reading,
+        bodies: &[DeckBody],
+        loop_at: &DeckSource,
+        contacts: &mut Vec<DeckContact>,
+    ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
             let m_w = &r.materials[wall.material as usize];
-            let geometry = geometry_for(wall.kind.geometry(), &wall.at)?;
+            let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
             let factor = match wall.kind {
                 WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
                     HERTZIAN_WALL_RADIUS_FACTOR
@@ -1360,37 +1416,7 @@ impl YadeDeck {
                 poisson_ratio: poisson,
                 from: wall.at.clone(),
             });
-            let (placement, mass) = match wall.kind {
-                WallKind::Plane => (
-                    format!(
-                        "utils.wall(0.0, axis=2, sense=0, material={})",
-                        wall.material
-                    ),
-                    None,
-                ),
-                WallKind::Facet => (
-                    format!(
-                        "utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})",
-                        wall.material
-                    ),
-                    None,
-                ),
-                WallKind::Box => (
-                    format!(
-                        "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
-                        wall.material
-                    ),
-                    Some(wall.mass),
-                ),
-            };
-            let mut snippet = format!("b2 = O.bodies.append({placement})");
-            if let Some(m) = mass {
-                snippet.push_str(&format!(
-                    "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
-                    exact_number(m)
-                ));
-            }
-            wall_lines.push(snippet);
+            wall_lines.push(wall_placement(wall));
             for (i, body) in bodies.iter().enumerate() {
                 let m_a = &r.materials[body.type_id as usize];
                 let a = Side {
@@ -1405,8 +1431,7 @@ impl YadeDeck {
                     radius: factor * body.radius,
                     mass: wall.mass,
                 };
-                let pair =
-                    Self::pair_law(&r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
+                let pair = Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
                 let mut traps = pair.traps;
                 if wall.lines.len() > 1 {
                     traps.push(format!(
@@ -1419,9 +1444,9 @@ impl YadeDeck {
                             .join(", ")
                     ));
                 }
-                traps.extend(edits(m_a));
+                traps.extend(edit_traps(m_a));
                 if wall.material != body.type_id {
-                    traps.extend(edits(m_w));
+                    traps.extend(edit_traps(m_w));
                 }
                 contacts.push(DeckContact {
                     body: i,
@@ -1435,45 +1460,178 @@ impl YadeDeck {
                 });
             }
         }
-        let left_out = r
-            .left_out
-            .iter()
-            .map(|(what, lines)| {
-                if lines.is_empty() {
-                    return format!("{what}: {}", path.display());
-                }
-                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-                format!("{what}: {}:{}", path.display(), lines.join(","))
-            })
-            .collect();
-        let mut common = Vec::new();
-        for m in &r.materials {
-            common.push(format!("O.materials.append({})", m.python()?));
-        }
-        for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
-            let items = list
-                .iter()
-                .map(Functor::python)
-                .collect::<Result<Vec<_>, _>>()?;
-            common.push(format!("{name} = [{}]", items.join(", ")));
-        }
-        Ok(UserDeck {
-            path: path.to_path_buf(),
-            timestep,
-            timestep_from,
-            bodies,
-            walls,
-            contacts,
-            representative_velocity: None,
-            left_out,
-            transplant: Transplant {
-                before_box: Vec::new(),
-                common,
-                walls: wall_lines,
-                types: u32::try_from(r.materials.len()).unwrap_or(u32::MAX),
-            },
-        })
+        Ok((walls, wall_lines))
     }
+}
+
+/// The error of a script that lacks `what`, naming what is `supported`.
+fn lacking(path: &Path, what: &str, supported: &str) -> DeckError {
+    DeckError::Lacking {
+        file: path.to_path_buf(),
+        what: what.into(),
+        supported: supported.into(),
+    }
+}
+
+/// Refuse what no reading of the dump can mend: `--var` (a script's names are its own) and a
+/// script that sets no engines before its first step.
+fn refuse_before_reading(path: &Path, dump: &Dump, options: &DeckOptions) -> Result<(), DeckError> {
+    if let Some((name, _)) = options.variables.first() {
+        return Err(lacking(
+            path,
+            &format!("--var {name}: a YADE script's names are its own, set in the script"),
+            "--var for LIGGGHTS and LAMMPS decks; for YADE, edit the script",
+        ));
+    }
+    if dump.engines_line.is_none() {
+        let before = match &dump.stopped {
+            Some(stop) => format!(
+                " before the reading stopped at its first step ({}, line {})",
+                stop.call,
+                stop.line.map_or("?".into(), |l| l.to_string())
+            ),
+            None => String::new(),
+        };
+        return Err(lacking(
+            path,
+            &format!(
+                "the script sets no O.engines{before}: YADE's default engines are no contact law of the script's"
+            ),
+            "O.engines = [..., InteractionLoop([Ig2…], [Ip2…], [Law2…]), NewtonIntegrator(damping=0)] before the first O.run",
+        ));
+    }
+    Ok(())
+}
+
+/// `O.dt` as YADE holds it after the set-up, s, and where the script sets it; refused where
+/// the script sets none or it is not positive.
+fn dump_timestep(path: &Path, dump: &Dump) -> Result<(f64, String), DeckError> {
+    let dt_line = dump.dt_line.ok_or_else(|| {
+        lacking(
+            path,
+            "the script sets no O.dt (YADE would step at its default)",
+            "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        )
+    })?;
+    let dt_at = SourceLine {
+        file: path.to_path_buf(),
+        line: dt_line,
+    };
+    let timestep = dump.dt.unwrap_or(f64::NAN);
+    if !(timestep > 0.0 && timestep.is_finite()) {
+        return Err(DeckError::unsupported(
+            &dt_at,
+            format!("O.dt = {timestep} after the set-up"),
+            "a positive time step, s",
+        ));
+    }
+    let timestep_from = match line_text(path, dt_line) {
+        Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
+        None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
+    };
+    Ok((timestep, timestep_from))
+}
+
+/// The InteractionLoop's geometry functor of one of `names` (the first one named in the error),
+/// for a contact defined `at`.
+fn geometry_for<'r>(
+    r: &'r Reading,
+    names: [&str; 2],
+    at: &DeckSource,
+    loop_at: &DeckSource,
+) -> Result<&'r Functor, DeckError> {
+    r.geometry
+        .iter()
+        .find(|f| names.contains(&f.class.as_str()))
+        .ok_or_else(|| {
+            DeckError::unsupported(
+                at.clone(),
+                format!(
+                    "no {} in the InteractionLoop ({loop_at}): YADE would make no contact here",
+                    names[0]
+                ),
+                FUNCTORS,
+            )
+        })
+}
+
+/// A trap line for each attribute of `m` the script changed after appending it.
+fn edit_traps(m: &Material) -> Vec<String> {
+    m.edited
+        .iter()
+        .map(|(key, then, now)| {
+            format!(
+                "{key} of {} ({}) was {then} when appended and is {now} after the set-up: the check takes {now}, as YADE does",
+                m.label().unwrap_or_else(|| m.class.name().to_string()),
+                m.at
+            )
+        })
+        .collect()
+}
+
+/// The Python that places `wall` in an impact's script (a box with its mass as YADE holds it).
+fn wall_placement(wall: &WallRead) -> String {
+    let (placement, mass) = match wall.kind {
+        WallKind::Plane => (
+            format!(
+                "utils.wall(0.0, axis=2, sense=0, material={})",
+                wall.material
+            ),
+            None,
+        ),
+        WallKind::Facet => (
+            format!(
+                "utils.facet([(-100.0 * R1, -100.0 * R1, 0.0), (100.0 * R1, -100.0 * R1, 0.0), (0.0, 100.0 * R1, 0.0)], material={})",
+                wall.material
+            ),
+            None,
+        ),
+        WallKind::Box => (
+            format!(
+                "utils.box((0.0, 0.0, -100.0 * R1), (100.0 * R1, 100.0 * R1, 100.0 * R1), fixed=True, material={})",
+                wall.material
+            ),
+            Some(wall.mass),
+        ),
+    };
+    let mut snippet = format!("b2 = O.bodies.append({placement})");
+    if let Some(m) = mass {
+        snippet.push_str(&format!(
+            "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
+            exact_number(m)
+        ));
+    }
+    snippet
+}
+
+/// What the script holds that the impacts leave out, one line per kind with its lines.
+fn left_out_lines(r: &Reading, path: &Path) -> Vec<String> {
+    r.left_out
+        .iter()
+        .map(|(what, lines)| {
+            if lines.is_empty() {
+                return format!("{what}: {}", path.display());
+            }
+            let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+            format!("{what}: {}:{}", path.display(), lines.join(","))
+        })
+        .collect()
+}
+
+/// The script's materials and functors as the Python each impact's script starts from.
+fn common_lines(r: &Reading) -> Result<Vec<String>, DeckError> {
+    let mut common = Vec::new();
+    for m in &r.materials {
+        common.push(format!("O.materials.append({})", m.python()?));
+    }
+    for (name, list) in [("IG2", &r.geometry), ("IP2", &r.physics), ("LAW2", &r.laws)] {
+        let items = list
+            .iter()
+            .map(Functor::python)
+            .collect::<Result<Vec<_>, _>>()?;
+        common.push(format!("{name} = [{}]", items.join(", ")));
+    }
+    Ok(common)
 }
 
 impl DeckReader for YadeDeck {
@@ -1505,37 +1663,11 @@ impl DeckReader for YadeDeck {
     ) -> Result<DeckImpactInput, CodeError> {
         let c = &deck.contacts[contact];
         let body = &deck.bodies[c.body];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: b.youngs_modulus.unwrap_or(f64::NAN),
-            poisson_ratio: b.poisson_ratio,
+        let other = match c.partner {
+            Partner::Body(o) => Some(&deck.bodies[o]),
+            Partner::Wall(_) => None,
         };
-        let (scene, other) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(&deck.bodies[o])),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(body),
-            other_sphere: other.map(sphere),
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: None,
-            timestep: deck.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions: None,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
+        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
         let (v1, v2) = setup.centre_of_mass_velocities();
         // The script starts the bodies one ulp apart (YADE's laws act at zero overlap).
         let next_up = |x: f64| f64::from_bits(x.to_bits() + 1);
