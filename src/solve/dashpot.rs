@@ -46,7 +46,7 @@ impl StepForce for CodeLaw {
 /// force is `M v / (2Δt)`, which halves a lone contact's approach rate per step, and a contact
 /// at rest carries its load on the elastic force `C yⁿ`. An impact meets the band only within
 /// about a step of its turning point.
-pub fn paper_force_in_step(law: &PaperLaw, y: f64, v: f64, timestep: f64) -> f64 {
+pub(crate) fn paper_force_in_step(law: &PaperLaw, y: f64, v: f64, timestep: f64) -> f64 {
     if y <= 0.0 {
         return 0.0;
     }
@@ -187,7 +187,7 @@ pub struct CodeFrame {
 /// `v₂ − v₁` from the half-step velocities, the force, and the second half kick. Rows as
 /// [`step_trajectory`]'s: row 0 the start, then one per step with the full-step approach rate
 /// and the force computed in that step.
-pub fn step_in_frame<L: StepForce + ?Sized>(
+pub(crate) fn step_in_frame<L: StepForce + ?Sized>(
     law: &L,
     frame: &CodeFrame,
     timestep: f64,
@@ -258,7 +258,7 @@ pub fn step_in_frame<L: StepForce + ?Sized>(
 /// A code whose bodies approach along +z (YADE's sphere below its plane) is the same frame
 /// mirrored: every coordinate and velocity negated, which is exact, so the differences of
 /// positions and velocities, the forces and the roundings are the code's own.
-pub fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
+pub(crate) fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
     law: &L,
     frame: &CodeFrame,
     timestep: f64,

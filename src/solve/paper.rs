@@ -179,7 +179,7 @@ pub fn solve(
 
 /// Refuse what [`solve`] would refuse before integrating: a step in seconds beyond the
 /// method's stability limit for this impact.
-pub fn check_step(
+pub(crate) fn check_step(
     law: &PaperLaw,
     impact_velocity: f64,
     settings: &Settings,
@@ -681,7 +681,7 @@ fn phased_with(
 }
 
 /// Impacts of rk4-event stepped together in interleaved lanes by [`solve_many`].
-pub const LANES: usize = 4;
+pub(crate) const LANES: usize = 4;
 
 /// What a lane holds besides the state it steps: which impact, its factors and step, its
 /// counters, and the turning point once found.
