@@ -37,9 +37,9 @@ use crate::model::scene::SceneKind;
 use crate::solve::dashpot::CodeFrame;
 
 /// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
-pub const INSTALL_DIR: &str = "liggghts-paper";
+pub(crate) const INSTALL_DIR: &str = "liggghts-paper";
 /// The executable inside [`INSTALL_DIR`].
-pub const BINARY_PATH: &str = "bin/liggghts-paper";
+pub(crate) const BINARY_PATH: &str = "bin/liggghts-paper";
 
 /// LIGGGHTS with the paper's law.
 pub struct LiggghtsPaper;
@@ -170,7 +170,7 @@ impl CodeDriver for LiggghtsPaper {
 
 /// The paper build's batches: many impacts in one process, its single inputs in sequence (as
 /// the stock build's), each with its own η.
-pub struct LiggghtsPaperBatch;
+pub(crate) struct LiggghtsPaperBatch;
 
 impl BatchRunner for LiggghtsPaperBatch {
     fn max_batch(&self) -> usize {
@@ -192,7 +192,7 @@ impl BatchRunner for LiggghtsPaperBatch {
 }
 
 /// The paper build's calibration card: the lines that select the paper's law.
-pub struct LiggghtsPaperCard;
+pub(crate) struct LiggghtsPaperCard;
 
 impl CalibrationCard for LiggghtsPaperCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {
