@@ -18,11 +18,11 @@ use crate::solve::SolveError;
 use crate::solve::dashpot::{CodeStepping, own_law_metrics};
 
 /// Start phases sampled when a card predicts a stepped COR.
-pub const CARD_PHASES: usize = 16;
+pub(crate) const CARD_PHASES: usize = 16;
 /// Fewest steps per elastic contact time a card recommends.
-pub const FEWEST_STEPS_PER_CONTACT: u32 = 10;
+pub(crate) const FEWEST_STEPS_PER_CONTACT: u32 = 10;
 /// Most steps per elastic contact time a card searches.
-pub const MOST_STEPS_PER_CONTACT: u32 = 163_840;
+pub(crate) const MOST_STEPS_PER_CONTACT: u32 = 163_840;
 
 /// How to calibrate.
 #[derive(Clone, Debug, PartialEq)]

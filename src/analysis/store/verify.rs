@@ -36,11 +36,11 @@ pub const TARGET_TOLERANCE: f64 = 1e-9;
 /// Bound on the relative difference between a stored record's exact figures (its own law's,
 /// the paper law's) and the same figures computed now: both are integrations at tolerances
 /// near 1e-13, so anything above this is a changed record or a changed law.
-pub const RECOMPUTE_TOLERANCE: f64 = 1e-9;
+pub(crate) const RECOMPUTE_TOLERANCE: f64 = 1e-9;
 /// The η at which the shipped store holds a record of every code on every canonical case.
-pub const STORED_LOSS_COEFFICIENTS: [f64; 3] = [0.0, 0.35, 0.7];
+pub(crate) const STORED_LOSS_COEFFICIENTS: [f64; 3] = [0.0, 0.35, 0.7];
 /// The canonical cases the shipped store covers.
-pub const CANONICAL_CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
+pub(crate) const CANONICAL_CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
 
 /// What a row of `verify` checks, and so what its numbers are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -65,7 +65,7 @@ pub enum Check {
 
 impl Check {
     /// How the check reads in the table.
-    pub fn label(self) -> &'static str {
+    pub(crate) fn label(self) -> &'static str {
         match self {
             Check::ClosedForm => "vs closed form (rel)",
             Check::OwnLawStepped => "vs own law stepped now (rel)",
@@ -112,7 +112,7 @@ pub struct VerifyReport {
 
 impl VerifyReport {
     /// The checks that disagree.
-    pub fn failed(&self) -> usize {
+    pub(crate) fn failed(&self) -> usize {
         self.rows.iter().filter(|r| !r.pass).count()
     }
 }
@@ -643,7 +643,7 @@ fn missing_runs(
 
 /// Most steps a stored run may claim before it is re-stepped (10⁷: a thousand times the
 /// finest resolution the harness stores).
-pub const MAX_STORED_STEPS: u64 = 10_000_000;
+pub(crate) const MAX_STORED_STEPS: u64 = 10_000_000;
 
 /// JSON files in `folder` that are not records: directly in `folder`, or in a folder that is
 /// not a known code's.
