@@ -112,7 +112,7 @@ pub struct VerifyReport {
 
 impl VerifyReport {
     /// The checks that disagree.
-    pub(crate) fn failed(&self) -> usize {
+    pub fn failed(&self) -> usize {
         self.rows.iter().filter(|r| !r.pass).count()
     }
 }
