@@ -153,7 +153,7 @@ pub fn conventions_markdown(report: &ProbeReport) -> Result<String, OutputError>
     Ok(format!("{TABLE_BEGIN}\n{}\n{TABLE_END}", table.trim_end()))
 }
 
-/// The generated part of the file at `path`, between [`TABLE_BEGIN`] and [`TABLE_END`]
+/// The generated part of the file at `path`, between `TABLE_BEGIN` and `TABLE_END`
 /// (both lines included), if it has one.
 pub fn generated_part(path: &Path) -> Option<String> {
     let text = std::fs::read_to_string(path).ok()?;

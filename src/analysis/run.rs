@@ -115,7 +115,7 @@ pub(crate) const HERTZ_MAX_STRAIN: f64 = 0.01;
 pub(crate) const ROD_MIN_SLENDERNESS: f64 = 5.0;
 
 /// The ways a run leaves its valid range: a peak deformation beyond Hertz's small-strain range
-/// ([`HERTZ_MAX_STRAIN`]), a rod too short for the bar spring ([`ROD_MIN_SLENDERNESS`]), and a
+/// (`HERTZ_MAX_STRAIN`), a rod too short for the bar spring (`ROD_MIN_SLENDERNESS`), and a
 /// fixed-step result outside what the law allows (COR outside [0, 1], energy created), which is
 /// the method's step error at a coarse step, not physics.
 pub fn warnings(case: &Case, method: Method, figures: &ImpactFigures) -> Vec<String> {

@@ -115,7 +115,7 @@ pub enum CodeError {
         code: String,
         /// Exit status as text.
         status: String,
-        /// The code's own error line, where its log has one ([`error_line`]).
+        /// The code's own error line, where its log has one (`error_line`).
         said: Option<String>,
         /// The kept log file.
         log: PathBuf,
@@ -256,7 +256,7 @@ pub(crate) fn find_codes_dir() -> CodesDir {
     }
 }
 
-/// The codes' folder ([`find_codes_dir`]).
+/// The codes' folder (`find_codes_dir`).
 pub fn codes_dir() -> PathBuf {
     find_codes_dir().path
 }

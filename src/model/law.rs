@@ -185,7 +185,7 @@ impl ContactForce for DashpotLaw {
 pub enum CodeLaw {
     /// `F = k yⁿ + c yᵐ ẏ`, clamped or not.
     Dashpot(DashpotLaw),
-    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as [`PaperLaw::force_as_coded`].
+    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as `PaperLaw::force_as_coded`.
     Paper(PaperLaw),
 }
 

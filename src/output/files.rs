@@ -223,7 +223,7 @@ pub enum ReplaceDirError {
 /// Write the folder `path` whole: `fill` writes into a fresh folder beside it, which then
 /// takes its place (an earlier folder there is moved aside and removed), so that no file of
 /// an earlier output survives and an interrupted write leaves the earlier folder as it was.
-/// A report's `path` is checked by [`check_report_dir`] first. `fill`'s own error type is
+/// A report's `path` is checked by `check_report_dir` first. `fill`'s own error type is
 /// kept, and a failure of the folder's handling becomes one of it.
 pub fn replace_dir<E: From<ReplaceDirError>>(
     path: &Path,

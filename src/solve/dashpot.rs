@@ -13,7 +13,7 @@ use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics};
 
 /// A contact force as a DEM code evaluates it within one step of its run: what the steppers
 /// below call. A law whose force depends on the step (the paper's law as LIGGGHTS `model
-/// paper` codes it, [`paper_force_in_step`]) says how; any other is its [`ContactForce`].
+/// paper` codes it, `paper_force_in_step`) says how; any other is its [`ContactForce`].
 pub trait StepForce: ContactForce {
     /// Force, N (positive repulsive), at approach `y` (m) and approach rate `v` (m/s), in a
     /// step of `timestep` (s).
@@ -85,7 +85,7 @@ pub enum StepScheme {
 ///
 /// With velocity Verlet the force sees the half-step velocity, so a law whose force depends on
 /// the sign of the velocity (the paper's) switches branch where the half-step velocity does,
-/// within the band of [`paper_force_in_step`], as LIGGGHTS `model paper` does from the `vn`
+/// within the band of `paper_force_in_step`, as LIGGGHTS `model paper` does from the `vn`
 /// it is handed.
 pub fn step_trajectory<L: StepForce + ?Sized>(
     law: &L,
@@ -299,8 +299,8 @@ pub(crate) fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
 pub struct CodeStepping {
     /// The scheme.
     pub scheme: StepScheme,
-    /// The run's start in the code's own coordinates (stepped by [`step_in_frame`] for
-    /// velocity Verlet, [`step_in_leap_frog_frame`] for leap-frog); `None`: from touch, in the
+    /// The run's start in the code's own coordinates (stepped by `step_in_frame` for
+    /// velocity Verlet, `step_in_leap_frog_frame` for leap-frog); `None`: from touch, in the
     /// coordinates of the relative motion.
     pub frame: Option<CodeFrame>,
 }
@@ -336,7 +336,7 @@ impl CodeStepping {
 }
 
 /// The largest COR error, absolute, that velocity Verlet (with the force of
-/// [`paper_force_in_step`] from the half-step velocity, as LIGGGHTS `model paper` takes it)
+/// `paper_force_in_step` from the half-step velocity, as LIGGGHTS `model paper` takes it)
 /// makes on the paper's `law` at step `timestep` (s) and speed `impact_velocity` (m/s): the
 /// bound a run's realised COR keeps to `sqrt((1 − η)/(1 + η))`, whatever its start phase.
 ///

@@ -189,7 +189,7 @@ pub(crate) fn check_step(
 
 /// Impacts solved together: each item `(law, impact_velocity)` with the same `settings`, each
 /// giving what [`solve`] gives it, bit for bit. rk4-event on a unilateral contact without a
-/// trajectory steps [`LANES`] impacts at once, interleaved: one RK4 chain is a chain of
+/// trajectory steps `LANES` impacts at once, interleaved: one RK4 chain is a chain of
 /// dependent operations that leaves most of the processor idle, and independent chains fill
 /// it. Every other method runs them one after the other. An impact's `wall_time` is the
 /// batch's divided among its impacts.

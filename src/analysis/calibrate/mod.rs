@@ -58,7 +58,7 @@ pub struct Card {
     /// Its range over where the first contact falls within a step.
     pub realised_band: Range,
     /// The time step of the fewest steps per elastic contact time (from
-    /// [`FEWEST_STEPS_PER_CONTACT`]) whose COR stays within the tolerance of the target over
+    /// `FEWEST_STEPS_PER_CONTACT`) whose COR stays within the tolerance of the target over
     /// every start phase, s: one step per contact fewer leaves it (found by doubling, then
     /// bisection).
     pub timestep_for_tolerance: Option<f64>,

@@ -113,7 +113,7 @@ pub struct SourceRow {
 }
 
 /// The paper's law's exact figures in the form a trajectory's are read
-/// ([`ImpactFigures::metrics`]).
+/// (`ImpactFigures::metrics`).
 pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
     p.metrics()
 }

@@ -463,7 +463,7 @@ fn pair_label(deck: &UserDeck, contact: usize) -> String {
 }
 
 /// The impact speeds: the given ones, else half, once and twice a representative speed (the
-/// deck's own, else [`DEFAULT_VELOCITY`]), with where they come from.
+/// deck's own, else `DEFAULT_VELOCITY`), with where they come from.
 pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
     if !given.is_empty() {
         return (given.to_vec(), GIVEN.into());

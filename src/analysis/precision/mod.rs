@@ -524,8 +524,8 @@ pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
 
 /// The observed orders of one source's points: the slope of log(error) against log(step),
 /// the step being `1/value` for steps per period or contact, over the points in the asymptotic
-/// range (error above [`ROUNDING_FLOOR`]; for a method, at least
-/// [`ASYMPTOTIC_STEPS_PER_PERIOD`] steps per period). For dopri5 the slope against `rtol`.
+/// range (error above `ROUNDING_FLOOR`; for a method, at least
+/// `ASYMPTOTIC_STEPS_PER_PERIOD` steps per period). For dopri5 the slope against `rtol`.
 pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
     let usable = |p: &&WorkPrecisionPoint| {
         p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD

@@ -463,7 +463,7 @@ pub struct LimitCheck {
     /// `paper::solve` ran: the largest speed at a zero crossing over the run, over `v0`.
     pub solver_max_crossing_speed: Option<f64>,
     /// The method's own step map on `y'' = -ω² y`: the largest `|(ωy, v)|` over the last tenth
-    /// of [`LIMIT_STEPS`] steps over that over the first tenth.
+    /// of `LIMIT_STEPS` steps over that over the first tenth.
     pub growth: f64,
     /// Whether the growth is bounded (at most 1.5).
     pub bounded: bool,
@@ -476,7 +476,7 @@ pub(crate) const LIMIT_STEPS: usize = 1000;
 pub(crate) const LIMIT_MARGIN: f64 = 0.01;
 
 /// Growth of the largest `|(y, v)|` of `method`'s fixed-step map on `y'' = -y` at step `z`
-/// (so `ω Δt = z`), the last tenth of [`LIMIT_STEPS`] over the first tenth. RK4 is the
+/// (so `ω Δt = z`), the last tenth of `LIMIT_STEPS` over the first tenth. RK4 is the
 /// crate's own step; Verlet is the solver's kick–drift–kick.
 pub fn step_map_growth(method: Method, z: f64) -> f64 {
     let rhs = |s: &State| State::new(s[1], -s[0]);

@@ -308,7 +308,7 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
 ///   [`REMAINDER_TOLERANCE`];
 /// - the code's own law against the COR asked of it, to [`TARGET_TOLERANCE`];
 /// - the store as a whole: a record for every code on every canonical case at every η of
-///   [`STORED_LOSS_COEFFICIENTS`] (for the canonical cases present in `cases`), and no other
+///   `STORED_LOSS_COEFFICIENTS` (for the canonical cases present in `cases`), and no other
 ///   file. Records are the `*.json` files directly in `folder/<code>/`; other files there (the
 ///   conventions notes, probe inputs) are not records.
 pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
@@ -328,10 +328,8 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
 /// (`<reference>/benchmarks`) against the benchmark's cases in `cases` (`<cases>/benchmarks`),
 /// as [`verify_stored`] checks the canonical store: each run's provenance, its own law
 /// re-stepped now, its law against its target, and the store as a whole (a run of every code
-/// on every benchmark case at every η the benchmark reads, [`PublishedImpact::loss_coefficients`]).
+/// on every benchmark case at every η the benchmark reads, `PublishedImpact::loss_coefficients`).
 /// A folder not there is a store missing every run.
-///
-/// [`PublishedImpact::loss_coefficients`]: crate::analysis::benchmark::PublishedImpact::loss_coefficients
 pub fn verify_benchmark_store(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     let expected: Vec<(&str, Vec<f64>)> = CHUNG_OOI
         .iter()

@@ -438,7 +438,7 @@ pub(crate) fn number(x: f64) -> String {
     }
 }
 
-/// A cell as written in a row: strings bare, numbers by [`number`].
+/// A cell as written in a row: strings bare, numbers by `number`.
 pub fn cell(value: &Value) -> String {
     match value {
         Value::String(s) => s.clone(),
@@ -691,7 +691,7 @@ impl SweepFile {
         }
     }
 
-    /// The parameter cells of `point`, in [`SweepFile::key_columns`] order, in the normal
+    /// The parameter cells of `point`, in `SweepFile::key_columns` order, in the normal
     /// form rows are matched by.
     pub fn key_cells(&self, point: &GridPoint) -> Vec<String> {
         let row = self.row(point, PointFigures::default(), RowStatus::default());

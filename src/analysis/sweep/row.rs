@@ -363,7 +363,7 @@ pub(crate) fn key_columns(axis_keys: &[String]) -> Vec<String> {
     c
 }
 
-/// The cells of the key columns ([`key_columns`]) as the row writes them: the axis values and
+/// The cells of the key columns (`key_columns`) as the row writes them: the axis values and
 /// the source, through the same serialisation as the CSV record.
 pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
     let mut records = CsvRecords::default();

@@ -78,7 +78,7 @@ pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
 
-/// The python of the installed Kratos, under the codes' folder ([`find_codes_dir`]).
+/// The python of the installed Kratos, under the codes' folder (`find_codes_dir`).
 pub const PYTHON: &str = "kratos/bin/python";
 
 /// The translational integration scheme: symplectic Euler, Kratos' leap-frog. `Forward_Euler`
@@ -106,7 +106,7 @@ pub struct Kratos;
 
 /// The damping ratio `γ` Kratos 10.4.4 derives from `COEFFICIENT_OF_RESTITUTION` for
 /// `DEM_D_Hertz_viscous_Coulomb` (`GammaForHertzThornton`): Thornton's fit, zero above
-/// [`UNDAMPED_ABOVE`], and the fit at [`LOWEST_RESTITUTION`] below that.
+/// `UNDAMPED_ABOVE`, and the fit at `LOWEST_RESTITUTION` below that.
 pub fn hertz_damping_gamma(restitution: f64) -> f64 {
     if restitution > UNDAMPED_ABOVE {
         return 0.0;
@@ -141,7 +141,7 @@ fn linear_restitution_difference(gamma: f64, target: f64) -> f64 {
 /// laws (`DEM_D_Linear_viscous_Coulomb`, `DEM_D_Linear_Custom_Constants`: `RootByBisection`):
 /// the clamped linear dashpot's closed form solved by bisection on [0, 16] until the bracket is
 /// narrower than 1e-4, so `γ` is off by up to 5e-5 and the law's COR misses the entered one by
-/// up to a few 1e-5; zero above [`UNDAMPED_ABOVE`], the bisection at [`LOWEST_RESTITUTION`]
+/// up to a few 1e-5; zero above `UNDAMPED_ABOVE`, the bisection at `LOWEST_RESTITUTION`
 /// below it. The same operations in the same order: the bits Kratos logs.
 // Kratos' exact comparisons: the bisection's `== 0` exit.
 #[allow(clippy::float_cmp)]

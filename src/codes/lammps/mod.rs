@@ -24,7 +24,7 @@
 //! * `limit_damping` is off unless asked for; the driver leaves it off (no clamp).
 //! * A pair of types no `pair_coeff` sets is mixed from the two types' own lines: this build
 //!   mixes the numbers but leaves the pair's model unset (it runs as `hooke` with `damping
-//!   velocity`), the 2025 build mixes the whole model ([`mixing`]; the deck reader follows
+//!   velocity`), the 2025 build mixes the whole model (`mixing`; the deck reader follows
 //!   the build's [`Build::mixing`]).
 
 pub(crate) mod batch;
@@ -95,7 +95,7 @@ pub struct Build {
     /// The conventions of a setup that carries none.
     pub fallback: Conventions,
     /// How the build fills a pair of types no `pair_coeff` sets (read in its source and
-    /// measured in it: [`mixing`]).
+    /// measured in it: `mixing`).
     pub mixing: mixing::PairMixing,
 }
 

@@ -16,7 +16,7 @@
 //! reduced mass from the radii and masses the deck sets), so its model difference is zero by
 //! construction and what it differs by is its integration: velocity Verlet with the branch
 //! chosen by the half-step overlap rate, resolved to one step (the band of
-//! [`crate::solve::dashpot::paper_force_in_step`], which the plugin computes with the same
+//! `crate::solve::dashpot::paper_force_in_step`, which the plugin computes with the same
 //! operations), stepped by the harness in the deck's own coordinates ([`LammpsPaper::frame`]).
 
 use std::ffi::OsString;

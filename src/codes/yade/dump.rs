@@ -1,5 +1,5 @@
 //! A user's YADE script as YADE holds it after its set-up: the script run by YADE's own Python
-//! (the launcher's interpreter, as a batch runs, [`super::batch::launch`]) in a scratch folder,
+//! (the launcher's interpreter, as a batch runs, `super::batch::launch`) in a scratch folder,
 //! under a time limit, in its own process group, with everything that advances the simulation
 //! disarmed (`read.py`), and what YADE then holds dumped as JSON and read here into typed
 //! structs.
