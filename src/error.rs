@@ -41,7 +41,7 @@ pub enum UserError {
 
 impl UserError {
     /// An invalid option value.
-    pub fn argument(option: &str, value: impl ToString, allowed: impl Into<String>) -> Self {
+    pub(crate) fn argument(option: &str, value: impl ToString, allowed: impl Into<String>) -> Self {
         UserError::Argument {
             option: option.to_string(),
             value: value.to_string(),
@@ -53,7 +53,7 @@ impl UserError {
 /// A check that ran and disagreed: exit code 1.
 #[derive(Debug, Error)]
 #[error("{0}")]
-pub struct CheckFailed(pub String);
+pub(crate) struct CheckFailed(pub String);
 
 /// Whether a failure lies in what the user gave (bad input, exit 2) or elsewhere (exit 1).
 ///

@@ -15,4 +15,4 @@ pub mod source;
 pub mod stability;
 pub mod store;
 pub mod sweep;
-pub mod tolerance;
+pub(crate) mod tolerance;

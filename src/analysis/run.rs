@@ -107,15 +107,15 @@ pub struct RunReport {
 /// small-strain range. Hertz theory assumes a contact radius `a = sqrt(R* δ)` small against R*;
 /// `a/R* ≤ 0.1` (Johnson, *Contact Mechanics*, 1985, §4.2 and §5.1, where the elastic
 /// half-space idealisation is taken to hold) is `δ/R* ≤ 0.01`.
-pub const HERTZ_MAX_STRAIN: f64 = 0.01;
+pub(crate) const HERTZ_MAX_STRAIN: f64 = 0.01;
 
 /// Smallest rod length in diameters for the rod-end law: the rod's spring `π D² E / (4H)` is a
 /// uniform bar in plane compression, which needs a slender rod (Saint-Venant: the end zone where
 /// the contact stress spreads over the section is about one diameter long).
-pub const ROD_MIN_SLENDERNESS: f64 = 5.0;
+pub(crate) const ROD_MIN_SLENDERNESS: f64 = 5.0;
 
 /// The ways a run leaves its valid range: a peak deformation beyond Hertz's small-strain range
-/// ([`HERTZ_MAX_STRAIN`]), a rod too short for the bar spring ([`ROD_MIN_SLENDERNESS`]), and a
+/// (`HERTZ_MAX_STRAIN`), a rod too short for the bar spring (`ROD_MIN_SLENDERNESS`), and a
 /// fixed-step result outside what the law allows (COR outside [0, 1], energy created), which is
 /// the method's step error at a coarse step, not physics.
 pub fn warnings(case: &Case, method: Method, figures: &ImpactFigures) -> Vec<String> {
@@ -229,7 +229,7 @@ impl RunReport {
     }
 
     /// The flat row of a sweep (one line of CSV).
-    pub fn row(&self) -> RunRecord {
+    pub(crate) fn row(&self) -> RunRecord {
         RunRecord {
             case: self.case.clone(),
             method: self.method,
@@ -255,7 +255,7 @@ impl RunReport {
     }
 
     /// The human table: the run beside the closed forms, then the work and the notes.
-    pub fn sections(&self) -> Vec<Section> {
+    pub(crate) fn sections(&self) -> Vec<Section> {
         let mut t = Section::new(
             Some(format!(
                 "{} ({}, {}): method {}, η = {}, M = {} kg, C = {}, n = {}",
@@ -481,18 +481,18 @@ impl Summary for RunReport {
 
 /// Fewest steps per undamped period a fixed-step method is run at: below it RK4 gives a COR
 /// above 1 at η = 0 and the contact is one or two steps.
-pub const MIN_STEPS_PER_PERIOD: u32 = 4;
+pub(crate) const MIN_STEPS_PER_PERIOD: u32 = 4;
 
 /// Most steps per undamped period (about 5e7 steps in a contact, seconds of work).
-pub const MAX_STEPS_PER_PERIOD: u32 = 100_000_000;
+pub(crate) const MAX_STEPS_PER_PERIOD: u32 = 100_000_000;
 
 /// Smallest relative tolerance of the adaptive method: the spacing of doubles near 1 (below it a
 /// step can never meet the tolerance and the step size underflows).
-pub const MIN_RTOL: f64 = f64::EPSILON;
+pub(crate) const MIN_RTOL: f64 = f64::EPSILON;
 
 /// Most rows a trajectory may have (about 200 MB of CSV): checked before the run, from the
 /// steps the method will take.
-pub const MAX_TRAJECTORY_ROWS: f64 = 1e6;
+pub(crate) const MAX_TRAJECTORY_ROWS: f64 = 1e6;
 
 /// Integration options as a user gives them: a method and at most the knob that method has.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -698,7 +698,7 @@ pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, Outcome)
 
 /// The error of a solve of the case read from `path` that failed: a step beyond the
 /// stability limit is the user's (exit 2), any other failure the integration's.
-pub fn solve_failure(path: &Path, source: SolveError) -> RunError {
+pub(crate) fn solve_failure(path: &Path, source: SolveError) -> RunError {
     let case = path.to_path_buf();
     match source {
         SolveError::Unstable { .. } => RunError::Unsolvable { case, source },

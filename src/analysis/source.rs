@@ -16,7 +16,7 @@ pub enum Source {
 
 impl Source {
     /// Its name: the method's or the code's.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             Source::Method(m) => m.name(),
             Source::Code(c) => c.name(),
@@ -24,7 +24,7 @@ impl Source {
     }
 
     /// `method` or `code`.
-    pub fn kind(self) -> &'static str {
+    pub(crate) fn kind(self) -> &'static str {
         match self {
             Source::Method(_) => "method",
             Source::Code(_) => "code",
@@ -74,7 +74,7 @@ impl Resolution {
     }
 
     /// Steps per contact, if that is the knob.
-    pub fn steps_per_contact(resolution: Option<Resolution>) -> Option<u32> {
+    pub(crate) fn steps_per_contact(resolution: Option<Resolution>) -> Option<u32> {
         match resolution {
             Some(Resolution::StepsPerContact(n)) => Some(n),
             _ => None,

@@ -28,7 +28,7 @@ pub struct Differences {
 
 impl Tolerance {
     /// Whether every difference is within its tolerance.
-    pub fn admits(&self, d: &Differences) -> bool {
+    pub(crate) fn admits(&self, d: &Differences) -> bool {
         d.cor.abs() <= self.cor
             && d.peak_deformation.abs() <= self.peak_deformation
             && d.contact_time.abs() <= self.contact_time

@@ -196,7 +196,7 @@ pub fn run_batch_with(
 /// defaults, as a fresh start would), so that every impact steps through its single run's input
 /// and state. `single(i, setup)` is impact `i`'s input, with its own trajectory file; `code`
 /// and `source` name the code and the file that made the batch, in its first line.
-pub fn render_in_sequence(
+pub(crate) fn render_in_sequence(
     code: &str,
     source: &str,
     setups: &[CodeSetup],
@@ -234,11 +234,11 @@ pub fn render_in_sequence(
 }
 
 /// The input file of a batch made by [`render_in_sequence`].
-pub const SEQUENCE_INPUT_FILE: &str = "batch.in";
+pub(crate) const SEQUENCE_INPUT_FILE: &str = "batch.in";
 
 /// The loop time of impact `index` (from 0) of a batch whose script prints one
 /// `MILLIMPACT impact=K loop_time=T` line per impact (K from 1), s; `None` where it printed none.
-pub fn marked_loop_time(log: &str, index: usize) -> Option<f64> {
+pub(crate) fn marked_loop_time(log: &str, index: usize) -> Option<f64> {
     let key = format!("impact={}", index + 1);
     log.lines()
         .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
@@ -252,14 +252,14 @@ pub fn marked_loop_time(log: &str, index: usize) -> Option<f64> {
 
 /// The trajectory file of impact `index` (from 0) of a batch whose script writes one
 /// `trajectory-K.csv` per impact (K from 1), as YADE's and Kratos' do.
-pub fn marked_trajectory_file(index: usize) -> String {
+pub(crate) fn marked_trajectory_file(index: usize) -> String {
     format!("trajectory-{}.csv", index + 1)
 }
 
 /// Each of `impacts` runs of a batch whose script writes [`marked_trajectory_file`]s, read by
 /// `parse` (the code's own trajectory reader), and prints one `MILLIMPACT impact=K loop_time=T`
 /// line per impact ([`marked_loop_time`]); `version` is the build's, as the log says it.
-pub fn parse_marked_batch(
+pub(crate) fn parse_marked_batch(
     impacts: usize,
     workdir: &Path,
     log: &str,

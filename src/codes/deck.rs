@@ -58,7 +58,7 @@ pub enum DeckSource {
 
 impl DeckSource {
     /// The field at `path` of `file`.
-    pub fn field(file: &Path, path: impl Into<String>) -> Self {
+    pub(crate) fn field(file: &Path, path: impl Into<String>) -> Self {
         DeckSource::Field {
             file: file.to_path_buf(),
             path: path.into(),
@@ -175,7 +175,7 @@ pub enum DeckError {
 
 impl DeckError {
     /// An unsupported or unresolvable line (or field).
-    pub fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
+    pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
         DeckError::Unsupported {
             at: at.into(),
             what,
@@ -440,13 +440,18 @@ pub trait DeckReader: Send + Sync {
 }
 
 /// The mass of a sphere, kg, as the codes form it from radius (m) and density (kg/m³).
-pub fn sphere_mass(radius: f64, density: f64) -> f64 {
+pub(crate) fn sphere_mass(radius: f64, density: f64) -> f64 {
     4.0 * std::f64::consts::PI / 3.0 * radius * radius * radius * density
 }
 
 /// The Rayleigh time of a particle, s: `π R sqrt(ρ/G) / (0.1631 ν + 0.8766)`, `G = E/(2(1+ν))`,
 /// the time a Rayleigh wave takes across it, from which DEM codes pick their step.
-pub fn rayleigh_time(radius: f64, density: f64, youngs_modulus: f64, poisson_ratio: f64) -> f64 {
+pub(crate) fn rayleigh_time(
+    radius: f64,
+    density: f64,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+) -> f64 {
     let shear = youngs_modulus / (2.0 * (1.0 + poisson_ratio));
     std::f64::consts::PI * radius * (density / shear).sqrt() / (0.1631 * poisson_ratio + 0.8766)
 }

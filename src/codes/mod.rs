@@ -10,7 +10,7 @@
 pub mod batch;
 pub mod damping;
 pub mod deck;
-pub mod parse;
+pub(crate) mod parse;
 pub mod runner;
 pub mod script;
 pub mod setup;
@@ -26,7 +26,7 @@ use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{CodeFrame, CodeStepping, StepScheme, own_law_metrics};
-pub use batch::BatchError;
+pub(crate) use batch::BatchError;
 use lammps::conventions::Conventions;
 use lammps::probe::{ProbeError, ProbeReport};
 pub use parse::ParseError;
@@ -79,7 +79,7 @@ impl Executable {
     /// on a loaded machine, now and then fails the start (`Unable to start a daemon on the
     /// local node`). The variable changes nothing the code computes; a build without Open MPI
     /// ignores it.
-    pub fn open_mpi_alone(mut self) -> Self {
+    pub(crate) fn open_mpi_alone(mut self) -> Self {
         self.env.push((
             "OMPI_MCA_ess_singleton_isolated",
             std::ffi::OsString::from("1"),
@@ -287,7 +287,7 @@ pub trait CalibrationCard: Send + Sync {
 /// The η a build with the paper's law is given for `setup`: the case's own, carried by the
 /// setup; for a setup made without it (a bare [`setup_for_case`] of an older record), the η of
 /// its target COR, `(1 − e²)/(1 + e²)`, which may differ from the case's in the last bit.
-pub fn paper_loss_coefficient(setup: &CodeSetup) -> f64 {
+pub(crate) fn paper_loss_coefficient(setup: &CodeSetup) -> f64 {
     setup
         .loss_coefficient
         .unwrap_or_else(|| crate::model::exact::loss_coefficient(setup.target_restitution))

@@ -88,7 +88,7 @@ pub enum ParseError {
 /// Read a trajectory written as whitespace-separated columns `time overlap approach_velocity
 /// normal_force`, one row per line; blank lines and `#` comments are skipped. `file` names the
 /// file in error messages.
-pub fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, ParseError> {
+pub(crate) fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, ParseError> {
     let mut out = CodeTrajectory::default();
     for (number, line) in text.lines().enumerate() {
         let line = line.trim();

@@ -55,7 +55,7 @@ pub enum LocateError {
 }
 
 /// The name of the codes' folder in a project (where `scripts/install-dem-codes.sh` installs).
-pub const CODES_FOLDER: &str = ".codes";
+pub(crate) const CODES_FOLDER: &str = ".codes";
 
 /// How the codes' folder was chosen.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -115,7 +115,7 @@ pub enum CodeError {
         code: String,
         /// Exit status as text.
         status: String,
-        /// The code's own error line, where its log has one ([`error_line`]).
+        /// The code's own error line, where its log has one (`error_line`).
         said: Option<String>,
         /// The kept log file.
         log: PathBuf,
@@ -170,7 +170,7 @@ fn said_suffix(said: &Option<String>) -> String {
 
 /// The error a code printed before it stopped: the first line of `log` that starts with
 /// `ERROR` (how LIGGGHTS and LAMMPS report a fatal error: `ERROR: <what> (<file>:<line>)`).
-pub fn error_line(log: &str) -> Option<String> {
+pub(crate) fn error_line(log: &str) -> Option<String> {
     log.lines()
         .map(str::trim)
         .find(|line| line.starts_with("ERROR"))
@@ -220,7 +220,7 @@ impl Default for RunOptions {
 /// directory or a folder above it (a project's checkout, run from anywhere inside it); else the
 /// nearest `.codes` in the executable's folder or above it (`target/release/millimpact` finds
 /// its checkout's, wherever it runs from).
-pub fn find_codes_dir() -> CodesDir {
+pub(crate) fn find_codes_dir() -> CodesDir {
     if let Some(dir) = std::env::var_os("MILLIMPACT_CODES_DIR").filter(|d| !d.is_empty()) {
         return CodesDir {
             path: PathBuf::from(dir),
@@ -256,14 +256,14 @@ pub fn find_codes_dir() -> CodesDir {
     }
 }
 
-/// The codes' folder ([`find_codes_dir`]).
+/// The codes' folder (`find_codes_dir`).
 pub fn codes_dir() -> PathBuf {
     find_codes_dir().path
 }
 
 /// Whether `path` is a chain of symbolic links that ends at nothing: the file it was made to
 /// lead to is not here. Returns the last link's missing target.
-pub fn dangling_link(path: &Path) -> Option<PathBuf> {
+pub(crate) fn dangling_link(path: &Path) -> Option<PathBuf> {
     let mut at = path.to_path_buf();
     // A loop of links is not followed for ever.
     for _ in 0..40 {
@@ -282,13 +282,13 @@ pub fn dangling_link(path: &Path) -> Option<PathBuf> {
 }
 
 /// The environment variable that names millimpact's cache folder.
-pub const CACHE_DIR_VARIABLE: &str = "MILLIMPACT_CACHE_DIR";
+pub(crate) const CACHE_DIR_VARIABLE: &str = "MILLIMPACT_CACHE_DIR";
 
 /// Where millimpact keeps what it measured once and reuses in later runs (each LAMMPS build's
 /// probe, under `probe/`): `MILLIMPACT_CACHE_DIR`, else `$XDG_CACHE_HOME/millimpact`, else
 /// `$HOME/.cache/millimpact`; `None`, and nothing kept, when none of them is set (a relative
 /// `XDG_CACHE_HOME` or `HOME` counts as unset, as the XDG base directory specification says).
-pub fn cache_dir() -> Option<PathBuf> {
+pub(crate) fn cache_dir() -> Option<PathBuf> {
     let absolute = |name: &str| {
         std::env::var_os(name)
             .map(PathBuf::from)
@@ -342,7 +342,7 @@ pub fn find_on_path(binary: &str) -> Option<PathBuf> {
 /// conventions than its probe measures (a record's setup replayed on another build, a setup
 /// made without a probe for a build that differs from the driver's fallback): the input would
 /// not be the equivalent setup on this build.
-pub fn check_conventions(
+pub(crate) fn check_conventions(
     driver: &dyn CodeDriver,
     executable: &Executable,
     setups: &[CodeSetup],
@@ -524,7 +524,7 @@ fn await_stop() -> ! {
 
 /// Start `command` in a process group of its own, so that the code and every process it starts
 /// can be ended together, and register it with its scratch directory `scratch`.
-pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
+pub(crate) fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
     #[cfg(unix)]
     std::os::unix::process::CommandExt::process_group(command, 0);
     // Open MPI processes started alone (the Debian LIGGGHTS and LAMMPS) all put their session
@@ -546,7 +546,10 @@ pub fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result
 
 /// Wait for a contained code at most `timeout`; past it, kill its whole process group (the code
 /// and any process it started, whatever signals they ignore) and return `None`.
-pub fn wait_contained(child: &mut Child, timeout: Duration) -> std::io::Result<Option<ExitStatus>> {
+pub(crate) fn wait_contained(
+    child: &mut Child,
+    timeout: Duration,
+) -> std::io::Result<Option<ExitStatus>> {
     let status = wait_timeout::ChildExt::wait_timeout(child, timeout);
     if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
         // The code ended because millimpact is being stopped: not a fault of the code to report.
@@ -578,19 +581,19 @@ fn kill_group(pid: i32) {
 
 /// The environment variable that keeps the scratch directories of codes stopped by a Ctrl-C or
 /// SIGTERM of millimpact (any value but empty or `0`), to read what a stopped run had written.
-pub const KEEP_SCRATCH_VARIABLE: &str = "MILLIMPACT_KEEP_SCRATCH";
+pub(crate) const KEEP_SCRATCH_VARIABLE: &str = "MILLIMPACT_KEEP_SCRATCH";
 
 /// End every code running now (their whole process groups) and remove their scratch
 /// directories, or keep them (each named on standard error) when [`KEEP_SCRATCH_VARIABLE`] asks.
 /// The runs they belonged to end as failed runs; millimpact goes on (a sweep keeps its rows).
-pub fn stop_all_codes() {
+pub(crate) fn stop_all_codes() {
     stop_codes(false);
 }
 
 /// Stop millimpact: no code starts from now on, every code running ends as [`stop_all_codes`]
 /// ends it (and is not reported as a failure of its own), and the process exits with `code`.
 /// What a Ctrl-C or SIGTERM of millimpact does.
-pub fn stop_all_codes_and_exit(code: i32) -> ! {
+pub(crate) fn stop_all_codes_and_exit(code: i32) -> ! {
     stop_codes(true);
     std::process::exit(code);
 }
@@ -619,7 +622,7 @@ pub const MAX_LOG_BYTES: usize = 1 << 20;
 
 /// Read a code's log as text whatever bytes it holds (invalid UTF-8 is replaced, not an error),
 /// and cap the kept file at [`MAX_LOG_BYTES`], keeping its head and tail.
-pub fn read_log(path: &Path) -> std::io::Result<String> {
+pub(crate) fn read_log(path: &Path) -> std::io::Result<String> {
     let bytes = std::fs::read(path)?;
     if bytes.len() <= MAX_LOG_BYTES {
         return Ok(String::from_utf8_lossy(&bytes).into_owned());

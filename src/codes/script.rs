@@ -34,7 +34,7 @@ impl Command {
     }
 
     /// Word `k` (0 is the command), or an error naming the line and what was expected there.
-    pub fn word(&self, k: usize, expected: &str) -> Result<&str, DeckError> {
+    pub(crate) fn word(&self, k: usize, expected: &str) -> Result<&str, DeckError> {
         self.words.get(k).map(String::as_str).ok_or_else(|| {
             DeckError::unsupported(
                 &self.at,
@@ -45,7 +45,7 @@ impl Command {
     }
 
     /// Word `k` read as a number (as `atof` reads it), or an error naming the line.
-    pub fn number(&self, k: usize, what: &str) -> Result<f64, DeckError> {
+    pub(crate) fn number(&self, k: usize, what: &str) -> Result<f64, DeckError> {
         let word = self.word(k, what)?;
         parse_number(word).ok_or_else(|| {
             DeckError::unsupported(
@@ -100,7 +100,7 @@ pub(crate) fn checked_timestep(
 }
 
 /// A number as LAMMPS's `numeric()` accepts it (no trailing text).
-pub fn parse_number(word: &str) -> Option<f64> {
+pub(crate) fn parse_number(word: &str) -> Option<f64> {
     word.trim().parse::<f64>().ok().filter(|x| x.is_finite())
 }
 
@@ -144,7 +144,7 @@ impl ScriptReader {
     /// [`ScriptReader::read`] for a code (its name) that lacks some formula functions (the
     /// 2021 LAMMPS and LIGGGHTS 3.8 have no `ternary()`): a formula that calls one is refused,
     /// as the code stops at it.
-    pub fn read_for(
+    pub(crate) fn read_for(
         path: &Path,
         preset: &[(String, String)],
         lacking: (&'static str, &'static [&'static str]),
@@ -167,7 +167,7 @@ impl ScriptReader {
     /// [`ScriptReader::read_for`] keeping the `variable` lines among the commands (with their
     /// `${…}` substituted as the code substitutes them when it reads the line), so that the
     /// commands written out in order are the deck the code reads.
-    pub fn read_whole(
+    pub(crate) fn read_whole(
         path: &Path,
         lacking: (&'static str, &'static [&'static str]),
     ) -> Result<Vec<Command>, DeckError> {
@@ -561,7 +561,7 @@ fn unclosed(at: &SourceLine) -> DeckError {
 /// fixed notation unless the exponent is below −4 or at least `precision`, trailing zeros left
 /// out. What the codes write for `${NAME}` (`%.15g`) and `$(formula)` (`%.20g`), and so what
 /// they read back: a `run ${n}` of 150000 is `run 150000`, where `1.5e5` would run one step.
-pub fn printf_g(x: f64, precision: usize) -> String {
+pub(crate) fn printf_g(x: f64, precision: usize) -> String {
     if !x.is_finite() {
         return if x.is_nan() {
             "nan".into()
@@ -600,7 +600,7 @@ pub fn printf_g(x: f64, precision: usize) -> String {
 }
 
 /// A value as `${NAME}` of an equal-style variable writes it (`%.15g`).
-pub fn fifteen_digits(x: f64) -> String {
+pub(crate) fn fifteen_digits(x: f64) -> String {
     printf_g(x, 15)
 }
 

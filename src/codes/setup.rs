@@ -85,7 +85,7 @@ impl CodeSetup {
     /// Velocities `(v1, v2)` along the line of centres, m/s, of the two bodies in the
     /// centre-of-mass frame (body 1 moves towards body 2 with positive speed). For a plate the
     /// second body is at rest and `v1 = impact_velocity`.
-    pub fn centre_of_mass_velocities(&self) -> (f64, f64) {
+    pub(crate) fn centre_of_mass_velocities(&self) -> (f64, f64) {
         match self.other_sphere {
             Some(other) => {
                 let total = self.sphere.mass + other.mass;
@@ -100,7 +100,7 @@ impl CodeSetup {
 
     /// The contact radius of the pair, m: the sphere's own at a flat wall (the wall's radius
     /// is infinite), `R1 R2 / (R1 + R2)` between two spheres.
-    pub fn pair_radius(&self) -> f64 {
+    pub(crate) fn pair_radius(&self) -> f64 {
         pair_radius(
             self.sphere.radius,
             self.other_sphere.map_or(f64::INFINITY, |o| o.radius),
@@ -117,7 +117,7 @@ impl CodeSetup {
     }
 
     /// The spring model the code must use.
-    pub fn spring(&self) -> SpringModel {
+    pub(crate) fn spring(&self) -> SpringModel {
         self.scene.spring()
     }
 
@@ -128,7 +128,7 @@ impl CodeSetup {
 }
 
 /// Default number of steps per estimated contact time for a code's time step.
-pub const DEFAULT_STEPS_PER_CONTACT: u32 = 1000;
+pub(crate) const DEFAULT_STEPS_PER_CONTACT: u32 = 1000;
 
 /// The elastic contact time of the case's spring, s: Hertz's `2 J(1.5) δ_max / v0` for the
 /// balls, `π sqrt(M/k)` for the rod. It sets the codes' time step.

@@ -12,7 +12,10 @@ pub struct TemplateError {
 }
 
 /// Replace every `{{key}}` in `template` by its value; an unreplaced placeholder is an error.
-pub fn fill_template(template: &str, values: &[(&str, String)]) -> Result<String, TemplateError> {
+pub(crate) fn fill_template(
+    template: &str,
+    values: &[(&str, String)],
+) -> Result<String, TemplateError> {
     let mut text = template.to_string();
     for (key, value) in values {
         text = text.replace(&format!("{{{{{key}}}}}"), value);

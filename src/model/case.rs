@@ -27,7 +27,7 @@ pub enum ContactKind {
 }
 
 /// Largest case file read, bytes (a case is a few hundred).
-pub const MAX_CASE_BYTES: u64 = 64 * 1024;
+pub(crate) const MAX_CASE_BYTES: u64 = 64 * 1024;
 
 /// A rejected case file.
 #[derive(Debug, Error, Clone, PartialEq)]
@@ -45,7 +45,7 @@ pub struct CaseError {
 
 impl CaseError {
     /// The rejection of `value` at `key` in `file`, with what is allowed.
-    pub fn new(file: &str, key: &str, value: &str, allowed: &str) -> CaseError {
+    pub(crate) fn new(file: &str, key: &str, value: &str, allowed: &str) -> CaseError {
         CaseError {
             file: file.to_string(),
             key: key.to_string(),
@@ -144,7 +144,7 @@ impl Case {
     /// with them set would: the same checks in the reader's order and the same errors, which
     /// name `file`. A sweep edits its base case so for every point instead of reading it anew.
     /// `edits` are applied in order (η and restitution name one number: the last given wins).
-    pub fn apply(&mut self, edits: &[(&str, &Value)], file: &str) -> Result<(), CaseError> {
+    pub(crate) fn apply(&mut self, edits: &[(&str, &Value)], file: &str) -> Result<(), CaseError> {
         let reader = Reader { file };
         let mut velocity = None;
         let mut eta: Option<(Option<&Value>, Option<&Value>)> = None;
@@ -253,7 +253,7 @@ impl Case {
 
     /// Validate an already parsed case table as strictly as [`Case::load`]; errors name
     /// `file`, and the case is called `name` with `path` as its origin.
-    pub fn from_table(
+    pub(crate) fn from_table(
         table: &Table,
         file: &str,
         name: &str,
@@ -283,7 +283,7 @@ const TABLES: [(&str, &[&str]); 4] = [
 
 /// Every key a case file may set, as a sweep axis names it: the top-level keys, then
 /// `table.key` for each body table's keys. The one list the case reader reads by.
-pub fn case_keys() -> Vec<String> {
+pub(crate) fn case_keys() -> Vec<String> {
     let mut keys: Vec<String> = TOP_KEYS.iter().map(|k| k.to_string()).collect();
     for (table, table_keys) in TABLES {
         keys.extend(table_keys.iter().map(|k| format!("{table}.{k}")));
@@ -291,7 +291,7 @@ pub fn case_keys() -> Vec<String> {
     keys
 }
 
-/// The keys [`Case::apply`] sets in place; the others change a scene's bodies, and a sweep
+/// The keys `Case::apply` sets in place; the others change a scene's bodies, and a sweep
 /// reads the case anew for them.
 pub const IN_PLACE_KEYS: [&str; 3] = ["impact_velocity", "loss_coefficient", "restitution"];
 

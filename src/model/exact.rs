@@ -57,7 +57,7 @@ pub struct ImpactFigures {
 impl ImpactFigures {
     /// The figures in the form a trajectory's are read: the paper's force is repulsive all
     /// through the contact, so its force contact time is its overlap contact time.
-    pub fn metrics(&self) -> TrajectoryMetrics {
+    pub(crate) fn metrics(&self) -> TrajectoryMetrics {
         TrajectoryMetrics {
             cor: self.cor,
             peak_deformation: self.peak_deformation,

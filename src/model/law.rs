@@ -76,7 +76,7 @@ impl DashpotLaw {
     }
 
     /// Elastic peak deformation of the undamped spring at speed `v0`, m.
-    pub fn elastic_peak(&self, impact_velocity: f64) -> f64 {
+    pub(crate) fn elastic_peak(&self, impact_velocity: f64) -> f64 {
         let n = self.exponent;
         ((n + 1.0) * self.mass * impact_velocity * impact_velocity / (2.0 * self.stiffness))
             .powf(1.0 / (n + 1.0))
@@ -141,7 +141,7 @@ impl PaperLaw {
     /// scripts/liggghts-paper): `C yⁿ (1 + η sign ẏ)` with `sign(0) = 0`, so that a velocity of
     /// exactly zero gives the elastic force alone, the mean of the two branches (where
     /// [`PaperLaw::force`] follows `f64::signum`, which has no zero).
-    pub fn force_as_coded(&self, y: f64, v: f64) -> f64 {
+    pub(crate) fn force_as_coded(&self, y: f64, v: f64) -> f64 {
         if y <= 0.0 {
             return 0.0;
         }
@@ -185,7 +185,7 @@ impl ContactForce for DashpotLaw {
 pub enum CodeLaw {
     /// `F = k yⁿ + c yᵐ ẏ`, clamped or not.
     Dashpot(DashpotLaw),
-    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as [`PaperLaw::force_as_coded`].
+    /// `F = C yⁿ (1 + η sign ẏ)`, evaluated as `PaperLaw::force_as_coded`.
     Paper(PaperLaw),
 }
 
@@ -219,7 +219,7 @@ impl ContactForce for CodeLaw {
 
 impl CodeLaw {
     /// Spring constant `k` (or `C`), N/m^n.
-    pub fn stiffness(&self) -> f64 {
+    pub(crate) fn stiffness(&self) -> f64 {
         match self {
             CodeLaw::Dashpot(law) => law.stiffness,
             CodeLaw::Paper(law) => law.stiffness,
@@ -227,7 +227,7 @@ impl CodeLaw {
     }
 
     /// Exponent `n` of the elastic force.
-    pub fn exponent(&self) -> f64 {
+    pub(crate) fn exponent(&self) -> f64 {
         match self {
             CodeLaw::Dashpot(law) => law.exponent,
             CodeLaw::Paper(law) => law.exponent,
@@ -244,7 +244,7 @@ impl CodeLaw {
 
     /// The same law with the attractive force cut at zero (the paper's law as it is: its
     /// force never attracts).
-    pub fn clamped(self) -> Self {
+    pub(crate) fn clamped(self) -> Self {
         match self {
             CodeLaw::Dashpot(law) => CodeLaw::Dashpot(law.clamped()),
             paper @ CodeLaw::Paper(_) => paper,
@@ -260,7 +260,7 @@ impl CodeLaw {
     }
 
     /// Whether two laws are of one kind with every parameter equal to `rtol` (relative).
-    pub fn agrees_with(&self, other: &CodeLaw, rtol: f64) -> bool {
+    pub(crate) fn agrees_with(&self, other: &CodeLaw, rtol: f64) -> bool {
         let same = |a: f64, b: f64| (a - b).abs() <= rtol * a.abs().max(b.abs());
         match (self, other) {
             (CodeLaw::Dashpot(a), CodeLaw::Dashpot(b)) => {

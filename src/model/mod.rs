@@ -6,5 +6,5 @@ pub mod count;
 pub mod exact;
 pub mod law;
 pub mod scene;
-pub mod shipped;
+pub(crate) mod shipped;
 pub mod trajectory;

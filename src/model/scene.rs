@@ -16,7 +16,7 @@ pub enum SceneKind {
 
 impl SceneKind {
     /// The elastic force model of this impact.
-    pub fn spring(self) -> SpringModel {
+    pub(crate) fn spring(self) -> SpringModel {
         match self {
             SceneKind::RodEnd => SpringModel::Linear,
             SceneKind::BallPlate | SceneKind::BallBall => SpringModel::Hertz,
@@ -36,7 +36,7 @@ impl SceneKind {
 /// The elastic force model of a contact: which power of the overlap the spring follows.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
-pub enum SpringModel {
+pub(crate) enum SpringModel {
     /// Hertz, `k δ^1.5` (the balls).
     Hertz,
     /// Linear, `k δ` (the rod's end).
@@ -45,7 +45,7 @@ pub enum SpringModel {
 
 impl SpringModel {
     /// The exponent `n` of the elastic force.
-    pub fn exponent(self) -> f64 {
+    pub(crate) fn exponent(self) -> f64 {
         match self {
             SpringModel::Hertz => 1.5,
             SpringModel::Linear => 1.0,
@@ -96,7 +96,7 @@ pub struct Material {
 
 impl Material {
     /// The compliance `(1 - ν²) / E`, 1/Pa, that enters `1/E*`.
-    pub fn compliance(&self) -> f64 {
+    pub(crate) fn compliance(&self) -> f64 {
         (1.0 - self.poisson_ratio * self.poisson_ratio) / self.youngs_modulus
     }
 }
@@ -114,7 +114,7 @@ pub struct Ball {
 
 impl Ball {
     /// Mass, kg.
-    pub fn mass(&self) -> f64 {
+    pub(crate) fn mass(&self) -> f64 {
         4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3) * self.density
     }
 }
@@ -143,15 +143,15 @@ pub struct Rod {
 
 impl Rod {
     /// Cross-section area `π D²/4`, m².
-    pub fn area(&self) -> f64 {
+    pub(crate) fn area(&self) -> f64 {
         std::f64::consts::PI * self.diameter * self.diameter / 4.0
     }
     /// Mass, kg.
-    pub fn mass(&self) -> f64 {
+    pub(crate) fn mass(&self) -> f64 {
         self.area() * self.length * self.density
     }
     /// Stiffness `π D² E / (4H)`, N/m: only the lower half (length H) compresses.
-    pub fn stiffness(&self) -> f64 {
+    pub(crate) fn stiffness(&self) -> f64 {
         self.area() * self.youngs_modulus / (self.length / 2.0)
     }
 }
@@ -182,7 +182,7 @@ pub enum Scene {
 
 impl Scene {
     /// Which impact this is.
-    pub fn kind(&self) -> SceneKind {
+    pub(crate) fn kind(&self) -> SceneKind {
         match self {
             Scene::BallPlate { .. } => SceneKind::BallPlate,
             Scene::BallBall { .. } => SceneKind::BallBall,
@@ -191,12 +191,12 @@ impl Scene {
     }
 
     /// The elastic force model.
-    pub fn spring(&self) -> SpringModel {
+    pub(crate) fn spring(&self) -> SpringModel {
         self.kind().spring()
     }
 
     /// Exponent `n` of the elastic force.
-    pub fn exponent(&self) -> f64 {
+    pub(crate) fn exponent(&self) -> f64 {
         self.spring().exponent()
     }
 
@@ -236,7 +236,7 @@ impl Scene {
     }
 
     /// Contact stiffness `C`, N/m^n, by the chosen convention (the rod ignores it).
-    pub fn stiffness(&self, convention: StiffnessConvention) -> f64 {
+    pub(crate) fn stiffness(&self, convention: StiffnessConvention) -> f64 {
         match (self, convention) {
             (Scene::RodEnd { rod }, _) => rod.stiffness(),
             (_, StiffnessConvention::Hertz) => self.hertz_stiffness(),
@@ -250,7 +250,7 @@ impl Scene {
     }
 
     /// Hertz stiffness `(4/3) E* sqrt(R*)`, N/m^1.5 (the rod's linear stiffness for rod_end).
-    pub fn hertz_stiffness(&self) -> f64 {
+    pub(crate) fn hertz_stiffness(&self) -> f64 {
         match (self.effective_modulus(), self.effective_radius()) {
             (Some(e), Some(r)) => 4.0 / 3.0 * e * r.sqrt(),
             _ => match self {

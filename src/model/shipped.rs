@@ -30,7 +30,7 @@ const SHIPPED: [(&str, &str); 7] = [
 ];
 
 /// The three canonical impacts (ball on plate, ball on ball, a rod's end), in report order.
-pub const CANONICAL: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
+pub(crate) const CANONICAL: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
 
 /// A case shipped as `cases/<name>.toml`, read from this build (its path says
 /// `cases/<name>.toml`, as the commands that reproduce it name it).

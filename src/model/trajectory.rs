@@ -48,7 +48,7 @@ pub struct CodeTrajectory {
 
 /// Check that a trajectory is complete enough to read figures from: at least three rows,
 /// columns of one length, every value finite.
-pub fn check_trajectory(t: &CodeTrajectory) -> Result<(), TrajectoryError> {
+pub(crate) fn check_trajectory(t: &CodeTrajectory) -> Result<(), TrajectoryError> {
     let n = t.time.len();
     if n < 3 {
         return Err(TrajectoryError::TooShort { rows: n });

@@ -7,7 +7,7 @@ use super::OutputError;
 
 /// How a series is drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Style {
+pub(crate) enum Style {
     /// A solid line.
     Line,
     /// A thin line.
@@ -18,7 +18,7 @@ pub enum Style {
 
 /// One series: `(x, y)` points, drawn in `style` and named in the legend.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Series {
+pub(crate) struct Series {
     /// Legend entry.
     pub name: String,
     /// Points; non-finite ones are left out.
@@ -29,7 +29,7 @@ pub struct Series {
 
 impl Series {
     /// A series.
-    pub fn new(name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Series {
+    pub(crate) fn new(name: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Series {
         Series {
             name: name.into(),
             points,
@@ -40,7 +40,7 @@ impl Series {
 
 /// A chart: a title, axis labels with units, and its series.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Chart {
+pub(crate) struct Chart {
     /// Title above the data.
     pub title: String,
     /// x axis label, with its unit.
@@ -106,7 +106,7 @@ fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 
 /// Render `chart` as an SVG string, `width × height` pixels, the legend in a panel on the
 /// right.
-pub fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String, OutputError> {
+pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String, OutputError> {
     let fail = fail("chart");
     let points = || chart.series.iter().flat_map(|s| s.points.iter());
     let (Some((x0, x1)), Some((y0, y1))) =
@@ -190,7 +190,7 @@ pub fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String, Outpu
 
 /// A categorical map: one row per `rows` entry, one cell per column, each cell coloured by
 /// its class (index into `classes`, whose names and colours the legend shows).
-pub fn map_svg(
+pub(crate) fn map_svg(
     title: &str,
     x_label: &str,
     rows: &[(String, Vec<usize>)],

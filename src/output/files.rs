@@ -5,13 +5,13 @@ use std::io::Write;
 use std::path::Path;
 
 /// Write `bytes` to `path` atomically: a temporary file beside it, renamed into place.
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     write_atomic_with(path, |out| out.write_all(bytes))
 }
 
 /// Write what `fill` writes to `path` atomically: into a temporary file beside it, renamed
 /// into place once `fill` has succeeded (on failure `path` is untouched).
-pub fn write_atomic_with(
+pub(crate) fn write_atomic_with(
     path: &Path,
     fill: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> std::io::Result<()> {
@@ -50,7 +50,7 @@ pub fn write_atomic_with(
 /// Why an output path cannot be written.
 #[derive(Debug, thiserror::Error)]
 #[error("{option} = {}: {reason}", path.display())]
-pub struct OutputPathError {
+pub(crate) struct OutputPathError {
     /// The option that named it.
     pub option: &'static str,
     /// The path.
@@ -62,7 +62,7 @@ pub struct OutputPathError {
 /// Check that `path` may be written as a command's output: it does not exist, or it is a
 /// regular file with one name that is not one of the command's `inputs`. A device, a folder,
 /// a symbolic link, a hard-linked file or the command's own input is refused, never replaced.
-pub fn check_output_path(
+pub(crate) fn check_output_path(
     option: &'static str,
     path: &Path,
     inputs: &[&Path],
@@ -114,13 +114,13 @@ pub fn check_output_path(
 
 /// The file a report writes into its folder: a later report recognises the folder as one it
 /// may replace.
-pub const REPORT_MARKER: &str = ".millimpact-report";
+pub(crate) const REPORT_MARKER: &str = ".millimpact-report";
 
 /// Check that a report may be written whole into the folder `path`: it does not exist, or it
 /// is an empty folder, or one that holds [`REPORT_MARKER`] (an earlier report). A folder with
 /// other files, a symbolic link, something that is not a folder, and the working directory or
 /// a folder above it are refused, never replaced.
-pub fn check_report_dir(option: &'static str, path: &Path) -> Result<(), OutputPathError> {
+pub(crate) fn check_report_dir(option: &'static str, path: &Path) -> Result<(), OutputPathError> {
     let refuse = |reason| OutputPathError {
         option,
         path: path.to_path_buf(),
@@ -223,7 +223,7 @@ pub enum ReplaceDirError {
 /// Write the folder `path` whole: `fill` writes into a fresh folder beside it, which then
 /// takes its place (an earlier folder there is moved aside and removed), so that no file of
 /// an earlier output survives and an interrupted write leaves the earlier folder as it was.
-/// A report's `path` is checked by [`check_report_dir`] first. `fill`'s own error type is
+/// A report's `path` is checked by `check_report_dir` first. `fill`'s own error type is
 /// kept, and a failure of the folder's handling becomes one of it.
 pub fn replace_dir<E: From<ReplaceDirError>>(
     path: &Path,

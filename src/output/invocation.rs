@@ -7,38 +7,42 @@ use serde::{Serialize, Serializer};
 
 /// `millimpact <command> <arguments…>`: positional arguments and options in the order given.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Invocation {
+pub(crate) struct Invocation {
     words: Vec<String>,
 }
 
 impl Invocation {
     /// `millimpact command`.
-    pub fn new(command: &str) -> Invocation {
+    pub(crate) fn new(command: &str) -> Invocation {
         Invocation {
             words: vec!["millimpact".into(), command.into()],
         }
     }
 
     /// A positional argument (a case file, a sweep file).
-    pub fn arg(mut self, value: impl fmt::Display) -> Invocation {
+    pub(crate) fn arg(mut self, value: impl fmt::Display) -> Invocation {
         self.words.push(value.to_string());
         self
     }
 
     /// Positional arguments, in order.
-    pub fn args<T: fmt::Display>(self, values: impl IntoIterator<Item = T>) -> Invocation {
+    pub(crate) fn args<T: fmt::Display>(self, values: impl IntoIterator<Item = T>) -> Invocation {
         values.into_iter().fold(self, Invocation::arg)
     }
 
     /// `--name value`.
-    pub fn option(mut self, name: &'static str, value: impl fmt::Display) -> Invocation {
+    pub(crate) fn option(mut self, name: &'static str, value: impl fmt::Display) -> Invocation {
         self.words.push(name.into());
         self.words.push(value.to_string());
         self
     }
 
     /// `--name value` where there is a value.
-    pub fn option_if<T: fmt::Display>(self, name: &'static str, value: Option<T>) -> Invocation {
+    pub(crate) fn option_if<T: fmt::Display>(
+        self,
+        name: &'static str,
+        value: Option<T>,
+    ) -> Invocation {
         match value {
             Some(v) => self.option(name, v),
             None => self,
@@ -46,7 +50,7 @@ impl Invocation {
     }
 
     /// `--name` where `on`.
-    pub fn flag(mut self, name: &'static str, on: bool) -> Invocation {
+    pub(crate) fn flag(mut self, name: &'static str, on: bool) -> Invocation {
         if on {
             self.words.push(name.into());
         }

@@ -5,13 +5,13 @@
 //! serde form, CSV its flat records (one header, rows of constant width), and the table and
 //! Markdown forms lay out the same [`Section`]s.
 
-pub mod chart;
+pub(crate) mod chart;
 pub mod csv_record;
 pub mod files;
-pub mod invocation;
+pub(crate) mod invocation;
 pub mod report_page;
-pub mod restitution_plot;
-pub mod work_precision_plot;
+pub(crate) mod restitution_plot;
+pub(crate) mod work_precision_plot;
 
 use comfy_table::{Table, presets::UTF8_FULL_CONDENSED};
 use serde::Serialize;
@@ -102,7 +102,7 @@ pub struct Section {
 
 impl Section {
     /// A section with `headers` and no rows yet.
-    pub fn new(title: Option<String>, headers: &[&str]) -> Section {
+    pub(crate) fn new(title: Option<String>, headers: &[&str]) -> Section {
         Section {
             title,
             headers: headers.iter().map(|h| h.to_string()).collect(),
@@ -112,7 +112,7 @@ impl Section {
     }
 
     /// Lines of text with no table (an empty header).
-    pub fn text(lines: Vec<String>) -> Section {
+    pub(crate) fn text(lines: Vec<String>) -> Section {
         Section {
             notes: lines,
             ..Section::default()
@@ -208,7 +208,7 @@ fn new_table(headers: &[String]) -> Table {
 }
 
 /// One line of a Markdown table; `|` inside a cell is escaped.
-pub fn markdown_row(cells: &[String]) -> String {
+pub(crate) fn markdown_row(cells: &[String]) -> String {
     let escape = |cell: &String| cell.replace('|', "\\|");
     format!(
         "| {} |\n",
@@ -228,7 +228,7 @@ fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
 }
 
 /// Serialise rows as CSV with a header; every row must have the header's width.
-pub fn csv_string<T: Serialize>(rows: &[T]) -> Result<String, OutputError> {
+pub(crate) fn csv_string<T: Serialize>(rows: &[T]) -> Result<String, OutputError> {
     let mut writer = csv::Writer::from_writer(Vec::new());
     for row in rows {
         writer.serialize(row)?;
@@ -240,7 +240,7 @@ pub fn csv_string<T: Serialize>(rows: &[T]) -> Result<String, OutputError> {
 }
 
 /// Seven significant digits in scientific form (`n/a` for NaN).
-pub fn sci(x: f64) -> String {
+pub(crate) fn sci(x: f64) -> String {
     if x.is_nan() {
         "n/a".to_string()
     } else {
@@ -249,13 +249,13 @@ pub fn sci(x: f64) -> String {
 }
 
 /// A signed relative difference with three significant digits.
-pub fn signed(x: f64) -> String {
+pub(crate) fn signed(x: f64) -> String {
     format!("{x:+.2e}")
 }
 
 /// An energy, J, in the unit that shows four decimals of it (J, mJ, µJ, nJ, pJ; scientific
 /// below a picojoule), so that a small body's energy does not print as `0.0000 J`.
-pub fn joules(x: f64) -> String {
+pub(crate) fn joules(x: f64) -> String {
     for (scale, unit) in [
         (1.0, "J"),
         (1e-3, "mJ"),
@@ -271,7 +271,7 @@ pub fn joules(x: f64) -> String {
 }
 
 /// A duration, s, in convenient units.
-pub fn seconds(s: f64) -> String {
+pub(crate) fn seconds(s: f64) -> String {
     if s >= 1.0 {
         format!("{s:.3} s")
     } else if s >= 1e-3 {

@@ -8,7 +8,7 @@ use super::OutputError;
 /// (line) and the small-η approximation `1 - η` (thin line) it bends away from.
 ///
 /// `points` are `(η, COR)` by `method`; `exact` is the closed form `e(η)`.
-pub fn restitution_svg(
+pub(crate) fn restitution_svg(
     case: &str,
     method: &str,
     points: &[(f64, f64)],

@@ -11,7 +11,7 @@ use super::OutputError;
 /// Render the work–precision diagram of `case`: one series per source, each point
 /// `(largest relative error, run time in s)`; errors are drawn no lower than 1e-17 (an exact
 /// zero has no place on a log axis).
-pub fn work_precision_svg(
+pub(crate) fn work_precision_svg(
     case: &str,
     series: &[(String, Vec<(f64, f64)>)],
 ) -> Result<String, OutputError> {

@@ -13,7 +13,7 @@ use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics};
 
 /// A contact force as a DEM code evaluates it within one step of its run: what the steppers
 /// below call. A law whose force depends on the step (the paper's law as LIGGGHTS `model
-/// paper` codes it, [`paper_force_in_step`]) says how; any other is its [`ContactForce`].
+/// paper` codes it, `paper_force_in_step`) says how; any other is its [`ContactForce`].
 pub trait StepForce: ContactForce {
     /// Force, N (positive repulsive), at approach `y` (m) and approach rate `v` (m/s), in a
     /// step of `timestep` (s).
@@ -46,7 +46,7 @@ impl StepForce for CodeLaw {
 /// force is `M v / (2Δt)`, which halves a lone contact's approach rate per step, and a contact
 /// at rest carries its load on the elastic force `C yⁿ`. An impact meets the band only within
 /// about a step of its turning point.
-pub fn paper_force_in_step(law: &PaperLaw, y: f64, v: f64, timestep: f64) -> f64 {
+pub(crate) fn paper_force_in_step(law: &PaperLaw, y: f64, v: f64, timestep: f64) -> f64 {
     if y <= 0.0 {
         return 0.0;
     }
@@ -85,7 +85,7 @@ pub enum StepScheme {
 ///
 /// With velocity Verlet the force sees the half-step velocity, so a law whose force depends on
 /// the sign of the velocity (the paper's) switches branch where the half-step velocity does,
-/// within the band of [`paper_force_in_step`], as LIGGGHTS `model paper` does from the `vn`
+/// within the band of `paper_force_in_step`, as LIGGGHTS `model paper` does from the `vn`
 /// it is handed.
 pub fn step_trajectory<L: StepForce + ?Sized>(
     law: &L,
@@ -187,7 +187,7 @@ pub struct CodeFrame {
 /// `v₂ − v₁` from the half-step velocities, the force, and the second half kick. Rows as
 /// [`step_trajectory`]'s: row 0 the start, then one per step with the full-step approach rate
 /// and the force computed in that step.
-pub fn step_in_frame<L: StepForce + ?Sized>(
+pub(crate) fn step_in_frame<L: StepForce + ?Sized>(
     law: &L,
     frame: &CodeFrame,
     timestep: f64,
@@ -258,7 +258,7 @@ pub fn step_in_frame<L: StepForce + ?Sized>(
 /// A code whose bodies approach along +z (YADE's sphere below its plane) is the same frame
 /// mirrored: every coordinate and velocity negated, which is exact, so the differences of
 /// positions and velocities, the forces and the roundings are the code's own.
-pub fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
+pub(crate) fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
     law: &L,
     frame: &CodeFrame,
     timestep: f64,
@@ -299,8 +299,8 @@ pub fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
 pub struct CodeStepping {
     /// The scheme.
     pub scheme: StepScheme,
-    /// The run's start in the code's own coordinates (stepped by [`step_in_frame`] for
-    /// velocity Verlet, [`step_in_leap_frog_frame`] for leap-frog); `None`: from touch, in the
+    /// The run's start in the code's own coordinates (stepped by `step_in_frame` for
+    /// velocity Verlet, `step_in_leap_frog_frame` for leap-frog); `None`: from touch, in the
     /// coordinates of the relative motion.
     pub frame: Option<CodeFrame>,
 }
@@ -336,7 +336,7 @@ impl CodeStepping {
 }
 
 /// The largest COR error, absolute, that velocity Verlet (with the force of
-/// [`paper_force_in_step`] from the half-step velocity, as LIGGGHTS `model paper` takes it)
+/// `paper_force_in_step` from the half-step velocity, as LIGGGHTS `model paper` takes it)
 /// makes on the paper's `law` at step `timestep` (s) and speed `impact_velocity` (m/s): the
 /// bound a run's realised COR keeps to `sqrt((1 − η)/(1 + η))`, whatever its start phase.
 ///

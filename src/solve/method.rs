@@ -235,7 +235,7 @@ impl Method {
     }
 
     /// The stability limit on `ω Δt` of a fixed-step method.
-    pub fn stability_limit(self) -> Option<f64> {
+    pub(crate) fn stability_limit(self) -> Option<f64> {
         match self.descriptor().stepping {
             Stepping::Fixed {
                 stability_limit, ..
@@ -246,7 +246,7 @@ impl Method {
 
     /// Whether the method must be accurate everywhere (event-located or adaptive): the
     /// stability grid fails on any inaccuracy of such a method.
-    pub fn held_accurate(self) -> bool {
+    pub(crate) fn held_accurate(self) -> bool {
         matches!(self.descriptor().tolerance, ToleranceRule::Uniform(_))
     }
 }

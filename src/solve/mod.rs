@@ -7,10 +7,10 @@
 //! scale of the case.
 
 pub mod dashpot;
-pub mod method;
+pub(crate) mod method;
 pub mod paper;
-pub mod series;
-pub mod steppers;
+pub(crate) mod series;
+pub(crate) mod steppers;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
@@ -71,7 +71,7 @@ pub struct Stats {
 
 /// Where a [`march`] stopped.
 #[derive(Clone, Copy, Debug)]
-pub struct Crossing {
+pub(crate) struct Crossing {
     /// Dimensionless time of the event.
     pub time: f64,
     /// State at the event.
@@ -83,7 +83,7 @@ pub struct Crossing {
 /// Use the contact series instead of a step for the end of a power-law phase: the phase's
 /// acceleration is `-k y^n` and its event 0 is `y = 0`.
 #[derive(Clone, Debug)]
-pub struct SeriesEnd<'a> {
+pub(crate) struct SeriesEnd<'a> {
     /// The series for the exponent.
     pub series: &'a ContactSeries,
     /// The stiffness factor `k`.
@@ -91,14 +91,14 @@ pub struct SeriesEnd<'a> {
 }
 
 /// Largest number of steps in one phase before the run is declared stuck.
-pub const STEP_BUDGET: u64 = 200_000_000;
+pub(crate) const STEP_BUDGET: u64 = 200_000_000;
 
 /// The event functions a [`march`] watches: it stops where one of them changes sign.
 ///
 /// An array of functions (`&[&rate]`; for functions of several types, `&[&a as &dyn Fn(&State)
 /// -> f64, &b]`) is checked with no allocation, and one of closures with no call through a
 /// pointer either. A slice of any length works too, at the cost of a vector per step.
-pub trait Events {
+pub(crate) trait Events {
     /// The values of every event function at one state.
     type Values: AsRef<[f64]>;
     /// Every event function at `s`.
@@ -138,7 +138,7 @@ impl Events for [&dyn Fn(&State) -> f64] {
 /// one loop with the law inlined into the method's stages; nothing is allocated per step.
 #[allow(clippy::too_many_arguments)]
 #[inline]
-pub fn march<R, S, E, O>(
+pub(crate) fn march<R, S, E, O>(
     rhs: &R,
     start: State,
     t0: f64,

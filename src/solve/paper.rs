@@ -179,7 +179,7 @@ pub fn solve(
 
 /// Refuse what [`solve`] would refuse before integrating: a step in seconds beyond the
 /// method's stability limit for this impact.
-pub fn check_step(
+pub(crate) fn check_step(
     law: &PaperLaw,
     impact_velocity: f64,
     settings: &Settings,
@@ -189,7 +189,7 @@ pub fn check_step(
 
 /// Impacts solved together: each item `(law, impact_velocity)` with the same `settings`, each
 /// giving what [`solve`] gives it, bit for bit. rk4-event on a unilateral contact without a
-/// trajectory steps [`LANES`] impacts at once, interleaved: one RK4 chain is a chain of
+/// trajectory steps `LANES` impacts at once, interleaved: one RK4 chain is a chain of
 /// dependent operations that leaves most of the processor idle, and independent chains fill
 /// it. Every other method runs them one after the other. An impact's `wall_time` is the
 /// batch's divided among its impacts.
@@ -681,7 +681,7 @@ fn phased_with(
 }
 
 /// Impacts of rk4-event stepped together in interleaved lanes by [`solve_many`].
-pub const LANES: usize = 4;
+pub(crate) const LANES: usize = 4;
 
 /// What a lane holds besides the state it steps: which impact, its factors and step, its
 /// counters, and the turning point once found.

@@ -12,11 +12,11 @@ use std::cell::RefCell;
 /// Terms kept; with `|w| <= MAX_W` the truncation is far below rounding.
 const TERMS: usize = 14;
 /// Largest `|w|` at which the series is used.
-pub const MAX_W: f64 = 0.2;
+pub(crate) const MAX_W: f64 = 0.2;
 
 /// The coefficients `c_j` for exponent `n`.
 #[derive(Clone, Debug)]
-pub struct ContactSeries {
+pub(crate) struct ContactSeries {
     n: f64,
     c: [f64; TERMS],
     /// Those of `P(w) = C(w)^n` (the last is not needed and left 0).
@@ -26,7 +26,7 @@ pub struct ContactSeries {
 impl ContactSeries {
     /// Coefficients from `c_{j+1} = p_j / (((j+1)(n+1)+1)(j+1)(n+1))`, where `p_j` are those of
     /// `C(w)^n` (J. C. P. Miller's recurrence for a power of a series).
-    pub fn new(n: f64) -> Self {
+    pub(crate) fn new(n: f64) -> Self {
         let mut c = [0.0; TERMS];
         let mut p = [0.0; TERMS];
         c[0] = 1.0;
@@ -47,7 +47,7 @@ impl ContactSeries {
 
     /// [`ContactSeries::new`], remembered per thread for the last exponent asked for: a sweep
     /// or a benchmark would otherwise build the same coefficients for every impact.
-    pub fn for_exponent(n: f64) -> Self {
+    pub(crate) fn for_exponent(n: f64) -> Self {
         thread_local! {
             static LAST: RefCell<Option<ContactSeries>> = const { RefCell::new(None) };
         }
@@ -68,7 +68,7 @@ impl ContactSeries {
     }
 
     /// `w` for speed `v`, time `s` and stiffness factor `k`.
-    pub fn argument(&self, k: f64, v: f64, s: f64) -> f64 {
+    pub(crate) fn argument(&self, k: f64, v: f64, s: f64) -> f64 {
         -k * v.powf(self.n - 1.0) * s.powf(self.n + 1.0)
     }
 
@@ -82,7 +82,7 @@ impl ContactSeries {
     /// steps) or clearly within it; the powers decide the states within 1e-6 of the edge, so
     /// the answer is always theirs. The shortcut is taken only where neither form can overflow
     /// or underflow.
-    pub fn within_reach_of_end(&self, k: f64, y: f64, rate: f64, accel: f64) -> bool {
+    pub(crate) fn within_reach_of_end(&self, k: f64, y: f64, rate: f64, accel: f64) -> bool {
         let v = -rate;
         let moderate = |x: f64| (1e-30..=1e30).contains(&x);
         let shortcut = (0.0..=3.0).contains(&self.n) && moderate(k) && moderate(y) && moderate(v);
@@ -109,12 +109,12 @@ impl ContactSeries {
     }
 
     /// The longest time from contact at speed `v` over which the series may be used.
-    pub fn reach(&self, k: f64, v: f64) -> f64 {
+    pub(crate) fn reach(&self, k: f64, v: f64) -> f64 {
         (MAX_W / (k * v.powf(self.n - 1.0))).powf(1.0 / (self.n + 1.0))
     }
 
     /// `(y, y')` a time `s` after contact starts at speed `v` under `y'' = -k y^n`.
-    pub fn advance(&self, k: f64, v: f64, s: f64) -> (f64, f64) {
+    pub(crate) fn advance(&self, k: f64, v: f64, s: f64) -> (f64, f64) {
         let (big_c, big_d) = self.sums(self.argument(k, v, s));
         (v * s * big_c, v * big_d)
     }
@@ -126,7 +126,7 @@ impl ContactSeries {
     /// Out of line: inlined into an integrator's loop, its powers may be hoisted above the test
     /// that decides whether it is called at all, and paid on every step.
     #[inline(never)]
-    pub fn time_to_exit(&self, k: f64, y: f64, rate: f64) -> Option<(f64, f64)> {
+    pub(crate) fn time_to_exit(&self, k: f64, y: f64, rate: f64) -> Option<(f64, f64)> {
         if y <= 0.0 {
             return Some((0.0, -rate));
         }

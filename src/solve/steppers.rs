@@ -4,11 +4,11 @@
 use nalgebra::Vector2;
 
 /// State `(y, v)`: approach and approach rate (dimensionless inside the solver).
-pub type State = Vector2<f64>;
+pub(crate) type State = Vector2<f64>;
 
 /// Result of one attempted step.
 #[derive(Clone, Copy, Debug)]
-pub struct Attempt {
+pub(crate) struct Attempt {
     /// State at the end of the step.
     pub state: State,
     /// Error norm: the step is acceptable when it is at most 1 (0 for fixed-step methods).
@@ -20,7 +20,7 @@ pub struct Attempt {
 }
 
 /// A one-step method together with its step-size policy.
-pub trait Stepper {
+pub(crate) trait Stepper {
     /// Attempt one step of size `h` from `y`, where `fy = f(y)` is already known.
     fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt;
     /// [`Stepper::attempt`] with the right-hand side's type known, so that a method can inline
@@ -49,7 +49,7 @@ pub trait Stepper {
 
 /// Classical fourth-order Runge–Kutta at a fixed step.
 #[derive(Clone, Copy, Debug)]
-pub struct Rk4 {
+pub(crate) struct Rk4 {
     /// The step in the phase at hand.
     pub step: f64,
     /// The step chosen for the loading phase.
@@ -58,7 +58,7 @@ pub struct Rk4 {
 
 impl Rk4 {
     /// RK4 at step `h`.
-    pub fn new(h: f64) -> Self {
+    pub(crate) fn new(h: f64) -> Self {
         Rk4 {
             step: h,
             base_step: h,
@@ -105,7 +105,12 @@ impl Stepper for Rk4 {
 
 /// One classical RK4 step (three new evaluations; `fy` is the first stage).
 #[inline]
-pub fn rk4_step<F: Fn(&State) -> State + ?Sized>(rhs: &F, y: &State, fy: &State, h: f64) -> State {
+pub(crate) fn rk4_step<F: Fn(&State) -> State + ?Sized>(
+    rhs: &F,
+    y: &State,
+    fy: &State,
+    h: f64,
+) -> State {
     let k1 = *fy;
     let k2 = rhs(&(y + 0.5 * h * k1));
     let k3 = rhs(&(y + 0.5 * h * k2));
@@ -116,7 +121,7 @@ pub fn rk4_step<F: Fn(&State) -> State + ?Sized>(rhs: &F, y: &State, fy: &State,
 /// Dormand–Prince 5(4) with the standard step-size controller, advancing the fifth-order
 /// solution.
 #[derive(Clone, Copy, Debug)]
-pub struct Dopri5 {
+pub(crate) struct Dopri5 {
     /// Relative tolerance.
     pub rtol: f64,
     /// Absolute tolerance, in the solver's dimensionless units.
@@ -126,7 +131,7 @@ pub struct Dopri5 {
 impl Dopri5 {
     /// A controller at relative tolerance `rtol`; the absolute floor is far below the O(1)
     /// dimensionless scale so that small COR values keep their relative accuracy.
-    pub fn new(rtol: f64) -> Self {
+    pub(crate) fn new(rtol: f64) -> Self {
         Dopri5 {
             rtol,
             atol: rtol * 1e-6,
@@ -225,7 +230,7 @@ impl Stepper for Dopri5 {
 
 /// One velocity-Verlet step (half kick, drift, half kick) of `y'' = accel(y)` for a force that
 /// depends on the position only.
-pub fn verlet_step(accel: &dyn Fn(f64) -> f64, s: &State, h: f64) -> State {
+pub(crate) fn verlet_step(accel: &dyn Fn(f64) -> f64, s: &State, h: f64) -> State {
     let half = s[1] + 0.5 * h * accel(s[0]);
     let y = s[0] + h * half;
     State::new(y, half + 0.5 * h * accel(y))

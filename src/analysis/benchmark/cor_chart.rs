@@ -45,7 +45,7 @@ pub enum TypedLaw {
 
 impl TypedLaw {
     /// Every law drawn.
-    pub const ALL: [TypedLaw; 4] = [
+    pub(crate) const ALL: [TypedLaw; 4] = [
         TypedLaw::DampedHertz,
         TypedLaw::DampedHertzClamped,
         TypedLaw::ThorntonClamped,
@@ -91,7 +91,7 @@ impl TypedLaw {
 /// Which curve a point is on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Curve {
+pub(crate) enum Curve {
     /// A source's realised COR in test 3: the exact solution, `rk4-event`, and each code's
     /// stored run as its driver sets it up (at 1,000 steps per contact).
     Run,
@@ -101,7 +101,7 @@ pub enum Curve {
 
 /// One point of the chart, and one CSV row.
 #[derive(Clone, Debug, Serialize)]
-pub struct CorPoint {
+pub(crate) struct CorPoint {
     /// `run` or `typed`.
     pub curve: Curve,
     /// The source (a run) or the law with the codes that build it (typed).
@@ -118,14 +118,14 @@ pub struct CorPoint {
 
 /// Test 3's chart: every run's point and every typed law's.
 #[derive(Clone, Debug, Serialize)]
-pub struct CorChart {
+pub(crate) struct CorChart {
     /// The points, runs first (by material, then source), then the typed laws.
     pub points: Vec<CorPoint>,
 }
 
 /// A figure of the chart: its file stem, title and caption, the SVG and the CSV of its points.
 #[derive(Clone, Debug)]
-pub struct ChartFigure {
+pub(crate) struct ChartFigure {
     /// File stem (`<stem>.svg`, `<stem>.csv`).
     pub stem: String,
     /// Its title.
@@ -161,7 +161,7 @@ fn merge_coinciding(series: Vec<Series>) -> Vec<Series> {
 }
 
 /// The chart of `report`'s test-3 COR rows, with the typed laws beside them.
-pub fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, BenchmarkError> {
+pub(crate) fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, BenchmarkError> {
     let mut points: Vec<CorPoint> = report
         .rows
         .iter()
@@ -222,7 +222,7 @@ impl CorChart {
     }
 
     /// The figures: one per test-3 material (the runs), and one of the typed laws.
-    pub fn figures(&self) -> Result<Vec<ChartFigure>, OutputError> {
+    pub(crate) fn figures(&self) -> Result<Vec<ChartFigure>, OutputError> {
         let mut figures = Vec::new();
         for impact in CHUNG_OOI.iter().filter(|i| i.test == 3) {
             let chart = Chart {

@@ -32,27 +32,27 @@ use crate::solve::{Method, SolveError};
 
 /// The relative tolerance of an elastic figure (peak overlap, peak force, contact time) against
 /// its published value: the paper's tables give three or four figures.
-pub const ELASTIC_TOLERANCE: f64 = 0.01;
+pub(crate) const ELASTIC_TOLERANCE: f64 = 0.01;
 
 /// The tolerance of a realised COR against the COR set, absolute, for the exact solution and
 /// the paper's law stepped by `rk4-event` at its default resolution.
-pub const COR_TOLERANCE_METHOD: f64 = 1e-6;
+pub(crate) const COR_TOLERANCE_METHOD: f64 = 1e-6;
 
 /// The CORs set in test 3.
-pub const TEST_3_CORS: [f64; 9] = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
+pub(crate) const TEST_3_CORS: [f64; 9] = [0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0];
 
 /// Steps per elastic contact time of the codes' runs, stored and live by default.
-pub const STEPS_PER_CONTACT: u32 = 1000;
+pub(crate) const STEPS_PER_CONTACT: u32 = 1000;
 
 /// The folder of the stored benchmark runs inside a reference store: a store of its own,
 /// `<reference>/benchmarks/<code>/<case>.json`, so that the canonical store's readers (its
 /// whole-ness check, `compare`) see none of it.
-pub const STORED_FOLDER: &str = "benchmarks";
+pub(crate) const STORED_FOLDER: &str = "benchmarks";
 
 /// The plane a sphere strikes in tests 2 and 3.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum Plane {
+pub(crate) enum Plane {
     /// The rigid plane of the paper, as each code makes one (its `CONVENTIONS.md`).
     Rigid,
     /// A wall given the sphere's own material: E* halves, the trap the paper warns of.
@@ -62,14 +62,14 @@ pub enum Plane {
 impl Plane {
     /// Whether a run on this plane should meet the published values: the rigid plane should,
     /// the same-material wall should not.
-    pub fn meets_the_paper(self) -> bool {
+    pub(crate) fn meets_the_paper(self) -> bool {
         self == Plane::Rigid
     }
 }
 
 /// One material of one test, as the paper gives it.
 #[derive(Clone, Copy, Debug)]
-pub struct PublishedImpact {
+pub(crate) struct PublishedImpact {
     /// The test's number (1, 2 or 3).
     pub test: u8,
     /// The material, as the paper names it.
@@ -91,7 +91,7 @@ pub struct PublishedImpact {
 impl PublishedImpact {
     /// The η of every run of this material: its case's own, and for test 3 the η of each COR
     /// set (the COR set 1.0 is the case's own η = 0).
-    pub fn loss_coefficients(&self) -> Vec<f64> {
+    pub(crate) fn loss_coefficients(&self) -> Vec<f64> {
         if self.test == 3 {
             TEST_3_CORS.iter().map(|&e| loss_coefficient(e)).collect()
         } else {
@@ -100,7 +100,7 @@ impl PublishedImpact {
     }
 
     /// Whether this source's figures should meet the published values: all but the trap's.
-    pub fn meets_the_paper(&self) -> bool {
+    pub(crate) fn meets_the_paper(&self) -> bool {
         self.plane.is_none_or(Plane::meets_the_paper)
     }
 
@@ -115,7 +115,7 @@ impl PublishedImpact {
 
 /// Chung & Ooi's tests 1–3: the Hertz values of their Table 2 to 4 for each material, and test 2
 /// again on the same-material wall (the trap: the published values, not met).
-pub const CHUNG_OOI: [PublishedImpact; 8] = [
+pub(crate) const CHUNG_OOI: [PublishedImpact; 8] = [
     PublishedImpact {
         test: 1,
         material: "glass",
@@ -201,7 +201,7 @@ pub const CHUNG_OOI: [PublishedImpact; 8] = [
 /// A figure a benchmark row compares.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Quantity {
+pub(crate) enum Quantity {
     /// The largest overlap, m.
     PeakOverlap,
     /// The largest normal force, N.
@@ -228,7 +228,7 @@ impl Quantity {
 
 /// One figure of one source against its published value.
 #[derive(Clone, Debug, Serialize)]
-pub struct BenchmarkRow {
+pub(crate) struct BenchmarkRow {
     /// The test (1, 2 or 3).
     pub test: u8,
     /// The material.
@@ -265,7 +265,7 @@ pub struct BenchmarkRow {
 
 /// A code's run the benchmark needs that the store does not hold.
 #[derive(Clone, Debug, Serialize)]
-pub struct MissingRun {
+pub(crate) struct MissingRun {
     /// The code.
     pub code: CodeName,
     /// The case.
@@ -317,7 +317,7 @@ impl Blame for BenchmarkError {
 
 /// The benchmark's result: every row, sources in the order asked.
 #[derive(Clone, Debug, Serialize)]
-pub struct BenchmarkReport {
+pub(crate) struct BenchmarkReport {
     /// The benchmark's name.
     pub benchmark: &'static str,
     /// Where its values come from.
@@ -331,7 +331,7 @@ pub struct BenchmarkReport {
 impl BenchmarkReport {
     /// The rows whose verdict is not the expected one: outside their tolerance on the rigid
     /// plane, or within it on the same-material wall (a trap that does not show).
-    pub fn failures(&self) -> Vec<&BenchmarkRow> {
+    pub(crate) fn failures(&self) -> Vec<&BenchmarkRow> {
         self.rows
             .iter()
             .filter(|r| r.pass != r.expected_pass)
@@ -341,7 +341,7 @@ impl BenchmarkReport {
 
 /// Where the codes' figures come from.
 #[derive(Clone, Debug, Default)]
-pub enum CodeRuns {
+pub(crate) enum CodeRuns {
     /// No code: the exact solution and the paper's law alone.
     #[default]
     None,
@@ -353,7 +353,7 @@ pub enum CodeRuns {
 
 /// Options of a benchmark run.
 #[derive(Clone, Debug, Default)]
-pub struct BenchmarkOptions {
+pub(crate) struct BenchmarkOptions {
     /// The codes' figures: none, stored, or run now.
     pub codes: CodeRuns,
     /// How the codes are run now (their step, their time limit).
@@ -546,7 +546,7 @@ fn source_rows(
 
 /// Run Chung & Ooi's tests 1–3 by the exact solution, the paper's law by `rk4-event`, and the
 /// codes of `options.codes`: every build's stored runs, or the codes asked for run now.
-pub fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, BenchmarkError> {
+pub(crate) fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, BenchmarkError> {
     let mut sources = vec![
         Source::Method(Method::Exact),
         Source::Method(Method::Rk4Event),

@@ -18,11 +18,11 @@ use crate::solve::SolveError;
 use crate::solve::dashpot::{CodeStepping, own_law_metrics};
 
 /// Start phases sampled when a card predicts a stepped COR.
-pub const CARD_PHASES: usize = 16;
+pub(crate) const CARD_PHASES: usize = 16;
 /// Fewest steps per elastic contact time a card recommends.
-pub const FEWEST_STEPS_PER_CONTACT: u32 = 10;
+pub(crate) const FEWEST_STEPS_PER_CONTACT: u32 = 10;
 /// Most steps per elastic contact time a card searches.
-pub const MOST_STEPS_PER_CONTACT: u32 = 163_840;
+pub(crate) const MOST_STEPS_PER_CONTACT: u32 = 163_840;
 
 /// How to calibrate.
 #[derive(Clone, Debug, PartialEq)]
@@ -58,7 +58,7 @@ pub struct Card {
     /// Its range over where the first contact falls within a step.
     pub realised_band: Range,
     /// The time step of the fewest steps per elastic contact time (from
-    /// [`FEWEST_STEPS_PER_CONTACT`]) whose COR stays within the tolerance of the target over
+    /// `FEWEST_STEPS_PER_CONTACT`) whose COR stays within the tolerance of the target over
     /// every start phase, s: one step per contact fewer leaves it (found by doubling, then
     /// bisection).
     pub timestep_for_tolerance: Option<f64>,

@@ -113,7 +113,7 @@ pub struct SourceRow {
 }
 
 /// The paper's law's exact figures in the form a trajectory's are read
-/// ([`ImpactFigures::metrics`]).
+/// (`ImpactFigures::metrics`).
 pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
     p.metrics()
 }
@@ -182,7 +182,7 @@ pub struct ModelPoint {
 
 /// A [`ModelPoint`] as one CSV row: its offsets side by side.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ModelPointRecord {
+pub(crate) struct ModelPointRecord {
     /// Case name.
     pub case: String,
     /// The code whose law this is.
@@ -346,7 +346,7 @@ fn figures_metrics(f: &ImpactFigures, force_contact_time: f64) -> TrajectoryMetr
 /// the integration offset as a band over the start phase. The code's own law is integrated
 /// again (exact and stepped) so that records stored before the force-based figures existed
 /// give them too.
-pub fn code_attribution(
+pub(crate) fn code_attribution(
     r: &ReferenceRecord,
 ) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics), CompareError> {
     let code = r.code;
@@ -372,7 +372,7 @@ pub fn code_attribution(
 }
 
 /// Compare one case; `live` runs the codes, otherwise the stored references are read.
-pub fn compare_case(
+pub(crate) fn compare_case(
     case: &Case,
     live: bool,
     reference: &Path,
@@ -520,7 +520,7 @@ pub struct CompareReport {
 
 impl CompareReport {
     /// The codes that were asked to run and did not, with why (live runs only).
-    pub fn failures(&self) -> Vec<String> {
+    pub(crate) fn failures(&self) -> Vec<String> {
         if self.live {
             self.cases.iter().flat_map(|c| c.missing.clone()).collect()
         } else {

@@ -39,17 +39,17 @@ use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
 /// canonical cases' speed, typical of a ball's fall in a mill).
-pub const DEFAULT_VELOCITY: f64 = 2.0;
+pub(crate) const DEFAULT_VELOCITY: f64 = 2.0;
 /// Fewest steps per contact before a warning: below it the step alone moves the COR by 1e-3
 /// and more (the band printed beside it says by how much).
-pub const MIN_STEPS_PER_CONTACT: f64 = 20.0;
+pub(crate) const MIN_STEPS_PER_CONTACT: f64 = 20.0;
 /// Largest time step, as a fraction of the Rayleigh time, before a warning (the usual rule
 /// of DEM practice is 10 to 20 %).
-pub const MAX_RAYLEIGH_FRACTION: f64 = 0.2;
+pub(crate) const MAX_RAYLEIGH_FRACTION: f64 = 0.2;
 /// Start phases over which the step's COR band is taken.
-pub const PHASES: usize = 16;
+pub(crate) const PHASES: usize = 16;
 /// Most steps one impact may run (a step this small for the contact is a deck error).
-pub const MAX_STEPS: u64 = 20_000_000;
+pub(crate) const MAX_STEPS: u64 = 20_000_000;
 
 /// How to check a deck.
 #[derive(Clone, Debug, PartialEq)]
@@ -463,7 +463,7 @@ fn pair_label(deck: &UserDeck, contact: usize) -> String {
 }
 
 /// The impact speeds: the given ones, else half, once and twice a representative speed (the
-/// deck's own, else [`DEFAULT_VELOCITY`]), with where they come from.
+/// deck's own, else `DEFAULT_VELOCITY`), with where they come from.
 pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
     if !given.is_empty() {
         return (given.to_vec(), GIVEN.into());
@@ -1206,7 +1206,7 @@ fn speed_section(curves: &[speed::SpeedCurve]) -> Section {
 
 impl DeckReport {
     /// The `deck` command that checks the deck again, as this check did.
-    pub fn reproduce(&self) -> Invocation {
+    pub(crate) fn reproduce(&self) -> Invocation {
         let mut command = Invocation::new("deck")
             .arg(&self.deck)
             .option("--code", self.code);
@@ -1221,7 +1221,7 @@ impl DeckReport {
 }
 
 /// The failures of a report's runs, one line each (empty when every run finished).
-pub fn failures(report: &DeckReport) -> Vec<String> {
+pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
     report
         .impacts
         .iter()
@@ -1245,7 +1245,7 @@ pub fn table_width(columns: Option<&str>, terminal: Option<u16>) -> Option<u16> 
 }
 
 /// Narrowest layout the table is wrapped into: below it each cell would break inside numbers.
-pub const NARROWEST_TABLE: u16 = 40;
+pub(crate) const NARROWEST_TABLE: u16 = 40;
 
 /// The report as a table that fits `width` characters: its cells wrapped where a column is too
 /// wide (comfy-table's dynamic arrangement), and every line of text under it (the traps, the

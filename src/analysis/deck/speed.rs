@@ -21,7 +21,7 @@ const PADE_DENOMINATOR: [f64; 6] = [1.07232, 1.72765, 1.37842, 1.19449, 0.467344
 /// `β = (c/k) (k/m)^(2/5)`) at `impact_velocity` (m/s) by Müller & Pöschel's [3/6] Padé
 /// approximant; `None` for any other law. Their series ends a collision where the force
 /// vanishes, so it is the clamped law's COR.
-pub fn viscoelastic_cor(law: &DashpotLaw, impact_velocity: f64) -> Option<f64> {
+pub(crate) fn viscoelastic_cor(law: &DashpotLaw, impact_velocity: f64) -> Option<f64> {
     // Exact exponents: the law's as the deck reader sets them, 1.5 and 0.5 and nothing near.
     #[allow(clippy::float_cmp)]
     let viscoelastic = law.exponent == 1.5 && law.damping_exponent == 0.5;
@@ -90,7 +90,7 @@ impl SpeedCurve {
 
 /// The curve of each pair of `impacts` checked at two speeds or more, in the order the pairs
 /// first appear.
-pub fn speed_curves(impacts: &[DeckImpact]) -> Vec<SpeedCurve> {
+pub(crate) fn speed_curves(impacts: &[DeckImpact]) -> Vec<SpeedCurve> {
     let mut pairs: Vec<&str> = Vec::new();
     for impact in impacts {
         if !pairs.contains(&impact.pair.as_str()) {

@@ -20,7 +20,7 @@ use crate::solve::{CorErrorBound, Knob, Method};
 pub const MARGIN: f64 = 1.25;
 
 /// Largest tolerance asked for: a relative COR error of 1 says nothing.
-pub const MAX_TOLERANCE: f64 = 1.0;
+pub(crate) const MAX_TOLERANCE: f64 = 1.0;
 
 /// A method and resolution chosen for a COR tolerance.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,7 +47,7 @@ pub struct ToleranceRefused {
 
 /// What a tolerance may be: a number in (smallest, 1), the smallest being what the finest
 /// resolution of the best-bounded method meets with the margin.
-pub fn allowed_tolerances() -> String {
+pub(crate) fn allowed_tolerances() -> String {
     format!(
         "a relative COR error in [{:.1e}, {MAX_TOLERANCE}) (the smallest any method is known to meet)",
         smallest_tolerance()
@@ -222,7 +222,7 @@ impl Choice {
 }
 
 /// A resolution in words.
-pub fn resolution_text(resolution: Resolution) -> String {
+pub(crate) fn resolution_text(resolution: Resolution) -> String {
     match resolution {
         Resolution::StepsPerPeriod(n) => format!("{n} steps per period"),
         Resolution::Rtol(r) => format!("rtol {r:e}"),

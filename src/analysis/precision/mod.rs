@@ -41,18 +41,18 @@ use crate::solve::{Knob, Method, SolveError, Stats};
 /// Errors below this are at the rounding floor of double precision for these figures (a few
 /// hundred ulps of an O(1) quantity after thousands of steps): such points say nothing about
 /// the order and are left out of its fit.
-pub const ROUNDING_FLOOR: f64 = 1e-12;
+pub(crate) const ROUNDING_FLOOR: f64 = 1e-12;
 
 /// Fixed-step points coarser than this many steps per period are left out of the order fit:
 /// below it the leading error term does not yet dominate (the step is a sizeable fraction of
 /// the compression phase).
-pub const ASYMPTOTIC_STEPS_PER_PERIOD: f64 = 32.0;
+pub(crate) const ASYMPTOTIC_STEPS_PER_PERIOD: f64 = 32.0;
 
 /// A batch of repeated impacts is timed for at least this long.
 const BATCH_TIME: Duration = Duration::from_millis(1);
 
 /// Largest number of timed runs of a DEM code per point (each run is ~0.4 s).
-pub const CODE_REPEATS: u32 = 3;
+pub(crate) const CODE_REPEATS: u32 = 3;
 
 /// One point of the work–precision diagram.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -111,7 +111,7 @@ pub enum SweepKnob {
 
 impl SweepKnob {
     /// How a value of this knob reads in a sentence.
-    pub fn sentence(self, value: f64) -> String {
+    pub(crate) fn sentence(self, value: f64) -> String {
         match self {
             SweepKnob::Rtol => format!("rtol {value:.0e}"),
             SweepKnob::StepsPerContact => format!("{value} steps/contact"),
@@ -120,7 +120,7 @@ impl SweepKnob {
     }
 
     /// How a value of this knob reads in a table cell.
-    pub fn cell(self, value: f64) -> String {
+    pub(crate) fn cell(self, value: f64) -> String {
         match self {
             SweepKnob::Rtol => format!("rtol {value:.0e}"),
             SweepKnob::StepsPerPeriod => format!("{value} /period"),
@@ -139,7 +139,7 @@ impl SweepKnob {
 
 /// A point named by its source and knob value, as the targets quote it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct NamedPoint {
+pub(crate) struct NamedPoint {
     /// The method or code.
     pub source: Source,
     /// What was swept.
@@ -152,7 +152,7 @@ pub struct NamedPoint {
 
 /// The two cost targets of the issue, measured in one run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Targets {
+pub(crate) struct Targets {
     /// The cheapest method point with COR error ≤ 1e-10 (figure: time, s).
     pub best_at_1e_10: Option<NamedPoint>,
     /// The cheapest DEM-code point (figure: time, s).
@@ -169,7 +169,7 @@ pub struct Targets {
 
 /// Everything `millimpact precision` reports.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PrecisionReport {
+pub(crate) struct PrecisionReport {
     /// Case name.
     pub case: String,
     /// Every point, by source then knob.
@@ -194,7 +194,7 @@ pub struct PrecisionReport {
 
 /// What a note about orders is about.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum NoteSubject {
+pub(crate) enum NoteSubject {
     /// One method.
     Method(Method),
     /// Every DEM code.
@@ -202,7 +202,7 @@ pub enum NoteSubject {
 }
 
 /// Why each method converges at the order it does; printed with the reports that sweep it.
-pub const ORDER_NOTES: [(NoteSubject, &str); 6] = [
+pub(crate) const ORDER_NOTES: [(NoteSubject, &str); 6] = [
     (
         NoteSubject::Method(Method::Rk4Event),
         "rk4-event: the contact time converges at order 4, RK4's own order: the turning point and \
@@ -333,7 +333,7 @@ pub enum PrecisionError {
 
 /// One point of `method` on `law` at speed `v0` with `settings`: errors from a warm-up run,
 /// then the median of `repeats` timed batches.
-pub fn method_point(
+pub(crate) fn method_point(
     law: &PaperLaw,
     v0: f64,
     settings: &Settings,
@@ -441,7 +441,7 @@ pub fn method_sweep(
 /// The sweep of one DEM code on `case` over `steps_per_contact`, `repeats` timed runs per point
 /// (at most [`CODE_REPEATS`]) after one warm-up run of the code. A missing binary, a crash or
 /// an unparsable output is an error.
-pub fn code_sweep(
+pub(crate) fn code_sweep(
     case: &Case,
     code: CodeName,
     steps_per_contact: &[u32],
@@ -524,8 +524,8 @@ pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
 
 /// The observed orders of one source's points: the slope of log(error) against log(step),
 /// the step being `1/value` for steps per period or contact, over the points in the asymptotic
-/// range (error above [`ROUNDING_FLOOR`]; for a method, at least
-/// [`ASYMPTOTIC_STEPS_PER_PERIOD`] steps per period). For dopri5 the slope against `rtol`.
+/// range (error above `ROUNDING_FLOOR`; for a method, at least
+/// `ASYMPTOTIC_STEPS_PER_PERIOD` steps per period). For dopri5 the slope against `rtol`.
 pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
     let usable = |p: &&WorkPrecisionPoint| {
         p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD
@@ -614,7 +614,7 @@ fn targets(points: &[WorkPrecisionPoint]) -> Targets {
 }
 
 /// Sweep `methods` and `codes` on `case` and assemble the report.
-pub fn precision_report(
+pub(crate) fn precision_report(
     case: &Case,
     methods: &[Method],
     code_names: &[CodeName],
@@ -816,7 +816,7 @@ fn target_lines(t: &Targets) -> Vec<String> {
 
 /// A point as one flat CSV row.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct PointRecord {
+pub(crate) struct PointRecord {
     /// The method or code.
     pub source: Source,
     /// What was swept.
@@ -844,7 +844,7 @@ pub struct PointRecord {
 impl PrecisionReport {
     /// The points of each source as `(largest relative error, run time in s)`, in sweep order:
     /// the series of the work–precision diagram.
-    pub fn series(&self) -> Vec<(String, Vec<(f64, f64)>)> {
+    pub(crate) fn series(&self) -> Vec<(String, Vec<(f64, f64)>)> {
         let mut sources: Vec<Source> = self.points.iter().map(|p| p.source).collect();
         sources.dedup();
         sources

@@ -45,7 +45,7 @@ pub const METHODS: [Method; 4] = [
 ];
 
 /// The error rk4-event and dopri5 must meet on every grid case.
-pub const ACCURATE_TOLERANCE: f64 = 1e-9;
+pub(crate) const ACCURATE_TOLERANCE: f64 = 1e-9;
 
 /// The largest loss coefficient of the grid.
 pub const ETA_MAX: f64 = 0.999999;
@@ -95,7 +95,7 @@ fn make_case(name: String, scene: Scene, v0: f64, eta: f64) -> Case {
 }
 
 /// The built-in grid.
-pub fn grid() -> Vec<GridCase> {
+pub(crate) fn grid() -> Vec<GridCase> {
     let mut out = Vec::new();
     const STEEL: f64 = 7800.0;
     // Dimensional extremes of a ball on a plate of its own material.
@@ -395,7 +395,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
 }
 
 /// Every grid case by every method in [`METHODS`], on two threads (the machine is shared).
-pub fn run_grid() -> Vec<CaseResult> {
+pub(crate) fn run_grid() -> Vec<CaseResult> {
     let jobs: Vec<(GridCase, Method)> = grid()
         .into_iter()
         .flat_map(|g| METHODS.map(|m| (g.clone(), m)))
@@ -463,20 +463,20 @@ pub struct LimitCheck {
     /// `paper::solve` ran: the largest speed at a zero crossing over the run, over `v0`.
     pub solver_max_crossing_speed: Option<f64>,
     /// The method's own step map on `y'' = -ω² y`: the largest `|(ωy, v)|` over the last tenth
-    /// of [`LIMIT_STEPS`] steps over that over the first tenth.
+    /// of `LIMIT_STEPS` steps over that over the first tenth.
     pub growth: f64,
     /// Whether the growth is bounded (at most 1.5).
     pub bounded: bool,
 }
 
 /// Steps of the direct check of the step map (about 400 periods at `ω Δt` near the limit).
-pub const LIMIT_STEPS: usize = 1000;
+pub(crate) const LIMIT_STEPS: usize = 1000;
 
 /// How far below and above the limit the checks step, relative.
-pub const LIMIT_MARGIN: f64 = 0.01;
+pub(crate) const LIMIT_MARGIN: f64 = 0.01;
 
 /// Growth of the largest `|(y, v)|` of `method`'s fixed-step map on `y'' = -y` at step `z`
-/// (so `ω Δt = z`), the last tenth of [`LIMIT_STEPS`] over the first tenth. RK4 is the
+/// (so `ω Δt = z`), the last tenth of `LIMIT_STEPS` over the first tenth. RK4 is the
 /// crate's own step; Verlet is the solver's kick–drift–kick.
 pub fn step_map_growth(method: Method, z: f64) -> f64 {
     let rhs = |s: &State| State::new(s[1], -s[0]);
@@ -557,7 +557,7 @@ pub fn limit_checks() -> Vec<LimitCheck> {
 
 /// Per-method totals of the grid.
 #[derive(Clone, Debug, Serialize)]
-pub struct MethodSummary {
+pub(crate) struct MethodSummary {
     /// Method.
     pub method: Method,
     /// Cases run.
@@ -582,7 +582,7 @@ pub struct MethodSummary {
 
 /// Everything `millimpact stability` reports.
 #[derive(Clone, Debug, Serialize)]
-pub struct StabilityReport {
+pub(crate) struct StabilityReport {
     /// Every case by every method.
     pub cases: Vec<CaseResult>,
     /// Totals per method.
@@ -594,7 +594,7 @@ pub struct StabilityReport {
 }
 
 /// Run the grid and the limit checks.
-pub fn stability_report() -> StabilityReport {
+pub(crate) fn stability_report() -> StabilityReport {
     let started = Instant::now();
     let cases = run_grid();
     let summary = METHODS
@@ -630,7 +630,7 @@ pub fn stability_report() -> StabilityReport {
 
 impl StabilityReport {
     /// The cases that fail of the methods held accurate everywhere (rk4-event, dopri5).
-    pub fn accurate_method_failures(&self) -> Vec<&CaseResult> {
+    pub(crate) fn accurate_method_failures(&self) -> Vec<&CaseResult> {
         self.cases
             .iter()
             .filter(|c| c.method.held_accurate() && !c.pass)

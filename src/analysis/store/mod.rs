@@ -269,7 +269,7 @@ pub struct ReferenceFile {
 }
 
 /// Relative differences of one source against another.
-pub type Split = Differences;
+pub(crate) type Split = Differences;
 
 /// A code's difference from the paper's law, split into its parts (each relative to the
 /// paper's law).
@@ -307,7 +307,7 @@ impl ReferenceRecord {
 
     /// How its code steps its law: the stored scheme, and the code's frame for the stored
     /// setup.
-    pub fn stepping(&self) -> CodeStepping {
+    pub(crate) fn stepping(&self) -> CodeStepping {
         CodeStepping {
             scheme: self.step_scheme,
             frame: self.code.driver().frame(&self.setup),
@@ -426,7 +426,7 @@ pub fn run_reference(
 }
 
 /// Bytes as lowercase hexadecimal (a SHA-256 digest as stored).
-pub fn hex(bytes: &[u8]) -> String {
+pub(crate) fn hex(bytes: &[u8]) -> String {
     bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 

@@ -36,11 +36,11 @@ pub const TARGET_TOLERANCE: f64 = 1e-9;
 /// Bound on the relative difference between a stored record's exact figures (its own law's,
 /// the paper law's) and the same figures computed now: both are integrations at tolerances
 /// near 1e-13, so anything above this is a changed record or a changed law.
-pub const RECOMPUTE_TOLERANCE: f64 = 1e-9;
+pub(crate) const RECOMPUTE_TOLERANCE: f64 = 1e-9;
 /// The η at which the shipped store holds a record of every code on every canonical case.
-pub const STORED_LOSS_COEFFICIENTS: [f64; 3] = [0.0, 0.35, 0.7];
+pub(crate) const STORED_LOSS_COEFFICIENTS: [f64; 3] = [0.0, 0.35, 0.7];
 /// The canonical cases the shipped store covers.
-pub const CANONICAL_CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
+pub(crate) const CANONICAL_CASES: [&str; 3] = ["ball_plate", "ball_ball", "rod_end"];
 
 /// What a row of `verify` checks, and so what its numbers are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -65,7 +65,7 @@ pub enum Check {
 
 impl Check {
     /// How the check reads in the table.
-    pub fn label(self) -> &'static str {
+    pub(crate) fn label(self) -> &'static str {
         match self {
             Check::ClosedForm => "vs closed form (rel)",
             Check::OwnLawStepped => "vs own law stepped now (rel)",
@@ -308,7 +308,7 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
 ///   [`REMAINDER_TOLERANCE`];
 /// - the code's own law against the COR asked of it, to [`TARGET_TOLERANCE`];
 /// - the store as a whole: a record for every code on every canonical case at every η of
-///   [`STORED_LOSS_COEFFICIENTS`] (for the canonical cases present in `cases`), and no other
+///   `STORED_LOSS_COEFFICIENTS` (for the canonical cases present in `cases`), and no other
 ///   file. Records are the `*.json` files directly in `folder/<code>/`; other files there (the
 ///   conventions notes, probe inputs) are not records.
 pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
@@ -328,10 +328,8 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
 /// (`<reference>/benchmarks`) against the benchmark's cases in `cases` (`<cases>/benchmarks`),
 /// as [`verify_stored`] checks the canonical store: each run's provenance, its own law
 /// re-stepped now, its law against its target, and the store as a whole (a run of every code
-/// on every benchmark case at every η the benchmark reads, [`PublishedImpact::loss_coefficients`]).
+/// on every benchmark case at every η the benchmark reads, `PublishedImpact::loss_coefficients`).
 /// A folder not there is a store missing every run.
-///
-/// [`PublishedImpact::loss_coefficients`]: crate::analysis::benchmark::PublishedImpact::loss_coefficients
 pub fn verify_benchmark_store(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     let expected: Vec<(&str, Vec<f64>)> = CHUNG_OOI
         .iter()
@@ -643,7 +641,7 @@ fn missing_runs(
 
 /// Most steps a stored run may claim before it is re-stepped (10⁷: a thousand times the
 /// finest resolution the harness stores).
-pub const MAX_STORED_STEPS: u64 = 10_000_000;
+pub(crate) const MAX_STORED_STEPS: u64 = 10_000_000;
 
 /// JSON files in `folder` that are not records: directly in `folder`, or in a folder that is
 /// not a known code's.

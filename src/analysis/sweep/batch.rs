@@ -24,11 +24,11 @@ use crate::model::trajectory::trajectory_metrics;
 use crate::solve::dashpot::own_law_metrics;
 
 /// Most bytes of trajectory files one batch may write (about 80 bytes per step and impact).
-pub const MAX_BATCH_BYTES: f64 = 2e8;
+pub(crate) const MAX_BATCH_BYTES: f64 = 2e8;
 
 /// A code point with its case and setup.
 #[derive(Clone, Debug)]
-pub struct Prepared<'a> {
+pub(crate) struct Prepared<'a> {
     /// The point.
     pub point: &'a GridPoint,
     /// Its case.
@@ -41,7 +41,7 @@ pub struct Prepared<'a> {
 
 /// One unit of work for the pool: one process.
 #[derive(Clone, Debug)]
-pub enum WorkItem<'a> {
+pub(crate) enum WorkItem<'a> {
     /// A point run alone.
     Single(&'a GridPoint),
     /// Points run together in one process of `code`.
@@ -59,7 +59,7 @@ pub enum WorkItem<'a> {
 /// impacts are too few to pay each process's start: [`BatchRunner::impacts_per_start`]).
 ///
 /// [`BatchRunner::impacts_per_start`]: crate::codes::BatchRunner::impacts_per_start
-pub fn plan<'a>(
+pub(crate) fn plan<'a>(
     sweep: &SweepFile,
     points: &[&'a GridPoint],
     options: &GridOptions,
@@ -149,7 +149,7 @@ pub fn plan<'a>(
 /// at least `least` where the cap allows (one if all are fewer): a process started for fewer
 /// would spend more on its start than on its impacts, and on a loaded machine the CPU it
 /// takes is what the others wait for.
-pub fn balanced_sizes(count: usize, cap: usize, jobs: usize, least: usize) -> Vec<usize> {
+pub(crate) fn balanced_sizes(count: usize, cap: usize, jobs: usize, least: usize) -> Vec<usize> {
     if count == 0 {
         return Vec::new();
     }
@@ -219,7 +219,7 @@ fn batch_figures(
 
 /// Run one work item and hand each row to `emit`; reasons for falling back to single runs go
 /// to `note`. Once `stop` is raised nothing falls back: what did not finish runs on resume.
-pub fn run_item(
+pub(crate) fn run_item(
     sweep: &SweepFile,
     item: &WorkItem<'_>,
     options: &GridOptions,

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 
 /// Most line numbers a summary lists.
-pub const LISTED_LINES: usize = 10;
+pub(crate) const LISTED_LINES: usize = 10;
 
 /// The first failed row of an output.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,7 +30,7 @@ pub struct FailedRows {
 
 impl FailedRows {
     /// Note a failed row of `point` on `line` with the error `status`.
-    pub fn record(&mut self, line: usize, point: usize, status: &str) {
+    pub(crate) fn record(&mut self, line: usize, point: usize, status: &str) {
         self.count += 1;
         if self.lines.len() < LISTED_LINES {
             self.lines.push(line);
@@ -45,13 +45,13 @@ impl FailedRows {
     }
 
     /// Whether no row failed.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.count == 0
     }
 
     /// One line: how many of `points` failed, where their errors are in `place`, and the
     /// first error.
-    pub fn summary(&self, points: usize, place: &str) -> String {
+    pub(crate) fn summary(&self, points: usize, place: &str) -> String {
         let mut text = format!(
             "{} of {points} points failed; their errors are in the status column of {place}, line{} ",
             self.count,

@@ -28,14 +28,14 @@ use super::error::SweepError;
 use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
 use crate::analysis::precision::choice::{Choice, allowed_tolerances, choose, resolution_text};
 use crate::analysis::run::MIN_RTOL;
-pub use crate::analysis::source::{Resolution, Source};
+pub(crate) use crate::analysis::source::{Resolution, Source};
 use crate::codes::CodeName;
 use crate::error::Chain;
 use crate::model::case::{Case, CaseError, IN_PLACE_KEYS};
 use crate::solve::{Knob, Method};
 
 /// Most points a sweep file may name.
-pub const MAX_POINTS: usize = 10_000_000;
+pub(crate) const MAX_POINTS: usize = 10_000_000;
 
 /// The keys a sweep file may have at top level.
 const SWEEP_KEYS: [&str; 3] = ["base", "axes", "tolerance"];
@@ -79,7 +79,7 @@ pub enum AxisValues {
 
 impl AxisValues {
     /// How many values.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         match self {
             AxisValues::List(v) => v.len(),
             AxisValues::Spaced { count, .. } => *count,
@@ -87,17 +87,17 @@ impl AxisValues {
     }
 
     /// Whether there are none (an axis always has one).
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
     /// Every value, in order.
-    pub fn iter(&self) -> impl Iterator<Item = Value> + '_ {
+    pub(crate) fn iter(&self) -> impl Iterator<Item = Value> + '_ {
         (0..self.len()).map(|i| self.get(i))
     }
 
     /// Value `i`.
-    pub fn get(&self, i: usize) -> Value {
+    pub(crate) fn get(&self, i: usize) -> Value {
         match self {
             AxisValues::List(v) => v[i].clone(),
             AxisValues::Spaced {
@@ -161,7 +161,7 @@ pub struct GridPoint {
 }
 
 /// Whether `table` is a sweep file rather than a case.
-pub fn is_sweep_table(table: &Table) -> bool {
+pub(crate) fn is_sweep_table(table: &Table) -> bool {
     table.contains_key("axes") || table.contains_key("base")
 }
 
@@ -182,7 +182,7 @@ fn parse_toml(path: &Path) -> Result<Table, CaseError> {
 }
 
 /// Read a file as TOML (for telling a sweep file from a case file).
-pub fn read_table(path: &Path) -> Result<Table, CaseError> {
+pub(crate) fn read_table(path: &Path) -> Result<Table, CaseError> {
     parse_toml(path)
 }
 
@@ -429,7 +429,7 @@ fn fingerprint(axes_table: Table, base: &Table, tolerance: Option<&Choice>) -> S
 
 /// A number as written in a row: the shortest form that reads back exactly, plain for
 /// moderate magnitudes and with an exponent otherwise.
-pub fn number(x: f64) -> String {
+pub(crate) fn number(x: f64) -> String {
     let a = x.abs();
     if x == 0.0 || (1e-4..1e15).contains(&a) || !x.is_finite() {
         x.to_string()
@@ -438,7 +438,7 @@ pub fn number(x: f64) -> String {
     }
 }
 
-/// A cell as written in a row: strings bare, numbers by [`number`].
+/// A cell as written in a row: strings bare, numbers by `number`.
 pub fn cell(value: &Value) -> String {
     match value {
         Value::String(s) => s.clone(),
@@ -450,7 +450,7 @@ pub fn cell(value: &Value) -> String {
 }
 
 /// The normal form of a parameter cell for matching rows: a number by its value.
-pub fn normal_cell(text: &str) -> String {
+pub(crate) fn normal_cell(text: &str) -> String {
     match text.parse::<f64>() {
         Ok(x) if x.is_finite() => number(x),
         _ => text.to_string(),
@@ -470,7 +470,7 @@ impl SweepFile {
     }
 
     /// Validate a parsed sweep file.
-    pub fn from_table(path: &Path, table: &Table) -> Result<SweepFile, CaseError> {
+    pub(crate) fn from_table(path: &Path, table: &Table) -> Result<SweepFile, CaseError> {
         let file = path.display().to_string();
         let fail =
             |key: &str, value: &str, allowed: &str| CaseError::new(&file, key, value, allowed);
@@ -566,7 +566,7 @@ impl SweepFile {
     }
 
     /// How many points the grid has.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product::<usize>() * self.sources.len()
     }
 
@@ -588,7 +588,7 @@ impl SweepFile {
 
     /// Make `point` point `index`, its storage reused (points one after another, as a chunk
     /// of a sweep runs them).
-    pub fn point_into(&self, index: usize, point: &mut GridPoint) {
+    pub(crate) fn point_into(&self, index: usize, point: &mut GridPoint) {
         let mut rest = index;
         point.index = index;
         point.source = self.sources[rest % self.sources.len()];
@@ -617,7 +617,7 @@ impl SweepFile {
     }
 
     /// The keys of the case axes, in axis order.
-    pub fn axis_keys(&self) -> Vec<String> {
+    pub(crate) fn axis_keys(&self) -> Vec<String> {
         self.axes.iter().map(|a| a.key.clone()).collect()
     }
 
@@ -627,12 +627,17 @@ impl SweepFile {
     }
 
     /// The names of the parameter columns (what a row is matched by on resume).
-    pub fn key_columns(&self) -> Vec<String> {
+    pub(crate) fn key_columns(&self) -> Vec<String> {
         super::row::key_columns(&self.axis_keys())
     }
 
     /// The row of `point` with `figures` and `status`.
-    pub fn row(&self, point: &GridPoint, figures: PointFigures, status: RowStatus) -> SweepRow {
+    pub(crate) fn row(
+        &self,
+        point: &GridPoint,
+        figures: PointFigures,
+        status: RowStatus,
+    ) -> SweepRow {
         let mut row = SweepRow {
             identity: RowIdentity::default(),
             axes: Vec::with_capacity(self.axes.len()),
@@ -647,7 +652,7 @@ impl SweepFile {
     /// Make `row` the row of `point` (its identity, axis values and source), its storage
     /// reused: a row of this sweep's is made once per chunk and filled point after point.
     /// The figures and status are left to the caller.
-    pub fn set_point(&self, row: &mut SweepRow, point: &GridPoint) {
+    pub(crate) fn set_point(&self, row: &mut SweepRow, point: &GridPoint) {
         if row.identity.sweep != self.fingerprint {
             row.identity.sweep.clone_from(&self.fingerprint);
         }
@@ -671,7 +676,7 @@ impl SweepFile {
     }
 
     /// The row of `point` from its outcome: the figures, or the error.
-    pub fn outcome_row(
+    pub(crate) fn outcome_row(
         &self,
         point: &GridPoint,
         outcome: Result<PointFigures, SweepError>,
@@ -686,7 +691,7 @@ impl SweepFile {
         }
     }
 
-    /// The parameter cells of `point`, in [`SweepFile::key_columns`] order, in the normal
+    /// The parameter cells of `point`, in `SweepFile::key_columns` order, in the normal
     /// form rows are matched by.
     pub fn key_cells(&self, point: &GridPoint) -> Vec<String> {
         let row = self.row(point, PointFigures::default(), RowStatus::default());
@@ -740,7 +745,7 @@ impl SweepFile {
     }
 
     /// How errors name the case of `point`.
-    pub fn point_file(&self, point: &GridPoint) -> String {
+    pub(crate) fn point_file(&self, point: &GridPoint) -> String {
         format!("{} (point {})", self.path.display(), point.index)
     }
 }
@@ -748,14 +753,14 @@ impl SweepFile {
 /// The cases of a sweep's points, one after another: each made from the last by editing it in
 /// place when every axis allows ([`SweepFile::in_place`]), else read anew from the base's
 /// table; the same case and the same errors either way.
-pub struct PointCases<'a> {
+pub(crate) struct PointCases<'a> {
     sweep: &'a SweepFile,
     case: Case,
 }
 
 impl<'a> PointCases<'a> {
     /// Cases of `sweep`'s points.
-    pub fn new(sweep: &'a SweepFile) -> PointCases<'a> {
+    pub(crate) fn new(sweep: &'a SweepFile) -> PointCases<'a> {
         PointCases {
             sweep,
             case: sweep.base_case.clone(),

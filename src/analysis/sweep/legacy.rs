@@ -19,7 +19,7 @@ use crate::output::{Format, Section, Summary, export, markdown_row, sci, signed}
 use crate::solve::paper::{Settings, check_step, solve_many};
 
 /// Most values a sweep may have (a sweep file's limit).
-pub const MAX_SWEEP_POINTS: usize = super::grid::MAX_POINTS;
+pub(crate) const MAX_SWEEP_POINTS: usize = super::grid::MAX_POINTS;
 
 /// Loss coefficients `start + i × step` for `i` below `count`, made on demand.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,24 +34,25 @@ pub struct EtaRange {
 
 impl EtaRange {
     /// Value `i`.
-    pub fn get(&self, i: usize) -> f64 {
+    pub(crate) fn get(&self, i: usize) -> f64 {
         self.start + i as f64 * self.step
     }
 
     /// The values of `range`.
-    pub fn values(&self, range: std::ops::Range<usize>) -> Vec<f64> {
+    pub(crate) fn values(&self, range: std::ops::Range<usize>) -> Vec<f64> {
         range.map(|i| self.get(i)).collect()
     }
 }
 
 /// Parse `START:STOP:STEP` into the values of η it names, STOP included.
-pub fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
+#[cfg(test)]
+pub(crate) fn parse_range(text: &str) -> Result<Vec<f64>, UserError> {
     let range = parse_eta_range(text)?;
     Ok(range.values(0..range.count))
 }
 
 /// Parse `START:STOP:STEP` into the range of η it names, STOP included.
-pub fn parse_eta_range(text: &str) -> Result<EtaRange, UserError> {
+pub(crate) fn parse_eta_range(text: &str) -> Result<EtaRange, UserError> {
     let allowed = "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0";
     let refuse = |allowed: &str| UserError::argument("--loss-coefficient", text, allowed);
     let numbers: Option<Vec<f64>> = text.split(':').map(|p| p.trim().parse().ok()).collect();
@@ -154,7 +155,7 @@ impl Summary for SweepReport {
 
 /// The rows of `case` at the loss coefficients `values` with `settings`, in order: each the
 /// row of [`run_case`] at that η (rk4-event solves them in lanes, to the same bits).
-pub fn rows_at(
+pub(crate) fn rows_at(
     case: &Case,
     values: &[f64],
     settings: &Settings,

@@ -1,13 +1,13 @@
 //! Sweeps: grids over case keys, methods, codes and resolutions (sweep files), their rows on
 //! disk, batches of code points, and the legacy one-axis form.
 
-pub mod batch;
-pub mod error;
-pub mod failed;
+pub(crate) mod batch;
+pub(crate) mod error;
+pub(crate) mod failed;
 pub mod grid;
 pub mod legacy;
 pub mod point;
-pub mod resume;
+pub(crate) mod resume;
 pub mod row;
 pub mod rows;
 
@@ -25,14 +25,14 @@ use rows::{EncodedRows, RowFormat};
 
 /// Points of our methods are computed and encoded in chunks of this many: a chunk is one
 /// message to the writer, and rk4-event steps its impacts together in lanes.
-pub const CHUNK: usize = 64;
+pub(crate) const CHUNK: usize = 64;
 
 /// Run `count` items in chunks of `chunk` on `jobs` threads, `work` turning each range of
 /// items into a value, and hand the values to `deliver` on the calling thread in the order
 /// of their ranges. Threads take the next chunk as they finish one, so at most a few chunks
 /// wait for an earlier one; after `stop` is raised no chunk starts. `deliver` returning an
 /// error raises `stop` and is returned; the chunks still coming are dropped.
-pub fn ordered_chunks<T: Send>(
+pub(crate) fn ordered_chunks<T: Send>(
     count: usize,
     chunk: usize,
     jobs: usize,

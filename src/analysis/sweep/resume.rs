@@ -19,7 +19,7 @@ use crate::output::csv_record::CsvRecords;
 
 /// A point's parameters as one number: a hash of its key cells in normal form (128 bits, so
 /// that ten million points collide with a chance below 1e-24).
-pub type PointKey = u128;
+pub(crate) type PointKey = u128;
 
 /// The key of a row whose key cells (in [`SweepFile::key_columns`] order) are `cells`, each
 /// already in normal form.
@@ -71,7 +71,7 @@ pub fn point_keys(sweep: &SweepFile, points: &[GridPoint]) -> Result<Vec<PointKe
 
 /// What a resumed output holds, and what resuming it does.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct Resumed {
+pub(crate) struct Resumed {
     /// The format the file was written in (`None`: it holds no complete line).
     pub format: Option<RowFormat>,
     /// Whether the kept part starts with a CSV header (so none is written again).
@@ -97,13 +97,13 @@ pub struct Resumed {
 impl Resumed {
     /// Whether the file must be rewritten to hold only what is kept (a row dropped, a torn
     /// last line, a blank line).
-    pub fn rewrites(&self) -> bool {
+    pub(crate) fn rewrites(&self) -> bool {
         let kept: u64 = self.keep.iter().map(|r| r.end - r.start).sum();
         self.torn || kept != self.complete
     }
 
     /// Copy the kept part of `source` (the file [`read_resumed`] read) to `out`.
-    pub fn copy_kept(&self, source: &Path, out: &mut dyn Write) -> std::io::Result<()> {
+    pub(crate) fn copy_kept(&self, source: &Path, out: &mut dyn Write) -> std::io::Result<()> {
         let mut file = std::fs::File::open(source)?;
         // Neighbouring ranges are copied in one read.
         let mut ranges: Vec<std::ops::Range<u64>> = Vec::new();

@@ -56,7 +56,7 @@ pub struct PointSource {
 
 impl PointSource {
     /// The columns of `source` at `resolution` (`None`: its default).
-    pub fn new(source: Source, resolution: Option<Resolution>) -> PointSource {
+    pub(crate) fn new(source: Source, resolution: Option<Resolution>) -> PointSource {
         let (method, code) = match source {
             Source::Method(method) => (Some(method), None),
             Source::Code(code) => (None, Some(code)),
@@ -148,7 +148,7 @@ fn relative(value: f64, reference: f64) -> Option<f64> {
 
 impl PointFigures {
     /// The figures of a method's run.
-    pub fn of_method(r: &RunReport) -> PointFigures {
+    pub(crate) fn of_method(r: &RunReport) -> PointFigures {
         PointFigures {
             case: Some(r.case.clone()),
             eta: finite(r.loss_coefficient),
@@ -180,7 +180,8 @@ impl PointFigures {
     /// The figures of a method's `outcome` on the case named `case` with `law` at
     /// `impact_velocity`: what [`PointFigures::of_method`] gives for the run's report, without
     /// the report's other parts (the elastic Hertz figures, the warnings).
-    pub fn of_solution(
+    #[cfg(test)]
+    pub(crate) fn of_solution(
         case: &str,
         law: &PaperLaw,
         impact_velocity: f64,
@@ -193,7 +194,7 @@ impl PointFigures {
 
     /// Make these the figures of [`PointFigures::of_solution`], the case name's storage
     /// reused (a chunk of a sweep fills one row point after point).
-    pub fn set_solution(
+    pub(crate) fn set_solution(
         &mut self,
         case: &str,
         law: &PaperLaw,
@@ -237,7 +238,7 @@ impl PointFigures {
     }
 
     /// The figures of a code's run.
-    pub fn of_code(f: &CodeFigures) -> PointFigures {
+    pub(crate) fn of_code(f: &CodeFigures) -> PointFigures {
         let m = &f.metrics;
         let p = &f.paper_exact;
         PointFigures {
@@ -280,7 +281,7 @@ pub struct RowStatus {
 
 impl RowStatus {
     /// The status of a computed point.
-    pub const OK: &'static str = "ok";
+    pub(crate) const OK: &'static str = "ok";
 
     /// A computed point.
     pub fn ok() -> RowStatus {
@@ -290,7 +291,7 @@ impl RowStatus {
     }
 
     /// Make this the status of a computed point, its storage reused.
-    pub fn set_ok(&mut self) {
+    pub(crate) fn set_ok(&mut self) {
         if !self.is_ok() {
             self.status.clear();
             self.status.push_str(Self::OK);
@@ -305,7 +306,7 @@ impl RowStatus {
     }
 
     /// Whether the point was computed.
-    pub fn is_ok(&self) -> bool {
+    pub(crate) fn is_ok(&self) -> bool {
         self.status == Self::OK
     }
 }
@@ -346,7 +347,7 @@ fn field_names<T: Serialize + Default>() -> Vec<String> {
 
 /// The columns of a sweep's rows, given its case-axis keys: identity, axes, source, figures,
 /// status.
-pub fn columns(axis_keys: &[String]) -> Vec<String> {
+pub(crate) fn columns(axis_keys: &[String]) -> Vec<String> {
     let mut c = field_names::<RowIdentity>();
     c.extend(axis_keys.iter().cloned());
     c.extend(field_names::<PointSource>());
@@ -356,13 +357,13 @@ pub fn columns(axis_keys: &[String]) -> Vec<String> {
 }
 
 /// The columns a row is matched by on resume: the case axes and the source.
-pub fn key_columns(axis_keys: &[String]) -> Vec<String> {
+pub(crate) fn key_columns(axis_keys: &[String]) -> Vec<String> {
     let mut c = axis_keys.to_vec();
     c.extend(field_names::<PointSource>());
     c
 }
 
-/// The cells of the key columns ([`key_columns`]) as the row writes them: the axis values and
+/// The cells of the key columns (`key_columns`) as the row writes them: the axis values and
 /// the source, through the same serialisation as the CSV record.
 pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
     let mut records = CsvRecords::default();
@@ -439,7 +440,7 @@ impl SweepRow {
     }
 
     /// Append the row as one JSON line to `out`.
-    pub fn write_json_line<W: Write>(&self, out: &mut W) -> std::io::Result<()> {
+    pub(crate) fn write_json_line<W: Write>(&self, out: &mut W) -> std::io::Result<()> {
         serde_json::to_writer(
             &mut *out,
             &JsonRow {
@@ -456,7 +457,7 @@ impl SweepRow {
 
 /// What a code point's row is made of, whether it ran alone or in a batch.
 #[derive(Clone, Debug, PartialEq)]
-pub struct CodeFigures {
+pub(crate) struct CodeFigures {
     /// Case name.
     pub case: String,
     /// The case's loss coefficient η.

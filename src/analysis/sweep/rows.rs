@@ -22,7 +22,7 @@ pub enum RowFormat {
 
 impl RowFormat {
     /// The format called `name` (`csv`, `jsonl`).
-    pub fn from_name(name: &str) -> Option<RowFormat> {
+    pub(crate) fn from_name(name: &str) -> Option<RowFormat> {
         match name {
             "csv" => Some(RowFormat::Csv),
             "jsonl" => Some(RowFormat::Jsonl),
@@ -32,7 +32,7 @@ impl RowFormat {
 }
 
 /// Lines of one row in `format` (the CSV header is [`header`]).
-pub fn encode(format: RowFormat, columns: &[String], cells: &[String]) -> String {
+pub(crate) fn encode(format: RowFormat, columns: &[String], cells: &[String]) -> String {
     match format {
         RowFormat::Csv => csv_line(cells),
         RowFormat::Jsonl => {
@@ -51,7 +51,7 @@ pub fn encode(format: RowFormat, columns: &[String], cells: &[String]) -> String
 }
 
 /// The header line (CSV only; JSON lines carry their keys).
-pub fn header(format: RowFormat, columns: &[String]) -> String {
+pub(crate) fn header(format: RowFormat, columns: &[String]) -> String {
     match format {
         RowFormat::Csv => csv_line(columns),
         RowFormat::Jsonl => String::new(),
@@ -117,14 +117,14 @@ pub struct Rows {
 
 impl Rows {
     /// The index of column `name`.
-    pub fn column(&self, name: &str) -> Option<usize> {
+    pub(crate) fn column(&self, name: &str) -> Option<usize> {
         self.columns.iter().position(|c| c == name)
     }
 }
 
 /// The complete lines of `text`: a last line without its newline is a row cut off while it
 /// was being written, and is left out.
-pub fn complete_lines(text: &str) -> &str {
+pub(crate) fn complete_lines(text: &str) -> &str {
     match text.rfind('\n') {
         Some(at) => &text[..=at],
         None => "",
@@ -132,7 +132,7 @@ pub fn complete_lines(text: &str) -> &str {
 }
 
 /// A JSON value as a cell: null empty, a string bare, a number in its written form.
-pub fn json_cell(value: &serde_json::Value) -> String {
+pub(crate) fn json_cell(value: &serde_json::Value) -> String {
     match value {
         serde_json::Value::Null => String::new(),
         serde_json::Value::String(s) => s.clone(),
@@ -158,7 +158,7 @@ pub fn read_rows(path: &Path) -> Result<Rows, SweepError> {
 }
 
 /// Parse rows from `text`; `file` names it in errors.
-pub fn parse_rows(text: &str, file: &str) -> Result<Rows, UserError> {
+pub(crate) fn parse_rows(text: &str, file: &str) -> Result<Rows, UserError> {
     let bad = |what: String| UserError::argument(file, "(rows)", what);
     let trimmed = text.trim_start();
     if trimmed.is_empty() {
@@ -234,7 +234,7 @@ enum Encoding {
 
 impl EncodedRows {
     /// An empty run of rows in `format`.
-    pub fn new(format: RowFormat) -> EncodedRows {
+    pub(crate) fn new(format: RowFormat) -> EncodedRows {
         EncodedRows {
             encoding: match format {
                 // About a chunk of rows, so that the buffer is not regrown.
@@ -249,7 +249,7 @@ impl EncodedRows {
     }
 
     /// The lines held so far.
-    pub fn lines(&self) -> usize {
+    pub(crate) fn lines(&self) -> usize {
         match &self.encoding {
             Encoding::Csv(records) => records.lines(),
             Encoding::Jsonl(_) => self.rows,
@@ -257,7 +257,7 @@ impl EncodedRows {
     }
 
     /// Append `row`.
-    pub fn push(&mut self, row: &SweepRow) -> std::io::Result<()> {
+    pub(crate) fn push(&mut self, row: &SweepRow) -> std::io::Result<()> {
         if !row.status.is_ok() {
             self.failed
                 .push((self.lines(), row.identity.point, row.status.status.clone()));
@@ -333,7 +333,7 @@ impl<W: Write> RowWriter<W> {
 
     /// Append rows already encoded (in this writer's format), noting where the failed ones
     /// are.
-    pub fn write_encoded(&mut self, rows: EncodedRows) -> std::io::Result<()> {
+    pub(crate) fn write_encoded(&mut self, rows: EncodedRows) -> std::io::Result<()> {
         let first_line = self.lines_before + self.lines + 1;
         for (before, point, status) in &rows.failed {
             self.failed.record(first_line + before, *point, status);
@@ -350,7 +350,7 @@ impl<W: Write> RowWriter<W> {
     }
 
     /// Flush what is buffered.
-    pub fn flush(&mut self) -> std::io::Result<()> {
+    pub(crate) fn flush(&mut self) -> std::io::Result<()> {
         self.out.flush()
     }
 

@@ -29,24 +29,21 @@ use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput}
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
-pub const MAX_BATCH: usize = 256;
+pub(crate) const MAX_BATCH: usize = 256;
 
 /// Impacts whose steps cost what one start of Kratos does: importing Kratos and initialising
 /// the stage take about 0.27 s of CPU, an impact at 200 steps per contact about 1.8 ms of its
 /// batch (its steps and rows), measured on Kratos 10.4.
-pub const IMPACTS_PER_START: usize = 150;
+pub(crate) const IMPACTS_PER_START: usize = 150;
 
 /// The batch script.
-pub const BATCH_SCRIPT: &str = "batch.py";
+pub(crate) const BATCH_SCRIPT: &str = "batch.py";
 
 /// The part of the batch script after its list of impacts.
 pub(super) const SCRIPT: &str = include_str!("batch.py");
 
-/// The trajectory file of impact `i` (from 0) of a batch.
-pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
-
 /// The batch script for `setups`, or why they cannot run as one.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     let Some(first) = setups.first() else {
         return Err(BatchError::Empty);
     };
@@ -107,7 +104,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
 }
 
 /// Each impact's run from a batch.
-pub fn parse_batch(
+pub(crate) fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
@@ -122,7 +119,7 @@ pub fn parse_batch(
 }
 
 /// Kratos' batches: many impacts side by side in one stage.
-pub struct KratosBatch;
+pub(crate) struct KratosBatch;
 
 impl BatchRunner for KratosBatch {
     fn max_batch(&self) -> usize {

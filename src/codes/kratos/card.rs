@@ -4,7 +4,7 @@ use crate::codes::{CalibrationCard, CodeSetup};
 use crate::model::scene::SceneKind;
 
 /// Kratos' card.
-pub struct KratosCard;
+pub(crate) struct KratosCard;
 
 impl CalibrationCard for KratosCard {
     fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {

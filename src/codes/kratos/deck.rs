@@ -44,17 +44,17 @@ use crate::model::law::DashpotLaw;
 pub(super) const TEMPLATE: &str = include_str!("deck.py");
 
 /// The project parameters file a materials file is read with, in its folder.
-pub const PROJECT_FILE: &str = "ProjectParametersDEM.json";
+pub(crate) const PROJECT_FILE: &str = "ProjectParametersDEM.json";
 
 /// The materials file a project names when it names none (`sphere_strategy.py`'s default).
-pub const MATERIALS_FILE: &str = "MaterialsDEM.json";
+pub(crate) const MATERIALS_FILE: &str = "MaterialsDEM.json";
 
 /// Most radii one material's particles may have in the `.mdpa` for each to be checked; a
 /// distribution of more is given with `--particle`.
-pub const MAX_SIZES: usize = 3;
+pub(crate) const MAX_SIZES: usize = 3;
 
 /// The constitutive laws whose force the harness steps.
-pub const LAWS: &str =
+pub(crate) const LAWS: &str =
     "DEM_D_Hertz_viscous_Coulomb, DEM_D_Linear_viscous_Coulomb, DEM_D_Linear_Custom_Constants";
 
 /// Kratos 10.4.4's own defaults for what a project may leave out
@@ -64,12 +64,12 @@ const DEFAULT_NEIGHBOUR_SEARCH_FREQUENCY: f64 = 50.0;
 
 /// `DEM_D_Linear_viscous_Coulomb`'s stiffness factor between particles (`beta`), absent at a
 /// wall.
-pub const LINEAR_PARTICLE_FACTOR: f64 = 1.432;
+pub(crate) const LINEAR_PARTICLE_FACTOR: f64 = 1.432;
 /// `DEM_D_Linear_viscous_Coulomb`'s "modified radius" over the contact radius.
-pub const LINEAR_RADIUS_FACTOR: f64 = 0.31225;
+pub(crate) const LINEAR_RADIUS_FACTOR: f64 = 0.31225;
 
 /// Kratos' deck reader.
-pub struct KratosDeck;
+pub(crate) struct KratosDeck;
 
 /// A field the check needs that is not in the file: where it belongs and what it must hold.
 fn missing(file: &Path, path: String, key: &str, supported: &str) -> DeckError {

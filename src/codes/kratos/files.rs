@@ -17,7 +17,7 @@ use crate::codes::deck::{DeckError, DeckSource};
 
 /// A finite number, as Kratos reads a double.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Number(pub f64);
+pub(crate) struct Number(pub f64);
 
 impl<'de> Deserialize<'de> for Number {
     fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
@@ -31,7 +31,7 @@ impl<'de> Deserialize<'de> for Number {
 }
 
 /// A material's id: `material_id`, an entry of `material_ids_list` or of the assignation table.
-pub type MaterialId = u32;
+pub(crate) type MaterialId = u32;
 
 /// What a material id must be, in an error.
 const MATERIAL_ID: &str = "a material id (a whole number from 0)";
@@ -66,7 +66,7 @@ fn refuse<E: de::Error>(value: &Value, expected: &dyn de::Expected) -> E {
 #[serde(
     expecting = "a Kratos DEM materials file (materials, material_relations, material_assignation_table)"
 )]
-pub struct MaterialsFile {
+pub(crate) struct MaterialsFile {
     /// The materials.
     pub materials: Vec<Material>,
     /// The contact settings of pairs of materials.
@@ -78,7 +78,7 @@ pub struct MaterialsFile {
 /// A material: its id, name and `Variables`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(expecting = "a material (material_id, material_name, Variables)")]
-pub struct Material {
+pub(crate) struct Material {
     /// Its id.
     #[serde(deserialize_with = "material_id")]
     pub material_id: MaterialId,
@@ -93,7 +93,7 @@ pub struct Material {
 /// The variables of a material the check reads.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(expecting = "a material's Variables (PARTICLE_DENSITY, YOUNG_MODULUS, POISSON_RATIO)")]
-pub struct MaterialVariables {
+pub(crate) struct MaterialVariables {
     /// `PARTICLE_DENSITY`, kg/m³.
     #[serde(rename = "PARTICLE_DENSITY", default)]
     pub particle_density: Option<Number>,
@@ -107,7 +107,7 @@ pub struct MaterialVariables {
 
 /// A variable of a material the check reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum MaterialVariable {
+pub(crate) enum MaterialVariable {
     /// `PARTICLE_DENSITY`, kg/m³.
     ParticleDensity,
     /// `YOUNG_MODULUS`, Pa.
@@ -118,7 +118,7 @@ pub enum MaterialVariable {
 
 impl MaterialVariable {
     /// Kratos' name of the variable.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             MaterialVariable::ParticleDensity => "PARTICLE_DENSITY",
             MaterialVariable::YoungModulus => "YOUNG_MODULUS",
@@ -129,7 +129,7 @@ impl MaterialVariable {
 
 impl MaterialVariables {
     /// The value of `variable`, if the material has it.
-    pub fn get(&self, variable: MaterialVariable) -> Option<f64> {
+    pub(crate) fn get(&self, variable: MaterialVariable) -> Option<f64> {
         match variable {
             MaterialVariable::ParticleDensity => self.particle_density,
             MaterialVariable::YoungModulus => self.young_modulus,
@@ -142,7 +142,7 @@ impl MaterialVariables {
 /// A material relation: the contact settings of two materials.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(expecting = "a material relation (material_ids_list, Variables)")]
-pub struct Relation {
+pub(crate) struct Relation {
     /// The two materials.
     #[serde(deserialize_with = "id_pair")]
     pub material_ids_list: [MaterialId; 2],
@@ -188,7 +188,7 @@ impl<'de> Deserialize<'de> for Id {
 /// The variables of a relation the check reads.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(expecting = "a relation's Variables (its law and restitution)")]
-pub struct RelationVariables {
+pub(crate) struct RelationVariables {
     /// `DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME`.
     #[serde(rename = "DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME", default)]
     pub law: Option<LawName>,
@@ -214,7 +214,7 @@ pub struct RelationVariables {
 
 impl RelationVariables {
     /// The tangential variables set to something other than zero, by name.
-    pub fn tangential(&self) -> Vec<&'static str> {
+    pub(crate) fn tangential(&self) -> Vec<&'static str> {
         [
             ("STATIC_FRICTION", self.static_friction),
             ("DYNAMIC_FRICTION", self.dynamic_friction),
@@ -234,7 +234,7 @@ impl RelationVariables {
 /// A relation's constitutive law: one whose force the harness steps, or another, named as
 /// written (refused where a checked pair uses it, reported where none does).
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum LawName {
+pub(crate) enum LawName {
     /// A law the harness steps.
     Stepped(SteppedLaw),
     /// Any other name.
@@ -243,7 +243,7 @@ pub enum LawName {
 
 /// The constitutive laws whose force the harness steps.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SteppedLaw {
+pub(crate) enum SteppedLaw {
     /// `DEM_D_Hertz_viscous_Coulomb`.
     HertzViscousCoulomb,
     /// `DEM_D_Linear_viscous_Coulomb`.
@@ -254,14 +254,14 @@ pub enum SteppedLaw {
 
 impl SteppedLaw {
     /// Every law the harness steps.
-    pub const ALL: [SteppedLaw; 3] = [
+    pub(crate) const ALL: [SteppedLaw; 3] = [
         SteppedLaw::HertzViscousCoulomb,
         SteppedLaw::LinearViscousCoulomb,
         SteppedLaw::LinearCustomConstants,
     ];
 
     /// Kratos' name of the law.
-    pub fn name(self) -> &'static str {
+    pub(crate) fn name(self) -> &'static str {
         match self {
             SteppedLaw::HertzViscousCoulomb => "DEM_D_Hertz_viscous_Coulomb",
             SteppedLaw::LinearViscousCoulomb => "DEM_D_Linear_viscous_Coulomb",
@@ -272,7 +272,7 @@ impl SteppedLaw {
 
 impl LawName {
     /// Kratos' name of the law, as written.
-    pub fn name(&self) -> &str {
+    pub(crate) fn name(&self) -> &str {
         match self {
             LawName::Stepped(law) => law.name(),
             LawName::Other(name) => name,
@@ -295,7 +295,7 @@ impl<'de> Deserialize<'de> for LawName {
 
 /// An entry of the assignation table: a model part and its material.
 #[derive(Clone, Debug)]
-pub struct Assignment {
+pub(crate) struct Assignment {
     /// The model part (`SpheresPart.Balls`).
     pub part: String,
     /// Its material.
@@ -304,7 +304,7 @@ pub struct Assignment {
 
 /// A material as the assignation table names it.
 #[derive(Clone, Debug, PartialEq, Eq)]
-pub enum MaterialRef {
+pub(crate) enum MaterialRef {
     /// By its `material_name`.
     Name(String),
     /// By its `material_id`.
@@ -354,7 +354,7 @@ impl<'de> Deserialize<'de> for Assignment {
 /// default.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(expecting = "Kratos DEM project parameters (an object)")]
-pub struct ProjectFile {
+pub(crate) struct ProjectFile {
     /// `Dimension`.
     #[serde(rename = "Dimension", default)]
     pub dimension: Option<Number>,
@@ -399,7 +399,7 @@ pub struct ProjectFile {
 /// `solver_settings`.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(expecting = "the solver settings (an object)")]
-pub struct SolverSettings {
+pub(crate) struct SolverSettings {
     /// `strategy`.
     #[serde(default)]
     pub strategy: Option<String>,
@@ -411,7 +411,7 @@ pub struct SolverSettings {
 /// `solver_settings.material_import_settings`.
 #[derive(Clone, Debug, Default, Deserialize)]
 #[serde(expecting = "the material import settings (an object)")]
-pub struct MaterialImportSettings {
+pub(crate) struct MaterialImportSettings {
     /// `materials_filename`, beside the project.
     #[serde(default)]
     pub materials_filename: Option<String>,
@@ -419,7 +419,7 @@ pub struct MaterialImportSettings {
 
 /// `value` (a whole file as JSON) read as `T`, or the one-line error of its first field that
 /// is not what `T` allows.
-pub fn typed<T: de::DeserializeOwned>(file: &Path, value: &Value) -> Result<T, DeckError> {
+pub(crate) fn typed<T: de::DeserializeOwned>(file: &Path, value: &Value) -> Result<T, DeckError> {
     serde_path_to_error::deserialize(value).map_err(|e| field_error(file, value, &e))
 }
 

@@ -29,13 +29,13 @@
 //! (the default 50 finds the wall contact late), one OpenMP thread ([`Kratos::locate`]), the
 //! state paired with the force it produced in each row.
 
-pub mod batch;
-pub mod card;
-pub mod deck;
+pub(crate) mod batch;
+pub(crate) mod card;
+pub(crate) mod deck;
 mod files;
 pub mod paper;
 
-pub use paper::KratosPaper;
+pub(crate) use paper::KratosPaper;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -69,16 +69,16 @@ fn with_common(template: &str) -> String {
 }
 
 /// The name of the rendered script in the scratch directory.
-pub const SCRIPT: &str = "impact.py";
+pub(crate) const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
 
 /// The files a run leaves in its scratch directory (besides the harness's `log.txt`): the
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
 
-/// The python of the installed Kratos, under the codes' folder ([`find_codes_dir`]).
+/// The python of the installed Kratos, under the codes' folder (`find_codes_dir`).
 pub const PYTHON: &str = "kratos/bin/python";
 
 /// The translational integration scheme: symplectic Euler, Kratos' leap-frog. `Forward_Euler`
@@ -93,20 +93,20 @@ pub const RIGID_WALL_MODULUS: f64 = 1e30;
 
 /// How far the COR of [`CodeDriver::law`] may lie from the target before
 /// [`CodeDriver::expected_restitution`] reports it (Thornton's fit, as for YADE).
-pub const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
+pub(crate) const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
 
 /// Above this restitution Kratos' `GammaForHertzThornton` gives no damping at all.
-pub const UNDAMPED_ABOVE: f64 = 0.999;
+pub(crate) const UNDAMPED_ABOVE: f64 = 0.999;
 
 /// Below this restitution Kratos' `GammaForHertzThornton` uses this value instead.
-pub const LOWEST_RESTITUTION: f64 = 0.001;
+pub(crate) const LOWEST_RESTITUTION: f64 = 0.001;
 
 /// The Kratos DEM driver.
 pub struct Kratos;
 
 /// The damping ratio `γ` Kratos 10.4.4 derives from `COEFFICIENT_OF_RESTITUTION` for
 /// `DEM_D_Hertz_viscous_Coulomb` (`GammaForHertzThornton`): Thornton's fit, zero above
-/// [`UNDAMPED_ABOVE`], and the fit at [`LOWEST_RESTITUTION`] below that.
+/// `UNDAMPED_ABOVE`, and the fit at `LOWEST_RESTITUTION` below that.
 pub fn hertz_damping_gamma(restitution: f64) -> f64 {
     if restitution > UNDAMPED_ABOVE {
         return 0.0;
@@ -141,7 +141,7 @@ fn linear_restitution_difference(gamma: f64, target: f64) -> f64 {
 /// laws (`DEM_D_Linear_viscous_Coulomb`, `DEM_D_Linear_Custom_Constants`: `RootByBisection`):
 /// the clamped linear dashpot's closed form solved by bisection on [0, 16] until the bracket is
 /// narrower than 1e-4, so `γ` is off by up to 5e-5 and the law's COR misses the entered one by
-/// up to a few 1e-5; zero above [`UNDAMPED_ABOVE`], the bisection at [`LOWEST_RESTITUTION`]
+/// up to a few 1e-5; zero above `UNDAMPED_ABOVE`, the bisection at `LOWEST_RESTITUTION`
 /// below it. The same operations in the same order: the bits Kratos logs.
 // Kratos' exact comparisons: the bisection's `== 0` exit.
 #[allow(clippy::float_cmp)]
@@ -200,7 +200,7 @@ pub fn particle_mass(radius: f64, density: f64) -> f64 {
 
 /// `E*` as `DEM_D_Hertz_viscous_Coulomb` (and `DEM_D_Linear_viscous_Coulomb`) forms it from two
 /// materials.
-pub fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+pub(crate) fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
 }
 
@@ -318,7 +318,7 @@ impl Kratos {
 
     /// The values the script template is filled with for `setup` (a batch lists each impact
     /// with the same ones), or why the setup cannot run.
-    pub fn script_values(
+    pub(crate) fn script_values(
         &self,
         setup: &CodeSetup,
     ) -> Result<Vec<(&'static str, String)>, CodeError> {

@@ -5,7 +5,7 @@
 //! `SphericParticle::ComputeAdditionalForces` adds each node's `EXTERNAL_APPLIED_FORCE` to the
 //! forces it integrates. The script (`paper.py`, sharing `common.py` with the stock scripts)
 //! sets that force before every `SolveSolutionStep` from the position and velocity the step
-//! starts from, with the rule of [`crate::solve::dashpot::paper_force_in_step`] (the sign of
+//! starts from, with the rule of `crate::solve::dashpot::paper_force_in_step` (the sign of
 //! ẏ resolved within one step's band, so a contact at rest carries its elastic force; never
 //! attractive). No stock law acts: there are no wall conditions (the plate is the plane z = 0
 //! of the hook) and the two balls meet under a linear law of zero stiffness and damping; each

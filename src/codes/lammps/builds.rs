@@ -64,7 +64,7 @@ impl CodeDriver for Lammps {
     }
 
     /// `lmp` as the default locates it, started without Open MPI's daemon
-    /// ([`Executable::open_mpi_alone`]).
+    /// (`Executable::open_mpi_alone`).
     fn locate(&self) -> Result<Executable, LocateError> {
         crate::codes::runner::locate_override_or_path(self.name(), self.binary())
             .map(Executable::open_mpi_alone)

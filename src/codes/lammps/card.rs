@@ -9,7 +9,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::scene::{SceneKind, SpringModel};
 
 /// The card of one LAMMPS build.
-pub struct LammpsCard(pub &'static Build);
+pub(crate) struct LammpsCard(pub &'static Build);
 
 impl CalibrationCard for LammpsCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {

@@ -69,7 +69,7 @@ pub enum TsujiFit {
 
 impl TsujiFit {
     /// The factor on the polynomial.
-    pub fn factor(self) -> f64 {
+    pub(crate) fn factor(self) -> f64 {
         match self {
             TsujiFit::Polynomial => 1.0,
             TsujiFit::Sqrt2Polynomial => std::f64::consts::SQRT_2,
@@ -77,7 +77,7 @@ impl TsujiFit {
     }
 
     /// The damping ratio the build applies for `e_in`.
-    pub fn alpha(self, e_in: f64) -> f64 {
+    pub(crate) fn alpha(self, e_in: f64) -> f64 {
         self.factor() * tsuji_alpha(e_in)
     }
 }

@@ -36,7 +36,7 @@ use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
-pub struct LammpsDeck(pub &'static Build, pub &'static dyn CodeDriver);
+pub(crate) struct LammpsDeck(pub &'static Build, pub &'static dyn CodeDriver);
 
 const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
 const DAMPING: &str = "damping velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution (a build from 2023 on)";

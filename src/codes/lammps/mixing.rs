@@ -20,7 +20,7 @@ use super::conventions::{Conventions, TsujiFit, WallModulus};
 
 /// A `pair_coeff` or `fix wall/gran granular` contact model as read.
 #[derive(Clone, Debug, PartialEq)]
-pub struct GranularModel {
+pub(crate) struct GranularModel {
     /// The normal model's name.
     pub normal: String,
     /// `k` (hooke, hertz) or `E` (hertz/material), and `d`, and `ν` (hertz/material).
@@ -42,7 +42,7 @@ pub struct GranularModel {
 impl GranularModel {
     /// The functional form LAMMPS compares before it mixes two lines: the normal, damping,
     /// tangential, rolling and twisting models.
-    pub fn form(&self) -> String {
+    pub(crate) fn form(&self) -> String {
         let mut form = format!("{} damping {}", self.normal, self.damping);
         for (word, style) in [
             ("tangential", &self.tangential),
@@ -58,7 +58,7 @@ impl GranularModel {
 
     /// What the build integrates for this model on its own (a pair's own line, or a wall),
     /// with the wall modulus's traps.
-    pub fn coefficients(
+    pub(crate) fn coefficients(
         &self,
         conventions: &Conventions,
         wall: bool,
@@ -120,7 +120,7 @@ pub enum PairMixing {
 
 /// A normal model's stiffness as a build holds it for a pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Normal {
+pub(crate) enum Normal {
     /// `hooke`: `F = k δ`, `k` in N/m.
     Hooke(f64),
     /// `hertz`: `F = k √R* δ^1.5`.
@@ -131,7 +131,7 @@ pub enum Normal {
 
 impl Normal {
     /// The law's stiffness and exponent for the effective radius `r_star`.
-    pub fn stiffness(self, r_star: f64) -> (f64, f64) {
+    pub(crate) fn stiffness(self, r_star: f64) -> (f64, f64) {
         match self {
             Normal::Hooke(k) => (k, 1.0),
             Normal::Hertz(k) => (k * r_star.sqrt(), 1.5),
@@ -143,7 +143,7 @@ impl Normal {
 /// What a build integrates for one pair (or one wall): its normal stiffness, damping model
 /// with the number it is given, and whether the attractive tail is cut.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Coefficients {
+pub(crate) struct Coefficients {
     /// The normal stiffness.
     pub normal: Normal,
     /// The damping model's name.
@@ -159,7 +159,7 @@ pub struct Coefficients {
 /// A mixed pair: what the build integrates, the model as the report names it, and what the
 /// mixing does, said with its numbers.
 #[derive(Clone, Debug, PartialEq)]
-pub struct MixedPair {
+pub(crate) struct MixedPair {
     /// What the build integrates.
     pub coefficients: Coefficients,
     /// The model as the report names it.
@@ -173,12 +173,12 @@ fn geometric(a: f64, b: f64) -> f64 {
 }
 
 /// `E/(2(1−ν²))`: one material against itself, as `pair_coeff I I hertz/material` stores it.
-pub fn own_modulus(e: f64, nu: f64) -> f64 {
+pub(crate) fn own_modulus(e: f64, nu: f64) -> f64 {
     e / (2.0 * (1.0 - nu * nu))
 }
 
 /// Hertz's modulus of two materials, `1/((1−ν₁²)/E₁ + (1−ν₂²)/E₂)`.
-pub fn two_material_modulus((e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
+pub(crate) fn two_material_modulus((e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
     1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
 }
 
@@ -192,13 +192,13 @@ fn fit_name(fit: TsujiFit) -> &'static str {
 impl PairMixing {
     /// Whether `pair_coeff I J` with numbers `J < I` is read as `J I` (else the build refuses
     /// it).
-    pub fn reorders_types(self) -> bool {
+    pub(crate) fn reorders_types(self) -> bool {
         matches!(self, PairMixing::WholeModel)
     }
 
     /// The pair of types `i` (model `a`, its line `at_a`) and `j` (model `b`, line `at_b`) as
     /// this build mixes it; `a` and `b` have the same functional form.
-    pub fn mix(
+    pub(crate) fn mix(
         self,
         conventions: &Conventions,
         (i, a, at_a): (u32, &GranularModel, &str),

@@ -24,21 +24,21 @@
 //! * `limit_damping` is off unless asked for; the driver leaves it off (no clamp).
 //! * A pair of types no `pair_coeff` sets is mixed from the two types' own lines: this build
 //!   mixes the numbers but leaves the pair's model unset (it runs as `hooke` with `damping
-//!   velocity`), the 2025 build mixes the whole model ([`mixing`]; the deck reader follows
+//!   velocity`), the 2025 build mixes the whole model (`mixing`; the deck reader follows
 //!   the build's [`Build::mixing`]).
 
-pub mod batch;
+pub(crate) mod batch;
 pub mod build_2025;
-pub mod builds;
-pub mod card;
-pub mod conventions;
-pub mod deck;
-pub mod mixing;
+pub(crate) mod builds;
+pub(crate) mod card;
+pub(crate) mod conventions;
+pub(crate) mod deck;
+pub(crate) mod mixing;
 pub mod paper;
 pub mod probe;
 
-pub use build_2025::Lammps2025;
-pub use paper::LammpsPaper;
+pub(crate) use build_2025::Lammps2025;
+pub(crate) use paper::LammpsPaper;
 
 use std::path::Path;
 
@@ -52,15 +52,15 @@ use conventions::{Conventions, DampingVelocity};
 pub use conventions::{exact_hertz_alpha, tsuji_alpha, tsuji_input_for_alpha};
 
 /// The sphere-on-wall deck (also the probes' deck).
-pub const WALL_TEMPLATE: &str = include_str!("impact_wall.in");
+pub(crate) const WALL_TEMPLATE: &str = include_str!("impact_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("impact_pair.in");
 
 /// The input file written into the scratch directory.
-pub const INPUT_FILE: &str = "impact.in";
+pub(crate) const INPUT_FILE: &str = "impact.in";
 /// The trajectory file the input's `fix print` writes.
-pub const TRAJECTORY_FILE: &str = "trajectory.txt";
+pub(crate) const TRAJECTORY_FILE: &str = "trajectory.txt";
 /// The log file named on the command line.
-pub const LOG_FILE: &str = "log.lammps";
+pub(crate) const LOG_FILE: &str = "log.lammps";
 
 /// Gap between the bodies at `t = 0`, as a fraction of the (first) sphere's radius, on a build
 /// whose wall counts touching as contact.
@@ -74,7 +74,7 @@ pub const START_GAP: f64 = 1e-12;
 /// The file name of the paper's law as a LAMMPS plugin (`scripts/lammps-paper/`), as the
 /// decks load it: `plugin load paperplugin.so`, found on the library path
 /// ([`paper::LammpsPaper`] puts the project's build there).
-pub const PAPER_PLUGIN_FILE: &str = "paperplugin.so";
+pub(crate) const PAPER_PLUGIN_FILE: &str = "paperplugin.so";
 
 /// The effective modulus of two materials as the paper plugin forms it (and `hertz/material`
 /// mixes two materials): `1/((1−ν1²)/E1 + (1−ν2²)/E2)`, Pa, with the plugin's operations.
@@ -95,7 +95,7 @@ pub struct Build {
     /// The conventions of a setup that carries none.
     pub fallback: Conventions,
     /// How the build fills a pair of types no `pair_coeff` sets (read in its source and
-    /// measured in it: [`mixing`]).
+    /// measured in it: `mixing`).
     pub mixing: mixing::PairMixing,
 }
 
@@ -128,7 +128,7 @@ impl Lammps {
 impl Build {
     /// The conventions `setup` is planned with: its own (measured by the probe of the build
     /// that ran it), else the build's fallback.
-    pub fn conventions(&self, setup: &CodeSetup) -> Conventions {
+    pub(crate) fn conventions(&self, setup: &CodeSetup) -> Conventions {
         setup.conventions.unwrap_or(self.fallback)
     }
 
@@ -274,7 +274,7 @@ pub fn parse_loop_time(log: &str) -> Option<f64> {
 
 impl Build {
     /// The input deck for `setup`.
-    pub fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+    pub(crate) fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let plan = self.plan(setup)?;
         if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
             return Err(unsupported(
@@ -345,7 +345,7 @@ impl Build {
     }
 
     /// The law the build integrates for `setup`.
-    pub fn law(&self, setup: &CodeSetup) -> DashpotLaw {
+    pub(crate) fn law(&self, setup: &CodeSetup) -> DashpotLaw {
         match self.plan(setup) {
             Ok(plan) if setup.clamp_attractive => plan.law.clamped(),
             Ok(plan) => plan.law,
@@ -361,7 +361,7 @@ impl Build {
 }
 
 /// Parse a single run's files in `workdir` (every build writes the same ones).
-pub fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
+pub(crate) fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
     let path = workdir.join(TRAJECTORY_FILE);
     let text =
         std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;

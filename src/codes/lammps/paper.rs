@@ -16,7 +16,7 @@
 //! reduced mass from the radii and masses the deck sets), so its model difference is zero by
 //! construction and what it differs by is its integration: velocity Verlet with the branch
 //! chosen by the half-step overlap rate, resolved to one step (the band of
-//! [`crate::solve::dashpot::paper_force_in_step`], which the plugin computes with the same
+//! `crate::solve::dashpot::paper_force_in_step`, which the plugin computes with the same
 //! operations), stepped by the harness in the deck's own coordinates ([`LammpsPaper::frame`]).
 
 use std::ffi::OsString;
@@ -44,9 +44,9 @@ const WALL_TEMPLATE: &str = include_str!("paper_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
 
 /// The folder under the codes' folder ([`find_codes_dir`]) the plugin is installed in.
-pub const INSTALL_DIR: &str = "lammps-paper";
+pub(crate) const INSTALL_DIR: &str = "lammps-paper";
 /// The plugin inside [`INSTALL_DIR`].
-pub const PLUGIN_PATH: &str = "lib/paperplugin.so";
+pub(crate) const PLUGIN_PATH: &str = "lib/paperplugin.so";
 /// The folder of [`PLUGIN_PATH`], put ahead of the library path so that the decks' `plugin
 /// load paperplugin.so` finds it.
 const PLUGIN_FOLDER: &str = "lib";
@@ -324,7 +324,7 @@ impl CodeDriver for LammpsPaper {
 
 /// The plugin build's batches: its single inputs in sequence, each loading the plugin (LAMMPS
 /// keeps a loaded plugin's styles across `clear` and ignores the repeated load).
-pub struct LammpsPaperBatch;
+pub(crate) struct LammpsPaperBatch;
 
 impl BatchRunner for LammpsPaperBatch {
     fn max_batch(&self) -> usize {
@@ -368,7 +368,7 @@ impl BatchRunner for LammpsPaperBatch {
 }
 
 /// The plugin build's calibration card: the lines that select the paper's law.
-pub struct LammpsPaperCard;
+pub(crate) struct LammpsPaperCard;
 
 impl CalibrationCard for LammpsPaperCard {
     fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {

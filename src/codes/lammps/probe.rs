@@ -32,7 +32,7 @@ use crate::model::trajectory::CodeTrajectory;
 mod nan_as_null {
     use serde::{Deserialize, Deserializer, Serializer};
 
-    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
+    pub(crate) fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
         if x.is_finite() {
             s.serialize_f64(*x)
         } else {
@@ -40,7 +40,7 @@ mod nan_as_null {
         }
     }
 
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
+    pub(crate) fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
         Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
     }
 }
@@ -113,12 +113,12 @@ impl ProbeReport {
     /// Whether the build ran the probe's first, basic deck (a wall with `damping velocity`,
     /// which every GRANULAR build has). A build that does not is not probed further: its
     /// conventions are unknown, and a run of it fails for the same reason, with its own log.
-    pub fn ran(&self) -> bool {
+    pub(crate) fn ran(&self) -> bool {
         self.items.first().is_some_and(|i| !i.measured.is_empty())
     }
 
     /// The conventions, or why the probe establishes none.
-    pub fn conventions(&self) -> Result<Conventions, ProbeError> {
+    pub(crate) fn conventions(&self) -> Result<Conventions, ProbeError> {
         self.conventions.ok_or_else(|| {
             let open: Vec<String> = self
                 .items
@@ -165,11 +165,11 @@ pub enum ProbeError {
 
 /// Relative agreement that counts as a match: the probes' numbers are read from 15-digit
 /// output, so a true hypothesis agrees to about 1e-12 and a false one is off by a factor.
-pub const MATCH_TOLERANCE: f64 = 1e-6;
+pub(crate) const MATCH_TOLERANCE: f64 = 1e-6;
 
 /// The verdict on `measured` among `hypotheses` (name, predicted value): the one hypothesis
 /// within [`MATCH_TOLERANCE`] of `scale`, or `None` with the reason.
-pub fn decide(
+pub(crate) fn decide(
     measured: f64,
     hypotheses: &[(&str, f64)],
     scale: f64,
@@ -205,7 +205,7 @@ pub fn decide(
 /// One probe run: a sphere on the wall, started at `overlap` (m; 0 is exactly touching)
 /// approaching at `approach` (m/s).
 #[derive(Clone, Debug, PartialEq)]
-pub struct ProbeRun {
+pub(crate) struct ProbeRun {
     /// The probe's name (also the first line of its input).
     pub name: &'static str,
     /// The contact model's arguments.
@@ -221,25 +221,25 @@ pub struct ProbeRun {
 }
 
 /// The probe sphere's radius, m, and mass, kg.
-pub const PROBE_RADIUS: f64 = 0.02;
+pub(crate) const PROBE_RADIUS: f64 = 0.02;
 /// The probe sphere's mass, kg.
-pub const PROBE_MASS: f64 = 0.25;
+pub(crate) const PROBE_MASS: f64 = 0.25;
 /// `E` given to `hertz/material`, Pa.
-pub const PROBE_MODULUS: f64 = 2e11;
+pub(crate) const PROBE_MODULUS: f64 = 2e11;
 /// `ν` of the wall-modulus probe: far enough from 0 that the two conventions differ by 30 %.
-pub const PROBE_POISSON: f64 = 0.3;
+pub(crate) const PROBE_POISSON: f64 = 0.3;
 /// The `e` given to `coeff_restitution` and `tsuji`.
-pub const PROBE_RESTITUTION: f64 = 0.5;
+pub(crate) const PROBE_RESTITUTION: f64 = 0.5;
 /// Hertz overlap at step 0, m.
-pub const HERTZ_OVERLAP: f64 = 2e-7;
+pub(crate) const HERTZ_OVERLAP: f64 = 2e-7;
 /// Linear probes: spring, N/m, and dashpot, N·s/m.
-pub const HOOKE: (f64, f64) = (1e6, 100.0);
+pub(crate) const HOOKE: (f64, f64) = (1e6, 100.0);
 /// Overlap of the half-step probe, m, and its step, s: the first half kick changes the
 /// velocity by 0.4 %, a thousand times what the comparison resolves.
-pub const HALF_STEP_PROBE: (f64, f64) = (1e-4, 1e-5);
+pub(crate) const HALF_STEP_PROBE: (f64, f64) = (1e-4, 1e-5);
 
 /// The runs of the LAMMPS probe, in order.
-pub fn probe_runs() -> Vec<ProbeRun> {
+pub(crate) fn probe_runs() -> Vec<ProbeRun> {
     let (k, d) = HOOKE;
     let (overlap, dt) = HALF_STEP_PROBE;
     vec![
@@ -305,7 +305,7 @@ pub fn probe_runs() -> Vec<ProbeRun> {
 
 /// The input of one probe run (the driver's wall template, so the probe exercises the same
 /// deck as the impacts).
-pub fn render_probe(run: &ProbeRun) -> Result<String, TemplateError> {
+pub(crate) fn render_probe(run: &ProbeRun) -> Result<String, TemplateError> {
     let r = PROBE_RADIUS;
     let values = [
         ("contact", run.contact.clone()),
@@ -327,7 +327,7 @@ pub fn render_probe(run: &ProbeRun) -> Result<String, TemplateError> {
 
 /// What one probe run gave: its trajectory, or the build's refusal (the first `ERROR` line).
 #[derive(Clone, Debug, PartialEq)]
-pub enum ProbeOutcome {
+pub(crate) enum ProbeOutcome {
     /// The run finished.
     Ran(CodeTrajectory),
     /// The run failed; the build's message.
@@ -344,11 +344,11 @@ fn error_line(log: &str) -> String {
 
 /// Time limit of one probe run: a one-step run is start-up alone (0.1 to 0.7 s here), so a
 /// build that takes this long is not running the deck; the probe stops there.
-pub const PROBE_TIMEOUT: Duration = Duration::from_secs(10);
+pub(crate) const PROBE_TIMEOUT: Duration = Duration::from_secs(10);
 
 /// Run one probe in a scratch directory; `Err` only when the build could not be started at
 /// all. Returns the outcome and the log.
-pub fn run_probe(
+pub(crate) fn run_probe(
     executable: &Executable,
     run: &ProbeRun,
 ) -> Result<(ProbeOutcome, String), ProbeError> {
@@ -411,7 +411,7 @@ fn hertz_stiffness(modulus: f64) -> f64 {
 
 /// The damping ratio a Hertz probe run measured: `(F − k δ^1.5) / (√(m k) δ^¼ v)` at step 0,
 /// with `k` from `E* = E/2` (ν = 0 reads the same under both wall conventions).
-pub fn measured_hertz_alpha(t: &CodeTrajectory) -> f64 {
+pub(crate) fn measured_hertz_alpha(t: &CodeTrajectory) -> f64 {
     let k = hertz_stiffness(PROBE_MODULUS / 2.0);
     let (y, v, f) = (t.overlap[0], t.approach_velocity[0], t.normal_force[0]);
     (f - k * y.powf(1.5)) / ((PROBE_MASS * k).sqrt() * y.powf(0.25) * v)
@@ -475,7 +475,7 @@ pub mod verdicts {
     /// `tsuji` applies `poly(e)`.
     pub const POLY: &str = "poly(e)";
     /// `tsuji` applies `√2 poly(e)`.
-    pub const SQRT2_POLY: &str = "sqrt2 poly(e)";
+    pub(crate) const SQRT2_POLY: &str = "sqrt2 poly(e)";
     /// Touching is contact: the dashpot pushes at step 0.
     pub const CONTACT: &str = "contact: F = d v0";
     /// Touching is not contact.
@@ -483,12 +483,12 @@ pub mod verdicts {
     /// The dashpot sees `v(n+½)`.
     pub const HALF_STEP: &str = "half-step v(n+1/2)";
     /// The dashpot sees `v(n+1)`.
-    pub const FULL_STEP: &str = "full-step v(n+1)";
+    pub(crate) const FULL_STEP: &str = "full-step v(n+1)";
 }
 
 /// Read the five probe outcomes (in [`probe_runs`] order) into items and conventions. Pure:
 /// the unit tests and a recorded build feed it directly.
-pub fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conventions>) {
+pub(crate) fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conventions>) {
     use verdicts::*;
     let runs = probe_runs();
     let mut items = Vec::new();
@@ -619,7 +619,7 @@ pub fn judge_outcomes(outcomes: &[ProbeOutcome]) -> (Vec<ProbeItem>, Option<Conv
 }
 
 /// Probe the LAMMPS build at `executable` (the driver `code`), without the cache.
-pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, ProbeError> {
+pub(crate) fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, ProbeError> {
     let started = Instant::now();
     let mut outcomes = Vec::new();
     let mut version = None;
@@ -650,7 +650,7 @@ pub fn probe_lammps(code: &str, executable: &Executable) -> Result<ProbeReport, 
 /// probe no longer applies. (A shared library the executable loads, replaced under it, is not
 /// seen: `millimpact probe --refresh` probes again.)
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct BuildIdentity {
+pub(crate) struct BuildIdentity {
     /// The driver's name.
     pub code: String,
     /// The executable, symbolic links resolved.
@@ -667,7 +667,7 @@ pub struct BuildIdentity {
 
 impl BuildIdentity {
     /// The identity of `executable` as the driver `code` probes it now.
-    pub fn of(code: &str, executable: &Executable) -> Result<BuildIdentity, ProbeError> {
+    pub(crate) fn of(code: &str, executable: &Executable) -> Result<BuildIdentity, ProbeError> {
         let io = |doing: &'static str| {
             let path = executable.program.clone();
             move |source| ProbeError::Io {
@@ -707,7 +707,7 @@ impl BuildIdentity {
 
     /// The file a probe of this build is kept in under the cache folder `dir`: one per driver
     /// and executable path, rewritten when the executable changes.
-    pub fn cache_file(&self, dir: &Path) -> PathBuf {
+    pub(crate) fn cache_file(&self, dir: &Path) -> PathBuf {
         let path = Sha256::digest(self.program.as_os_str().as_encoded_bytes());
         let short: String = path.iter().take(8).map(|b| format!("{b:02x}")).collect();
         dir.join("probe")
@@ -735,7 +735,7 @@ fn read_kept(file: &Path, identity: &BuildIdentity) -> Option<ProbeReport> {
 /// cut short by a loaded machine, or a build that does not run, is probed again next time).
 /// `refresh` probes afresh whatever is kept. Without a cache folder, or when the executable's
 /// identity cannot be read, it probes.
-pub fn probe_lammps_kept(
+pub(crate) fn probe_lammps_kept(
     code: &str,
     executable: &Executable,
     dir: Option<&Path>,
@@ -782,7 +782,7 @@ static CACHE: Mutex<Vec<(String, PathBuf, ProbeReport)>> = Mutex::new(Vec::new()
 /// it is sized and rendered from the same conventions. The lock is held while a build is
 /// probed, so that workers asking together wait for one probe instead of each running their
 /// own.
-pub fn probe_lammps_cached(
+pub(crate) fn probe_lammps_cached(
     code: &str,
     executable: &Executable,
     dir: Option<&Path>,
@@ -800,7 +800,7 @@ pub fn probe_lammps_cached(
 }
 
 /// A LAMMPS build's probe: its conventions measured by one-step runs.
-pub struct LammpsProber(pub &'static Build);
+pub(crate) struct LammpsProber(pub &'static Build);
 
 impl Prober for LammpsProber {
     fn probe(&self, executable: &Executable) -> Result<ProbeReport, ProbeError> {

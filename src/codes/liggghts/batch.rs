@@ -24,13 +24,13 @@ use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, Re
 
 /// Most impacts in one batch: each run adds about 1 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
-pub const MAX_BATCH: usize = 256;
+pub(crate) const MAX_BATCH: usize = 256;
 
 /// The batch input file.
-pub const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
+pub(crate) const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
 
 /// The trajectory file of impact `i` (from 0) of a batch.
-pub fn batch_trajectory_file(i: usize) -> String {
+pub(crate) fn batch_trajectory_file(i: usize) -> String {
     format!("traj-{}.txt", i + 1)
 }
 
@@ -42,13 +42,13 @@ const INITIAL_ROW: (&str, &str) = (
 
 /// The stock build's batch input for `setups`: their single inputs in sequence, or why they
 /// cannot run so.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     render_batch_with(&Liggghts, setups)
 }
 
 /// The batch input of `driver`, a LIGGGHTS build whose single inputs are the stock deck with
 /// its own contact lines (the stock build, the paper build), for `setups`.
-pub fn render_batch_with(
+pub(crate) fn render_batch_with(
     driver: &dyn CodeDriver,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
@@ -74,7 +74,7 @@ pub fn render_batch_with(
 
 /// Each impact's run from a batch: its own trajectory, and its own run's loop time and step
 /// count (the `Loop time of` lines, one per run, in order).
-pub fn parse_batch(
+pub(crate) fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
@@ -110,7 +110,7 @@ pub fn parse_batch(
 }
 
 /// Liggghts's batches: many impacts in one process, in sequence.
-pub struct LiggghtsBatch;
+pub(crate) struct LiggghtsBatch;
 
 impl BatchRunner for LiggghtsBatch {
     fn max_batch(&self) -> usize {

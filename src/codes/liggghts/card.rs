@@ -4,7 +4,7 @@ use crate::codes::{CalibrationCard, CodeSetup};
 use crate::model::scene::SceneKind;
 
 /// LIGGGHTS's card.
-pub struct LiggghtsCard;
+pub(crate) struct LiggghtsCard;
 
 impl CalibrationCard for LiggghtsCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {

@@ -36,7 +36,7 @@ const NORMAL_MODELS: &str = "model hertz, hooke, hertz/stiffness, hooke/stiffnes
 const PAPER_MODELS: [&str; 2] = ["paper", "paper/linear"];
 
 /// LIGGGHTS's deck reader.
-pub struct LiggghtsDeck;
+pub(crate) struct LiggghtsDeck;
 
 /// A `model …` specification of `pair_style gran` or `fix wall/gran`, with its settings.
 #[derive(Clone, Debug, PartialEq)]

@@ -4,7 +4,7 @@
 //! rolling models kept), instrumented for what the mill's comparison measures.
 //!
 //! The deck is read by the deck reader's parser ([`ScriptReader`], the `variable` lines kept,
-//! so that `v_NAME` references still resolve) and checked by [`LiggghtsDeck`] first, so a deck
+//! so that `v_NAME` references still resolve) and checked by `LiggghtsDeck` first, so a deck
 //! `millimpact deck` refuses is refused here in the same words. Rotation starts at the first
 //! `run` after the first `fix move/mesh … rotate`; everything before it (insertion, settling) is
 //! run as written.

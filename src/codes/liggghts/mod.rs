@@ -11,13 +11,13 @@
 //! into `E*`; the second ball is atom 2. What the installed version really does, and the
 //! measurements behind each choice here, are in `reference/liggghts/CONVENTIONS.md`.
 
-pub mod batch;
-pub mod card;
-pub mod deck;
+pub(crate) mod batch;
+pub(crate) mod card;
+pub(crate) mod deck;
 pub mod mill;
 pub mod paper;
 
-pub use paper::LiggghtsPaper;
+pub(crate) use paper::LiggghtsPaper;
 
 use std::f64::consts::PI;
 use std::path::Path;
@@ -35,15 +35,15 @@ use crate::solve::dashpot::{CodeFrame, FrameBody};
 const TEMPLATE: &str = include_str!("impact.in");
 const INPUT_FILE: &str = "impact.in";
 /// The trajectory file the template writes (one row per step, plus the initial state).
-pub const TRAJECTORY_FILE: &str = "traj.txt";
+pub(crate) const TRAJECTORY_FILE: &str = "traj.txt";
 
 /// Young's modulus given to a rigid wall's atom type, Pa. LIGGGHTS has no rigid wall: the
 /// wall type's `(1-ν²)/E` is always added to `1/E*`. At 1e30 that term (1e-30) is below the
 /// rounding of a steel ball's compliance (4.55e-12 × 1.1e-16 = 5e-28), so the code's `E*` is
 /// the ball's `E/(1-ν²)` to the last bit; no upper limit on E exists under `hard_particles yes`.
-pub const RIGID_WALL_MODULUS: f64 = 1e30;
+pub(crate) const RIGID_WALL_MODULUS: f64 = 1e30;
 /// Poisson's ratio given to a rigid wall's atom type (irrelevant at [`RIGID_WALL_MODULUS`]).
-pub const RIGID_WALL_POISSON: f64 = 0.0;
+pub(crate) const RIGID_WALL_POISSON: f64 = 0.0;
 
 /// The gap, m, left between the surfaces at `t = 0` instead of exact contact.
 ///
@@ -52,7 +52,7 @@ pub const RIGID_WALL_POISSON: f64 = 0.0;
 /// rod_end peak overlap 3.6e-4 low). A gap of a millionth of the first step's travel keeps
 /// that phantom force out and shifts the trajectory by about 1e-6 of a step; the floor keeps
 /// the gap above the rounding of the sphere's position.
-pub fn contact_gap(setup: &CodeSetup) -> f64 {
+pub(crate) fn contact_gap(setup: &CodeSetup) -> f64 {
     let radius = setup.sphere.radius;
     (1e-6 * setup.impact_velocity * setup.timestep).max(1e-13 * radius)
 }
@@ -79,7 +79,7 @@ fn partner_material(setup: &CodeSetup) -> Option<(f64, f64)> {
 
 /// The effective modulus LIGGGHTS uses for a ball scene, Pa: its `createYeff`,
 /// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included).
-pub fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
+pub(crate) fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
     let nu1 = setup.sphere.poisson_ratio?;
     let (e2, nu2) = partner_material(setup)?;
     let e1 = setup.sphere.youngs_modulus;
@@ -100,7 +100,7 @@ pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
 /// down, below it the plate (the plane z = 0) or sphere 2 at `-r2`; the velocities of the
 /// centre-of-mass frame and the masses as LIGGGHTS computes them, every number as the deck
 /// writes it (exactly).
-pub fn code_frame(setup: &CodeSetup) -> CodeFrame {
+pub(crate) fn code_frame(setup: &CodeSetup) -> CodeFrame {
     let (v1, v2) = setup.centre_of_mass_velocities();
     let r1 = setup.sphere.radius;
     let upper = FrameBody {
@@ -138,7 +138,7 @@ pub fn code_stiffness(setup: &CodeSetup) -> f64 {
 /// The contact model lines of a deck: the `model` style, its settings keywords, and the
 /// per-type property lines it reads.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ContactModel {
+pub(crate) struct ContactModel {
     /// The style after `model` (`hertz`, `paper`, ...).
     pub style: &'static str,
     /// Its settings keywords (empty for a style that takes none).
@@ -149,7 +149,7 @@ pub struct ContactModel {
 
 /// A `fix property/global NAME peratomtypepair 2` line giving all four pairs of types 1 and 2
 /// `value`.
-pub fn pair_property(name: &str, value: &str) -> String {
+pub(crate) fn pair_property(name: &str, value: &str) -> String {
     format!(
         "fix {name:<22} all property/global {name} peratomtypepair 2 {value} {value} {value} {value}"
     )
@@ -157,7 +157,7 @@ pub fn pair_property(name: &str, value: &str) -> String {
 
 /// The per-type `youngsModulus` and `poissonsRatio` lines of a ball scene: type 1 the moving
 /// sphere, type 2 the plate (or its rigid stand-in) or the second sphere.
-pub fn material_properties(setup: &CodeSetup) -> [String; 2] {
+pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
     let nu1 = setup.sphere.poisson_ratio.unwrap_or_default();
     let (e2, nu2) = partner_material(setup).unwrap_or_default();
     [
@@ -176,7 +176,7 @@ pub fn material_properties(setup: &CodeSetup) -> [String; 2] {
 
 /// The checks LIGGGHTS itself would fail on, whatever the contact model, reported before it is
 /// run by `code`.
-pub fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
+pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
     let unsupported = |reason: String| CodeError::Unsupported {
         code: code.into(),
         case: setup.case_name.clone(),
@@ -208,7 +208,7 @@ pub fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
 }
 
 /// The deck (the template in this folder) for `setup` with `contact`'s model, as run by `code`.
-pub fn render_deck(
+pub(crate) fn render_deck(
     code: &str,
     setup: &CodeSetup,
     contact: &ContactModel,
@@ -297,7 +297,11 @@ pub fn render_deck(
 
 /// Read a run of the deck in `workdir` (its trajectory file and screen `log`), refusing a run
 /// that stopped short of `setup`'s steps.
-pub fn parse_run(setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
+pub(crate) fn parse_run(
+    setup: &CodeSetup,
+    workdir: &Path,
+    log: &str,
+) -> Result<ParsedRun, ParseError> {
     let path = workdir.join(TRAJECTORY_FILE);
     let text =
         std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
@@ -408,7 +412,7 @@ impl CodeDriver for Liggghts {
     }
 
     /// The executable as the default locates it, started without Open MPI's daemon
-    /// ([`Executable::open_mpi_alone`]).
+    /// (`Executable::open_mpi_alone`).
     fn locate(&self) -> Result<Executable, LocateError> {
         super::runner::locate_override_or_path(self.name(), self.binary())
             .map(Executable::open_mpi_alone)
@@ -456,7 +460,7 @@ pub fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, ParseError
 
 /// The version as LIGGGHTS prints it on its first line, e.g.
 /// `LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26-19:42:32 by buildd, git commit unknown`.
-pub fn version(log: &str) -> Option<String> {
+pub(crate) fn version(log: &str) -> Option<String> {
     let start = log.find("LIGGGHTS (Version ")? + "LIGGGHTS (Version ".len();
     let rest = &log[start..];
     let end = rest.find(")\n").or_else(|| rest.find(')'))?;
@@ -475,7 +479,7 @@ fn loop_steps(log: &str) -> Option<u64> {
 }
 
 /// The words after `Loop time of` on the last such line.
-pub fn loop_line(log: &str) -> Option<Vec<&str>> {
+pub(crate) fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
 }

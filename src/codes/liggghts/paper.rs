@@ -3,7 +3,7 @@
 //! a serial build installed by `scripts/build-liggghts-paper.sh` into
 //! `<codes>/liggghts-paper/bin/liggghts-paper`.
 //!
-//! It runs the stock LIGGGHTS deck ([`super::render_deck`]) with the contact lines changed:
+//! It runs the stock LIGGGHTS deck (`super::render_deck`) with the contact lines changed:
 //! - ball scenes run `model paper` (`F = C yⁿ (1 + η sign ẏ)`, `C = (4/3) E* sqrt(R*)` formed as
 //!   `model hertz` forms its stiffness) with the per-type-pair `lossCoefficient` η;
 //! - `rod_end` runs `model paper/linear` with the rod's `kn` and η.
@@ -14,7 +14,7 @@
 //! construction and what it differs by is its integration: velocity Verlet with the branch
 //! chosen by the sign of the half-step velocity, resolved to one step (within the velocity
 //! change one step's force jump makes, the sign becomes linear in the velocity, so a contact at
-//! rest carries the elastic force: [`crate::solve::dashpot::paper_force_in_step`]), which
+//! rest carries the elastic force: `crate::solve::dashpot::paper_force_in_step`), which
 //! [`crate::solve::dashpot::step_trajectory`] steps the same way.
 
 use std::path::Path;
@@ -37,9 +37,9 @@ use crate::model::scene::SceneKind;
 use crate::solve::dashpot::CodeFrame;
 
 /// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
-pub const INSTALL_DIR: &str = "liggghts-paper";
+pub(crate) const INSTALL_DIR: &str = "liggghts-paper";
 /// The executable inside [`INSTALL_DIR`].
-pub const BINARY_PATH: &str = "bin/liggghts-paper";
+pub(crate) const BINARY_PATH: &str = "bin/liggghts-paper";
 
 /// LIGGGHTS with the paper's law.
 pub struct LiggghtsPaper;
@@ -170,7 +170,7 @@ impl CodeDriver for LiggghtsPaper {
 
 /// The paper build's batches: many impacts in one process, its single inputs in sequence (as
 /// the stock build's), each with its own η.
-pub struct LiggghtsPaperBatch;
+pub(crate) struct LiggghtsPaperBatch;
 
 impl BatchRunner for LiggghtsPaperBatch {
     fn max_batch(&self) -> usize {
@@ -192,7 +192,7 @@ impl BatchRunner for LiggghtsPaperBatch {
 }
 
 /// The paper build's calibration card: the lines that select the paper's law.
-pub struct LiggghtsPaperCard;
+pub(crate) struct LiggghtsPaperCard;
 
 impl CalibrationCard for LiggghtsPaperCard {
     fn setting_keys(&self, _scene: SceneKind) -> &'static [&'static str] {

@@ -35,21 +35,18 @@ use crate::codes::{
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
-pub const MAX_BATCH: usize = 256;
+pub(crate) const MAX_BATCH: usize = 256;
 
 /// Impacts whose steps cost what one start of YADE does: the start (importing the library)
 /// takes about 0.7 s of CPU, an impact of a ball scene at 200 steps per contact about 2 ms of
 /// its batch (recording included), measured on the Debian build.
-pub const IMPACTS_PER_START: usize = 350;
+pub(crate) const IMPACTS_PER_START: usize = 350;
 
 /// Most impacts side by side in one scene: each has a bit of the body mask (an `int`) to itself.
-pub const GROUP: usize = 30;
+pub(crate) const GROUP: usize = 30;
 
 /// The batch script.
-pub const BATCH_SCRIPT: &str = "batch.py";
-
-/// The trajectory file of impact `i` (from 0) of a batch.
-pub use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
+pub(crate) const BATCH_SCRIPT: &str = "batch.py";
 
 /// The batch script's start: YADE's library, loaded by the launcher or, run by its Python
 /// alone, by the script.
@@ -198,7 +195,7 @@ for group in GROUPS:
 
 /// The impacts' groups: consecutive impacts of one scene and one time step, at most [`GROUP`]
 /// each.
-pub fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
+pub(crate) fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
     let mut groups: Vec<Vec<usize>> = Vec::new();
     for (i, s) in setups.iter().enumerate() {
         let joins = groups.last().is_some_and(|g| {
@@ -216,7 +213,7 @@ pub fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
 }
 
 /// The batch script for `setups`, or why they cannot run as one.
-pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     if setups.is_empty() {
         return Err(BatchError::Empty);
     }
@@ -273,7 +270,7 @@ pub fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
 /// line's arguments) and the folder of YADE's Python library it puts on the module path
 /// (`sys.path.insert(1,'…/py')`, as the Debian build and a build from source write it).
 #[derive(Clone, Debug, PartialEq)]
-pub struct LauncherPython {
+pub(crate) struct LauncherPython {
     /// The interpreter's program and its arguments from the `#!` line.
     pub interpreter: Vec<String>,
     /// The folder that holds the `yade` package.
@@ -282,7 +279,7 @@ pub struct LauncherPython {
 
 /// The Python of the launcher at `launcher` and its library folder, if the launcher is such a
 /// script and the folder holds the `yade` package; `None` otherwise (a wrapper, a binary).
-pub fn launcher_python(launcher: &Path) -> Option<LauncherPython> {
+pub(crate) fn launcher_python(launcher: &Path) -> Option<LauncherPython> {
     let text = std::fs::read(launcher).ok()?;
     let text = String::from_utf8_lossy(&text);
     let interpreter: Vec<String> = text
@@ -323,7 +320,7 @@ pub fn launcher_python(launcher: &Path) -> Option<LauncherPython> {
 /// How the launcher at `executable` runs a batch `input`: by its Python with YADE's library
 /// on the module path (first, as the launcher puts it) and the launcher's one thread, or by
 /// the launcher itself when it is not a Python script that names its library.
-pub fn launch(executable: Executable, input: &RenderedInput) -> Launch {
+pub(crate) fn launch(executable: Executable, input: &RenderedInput) -> Launch {
     let module_path = launcher_python(&executable.program).and_then(|python| {
         let mut folders = vec![python.library.clone()];
         folders.extend(
@@ -356,7 +353,7 @@ pub fn launch(executable: Executable, input: &RenderedInput) -> Launch {
 }
 
 /// Each impact's run from a batch.
-pub fn parse_batch(
+pub(crate) fn parse_batch(
     setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
@@ -371,7 +368,7 @@ pub fn parse_batch(
 }
 
 /// Yade's batches: many impacts in one process, side by side in groups.
-pub struct YadeBatch;
+pub(crate) struct YadeBatch;
 
 impl BatchRunner for YadeBatch {
     fn max_batch(&self) -> usize {
@@ -404,6 +401,7 @@ impl BatchRunner for YadeBatch {
 mod tests {
     use super::*;
     use crate::codes::CodeName;
+    use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
     use crate::model::case::Case;
 
     fn setup(scene: &str, eta: f64) -> CodeSetup {

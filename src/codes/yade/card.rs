@@ -8,7 +8,7 @@ use crate::model::law::DashpotLaw;
 use crate::model::scene::SceneKind;
 
 /// YADE's card.
-pub struct YadeCard;
+pub(crate) struct YadeCard;
 
 impl CalibrationCard for YadeCard {
     fn setting_keys(&self, scene: SceneKind) -> &'static [&'static str] {

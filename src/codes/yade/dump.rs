@@ -1,5 +1,5 @@
 //! A user's YADE script as YADE holds it after its set-up: the script run by YADE's own Python
-//! (the launcher's interpreter, as a batch runs, [`super::batch::launch`]) in a scratch folder,
+//! (the launcher's interpreter, as a batch runs, `super::batch::launch`) in a scratch folder,
 //! under a time limit, in its own process group, with everything that advances the simulation
 //! disarmed (`read.py`), and what YADE then holds dumped as JSON and read here into typed
 //! structs.
@@ -25,10 +25,10 @@ use crate::codes::{CodeDriver, CodeError, RenderedInput};
 const READER: &str = include_str!("read.py");
 
 /// The dumper's file name in the scratch folder.
-pub const READER_FILE: &str = "read.py";
+pub(crate) const READER_FILE: &str = "read.py";
 
 /// The dump's file name in the scratch folder.
-pub const DUMP_FILE: &str = "dump.json";
+pub(crate) const DUMP_FILE: &str = "dump.json";
 
 /// How long the set-up of a script may take before the reading is stopped, where no time limit
 /// is given (`deck --timeout` gives one): a script's set-up (bodies made, packings generated)
@@ -201,7 +201,7 @@ pub struct BodyDump {
 
 impl Attribute {
     /// The number it holds.
-    pub fn number(&self) -> Option<f64> {
+    pub(crate) fn number(&self) -> Option<f64> {
         match self {
             Attribute::Number(x) => Some(*x),
             _ => None,
@@ -395,7 +395,7 @@ fn link_script_folder(script: &Path, workdir: &Path) {
 }
 
 /// The text of line `line` (from 1) of the script at `path`, trimmed, where it can be read.
-pub fn line_text(path: &Path, line: usize) -> Option<String> {
+pub(crate) fn line_text(path: &Path, line: usize) -> Option<String> {
     let text = std::fs::read_to_string(path).ok()?;
     text.lines()
         .nth(line.checked_sub(1)?)

@@ -24,13 +24,13 @@
 //! - Stepping: leap-frog; the force of iteration `i` sees the position `x_i` and the half-step
 //!   velocity `v_{i-1/2}`; the initial velocity is `v_{-1/2}`.
 
-pub mod batch;
-pub mod card;
+pub(crate) mod batch;
+pub(crate) mod card;
 pub mod deck;
 pub mod dump;
 pub mod paper;
 
-pub use paper::YadePaper;
+pub(crate) use paper::YadePaper;
 
 use std::path::Path;
 
@@ -54,7 +54,7 @@ const TEMPLATE: &str = include_str!("impact.py");
 const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
 
 /// Young's modulus given to the wall that stands for a rigid plate, Pa. YADE mixes the wall's
 /// material into `E*`; at this value the wall's share of the compliance, about
@@ -62,12 +62,12 @@ pub const TRAJECTORY_FILE: &str = "trajectory.csv";
 pub const RIGID_WALL_MODULUS: f64 = 1e30;
 
 /// The radius `Ig2_Wall_Sphere_ScGeom(hertzian=True)` gives the wall, in sphere radii.
-pub const HERTZIAN_WALL_RADIUS_FACTOR: f64 = 1e8;
+pub(crate) const HERTZIAN_WALL_RADIUS_FACTOR: f64 = 1e8;
 
 /// How far the COR of [`CodeDriver::law`] may lie from the target before
 /// [`CodeDriver::expected_restitution`] reports it: Thornton's fit is good to a few 1e-4 for
 /// `e ≤ 0.9` and fails towards `e → 1`.
-pub const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
+pub(crate) const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
 
 /// The YADE driver.
 pub struct Yade;
@@ -179,7 +179,7 @@ impl Yade {
 
     /// The `en` the script gives `Ip2_FrictMat_FrictMat_MindlinPhys` (Thornton's fit inverted
     /// through the clamped law: some sixty integrations of it, the first time for a target).
-    pub fn input_restitution(setup: &CodeSetup) -> f64 {
+    pub(crate) fn input_restitution(setup: &CodeSetup) -> f64 {
         hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
     }
 
@@ -187,7 +187,7 @@ impl Yade {
     /// ([`Yade::input_restitution`], which the template takes in every scene and only the ball
     /// scenes use; a batch lists each impact with these, and its `en` for a ball scene), or why
     /// the setup cannot run.
-    pub fn script_values(
+    pub(crate) fn script_values(
         &self,
         setup: &CodeSetup,
     ) -> Result<Vec<(&'static str, String)>, CodeError> {

@@ -16,7 +16,7 @@
 //!   the stock driver's wall needs `E = 1e30`). Rod end: `C = kn` of the case, `n = 1`.
 //! - η is the setup's `loss_coefficient`, exactly; the branch is chosen as LIGGGHTS `model
 //!   paper` chooses it, the sign of the approach rate resolved to one step
-//!   ([`crate::solve::dashpot::paper_force_in_step`], the same operations in the same order), so
+//!   (`crate::solve::dashpot::paper_force_in_step`, the same operations in the same order), so
 //!   a contact at rest carries its elastic force. The force never attracts: `--clamp` is
 //!   refused.
 //! - The bodies touch at `t = 0` (the hook's force at zero overlap is zero, so no start gap is
@@ -62,7 +62,7 @@ const CLAMP_REFUSAL: &str = "the paper's force C y^n (1 - eta) never attracts, s
                              nothing to clamp";
 
 /// The start of a run of the script in YADE's coordinates, mirrored (every coordinate negated,
-/// which is exact; [`crate::solve::dashpot::step_in_leap_frog_frame`]): sphere 1 at `−r1` below
+/// which is exact; `crate::solve::dashpot::step_in_leap_frog_frame`): sphere 1 at `−r1` below
 /// the plane `z = 0`, or at the origin with sphere 2 at `r1 + r2` along x, approaching with the
 /// centre-of-mass velocities; the masses as the script sets them.
 pub fn code_frame(setup: &CodeSetup) -> CodeFrame {
