@@ -9,40 +9,12 @@
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::time::Duration;
 
+use common::mill::{EXAMPLE, recorded, recorded_options, small_plan};
 use common::{codes_hidden, millimpact, root};
-use millimpact::analysis::mill::{MillOptions, Verdict, report_from_folders};
-use millimpact::codes::CodeName;
+use millimpact::analysis::mill::{Verdict, report_from_folders};
 use millimpact::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
 use millimpact::output::{Format, export};
-
-const EXAMPLE: &str = "examples/mill/in.mill";
-
-fn options() -> MillOptions {
-    MillOptions {
-        time: Some(0.05),
-        seeds: 1,
-        transient: None,
-        spectra_time: Some(0.0003),
-        contact_every: 10,
-        timeout: Duration::from_secs(60),
-        jobs: 2,
-        keep: None,
-        hertz_code: CodeName::Liggghts,
-    }
-}
-
-fn plan() -> MillPlan {
-    MillPlan {
-        rotation_steps: 1000,
-        spectra_steps: 200,
-        contact_every: 5,
-        print_every: 10,
-        position_every: 100,
-        seed: 0,
-    }
-}
 
 #[test]
 fn the_example_deck_is_read_with_its_drum_rotation_and_cors() {
@@ -65,7 +37,7 @@ fn the_example_deck_is_read_with_its_drum_rotation_and_cors() {
 #[test]
 fn the_switched_deck_runs_model_paper_at_each_pairs_eta_and_keeps_tangential_and_rolling() {
     let deck = MillDeck::read(Path::new(EXAMPLE)).unwrap();
-    let text = deck.render(MillLaw::Paper, &plan());
+    let text = deck.render(MillLaw::Paper, &small_plan());
     let lines: Vec<&str> = text.lines().collect();
     let loss = lines
         .iter()
@@ -109,7 +81,7 @@ fn the_switched_deck_runs_model_paper_at_each_pairs_eta_and_keeps_tangential_and
     assert_eq!(runs[1].trim(), "run 800");
     assert_eq!(runs[2].trim(), "run 200");
     // As written, nothing of the contact lines changes.
-    let written = deck.render(MillLaw::Hertz, &plan());
+    let written = deck.render(MillLaw::Hertz, &small_plan());
     assert!(
         written
             .contains("pair_style      gran model hertz tangential history rolling_friction cdt")
@@ -120,8 +92,14 @@ fn the_switched_deck_runs_model_paper_at_each_pairs_eta_and_keeps_tangential_and
 #[test]
 fn a_second_seed_replaces_every_insertion_seed() {
     let deck = MillDeck::read(Path::new(EXAMPLE)).unwrap();
-    let first = deck.render(MillLaw::Hertz, &plan());
-    let second = deck.render(MillLaw::Hertz, &MillPlan { seed: 1, ..plan() });
+    let first = deck.render(MillLaw::Hertz, &small_plan());
+    let second = deck.render(
+        MillLaw::Hertz,
+        &MillPlan {
+            seed: 1,
+            ..small_plan()
+        },
+    );
     for seed in ["15485863", "15485867", "32452843", "32452867"] {
         assert!(first.contains(seed));
         assert!(!second.contains(seed), "{seed} kept");
@@ -232,30 +210,6 @@ fn a_rotation_time_beyond_the_decks_is_refused() {
     refused(&[EXAMPLE, "--seeds", "9"], &["--seeds = 9", "1 to 4"]);
 }
 
-fn recorded() -> millimpact::analysis::mill::MillReport {
-    let deck = MillDeck::read(Path::new(EXAMPLE)).unwrap();
-    let data = root().join("tests/data/mill");
-    report_from_folders(
-        &deck,
-        &options(),
-        &[
-            (
-                MillLaw::Hertz,
-                0,
-                "liggghts".into(),
-                data.join("hertz-seed0"),
-            ),
-            (
-                MillLaw::Paper,
-                0,
-                "liggghts-paper".into(),
-                data.join("paper-seed0"),
-            ),
-        ],
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
-}
-
 #[test]
 fn the_recorded_runs_give_power_energy_and_every_pairs_spectrum() {
     let report = recorded();
@@ -304,7 +258,7 @@ fn a_paper_deck_is_switched_to_hertz_at_the_cor_its_eta_gives() {
     assert_eq!(deck.law, MillLaw::Paper);
     assert_eq!(deck.restitution[0], 0.5);
     assert!((deck.restitution[8] - (0.7_f64 / 1.3).sqrt()).abs() < 1e-15);
-    let text = deck.render(MillLaw::Hertz, &plan());
+    let text = deck.render(MillLaw::Hertz, &small_plan());
     let cor = text
         .lines()
         .find(|l| l.contains("property/global coefficientRestitution"))
@@ -348,7 +302,7 @@ fn a_run_that_loses_particles_stops_the_comparison() {
     .unwrap();
     let error = report_from_folders(
         &deck,
-        &options(),
+        &recorded_options(),
         &[
             (
                 MillLaw::Hertz,

@@ -22,7 +22,7 @@ use std::process::{Child, Command, Stdio};
 use std::time::Instant;
 
 use common::root;
-use millimpact::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
+use millimpact::codes::liggghts::mill::{MillDeck, MillLaw};
 
 /// The held-out deck's folder, relative to the crate's root.
 const HELDOUT: &str = "tests/data/mill/heldout";
@@ -74,14 +74,7 @@ fn the_heldout_deck_is_read_with_both_meshes_turning_about_x() {
 #[test]
 fn the_settling_run_is_rendered_as_liggghts_reads_the_deck() {
     let deck = MillDeck::read(&heldout().join("in.drum")).unwrap_or_else(|e| panic!("{e}"));
-    let plan = MillPlan {
-        rotation_steps: 1000,
-        spectra_steps: 200,
-        contact_every: 5,
-        print_every: 10,
-        position_every: 100,
-        seed: 0,
-    };
+    let plan = common::mill::small_plan();
     for law in [MillLaw::Hertz, MillLaw::Paper] {
         let text = deck.render(law, &plan);
         let runs: Vec<Vec<&str>> = text

@@ -6,52 +6,14 @@
 
 mod common;
 
-use std::path::Path;
-use std::time::Duration;
-
+use common::mill::{EXAMPLE, recorded};
 use common::{codes_hidden, millimpact, root};
-use millimpact::analysis::mill::{MillOptions, MillReport, report_from_folders};
+use millimpact::analysis::mill::MillReport;
 use millimpact::analysis::report::{Report, mill_part};
 use millimpact::codes::CodeName;
-use millimpact::codes::liggghts::mill::{MillDeck, MillLaw};
+use millimpact::codes::liggghts::mill::MillLaw;
 use millimpact::output::report_page::render_pages;
 use millimpact::output::{Format, export};
-
-const EXAMPLE: &str = "examples/mill/in.mill";
-
-/// The runs recorded by `millimpact mill examples/mill/in.mill --time 0.05 --spectra-time
-/// 0.0003 --contact-every 10 --keep DIR`.
-fn recorded() -> MillReport {
-    std::env::set_current_dir(root()).unwrap();
-    let deck = MillDeck::read(Path::new(EXAMPLE)).unwrap();
-    let data = root().join("tests/data/mill");
-    let options = MillOptions {
-        time: Some(0.05),
-        spectra_time: Some(0.0003),
-        contact_every: 10,
-        timeout: Duration::from_secs(60),
-        ..MillOptions::defaults()
-    };
-    report_from_folders(
-        &deck,
-        &options,
-        &[
-            (
-                MillLaw::Hertz,
-                0,
-                "liggghts".into(),
-                data.join("hertz-seed0"),
-            ),
-            (
-                MillLaw::Paper,
-                0,
-                "liggghts-paper".into(),
-                data.join("paper-seed0"),
-            ),
-        ],
-    )
-    .unwrap_or_else(|e| panic!("{e}"))
-}
 
 fn page(part: millimpact::analysis::report::ReportPart) -> String {
     let report = Report {
