@@ -231,6 +231,71 @@ fn droppable(key: &str, value: &str) -> bool {
     key == "tangential_damping" || (key == "limitForce" && value == "off")
 }
 
+/// A `fix … mesh/surface… file FILE` line whose file is not there (relative to the deck's
+/// `folder`, as LIGGGHTS reads it from there) is refused.
+fn check_mesh_file(c: &Command, style: &str, folder: &Path) -> Result<(), DeckError> {
+    let k = c.words.iter().position(|w| w == "file").ok_or_else(|| {
+        DeckError::unsupported(
+            &c.at,
+            format!("fix {style} without `file`"),
+            "fix ID group mesh/surface file FILE type T …",
+        )
+    })?;
+    let file = c.word(k + 1, "the mesh file")?;
+    let resolved = folder.join(file);
+    if resolved.is_file() {
+        return Ok(());
+    }
+    Err(DeckError::unsupported(
+        &c.at,
+        format!(
+            "mesh file `{file}` does not exist ({} looked for)",
+            resolved.display()
+        ),
+        "a mesh file (STL or VTK) at its path relative to the deck's folder",
+    ))
+}
+
+/// Gravity's acceleration from `fix … gravity G vector X Y Z` (`None`: not a `vector` form).
+fn gravity_of(c: &Command) -> Result<Option<[f64; 3]>, DeckError> {
+    let Some(k) = c.words.iter().position(|w| w == "vector") else {
+        return Ok(None);
+    };
+    let magnitude = c.number(4, "gravity's magnitude")?;
+    Ok(unit([
+        c.number(k + 1, "gravity's direction")?,
+        c.number(k + 2, "gravity's direction")?,
+        c.number(k + 3, "gravity's direction")?,
+    ])
+    .map(|direction| direction.map(|x| x * magnitude)))
+}
+
+/// Each type pair's COR under the deck's own `law`, from the last table of the property it
+/// takes (`coefficientRestitution` for Hertz, `lossCoefficient` for the paper's law).
+fn restitution_of(
+    path: &Path,
+    law: MillLaw,
+    tables: &[(&str, Vec<f64>, SourceLine)],
+) -> Result<Vec<f64>, DeckError> {
+    let wanted = match law {
+        MillLaw::Hertz => "coefficientRestitution",
+        MillLaw::Paper => "lossCoefficient",
+    };
+    let (_, table, _) = tables
+        .iter()
+        .rev()
+        .find(|(name, ..)| *name == wanted)
+        .ok_or_else(|| DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: format!("model {law} needs {wanted}, which no fix property/global sets"),
+            supported: format!("fix ID all property/global {wanted} peratomtypepair N …"),
+        })?;
+    Ok(match law {
+        MillLaw::Hertz => table.clone(),
+        MillLaw::Paper => table.iter().map(|&eta| exact::restitution(eta)).collect(),
+    })
+}
+
 impl MillDeck {
     /// Read the deck at `path`: refused in one line (file, line, what, what is allowed) when it
     /// has no rotating mesh, a mesh file that is not there, or a law the switch cannot express.
@@ -298,25 +363,7 @@ impl MillDeck {
                     }
                 }
                 "fix" if style.starts_with("mesh/surface") => {
-                    let k = c.words.iter().position(|w| w == "file").ok_or_else(|| {
-                        DeckError::unsupported(
-                            &c.at,
-                            format!("fix {style} without `file`"),
-                            "fix ID group mesh/surface file FILE type T …",
-                        )
-                    })?;
-                    let file = c.word(k + 1, "the mesh file")?;
-                    let resolved = folder.join(file);
-                    if !resolved.is_file() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!(
-                                "mesh file `{file}` does not exist ({} looked for)",
-                                resolved.display()
-                            ),
-                            "a mesh file (STL or VTK) at its path relative to the deck's folder",
-                        ));
-                    }
+                    check_mesh_file(c, style, &folder)?;
                     meshes.push((c.words[1].clone(), c.at.clone()));
                 }
                 "fix" if style == "move/mesh" => {
@@ -336,17 +383,7 @@ impl MillDeck {
                 {
                     insertion_seeds += 1;
                 }
-                "fix" if style == "gravity" => {
-                    if let Some(k) = c.words.iter().position(|w| w == "vector") {
-                        let magnitude = c.number(4, "gravity's magnitude")?;
-                        gravity = unit([
-                            c.number(k + 1, "gravity's direction")?,
-                            c.number(k + 2, "gravity's direction")?,
-                            c.number(k + 3, "gravity's direction")?,
-                        ])
-                        .map(|direction| direction.map(|x| x * magnitude));
-                    }
-                }
+                "fix" if style == "gravity" => gravity = gravity_of(c)?.or(gravity),
                 "fix" if is_property(c, "coefficientRestitution") => tables.push((
                     "coefficientRestitution",
                     pair_table(c, "coefficientRestitution", types)?,
@@ -384,23 +421,7 @@ impl MillDeck {
                 ),
             });
         };
-        let wanted = match law {
-            MillLaw::Hertz => "coefficientRestitution",
-            MillLaw::Paper => "lossCoefficient",
-        };
-        let (_, table, _) = tables
-            .iter()
-            .rev()
-            .find(|(name, ..)| *name == wanted)
-            .ok_or_else(|| DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: format!("model {law} needs {wanted}, which no fix property/global sets"),
-                supported: format!("fix ID all property/global {wanted} peratomtypepair N …"),
-            })?;
-        let restitution = match law {
-            MillLaw::Hertz => table.clone(),
-            MillLaw::Paper => table.iter().map(|&eta| exact::restitution(eta)).collect(),
-        };
+        let restitution = restitution_of(path, law, &tables)?;
         let rotation_from = commands[rotation_start].at.clone();
         let first_run = first_run.unwrap_or(rotation_start);
         Ok(MillDeck {
