@@ -14,7 +14,9 @@ pub use mill::{add_mills, mill_part};
 
 use super::benchmark::cor_chart::cor_chart;
 use super::benchmark::{self, BenchmarkError, BenchmarkOptions, CodeRuns};
-use super::compare::{CompareError, CompareOptions, CompareSource, ModelPointRecord, compare};
+use super::compare::{
+    CompareError, CompareOptions, CompareReport, CompareSource, ModelPointRecord, compare,
+};
 use super::deck::DeckReport;
 use super::precision::{PrecisionError, method_sweep};
 use super::stability::{METHODS, stability_report};
@@ -874,6 +876,20 @@ pub fn build_report(
         },
         tables: vec![],
     });
+    let appendix = appendix(options, &paths)?;
+    let data = compare_data(&compared)?;
+    Ok(Report {
+        title: "millimpact: the paper's contact law against the DEM codes".into(),
+        parts,
+        appendix,
+        data,
+        failures: compared.failures(),
+    })
+}
+
+/// The report's appendix: the build, its revision, the date, where the code figures come from,
+/// each stored code's version, and the command that reproduces the whole report.
+fn appendix(options: &ReportOptions, paths: &[String]) -> Result<Vec<String>, ReportError> {
     let mut versions = std::collections::BTreeSet::new();
     for path in store::stored_files(&options.reference)? {
         for r in store::load(&path)?.runs {
@@ -903,13 +919,19 @@ pub fn build_report(
     appendix.push(format!(
         "reproduce the whole report: {}",
         Invocation::new("report")
-            .args(&paths)
+            .args(paths)
             .flag("--live", options.live)
     ));
-    let data = vec![
+    Ok(appendix)
+}
+
+/// The comparison behind the agreement tables, as `compare` exports it, and the model
+/// difference against e.
+fn compare_data(compared: &CompareReport) -> Result<Vec<DataFile>, ReportError> {
+    Ok(vec![
         DataFile {
             name: "compare.json".into(),
-            text: serde_json::to_string_pretty(&compared).map_err(OutputError::from)? + "\n",
+            text: serde_json::to_string_pretty(compared).map_err(OutputError::from)? + "\n",
         },
         DataFile {
             name: "compare.csv".into(),
@@ -926,14 +948,7 @@ pub fn build_report(
                     .collect::<Vec<_>>(),
             )?,
         },
-    ];
-    Ok(Report {
-        title: "millimpact: the paper's contact law against the DEM codes".into(),
-        parts,
-        appendix,
-        data,
-        failures: compared.failures(),
-    })
+    ])
 }
 
 /// The report's part on a user's own deck, checked by `deck`: its table of pairs, the traps
