@@ -25,7 +25,7 @@ pub use report::{
 use crate::codes::deck::DeckError;
 use crate::codes::liggghts::mill::{
     ATOMS_FILE, ENERGY_FILE, MAX_SEEDS, MillDeck, MillLaw, MillPlan, PAIRS_FILE, POSITIONS_FILE,
-    WALLS_FILE,
+    RotatingMesh, WALLS_FILE,
 };
 use crate::codes::runner::{error_line, read_log, spawn_contained, wait_contained};
 use crate::codes::{CodeError, CodeName};
@@ -374,6 +374,65 @@ fn run_one(
     }
 }
 
+/// Whether mesh `r` turns with `drum`: the same speed about the same axis (any point of it).
+fn turns_as_one(r: &RotatingMesh, drum: &RotatingMesh) -> bool {
+    let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()));
+    let offset: Vec<f64> = (0..3).map(|j| r.origin[j] - drum.origin[j]).collect();
+    let along: f64 = (0..3).map(|j| offset[j] * drum.axis[j]).sum();
+    close(r.angular_velocity, drum.angular_velocity)
+        && (0..3).all(|k| close(r.axis[k], drum.axis[k]))
+        && (0..3).all(|k| close(offset[k] - along * drum.axis[k], 0.0))
+}
+
+/// The energy file's rows after the rotation's first print, as (rotation time, s; power the
+/// drive supplies, W; kinetic energy, J), or the line and reason of a row that cannot be read.
+fn energy_series(
+    deck: &MillDeck,
+    plan: &MillPlan,
+    start_step: f64,
+    text: &str,
+) -> Result<Vec<(f64, f64, f64)>, charge::ReadFault> {
+    let mut series = Vec::new();
+    for (k, line) in text.lines().enumerate() {
+        if line.starts_with('#') || line.trim().is_empty() {
+            continue;
+        }
+        let values: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .map_err(|e| (k + 1, format!("`{line}`: {e}")))?;
+        if values.len() != 3 + 3 * deck.rotating.len() {
+            return Err((
+                k + 1,
+                format!(
+                    "{} values, expected {} (step, ke, rotational ke, three torque components per rotating mesh)",
+                    values.len(),
+                    3 + 3 * deck.rotating.len()
+                ),
+            ));
+        }
+        // Each torque is a mean over the steps since the print before; the first print
+        // after the rotation starts has no full interval behind it (LIGGGHTS writes 0).
+        if values[0] - start_step < plan.print_every as f64 {
+            continue;
+        }
+        let time = (values[0] - start_step) * deck.timestep;
+        // The torque on the mesh is what the charge exerts; the drive supplies its opposite.
+        let power: f64 = deck
+            .rotating
+            .iter()
+            .enumerate()
+            .map(|(m, r)| {
+                let t = &values[3 + 3 * m..6 + 3 * m];
+                -(t[0] * r.axis[0] + t[1] * r.axis[1] + t[2] * r.axis[2]) * r.angular_velocity
+            })
+            .sum();
+        series.push((time, power, values[1] + values[2]));
+    }
+    Ok(series)
+}
+
 /// Read the files of a finished run in `folder`.
 fn read_run(
     deck: &MillDeck,
@@ -395,45 +454,8 @@ fn read_run(
     };
     let atoms = contacts::read_atoms(&read(ATOMS_FILE)?)
         .map_err(|(line, reason)| output(ATOMS_FILE, line, reason))?;
-    let mut series = Vec::new();
-    for (k, line) in read(ENERGY_FILE)?.lines().enumerate() {
-        if line.starts_with('#') || line.trim().is_empty() {
-            continue;
-        }
-        let values: Vec<f64> = line
-            .split_whitespace()
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .map_err(|e| output(ENERGY_FILE, k + 1, format!("`{line}`: {e}")))?;
-        if values.len() != 3 + 3 * deck.rotating.len() {
-            return Err(output(
-                ENERGY_FILE,
-                k + 1,
-                format!(
-                    "{} values, expected {} (step, ke, rotational ke, three torque components per rotating mesh)",
-                    values.len(),
-                    3 + 3 * deck.rotating.len()
-                ),
-            ));
-        }
-        // Each torque is a mean over the steps since the print before; the first print
-        // after the rotation starts has no full interval behind it (LIGGGHTS writes 0).
-        if values[0] - atoms.start_step < plan.print_every as f64 {
-            continue;
-        }
-        let time = (values[0] - atoms.start_step) * deck.timestep;
-        // The torque on the mesh is what the charge exerts; the drive supplies its opposite.
-        let power: f64 = deck
-            .rotating
-            .iter()
-            .enumerate()
-            .map(|(m, r)| {
-                let t = &values[3 + 3 * m..6 + 3 * m];
-                -(t[0] * r.axis[0] + t[1] * r.axis[1] + t[2] * r.axis[2]) * r.angular_velocity
-            })
-            .sum();
-        series.push((time, power, values[1] + values[2]));
-    }
+    let series = energy_series(deck, plan, atoms.start_step, &read(ENERGY_FILE)?)
+        .map_err(|(line, reason)| output(ENERGY_FILE, line, reason))?;
     let (events, rest_fractions) = if plan.spectra_steps > 0 {
         let recorded = contacts::Recorded {
             atoms: &atoms,
@@ -461,17 +483,7 @@ fn read_run(
             .map_err(|(line, reason)| output(POSITIONS_FILE, line, reason))?;
         // The torque balance holds for the charge as a whole only where every rotating mesh
         // turns with the drum.
-        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (1.0 + a.abs().max(b.abs()));
-        let one_drum = deck.rotating.iter().all(|r| {
-            close(r.angular_velocity, drum.angular_velocity)
-                && (0..3).all(|k| close(r.axis[k], drum.axis[k]))
-                && (0..3).all(|k| {
-                    // Another point on the same axis is the same axis.
-                    let offset: Vec<f64> = (0..3).map(|j| r.origin[j] - drum.origin[j]).collect();
-                    let along: f64 = (0..3).map(|j| offset[j] * drum.axis[j]).sum();
-                    close(offset[k] - along * drum.axis[k], 0.0)
-                })
-        });
+        let one_drum = deck.rotating.iter().all(|r| turns_as_one(r, drum));
         if let Some(last) = frames.last() {
             profile = charge::section(drum, gravity, &last.particles)
                 .unwrap_or_default()

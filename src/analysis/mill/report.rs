@@ -328,6 +328,56 @@ fn edges(edges: &[f64], k: usize) -> (Option<f64>, Option<f64>) {
     (k.checked_sub(1).map(|j| edges[j]), edges.get(k).copied())
 }
 
+/// Every pair's collision spectra, by impact energy and by peak force, under both laws.
+fn spectrum_rows(
+    runs: &[RunResult],
+    written: &[&RunResult],
+    switched: &[&RunResult],
+    window: f64,
+) -> Vec<SpectrumRow> {
+    let mut spectra = Vec::new();
+    let mut pairs: Vec<String> = runs
+        .iter()
+        .flat_map(|r| r.events.iter().map(|e| e.pair.clone()))
+        .collect();
+    pairs.sort();
+    pairs.dedup();
+    for pair in &pairs {
+        for (spectrum, bins) in [
+            ("impact_energy", &ENERGY_BINS_J[..]),
+            ("peak_force", &FORCE_BINS_N[..]),
+        ] {
+            for k in 0..=bins.len() {
+                let keep = |e: &super::ContactEvent| {
+                    e.pair == *pair
+                        && bin(
+                            if spectrum == "impact_energy" {
+                                e.impact_energy
+                            } else {
+                                e.peak_force
+                            },
+                            bins,
+                        ) == k
+                };
+                let (a, b) = (rate(written, window, keep), rate(switched, window, keep));
+                let (difference, verdict) = difference(a, b);
+                let (low, high) = edges(bins, k);
+                spectra.push(SpectrumRow {
+                    pair: pair.clone(),
+                    spectrum: spectrum.into(),
+                    low,
+                    high,
+                    written: a,
+                    switched: b,
+                    difference,
+                    verdict,
+                });
+            }
+        }
+    }
+    spectra
+}
+
 /// The report of finished runs.
 pub(super) fn summarise(
     deck: &MillDeck,
@@ -427,45 +477,7 @@ pub(super) fn summarise(
             over_runs(&written, rest),
             over_runs(&switched, rest),
         );
-        let mut pairs: Vec<String> = runs
-            .iter()
-            .flat_map(|r| r.events.iter().map(|e| e.pair.clone()))
-            .collect();
-        pairs.sort();
-        pairs.dedup();
-        for pair in &pairs {
-            for (spectrum, bins) in [
-                ("impact_energy", &ENERGY_BINS_J[..]),
-                ("peak_force", &FORCE_BINS_N[..]),
-            ] {
-                for k in 0..=bins.len() {
-                    let keep = |e: &super::ContactEvent| {
-                        e.pair == *pair
-                            && bin(
-                                if spectrum == "impact_energy" {
-                                    e.impact_energy
-                                } else {
-                                    e.peak_force
-                                },
-                                bins,
-                            ) == k
-                    };
-                    let (a, b) = (rate(&written, window, keep), rate(&switched, window, keep));
-                    let (difference, verdict) = difference(a, b);
-                    let (low, high) = edges(bins, k);
-                    spectra.push(SpectrumRow {
-                        pair: pair.clone(),
-                        spectrum: spectrum.into(),
-                        low,
-                        high,
-                        written: a,
-                        switched: b,
-                        difference,
-                        verdict,
-                    });
-                }
-            }
-        }
+        spectra = spectrum_rows(runs, &written, &switched, window);
     }
     let power_balance = weighed.then(|| PowerBalance {
         written: paired(&written, power, held),
