@@ -4,6 +4,7 @@
 pub mod case;
 pub mod count;
 pub mod exact;
+pub mod figures;
 pub mod law;
 pub mod scene;
 pub(crate) mod shipped;

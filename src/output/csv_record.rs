@@ -79,6 +79,9 @@ impl CsvRecords {
             quoting: &QUOTING,
             count: 0,
             newlines: 0,
+            header: false,
+            key: None,
+            unnamed: false,
         };
         let written = record.serialize(&mut fields);
         let (count, newlines) = (fields.count, fields.newlines);
@@ -132,18 +135,25 @@ impl CsvRecords {
 }
 
 /// The CSV header of a record of type `T` as the csv crate writes it before `record` (its
-/// field names), with its line end; empty for a value without field names. Written once per
-/// output, by the csv crate itself.
-pub fn header_of<T: Serialize + ?Sized>(record: &T) -> csv::Result<Vec<u8>> {
-    let encode = |headers: bool| -> csv::Result<Vec<u8>> {
-        let mut writer = csv::WriterBuilder::new()
-            .has_headers(headers)
-            .from_writer(Vec::new());
-        writer.serialize(record)?;
-        writer.into_inner().map_err(|e| e.into_error().into())
+/// field names; a flattened map's keys, as a nested struct's fields, are the names of the
+/// fields they write), with its line end; empty for a value without field names (a tuple).
+pub fn header_of<T: Serialize + ?Sized>(record: &T) -> Result<Vec<u8>, RecordError> {
+    let mut bytes = Vec::new();
+    let mut fields = Fields {
+        out: &mut bytes,
+        quoting: &QUOTING,
+        count: 0,
+        newlines: 0,
+        header: true,
+        key: None,
+        unnamed: false,
     };
-    let (with, without) = (encode(true)?, encode(false)?);
-    Ok(with[..with.len() - without.len()].to_vec())
+    record.serialize(&mut fields)?;
+    if fields.unnamed || fields.count == 0 {
+        return Ok(Vec::new());
+    }
+    bytes.push(b'\n');
+    Ok(bytes)
 }
 
 /// The serialiser of one record: each scalar a field.
@@ -154,6 +164,12 @@ struct Fields<'a> {
     count: usize,
     /// `\n` bytes inside quoted text.
     newlines: usize,
+    /// Writing the header: each scalar writes the name it is written under, not its value.
+    header: bool,
+    /// The name of the field being written (a struct's field, a map's key).
+    key: Option<String>,
+    /// In a header, a scalar met without a name (a tuple's element): the record has no header.
+    unnamed: bool,
 }
 
 impl Fields<'_> {
@@ -167,13 +183,36 @@ impl Fields<'_> {
 
     /// A field that never needs quotes (a number, an empty field).
     fn bare(&mut self, text: &[u8]) -> Result<(), RecordError> {
+        if self.header {
+            return self.name();
+        }
         self.next();
         self.out.extend_from_slice(text);
         Ok(())
     }
 
+    /// In a header, the name of the scalar being written.
+    fn name(&mut self) -> Result<(), RecordError> {
+        match self.key.take() {
+            Some(key) => {
+                self.header = false;
+                let written = self.text(key.as_bytes());
+                self.header = true;
+                written
+            }
+            None => {
+                self.unnamed = true;
+                self.next();
+                Ok(())
+            }
+        }
+    }
+
     /// A text field, quoted where csv quotes it.
     fn text(&mut self, text: &[u8]) -> Result<(), RecordError> {
+        if self.header {
+            return self.name();
+        }
         self.next();
         if !self.quoting.should_quote(text) {
             self.out.extend_from_slice(text);
@@ -210,7 +249,7 @@ impl ser::Serializer for &mut Fields<'_> {
     type SerializeTuple = Self;
     type SerializeTupleStruct = Self;
     type SerializeTupleVariant = Impossible<(), RecordError>;
-    type SerializeMap = Impossible<(), RecordError>;
+    type SerializeMap = Self;
     type SerializeStruct = Self;
     type SerializeStructVariant = Impossible<(), RecordError>;
 
@@ -229,6 +268,9 @@ impl ser::Serializer for &mut Fields<'_> {
     }
 
     fn serialize_f64(self, v: f64) -> Result<(), RecordError> {
+        if self.header {
+            return self.name();
+        }
         let mut buffer = zmij::Buffer::new();
         let text = buffer.format(v).as_bytes();
         // zmij writes ryu's digits and ryu's choice of plain or exponent form, but a positive
@@ -327,8 +369,8 @@ impl ser::Serializer for &mut Fields<'_> {
         ))
     }
 
-    fn serialize_map(self, _len: Option<usize>) -> Result<Self::SerializeMap, RecordError> {
-        Err(ser::Error::custom("serializing maps is not supported"))
+    fn serialize_map(self, _len: Option<usize>) -> Result<Self, RecordError> {
+        Ok(self)
     }
 
     fn serialize_struct(self, _name: &'static str, _len: usize) -> Result<Self, RecordError> {
@@ -387,15 +429,41 @@ impl ser::SerializeTupleStruct for &mut Fields<'_> {
     }
 }
 
+impl ser::SerializeMap for &mut Fields<'_> {
+    type Ok = ();
+    type Error = RecordError;
+
+    fn serialize_key<T: Serialize + ?Sized>(&mut self, key: &T) -> Result<(), RecordError> {
+        if self.header {
+            self.key = Some(match serde_json::to_value(key) {
+                Ok(serde_json::Value::String(name)) => name,
+                _ => return Err(ser::Error::custom("a map's key must be text")),
+            });
+        }
+        Ok(())
+    }
+
+    fn serialize_value<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), RecordError> {
+        value.serialize(&mut **self)
+    }
+
+    fn end(self) -> Result<(), RecordError> {
+        Ok(())
+    }
+}
+
 impl ser::SerializeStruct for &mut Fields<'_> {
     type Ok = ();
     type Error = RecordError;
 
     fn serialize_field<T: Serialize + ?Sized>(
         &mut self,
-        _key: &'static str,
+        key: &'static str,
         value: &T,
     ) -> Result<(), RecordError> {
+        if self.header {
+            self.key = Some(key.to_owned());
+        }
         value.serialize(&mut **self)
     }
 
@@ -554,9 +622,12 @@ mod tests {
     fn what_csv_refuses_is_refused_and_leaves_nothing() {
         let mut out = CsvRecords::default();
         out.push(&(1.0, 2.0)).unwrap();
-        let map: std::collections::BTreeMap<&str, f64> = [("a", 1.0)].into();
-        assert!(out.push(&(3.0, &map)).is_err());
-        assert!(by_csv(&[map]).is_err());
+        #[derive(Serialize)]
+        enum Shape {
+            Disc { radius: f64 },
+        }
+        assert!(out.push(&(3.0, Shape::Disc { radius: 1.0 })).is_err());
+        assert!(by_csv(&[(3.0, Shape::Disc { radius: 1.0 })]).is_err());
         assert!(out.push(&(1.0, 2.0, 3.0)).is_err(), "a wider record");
         assert!(by_csv(&[(1.0, 2.0), (1.0, 2.0)]).is_ok());
         assert!(by_csv(&[vec![1.0, 2.0], vec![1.0, 2.0, 3.0]]).is_err());
@@ -575,5 +646,25 @@ mod tests {
         let row = Row { a: 1.0, b: None };
         assert_eq!(header_of(&row).unwrap(), b"a,\"b,c\"\n");
         assert_eq!(header_of(&(1.0, 2.0)).unwrap(), b"");
+    }
+
+    #[test]
+    fn a_flattened_map_gives_its_keys_as_names_and_its_values_as_fields() {
+        #[derive(Serialize)]
+        struct Row {
+            a: f64,
+            #[serde(flatten)]
+            extra: std::collections::BTreeMap<&'static str, f64>,
+            z: &'static str,
+        }
+        let row = Row {
+            a: 1.0,
+            extra: [("b", 2.0), ("c", 3.5)].into(),
+            z: "x y",
+        };
+        assert_eq!(header_of(&row).unwrap(), b"a,b,c,z\n");
+        let mut out = CsvRecords::default();
+        out.push(&row).unwrap();
+        assert_eq!(out.as_bytes(), b"1.0,2.0,3.5,x y\n");
     }
 }

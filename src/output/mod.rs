@@ -66,6 +66,9 @@ pub enum OutputError {
     /// CSV serialisation failed.
     #[error("writing CSV: {0}")]
     Csv(#[from] csv::Error),
+    /// A CSV record could not be written.
+    #[error(transparent)]
+    Record(#[from] csv_record::RecordError),
     /// A figure could not be drawn.
     #[error("drawing the {figure} figure: {reason}")]
     Plot {
@@ -229,13 +232,14 @@ fn markdown_table(headers: &[String], rows: &[Vec<String>]) -> String {
 
 /// Serialise rows as CSV with a header; every row must have the header's width.
 pub(crate) fn csv_string<T: Serialize>(rows: &[T]) -> Result<String, OutputError> {
-    let mut writer = csv::Writer::from_writer(Vec::new());
+    let Some(first) = rows.first() else {
+        return Ok(String::new());
+    };
+    let mut records = csv_record::CsvRecords::default();
     for row in rows {
-        writer.serialize(row)?;
+        records.push(row)?;
     }
-    let bytes = writer
-        .into_inner()
-        .map_err(|e| OutputError::Csv(e.into_error().into()))?;
+    let bytes = [csv_record::header_of(first)?, records.into_bytes()].concat();
     Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 

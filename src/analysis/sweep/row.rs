@@ -328,16 +328,11 @@ pub struct SweepRow {
 
 /// The field names of a flat record type, in declaration order, as serde names them.
 fn field_names<T: Serialize + Default>() -> Vec<String> {
-    let mut writer = csv::WriterBuilder::new()
-        .has_headers(true)
-        .from_writer(Vec::new());
-    // Serialising a flat struct of scalars into memory cannot fail.
-    let _ = writer.serialize(T::default());
-    let bytes = writer.into_inner().unwrap_or_default();
-    let mut reader = csv::ReaderBuilder::new()
+    // Serialising a record of scalars into memory cannot fail.
+    let header = crate::output::csv_record::header_of(&T::default()).unwrap_or_default();
+    csv::ReaderBuilder::new()
         .has_headers(false)
-        .from_reader(bytes.as_slice());
-    reader
+        .from_reader(header.as_slice())
         .records()
         .next()
         .and_then(Result::ok)
