@@ -11,7 +11,7 @@ use super::{CommandOutput, write_output};
 use crate::cli::ReportArgs;
 use millimpact::analysis::mill::{MillError, MillOptions, plan, run_mill};
 use millimpact::analysis::report::{
-    ReportOptions, ReportTable, add_decks, add_mills, build_report,
+    Report, ReportOptions, ReportTable, add_decks, add_mills, build_report,
 };
 use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::{CheckFailed, UserError};
@@ -64,34 +64,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         .map(|path| super::deck::read(path, None, &given))
         .collect::<Result<Vec<_>>>()?;
     // And the mills: a deck or an option that cannot run is refused before any work.
-    let mills = args
-        .mills
-        .iter()
-        .map(|path| {
-            let deck = MillDeck::read(path).map_err(UserError::from)?;
-            let options = MillOptions {
-                time: args.mill_time,
-                seeds: args.mill_seeds,
-                timeout: Duration::from_secs_f64(args.mill_timeout),
-                ..MillOptions::defaults()
-            };
-            // Named as the report spells its options.
-            plan(&deck, &options).map_err(|e| match e {
-                MillError::Option {
-                    deck,
-                    option,
-                    value,
-                    allowed,
-                } => anyhow::Error::from(UserError::argument(
-                    &option.replacen("--", "--mill-", 1),
-                    value,
-                    format!("{}: {allowed}", deck.display()),
-                )),
-                other => other.into(),
-            })?;
-            Ok((deck, options))
-        })
-        .collect::<Result<Vec<_>>>()?;
+    let mills = read_mills(args)?;
     let options = ReportOptions {
         live: args.live,
         reference: super::reference_folder(args.reference.as_deref(), args.live, &mut warnings)?,
@@ -103,14 +76,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         && std::env::var_os("CI").is_none()
         && (args.live || !args.decks.is_empty() || !args.mills.is_empty());
     let stages = cases.len() as u64 + 4 + decks.len() as u64 + mills.len() as u64;
-    let bar = interactive.then(|| {
-        let bar = ProgressBar::new(stages);
-        bar.set_style(
-            ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-                .unwrap_or_else(|_| ProgressStyle::default_bar()),
-        );
-        bar
-    });
+    let bar = interactive.then(|| progress_bar(stages));
     let mut progress = |stage: &str| {
         if let Some(bar) = &bar {
             bar.set_message(stage.to_string());
@@ -141,6 +107,69 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     }
     let (html, md) = render_pages(&report)?;
     let out = &args.out;
+    let written = write_report(out, &report, &html, &md)
+        .with_context(|| format!("writing the report to {}", out.display()))?;
+    let figures: usize = report.parts.iter().map(|p| p.figures.len()).sum();
+    let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
+    let missing = &report.failures;
+    Ok(CommandOutput {
+        warnings,
+        text: format!(
+            "report: {} ({} figures, {} tables, {} files)\n",
+            out.join("index.html").display(),
+            figures,
+            tables,
+            written
+        ),
+        failure: (!missing.is_empty())
+            .then(|| CheckFailed(format!("report: {}", missing.join("; ")))),
+    })
+}
+
+/// The report's mills with their options, each planned: a deck or an option that cannot run
+/// is refused, named as the report spells its options (`--mill-time`, …).
+fn read_mills(args: &ReportArgs) -> Result<Vec<(MillDeck, MillOptions)>> {
+    args.mills
+        .iter()
+        .map(|path| {
+            let deck = MillDeck::read(path).map_err(UserError::from)?;
+            let options = MillOptions {
+                time: args.mill_time,
+                seeds: args.mill_seeds,
+                timeout: Duration::from_secs_f64(args.mill_timeout),
+                ..MillOptions::defaults()
+            };
+            plan(&deck, &options).map_err(|e| match e {
+                MillError::Option {
+                    deck,
+                    option,
+                    value,
+                    allowed,
+                } => anyhow::Error::from(UserError::argument(
+                    &option.replacen("--", "--mill-", 1),
+                    value,
+                    format!("{}: {allowed}", deck.display()),
+                )),
+                other => other.into(),
+            })?;
+            Ok((deck, options))
+        })
+        .collect::<Result<Vec<_>>>()
+}
+
+/// The report's progress bar, one step per stage.
+fn progress_bar(stages: u64) -> ProgressBar {
+    let bar = ProgressBar::new(stages);
+    bar.set_style(
+        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+/// Write the report's files into `out` (replaced whole); how many were written, the marker not
+/// counted.
+fn write_report(out: &std::path::Path, report: &Report, html: &str, md: &str) -> Result<usize> {
     let mut written = 0usize;
     replace_dir(out, |dir| {
         let mut write = |name: &str, text: &str| -> Result<()> {
@@ -163,8 +192,8 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         for d in &report.data {
             write(&d.name, &d.text)?;
         }
-        write("index.md", &md)?;
-        write("index.html", &html)?;
+        write("index.md", md)?;
+        write("index.html", html)?;
         // The marker is not counted among the report's files: it is how a later report knows
         // this folder for its own.
         write_output(
@@ -176,21 +205,6 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
             .as_bytes(),
             "report",
         )
-    })
-    .with_context(|| format!("writing the report to {}", out.display()))?;
-    let figures: usize = report.parts.iter().map(|p| p.figures.len()).sum();
-    let tables: usize = report.parts.iter().map(|p| p.tables.len()).sum();
-    let missing = &report.failures;
-    Ok(CommandOutput {
-        warnings,
-        text: format!(
-            "report: {} ({} figures, {} tables, {} files)\n",
-            out.join("index.html").display(),
-            figures,
-            tables,
-            written
-        ),
-        failure: (!missing.is_empty())
-            .then(|| CheckFailed(format!("report: {}", missing.join("; ")))),
-    })
+    })?;
+    Ok(written)
 }
