@@ -368,7 +368,7 @@ mod tests {
         );
         let back: Exact = serde_json::from_value(json).unwrap();
         assert_eq!(back, exact);
-        assert_eq!(back.force_contact_time, 0.0);
+        assert_eq!(back.force_contact_time.to_bits(), 0.0f64.to_bits());
     }
 
     #[test]
@@ -380,7 +380,7 @@ mod tests {
         assert!(
             read.cor.is_nan() && read.force_contact_time.is_nan() && read.compression_time.is_nan()
         );
-        assert_eq!(read.contact_time, 3.0);
+        assert_eq!(read.contact_time.to_bits(), 3.0f64.to_bits());
         let missing =
             serde_json::from_str::<Measured>(r#"{"cor":1,"peak_force":2,"contact_time":3}"#)
                 .unwrap_err();
@@ -421,7 +421,7 @@ mod tests {
         let checked: Checked = exact.select();
         assert_eq!(checked, Checked::splat(2.0));
         let measured: Measured = exact.select();
-        assert_eq!(measured.force_contact_time, 0.0);
-        assert_eq!(measured.compression_time, 2.0);
+        assert_eq!(measured.force_contact_time.to_bits(), 0.0f64.to_bits());
+        assert_eq!(measured.compression_time.to_bits(), 2.0f64.to_bits());
     }
 }
