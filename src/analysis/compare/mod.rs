@@ -607,7 +607,8 @@ const BY_E_HEADERS: [&str; 9] = [
 ];
 
 fn by_e_cells(p: &ModelPoint) -> Vec<String> {
-    // The COR offset is the law's COR against the one asked for, shown as the law's COR.
+    // The COR column is the law's COR itself: against the paper's at the same η, it is the
+    // COR asked for.
     let offsets = p
         .offsets
         .iter()
