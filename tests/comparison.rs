@@ -291,25 +291,28 @@ fn stored_runs_lie_in_their_start_phase_band() {
             let slack = 1e-12;
             let what = format!("{} {} η={}", r.code, r.case, r.loss_coefficient);
             assert!(
-                band.cor.contains((s.cor - exact.cor) / p.cor, slack),
+                band.ranges.cor.contains((s.cor - exact.cor) / p.cor, slack),
                 "{what}: {:?}",
-                band.cor
+                band.ranges.cor
             );
             assert!(
-                band.peak_deformation.contains(
+                band.ranges.peak_deformation.contains(
                     (s.peak_deformation - exact.peak_deformation) / p.peak_deformation,
                     slack
                 ),
                 "{what}"
             );
             assert!(
-                band.contact_time.contains(
+                band.ranges.contact_time.contains(
                     (s.contact_time - exact.contact_time) / p.contact_time,
                     slack
                 ),
                 "{what}"
             );
-            assert!(band.cor.max > band.cor.min, "{what}: the band has width");
+            assert!(
+                band.ranges.cor.max > band.ranges.cor.min,
+                "{what}: the band has width"
+            );
             let zero = phase::stepped_at_phase(&r, 0.0).unwrap();
             let one = phase::stepped_at_phase(&r, 1.0).unwrap();
             assert!(rel(one.cor, zero.cor) < 1e-12, "{what}");

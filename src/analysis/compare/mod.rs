@@ -15,13 +15,14 @@ use crate::codes::{CodeName, setup_for_case};
 use crate::error::{Blame, Chain};
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
+use crate::model::figures::{Figures, Measured, Quantity, quantity};
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Method, SolveError};
-use phase::{DEFAULT_PHASES, Offsets, PhaseBand};
+use phase::{DEFAULT_PHASES, OFFSET_QUANTITIES, Offsets, PhaseBand};
 
 /// What produced a row of figures in a comparison; written (in every format) as its
 /// [`Display`](std::fmt::Display) text.
@@ -69,53 +70,51 @@ impl Serialize for CompareSource {
     }
 }
 
+/// The quantities a source is compared with the elastic contact in.
+pub const ELASTIC_QUANTITIES: u8 = quantity::PEAK_DEFORMATION | quantity::CONTACT_TIME;
+
 /// One source's figures for one case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SourceRow {
     /// What produced the figures.
     pub source: CompareSource,
-    /// COR.
-    pub cor: f64,
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Peak force, N.
-    pub peak_force: f64,
-    /// Contact time by overlap (first touch until the overlap returns to zero), s.
-    pub contact_time: f64,
-    /// Contact time by force (first touch until the normal force first returns to zero), s;
-    /// NaN where the source does not give it (a code run stored without it).
-    pub force_contact_time: f64,
-    /// Compression time (first touch to the largest overlap), s; NaN where not given.
-    pub compression_time: f64,
+    /// Its figures; the force contact time and the compression time are NaN where the source
+    /// does not give them (a code run stored without them).
+    #[serde(flatten)]
+    pub figures: Measured,
     /// Kinetic energy absorbed by the impact, J: `½ M v0² (1 − e²)`.
     pub absorbed_energy: f64,
     /// Absorbed energy as a fraction of the impact energy: `1 − e²`.
     pub absorbed_fraction: f64,
     /// Run time, s (`None` for closed forms).
     pub run_time: Option<f64>,
-    /// Relative difference of the COR from the paper's law.
-    pub cor_vs_paper: f64,
-    /// Relative difference of the peak deformation from the paper's law.
-    pub peak_deformation_vs_paper: f64,
-    /// Relative difference of the peak force from the paper's law.
-    pub peak_force_vs_paper: f64,
-    /// Relative difference of the overlap contact time from the paper's law.
-    pub contact_time_vs_paper: f64,
-    /// Relative difference of the force contact time from the paper's law's (which equals its
-    /// overlap contact time: its force is repulsive throughout the contact).
-    pub force_contact_time_vs_paper: f64,
-    /// Relative difference of the compression time from the paper's law.
-    pub compression_time_vs_paper: f64,
-    /// Relative difference of the peak deformation from the elastic contact.
-    pub peak_deformation_vs_elastic: f64,
-    /// Relative difference of the contact time from the elastic contact.
-    pub contact_time_vs_elastic: f64,
+    /// Relative difference of each figure from the paper's law's (whose force contact time
+    /// equals its overlap contact time: its force is repulsive throughout the contact).
+    #[serde(flatten, serialize_with = "crate::model::figures::suffix::vs_paper")]
+    pub vs_paper: Measured,
+    /// Relative difference of the peak deformation and the contact time from the elastic
+    /// contact's.
+    #[serde(flatten, serialize_with = "crate::model::figures::suffix::vs_elastic")]
+    pub vs_elastic: Figures<f64, ELASTIC_QUANTITIES>,
 }
 
 /// The paper's law's exact figures in the form a trajectory's are read
 /// (`ImpactFigures::metrics`).
 pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
     p.metrics()
+}
+
+/// A trajectory's figures as a set of [`Measured`] quantities.
+pub(crate) fn measured(m: &TrajectoryMetrics) -> Measured {
+    Measured {
+        cor: m.cor,
+        peak_deformation: m.peak_deformation,
+        peak_force: m.peak_force,
+        contact_time: m.contact_time,
+        force_contact_time: m.force_contact_time,
+        compression_time: m.compression_time,
+        ..Measured::default()
+    }
 }
 
 /// A code's attribution for one case.
@@ -180,6 +179,9 @@ pub struct ModelPoint {
     pub compression_time: f64,
 }
 
+/// The quantities a [`ModelPoint`]'s CSV row gives: its offsets and its compression time.
+const MODEL_POINT_QUANTITIES: u8 = OFFSET_QUANTITIES | quantity::COMPRESSION_TIME;
+
 /// A [`ModelPoint`] as one CSV row: its offsets side by side.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub(crate) struct ModelPointRecord {
@@ -193,34 +195,22 @@ pub(crate) struct ModelPointRecord {
     pub loss_coefficient: f64,
     /// The COR the code's law realises (exact integration).
     pub law_cor: f64,
-    /// COR, own law exact − paper's law exact, relative.
-    pub cor: f64,
-    /// Peak deformation, relative difference.
-    pub peak_deformation: f64,
-    /// Peak force, relative difference.
-    pub peak_force: f64,
-    /// Contact time by overlap, relative difference.
-    pub contact_time: f64,
-    /// Contact time by force, relative to the paper's contact time.
-    pub force_contact_time: f64,
-    /// Compression time, relative difference.
-    pub compression_time: f64,
+    /// Own law exact − paper's law exact, relative, per figure.
+    #[serde(flatten)]
+    pub offsets: Figures<f64, MODEL_POINT_QUANTITIES>,
 }
 
 impl From<&ModelPoint> for ModelPointRecord {
     fn from(p: &ModelPoint) -> Self {
+        let mut offsets: Figures<f64, MODEL_POINT_QUANTITIES> = p.offsets.select();
+        offsets.compression_time = p.compression_time;
         ModelPointRecord {
             case: p.case.clone(),
             code: p.code,
             restitution: p.restitution,
             loss_coefficient: p.loss_coefficient,
             law_cor: p.law_cor,
-            cor: p.offsets.cor,
-            peak_deformation: p.offsets.peak_deformation,
-            peak_force: p.offsets.peak_force,
-            contact_time: p.offsets.contact_time,
-            force_contact_time: p.offsets.force_contact_time,
-            compression_time: p.compression_time,
+            offsets,
         }
     }
 }
@@ -297,48 +287,23 @@ pub fn model_by_restitution(
 }
 
 struct Baseline {
-    paper: TrajectoryMetrics,
-    elastic: (f64, f64),
+    paper: Measured,
+    elastic: Figures<f64, ELASTIC_QUANTITIES>,
     impact_energy: f64,
 }
 
 impl Baseline {
-    fn row(
-        &self,
-        source: CompareSource,
-        m: &TrajectoryMetrics,
-        run_time: Option<f64>,
-    ) -> SourceRow {
-        let rel = |a: f64, b: f64| (a - b) / b;
-        let p = &self.paper;
-        let fraction = 1.0 - m.cor * m.cor;
+    fn row(&self, source: CompareSource, figures: Measured, run_time: Option<f64>) -> SourceRow {
+        let fraction = 1.0 - figures.cor * figures.cor;
         SourceRow {
             source,
-            cor: m.cor,
-            peak_deformation: m.peak_deformation,
-            peak_force: m.peak_force,
-            contact_time: m.contact_time,
-            force_contact_time: m.force_contact_time,
-            compression_time: m.compression_time,
+            figures,
             absorbed_energy: fraction * self.impact_energy,
             absorbed_fraction: fraction,
             run_time,
-            cor_vs_paper: rel(m.cor, p.cor),
-            peak_deformation_vs_paper: rel(m.peak_deformation, p.peak_deformation),
-            peak_force_vs_paper: rel(m.peak_force, p.peak_force),
-            contact_time_vs_paper: rel(m.contact_time, p.contact_time),
-            force_contact_time_vs_paper: rel(m.force_contact_time, p.force_contact_time),
-            compression_time_vs_paper: rel(m.compression_time, p.compression_time),
-            peak_deformation_vs_elastic: rel(m.peak_deformation, self.elastic.0),
-            contact_time_vs_elastic: rel(m.contact_time, self.elastic.1),
+            vs_paper: figures.map(|q, x| (x - self.paper.get(q)) / self.paper.get(q)),
+            vs_elastic: self.elastic.map(|q, e| (figures.get(q) - e) / e),
         }
-    }
-}
-
-fn figures_metrics(f: &ImpactFigures, force_contact_time: f64) -> TrajectoryMetrics {
-    TrajectoryMetrics {
-        force_contact_time,
-        ..paper_metrics(f)
     }
 }
 
@@ -382,13 +347,16 @@ pub(crate) fn compare_case(
     let v0 = case.impact_velocity;
     let exact = exact::paper_impact(&law, v0);
     let contact = case.scene.elastic_contact(v0);
-    let elastic = (contact.peak_deformation, contact.contact_time);
     let base = Baseline {
-        paper: paper_metrics(&exact),
-        elastic,
+        paper: measured(&paper_metrics(&exact)),
+        elastic: Figures {
+            peak_deformation: contact.peak_deformation,
+            contact_time: contact.contact_time,
+            ..Figures::default()
+        },
         impact_energy: 0.5 * law.mass * v0 * v0,
     };
-    let mut rows = vec![base.row(CompareSource::PaperExact, &base.paper, None)];
+    let mut rows = vec![base.row(CompareSource::PaperExact, base.paper, None)];
     let settings = Settings {
         method: Method::Rk4,
         contact: case.contact,
@@ -398,11 +366,9 @@ pub(crate) fn compare_case(
         case: case.path.clone(),
         source,
     })?;
-    // The paper's force is repulsive all through the contact: by force as by overlap.
-    let f = &rk4.figures;
     rows.push(base.row(
         CompareSource::PaperRk4,
-        &figures_metrics(f, f.contact_time),
+        measured(&paper_metrics(&rk4.figures)),
         Some(rk4.wall_time),
     ));
     let mut attribution = Vec::new();
@@ -433,39 +399,45 @@ pub(crate) fn compare_case(
         };
         let Some(r) = record else { continue };
         let (split, own_stepped, own_exact) = code_attribution(&r)?;
-        let code_metrics = TrajectoryMetrics {
+        let code_figures = Measured {
             cor: r.cor,
             peak_deformation: r.peak_deformation,
             peak_force: r.peak_force,
             contact_time: r.contact_time,
             force_contact_time: r.force_contact_time,
             compression_time: r.compression_time,
+            ..Measured::default()
         };
         rows.push(base.row(
             CompareSource::Code {
                 code: r.code,
                 version: short_version(&r.code_version),
             },
-            &code_metrics,
+            code_figures,
             Some(r.wall_time),
         ));
-        rows.push(base.row(CompareSource::CodeLawStepped(r.code), &own_stepped, None));
-        rows.push(base.row(CompareSource::CodeLawExact(r.code), &own_exact, None));
+        for (source, figures) in [
+            (CompareSource::CodeLawStepped(r.code), &own_stepped),
+            (CompareSource::CodeLawExact(r.code), &own_exact),
+        ] {
+            rows.push(base.row(source, measured(figures), None));
+        }
         attribution.push(split);
     }
-    let elastic_metrics = TrajectoryMetrics {
+    let elastic_figures = Measured {
         cor: 1.0,
-        peak_deformation: elastic.0,
+        peak_deformation: contact.peak_deformation,
         peak_force: f64::NAN,
-        contact_time: elastic.1,
-        force_contact_time: elastic.1,
-        compression_time: 0.5 * elastic.1,
+        contact_time: contact.contact_time,
+        force_contact_time: contact.contact_time,
+        compression_time: 0.5 * contact.contact_time,
+        ..Measured::default()
     };
     rows.push(base.row(
         CompareSource::Elastic {
             hertz: case.scene.effective_modulus().is_some(),
         },
-        &elastic_metrics,
+        elastic_figures,
         None,
     ));
     Ok(CaseComparison {
@@ -557,32 +529,37 @@ const HEADERS: [&str; 12] = [
 ];
 
 fn cells(row: &SourceRow) -> Vec<String> {
-    vec![
-        row.source.to_string(),
-        format!("{:.6}", row.cor),
-        sci(row.peak_deformation),
-        sci(row.peak_force),
-        sci(row.contact_time),
-        sci(row.force_contact_time),
-        sci(row.compression_time),
+    let figures = row.figures.iter().map(|(q, &x)| {
+        if q == Quantity::Cor {
+            format!("{x:.6}")
+        } else {
+            sci(x)
+        }
+    });
+    let mut cells: Vec<String> = std::iter::once(row.source.to_string())
+        .chain(figures)
+        .collect();
+    let vs_paper = &row.vs_paper;
+    cells.extend([
         format!(
             "{:.4} ({:.1} %)",
             row.absorbed_energy,
             100.0 * row.absorbed_fraction
         ),
         row.run_time.map(seconds).unwrap_or_default(),
-        signed(row.cor_vs_paper),
+        signed(vs_paper.cor),
         format!(
             "{} / {}",
-            signed(row.peak_deformation_vs_paper),
-            signed_or_na(row.peak_force_vs_paper)
+            signed(vs_paper.peak_deformation),
+            signed_or_na(vs_paper.peak_force)
         ),
         format!(
             "{} / {}",
-            signed(row.contact_time_vs_paper),
-            signed_or_na(row.force_contact_time_vs_paper)
+            signed(vs_paper.contact_time),
+            signed_or_na(vs_paper.force_contact_time)
         ),
-    ]
+    ]);
+    cells
 }
 
 fn signed_or_na(x: f64) -> String {
@@ -590,14 +567,8 @@ fn signed_or_na(x: f64) -> String {
 }
 
 fn offsets_cell(o: &Offsets) -> String {
-    format!(
-        "{} / {} / {} / {} / {}",
-        signed(o.cor),
-        signed(o.peak_deformation),
-        signed(o.peak_force),
-        signed(o.contact_time),
-        signed(o.force_contact_time)
-    )
+    let cells: Vec<String> = o.iter().map(|(_, &x)| signed(x)).collect();
+    cells.join(" / ")
 }
 
 fn attribution_cells(a: &CodeAttribution) -> Vec<String> {
@@ -607,8 +578,8 @@ fn attribution_cells(a: &CodeAttribution) -> Vec<String> {
         sci(a.timestep),
         offsets_cell(&a.model_offsets),
         offsets_cell(&a.integration_offsets),
-        band(&a.band.cor),
-        band(&a.band.contact_time),
+        band(&a.band.ranges.cor),
+        band(&a.band.ranges.contact_time),
         signed(a.attribution.remainder.cor),
     ]
 }
@@ -636,17 +607,23 @@ const BY_E_HEADERS: [&str; 9] = [
 ];
 
 fn by_e_cells(p: &ModelPoint) -> Vec<String> {
-    vec![
+    // The COR column is the law's COR itself: against the paper's at the same η, it is the
+    // COR asked for.
+    let offsets = p
+        .offsets
+        .iter()
+        .filter(|&(q, _)| q != Quantity::Cor)
+        .map(|(_, &x)| signed(x));
+    [
         format!("{}", p.restitution),
         format!("{:.4}", p.loss_coefficient),
         p.code.to_string(),
         format!("{:.6}", p.law_cor),
-        signed(p.offsets.peak_deformation),
-        signed(p.offsets.peak_force),
-        signed(p.offsets.contact_time),
-        signed(p.offsets.force_contact_time),
-        signed(p.compression_time),
     ]
+    .into_iter()
+    .chain(offsets)
+    .chain([signed(p.compression_time)])
+    .collect()
 }
 
 /// One source for one case as a CSV row.
@@ -656,42 +633,10 @@ pub struct CompareRecord {
     pub case: String,
     /// η.
     pub loss_coefficient: f64,
-    /// What produced the figures.
-    pub source: CompareSource,
-    /// COR.
-    pub cor: f64,
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Peak force, N.
-    pub peak_force: f64,
-    /// Contact time by overlap, s.
-    pub contact_time: f64,
-    /// Contact time by force, s (empty where not given).
-    pub force_contact_time: f64,
-    /// Compression time, s.
-    pub compression_time: f64,
-    /// Absorbed energy, J.
-    pub absorbed_energy: f64,
-    /// Absorbed energy as a fraction of the impact energy.
-    pub absorbed_fraction: f64,
-    /// Run time, s (empty for closed forms).
-    pub run_time: Option<f64>,
-    /// Relative difference of the COR from the paper's law.
-    pub cor_vs_paper: f64,
-    /// Relative difference of the peak deformation from the paper's law.
-    pub peak_deformation_vs_paper: f64,
-    /// Relative difference of the peak force from the paper's law.
-    pub peak_force_vs_paper: f64,
-    /// Relative difference of the overlap contact time from the paper's law.
-    pub contact_time_vs_paper: f64,
-    /// Relative difference of the force contact time from the paper's law.
-    pub force_contact_time_vs_paper: f64,
-    /// Relative difference of the compression time from the paper's law.
-    pub compression_time_vs_paper: f64,
-    /// Relative difference of the peak deformation from the elastic contact.
-    pub peak_deformation_vs_elastic: f64,
-    /// Relative difference of the contact time from the elastic contact.
-    pub contact_time_vs_elastic: f64,
+    /// The source's figures and their differences (a force contact time not given is an
+    /// empty field).
+    #[serde(flatten)]
+    pub row: SourceRow,
 }
 
 impl Summary for CompareReport {
@@ -704,24 +649,7 @@ impl Summary for CompareReport {
                 c.rows.iter().map(|r| CompareRecord {
                     case: c.case.clone(),
                     loss_coefficient: c.loss_coefficient,
-                    source: r.source.clone(),
-                    cor: r.cor,
-                    peak_deformation: r.peak_deformation,
-                    peak_force: r.peak_force,
-                    contact_time: r.contact_time,
-                    force_contact_time: r.force_contact_time,
-                    compression_time: r.compression_time,
-                    absorbed_energy: r.absorbed_energy,
-                    absorbed_fraction: r.absorbed_fraction,
-                    run_time: r.run_time,
-                    cor_vs_paper: r.cor_vs_paper,
-                    peak_deformation_vs_paper: r.peak_deformation_vs_paper,
-                    peak_force_vs_paper: r.peak_force_vs_paper,
-                    contact_time_vs_paper: r.contact_time_vs_paper,
-                    force_contact_time_vs_paper: r.force_contact_time_vs_paper,
-                    compression_time_vs_paper: r.compression_time_vs_paper,
-                    peak_deformation_vs_elastic: r.peak_deformation_vs_elastic,
-                    contact_time_vs_elastic: r.contact_time_vs_elastic,
+                    row: r.clone(),
                 })
             })
             .collect()
@@ -763,7 +691,7 @@ impl Summary for CompareReport {
             ];
             if c.rows
                 .iter()
-                .any(|r| r.force_contact_time.is_nan() && r.run_time.is_some())
+                .any(|r| r.figures.force_contact_time.is_nan() && r.run_time.is_some())
             {
                 figures.notes.push("n/a: a code run stored without its force-based times (by an older millimpact); its own law stepped as it steps (the row below it) gives them, and reproduces the run to its remainder".into());
             }

@@ -5,8 +5,10 @@
 
 use serde::Serialize;
 
+use super::{measured, paper_metrics};
 use crate::analysis::store::ReferenceRecord;
 use crate::model::exact::ImpactFigures;
+use crate::model::figures::{Figures, quantity};
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
 
 /// Start phases swept by default.
@@ -21,14 +23,17 @@ pub struct Range {
     pub max: f64,
 }
 
-impl Range {
-    fn new() -> Range {
+/// The empty range, which the first value added makes a point.
+impl Default for Range {
+    fn default() -> Range {
         Range {
             min: f64::INFINITY,
             max: f64::NEG_INFINITY,
         }
     }
+}
 
+impl Range {
     fn add(&mut self, x: f64) {
         if x.is_finite() {
             self.min = self.min.min(x);
@@ -42,32 +47,22 @@ impl Range {
     }
 }
 
+/// The quantities an offset is given for: all a trajectory gives but the compression time.
+pub const OFFSET_QUANTITIES: u8 = quantity::COR
+    | quantity::PEAK_DEFORMATION
+    | quantity::PEAK_FORCE
+    | quantity::CONTACT_TIME
+    | quantity::FORCE_CONTACT_TIME;
+
 /// Relative offsets of a figure set from another, per figure, relative to the paper's law.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Offsets {
-    /// COR.
-    pub cor: f64,
-    /// Peak deformation.
-    pub peak_deformation: f64,
-    /// Peak force.
-    pub peak_force: f64,
-    /// Contact time by overlap.
-    pub contact_time: f64,
-    /// Contact time by force.
-    pub force_contact_time: f64,
-}
+pub type Offsets = Figures<f64, OFFSET_QUANTITIES>;
 
 impl Offsets {
     /// `(a − b)` relative to the paper's figures (the force time relative to the paper's
     /// contact time, which is also its force's duration).
     pub fn between(a: &TrajectoryMetrics, b: &TrajectoryMetrics, paper: &ImpactFigures) -> Offsets {
-        Offsets {
-            cor: (a.cor - b.cor) / paper.cor,
-            peak_deformation: (a.peak_deformation - b.peak_deformation) / paper.peak_deformation,
-            peak_force: (a.peak_force - b.peak_force) / paper.peak_force,
-            contact_time: (a.contact_time - b.contact_time) / paper.contact_time,
-            force_contact_time: (a.force_contact_time - b.force_contact_time) / paper.contact_time,
-        }
+        let (a, b, paper) = (measured(a), measured(b), measured(&paper_metrics(paper)));
+        Offsets::from_fn(|q| (a.get(q) - b.get(q)) / paper.get(q))
     }
 }
 
@@ -76,30 +71,17 @@ impl Offsets {
 pub struct PhaseBand {
     /// Start phases swept (φ = k / phases).
     pub phases: usize,
-    /// COR offset band.
-    pub cor: Range,
-    /// Peak deformation offset band.
-    pub peak_deformation: Range,
-    /// Peak force offset band.
-    pub peak_force: Range,
-    /// Overlap contact time offset band.
-    pub contact_time: Range,
-    /// Force contact time offset band.
-    pub force_contact_time: Range,
+    /// Each figure's offset band.
+    #[serde(flatten)]
+    pub ranges: Figures<Range, OFFSET_QUANTITIES>,
 }
 
 impl PhaseBand {
     /// Whether every figure of `point` lies in its band (within `slack`).
     pub fn contains(&self, point: &Offsets, slack: f64) -> bool {
-        self.cor.contains(point.cor, slack)
-            && self
-                .peak_deformation
-                .contains(point.peak_deformation, slack)
-            && self.peak_force.contains(point.peak_force, slack)
-            && self.contact_time.contains(point.contact_time, slack)
-            && self
-                .force_contact_time
-                .contains(point.force_contact_time, slack)
+        self.ranges
+            .iter()
+            .all(|(q, range)| range.contains(*point.get(q), slack))
     }
 }
 
@@ -128,20 +110,69 @@ pub fn start_phase_band(
 ) -> Result<PhaseBand, TrajectoryError> {
     let mut band = PhaseBand {
         phases,
-        cor: Range::new(),
-        peak_deformation: Range::new(),
-        peak_force: Range::new(),
-        contact_time: Range::new(),
-        force_contact_time: Range::new(),
+        ranges: Figures::default(),
     };
     for k in 0..phases {
         let m = stepped_at_phase(record, k as f64 / phases as f64)?;
         let o = Offsets::between(&m, exact, &record.paper_exact);
-        band.cor.add(o.cor);
-        band.peak_deformation.add(o.peak_deformation);
-        band.peak_force.add(o.peak_force);
-        band.contact_time.add(o.contact_time);
-        band.force_contact_time.add(o.force_contact_time);
+        for (q, x) in o.iter() {
+            band.ranges.get_mut(q).add(*x);
+        }
     }
     Ok(band)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_band_holds_a_point_only_if_every_figure_lies_in_its_range() {
+        let mut band = PhaseBand {
+            phases: 2,
+            ranges: Figures::default(),
+        };
+        for x in [-1.0, f64::NAN, 1.0] {
+            for q in Offsets::quantities() {
+                band.ranges.get_mut(q).add(x);
+            }
+        }
+        assert_eq!(
+            band.ranges.contact_time,
+            Range {
+                min: -1.0,
+                max: 1.0
+            }
+        );
+        let inside = Offsets::splat(0.5);
+        assert!(band.contains(&inside, 0.0));
+        for (q, _) in inside.iter() {
+            let mut outside = inside;
+            *outside.get_mut(q) = 1.25;
+            assert!(!band.contains(&outside, 0.0), "{q}");
+            assert!(band.contains(&outside, 0.5), "{q} within the slack");
+        }
+    }
+
+    #[test]
+    fn an_empty_band_holds_nothing_and_writes_its_figures_by_name() {
+        let band = PhaseBand {
+            phases: 0,
+            ranges: Figures::default(),
+        };
+        assert!(!band.contains(&Offsets::splat(0.0), 1.0));
+        let json = serde_json::to_value(band).unwrap();
+        let keys: Vec<&String> = json.as_object().unwrap().keys().collect();
+        assert_eq!(
+            keys,
+            [
+                "contact_time",
+                "cor",
+                "force_contact_time",
+                "peak_deformation",
+                "peak_force",
+                "phases"
+            ]
+        );
+    }
 }
