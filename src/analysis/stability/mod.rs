@@ -26,12 +26,12 @@ use std::time::Instant;
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 
-use super::run::RunReport;
+use super::run::{RunReport, figures_of};
 use super::tolerance::{Differences, Tolerance};
 use crate::model::case::{Case, ContactKind};
 use crate::model::count::ceil_count;
 use crate::model::exact;
-use crate::model::figures::{Checked, suffix};
+use crate::model::figures::{Checked, Figures, quantity, suffix};
 use crate::model::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
 use crate::output::{Section, Summary};
 use crate::solve::paper::{self, Settings};
@@ -238,6 +238,9 @@ pub(crate) fn grid() -> Vec<GridCase> {
     out
 }
 
+/// The figures a grid case writes beside its errors: the COR, which the pass criteria bound.
+pub const WRITTEN: u8 = quantity::COR;
+
 /// One grid case by one method.
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseResult {
@@ -261,10 +264,12 @@ pub struct CaseResult {
     pub mass_ratio: Option<f64>,
     /// rod_end: length/diameter.
     pub aspect_ratio: Option<f64>,
-    /// The run's COR (NaN if it failed).
-    pub cor: f64,
-    /// The closed-form COR.
-    pub cor_exact: f64,
+    /// The run's figures that are written (`cor`; NaN if the run failed).
+    #[serde(flatten)]
+    pub figures: Figures<f64, WRITTEN>,
+    /// The closed forms of the same figures (`cor_exact`).
+    #[serde(flatten, serialize_with = "suffix::exact")]
+    pub exact: Figures<f64, WRITTEN>,
     /// |relative error| of the checked quantities (`cor_error`, …; NaN if the run failed).
     #[serde(flatten, serialize_with = "suffix::error")]
     pub errors: Checked,
@@ -323,8 +328,8 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         loss_coefficient: case.loss_coefficient,
         mass_ratio: grid_case.mass_ratio,
         aspect_ratio: grid_case.aspect_ratio,
-        cor: f64::NAN,
-        cor_exact: exact_figures.cor,
+        figures: Figures::splat(f64::NAN),
+        exact: figures_of(&exact_figures).select(),
         errors: Checked::splat(f64::NAN),
         steps: 0,
         rhs_evaluations: 0,
@@ -344,7 +349,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
     };
     let f = &outcome.figures;
     let run_report = RunReport::new(case, method, &outcome);
-    result.cor = f.cor;
+    result.figures = run_report.figures.select();
     result.errors = run_report.error.map(|_, e| e.abs());
     result.steps = outcome.stats.steps;
     result.rhs_evaluations = outcome.stats.rhs_evaluations;
@@ -609,7 +614,7 @@ pub(crate) fn stability_report() -> StabilityReport {
                 max_cor_at_eta_max: own
                     .iter()
                     .filter(|c| c.loss_coefficient == ETA_MAX)
-                    .map(|c| c.cor)
+                    .map(|c| c.figures.cor)
                     .fold(0.0, f64::max),
             }
         })
