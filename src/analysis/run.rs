@@ -10,35 +10,27 @@ use thiserror::Error;
 use crate::error::{Blame, UserError};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact::{self, HertzElastic, ImpactFigures};
+use crate::model::figures::{Checked, Exact, Figures, Quantity, quantity, suffix};
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::paper::{self, Outcome, Sample, Settings};
 use crate::solve::{Knob, Method, SolveError, Stats};
 
+/// The quantities of the closed forms a run is printed beside.
+pub const REPORTED_EXACT: u8 =
+    quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME;
+
 /// The closed-form figures a run is compared with.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ExactFigures {
-    /// COR.
-    pub cor: f64,
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Peak force, N.
-    pub peak_force: f64,
-    /// Contact time, s.
-    pub contact_time: f64,
+    /// COR, peak deformation (m), peak force (N), contact time (s).
+    #[serde(flatten)]
+    pub figures: Figures<f64, REPORTED_EXACT>,
     /// Absorbed energy, J.
     pub absorbed_energy: f64,
 }
 
-/// Relative errors `(run - exact) / exact`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct RelativeErrors {
-    /// Of the COR.
-    pub cor: f64,
-    /// Of the peak deformation.
-    pub peak_deformation: f64,
-    /// Of the contact time.
-    pub contact_time: f64,
-}
+/// Relative errors `(run - exact) / exact` of the checked quantities.
+pub type RelativeErrors = Checked;
 
 /// One impact by one method: everything `millimpact run` prints.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -64,18 +56,10 @@ pub struct RunReport {
     pub stiffness_convention: StiffnessOrigin,
     /// Exponent n.
     pub exponent: f64,
-    /// COR.
-    pub cor: f64,
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Peak force, N.
-    pub peak_force: f64,
-    /// Contact time, s.
-    pub contact_time: f64,
-    /// Compression part of the contact time, s.
-    pub compression_time: f64,
-    /// Restitution part of the contact time, s.
-    pub restitution_time: f64,
+    /// COR, peak deformation (m), peak force (N), contact time (s) and its compression and
+    /// restitution parts (s).
+    #[serde(flatten)]
+    pub figures: Exact,
     /// Absorbed energy, J.
     pub absorbed_energy: f64,
     /// Absorbed energy as a fraction of the impact energy `½ M v0²`: `1 − e²`.
@@ -162,12 +146,35 @@ fn relative(value: f64, reference: f64) -> f64 {
     (value - reference) / reference
 }
 
+/// The per-quantity figures of an impact (all but its absorbed energy).
+pub(crate) fn figures_of(impact: &ImpactFigures) -> Exact {
+    Exact {
+        cor: impact.cor,
+        peak_deformation: impact.peak_deformation,
+        peak_force: impact.peak_force,
+        contact_time: impact.contact_time,
+        compression_time: impact.compression_time,
+        restitution_time: impact.restitution_time,
+        ..Default::default()
+    }
+}
+
+/// The relative errors `(value - reference) / reference` of each quantity of `Q`.
+pub(crate) fn relative_errors<const Q: u8>(
+    value: &Figures<f64, Q>,
+    reference: &Figures<f64, Q>,
+) -> Figures<f64, Q> {
+    value.map(|q, v| relative(*v, *reference.get(q)))
+}
+
 impl RunReport {
     /// Assemble the report of `outcome` for `case` by `method`.
     pub fn new(case: &Case, method: Method, outcome: &Outcome) -> RunReport {
         let law = case.law();
-        let exact: ImpactFigures = exact::paper_impact(&law, case.impact_velocity);
+        let exact = exact::paper_impact(&law, case.impact_velocity);
         let f = &outcome.figures;
+        let figures = figures_of(f);
+        let exact_figures = figures_of(&exact);
         let hertz_elastic = match (
             case.scene.effective_modulus(),
             case.scene.effective_radius(),
@@ -198,12 +205,7 @@ impl RunReport {
                 (_, crate::model::scene::StiffnessConvention::Paper) => StiffnessOrigin::Paper,
             },
             exponent: law.exponent,
-            cor: f.cor,
-            peak_deformation: f.peak_deformation,
-            peak_force: f.peak_force,
-            contact_time: f.contact_time,
-            compression_time: f.compression_time,
-            restitution_time: f.restitution_time,
+            figures,
             absorbed_energy: f.absorbed_energy,
             absorbed_fraction: 1.0 - f.cor * f.cor,
             steps,
@@ -211,17 +213,10 @@ impl RunReport {
             wall_time: outcome.wall_time,
             timestep: outcome.timestep,
             exact: ExactFigures {
-                cor: exact.cor,
-                peak_deformation: exact.peak_deformation,
-                peak_force: exact.peak_force,
-                contact_time: exact.contact_time,
+                figures: exact_figures.select(),
                 absorbed_energy: exact.absorbed_energy,
             },
-            error: RelativeErrors {
-                cor: relative(f.cor, exact.cor),
-                peak_deformation: relative(f.peak_deformation, exact.peak_deformation),
-                contact_time: relative(f.contact_time, exact.contact_time),
-            },
+            error: relative_errors(&figures.select(), &exact_figures.select()),
             hertz_elastic,
             crossing_speeds: outcome.crossing_speeds.clone(),
             warnings: warnings(case, method, f),
@@ -234,18 +229,9 @@ impl RunReport {
             case: self.case.clone(),
             method: self.method,
             loss_coefficient: self.loss_coefficient,
-            cor: self.cor,
-            cor_exact: self.exact.cor,
-            cor_error: self.error.cor,
-            peak_deformation: self.peak_deformation,
-            peak_deformation_exact: self.exact.peak_deformation,
-            peak_deformation_error: self.error.peak_deformation,
-            peak_force: self.peak_force,
-            contact_time: self.contact_time,
-            contact_time_exact: self.exact.contact_time,
-            contact_time_error: self.error.contact_time,
-            compression_time: self.compression_time,
-            restitution_time: self.restitution_time,
+            figures: self.figures,
+            exact: self.exact.figures.select(),
+            error: self.error,
             absorbed_energy: self.absorbed_energy,
             absorbed_fraction: self.absorbed_fraction,
             steps: self.steps,
@@ -270,26 +256,13 @@ impl RunReport {
             )),
             &["figure", "run", "exact", "relative error"],
         );
-        let rows: [(&str, f64, f64, Option<f64>); 7] = [
-            ("COR", self.cor, self.exact.cor, Some(self.error.cor)),
-            (
-                "peak deformation (m)",
-                self.peak_deformation,
-                self.exact.peak_deformation,
-                Some(self.error.peak_deformation),
-            ),
-            (
-                "peak force (N)",
-                self.peak_force,
-                self.exact.peak_force,
-                Some(relative(self.peak_force, self.exact.peak_force)),
-            ),
-            (
-                "contact time (s)",
-                self.contact_time,
-                self.exact.contact_time,
-                Some(self.error.contact_time),
-            ),
+        // The closed forms' quantities, each with its relative error, then the energy and the
+        // compression time, which have no error of their own.
+        let compared = self.exact.figures.iter().map(|(q, &exact)| {
+            let run = *self.figures.get(q);
+            (label(q), run, exact, Some(relative(run, exact)))
+        });
+        let rest = [
             (
                 "absorbed energy (J)",
                 self.absorbed_energy,
@@ -299,16 +272,17 @@ impl RunReport {
             (
                 "absorbed share of the impact energy",
                 self.absorbed_fraction,
-                1.0 - self.exact.cor * self.exact.cor,
+                1.0 - self.exact.figures.cor * self.exact.figures.cor,
                 None,
             ),
             (
-                "compression time (s)",
-                self.compression_time,
+                label(Quantity::CompressionTime),
+                self.figures.compression_time,
                 f64::NAN,
                 None,
             ),
         ];
+        let rows = compared.chain(rest);
         for (name, run, exact, error) in rows {
             t.rows.push(vec![
                 name.to_string(),
@@ -353,6 +327,19 @@ impl RunReport {
     }
 }
 
+/// The row name of a quantity in the human table, with its unit.
+fn label(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Cor => "COR",
+        Quantity::PeakDeformation => "peak deformation (m)",
+        Quantity::PeakForce => "peak force (N)",
+        Quantity::ContactTime => "contact time (s)",
+        Quantity::ForceContactTime => "force contact time (s)",
+        Quantity::CompressionTime => "compression time (s)",
+        Quantity::RestitutionTime => "restitution time (s)",
+    }
+}
+
 /// How a case's contact stiffness `C` was formed (in JSON, its lowercase name).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
@@ -375,30 +362,15 @@ pub struct RunRecord {
     pub method: &'static str,
     /// η.
     pub loss_coefficient: f64,
-    /// COR.
-    pub cor: f64,
-    /// Exact COR.
-    pub cor_exact: f64,
-    /// Relative error of the COR.
-    pub cor_error: f64,
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Exact peak deformation, m.
-    pub peak_deformation_exact: f64,
-    /// Relative error of the peak deformation.
-    pub peak_deformation_error: f64,
-    /// Peak force, N.
-    pub peak_force: f64,
-    /// Contact time, s.
-    pub contact_time: f64,
-    /// Exact contact time, s.
-    pub contact_time_exact: f64,
-    /// Relative error of the contact time.
-    pub contact_time_error: f64,
-    /// Compression time, s.
-    pub compression_time: f64,
-    /// Restitution time, s.
-    pub restitution_time: f64,
+    /// The run's figures (`cor`, `peak_deformation`, …).
+    #[serde(flatten)]
+    pub figures: Exact,
+    /// The closed forms of the checked quantities (`cor_exact`, …).
+    #[serde(flatten, serialize_with = "suffix::exact")]
+    pub exact: Checked,
+    /// Relative errors of the checked quantities (`cor_error`, …).
+    #[serde(flatten, serialize_with = "suffix::error")]
+    pub error: Checked,
     /// Absorbed energy, J.
     pub absorbed_energy: f64,
     /// Absorbed energy as a fraction of the impact energy.

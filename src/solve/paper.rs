@@ -9,6 +9,7 @@ use super::steppers::{Dopri5, Rk4, State, Stepper, rk4_step};
 use super::{Method, SeriesEnd, SolveError, Stats, march};
 use crate::model::case::ContactKind;
 use crate::model::exact::{self, ImpactFigures, j_integral};
+use crate::model::figures::{Figures, Quantity, quantity};
 use crate::model::law::PaperLaw;
 
 /// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
@@ -91,14 +92,17 @@ pub struct Outcome {
 /// Trajectory samples drawn from each stretch the contact series carries.
 const SERIES_SAMPLES: usize = 16;
 
+/// The figures the dimensionless solve finds (the restitution time follows from two of them).
+const SOLVED: u8 = quantity::COR
+    | quantity::PEAK_DEFORMATION
+    | quantity::PEAK_FORCE
+    | quantity::CONTACT_TIME
+    | quantity::COMPRESSION_TIME;
+
 /// Dimensionless result.
 #[derive(Clone, Debug, Default)]
 struct Scaled {
-    cor: f64,
-    peak: f64,
-    peak_force: f64,
-    compression_time: f64,
-    contact_time: f64,
+    figures: Figures<f64, SOLVED>,
     stats: Stats,
     samples: Vec<(f64, f64, f64)>,
     crossing_speeds: Vec<f64>,
@@ -341,15 +345,25 @@ impl Plan {
             self.y_scale,
             self.t_scale,
         );
-        let cor = scaled.cor;
         let force_scale = self.stiffness * y_scale.powf(n);
+        let solved = &scaled.figures;
+        let si = solved.map(|q, value| {
+            value
+                * match q {
+                    Quantity::PeakDeformation => y_scale,
+                    Quantity::PeakForce => force_scale,
+                    Quantity::ContactTime | Quantity::CompressionTime => t_scale,
+                    _ => 1.0,
+                }
+        });
+        let cor = si.cor;
         let figures = ImpactFigures {
             cor,
-            peak_deformation: scaled.peak * y_scale,
-            peak_force: scaled.peak_force * force_scale,
-            compression_time: scaled.compression_time * t_scale,
-            restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
-            contact_time: scaled.contact_time * t_scale,
+            peak_deformation: si.peak_deformation,
+            peak_force: si.peak_force,
+            compression_time: si.compression_time,
+            restitution_time: (solved.contact_time - solved.compression_time) * t_scale,
+            contact_time: si.contact_time,
             absorbed_energy: 0.5 * self.mass * v0 * v0 * (1.0 - cor * cor),
         };
         let trajectory = scaled
@@ -523,8 +537,8 @@ fn fixed_step_with(
             out.samples.push((t, y[0], y[1]));
         }
         if first_end.is_none() {
-            out.peak = out.peak.max(y[0]);
-            out.peak_force = out.peak_force.max(force(acceleration));
+            out.figures.peak_deformation = out.figures.peak_deformation.max(y[0]);
+            out.figures.peak_force = out.figures.peak_force.max(force(acceleration));
             if turning.is_none() && y[1] <= 0.0 {
                 // The grid point of largest approach.
                 turning = Some(if previous[0] >= y[0] { t - h } else { t });
@@ -550,9 +564,9 @@ fn fixed_step_with(
     }
     out.stats.steps = steps;
     let (end, speed) = first_end.expect("loop ends only after the first contact end");
-    out.cor = speed;
-    out.contact_time = end;
-    out.compression_time = turning.unwrap_or(end);
+    out.figures.cor = speed;
+    out.figures.contact_time = end;
+    out.figures.compression_time = turning.unwrap_or(end);
     Ok(out)
 }
 
@@ -659,11 +673,14 @@ fn phased_with(
             samples.push(exit);
         }
         if first_contact {
-            out.cor = exit_speed;
-            out.peak = peak;
-            out.peak_force = (1.0 + eta) * peak.powf(n);
-            out.compression_time = turn.time;
-            out.contact_time = end.time;
+            out.figures = Figures {
+                cor: exit_speed,
+                peak_deformation: peak,
+                peak_force: (1.0 + eta) * peak.powf(n),
+                compression_time: turn.time,
+                contact_time: end.time,
+                ..Default::default()
+            };
             first_contact = false;
         }
         if bilateral {
@@ -994,11 +1011,14 @@ impl LaneImpact {
     /// The figures of an impact that ended at `time` in `state` (`phased_with`).
     fn finish(&self, n: f64, time: f64, state: State) -> Scaled {
         Scaled {
-            cor: -state[1],
-            peak: self.peak,
-            peak_force: (1.0 + self.eta) * self.peak.powf(n),
-            compression_time: self.turn_time,
-            contact_time: time,
+            figures: Figures {
+                cor: -state[1],
+                peak_deformation: self.peak,
+                peak_force: (1.0 + self.eta) * self.peak.powf(n),
+                compression_time: self.turn_time,
+                contact_time: time,
+                ..Default::default()
+            },
             stats: self.stats,
             samples: Vec::new(),
             crossing_speeds: Vec::new(),

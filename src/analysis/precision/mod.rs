@@ -25,13 +25,15 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 use thiserror::Error;
 
+use super::run::{figures_of, relative_errors};
 use super::source::Source;
 use crate::codes::{self, CodeError, CodeName, RunOptions, SetupError};
 use crate::model::case::Case;
 use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
+use crate::model::figures::{Checked, suffix};
 use crate::model::law::PaperLaw;
-use crate::model::trajectory::{TrajectoryError, trajectory_metrics};
+use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
 use crate::solve::dashpot::own_law_metrics;
@@ -63,12 +65,9 @@ pub struct WorkPrecisionPoint {
     pub knob: SweepKnob,
     /// The knob's value.
     pub value: f64,
-    /// |relative error| of the COR.
-    pub cor_error: f64,
-    /// |relative error| of the peak deformation.
-    pub peak_deformation_error: f64,
-    /// |relative error| of the contact time.
-    pub contact_time_error: f64,
+    /// |relative error| of the checked quantities (`cor_error`, …).
+    #[serde(flatten, serialize_with = "suffix::error")]
+    pub error: Checked,
     /// The largest of the three errors (what the diagram plots).
     pub max_error: f64,
     /// Right-hand-side (force) evaluations; a DEM code evaluates the force once per step.
@@ -85,17 +84,9 @@ pub struct WorkPrecisionPoint {
     pub timestep_s: Option<f64>,
 }
 
-/// Observed orders of one source, per quantity (`None` where fewer than three points lie in
-/// the asymptotic range).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
-pub struct QuantityOrders {
-    /// Of the COR.
-    pub cor: Option<f64>,
-    /// Of the peak deformation.
-    pub peak_deformation: Option<f64>,
-    /// Of the contact time.
-    pub contact_time: Option<f64>,
-}
+/// Observed orders of one source, per checked quantity (`None` where fewer than three points
+/// lie in the asymptotic range).
+pub type QuantityOrders = Checked<Option<f64>>;
 
 /// What a work–precision sweep varies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
@@ -267,8 +258,24 @@ pub fn code_steps_sweep() -> Vec<u32> {
     vec![20, 63, 200, 632, 2000]
 }
 
-fn relative(value: f64, reference: f64) -> f64 {
-    ((value - reference) / reference).abs()
+/// The |relative error| of each checked quantity of `value` against `reference`.
+fn absolute_errors(value: &Checked, reference: &Checked) -> Checked {
+    relative_errors(value, reference).map(|_, e| e.abs())
+}
+
+/// The checked quantities of a trajectory's figures.
+fn checked_of(metrics: &TrajectoryMetrics) -> Checked {
+    Checked {
+        cor: metrics.cor,
+        peak_deformation: metrics.peak_deformation,
+        contact_time: metrics.contact_time,
+        ..Default::default()
+    }
+}
+
+/// A point's plotted error: the largest of its errors.
+fn max_error(error: &Checked) -> f64 {
+    error.iter().map(|(_, e)| *e).fold(0.0, f64::max)
 }
 
 fn median(values: &mut [f64]) -> f64 {
@@ -363,12 +370,10 @@ pub(crate) fn method_point(
             t0.elapsed().as_secs_f64() / batch as f64
         })
         .collect();
-    let f = &warm.figures;
-    let errors = [
-        relative(f.cor, exact.cor),
-        relative(f.peak_deformation, exact.peak_deformation),
-        relative(f.contact_time, exact.contact_time),
-    ];
+    let error = absolute_errors(
+        &figures_of(&warm.figures).select(),
+        &figures_of(&exact).select(),
+    );
     let Stats {
         steps,
         rhs_evaluations,
@@ -378,10 +383,8 @@ pub(crate) fn method_point(
         source: Source::Method(settings.method),
         knob,
         value,
-        cor_error: errors[0],
-        peak_deformation_error: errors[1],
-        contact_time_error: errors[2],
-        max_error: errors.iter().cloned().fold(0.0, f64::max),
+        error,
+        max_error: max_error(&error),
         rhs_evaluations,
         steps,
         time_s: median(&mut times),
@@ -481,19 +484,13 @@ pub(crate) fn code_sweep(
         let run = last.expect("at least one run");
         let metrics = trajectory_metrics(&run.trajectory)
             .map_err(|source| PrecisionError::Trajectory { code, source })?;
-        let errors = [
-            relative(metrics.cor, reference.cor),
-            relative(metrics.peak_deformation, reference.peak_deformation),
-            relative(metrics.contact_time, reference.contact_time),
-        ];
+        let error = absolute_errors(&checked_of(&metrics), &checked_of(&reference));
         points.push(WorkPrecisionPoint {
             source: Source::Code(code),
             knob: SweepKnob::StepsPerContact,
             value: spc as f64,
-            cor_error: errors[0],
-            peak_deformation_error: errors[1],
-            contact_time_error: errors[2],
-            max_error: errors.iter().cloned().fold(0.0, f64::max),
+            error,
+            max_error: max_error(&error),
             rhs_evaluations: setup.steps,
             steps: setup.steps,
             time_s: median(&mut walls),
@@ -531,20 +528,15 @@ pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
         p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD
     };
     let step = |p: &WorkPrecisionPoint| p.knob.step(p.value);
-    let fit = |error: fn(&WorkPrecisionPoint) -> f64| {
+    QuantityOrders::from_fn(|q| {
         let pairs: Vec<(f64, f64)> = points
             .iter()
             .filter(usable)
-            .filter(|p| error(p) >= ROUNDING_FLOOR)
-            .map(|p| (step(p), error(p)))
+            .map(|p| (step(p), *p.error.get(q)))
+            .filter(|&(_, error)| error >= ROUNDING_FLOOR)
             .collect();
         log_slope(&pairs)
-    };
-    QuantityOrders {
-        cor: fit(|p| p.cor_error),
-        peak_deformation: fit(|p| p.peak_deformation_error),
-        contact_time: fit(|p| p.contact_time_error),
-    }
+    })
 }
 
 /// The orders of the error bound: the same fit as [`observed_orders`] applied to the upper
@@ -564,14 +556,10 @@ pub fn envelope_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
             b.value.total_cmp(&a.value)
         }
     });
-    let mut worst = [0.0f64; 3];
+    let mut worst: Checked = Checked::splat(0.0);
     for p in &mut sorted {
-        worst[0] = worst[0].max(p.cor_error);
-        worst[1] = worst[1].max(p.peak_deformation_error);
-        worst[2] = worst[2].max(p.contact_time_error);
-        p.cor_error = worst[0];
-        p.peak_deformation_error = worst[1];
-        p.contact_time_error = worst[2];
+        worst = worst.map(|q, w| w.max(*p.error.get(q)));
+        p.error = worst;
     }
     observed_orders(&sorted)
 }
@@ -591,7 +579,7 @@ fn targets(points: &[WorkPrecisionPoint]) -> Targets {
     let best_at_1e_10 = cheapest(
         &mut points
             .iter()
-            .filter(|p| !is_code(p) && p.cor_error <= 1e-10),
+            .filter(|p| !is_code(p) && p.error.cor <= 1e-10),
     );
     let fastest_code = cheapest(&mut points.iter().filter(|p| is_code(p)));
     let cost_ratio = match (&best_at_1e_10, &fastest_code) {
@@ -601,8 +589,8 @@ fn targets(points: &[WorkPrecisionPoint]) -> Targets {
     let best_cor_error = points
         .iter()
         .filter(|p| !is_code(p))
-        .min_by(|a, b| a.cor_error.total_cmp(&b.cor_error))
-        .map(|p| named(p, p.cor_error));
+        .min_by(|a, b| a.error.cor.total_cmp(&b.error.cor))
+        .map(|p| named(p, p.error.cor));
     Targets {
         cost_ratio_met: cost_ratio.map(|r| r <= 1e-4),
         cor_1e_12_met: best_cor_error.as_ref().map(|b| b.figure <= 1e-12),
@@ -711,20 +699,27 @@ fn rows(report: &PrecisionReport) -> Vec<Vec<String>> {
         .points
         .iter()
         .map(|p| {
-            vec![
-                p.source.to_string(),
-                p.knob.cell(p.value),
-                format!("{:.2e}", p.cor_error),
-                format!("{:.2e}", p.peak_deformation_error),
-                format!("{:.2e}", p.contact_time_error),
+            let mut row = vec![p.source.to_string(), p.knob.cell(p.value)];
+            row.extend(p.error.iter().map(|(_, e)| format!("{e:.2e}")));
+            row.extend([
                 p.rhs_evaluations.to_string(),
                 seconds(p.time_s),
                 p.loop_time_s.map_or_else(String::new, seconds),
                 p.timestep_s
                     .map_or_else(String::new, |s| format!("{s:.3e}")),
-            ]
+            ]);
+            row
         })
         .collect()
+}
+
+/// A row of the orders table: the source, what the slope is against, the order of each
+/// quantity, and the last cell.
+fn order_row(source: &str, against: &str, orders: &QuantityOrders, last: String) -> Vec<String> {
+    let mut row = vec![source.to_string(), against.to_string()];
+    row.extend(orders.iter().map(|(_, order)| opt(*order)));
+    row.push(last);
+    row
 }
 
 fn order_rows(report: &PrecisionReport) -> Vec<Vec<String>> {
@@ -738,34 +733,18 @@ fn order_rows(report: &PrecisionReport) -> Vec<Vec<String>> {
                 .copied()
                 .unwrap_or_default();
             [
-                vec![
-                    source.clone(),
-                    "log step".to_string(),
-                    opt(q.cor),
-                    opt(q.peak_deformation),
-                    opt(q.contact_time),
+                order_row(
+                    source,
+                    "log step",
+                    q,
                     opt(report.orders.get(source).copied()),
-                ],
-                vec![
-                    source.clone(),
-                    "log step, error envelope".to_string(),
-                    opt(envelope.cor),
-                    opt(envelope.peak_deformation),
-                    opt(envelope.contact_time),
-                    String::new(),
-                ],
+                ),
+                order_row(source, "log step, error envelope", &envelope, String::new()),
             ]
         })
         .collect();
     for (source, q) in &report.tolerance_slopes {
-        out.push(vec![
-            source.clone(),
-            "log rtol".to_string(),
-            opt(q.cor),
-            opt(q.peak_deformation),
-            opt(q.contact_time),
-            String::new(),
-        ]);
+        out.push(order_row(source, "log rtol", q, String::new()));
     }
     out
 }
@@ -823,12 +802,9 @@ pub(crate) struct PointRecord {
     pub knob: SweepKnob,
     /// The knob's value.
     pub value: f64,
-    /// Relative COR error.
-    pub cor_error: f64,
-    /// Relative peak deformation error.
-    pub peak_deformation_error: f64,
-    /// Relative contact time error.
-    pub contact_time_error: f64,
+    /// |relative error| of the checked quantities (`cor_error`, …).
+    #[serde(flatten, serialize_with = "suffix::error")]
+    pub error: Checked,
     /// Right-hand-side (force) evaluations.
     pub rhs_evaluations: u64,
     /// Steps.
@@ -872,9 +848,7 @@ impl Summary for PrecisionReport {
                 source: p.source,
                 knob: p.knob,
                 value: p.value,
-                cor_error: p.cor_error,
-                peak_deformation_error: p.peak_deformation_error,
-                contact_time_error: p.contact_time_error,
+                error: p.error,
                 rhs_evaluations: p.rhs_evaluations,
                 steps: p.steps,
                 time_s: p.time_s,

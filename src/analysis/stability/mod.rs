@@ -23,13 +23,15 @@
 
 use std::time::Instant;
 
-use serde::Serialize;
+use serde::ser::SerializeMap;
+use serde::{Serialize, Serializer};
 
-use super::run::RunReport;
+use super::run::{RunReport, figures_of};
 use super::tolerance::{Differences, Tolerance};
 use crate::model::case::{Case, ContactKind};
 use crate::model::count::ceil_count;
 use crate::model::exact;
+use crate::model::figures::{Checked, Figures, quantity, suffix};
 use crate::model::scene::{Ball, Material, Plate, Rod, Scene, StiffnessConvention};
 use crate::output::{Section, Summary};
 use crate::solve::paper::{self, Settings};
@@ -236,6 +238,9 @@ pub(crate) fn grid() -> Vec<GridCase> {
     out
 }
 
+/// The figures a grid case writes beside its errors: the COR, which the pass criteria bound.
+pub const WRITTEN: u8 = quantity::COR;
+
 /// One grid case by one method.
 #[derive(Clone, Debug, Serialize)]
 pub struct CaseResult {
@@ -259,16 +264,15 @@ pub struct CaseResult {
     pub mass_ratio: Option<f64>,
     /// rod_end: length/diameter.
     pub aspect_ratio: Option<f64>,
-    /// The run's COR (NaN if it failed).
-    pub cor: f64,
-    /// The closed-form COR.
-    pub cor_exact: f64,
-    /// |relative error| of the COR.
-    pub cor_error: f64,
-    /// |relative error| of the peak deformation.
-    pub peak_deformation_error: f64,
-    /// |relative error| of the contact time.
-    pub contact_time_error: f64,
+    /// The run's figures that are written (`cor`; NaN if the run failed).
+    #[serde(flatten)]
+    pub figures: Figures<f64, WRITTEN>,
+    /// The closed forms of the same figures (`cor_exact`).
+    #[serde(flatten, serialize_with = "suffix::exact")]
+    pub exact: Figures<f64, WRITTEN>,
+    /// |relative error| of the checked quantities (`cor_error`, …; NaN if the run failed).
+    #[serde(flatten, serialize_with = "suffix::error")]
+    pub errors: Checked,
     /// Accepted steps.
     pub steps: u64,
     /// Right-hand-side evaluations.
@@ -324,11 +328,9 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         loss_coefficient: case.loss_coefficient,
         mass_ratio: grid_case.mass_ratio,
         aspect_ratio: grid_case.aspect_ratio,
-        cor: f64::NAN,
-        cor_exact: exact_figures.cor,
-        cor_error: f64::NAN,
-        peak_deformation_error: f64::NAN,
-        contact_time_error: f64::NAN,
+        figures: Figures::splat(f64::NAN),
+        exact: figures_of(&exact_figures).select(),
+        errors: Checked::splat(f64::NAN),
         steps: 0,
         rhs_evaluations: 0,
         finite: false,
@@ -347,36 +349,28 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
     };
     let f = &outcome.figures;
     let run_report = RunReport::new(case, method, &outcome);
-    result.cor = f.cor;
-    result.cor_error = run_report.error.cor.abs();
-    result.peak_deformation_error = run_report.error.peak_deformation.abs();
-    result.contact_time_error = run_report.error.contact_time.abs();
+    result.figures = run_report.figures.select();
+    result.errors = run_report.error.map(|_, e| e.abs());
     result.steps = outcome.stats.steps;
     result.rhs_evaluations = outcome.stats.rhs_evaluations;
-    result.finite = [
-        f.cor,
-        f.peak_deformation,
-        f.peak_force,
-        f.compression_time,
-        f.restitution_time,
-        f.contact_time,
-        f.absorbed_energy,
-        result.cor_error,
-        result.peak_deformation_error,
-        result.contact_time_error,
-    ]
-    .iter()
-    .all(|x| x.is_finite());
+    result.finite = (run_report.figures.iter())
+        .chain(result.errors.iter())
+        .map(|(_, x)| *x)
+        .chain([f.absorbed_energy])
+        .all(f64::is_finite);
     result.cor_in_range = (0.0..=1.0).contains(&f.cor);
     result.bounded_work =
         outcome.stats.steps <= work_bound(method, exact_figures.contact_time, outcome.timestep);
     let differences = Differences {
-        cor: result.cor_error,
-        peak_deformation: result.peak_deformation_error,
-        contact_time: result.contact_time_error,
+        cor: result.errors.cor,
+        peak_deformation: result.errors.peak_deformation,
+        contact_time: result.errors.contact_time,
     };
-    let tolerance =
-        Tolerance::for_method(method, run_report.timestep, run_report.exact.contact_time);
+    let tolerance = Tolerance::for_method(
+        method,
+        run_report.timestep,
+        run_report.exact.figures.contact_time,
+    );
     result.accurate = result.finite && tolerance.admits(&differences);
     let accurate_everywhere = Tolerance {
         cor: ACCURATE_TOLERANCE,
@@ -568,16 +562,22 @@ pub(crate) struct MethodSummary {
     pub accurate: usize,
     /// Cases with the COR in [0, 1].
     pub cor_in_range: usize,
-    /// Largest COR error (relative) over the grid.
-    pub max_cor_error: f64,
-    /// Largest peak-deformation error.
-    pub max_peak_deformation_error: f64,
-    /// Largest contact-time error.
-    pub max_contact_time_error: f64,
+    /// Largest relative error of each checked quantity over the grid (`max_cor_error`, …).
+    #[serde(flatten, serialize_with = "max_error_names")]
+    pub max_error: Checked,
     /// Most steps in one case.
     pub max_steps: u64,
     /// At η = [`ETA_MAX`]: the largest COR (the exact one is 7.07e-4).
     pub max_cor_at_eta_max: f64,
+}
+
+/// Writes [`MethodSummary::max_error`] flattened, each quantity as `max_{quantity}_error`.
+fn max_error_names<S: Serializer>(max_error: &Checked, serializer: S) -> Result<S::Ok, S::Error> {
+    let mut map = serializer.serialize_map(Some(Checked::<f64>::quantities().count()))?;
+    for (q, value) in max_error.iter() {
+        map.serialize_entry(&format!("max_{q}_error"), value)?;
+    }
+    map.end()
 }
 
 /// Everything `millimpact stability` reports.
@@ -601,21 +601,20 @@ pub(crate) fn stability_report() -> StabilityReport {
         .iter()
         .map(|m| {
             let own: Vec<&CaseResult> = cases.iter().filter(|c| c.method == *m).collect();
-            let max = |f: fn(&CaseResult) -> f64| own.iter().map(|c| f(c)).fold(0.0, f64::max);
             MethodSummary {
                 method: *m,
                 cases: own.len(),
                 passed: own.iter().filter(|c| c.pass).count(),
                 accurate: own.iter().filter(|c| c.accurate).count(),
                 cor_in_range: own.iter().filter(|c| c.cor_in_range).count(),
-                max_cor_error: max(|c| c.cor_error),
-                max_peak_deformation_error: max(|c| c.peak_deformation_error),
-                max_contact_time_error: max(|c| c.contact_time_error),
+                max_error: Checked::from_fn(|q| {
+                    own.iter().map(|c| *c.errors.get(q)).fold(0.0, f64::max)
+                }),
                 max_steps: own.iter().map(|c| c.steps).max().unwrap_or(0),
                 max_cor_at_eta_max: own
                     .iter()
                     .filter(|c| c.loss_coefficient == ETA_MAX)
-                    .map(|c| c.cor)
+                    .map(|c| c.figures.cor)
                     .fold(0.0, f64::max),
             }
         })
@@ -667,18 +666,19 @@ impl Summary for StabilityReport {
             ],
         );
         for s in &self.summary {
-            t.rows.push(vec![
+            let mut row = vec![
                 s.method.to_string(),
                 s.cases.to_string(),
                 s.passed.to_string(),
                 s.accurate.to_string(),
                 s.cor_in_range.to_string(),
-                format!("{:.2e}", s.max_cor_error),
-                format!("{:.2e}", s.max_peak_deformation_error),
-                format!("{:.2e}", s.max_contact_time_error),
+            ];
+            row.extend(s.max_error.iter().map(|(_, e)| format!("{e:.2e}")));
+            row.extend([
                 s.max_steps.to_string(),
                 format!("{:.3e}", s.max_cor_at_eta_max),
             ]);
+            t.rows.push(row);
         }
         t.notes.push(
             "pass: rk4-event and dopri5 — finite, COR in [0,1], every error ≤ 1e-9; rk4 and \
@@ -723,14 +723,10 @@ impl Summary for StabilityReport {
             &["case", "method", "COR err", "peak err", "time err", "error"],
         );
         for c in failures {
-            f.rows.push(vec![
-                c.case.clone(),
-                c.method.to_string(),
-                format!("{:.2e}", c.cor_error),
-                format!("{:.2e}", c.peak_deformation_error),
-                format!("{:.2e}", c.contact_time_error),
-                c.error.clone().unwrap_or_default(),
-            ]);
+            let mut row = vec![c.case.clone(), c.method.to_string()];
+            row.extend(c.errors.iter().map(|(_, e)| format!("{e:.2e}")));
+            row.push(c.error.clone().unwrap_or_default());
+            f.rows.push(row);
         }
         if f.rows.is_empty() {
             f.headers.clear();

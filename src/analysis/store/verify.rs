@@ -149,7 +149,7 @@ pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
             };
             let (report, _) = run_case(&case, &settings)?;
             let tolerance =
-                Tolerance::for_method(method, report.timestep, report.exact.contact_time);
+                Tolerance::for_method(method, report.timestep, report.exact.figures.contact_time);
             let differences = Differences {
                 cor: report.error.cor,
                 peak_deformation: report.error.peak_deformation,

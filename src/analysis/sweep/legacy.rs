@@ -124,11 +124,11 @@ fn title(case: &str, method: &str) -> String {
 fn cells(r: &RunRecord) -> Vec<String> {
     vec![
         r.loss_coefficient.to_string(),
-        sci(r.cor),
-        sci(r.cor_exact),
-        signed(r.cor_error),
-        sci(r.peak_deformation),
-        sci(r.contact_time),
+        sci(r.figures.cor),
+        sci(r.exact.cor),
+        signed(r.error.cor),
+        sci(r.figures.peak_deformation),
+        sci(r.figures.contact_time),
     ]
 }
 
@@ -260,7 +260,10 @@ impl Streamed<'_> {
                 return Err(e);
             }
             if points {
-                plotted = rows.iter().map(|r| (r.loss_coefficient, r.cor)).collect();
+                plotted = rows
+                    .iter()
+                    .map(|r| (r.loss_coefficient, r.figures.cor))
+                    .collect();
             }
             let report = SweepReport {
                 rows,
@@ -287,7 +290,9 @@ impl Streamed<'_> {
             let first = range.start == 0;
             let rows = rows_at(self.case, &self.values.values(range), &settings)?;
             let plotted = if points {
-                rows.iter().map(|r| (r.loss_coefficient, r.cor)).collect()
+                rows.iter()
+                    .map(|r| (r.loss_coefficient, r.figures.cor))
+                    .collect()
             } else {
                 Vec::new()
             };
