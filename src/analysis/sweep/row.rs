@@ -568,6 +568,7 @@ mod tests {
                 };
                 let (report, outcome) =
                     run_case(&case, &options.settings(&case, false).unwrap()).unwrap();
+                let row = PointFigures::of_method(&report);
                 assert_eq!(
                     PointFigures::of_solution(
                         &case.name,
@@ -575,8 +576,20 @@ mod tests {
                         case.impact_velocity,
                         &outcome
                     ),
-                    PointFigures::of_method(&report)
+                    row
                 );
+                // The errors a row writes are the report's own.
+                let e = &report.error;
+                assert_eq!(
+                    row.error,
+                    Checked {
+                        cor: finite(e.cor),
+                        peak_deformation: finite(e.peak_deformation),
+                        contact_time: finite(e.contact_time),
+                        ..Checked::default()
+                    }
+                );
+                assert_eq!(row.target.cor, finite(report.exact.cor));
             }
         }
     }
