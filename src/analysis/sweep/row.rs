@@ -72,14 +72,15 @@ impl PointSource {
     }
 }
 
-/// The quantities a row writes as measured: all but the force contact time.
-pub const MEASURED: u8 = quantity::ALL & !quantity::FORCE_CONTACT_TIME;
+/// The quantities a row writes as measured: all but the force contact time (the same set as
+/// [`quantity::EXACT`], here for what a source gave).
+pub const WRITTEN: u8 = quantity::ALL & !quantity::FORCE_CONTACT_TIME;
 /// The quantities a row compares with a reference: COR, peak deformation, peak force, contact
 /// time (the peak force has a reference and no error column).
 pub const COMPARED: u8 =
     quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME;
 /// The compared quantities whose reference is the paper's law, exact (the COR's is a target).
-pub const EXACT: u8 = COMPARED & !quantity::COR;
+pub const PAPER_EXACT: u8 = COMPARED & !quantity::COR;
 
 /// The figures of a point; a column a source does not report stays empty.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -97,14 +98,14 @@ pub struct PointFigures {
     /// The figures the source gave: COR, peak deformation (m), peak force (N), contact time by
     /// overlap (s), its compression and restitution parts (s).
     #[serde(flatten)]
-    pub measured: Figures<Option<f64>, MEASURED>,
+    pub measured: Figures<Option<f64>, WRITTEN>,
     /// The COR the source should realise (the closed form, or the code's target): `cor_target`.
     #[serde(flatten, serialize_with = "suffix::target")]
     pub target: Figures<Option<f64>, { quantity::COR }>,
     /// The paper's law, exact: `peak_deformation_exact`, `peak_force_exact`,
     /// `contact_time_exact`.
     #[serde(flatten, serialize_with = "suffix::exact")]
-    pub exact: Figures<Option<f64>, EXACT>,
+    pub exact: Figures<Option<f64>, PAPER_EXACT>,
     /// `(measured − reference) / reference`, the reference being the target COR and the exact
     /// figures: `cor_error`, `peak_deformation_error`, `contact_time_error`.
     #[serde(flatten, serialize_with = "suffix::error")]
@@ -146,7 +147,7 @@ fn relative(value: f64, reference: f64) -> Option<f64> {
 }
 
 /// The figures of a closed-form or solved impact, as a row writes them.
-fn impact_figures(f: &ImpactFigures) -> Figures<f64, MEASURED> {
+fn impact_figures(f: &ImpactFigures) -> Figures<f64, WRITTEN> {
     Figures {
         cor: f.cor,
         peak_deformation: f.peak_deformation,
@@ -163,14 +164,14 @@ impl PointFigures {
     /// written with and measured against (a NaN, and an error against one, stay empty).
     fn set_compared(
         &mut self,
-        measured: &Figures<f64, MEASURED>,
+        measured: &Figures<f64, WRITTEN>,
         reference: &Figures<f64, COMPARED>,
     ) {
         self.measured = measured.map(|_, &v| finite(v));
         self.target = reference
             .select::<{ quantity::COR }>()
             .map(|_, &v| finite(v));
-        self.exact = reference.select::<EXACT>().map(|_, &v| finite(v));
+        self.exact = reference.select::<PAPER_EXACT>().map(|_, &v| finite(v));
         self.error = Checked::from_fn(|q| relative(*measured.get(q), *reference.get(q)));
     }
 
@@ -275,7 +276,7 @@ impl PointFigures {
             batch: Some(f.batch),
             ..PointFigures::default()
         };
-        let mut measured = f.measured.select::<MEASURED>();
+        let mut measured = f.measured.select::<WRITTEN>();
         measured.compression_time = f64::NAN;
         measured.restitution_time = f64::NAN;
         figures.set_compared(&measured, &f.reference);
