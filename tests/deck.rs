@@ -2025,7 +2025,7 @@ pair_coeff 2 2 hertz 1.3e11 8e8 damping viscoelastic tangential linear_nohistory
     let row = &report.impacts[1];
     assert_eq!(row.pair, "1–2");
     assert_eq!(row.cor_law, 0.0);
-    assert!(row.cor_realised.is_nan() && row.steps == 0);
+    assert!(row.realised.cor.is_nan() && row.steps == 0);
     assert!(row.failure.as_deref().unwrap().starts_with("not run: the law these lines make the code integrate is a linear spring with a dashpot of damping ratio"), "{:?}", row.failure);
     // The own pairs went to the runner (here: none recorded).
     assert!(

@@ -79,13 +79,13 @@ fn check(report: &DeckReport, runs: &RecordedRuns, code: CodeName) {
         // Against the entered COR: the model difference the lines carry, and the step's
         // offset inside its start-phase band.
         if let (Some(entered), Some(model)) = (i.cor_entered, i.model_difference) {
-            let offset = i.cor_realised - entered - model;
+            let offset = i.realised.cor - entered - model;
             let slack = REMAINDER_TOLERANCE;
             assert!(
                 offset >= i.integration_band.min - slack
                     && offset <= i.integration_band.max + slack,
                 "{at}: realised {} − entered {entered} − model {model} = {offset:e} outside the step's band [{:e}, {:e}]",
-                i.cor_realised,
+                i.realised.cor,
                 i.integration_band.min,
                 i.integration_band.max
             );
@@ -374,10 +374,10 @@ fn kratos_custom_constants_realise_their_k_normal() {
         )
         .unwrap();
         assert!(
-            (i.contact_time - exact.contact_time).abs() <= i.timestep,
+            (i.realised.contact_time - exact.contact_time).abs() <= i.timestep,
             "{}: {} against {}",
             i.pair,
-            i.contact_time,
+            i.realised.contact_time,
             exact.contact_time
         );
     }
@@ -660,10 +660,10 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
             (1.0, 0.0)
         );
         assert!(
-            i.cor_realised > 1.0 && i.warnings.iter().any(|w| w.starts_with("energy gain")),
+            i.realised.cor > 1.0 && i.warnings.iter().any(|w| w.starts_with("energy gain")),
             "{}: {} {:?}",
             i.impact_velocity,
-            i.cor_realised,
+            i.realised.cor,
             i.warnings
         );
     }
@@ -690,7 +690,7 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
                 .clamp_attractive
         );
         assert!(i.steps_per_contact > 20.0, "{}", i.steps_per_contact);
-        let offset = i.cor_realised - i.cor_law;
+        let offset = i.realised.cor - i.cor_law;
         assert!(
             offset >= i.integration_band.min - REMAINDER_TOLERANCE
                 && offset <= i.integration_band.max + REMAINDER_TOLERANCE,

@@ -271,7 +271,7 @@ fn the_recorded_paper_runs_check_to_their_closed_forms() {
             assert_eq!(i.failure, None, "{at}");
             let closed = restitution(paper(i.law).loss_coefficient);
             assert_eq!(i.model_difference, Some(0.0), "{at}");
-            let off = i.cor_realised - closed;
+            let off = i.realised.cor - closed;
             let band = i
                 .integration_band
                 .min

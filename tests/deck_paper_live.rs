@@ -51,7 +51,7 @@ fn check_pairs(report: &DeckReport, etas: &dyn Fn([TypeRef; 2]) -> f64, pairs: u
         let closed = restitution(eta);
         assert_eq!(i.cor_entered, Some(closed), "{at}");
         assert_eq!(i.model_difference, Some(0.0), "{at}");
-        let off = i.cor_realised - closed;
+        let off = i.realised.cor - closed;
         let band = i
             .integration_band
             .min
@@ -60,7 +60,7 @@ fn check_pairs(report: &DeckReport, etas: &dyn Fn([TypeRef; 2]) -> f64, pairs: u
         assert!(
             off.abs() <= band + 1e-12,
             "{at}: COR {} is {off:e} off the closed form {closed}, beyond the step's band {band:e}",
-            i.cor_realised
+            i.realised.cor
         );
         assert!(off.abs() < 1e-3, "{at}: {off:e}");
         assert!(

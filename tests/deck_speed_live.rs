@@ -70,7 +70,7 @@ fn a_viscoelastic_deck_realises_its_law_at_every_speed_asked() {
             i.remainder
         );
         // The realised COR is the law's exact one moved by the step, inside its band.
-        let offset = i.cor_realised - i.cor_law;
+        let offset = i.realised.cor - i.cor_law;
         assert!(
             offset >= i.integration_band.min - REMAINDER_TOLERANCE
                 && offset <= i.integration_band.max + REMAINDER_TOLERANCE,

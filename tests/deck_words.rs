@@ -308,13 +308,13 @@ fn a_failed_run_shows_no_figures() {
     for i in &report.impacts {
         assert!(i.failure.is_some());
         for (figure, value) in [
-            ("COR realised", i.cor_realised),
+            ("COR realised", i.realised.cor),
             ("law stepped", i.cor_law_stepped),
             ("integration", i.integration_difference),
             ("band", i.integration_band.min),
             ("band", i.integration_band.max),
             ("remainder", i.remainder),
-            ("contact time", i.contact_time),
+            ("contact time", i.realised.contact_time),
         ] {
             assert!(value.is_nan(), "{}: {figure} {value}", i.pair);
         }
@@ -358,7 +358,7 @@ fn the_table_fits_the_width_it_is_given() {
                 "{}",
                 i.pair
             );
-            assert!(text.contains(&format!("{:.6}", i.cor_realised)));
+            assert!(text.contains(&format!("{:.6}", i.realised.cor)));
             assert!(text.contains(&format!("{:.6}", i.paper_loss_coefficient)));
         }
         // The text under the tables is the same words, wrapped.

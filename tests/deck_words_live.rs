@@ -105,7 +105,7 @@ fn the_type_fraction_decks_type_2_is_run_in_liggghts() {
             .find(|i| i.types == pair)
             .unwrap_or_else(|| panic!("no row for {pair:?}"));
         assert_eq!(i.failure, None, "{}", i.pair);
-        assert!(i.cor_realised > 0.5 && i.cor_realised < 1.0, "{}", i.pair);
+        assert!(i.realised.cor > 0.5 && i.realised.cor < 1.0, "{}", i.pair);
         assert!(
             (i.remainder / i.cor_law_stepped).abs() < REMAINDER_TOLERANCE,
             "{}: remainder {}",

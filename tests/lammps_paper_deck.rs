@@ -56,7 +56,7 @@ fn check_pairs(report: &DeckReport) {
         assert_eq!(law.loss_coefficient, eta, "{at}");
         assert_eq!(i.cor_entered, Some(restitution(eta)), "{at}");
         assert_eq!(i.model_difference, Some(0.0), "{at}");
-        let off = i.cor_realised - restitution(eta);
+        let off = i.realised.cor - restitution(eta);
         let band = i
             .integration_band
             .min

@@ -228,10 +228,11 @@ mod encoding {
         AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow,
     };
     use millimpact::codes::CodeName;
-    use millimpact::model::figures::{Checked, Exact};
+    use millimpact::model::figures::{Checked, Exact, Figures};
     use millimpact::output::csv_record::{CsvRecords, header_of};
     use millimpact::solve::Method;
     use proptest::prelude::*;
+    use serde::Serialize;
 
     /// Text with what CSV must quote (commas, quotes, line breaks) among the rest.
     fn text() -> impl Strategy<Value = String> {
@@ -316,19 +317,31 @@ mod encoding {
                             reduced_mass: f[1],
                             contact_stiffness: f[2],
                             exponent: f[3],
-                            cor: f[4],
-                            cor_target: f[5],
-                            cor_error: f[6],
-                            peak_deformation: f[7],
-                            peak_deformation_exact: f[8],
-                            peak_deformation_error: f[9],
-                            peak_force: f[10],
-                            peak_force_exact: f[11],
-                            contact_time: f[12],
-                            contact_time_exact: f[13],
-                            contact_time_error: f[14],
-                            compression_time: f[15],
-                            restitution_time: f[16],
+                            measured: Figures {
+                                cor: f[4],
+                                peak_deformation: f[7],
+                                peak_force: f[10],
+                                contact_time: f[12],
+                                compression_time: f[15],
+                                restitution_time: f[16],
+                                ..Figures::default()
+                            },
+                            target: Figures {
+                                cor: f[5],
+                                ..Figures::default()
+                            },
+                            exact: Figures {
+                                peak_deformation: f[8],
+                                peak_force: f[11],
+                                contact_time: f[13],
+                                ..Figures::default()
+                            },
+                            error: Figures {
+                                cor: f[6],
+                                peak_deformation: f[9],
+                                contact_time: f[14],
+                                ..Figures::default()
+                            },
                             absorbed_energy: f[17],
                             steps,
                             rhs_evaluations: rhs,
@@ -400,6 +413,90 @@ mod encoding {
         }
     }
 
+    /// A point's figures as one flat struct, field by field in the columns' order: what the
+    /// csv crate writes for them (it writes no flattened sets, which are maps to serde).
+    #[derive(Default, Serialize)]
+    struct FlatFigures<'a> {
+        case: Option<&'a str>,
+        eta: Option<f64>,
+        reduced_mass: Option<f64>,
+        contact_stiffness: Option<f64>,
+        exponent: Option<f64>,
+        cor: Option<f64>,
+        peak_deformation: Option<f64>,
+        peak_force: Option<f64>,
+        contact_time: Option<f64>,
+        compression_time: Option<f64>,
+        restitution_time: Option<f64>,
+        cor_target: Option<f64>,
+        peak_deformation_exact: Option<f64>,
+        peak_force_exact: Option<f64>,
+        contact_time_exact: Option<f64>,
+        cor_error: Option<f64>,
+        peak_deformation_error: Option<f64>,
+        contact_time_error: Option<f64>,
+        absorbed_energy: Option<f64>,
+        steps: Option<u64>,
+        rhs_evaluations: Option<u64>,
+        timestep: Option<f64>,
+        wall_time: Option<f64>,
+        loop_time: Option<f64>,
+        whole_wall_time: Option<f64>,
+        own_law_cor: Option<f64>,
+        own_law_stepped_cor: Option<f64>,
+        code_version: Option<&'a str>,
+        batch: Option<usize>,
+    }
+
+    impl<'a> FlatFigures<'a> {
+        fn of(f: &'a PointFigures) -> FlatFigures<'a> {
+            FlatFigures {
+                case: f.case.as_deref(),
+                eta: f.eta,
+                reduced_mass: f.reduced_mass,
+                contact_stiffness: f.contact_stiffness,
+                exponent: f.exponent,
+                cor: f.measured.cor,
+                peak_deformation: f.measured.peak_deformation,
+                peak_force: f.measured.peak_force,
+                contact_time: f.measured.contact_time,
+                compression_time: f.measured.compression_time,
+                restitution_time: f.measured.restitution_time,
+                cor_target: f.target.cor,
+                peak_deformation_exact: f.exact.peak_deformation,
+                peak_force_exact: f.exact.peak_force,
+                contact_time_exact: f.exact.contact_time,
+                cor_error: f.error.cor,
+                peak_deformation_error: f.error.peak_deformation,
+                contact_time_error: f.error.contact_time,
+                absorbed_energy: f.absorbed_energy,
+                steps: f.steps,
+                rhs_evaluations: f.rhs_evaluations,
+                timestep: f.timestep,
+                wall_time: f.wall_time,
+                loop_time: f.loop_time,
+                whole_wall_time: f.whole_wall_time,
+                own_law_cor: f.own_law_cor,
+                own_law_stepped_cor: f.own_law_stepped_cor,
+                code_version: f.code_version.as_deref(),
+                batch: f.batch,
+            }
+        }
+    }
+
+    /// The figures' columns are named as the csv crate names the flat struct's fields.
+    #[test]
+    fn the_figures_columns_are_the_flat_structs_fields() {
+        let mut csv = csv::Writer::from_writer(Vec::new());
+        csv.serialize(FlatFigures::default()).unwrap();
+        let csv = csv.into_inner().unwrap();
+        let header = csv.split(|&b| b == b'\n').next().unwrap();
+        assert_eq!(
+            String::from_utf8_lossy(&header_of(&PointFigures::default()).unwrap()),
+            format!("{}\n", String::from_utf8_lossy(header))
+        );
+    }
+
     fn legacy_row() -> impl Strategy<Value = LegacyRow> {
         (
             text(),
@@ -458,7 +555,9 @@ mod encoding {
                 .from_writer(Vec::new());
             let mut ours = CsvRecords::default();
             for r in &rows {
-                csv.serialize(r.record()).unwrap();
+                let axes: Vec<&toml::Value> = r.axes.iter().map(|a| &a.value).collect();
+                csv.serialize((&r.identity, axes, &r.source, FlatFigures::of(&r.figures), &r.status))
+                    .unwrap();
                 r.write_csv(&mut ours).unwrap();
             }
             let csv = csv.into_inner().unwrap();

@@ -15,7 +15,8 @@ use std::path::Path;
 use std::sync::Mutex;
 
 use rayon::prelude::*;
-use serde::{Deserialize, Serialize};
+use serde::ser::SerializeMap;
+use serde::{Deserialize, Serialize, Serializer};
 use thiserror::Error;
 
 use super::compare::phase::Range;
@@ -31,6 +32,7 @@ use crate::codes::{
 };
 use crate::model::count::ceil_count;
 use crate::model::exact;
+use crate::model::figures::{Checked, Figures, Quantity, quantity};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
@@ -85,8 +87,10 @@ pub struct DeckImpact {
     /// The COR the user entered for the pair (none for a model that takes stiffness and
     /// damping directly).
     pub cor_entered: Option<f64>,
-    /// The COR the user's code realised with the user's lines.
-    pub cor_realised: f64,
+    /// What the user's code realised with the user's lines: the COR (`cor_realised`), the
+    /// largest overlap (`peak_overlap`, m), the contact time by overlap and by force (s).
+    #[serde(flatten, serialize_with = "realised_names")]
+    pub realised: Figures<f64, REALISED>,
     /// The COR of the code's own law at zero step error.
     pub cor_law: f64,
     /// The COR of the code's own law stepped as the code steps, from the run's start.
@@ -100,12 +104,6 @@ pub struct DeckImpact {
     pub remainder: f64,
     /// The step's COR error over where the first contact falls within a step.
     pub integration_band: Range,
-    /// Contact time by overlap, s (the run's).
-    pub contact_time: f64,
-    /// Contact time by force, s (the run's).
-    pub force_contact_time: f64,
-    /// Largest overlap, m (the run's).
-    pub peak_overlap: f64,
     /// Largest overlap over the smaller radius of the pair.
     pub peak_overlap_ratio: f64,
     /// The deck's time step, s.
@@ -131,6 +129,40 @@ pub struct DeckImpact {
     pub warnings: Vec<String>,
     /// Why the run failed, if it did (its figures are then NaN).
     pub failure: Option<String>,
+}
+
+/// The quantities a deck's run is read for: COR, peak deformation (the overlap), contact time
+/// by overlap and by force.
+pub const REALISED: u8 = quantity::CHECKED | quantity::FORCE_CONTACT_TIME;
+
+/// The realised figures of a run's trajectory.
+fn realised_figures(m: &TrajectoryMetrics) -> Figures<f64, REALISED> {
+    Figures {
+        cor: m.cor,
+        peak_deformation: m.peak_deformation,
+        contact_time: m.contact_time,
+        force_contact_time: m.force_contact_time,
+        ..Figures::default()
+    }
+}
+
+/// Writes realised figures under the names the deck's outputs give them: the COR as
+/// `cor_realised` (beside `cor_entered` and `cor_law`), the peak deformation as `peak_overlap`
+/// (an overlap of two bodies, beside its ratio to the radius).
+fn realised_names<const Q: u8, S: Serializer>(
+    figures: &Figures<f64, Q>,
+    serializer: S,
+) -> Result<S::Ok, S::Error> {
+    let mut map = serializer.serialize_map(Some(Figures::<f64, Q>::quantities().count()))?;
+    for (q, value) in figures.iter() {
+        let name = match q {
+            Quantity::Cor => "cor_realised",
+            Quantity::PeakDeformation => "peak_overlap",
+            _ => q.name(),
+        };
+        map.serialize_entry(name, value)?;
+    }
+    map.end()
 }
 
 /// What `deck` reports.
@@ -770,16 +802,17 @@ fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f6
         partner_radius: partner_body.map(|o| o.radius),
         impact_velocity: velocity,
         cor_entered: c.cor_entered,
-        cor_realised: nan,
+        realised: Figures {
+            contact_time: f64::INFINITY,
+            force_contact_time: f64::INFINITY,
+            ..Figures::splat(nan)
+        },
         cor_law: 0.0,
         cor_law_stepped: nan,
         model_difference: c.cor_entered.map(|e| -e),
         integration_difference: nan,
         remainder: nan,
         integration_band: Range { min: nan, max: nan },
-        contact_time: f64::INFINITY,
-        force_contact_time: f64::INFINITY,
-        peak_overlap: nan,
         peak_overlap_ratio: nan,
         timestep: deck.timestep,
         steps: 0,
@@ -843,12 +876,13 @@ fn impact_row(
             }
         }
     }
-    let cor_realised = metrics.map_or(nan, |m| m.cor);
-    let contact_time = metrics.map_or(nan, |m| m.contact_time);
-    let peak = metrics.map_or(nan, |m| m.peak_deformation);
-    let steps_per_contact = contact_time / dt;
+    let realised = metrics
+        .as_ref()
+        .map_or(Figures::splat(nan), realised_figures);
+    let cor_realised = realised.cor;
+    let steps_per_contact = realised.contact_time / dt;
     let mut warnings = Vec::new();
-    let ratio = peak / smaller_radius;
+    let ratio = realised.peak_deformation / smaller_radius;
     if ratio > HERTZ_MAX_STRAIN {
         warnings.push(format!(
             "small strain: the peak overlap is {:.2} % of the radius, beyond Hertz's small-strain range (δ/R ≤ {} %); the law's force and the contact time are not the material's there",
@@ -906,16 +940,13 @@ fn impact_row(
         partner_radius: partner_body.map(|o| o.radius),
         impact_velocity: v,
         cor_entered: c.cor_entered,
-        cor_realised,
+        realised,
         cor_law,
         cor_law_stepped,
         model_difference,
         integration_difference: cor_law_stepped - cor_law,
         remainder,
         integration_band: band,
-        contact_time,
-        force_contact_time: metrics.map_or(nan, |m| m.force_contact_time),
-        peak_overlap: peak,
         peak_overlap_ratio: ratio,
         timestep: dt,
         steps: p.steps,
@@ -948,8 +979,10 @@ pub struct DeckImpactRecord {
     pub impact_velocity: f64,
     /// The COR entered.
     pub cor_entered: Option<f64>,
-    /// The COR realised.
-    pub cor_realised: f64,
+    /// The COR realised (`cor_realised`), the peak overlap (`peak_overlap`, m) and the contact
+    /// time (s).
+    #[serde(flatten, serialize_with = "realised_names")]
+    pub realised: Checked,
     /// The own law's COR, exact.
     pub cor_law: f64,
     /// The own law's COR, stepped.
@@ -960,10 +993,6 @@ pub struct DeckImpactRecord {
     pub integration_difference: f64,
     /// Remainder.
     pub remainder: f64,
-    /// Contact time, s.
-    pub contact_time: f64,
-    /// Peak overlap, m.
-    pub peak_overlap: f64,
     /// Peak overlap over the smaller radius.
     pub peak_overlap_ratio: f64,
     /// Time step, s.
@@ -1000,14 +1029,12 @@ impl Summary for DeckReport {
                 second_type: i.types[1].to_string(),
                 impact_velocity: i.impact_velocity,
                 cor_entered: i.cor_entered,
-                cor_realised: i.cor_realised,
+                realised: i.realised.select(),
                 cor_law: i.cor_law,
                 cor_law_stepped: i.cor_law_stepped,
                 model_difference: i.model_difference,
                 integration_difference: i.integration_difference,
                 remainder: i.remainder,
-                contact_time: i.contact_time,
-                peak_overlap: i.peak_overlap,
                 peak_overlap_ratio: i.peak_overlap_ratio,
                 timestep: i.timestep,
                 steps_per_contact: i.steps_per_contact,
@@ -1067,14 +1094,14 @@ impl Summary for DeckReport {
                 i.pair.clone(),
                 i.impact_velocity.to_string(),
                 i.cor_entered.map_or("—".into(), |e| format!("{e}")),
-                format!("{:.6}", i.cor_realised),
+                format!("{:.6}", i.realised.cor),
                 format!(
                     "{} / {} / {}",
                     i.model_difference.map_or("—".into(), signed),
                     signed(i.integration_difference),
                     signed(i.remainder)
                 ),
-                sci(i.contact_time),
+                sci(i.realised.contact_time),
                 format!(
                     "{:.1} [{}, {}]",
                     i.steps_per_contact,

@@ -121,7 +121,7 @@ pub(crate) fn speed_curves(impacts: &[DeckImpact]) -> Vec<SpeedCurve> {
             Some(SpeedCurve {
                 pair: pair.to_string(),
                 speeds: rows.iter().map(|r| r.impact_velocity).collect(),
-                cor_realised: rows.iter().map(|r| r.cor_realised).collect(),
+                cor_realised: rows.iter().map(|r| r.realised.cor).collect(),
                 cor_law,
                 cor_closed_form,
                 spread,

@@ -199,11 +199,13 @@ fn batch_figures(
         reduced_mass: paper.mass,
         contact_stiffness: paper.stiffness,
         exponent: paper.exponent,
-        metrics,
-        cor_target: driver
-            .expected_restitution(setup)
-            .unwrap_or(setup.target_restitution),
-        paper_exact: exact::paper_impact(&paper, case.impact_velocity),
+        measured: CodeFigures::measured(&metrics),
+        reference: CodeFigures::reference(
+            driver
+                .expected_restitution(setup)
+                .unwrap_or(setup.target_restitution),
+            &exact::paper_impact(&paper, case.impact_velocity),
+        ),
         steps: setup.steps,
         timestep: setup.timestep,
         wall_time,

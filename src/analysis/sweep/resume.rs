@@ -248,6 +248,21 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
                     ))
                 })?);
             }
+            // Rows are appended in this version's column order, so a header in another
+            // order (an output of an older version) would put values under others' labels.
+            let columns = sweep.columns();
+            let width = headers.len().max(columns.len());
+            if let Some(i) =
+                (0..width).find(|&i| headers.get(i) != columns.get(i).map(String::as_str))
+            {
+                return Err(refuse(format!(
+                    "a file whose columns are this sweep's, in its order; column {} is `{}` where this version writes `{}`: start a new output",
+                    i + 1,
+                    headers.get(i).unwrap_or_default(),
+                    columns.get(i).map_or("", String::as_str)
+                ))
+                .into());
+            }
             let header_end = csv.position().byte();
             resumed.keep.push(0..header_end);
             resumed.kept_lines = usize::try_from(csv.position().line()).unwrap_or(1) - 1;
@@ -327,7 +342,10 @@ mod tests {
                 } else {
                     let figures = PointFigures {
                         case: Some(if p.index == 1 { "two\nlines" } else { "one" }.into()),
-                        cor: Some(0.5),
+                        measured: crate::model::figures::Figures {
+                            cor: Some(0.5),
+                            ..Default::default()
+                        },
                         ..PointFigures::default()
                     };
                     sweep.row(p, figures, RowStatus::ok())
@@ -422,6 +440,29 @@ mod tests {
         }
         let distinct: HashSet<_> = keys.iter().collect();
         assert_eq!(distinct.len(), keys.len());
+    }
+
+    #[test]
+    fn a_csv_output_with_its_columns_in_another_order_is_refused() {
+        let sweep = grid();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("rows.csv");
+        let (text, _) = written(&sweep, RowFormat::Csv, &rows(&sweep, &[]));
+        std::fs::write(&path, &text).unwrap();
+        assert!(read_resumed(&path, &sweep).is_ok());
+        // The order an older version wrote: each measured figure beside its reference.
+        let (header, body) = text.split_once('\n').unwrap();
+        let older = header.replacen(
+            "cor,peak_deformation",
+            "cor,cor_target,cor_error,peak_deformation",
+            1,
+        );
+        std::fs::write(&path, format!("{older}\n{body}")).unwrap();
+        let e = read_resumed(&path, &sweep).unwrap_err().to_string();
+        assert!(
+            e.contains("is `cor_target` where this version writes `peak_deformation`"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -14,6 +14,7 @@ use crate::analysis::store::ReferenceRecord;
 use crate::codes::CodeName;
 use crate::model::case::Case;
 use crate::model::exact::ImpactFigures;
+use crate::model::figures::{Checked, Figures, quantity, suffix};
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
 use crate::output::csv_record::{CsvRecords, RecordError};
@@ -71,6 +72,16 @@ impl PointSource {
     }
 }
 
+/// The quantities a row writes as measured: all but the force contact time (the same set as
+/// [`quantity::EXACT`], here for what a source gave).
+pub const WRITTEN: u8 = quantity::ALL & !quantity::FORCE_CONTACT_TIME;
+/// The quantities a row compares with a reference: COR, peak deformation, peak force, contact
+/// time (the peak force has a reference and no error column).
+pub const COMPARED: u8 =
+    quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME;
+/// The compared quantities whose reference is the paper's law, exact (the COR's is a target).
+pub const PAPER_EXACT: u8 = COMPARED & !quantity::COR;
+
 /// The figures of a point; a column a source does not report stays empty.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct PointFigures {
@@ -84,32 +95,21 @@ pub struct PointFigures {
     pub contact_stiffness: Option<f64>,
     /// Exponent n.
     pub exponent: Option<f64>,
-    /// COR realised.
-    pub cor: Option<f64>,
-    /// COR the source should realise (the closed form, or the code's target).
-    pub cor_target: Option<f64>,
-    /// `(cor − cor_target) / cor_target`.
-    pub cor_error: Option<f64>,
-    /// Peak deformation, m.
-    pub peak_deformation: Option<f64>,
-    /// Peak deformation of the paper's law, exact, m.
-    pub peak_deformation_exact: Option<f64>,
-    /// Relative error of the peak deformation.
-    pub peak_deformation_error: Option<f64>,
-    /// Peak force, N.
-    pub peak_force: Option<f64>,
-    /// Peak force of the paper's law, exact, N.
-    pub peak_force_exact: Option<f64>,
-    /// Contact time by overlap, s.
-    pub contact_time: Option<f64>,
-    /// Contact time of the paper's law, exact, s.
-    pub contact_time_exact: Option<f64>,
-    /// Relative error of the contact time.
-    pub contact_time_error: Option<f64>,
-    /// Compression part of the contact time, s.
-    pub compression_time: Option<f64>,
-    /// Restitution part of the contact time, s.
-    pub restitution_time: Option<f64>,
+    /// The figures the source gave: COR, peak deformation (m), peak force (N), contact time by
+    /// overlap (s), its compression and restitution parts (s).
+    #[serde(flatten)]
+    pub measured: Figures<Option<f64>, WRITTEN>,
+    /// The COR the source should realise (the closed form, or the code's target): `cor_target`.
+    #[serde(flatten, serialize_with = "suffix::target")]
+    pub target: Figures<Option<f64>, { quantity::COR }>,
+    /// The paper's law, exact: `peak_deformation_exact`, `peak_force_exact`,
+    /// `contact_time_exact`.
+    #[serde(flatten, serialize_with = "suffix::exact")]
+    pub exact: Figures<Option<f64>, PAPER_EXACT>,
+    /// `(measured − reference) / reference`, the reference being the target COR and the exact
+    /// figures: `cor_error`, `peak_deformation_error`, `contact_time_error`.
+    #[serde(flatten, serialize_with = "suffix::error")]
+    pub error: Checked<Option<f64>>,
     /// Absorbed energy, J.
     pub absorbed_energy: Option<f64>,
     /// Steps run.
@@ -146,35 +146,54 @@ fn relative(value: f64, reference: f64) -> Option<f64> {
     finite((value - reference) / reference)
 }
 
+/// The figures of a closed-form or solved impact, as a row writes them.
+fn impact_figures(f: &ImpactFigures) -> Figures<f64, WRITTEN> {
+    Figures {
+        cor: f.cor,
+        peak_deformation: f.peak_deformation,
+        peak_force: f.peak_force,
+        contact_time: f.contact_time,
+        compression_time: f.compression_time,
+        restitution_time: f.restitution_time,
+        ..Figures::default()
+    }
+}
+
 impl PointFigures {
+    /// Set the figure columns: the `measured` figures, and the `reference` each compared one is
+    /// written with and measured against (a NaN, and an error against one, stay empty).
+    fn set_compared(
+        &mut self,
+        measured: &Figures<f64, WRITTEN>,
+        reference: &Figures<f64, COMPARED>,
+    ) {
+        self.measured = measured.map(|_, &v| finite(v));
+        self.target = reference
+            .select::<{ quantity::COR }>()
+            .map(|_, &v| finite(v));
+        self.exact = reference.select::<PAPER_EXACT>().map(|_, &v| finite(v));
+        self.error = Checked::from_fn(|q| relative(*measured.get(q), *reference.get(q)));
+    }
+
     /// The figures of a method's run.
     pub(crate) fn of_method(r: &RunReport) -> PointFigures {
-        PointFigures {
+        let mut figures = PointFigures {
             case: Some(r.case.clone()),
             eta: finite(r.loss_coefficient),
             reduced_mass: finite(r.mass),
             contact_stiffness: finite(r.stiffness),
             exponent: finite(r.exponent),
-            cor: finite(r.figures.cor),
-            cor_target: finite(r.exact.figures.cor),
-            cor_error: finite(r.error.cor),
-            peak_deformation: finite(r.figures.peak_deformation),
-            peak_deformation_exact: finite(r.exact.figures.peak_deformation),
-            peak_deformation_error: finite(r.error.peak_deformation),
-            peak_force: finite(r.figures.peak_force),
-            peak_force_exact: finite(r.exact.figures.peak_force),
-            contact_time: finite(r.figures.contact_time),
-            contact_time_exact: finite(r.exact.figures.contact_time),
-            contact_time_error: finite(r.error.contact_time),
-            compression_time: finite(r.figures.compression_time),
-            restitution_time: finite(r.figures.restitution_time),
             absorbed_energy: finite(r.absorbed_energy),
             steps: Some(r.steps),
             rhs_evaluations: Some(r.rhs_evaluations),
             timestep: r.timestep.and_then(finite),
             wall_time: finite(r.wall_time),
             ..PointFigures::default()
-        }
+        };
+        let measured = r.figures.select();
+        let reference = r.exact.figures.select();
+        figures.set_compared(&measured, &reference);
+        figures
     }
 
     /// The figures of a method's `outcome` on the case named `case` with `law` at
@@ -203,7 +222,6 @@ impl PointFigures {
     ) {
         let exact = crate::model::exact::paper_impact(law, impact_velocity);
         let f = &outcome.figures;
-        let error = |value: f64, reference: f64| finite((value - reference) / reference);
         let mut name = self.case.take().unwrap_or_default();
         if name != case {
             name.clear();
@@ -215,19 +233,6 @@ impl PointFigures {
             reduced_mass: finite(law.mass),
             contact_stiffness: finite(law.stiffness),
             exponent: finite(law.exponent),
-            cor: finite(f.cor),
-            cor_target: finite(exact.cor),
-            cor_error: error(f.cor, exact.cor),
-            peak_deformation: finite(f.peak_deformation),
-            peak_deformation_exact: finite(exact.peak_deformation),
-            peak_deformation_error: error(f.peak_deformation, exact.peak_deformation),
-            peak_force: finite(f.peak_force),
-            peak_force_exact: finite(exact.peak_force),
-            contact_time: finite(f.contact_time),
-            contact_time_exact: finite(exact.contact_time),
-            contact_time_error: error(f.contact_time, exact.contact_time),
-            compression_time: finite(f.compression_time),
-            restitution_time: finite(f.restitution_time),
             absorbed_energy: finite(f.absorbed_energy),
             steps: Some(outcome.stats.steps),
             rhs_evaluations: Some(outcome.stats.rhs_evaluations),
@@ -235,29 +240,17 @@ impl PointFigures {
             wall_time: finite(outcome.wall_time),
             ..PointFigures::default()
         };
+        self.set_compared(&impact_figures(f), &impact_figures(&exact).select());
     }
 
-    /// The figures of a code's run.
+    /// The figures of a code's run (its compression and restitution times stay empty).
     pub(crate) fn of_code(f: &CodeFigures) -> PointFigures {
-        let m = &f.metrics;
-        let p = &f.paper_exact;
-        PointFigures {
+        let mut figures = PointFigures {
             case: Some(f.case.clone()),
             eta: finite(f.loss_coefficient),
             reduced_mass: finite(f.reduced_mass),
             contact_stiffness: finite(f.contact_stiffness),
             exponent: finite(f.exponent),
-            cor: finite(m.cor),
-            cor_target: finite(f.cor_target),
-            cor_error: relative(m.cor, f.cor_target),
-            peak_deformation: finite(m.peak_deformation),
-            peak_deformation_exact: finite(p.peak_deformation),
-            peak_deformation_error: relative(m.peak_deformation, p.peak_deformation),
-            peak_force: finite(m.peak_force),
-            peak_force_exact: finite(p.peak_force),
-            contact_time: finite(m.contact_time),
-            contact_time_exact: finite(p.contact_time),
-            contact_time_error: relative(m.contact_time, p.contact_time),
             steps: Some(f.steps),
             timestep: finite(f.timestep),
             wall_time: finite(f.wall_time),
@@ -268,7 +261,12 @@ impl PointFigures {
             code_version: Some(f.code_version.clone()),
             batch: Some(f.batch),
             ..PointFigures::default()
-        }
+        };
+        let mut measured = f.measured.select::<WRITTEN>();
+        measured.compression_time = f64::NAN;
+        measured.restitution_time = f64::NAN;
+        figures.set_compared(&measured, &f.reference);
+        figures
     }
 }
 
@@ -464,11 +462,9 @@ pub(crate) struct CodeFigures {
     /// The case's exponent n.
     pub exponent: f64,
     /// The code's figures.
-    pub metrics: TrajectoryMetrics,
-    /// The COR the code should realise.
-    pub cor_target: f64,
-    /// The paper's law, exact.
-    pub paper_exact: ImpactFigures,
+    pub measured: Figures<f64, COMPARED>,
+    /// What they are compared with: the COR the code should realise, the paper's law exact.
+    pub reference: Figures<f64, COMPARED>,
     /// Steps run.
     pub steps: u64,
     /// Time step, s.
@@ -491,6 +487,25 @@ pub(crate) struct CodeFigures {
 }
 
 impl CodeFigures {
+    /// The reference of a code's figures: the COR `target`, the other figures of `paper_exact`.
+    pub(crate) fn reference(target: f64, paper_exact: &ImpactFigures) -> Figures<f64, COMPARED> {
+        Figures {
+            cor: target,
+            ..impact_figures(paper_exact).select()
+        }
+    }
+
+    /// The compared figures of a code's trajectory.
+    pub(crate) fn measured(m: &TrajectoryMetrics) -> Figures<f64, COMPARED> {
+        Figures {
+            cor: m.cor,
+            peak_deformation: m.peak_deformation,
+            peak_force: m.peak_force,
+            contact_time: m.contact_time,
+            ..Figures::default()
+        }
+    }
+
     /// The figures of a stored-style record of a single run.
     pub fn from_record(case: &Case, r: &ReferenceRecord) -> CodeFigures {
         let law = case.law();
@@ -500,16 +515,14 @@ impl CodeFigures {
             reduced_mass: law.mass,
             contact_stiffness: law.stiffness,
             exponent: law.exponent,
-            metrics: TrajectoryMetrics {
+            measured: Figures {
                 cor: r.cor,
                 peak_deformation: r.peak_deformation,
                 peak_force: r.peak_force,
                 contact_time: r.contact_time,
-                force_contact_time: r.force_contact_time,
-                compression_time: r.compression_time,
+                ..Figures::default()
             },
-            cor_target: r.cor_target(),
-            paper_exact: r.paper_exact,
+            reference: CodeFigures::reference(r.cor_target(), &r.paper_exact),
             steps: r.steps,
             timestep: r.timestep,
             wall_time: r.wall_time,
@@ -542,6 +555,7 @@ mod tests {
                 };
                 let (report, outcome) =
                     run_case(&case, &options.settings(&case, false).unwrap()).unwrap();
+                let row = PointFigures::of_method(&report);
                 assert_eq!(
                     PointFigures::of_solution(
                         &case.name,
@@ -549,8 +563,12 @@ mod tests {
                         case.impact_velocity,
                         &outcome
                     ),
-                    PointFigures::of_method(&report)
+                    row
                 );
+                // The errors a row writes are the report's own.
+                let e = &report.error;
+                assert_eq!(row.error, e.map(|_, &v| finite(v)));
+                assert_eq!(row.target.cor, finite(report.exact.figures.cor));
             }
         }
     }
