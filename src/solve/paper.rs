@@ -9,6 +9,7 @@ use super::steppers::{Dopri5, Rk4, State, Stepper, rk4_step};
 use super::{Method, SeriesEnd, SolveError, Stats, march};
 use crate::model::case::ContactKind;
 use crate::model::exact::{self, ImpactFigures, j_integral};
+use crate::model::figures::Exact;
 use crate::model::law::PaperLaw;
 
 /// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
@@ -344,12 +345,15 @@ impl Plan {
         let cor = scaled.cor;
         let force_scale = self.stiffness * y_scale.powf(n);
         let figures = ImpactFigures {
-            cor,
-            peak_deformation: scaled.peak * y_scale,
-            peak_force: scaled.peak_force * force_scale,
-            compression_time: scaled.compression_time * t_scale,
-            restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
-            contact_time: scaled.contact_time * t_scale,
+            figures: Exact {
+                cor,
+                peak_deformation: scaled.peak * y_scale,
+                peak_force: scaled.peak_force * force_scale,
+                compression_time: scaled.compression_time * t_scale,
+                restitution_time: (scaled.contact_time - scaled.compression_time) * t_scale,
+                contact_time: scaled.contact_time * t_scale,
+                ..Exact::default()
+            },
             absorbed_energy: 0.5 * self.mass * v0 * v0 * (1.0 - cor * cor),
         };
         let trajectory = scaled

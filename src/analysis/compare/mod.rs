@@ -433,14 +433,7 @@ pub(crate) fn compare_case(
         };
         let Some(r) = record else { continue };
         let (split, own_stepped, own_exact) = code_attribution(&r)?;
-        let code_metrics = TrajectoryMetrics {
-            cor: r.cor,
-            peak_deformation: r.peak_deformation,
-            peak_force: r.peak_force,
-            contact_time: r.contact_time,
-            force_contact_time: r.force_contact_time,
-            compression_time: r.compression_time,
-        };
+        let code_metrics = r.figures;
         rows.push(base.row(
             CompareSource::Code {
                 code: r.code,
@@ -460,6 +453,7 @@ pub(crate) fn compare_case(
         contact_time: elastic.1,
         force_contact_time: elastic.1,
         compression_time: 0.5 * elastic.1,
+        ..TrajectoryMetrics::default()
     };
     rows.push(base.row(
         CompareSource::Elastic {

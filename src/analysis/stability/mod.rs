@@ -374,6 +374,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         cor: result.cor_error,
         peak_deformation: result.peak_deformation_error,
         contact_time: result.contact_time_error,
+        ..Differences::default()
     };
     let tolerance =
         Tolerance::for_method(method, run_report.timestep, run_report.exact.contact_time);
@@ -382,6 +383,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         cor: ACCURATE_TOLERANCE,
         peak_deformation: ACCURATE_TOLERANCE,
         contact_time: ACCURATE_TOLERANCE,
+        ..Tolerance::default()
     };
     result.pass = if method.held_accurate() {
         result.finite
