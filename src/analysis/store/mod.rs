@@ -537,7 +537,7 @@ pub fn find_stored(
 
 /// The figures a record's table and CSV row show: COR, peak overlap, peak normal force, contact
 /// time by overlap.
-pub type Shown = Figures<
+pub(crate) type Shown = Figures<
     f64,
     { quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME },
 >;
