@@ -535,8 +535,8 @@ pub fn find_stored(
         .find(|r| (r.loss_coefficient - loss_coefficient).abs() <= 1e-12))
 }
 
-/// The figures a record's table and CSV row show: COR, peak overlap, peak normal force, contact
-/// time by overlap.
+/// The figures a record's table and CSV row show, and those of its exact integrations that
+/// `verify` recomputes: COR, peak overlap, peak normal force, contact time by overlap.
 pub(crate) type Shown = Figures<
     f64,
     { quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME },

@@ -8,13 +8,13 @@ use serde::Serialize;
 use crate::analysis::benchmark::{CHUNG_OOI, STEPS_PER_CONTACT, STORED_FOLDER};
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
-use crate::analysis::store::{ReferenceRecord, StoreError, hex, load, stored_files};
+use crate::analysis::store::{ReferenceRecord, Shown, StoreError, hex, load, stored_files};
 use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
 use crate::error::Chain;
 use crate::model::case::Case;
 use crate::model::exact;
-use crate::model::figures::{Figures, Quantity, quantity};
+use crate::model::figures::{Figures, Quantity};
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::{Section, Summary, signed};
 use crate::solve::Method;
@@ -200,16 +200,11 @@ fn finding(
     }
 }
 
-/// The figures a stored exact integration is checked on against the same integration now.
-type Recomputed = Figures<
-    f64,
-    { quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME },
->;
-
 /// Whether a stored exact figure set agrees with the same set computed now, within
-/// [`RECOMPUTE_TOLERANCE`] on each of the [`Recomputed`] figures.
+/// [`RECOMPUTE_TOLERANCE`] on each figure a record shows (COR, peak deformation, peak force,
+/// contact time).
 fn recomputed_agrees<const P: u8>(stored: &Figures<f64, P>, now: &Figures<f64, P>) -> bool {
-    let (stored, now): (Recomputed, Recomputed) = (stored.select(), now.select());
+    let (stored, now): (Shown, Shown) = (stored.select(), now.select());
     stored.iter().all(|(q, &x)| {
         let d = relative(x, *now.get(q));
         !(d.is_nan() || d.abs() > RECOMPUTE_TOLERANCE)
@@ -503,8 +498,7 @@ fn own_law_stepped_row(record: &ReferenceRecord, name: &str, regenerate: &str) -
             );
         }
     };
-    let relative_to_now = |q| relative(*record.figures.get(q), *now.get(q));
-    let differences = Differences::from_fn(relative_to_now);
+    let differences = Differences::from_fn(|q| relative(*record.figures.get(q), *now.get(q)));
     let tolerance = Tolerance::splat(REMAINDER_TOLERANCE);
     // The figures the table has no column for are held to the same bound; one
     // that fails is named with its difference in the row's detail.
@@ -686,7 +680,7 @@ pub struct VerifyRecord {
     pub check: Check,
     /// The differences checked (`cor_error`, `peak_deformation_error`, `contact_time_error`).
     #[serde(flatten, serialize_with = "crate::model::figures::suffix::error")]
-    pub error: Differences,
+    pub differences: Differences,
     /// What they must stay within (`cor_tolerance`, …).
     #[serde(flatten, serialize_with = "crate::model::figures::suffix::tolerance")]
     pub tolerance: Tolerance,
@@ -718,7 +712,7 @@ impl Summary for VerifyReport {
                 source: r.source.name(),
                 stored: r.stored,
                 check: r.check,
-                error: r.differences,
+                differences: r.differences,
                 tolerance: r.tolerance,
                 pass: r.pass,
                 detail: r.detail.clone(),
