@@ -150,6 +150,42 @@ mod tests {
     }
 
     #[test]
+    fn impact_figures_write_one_flat_object_and_read_it_back() {
+        let law = PaperLaw {
+            mass: 2.0,
+            stiffness: 8.0,
+            exponent: 1.5,
+            loss_coefficient: 0.35,
+        };
+        let f = paper_impact(&law, 3.0);
+        let json = serde_json::to_value(f).unwrap();
+        let keys: Vec<&str> = json
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "absorbed_energy",
+                "compression_time",
+                "contact_time",
+                "cor",
+                "peak_deformation",
+                "peak_force",
+                "restitution_time"
+            ]
+        );
+        let back: ImpactFigures = serde_json::from_value(json).unwrap();
+        assert_eq!(back, f);
+        // The paper's force is repulsive until the overlap closes: one contact time.
+        let m = f.metrics();
+        assert_eq!(m.force_contact_time.to_bits(), f.contact_time.to_bits());
+        assert_eq!(m.compression_time.to_bits(), f.compression_time.to_bits());
+    }
+
+    #[test]
     fn restitution_and_loss_are_inverse() {
         for eta in [0.0, 0.01, 0.35, 0.7, 0.99] {
             assert_relative_eq!(loss_coefficient(restitution(eta)), eta, epsilon = 1e-15);
