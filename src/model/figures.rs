@@ -113,7 +113,10 @@ impl Quantity {
     /// Whether a record may have been stored without it (a figure added since), read as
     /// missing rather than refused.
     const fn may_be_absent(self) -> bool {
-        matches!(self, Quantity::ForceContactTime | Quantity::CompressionTime)
+        matches!(
+            self,
+            Quantity::ForceContactTime | Quantity::CompressionTime
+        )
     }
 }
 
@@ -373,23 +376,14 @@ mod tests {
 
     #[test]
     fn null_is_nan_and_only_the_later_figures_may_be_absent() {
-        let read: Measured = serde_json::from_str(
-            r#"{"cor":null,"peak_deformation":1,"peak_force":2,"contact_time":3,"other":"x"}"#,
-        )
-        .unwrap();
-        assert!(
-            read.cor.is_nan() && read.force_contact_time.is_nan() && read.compression_time.is_nan()
-        );
+        let read: Measured =
+            serde_json::from_str(r#"{"cor":null,"peak_deformation":1,"peak_force":2,"contact_time":3,"other":"x"}"#)
+                .unwrap();
+        assert!(read.cor.is_nan() && read.force_contact_time.is_nan() && read.compression_time.is_nan());
         assert_eq!(read.contact_time, 3.0);
-        let missing =
-            serde_json::from_str::<Measured>(r#"{"cor":1,"peak_force":2,"contact_time":3}"#)
-                .unwrap_err();
-        assert!(
-            missing
-                .to_string()
-                .contains("missing field `peak_deformation`"),
-            "{missing}"
-        );
+        let missing = serde_json::from_str::<Measured>(r#"{"cor":1,"peak_force":2,"contact_time":3}"#)
+            .unwrap_err();
+        assert!(missing.to_string().contains("missing field `peak_deformation`"), "{missing}");
     }
 
     #[test]
