@@ -89,13 +89,13 @@ fn regression() -> Result<(), Box<dyn std::error::Error>> {
     )?;
     check(
         "LAMMPS COR against the calibration",
-        stored.cor,
+        stored.figures.cor,
         CALIBRATED_COR,
         CODE_COR_TOLERANCE,
     )?;
     check(
         "LAMMPS peak force against its own law at its step",
-        stored.peak_force,
+        stored.figures.peak_force,
         stored.law_at_step.peak_force,
         1e-6,
     )?;

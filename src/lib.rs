@@ -40,8 +40,8 @@
 //! let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("reference");
 //! let record = find_stored(&folder, CodeName::Lammps, "ball_plate", 0.35)?
 //!     .expect("LAMMPS on ball_plate at η = 0.35 is stored");
-//! assert!((record.cor - record.cor_target()).abs() < 1e-3);
-//! assert!((record.peak_deformation / record.law_at_step.peak_deformation - 1.0).abs() < 1e-6);
+//! assert!((record.figures.cor - record.cor_target()).abs() < 1e-3);
+//! assert!((record.figures.peak_deformation / record.law_at_step.peak_deformation - 1.0).abs() < 1e-6);
 //! # Ok::<(), millimpact::StoreError>(())
 //! ```
 //!

@@ -41,22 +41,27 @@ fn each_code_set_up_as_its_card_says_realises_the_predicted_cor() {
         }
         eprintln!(
             "{code} on {name}: card {:.9} [{:.9}, {:.9}], run {:.9}",
-            card.realised_cor, card.realised_band.min, card.realised_band.max, run.cor
+            card.realised_cor, card.realised_band.min, card.realised_band.max, run.figures.cor
         );
         let slack = 1e-9;
         assert!(
-            (run.cor - card.realised_cor).abs() < 1e-7,
+            (run.figures.cor - card.realised_cor).abs() < 1e-7,
             "{code} on {name}: realised {} vs card {}",
-            run.cor,
+            run.figures.cor,
             card.realised_cor
         );
         assert!(
-            run.cor >= card.realised_band.min - slack && run.cor <= card.realised_band.max + slack,
+            run.figures.cor >= card.realised_band.min - slack
+                && run.figures.cor <= card.realised_band.max + slack,
             "{code}: {} outside {:?}",
-            run.cor,
+            run.figures.cor,
             card.realised_band
         );
-        assert!((run.cor - e).abs() < 1e-3 * e, "{code}: {} vs {e}", run.cor);
+        assert!(
+            (run.figures.cor - e).abs() < 1e-3 * e,
+            "{code}: {} vs {e}",
+            run.figures.cor
+        );
     }
 }
 

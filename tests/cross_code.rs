@@ -56,9 +56,17 @@ fn each_code_realises_the_target_and_its_own_law() {
                 r.cor_target()
             );
             for (what, code, stepped) in [
-                ("COR", r.cor, r.law_at_step.cor),
-                ("peak", r.peak_deformation, r.law_at_step.peak_deformation),
-                ("contact time", r.contact_time, r.law_at_step.contact_time),
+                ("COR", r.figures.cor, r.law_at_step.cor),
+                (
+                    "peak",
+                    r.figures.peak_deformation,
+                    r.law_at_step.peak_deformation,
+                ),
+                (
+                    "contact time",
+                    r.figures.contact_time,
+                    r.law_at_step.contact_time,
+                ),
             ] {
                 assert!(
                     relative(code, stepped) <= REMAINDER_TOLERANCE,
@@ -92,18 +100,18 @@ fn elastic_contact_time_is_hertz_within_the_step() {
                 .elastic_contact(elastic.impact_velocity)
                 .contact_time;
             assert!(
-                (r.contact_time - theory).abs() <= r.timestep,
+                (r.figures.contact_time - theory).abs() <= r.timestep,
                 "{} on {name}: elastic contact time {} vs theory {} (step {})",
                 r.code,
-                r.contact_time,
+                r.figures.contact_time,
                 theory,
                 r.timestep
             );
             assert!(
-                (r.cor - 1.0).abs() <= 1e-6,
+                (r.figures.cor - 1.0).abs() <= 1e-6,
                 "{}: elastic COR {}",
                 r.code,
-                r.cor
+                r.figures.cor
             );
         }
     }
@@ -122,9 +130,17 @@ fn a_live_run_reproduces_the_stored_reference() {
             let now = live(driver, &c);
             assert_eq!(now.input_sha256, stored.input_sha256, "same input");
             for (what, a, b) in [
-                ("COR", now.cor, stored.cor),
-                ("peak", now.peak_deformation, stored.peak_deformation),
-                ("contact time", now.contact_time, stored.contact_time),
+                ("COR", now.figures.cor, stored.figures.cor),
+                (
+                    "peak",
+                    now.figures.peak_deformation,
+                    stored.figures.peak_deformation,
+                ),
+                (
+                    "contact time",
+                    now.figures.contact_time,
+                    stored.figures.contact_time,
+                ),
             ] {
                 assert!(
                     relative(a, b) <= 1e-9,
@@ -186,9 +202,9 @@ fn the_clamp_raises_the_cor_as_the_clamped_law_predicts() {
                 }
             }
             assert!(
-                (r.cor - r.cor_target()).abs() <= 1e-3,
+                (r.figures.cor - r.cor_target()).abs() <= 1e-3,
                 "{who}: COR {} vs expected {}",
-                r.cor,
+                r.figures.cor,
                 r.cor_target()
             );
             let remainder = r.attribution().remainder;

@@ -645,15 +645,15 @@ fn kratos_reproduces_yades_stored_runs() {
                 .unwrap()
             };
             let (law_yade, law_kratos) = (law_of(&Yade), law_of(&Kratos));
-            let cor = m.cor - yade.cor;
+            let cor = m.cor - yade.figures.cor;
             let cor_laws = law_kratos.cor - law_yade.cor;
-            let peak = yade.peak_deformation / m.peak_deformation - 1.0;
+            let peak = yade.figures.peak_deformation / m.peak_deformation - 1.0;
             let peak_laws = law_yade.peak_deformation / law_kratos.peak_deformation - 1.0;
             eprintln!(
                 "{who}: COR Kratos {:.15} YADE {:.15}: {cor:+.1e} ({:+.1e} beyond the laws); \
                  peak YADE/Kratos - 1 = {peak:+.2e} ({:+.1e} beyond the laws); Kratos wall {:.2} s",
                 m.cor,
-                yade.cor,
+                yade.figures.cor,
                 cor - cor_laws,
                 peak - peak_laws,
                 run.wall_time
@@ -664,7 +664,7 @@ fn kratos_reproduces_yades_stored_runs() {
                 cor.abs() < 1e-11,
                 "{who}: COR {} vs YADE {}",
                 m.cor,
-                yade.cor
+                yade.figures.cor
             );
             assert!(peak.abs() < 3e-9, "{who}: peak {peak:e}");
             assert!((cor - cor_laws).abs() < 3e-12, "{who}: COR beyond the laws");

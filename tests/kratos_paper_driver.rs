@@ -403,16 +403,16 @@ fn live_reference_on_held_out_cases() {
         let r: millimpact::ReferenceRecord = serde_json::from_slice(&out.stdout).unwrap();
         let rel = |a: f64, b: f64| ((a - b) / b).abs();
         for (what, run, predicted, exact) in [
-            ("COR", r.cor, r.law_at_step.cor, r.paper_exact.cor),
+            ("COR", r.figures.cor, r.law_at_step.cor, r.paper_exact.cor),
             (
                 "peak overlap",
-                r.peak_deformation,
+                r.figures.peak_deformation,
                 r.law_at_step.peak_deformation,
                 r.paper_exact.peak_deformation,
             ),
             (
                 "peak force",
-                r.peak_force,
+                r.figures.peak_force,
                 r.law_at_step.peak_force,
                 r.paper_exact.peak_force,
             ),
@@ -427,7 +427,7 @@ fn live_reference_on_held_out_cases() {
             );
         }
         assert!(
-            rel(r.cor, r.paper_exact.cor) > 0.0,
+            rel(r.figures.cor, r.paper_exact.cor) > 0.0,
             "{name}: a real step error"
         );
         assert_eq!(r.attribution().model.cor.to_bits(), 0f64.to_bits());

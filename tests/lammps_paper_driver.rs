@@ -267,7 +267,7 @@ fn live_reference_on_a_held_out_case() {
     assert!(out.status.success(), "{out:?}");
     let r: millimpact::ReferenceRecord = serde_json::from_slice(&out.stdout).unwrap();
     let e = exact::restitution(0.42);
-    let realised = r.cor;
+    let realised = r.figures.cor;
     assert!((realised - e).abs() < 5e-4, "{realised} vs {e}");
     let a = r.attribution();
     assert!(a.remainder.cor.abs() < 1e-9, "{a:?}");

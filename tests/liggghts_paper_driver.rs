@@ -556,7 +556,7 @@ fn realised(scene: &str, eta: f64, steps_per_contact: Option<u32>) -> (f64, f64)
     };
     let record = millimpact::run_reference(millimpact::CodeName::LiggghtsPaper, &case, &options)
         .unwrap_or_else(|e| panic!("{scene} η={eta}: {e:#}"));
-    let offset = record.cor - exact::restitution(eta);
+    let offset = record.figures.cor - exact::restitution(eta);
     (offset, predicted_cor_error(&LiggghtsPaper, &record.setup))
 }
 

@@ -193,17 +193,17 @@ fn a_build_whose_tsuji_carries_the_sqrt2_is_read_and_compensated_as_such() {
     );
     assert!((record.law_exact.cor - e).abs() <= TARGET_TOLERANCE);
     assert!(
-        ((record.cor - record.law_at_step.cor) / record.law_at_step.cor).abs()
+        ((record.figures.cor - record.law_at_step.cor) / record.law_at_step.cor).abs()
             <= REMAINDER_TOLERANCE,
         "COR {} vs own law stepped {}",
-        record.cor,
+        record.figures.cor,
         record.law_at_step.cor
     );
     // The step offset of Hertz at Δt = t_c/1000, nothing more.
     assert!(
-        (record.cor - e).abs() < 1e-4,
+        (record.figures.cor - e).abs() < 1e-4,
         "COR {} vs target {e}",
-        record.cor
+        record.figures.cor
     );
 }
 

@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::model::figures::{Exact, Figures, Quantity, quantity};
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
 
@@ -35,37 +36,40 @@ pub fn loss_coefficient(restitution: f64) -> f64 {
     (1.0 - e2) / (1.0 + e2)
 }
 
-/// The figures of one impact, SI units.
+/// The figures of one impact, SI units: the closed form's set of figures ([`Exact`]: COR, peak
+/// deformation, peak force, contact, compression and restitution times), and the kinetic
+/// energy it absorbed.
+///
+/// The absorbed energy sits beside the set rather than in it: it is no figure of the
+/// trajectory a code writes, and it cannot be had from the other figures without the mass
+/// and the approach speed. It reads as the set does (`f.cor`, `f.iter()`, through
+/// [`Deref`](std::ops::Deref)), and is written as one flat object, the set's keys then
+/// `absorbed_energy`.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct ImpactFigures {
-    /// Coefficient of restitution `-v_out / v_in`.
-    pub cor: f64,
-    /// Largest approach, m.
-    pub peak_deformation: f64,
-    /// Largest contact force, N.
-    pub peak_force: f64,
-    /// Time from contact to the turning point, s.
-    pub compression_time: f64,
-    /// Time from the turning point to separation, s.
-    pub restitution_time: f64,
-    /// Whole contact time, s.
-    pub contact_time: f64,
+    /// The impact's figures.
+    #[serde(flatten)]
+    pub figures: Exact,
     /// Kinetic energy lost, J.
     pub absorbed_energy: f64,
+}
+
+impl std::ops::Deref for ImpactFigures {
+    type Target = Exact;
+
+    fn deref(&self) -> &Exact {
+        &self.figures
+    }
 }
 
 impl ImpactFigures {
     /// The figures in the form a trajectory's are read: the paper's force is repulsive all
     /// through the contact, so its force contact time is its overlap contact time.
     pub(crate) fn metrics(&self) -> TrajectoryMetrics {
-        TrajectoryMetrics {
-            cor: self.cor,
-            peak_deformation: self.peak_deformation,
-            peak_force: self.peak_force,
-            contact_time: self.contact_time,
-            force_contact_time: self.contact_time,
-            compression_time: self.compression_time,
-        }
+        TrajectoryMetrics::from_fn(|q| match q {
+            Quantity::ForceContactTime => self.contact_time,
+            q => *self.get(q),
+        })
     }
 }
 
@@ -95,24 +99,23 @@ pub fn paper_impact(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
     let compression_time = j * peak / v0;
     let restitution_time = compression_time / e;
     ImpactFigures {
-        cor: e,
-        peak_deformation: peak,
-        peak_force: law.stiffness * (1.0 + eta) * peak.powf(n),
-        compression_time,
-        restitution_time,
-        contact_time: compression_time + restitution_time,
+        figures: Exact {
+            cor: e,
+            peak_deformation: peak,
+            peak_force: law.stiffness * (1.0 + eta) * peak.powf(n),
+            contact_time: compression_time + restitution_time,
+            compression_time,
+            restitution_time,
+            ..Exact::default()
+        },
         absorbed_energy: 0.5 * law.mass * v0 * v0 * (1.0 - e * e),
     }
 }
 
-/// The elastic Hertz impact of physics.md §3, in SI units.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct HertzElastic {
-    /// `δ_max = (15 M v0² / (16 E* sqrt(R*)))^(2/5)`, m.
-    pub peak_deformation: f64,
-    /// `t_c = 2 J(1.5) δ_max / v0`, s.
-    pub contact_time: f64,
-}
+/// The elastic Hertz impact of physics.md §3, in SI units: its peak deformation
+/// `δ_max = (15 M v0² / (16 E* sqrt(R*)))^(2/5)` (m) and contact time `t_c = 2 J(1.5) δ_max / v0`
+/// (s).
+pub type HertzElastic = Figures<f64, { quantity::PEAK_DEFORMATION | quantity::CONTACT_TIME }>;
 
 /// Elastic Hertz figures for reduced mass `M` (kg), `E*` (Pa), `R*` (m) and speed `v0` (m/s).
 pub fn hertz_elastic(
@@ -127,6 +130,7 @@ pub fn hertz_elastic(
     HertzElastic {
         peak_deformation: peak,
         contact_time: 2.0 * j_integral(1.5) * peak / v0,
+        ..HertzElastic::default()
     }
 }
 
@@ -143,6 +147,42 @@ mod tests {
             max_relative = 1e-15
         );
         assert_relative_eq!(j_integral(1.5), 1.4716376, max_relative = 1e-7);
+    }
+
+    #[test]
+    fn impact_figures_write_one_flat_object_and_read_it_back() {
+        let law = PaperLaw {
+            mass: 2.0,
+            stiffness: 8.0,
+            exponent: 1.5,
+            loss_coefficient: 0.35,
+        };
+        let f = paper_impact(&law, 3.0);
+        let json = serde_json::to_value(f).unwrap();
+        let keys: Vec<&str> = json
+            .as_object()
+            .unwrap()
+            .keys()
+            .map(String::as_str)
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                "absorbed_energy",
+                "compression_time",
+                "contact_time",
+                "cor",
+                "peak_deformation",
+                "peak_force",
+                "restitution_time"
+            ]
+        );
+        let back: ImpactFigures = serde_json::from_value(json).unwrap();
+        assert_eq!(back, f);
+        // The paper's force is repulsive until the overlap closes: one contact time.
+        let m = f.metrics();
+        assert_eq!(m.force_contact_time.to_bits(), f.contact_time.to_bits());
+        assert_eq!(m.compression_time.to_bits(), f.compression_time.to_bits());
     }
 
     #[test]

@@ -4,6 +4,8 @@
 use serde::{Deserialize, Serialize};
 use thiserror::Error;
 
+use crate::model::figures::Measured;
+
 /// Why figures cannot be read from a trajectory.
 #[derive(Clone, Debug, Error, PartialEq, Eq)]
 pub enum TrajectoryError {
@@ -66,37 +68,11 @@ pub(crate) fn check_trajectory(t: &CodeTrajectory) -> Result<(), TrajectoryError
     Ok(())
 }
 
-/// Impact figures read from a trajectory, the way they are read from a DEM code's output.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TrajectoryMetrics {
-    /// Coefficient of restitution: approach speed after contact over approach speed before.
-    pub cor: f64,
-    /// Largest overlap, m.
-    pub peak_deformation: f64,
-    /// Largest normal force, N (NaN if the trajectory has no force column).
-    pub peak_force: f64,
-    /// Contact duration by overlap, s: from first touch until the overlap returns to zero
-    /// (zero crossings of the overlap, linearly interpolated).
-    pub contact_time: f64,
-    /// Contact duration by force, s: from first touch until the normal force first returns to
-    /// zero (NaN if the trajectory has no force column, or in a record stored without it).
-    #[serde(default = "not_stored", deserialize_with = "nan_if_null")]
-    pub force_contact_time: f64,
-    /// Compression time, s: from first touch to the largest overlap (the approach speed's zero
-    /// crossing; NaN in a record stored without it).
-    #[serde(default = "not_stored", deserialize_with = "nan_if_null")]
-    pub compression_time: f64,
-}
-
-/// A figure a record was stored without: NaN.
-pub(crate) fn not_stored() -> f64 {
-    f64::NAN
-}
-
-/// JSON has no NaN: serde_json writes it as `null`, read back here as NaN.
-pub(crate) fn nan_if_null<'de, D: serde::Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-    Ok(Option::<f64>::deserialize(d)?.unwrap_or(f64::NAN))
-}
+/// Impact figures read from a trajectory, the way they are read from a DEM code's output
+/// (see [`trajectory_metrics`]): every quantity but the restitution time. The peak force and
+/// the force contact time are NaN if the trajectory has no force column; the force contact
+/// time and the compression time read as NaN from a record stored without them.
+pub type TrajectoryMetrics = Measured;
 
 /// Read COR, peak overlap, peak force, both contact times and the compression time from a
 /// trajectory.
@@ -171,6 +147,7 @@ pub fn trajectory_metrics(t: &CodeTrajectory) -> Result<TrajectoryMetrics, Traje
         contact_time: end - start,
         force_contact_time: force_end - start,
         compression_time: turn - start,
+        ..TrajectoryMetrics::default()
     })
 }
 

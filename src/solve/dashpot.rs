@@ -499,6 +499,7 @@ pub fn accurate_metrics(
         contact_time: end.0 * t_scale,
         force_contact_time: force_end * t_scale,
         compression_time: turn.time * t_scale,
+        ..TrajectoryMetrics::default()
     })
 }
 

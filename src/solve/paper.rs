@@ -9,7 +9,7 @@ use super::steppers::{Dopri5, Rk4, State, Stepper, rk4_step};
 use super::{Method, SeriesEnd, SolveError, Stats, march};
 use crate::model::case::ContactKind;
 use crate::model::exact::{self, ImpactFigures, j_integral};
-use crate::model::figures::{Figures, Quantity, quantity};
+use crate::model::figures::{Exact, Figures, Quantity, quantity};
 use crate::model::law::PaperLaw;
 
 /// Call `$f` with the [`Power`] for exponent `$n` as its first argument, then `$args`. The
@@ -358,12 +358,10 @@ impl Plan {
         });
         let cor = si.cor;
         let figures = ImpactFigures {
-            cor,
-            peak_deformation: si.peak_deformation,
-            peak_force: si.peak_force,
-            compression_time: si.compression_time,
-            restitution_time: (solved.contact_time - solved.compression_time) * t_scale,
-            contact_time: si.contact_time,
+            figures: Exact {
+                restitution_time: (solved.contact_time - solved.compression_time) * t_scale,
+                ..si.select()
+            },
             absorbed_energy: 0.5 * self.mass * v0 * v0 * (1.0 - cor * cor),
         };
         let trajectory = scaled

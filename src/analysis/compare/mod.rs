@@ -399,15 +399,7 @@ pub(crate) fn compare_case(
         };
         let Some(r) = record else { continue };
         let (split, own_stepped, own_exact) = code_attribution(&r)?;
-        let code_figures = Measured {
-            cor: r.cor,
-            peak_deformation: r.peak_deformation,
-            peak_force: r.peak_force,
-            contact_time: r.contact_time,
-            force_contact_time: r.force_contact_time,
-            compression_time: r.compression_time,
-            ..Measured::default()
-        };
+        let code_figures = r.figures;
         rows.push(base.row(
             CompareSource::Code {
                 code: r.code,

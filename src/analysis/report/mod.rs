@@ -675,9 +675,9 @@ fn work_precision(reference: &Path) -> Result<ReportFigure, ReportError> {
         // point is the code's integration error, not the model difference.
         let exact = &r.law_exact;
         let error = [
-            (r.cor - exact.cor) / exact.cor,
-            (r.peak_deformation - exact.peak_deformation) / exact.peak_deformation,
-            (r.contact_time - exact.contact_time) / exact.contact_time,
+            (r.figures.cor - exact.cor) / exact.cor,
+            (r.figures.peak_deformation - exact.peak_deformation) / exact.peak_deformation,
+            (r.figures.contact_time - exact.contact_time) / exact.contact_time,
         ]
         .iter()
         .fold(0.0f64, |worst, e| worst.max(e.abs()));

@@ -361,11 +361,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
     result.cor_in_range = (0.0..=1.0).contains(&f.cor);
     result.bounded_work =
         outcome.stats.steps <= work_bound(method, exact_figures.contact_time, outcome.timestep);
-    let differences = Differences {
-        cor: result.errors.cor,
-        peak_deformation: result.errors.peak_deformation,
-        contact_time: result.errors.contact_time,
-    };
+    let differences: Differences = result.errors;
     let tolerance = Tolerance::for_method(
         method,
         run_report.timestep,
@@ -376,6 +372,7 @@ pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         cor: ACCURATE_TOLERANCE,
         peak_deformation: ACCURATE_TOLERANCE,
         contact_time: ACCURATE_TOLERANCE,
+        ..Tolerance::default()
     };
     result.pass = if method.held_accurate() {
         result.finite

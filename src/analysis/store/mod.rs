@@ -23,6 +23,7 @@ use crate::error::Blame;
 use crate::model::case::Case;
 use crate::model::case::CaseError;
 use crate::model::exact::{self, ImpactFigures};
+use crate::model::figures::{Figures, quantity};
 use crate::model::law::CodeLaw;
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
@@ -204,28 +205,12 @@ pub struct ReferenceRecord {
     pub timestep: f64,
     /// Steps run.
     pub steps: u64,
-    /// The code's COR.
-    pub cor: f64,
-    /// The code's peak overlap, m.
-    pub peak_deformation: f64,
-    /// The code's peak normal force, N.
-    pub peak_force: f64,
-    /// The code's contact time by overlap, s.
-    pub contact_time: f64,
-    /// The code's contact time by force (first touch until the normal force first returns to
-    /// zero), s; NaN in a record stored without it.
-    #[serde(
-        default = "crate::model::trajectory::not_stored",
-        deserialize_with = "crate::model::trajectory::nan_if_null"
-    )]
-    pub force_contact_time: f64,
-    /// The code's compression time (first touch to the largest overlap), s; NaN in a record
-    /// stored without it.
-    #[serde(
-        default = "crate::model::trajectory::not_stored",
-        deserialize_with = "crate::model::trajectory::nan_if_null"
-    )]
-    pub compression_time: f64,
+    /// The code's figures, read from its trajectory as [`trajectory_metrics`] reads them (COR,
+    /// peak overlap, peak normal force, contact times by overlap and by force, compression
+    /// time); the force contact time and the compression time are NaN in a record stored
+    /// without them.
+    #[serde(flatten)]
+    pub figures: TrajectoryMetrics,
     /// Process wall time, s: the code from start to exit, its start-up included.
     pub wall_time: f64,
     /// The code's own loop time, s.
@@ -289,19 +274,15 @@ impl ReferenceRecord {
     /// The split of the code's difference from the paper's law.
     pub fn attribution(&self) -> Attribution {
         let p = &self.paper_exact;
-        let split = |a: (f64, f64, f64), b: (f64, f64, f64)| Split {
-            cor: (a.0 - b.0) / p.cor,
-            peak_deformation: (a.1 - b.1) / p.peak_deformation,
-            contact_time: (a.2 - b.2) / p.contact_time,
+        let split = |a: &TrajectoryMetrics, b: &TrajectoryMetrics| {
+            Split::from_fn(|q| (a.get(q) - b.get(q)) / p.get(q))
         };
-        let code = (self.cor, self.peak_deformation, self.contact_time);
-        let m = |t: &TrajectoryMetrics| (t.cor, t.peak_deformation, t.contact_time);
-        let paper = (p.cor, p.peak_deformation, p.contact_time);
+        let paper = p.metrics();
         Attribution {
-            total: split(code, paper),
-            model: split(m(&self.law_exact), paper),
-            integration: split(m(&self.law_at_step), m(&self.law_exact)),
-            remainder: split(code, m(&self.law_at_step)),
+            total: split(&self.figures, &paper),
+            model: split(&self.law_exact, &paper),
+            integration: split(&self.law_at_step, &self.law_exact),
+            remainder: split(&self.figures, &self.law_at_step),
         }
     }
 
@@ -403,12 +384,7 @@ pub fn run_reference(
         expected_restitution: driver.expected_restitution(&setup),
         timestep: setup.timestep,
         steps: setup.steps,
-        cor: metrics.cor,
-        peak_deformation: metrics.peak_deformation,
-        peak_force: metrics.peak_force,
-        contact_time: metrics.contact_time,
-        force_contact_time: metrics.force_contact_time,
-        compression_time: metrics.compression_time,
+        figures: metrics,
         wall_time: run.wall_time,
         loop_time: run.loop_time,
         whole_wall_time: Some(started.elapsed().as_secs_f64()),
@@ -559,6 +535,13 @@ pub fn find_stored(
         .find(|r| (r.loss_coefficient - loss_coefficient).abs() <= 1e-12))
 }
 
+/// The figures a record's table and CSV row show, and those of its exact integrations that
+/// `verify` recomputes: COR, peak overlap, peak normal force, contact time by overlap.
+pub(crate) type Shown = Figures<
+    f64,
+    { quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME },
+>;
+
 /// One record as a CSV row: its figures and the split of its COR difference from the paper's
 /// law.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -575,14 +558,9 @@ pub struct RecordRow {
     pub target_restitution: f64,
     /// Time step, s.
     pub timestep: f64,
-    /// COR.
-    pub cor: f64,
-    /// Peak overlap, m.
-    pub peak_deformation: f64,
-    /// Peak normal force, N.
-    pub peak_force: f64,
-    /// Contact time by overlap, s.
-    pub contact_time: f64,
+    /// COR, peak overlap (m), peak normal force (N), contact time by overlap (s).
+    #[serde(flatten)]
+    pub figures: Shown,
     /// Relative COR difference from the paper's law: the model's part.
     pub model_cor: f64,
     /// The integration's part.
@@ -610,10 +588,7 @@ impl Summary for ReferenceRecord {
             loss_coefficient: self.loss_coefficient,
             target_restitution: self.target_restitution,
             timestep: self.timestep,
-            cor: self.cor,
-            peak_deformation: self.peak_deformation,
-            peak_force: self.peak_force,
-            contact_time: self.contact_time,
+            figures: self.figures.select(),
             model_cor: a.model.cor,
             integration_cor: a.integration.cor,
             remainder_cor: a.remainder.cor,
@@ -646,41 +621,26 @@ impl Summary for ReferenceRecord {
                 "contact time (s)",
             ],
         );
-        t.rows.push(vec![
-            format!("{} {}", r.code, r.code_version),
-            sci(r.cor),
-            sci(r.peak_deformation),
-            sci(r.peak_force),
-            sci(r.contact_time),
-        ]);
+        let paper = r.paper_exact.metrics();
         for (name, m) in [
-            ("own law, stepped as the code", &r.law_at_step),
-            ("own law, exact", &r.law_exact),
+            (format!("{} {}", r.code, r.code_version), &r.figures),
+            ("own law, stepped as the code".to_string(), &r.law_at_step),
+            ("own law, exact".to_string(), &r.law_exact),
+            ("paper's law, exact".to_string(), &paper),
         ] {
-            t.rows.push(vec![
-                name.to_string(),
-                sci(m.cor),
-                sci(m.peak_deformation),
-                sci(m.peak_force),
-                sci(m.contact_time),
-            ]);
+            let shown: Shown = m.select();
+            t.rows.push(
+                std::iter::once(name)
+                    .chain(shown.iter().map(|(_, x)| sci(*x)))
+                    .collect(),
+            );
         }
-        let p = &r.paper_exact;
-        t.rows.push(vec![
-            "paper's law, exact".to_string(),
-            sci(p.cor),
-            sci(p.peak_deformation),
-            sci(p.peak_force),
-            sci(p.contact_time),
-        ]);
         let a = r.attribution();
         let split = |s: &Split| {
-            format!(
-                "{} / {} / {}",
-                signed(s.cor),
-                signed(s.peak_deformation),
-                signed(s.contact_time)
-            )
+            s.iter()
+                .map(|(_, x)| signed(*x))
+                .collect::<Vec<_>>()
+                .join(" / ")
         };
         t.notes = vec![
             format!(
@@ -720,27 +680,11 @@ mod tests {
         for path in files {
             for r in load(&path).unwrap().runs {
                 let a = r.attribution();
-                for (total, parts) in [
-                    (
-                        a.total.cor,
-                        a.model.cor + a.integration.cor + a.remainder.cor,
-                    ),
-                    (
-                        a.total.peak_deformation,
-                        a.model.peak_deformation
-                            + a.integration.peak_deformation
-                            + a.remainder.peak_deformation,
-                    ),
-                    (
-                        a.total.contact_time,
-                        a.model.contact_time
-                            + a.integration.contact_time
-                            + a.remainder.contact_time,
-                    ),
-                ] {
+                for (q, total) in a.total.iter() {
+                    let parts = a.model.get(q) + a.integration.get(q) + a.remainder.get(q);
                     assert!(
                         (total - parts).abs() < 1e-14,
-                        "{}: {total} vs {parts}",
+                        "{} {q}: {total} vs {parts}",
                         path.display()
                     );
                 }

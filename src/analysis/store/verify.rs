@@ -8,12 +8,13 @@ use serde::Serialize;
 use crate::analysis::benchmark::{CHUNG_OOI, STEPS_PER_CONTACT, STORED_FOLDER};
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
-use crate::analysis::store::{ReferenceRecord, StoreError, hex, load, stored_files};
+use crate::analysis::store::{ReferenceRecord, Shown, StoreError, hex, load, stored_files};
 use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
 use crate::error::Chain;
 use crate::model::case::Case;
 use crate::model::exact;
+use crate::model::figures::{Figures, Quantity};
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::{Section, Summary, signed};
 use crate::solve::Method;
@@ -154,6 +155,7 @@ pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
                 cor: report.error.cor,
                 peak_deformation: report.error.peak_deformation,
                 contact_time: report.error.contact_time,
+                ..Differences::default()
             };
             rows.push(VerifyRow {
                 case: case.name.clone(),
@@ -191,19 +193,22 @@ fn finding(
         source,
         stored: true,
         check,
-        differences: Differences {
-            cor: NOT_APPLICABLE,
-            peak_deformation: NOT_APPLICABLE,
-            contact_time: NOT_APPLICABLE,
-        },
-        tolerance: Tolerance {
-            cor: NOT_APPLICABLE,
-            peak_deformation: NOT_APPLICABLE,
-            contact_time: NOT_APPLICABLE,
-        },
+        differences: Differences::splat(NOT_APPLICABLE),
+        tolerance: Tolerance::splat(NOT_APPLICABLE),
         pass: detail.is_none(),
         detail,
     }
+}
+
+/// Whether a stored exact figure set agrees with the same set computed now, within
+/// [`RECOMPUTE_TOLERANCE`] on each figure a record shows (COR, peak deformation, peak force,
+/// contact time).
+fn recomputed_agrees<const P: u8>(stored: &Figures<f64, P>, now: &Figures<f64, P>) -> bool {
+    let (stored, now): (Shown, Shown) = (stored.select(), now.select());
+    stored.iter().all(|(q, &x)| {
+        let d = relative(x, *now.get(q));
+        !(d.is_nan() || d.abs() > RECOMPUTE_TOLERANCE)
+    })
 }
 
 /// What in `record` differs from what its case file in `cases` and this build produce now,
@@ -266,32 +271,14 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
     }
     match own_law_metrics(&record.law, record.setup.impact_velocity, 1e-13) {
         Ok(m) => {
-            let stored = &record.law_exact;
-            if [
-                relative(stored.cor, m.cor),
-                relative(stored.peak_deformation, m.peak_deformation),
-                relative(stored.peak_force, m.peak_force),
-                relative(stored.contact_time, m.contact_time),
-            ]
-            .iter()
-            .any(|d| d.is_nan() || d.abs() > RECOMPUTE_TOLERANCE)
-            {
+            if !recomputed_agrees(&record.law_exact, &m) {
                 found.push("law_exact differs from its law integrated now".to_string());
             }
         }
         Err(e) => found.push(format!("its law cannot be integrated now: {e}")),
     }
     let paper = exact::paper_impact(&case.law(), case.impact_velocity);
-    let stored = &record.paper_exact;
-    if [
-        relative(stored.cor, paper.cor),
-        relative(stored.peak_deformation, paper.peak_deformation),
-        relative(stored.peak_force, paper.peak_force),
-        relative(stored.contact_time, paper.contact_time),
-    ]
-    .iter()
-    .any(|d| d.is_nan() || d.abs() > RECOMPUTE_TOLERANCE)
-    {
+    if !recomputed_agrees(&record.paper_exact, &paper) {
         found.push(format!(
             "paper_exact differs from the closed forms of {} now",
             path.display()
@@ -511,33 +498,19 @@ fn own_law_stepped_row(record: &ReferenceRecord, name: &str, regenerate: &str) -
             );
         }
     };
-    let differences = Differences {
-        cor: relative(record.cor, now.cor),
-        peak_deformation: relative(record.peak_deformation, now.peak_deformation),
-        contact_time: relative(record.contact_time, now.contact_time),
-    };
-    let tolerance = Tolerance {
-        cor: REMAINDER_TOLERANCE,
-        peak_deformation: REMAINDER_TOLERANCE,
-        contact_time: REMAINDER_TOLERANCE,
-    };
+    let differences = Differences::from_fn(|q| relative(*record.figures.get(q), *now.get(q)));
+    let tolerance = Tolerance::splat(REMAINDER_TOLERANCE);
     // The figures the table has no column for are held to the same bound; one
     // that fails is named with its difference in the row's detail.
     let unshown: Vec<String> = [
-        ("peak force", record.peak_force, now.peak_force),
-        (
-            "contact time by force",
-            record.force_contact_time,
-            now.force_contact_time,
-        ),
-        (
-            "compression time",
-            record.compression_time,
-            now.compression_time,
-        ),
+        (Quantity::PeakForce, "peak force"),
+        (Quantity::ForceContactTime, "contact time by force"),
+        (Quantity::CompressionTime, "compression time"),
     ]
     .into_iter()
-    .filter_map(|(figure, stored, stepped)| {
+    .filter_map(|(q, figure)| {
+        let stored = *record.figures.get(q);
+        let stepped = *now.get(q);
         if stored.is_nan() {
             Some(format!("{figure} not stored"))
         } else {
@@ -576,8 +549,7 @@ fn target_row(record: &ReferenceRecord, name: &str) -> VerifyRow {
         .unwrap_or(f64::NAN);
     let differences = Differences {
         cor: realised - record.cor_target(),
-        peak_deformation: NOT_APPLICABLE,
-        contact_time: NOT_APPLICABLE,
+        ..Differences::splat(NOT_APPLICABLE)
     };
     let pass = differences.cor.abs() <= TARGET_TOLERANCE;
     VerifyRow {
@@ -590,8 +562,7 @@ fn target_row(record: &ReferenceRecord, name: &str) -> VerifyRow {
         differences,
         tolerance: Tolerance {
             cor: TARGET_TOLERANCE,
-            peak_deformation: NOT_APPLICABLE,
-            contact_time: NOT_APPLICABLE,
+            ..Tolerance::splat(NOT_APPLICABLE)
         },
         detail: (!pass).then(|| {
             format!(
@@ -707,18 +678,12 @@ pub struct VerifyRecord {
     pub stored: bool,
     /// What the row checks.
     pub check: Check,
-    /// COR difference.
-    pub cor_error: f64,
-    /// Peak deformation difference.
-    pub peak_deformation_error: f64,
-    /// Contact time difference.
-    pub contact_time_error: f64,
-    /// Tolerance on the COR.
-    pub cor_tolerance: f64,
-    /// Tolerance on the peak deformation.
-    pub peak_deformation_tolerance: f64,
-    /// Tolerance on the contact time.
-    pub contact_time_tolerance: f64,
+    /// The differences checked (`cor_error`, `peak_deformation_error`, `contact_time_error`).
+    #[serde(flatten, serialize_with = "crate::model::figures::suffix::error")]
+    pub differences: Differences,
+    /// What they must stay within (`cor_tolerance`, …).
+    #[serde(flatten, serialize_with = "crate::model::figures::suffix::tolerance")]
+    pub tolerance: Tolerance,
     /// Whether every check of the row holds.
     pub pass: bool,
     /// What disagrees, if anything.
@@ -747,12 +712,8 @@ impl Summary for VerifyReport {
                 source: r.source.name(),
                 stored: r.stored,
                 check: r.check,
-                cor_error: r.differences.cor,
-                peak_deformation_error: r.differences.peak_deformation,
-                contact_time_error: r.differences.contact_time,
-                cor_tolerance: r.tolerance.cor,
-                peak_deformation_tolerance: r.tolerance.peak_deformation,
-                contact_time_tolerance: r.tolerance.contact_time,
+                differences: r.differences,
+                tolerance: r.tolerance,
                 pass: r.pass,
                 detail: r.detail.clone(),
             })
@@ -775,7 +736,7 @@ impl Summary for VerifyReport {
         );
         let tolerance = |x: f64| cell(x, |v| format!("{v:.1e}"));
         for r in &self.rows {
-            t.rows.push(vec![
+            let mut row = vec![
                 match r.loss_coefficient {
                     Some(eta) => format!("{} η={eta}", r.case),
                     None => r.case.clone(),
@@ -786,17 +747,17 @@ impl Summary for VerifyReport {
                     r.source.to_string()
                 },
                 r.check.label().to_string(),
-                cell(r.differences.cor, signed),
-                cell(r.differences.peak_deformation, signed),
-                cell(r.differences.contact_time, signed),
-                format!(
-                    "{} / {} / {}",
-                    tolerance(r.tolerance.cor),
-                    tolerance(r.tolerance.peak_deformation),
-                    tolerance(r.tolerance.contact_time)
-                ),
-                if r.pass { "ok" } else { "FAIL" }.to_string(),
-            ]);
+            ];
+            row.extend(r.differences.iter().map(|(_, &d)| cell(d, signed)));
+            row.push(
+                r.tolerance
+                    .iter()
+                    .map(|(_, &x)| tolerance(x))
+                    .collect::<Vec<_>>()
+                    .join(" / "),
+            );
+            row.push(if r.pass { "ok" } else { "FAIL" }.to_string());
+            t.rows.push(row);
         }
         let failed = self.failed();
         t.notes.push(format!(

@@ -515,13 +515,7 @@ impl CodeFigures {
             reduced_mass: law.mass,
             contact_stiffness: law.stiffness,
             exponent: law.exponent,
-            measured: Figures {
-                cor: r.cor,
-                peak_deformation: r.peak_deformation,
-                peak_force: r.peak_force,
-                contact_time: r.contact_time,
-                ..Figures::default()
-            },
+            measured: r.figures.select(),
             reference: CodeFigures::reference(r.cor_target(), &r.paper_exact),
             steps: r.steps,
             timestep: r.timestep,
