@@ -9,8 +9,8 @@ use thiserror::Error;
 
 use crate::error::{Blame, UserError};
 use crate::model::case::{Case, ContactKind};
-use crate::model::exact::{self, HertzElastic, ImpactFigures};
-use crate::model::figures::{Checked, Exact, Figures, Quantity, quantity, suffix};
+use crate::model::exact::{self, ImpactFigures};
+use crate::model::figures::{Checked, Elastic, Exact, Figures, Quantity, quantity, suffix};
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::paper::{self, Outcome, Sample, Settings};
 use crate::solve::{Knob, Method, SolveError, Stats};
@@ -78,7 +78,7 @@ pub struct RunReport {
     pub error: RelativeErrors,
     /// Elastic Hertz figures (ball scenes).
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub hertz_elastic: Option<HertzElastic>,
+    pub hertz_elastic: Option<Elastic>,
     /// Bilateral contact: speed at each passage through zero approach, m/s.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub crossing_speeds: Vec<f64>,
@@ -146,19 +146,6 @@ fn relative(value: f64, reference: f64) -> f64 {
     (value - reference) / reference
 }
 
-/// The per-quantity figures of an impact (all but its absorbed energy).
-pub(crate) fn figures_of(impact: &ImpactFigures) -> Exact {
-    Exact {
-        cor: impact.cor,
-        peak_deformation: impact.peak_deformation,
-        peak_force: impact.peak_force,
-        contact_time: impact.contact_time,
-        compression_time: impact.compression_time,
-        restitution_time: impact.restitution_time,
-        ..Default::default()
-    }
-}
-
 /// The relative errors `(value - reference) / reference` of each quantity of `Q`.
 pub(crate) fn relative_errors<const Q: u8>(
     value: &Figures<f64, Q>,
@@ -173,8 +160,8 @@ impl RunReport {
         let law = case.law();
         let exact = exact::paper_impact(&law, case.impact_velocity);
         let f = &outcome.figures;
-        let figures = figures_of(f);
-        let exact_figures = figures_of(&exact);
+        let figures = f.figures;
+        let exact_figures = exact.figures;
         let hertz_elastic = match (
             case.scene.effective_modulus(),
             case.scene.effective_radius(),

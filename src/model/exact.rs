@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::model::figures::{Exact, Figures, Quantity, quantity};
+use crate::model::figures::{Elastic, Exact, Quantity};
 use crate::model::law::PaperLaw;
 use crate::model::trajectory::TrajectoryMetrics;
 
@@ -112,25 +112,22 @@ pub fn paper_impact(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
     }
 }
 
-/// The elastic Hertz impact of physics.md §3, in SI units: its peak deformation
-/// `δ_max = (15 M v0² / (16 E* sqrt(R*)))^(2/5)` (m) and contact time `t_c = 2 J(1.5) δ_max / v0`
-/// (s).
-pub type HertzElastic = Figures<f64, { quantity::PEAK_DEFORMATION | quantity::CONTACT_TIME }>;
-
-/// Elastic Hertz figures for reduced mass `M` (kg), `E*` (Pa), `R*` (m) and speed `v0` (m/s).
+/// The elastic Hertz impact of physics.md §3 for reduced mass `M` (kg), `E*` (Pa), `R*` (m)
+/// and speed `v0` (m/s): its peak deformation `δ_max = (15 M v0² / (16 E* sqrt(R*)))^(2/5)`
+/// (m) and contact time `t_c = 2 J(1.5) δ_max / v0` (s).
 pub fn hertz_elastic(
     mass: f64,
     effective_modulus: f64,
     effective_radius: f64,
     impact_velocity: f64,
-) -> HertzElastic {
+) -> Elastic {
     let v0 = impact_velocity;
     let peak =
         (15.0 * mass * v0 * v0 / (16.0 * effective_modulus * effective_radius.sqrt())).powf(0.4);
-    HertzElastic {
+    Elastic {
         peak_deformation: peak,
         contact_time: 2.0 * j_integral(1.5) * peak / v0,
-        ..HertzElastic::default()
+        ..Elastic::default()
     }
 }
 

@@ -54,6 +54,8 @@ pub mod quantity {
     /// The closed form's figures: all but the force contact time (the paper's force is
     /// repulsive all through the contact, so it is the overlap contact time).
     pub const EXACT: u8 = ALL & !FORCE_CONTACT_TIME;
+    /// An elastic (undamped) contact's figures: its peak deformation and contact time.
+    pub const ELASTIC: u8 = PEAK_DEFORMATION | CONTACT_TIME;
 }
 
 /// One quantity of an impact.
@@ -152,6 +154,9 @@ pub type Measured<T = f64> = Figures<T, { quantity::MEASURED }>;
 
 /// The closed form's figures: all quantities but the force contact time.
 pub type Exact<T = f64> = Figures<T, { quantity::EXACT }>;
+
+/// An elastic (undamped) contact's figures: peak deformation and contact time.
+pub type Elastic<T = f64> = Figures<T, { quantity::ELASTIC }>;
 
 impl<T, const Q: u8> Figures<T, Q> {
     /// The quantities this type carries, in output order.

@@ -2,6 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::model::figures::Elastic;
+
 /// Which impact a case describes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -265,34 +267,22 @@ impl Scene {
     /// The elastic contact of the scene's own spring at approach speed `impact_velocity`
     /// (m/s): Hertz's for the balls, the linear spring's for the rod. It is the yardstick of
     /// the codes' time steps and of the "vs elastic" comparison.
-    pub fn elastic_contact(&self, impact_velocity: f64) -> ElasticContact {
+    pub fn elastic_contact(&self, impact_velocity: f64) -> Elastic {
         let mass = self.reduced_mass();
         match (self.effective_modulus(), self.effective_radius()) {
             (Some(modulus), Some(radius)) => {
-                let h = crate::model::exact::hertz_elastic(mass, modulus, radius, impact_velocity);
-                ElasticContact {
-                    peak_deformation: h.peak_deformation,
-                    contact_time: h.contact_time,
-                }
+                crate::model::exact::hertz_elastic(mass, modulus, radius, impact_velocity)
             }
             _ => {
                 let omega_inverse = (mass / self.hertz_stiffness()).sqrt();
-                ElasticContact {
+                Elastic {
                     peak_deformation: impact_velocity * omega_inverse,
                     contact_time: std::f64::consts::PI * omega_inverse,
+                    ..Elastic::default()
                 }
             }
         }
     }
-}
-
-/// The elastic (undamped) contact of a scene's spring.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct ElasticContact {
-    /// Peak deformation, m.
-    pub peak_deformation: f64,
-    /// Contact time, s.
-    pub contact_time: f64,
 }
 
 fn paper_ball_stiffness(a: f64, ball: &Ball) -> f64 {

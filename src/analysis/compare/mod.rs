@@ -15,7 +15,7 @@ use crate::codes::{CodeName, setup_for_case};
 use crate::error::{Blame, Chain};
 use crate::model::case::Case;
 use crate::model::exact::{self, ImpactFigures};
-use crate::model::figures::{Figures, Measured, Quantity, quantity};
+use crate::model::figures::{Elastic, Figures, Measured, Quantity, quantity};
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
@@ -70,9 +70,6 @@ impl Serialize for CompareSource {
     }
 }
 
-/// The quantities a source is compared with the elastic contact in.
-pub const ELASTIC_QUANTITIES: u8 = quantity::PEAK_DEFORMATION | quantity::CONTACT_TIME;
-
 /// One source's figures for one case.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct SourceRow {
@@ -95,26 +92,13 @@ pub struct SourceRow {
     /// Relative difference of the peak deformation and the contact time from the elastic
     /// contact's.
     #[serde(flatten, serialize_with = "crate::model::figures::suffix::vs_elastic")]
-    pub vs_elastic: Figures<f64, ELASTIC_QUANTITIES>,
+    pub vs_elastic: Elastic,
 }
 
 /// The paper's law's exact figures in the form a trajectory's are read
 /// (`ImpactFigures::metrics`).
 pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
     p.metrics()
-}
-
-/// A trajectory's figures as a set of [`Measured`] quantities.
-pub(crate) fn measured(m: &TrajectoryMetrics) -> Measured {
-    Measured {
-        cor: m.cor,
-        peak_deformation: m.peak_deformation,
-        peak_force: m.peak_force,
-        contact_time: m.contact_time,
-        force_contact_time: m.force_contact_time,
-        compression_time: m.compression_time,
-        ..Measured::default()
-    }
 }
 
 /// A code's attribution for one case.
@@ -288,7 +272,7 @@ pub fn model_by_restitution(
 
 struct Baseline {
     paper: Measured,
-    elastic: Figures<f64, ELASTIC_QUANTITIES>,
+    elastic: Elastic,
     impact_energy: f64,
 }
 
@@ -348,7 +332,7 @@ pub(crate) fn compare_case(
     let exact = exact::paper_impact(&law, v0);
     let contact = case.scene.elastic_contact(v0);
     let base = Baseline {
-        paper: measured(&paper_metrics(&exact)),
+        paper: paper_metrics(&exact),
         elastic: Figures {
             peak_deformation: contact.peak_deformation,
             contact_time: contact.contact_time,
@@ -368,7 +352,7 @@ pub(crate) fn compare_case(
     })?;
     rows.push(base.row(
         CompareSource::PaperRk4,
-        measured(&paper_metrics(&rk4.figures)),
+        paper_metrics(&rk4.figures),
         Some(rk4.wall_time),
     ));
     let mut attribution = Vec::new();
@@ -412,7 +396,7 @@ pub(crate) fn compare_case(
             (CompareSource::CodeLawStepped(r.code), &own_stepped),
             (CompareSource::CodeLawExact(r.code), &own_exact),
         ] {
-            rows.push(base.row(source, measured(figures), None));
+            rows.push(base.row(source, *figures, None));
         }
         attribution.push(split);
     }

@@ -5,7 +5,7 @@
 
 use serde::Serialize;
 
-use super::{measured, paper_metrics};
+use super::paper_metrics;
 use crate::analysis::store::ReferenceRecord;
 use crate::model::exact::ImpactFigures;
 use crate::model::figures::{Figures, quantity};
@@ -61,7 +61,7 @@ impl Offsets {
     /// `(a − b)` relative to the paper's figures (the force time relative to the paper's
     /// contact time, which is also its force's duration).
     pub fn between(a: &TrajectoryMetrics, b: &TrajectoryMetrics, paper: &ImpactFigures) -> Offsets {
-        let (a, b, paper) = (measured(a), measured(b), measured(&paper_metrics(paper)));
+        let paper = paper_metrics(paper);
         Offsets::from_fn(|q| (a.get(q) - b.get(q)) / paper.get(q))
     }
 }

@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 use serde::Serialize;
 use thiserror::Error;
 
-use super::run::{figures_of, relative_errors};
+use super::run::relative_errors;
 use super::source::Source;
 use crate::codes::{self, CodeError, CodeName, RunOptions, SetupError};
 use crate::model::case::Case;
@@ -33,7 +33,7 @@ use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
 use crate::model::figures::{Checked, suffix};
 use crate::model::law::PaperLaw;
-use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
+use crate::model::trajectory::{TrajectoryError, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
 use crate::solve::dashpot::own_law_metrics;
@@ -263,16 +263,6 @@ fn absolute_errors(value: &Checked, reference: &Checked) -> Checked {
     relative_errors(value, reference).map(|_, e| e.abs())
 }
 
-/// The checked quantities of a trajectory's figures.
-fn checked_of(metrics: &TrajectoryMetrics) -> Checked {
-    Checked {
-        cor: metrics.cor,
-        peak_deformation: metrics.peak_deformation,
-        contact_time: metrics.contact_time,
-        ..Default::default()
-    }
-}
-
 /// A point's plotted error: the largest of its errors.
 fn max_error(error: &Checked) -> f64 {
     error.iter().map(|(_, e)| *e).fold(0.0, f64::max)
@@ -370,10 +360,7 @@ pub(crate) fn method_point(
             t0.elapsed().as_secs_f64() / batch as f64
         })
         .collect();
-    let error = absolute_errors(
-        &figures_of(&warm.figures).select(),
-        &figures_of(&exact).select(),
-    );
+    let error = absolute_errors(&warm.figures.select(), &exact.select());
     let Stats {
         steps,
         rhs_evaluations,
@@ -484,7 +471,7 @@ pub(crate) fn code_sweep(
         let run = last.expect("at least one run");
         let metrics = trajectory_metrics(&run.trajectory)
             .map_err(|source| PrecisionError::Trajectory { code, source })?;
-        let error = absolute_errors(&checked_of(&metrics), &checked_of(&reference));
+        let error = absolute_errors(&metrics.select(), &reference.select());
         points.push(WorkPrecisionPoint {
             source: Source::Code(code),
             knob: SweepKnob::StepsPerContact,

@@ -146,19 +146,6 @@ fn relative(value: f64, reference: f64) -> Option<f64> {
     finite((value - reference) / reference)
 }
 
-/// The figures of a closed-form or solved impact, as a row writes them.
-fn impact_figures(f: &ImpactFigures) -> Figures<f64, WRITTEN> {
-    Figures {
-        cor: f.cor,
-        peak_deformation: f.peak_deformation,
-        peak_force: f.peak_force,
-        contact_time: f.contact_time,
-        compression_time: f.compression_time,
-        restitution_time: f.restitution_time,
-        ..Figures::default()
-    }
-}
-
 impl PointFigures {
     /// Set the figure columns: the `measured` figures, and the `reference` each compared one is
     /// written with and measured against (a NaN, and an error against one, stay empty).
@@ -240,7 +227,7 @@ impl PointFigures {
             wall_time: finite(outcome.wall_time),
             ..PointFigures::default()
         };
-        self.set_compared(&impact_figures(f), &impact_figures(&exact).select());
+        self.set_compared(&f.select(), &exact.select());
     }
 
     /// The figures of a code's run (its compression and restitution times stay empty).
@@ -491,7 +478,7 @@ impl CodeFigures {
     pub(crate) fn reference(target: f64, paper_exact: &ImpactFigures) -> Figures<f64, COMPARED> {
         Figures {
             cor: target,
-            ..impact_figures(paper_exact).select()
+            ..paper_exact.select()
         }
     }
 
