@@ -16,7 +16,7 @@ use crate::solve::paper::{self, Outcome, Sample, Settings};
 use crate::solve::{Knob, Method, SolveError, Stats};
 
 /// The quantities of the closed forms a run is printed beside.
-pub const REPORTED_EXACT: u8 =
+pub(crate) const REPORTED_EXACT: u8 =
     quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME;
 
 /// The closed-form figures a run is compared with.
@@ -30,7 +30,7 @@ pub struct ExactFigures {
 }
 
 /// Relative errors `(run - exact) / exact` of the checked quantities.
-pub type RelativeErrors = Checked;
+pub(crate) type RelativeErrors = Checked;
 
 /// One impact by one method: everything `millimpact run` prints.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -372,7 +372,7 @@ pub struct RunRecord {
 
 /// One row of a trajectory file.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct TrajectoryRow {
+pub(crate) struct TrajectoryRow {
     /// Time, s.
     pub t: f64,
     /// Approach, m.
@@ -390,7 +390,7 @@ pub struct TrajectoryRow {
 
 /// The trajectory as rows: time (s), approach (m), approach rate (m/s), elastic force (N),
 /// dissipative force (N) and mechanical energy (J, kinetic plus elastic).
-pub fn trajectory_rows(case: &Case, samples: &[Sample]) -> Vec<TrajectoryRow> {
+pub(crate) fn trajectory_rows(case: &Case, samples: &[Sample]) -> Vec<TrajectoryRow> {
     let law = case.law();
     let bilateral = case.contact == ContactKind::Bilateral;
     samples
@@ -604,7 +604,7 @@ impl IntegrationOptions {
 }
 
 /// The arguments that repeat a run of `case` with `settings`.
-pub fn reproduce_arguments(case: &Case, settings: &Settings) -> String {
+pub(crate) fn reproduce_arguments(case: &Case, settings: &Settings) -> String {
     let method = settings.method;
     let mut text = format!("{} --method {method}", case.path.display());
     match (method.descriptor().knob, settings.timestep) {

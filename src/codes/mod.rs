@@ -375,7 +375,7 @@ impl CodeName {
     }
 
     /// The code called `name`, if there is one.
-    pub fn from_name(name: &str) -> Option<CodeName> {
+    pub(crate) fn from_name(name: &str) -> Option<CodeName> {
         CodeName::ALL.iter().copied().find(|c| c.name() == name)
     }
 

@@ -256,11 +256,6 @@ pub(crate) fn find_codes_dir() -> CodesDir {
     }
 }
 
-/// The codes' folder (`find_codes_dir`).
-pub fn codes_dir() -> PathBuf {
-    find_codes_dir().path
-}
-
 /// Whether `path` is a chain of symbolic links that ends at nothing: the file it was made to
 /// lead to is not here. Returns the last link's missing target.
 pub(crate) fn dangling_link(path: &Path) -> Option<PathBuf> {
@@ -313,7 +308,7 @@ pub fn binary_override_variable(code: &str) -> String {
 
 /// The executable a build runs: the file named by its [`binary_override_variable`] if that is
 /// set, else `binary` on PATH; `Err` says where it was looked for.
-pub fn locate_override_or_path(code: &str, binary: &str) -> Result<Executable, LocateError> {
+pub(crate) fn locate_override_or_path(code: &str, binary: &str) -> Result<Executable, LocateError> {
     let variable = binary_override_variable(code);
     if let Some(path) = std::env::var_os(&variable) {
         let path = PathBuf::from(path);

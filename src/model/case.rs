@@ -293,7 +293,7 @@ pub(crate) fn case_keys() -> Vec<String> {
 
 /// The keys `Case::apply` sets in place; the others change a scene's bodies, and a sweep
 /// reads the case anew for them.
-pub const IN_PLACE_KEYS: [&str; 3] = ["impact_velocity", "loss_coefficient", "restitution"];
+pub(crate) const IN_PLACE_KEYS: [&str; 3] = ["impact_velocity", "loss_coefficient", "restitution"];
 
 const TOP_KEYS: [&str; 6] = [
     "scene",

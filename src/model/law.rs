@@ -28,11 +28,6 @@ impl PaperLaw {
             .powf(1.0 / (n + 1.0))
     }
 
-    /// Force scale `C δ0^n`, N: the dimensionless force times this is the force in newtons.
-    pub fn force_scale(&self, impact_velocity: f64) -> f64 {
-        self.stiffness * self.elastic_peak(impact_velocity).powf(self.exponent)
-    }
-
     /// Total contact force, N, at approach `y` (m) and approach rate `v` (m/s), unilateral.
     pub fn force(&self, y: f64, v: f64) -> f64 {
         if y <= 0.0 {

@@ -46,7 +46,7 @@ impl Format {
     }
 
     /// The format called `name`, if there is one.
-    pub fn from_name(name: &str) -> Option<Format> {
+    pub(crate) fn from_name(name: &str) -> Option<Format> {
         Format::ALL.into_iter().find(|f| f.name() == name)
     }
 }

@@ -1023,8 +1023,3 @@ impl LaneImpact {
         }
     }
 }
-
-/// The closed-form figures, for comparison with a run.
-pub fn exact_figures(law: &PaperLaw, impact_velocity: f64) -> ImpactFigures {
-    exact::paper_impact(law, impact_velocity)
-}

@@ -200,7 +200,7 @@ pub(crate) const CHUNG_OOI: [PublishedImpact; 8] = [
 /// A figure a benchmark row compares.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub(crate) enum Quantity {
+pub enum Quantity {
     /// The largest overlap, m.
     PeakOverlap,
     /// The largest normal force, N.
@@ -388,7 +388,12 @@ pub(crate) struct BenchmarkOptions {
 }
 
 /// The command that makes and stores the run of `code` on `case` at η in `folder`.
-pub fn store_command(code: CodeName, case: &str, loss_coefficient: f64, folder: &Path) -> String {
+pub(crate) fn store_command(
+    code: CodeName,
+    case: &str,
+    loss_coefficient: f64,
+    folder: &Path,
+) -> String {
     format!(
         "millimpact reference --code {code} cases/benchmarks/{case}.toml --loss-coefficient {loss_coefficient} \
          --steps-per-contact {STEPS_PER_CONTACT} --save --reference {}",

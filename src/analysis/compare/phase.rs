@@ -48,14 +48,14 @@ impl Range {
 }
 
 /// The quantities an offset is given for: all a trajectory gives but the compression time.
-pub const OFFSET_QUANTITIES: u8 = quantity::COR
+pub(crate) const OFFSET_QUANTITIES: u8 = quantity::COR
     | quantity::PEAK_DEFORMATION
     | quantity::PEAK_FORCE
     | quantity::CONTACT_TIME
     | quantity::FORCE_CONTACT_TIME;
 
 /// Relative offsets of a figure set from another, per figure, relative to the paper's law.
-pub type Offsets = Figures<f64, OFFSET_QUANTITIES>;
+pub(crate) type Offsets = Figures<f64, OFFSET_QUANTITIES>;
 
 impl Offsets {
     /// `(a − b)` relative to the paper's figures (the force time relative to the paper's

@@ -53,17 +53,6 @@ pub(crate) const PHASES: usize = 16;
 /// Most steps one impact may run (a step this small for the contact is a deck error).
 pub(crate) const MAX_STEPS: u64 = 20_000_000;
 
-/// How to check a deck.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DeckCheckOptions {
-    /// Which code (build) reads and runs the deck; `None`: the first that recognises it.
-    pub code: Option<CodeName>,
-    /// Impact speeds, m/s; empty: a small range around a representative speed.
-    pub velocities: Vec<f64>,
-    /// What the command line adds to the deck.
-    pub deck: DeckOptions,
-}
-
 /// The figures of one impact of one pair, in the JSON one object per pair and velocity.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct DeckImpact {
@@ -133,7 +122,7 @@ pub struct DeckImpact {
 
 /// The quantities a deck's run is read for: COR, peak deformation (the overlap), contact time
 /// by overlap and by force.
-pub const REALISED: u8 = quantity::CHECKED | quantity::FORCE_CONTACT_TIME;
+pub(crate) const REALISED: u8 = quantity::CHECKED | quantity::FORCE_CONTACT_TIME;
 
 /// The realised figures of a run's trajectory.
 fn realised_figures(m: &TrajectoryMetrics) -> Figures<f64, REALISED> {

@@ -127,7 +127,7 @@ pub struct MillOptions {
 }
 
 /// Contacts are recorded every this many steps unless asked otherwise.
-pub const DEFAULT_CONTACT_EVERY: u64 = 5;
+pub(crate) const DEFAULT_CONTACT_EVERY: u64 = 5;
 
 impl MillOptions {
     /// What `millimpact mill DECK` runs with no option: the deck's own rotation and seeds, the
@@ -152,7 +152,7 @@ pub const BLOCKS: usize = 5;
 
 /// What one run gave.
 #[derive(Clone, Debug)]
-pub struct RunResult {
+pub(crate) struct RunResult {
     /// The law.
     pub law: MillLaw,
     /// The build that ran it.
@@ -571,7 +571,7 @@ pub fn report_from_folders(
 
 /// Run the comparison: both laws, every seed, `options.jobs` runs at once; `progress` is told
 /// of each finished run.
-pub fn run_mill(
+pub(crate) fn run_mill(
     deck: &MillDeck,
     options: &MillOptions,
     progress: &(dyn Fn(&RunResult) + Sync),

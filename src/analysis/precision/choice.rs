@@ -67,7 +67,7 @@ pub fn smallest_tolerance() -> f64 {
 
 /// The coarsest resolution of `method` whose bound with the margin meets `tolerance`, and that
 /// bound; `None` if even its finest does not.
-pub fn resolution_for(method: Method, tolerance: f64) -> Option<(Resolution, f64)> {
+pub(crate) fn resolution_for(method: Method, tolerance: f64) -> Option<(Resolution, f64)> {
     let descriptor = method.descriptor();
     let bound = descriptor.cor_error_bound?;
     let knob = descriptor.knob;

@@ -86,7 +86,7 @@ pub struct WorkPrecisionPoint {
 
 /// Observed orders of one source, per checked quantity (`None` where fewer than three points
 /// lie in the asymptotic range).
-pub type QuantityOrders = Checked<Option<f64>>;
+pub(crate) type QuantityOrders = Checked<Option<f64>>;
 
 /// What a work–precision sweep varies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]

@@ -111,7 +111,7 @@ pub struct Report {
 
 /// How to build the report.
 #[derive(Clone, Debug, PartialEq)]
-pub struct ReportOptions {
+pub(crate) struct ReportOptions {
     /// Run the codes now.
     pub live: bool,
     /// Folder of stored references.
@@ -778,7 +778,7 @@ fn benchmark_cor_chart(reference: &Path) -> Result<Vec<ReportFigure>, ReportErro
 
 /// Build the report for `cases`; `progress` is told each stage as it starts (one per case
 /// compared, then one per part).
-pub fn build_report(
+pub(crate) fn build_report(
     cases: &[Case],
     options: &ReportOptions,
     progress: &mut dyn FnMut(&str),
@@ -1129,7 +1129,7 @@ fn cor_against_speed_figure(
 
 /// Add the parts of the users' own decks to `report`, with their data, reproduce commands and
 /// failed runs.
-pub fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<(), ReportError> {
+pub(crate) fn add_decks(report: &mut Report, checks: &[DeckReport]) -> Result<(), ReportError> {
     for (k, check) in checks.iter().enumerate() {
         let (part, data) = deck_part(k + 1, check)?;
         report.parts.push(part);

@@ -54,7 +54,7 @@ pub const ETA_MAX: f64 = 0.999999;
 
 /// One case of the grid, with the parameters it was built from.
 #[derive(Clone, Debug)]
-pub struct GridCase {
+pub(crate) struct GridCase {
     /// Which part of the grid it belongs to.
     pub family: &'static str,
     /// The case.
@@ -239,11 +239,11 @@ pub(crate) fn grid() -> Vec<GridCase> {
 }
 
 /// The figures a grid case writes beside its errors: the COR, which the pass criteria bound.
-pub const WRITTEN: u8 = quantity::COR;
+pub(crate) const WRITTEN: u8 = quantity::COR;
 
 /// One grid case by one method.
 #[derive(Clone, Debug, Serialize)]
-pub struct CaseResult {
+pub(crate) struct CaseResult {
     /// Case label.
     pub case: String,
     /// Part of the grid.
@@ -295,7 +295,7 @@ pub struct CaseResult {
 /// The most steps a run of `method` may take on a contact of exact duration `contact_time`
 /// (s) at fixed step `timestep` (s): twice the steps the exact contact needs, plus the event
 /// and series steps; for dopri5, a fixed 10⁵ (it takes ~10³ at rtol 1e-12 on any case).
-pub fn work_bound(method: Method, contact_time: f64, timestep: Option<f64>) -> u64 {
+pub(crate) fn work_bound(method: Method, contact_time: f64, timestep: Option<f64>) -> u64 {
     match (method, timestep) {
         (Method::Dopri5, _) | (_, None) => 100_000,
         // A step so small that the bound passes u64 is no bound at all.
@@ -307,7 +307,7 @@ pub fn work_bound(method: Method, contact_time: f64, timestep: Option<f64>) -> u
 
 /// Run one grid case by one method at the solver's defaults (1000 steps per period, rtol
 /// 1e-12).
-pub fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
+pub(crate) fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
     let case = &grid_case.case;
     let law = case.law();
     let v0 = case.impact_velocity;

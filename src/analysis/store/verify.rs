@@ -119,7 +119,7 @@ impl VerifyReport {
 }
 
 /// The case files in `dir`, sorted by name.
-pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
+pub(crate) fn case_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
         .map_err(|reason| StoreError::CasesUnreadable {
             folder: dir.to_path_buf(),
@@ -138,7 +138,7 @@ pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
 }
 
 /// Check every case in `dir` by every integrating method against the closed forms.
-pub fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
+pub(crate) fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     let mut rows = Vec::new();
     for path in case_files(dir)? {
         let case = Case::load(&path)?;
@@ -298,7 +298,7 @@ fn provenance(record: &ReferenceRecord, cases: &Path) -> Vec<String> {
 ///   `STORED_LOSS_COEFFICIENTS` (for the canonical cases present in `cases`), and no other
 ///   file. Records are the `*.json` files directly in `folder/<code>/`; other files there (the
 ///   conventions notes, probe inputs) are not records.
-pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
+pub(crate) fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
     if !folder.is_dir() {
         return Err(StoreError::NoReferenceFolder {
             folder: folder.to_path_buf(),
@@ -317,7 +317,10 @@ pub fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, Stor
 /// re-stepped now, its law against its target, and the store as a whole (a run of every code
 /// on every benchmark case at every η the benchmark reads, `PublishedImpact::loss_coefficients`).
 /// A folder not there is a store missing every run.
-pub fn verify_benchmark_store(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow>, StoreError> {
+pub(crate) fn verify_benchmark_store(
+    folder: &Path,
+    cases: &Path,
+) -> Result<Vec<VerifyRow>, StoreError> {
     let expected: Vec<(&str, Vec<f64>)> = CHUNG_OOI
         .iter()
         .map(|impact| (impact.case, impact.loss_coefficients()))

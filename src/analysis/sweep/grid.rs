@@ -145,7 +145,7 @@ pub struct SweepFile {
     /// The method and resolution chosen for the file's `tolerance`, if it gives one.
     pub tolerance: Option<Choice>,
     /// Whether every case axis is a key the case is edited at in place
-    /// ([`IN_PLACE_KEYS`]), so that a point's case need not be read anew.
+    /// (`IN_PLACE_KEYS`), so that a point's case need not be read anew.
     pub in_place: bool,
 }
 
@@ -693,7 +693,8 @@ impl SweepFile {
 
     /// The parameter cells of `point`, in `SweepFile::key_columns` order, in the normal
     /// form rows are matched by.
-    pub fn key_cells(&self, point: &GridPoint) -> Vec<String> {
+    #[cfg(test)]
+    pub(crate) fn key_cells(&self, point: &GridPoint) -> Vec<String> {
         let row = self.row(point, PointFigures::default(), RowStatus::default());
         super::row::key_cells(&row.axes, &row.source)
             .iter()

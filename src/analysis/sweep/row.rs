@@ -74,13 +74,13 @@ impl PointSource {
 
 /// The quantities a row writes as measured: all but the force contact time (the same set as
 /// [`quantity::EXACT`], here for what a source gave).
-pub const WRITTEN: u8 = quantity::ALL & !quantity::FORCE_CONTACT_TIME;
+pub(crate) const WRITTEN: u8 = quantity::ALL & !quantity::FORCE_CONTACT_TIME;
 /// The quantities a row compares with a reference: COR, peak deformation, peak force, contact
 /// time (the peak force has a reference and no error column).
-pub const COMPARED: u8 =
+pub(crate) const COMPARED: u8 =
     quantity::COR | quantity::PEAK_DEFORMATION | quantity::PEAK_FORCE | quantity::CONTACT_TIME;
 /// The compared quantities whose reference is the paper's law, exact (the COR's is a target).
-pub const PAPER_EXACT: u8 = COMPARED & !quantity::COR;
+pub(crate) const PAPER_EXACT: u8 = COMPARED & !quantity::COR;
 
 /// The figures of a point; a column a source does not report stays empty.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -345,7 +345,8 @@ pub(crate) fn key_columns(axis_keys: &[String]) -> Vec<String> {
 
 /// The cells of the key columns (`key_columns`) as the row writes them: the axis values and
 /// the source, through the same serialisation as the CSV record.
-pub fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
+#[cfg(test)]
+pub(crate) fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String> {
     let mut records = CsvRecords::default();
     // Serialising scalars into memory cannot fail.
     let _ = records.push(&(AxisValues(axes), source));
@@ -494,7 +495,7 @@ impl CodeFigures {
     }
 
     /// The figures of a stored-style record of a single run.
-    pub fn from_record(case: &Case, r: &ReferenceRecord) -> CodeFigures {
+    pub(crate) fn from_record(case: &Case, r: &ReferenceRecord) -> CodeFigures {
         let law = case.law();
         CodeFigures {
             case: r.case.clone(),

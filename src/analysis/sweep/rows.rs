@@ -146,7 +146,7 @@ pub(crate) fn json_cell(value: &serde_json::Value) -> String {
 }
 
 /// Read the rows of a sweep output (CSV or JSON lines, told apart by the first character).
-pub fn read_rows(path: &Path) -> Result<Rows, SweepError> {
+pub(crate) fn read_rows(path: &Path) -> Result<Rows, SweepError> {
     let text = std::fs::read_to_string(path).map_err(|source| SweepError::Read {
         path: path.to_path_buf(),
         source,

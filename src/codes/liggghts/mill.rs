@@ -25,16 +25,16 @@ const PAPER_WHITELIST: &str =
     include_str!("../../../scripts/liggghts-paper/style_contact_model_user.whitelist");
 
 /// The files the instrumented deck writes in its scratch folder.
-pub const ENERGY_FILE: &str = "millimpact_energy.txt";
+pub(crate) const ENERGY_FILE: &str = "millimpact_energy.txt";
 /// The per-atom file (id, type, mass, radius) written at the start of rotation.
-pub const ATOMS_FILE: &str = "millimpact_atoms.txt";
+pub(crate) const ATOMS_FILE: &str = "millimpact_atoms.txt";
 /// Particle–particle contacts, every few steps over the spectra window.
-pub const PAIRS_FILE: &str = "millimpact_pairs.txt";
+pub(crate) const PAIRS_FILE: &str = "millimpact_pairs.txt";
 /// Particle–wall contacts (the last mesh wall/gran fix), every few steps over the window.
-pub const WALLS_FILE: &str = "millimpact_walls.txt";
+pub(crate) const WALLS_FILE: &str = "millimpact_walls.txt";
 /// Particle positions (id, x, y, z, radius), at [`MillPlan::position_every`] steps through
 /// the rotation, where the deck has gravity: the charge's toe and shoulder.
-pub const POSITIONS_FILE: &str = "millimpact_positions.txt";
+pub(crate) const POSITIONS_FILE: &str = "millimpact_positions.txt";
 
 /// Seeds (primes above 10000, as LIGGGHTS's random seeds must be) that replace a deck's
 /// insertion seeds for its second and later seeds.
@@ -44,7 +44,7 @@ const SEEDS: [u64; 24] = [
 ];
 
 /// The most seeds a mill comparison takes (each needs its own insertion seeds).
-pub const MAX_SEEDS: usize = 4;
+pub(crate) const MAX_SEEDS: usize = 4;
 
 /// A normal contact law the mill comparison runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -562,7 +562,7 @@ impl MillDeck {
     }
 
     /// The number of steps a rotation time (s) takes at the deck's step, rounded.
-    pub fn steps_for(&self, seconds: f64) -> u64 {
+    pub(crate) fn steps_for(&self, seconds: f64) -> u64 {
         let steps = (seconds / self.timestep).round();
         // Bounded by the caller's check against the deck's own rotation.
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
