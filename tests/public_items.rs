@@ -60,10 +60,8 @@ fn collect(module: &str, items: &[Item], out: &mut Vec<String>) {
             Item::Const(c) if public(&c.vis) => out.push(line("const", &c.ident)),
             Item::Static(s) if public(&s.vis) => out.push(line("static", &s.ident)),
             Item::Type(t) if public(&t.vis) => out.push(line("type", &t.ident)),
-            Item::Use(u) if public(&u.vis) => {
-                let tree = &u.tree;
-                out.push(format!("use {}", join(module, quote_tree(tree))));
-            }
+            // A re-export is counted as the items it makes reachable (`surface`), not as a line.
+            Item::Use(_) => {}
             Item::Mod(m) if !test_only(&m.attrs) && public(&m.vis) => {
                 out.push(line("mod", &m.ident));
                 if let Some((_, inner)) = &m.content {
@@ -97,19 +95,6 @@ fn type_name(ty: &syn::Type) -> String {
             .map(|s| s.ident.to_string())
             .unwrap_or_default(),
         _ => "_".to_string(),
-    }
-}
-
-fn quote_tree(tree: &syn::UseTree) -> String {
-    match tree {
-        syn::UseTree::Path(p) => format!("{}::{}", p.ident, quote_tree(&p.tree)),
-        syn::UseTree::Name(n) => n.ident.to_string(),
-        syn::UseTree::Rename(r) => format!("{} as {}", r.ident, r.rename),
-        syn::UseTree::Glob(_) => "*".to_string(),
-        syn::UseTree::Group(g) => {
-            let inner: Vec<String> = g.items.iter().map(quote_tree).collect();
-            format!("{{{}}}", inner.join(", "))
-        }
     }
 }
 
@@ -165,8 +150,76 @@ fn surface() -> Vec<String> {
             collect(module, &parsed.items, &mut out);
         }
     }
+    // A `pub use` of an item of a crate-private module makes that item reachable, with its
+    // public methods: counted under the re-exporting module. One of an already reachable
+    // item adds nothing (it is counted where it is declared).
+    for (module, parsed) in files.iter().filter(|(m, _)| reachable(m)) {
+        for item in &parsed.items {
+            let Item::Use(u) = item else { continue };
+            if !public(&u.vis) {
+                continue;
+            }
+            for (target, name) in use_leaves(module, &u.tree, Vec::new()) {
+                if reachable(&target) {
+                    continue;
+                }
+                let Some((_, declared)) = files.iter().find(|(m, _)| *m == target) else {
+                    continue;
+                };
+                let mut found = Vec::new();
+                collect("", &declared.items, &mut found);
+                out.extend(
+                    found
+                        .iter()
+                        .filter_map(|l| l.split_once(' '))
+                        .filter(|(_, path)| {
+                            name == "*" || *path == name || path.starts_with(&format!("{name}::"))
+                        })
+                        .map(|(kind, path)| format!("{kind} {}", join(module, path))),
+                );
+            }
+        }
+    }
     out.sort();
+    out.dedup();
     out
+}
+
+/// The (module, name) pairs a `use` tree names, the module resolved from `crate::`, `super::`
+/// or the using module's own children.
+fn use_leaves(module: &str, tree: &syn::UseTree, prefix: Vec<String>) -> Vec<(String, String)> {
+    let resolve = |segments: &[String]| -> String {
+        let mut path: Vec<String> = if segments.first().is_some_and(|s| s == "crate") {
+            Vec::new()
+        } else {
+            module.split("::").filter(|s| !s.is_empty()).map(String::from).collect()
+        };
+        for s in segments {
+            match s.as_str() {
+                "crate" | "self" => {}
+                "super" => {
+                    path.pop();
+                }
+                other => path.push(other.to_string()),
+            }
+        }
+        path.join("::")
+    };
+    match tree {
+        syn::UseTree::Path(p) => {
+            let mut next = prefix;
+            next.push(p.ident.to_string());
+            use_leaves(module, &p.tree, next)
+        }
+        syn::UseTree::Name(n) => vec![(resolve(&prefix), n.ident.to_string())],
+        syn::UseTree::Rename(r) => vec![(resolve(&prefix), r.ident.to_string())],
+        syn::UseTree::Glob(_) => vec![(resolve(&prefix), "*".to_string())],
+        syn::UseTree::Group(g) => g
+            .items
+            .iter()
+            .flat_map(|t| use_leaves(module, t, prefix.clone()))
+            .collect(),
+    }
 }
 
 #[test]
