@@ -32,16 +32,16 @@ use std::time::Duration;
 use criterion::{Criterion, SamplingMode, criterion_group, criterion_main};
 use millimpact::analysis::run::IntegrationOptions;
 use millimpact::analysis::source::Resolution;
-use millimpact::analysis::sweep::grid::{GridPoint, SweepFile};
-use millimpact::analysis::sweep::legacy::{EtaRange, Streamed};
-use millimpact::analysis::sweep::point::{GridOptions, method_rows, single_point};
-use millimpact::analysis::sweep::row::SweepRow;
-use millimpact::analysis::sweep::rows::{RowFormat, RowWriter};
+use millimpact::analysis::sweep::SweepRow;
 use millimpact::analysis::sweep::run_grid;
+use millimpact::analysis::sweep::{EtaRange, Streamed};
+use millimpact::analysis::sweep::{GridOptions, method_rows, single_point};
+use millimpact::analysis::sweep::{GridPoint, SweepFile};
+use millimpact::analysis::sweep::{RowFormat, RowWriter};
 use millimpact::model::case::Case;
 use millimpact::model::law::PaperLaw;
+use millimpact::output::CsvRecords;
 use millimpact::output::Format;
-use millimpact::output::csv_record::CsvRecords;
 use millimpact::solve::paper::{self, Settings};
 use rayon::prelude::*;
 
@@ -83,7 +83,7 @@ fn per_point(sweep: &SweepFile, points: &[GridPoint], pool: &rayon::ThreadPool) 
 /// Now: the chunked path of `millimpact sweep`.
 fn chunked(sweep: &SweepFile, indices: &[usize]) {
     let mut out = std::io::sink();
-    let mut write = |rows: millimpact::analysis::sweep::rows::EncodedRows| {
+    let mut write = |rows: millimpact::analysis::sweep::EncodedRows| {
         std::io::Write::write_all(&mut out, &rows.into_bytes())
     };
     run_grid(

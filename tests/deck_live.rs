@@ -783,11 +783,11 @@ fn yade_scripts_with_dumps() -> Vec<(std::path::PathBuf, std::path::PathBuf)> {
 #[test]
 #[ignore = "live: runs the set-up of every YADE script of tests/data/deck/yade in YADE"]
 fn the_recorded_yade_dumps_are_what_yade_dumps_now() {
-    use millimpact::codes::yade::dump::{dump_script, parse_dump};
+    use millimpact::codes::yade::{dump_script, parse_dump};
     let pairs = yade_scripts_with_dumps();
     assert!(pairs.len() > 10, "{pairs:?}");
     for (script, dump) in pairs {
-        let live = match dump_script(&script, millimpact::codes::yade::dump::READ_TIME_LIMIT) {
+        let live = match dump_script(&script, millimpact::codes::yade::READ_TIME_LIMIT) {
             Ok(text) => text,
             Err(e) => {
                 // Only a script YADE cannot set up has no dump.

@@ -192,7 +192,11 @@ fn use_leaves(module: &str, tree: &syn::UseTree, prefix: Vec<String>) -> Vec<(St
         let mut path: Vec<String> = if segments.first().is_some_and(|s| s == "crate") {
             Vec::new()
         } else {
-            module.split("::").filter(|s| !s.is_empty()).map(String::from).collect()
+            module
+                .split("::")
+                .filter(|s| !s.is_empty())
+                .map(String::from)
+                .collect()
         };
         for s in segments {
             match s.as_str() {

@@ -224,12 +224,12 @@ mod encoding {
     //! writes for the same typed record, byte for byte, both forms.
 
     use millimpact::analysis::run::RunRecord as LegacyRow;
-    use millimpact::analysis::sweep::row::{
+    use millimpact::analysis::sweep::{
         AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow,
     };
     use millimpact::codes::CodeName;
     use millimpact::model::figures::{Checked, Exact, Figures};
-    use millimpact::output::csv_record::{CsvRecords, header_of};
+    use millimpact::output::{CsvRecords, header_of};
     use millimpact::solve::Method;
     use proptest::prelude::*;
     use serde::Serialize;

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use millimpact::analysis::precision::{PrecisionError, method_sweep};
 use millimpact::analysis::run::{RunError, run_case};
 use millimpact::analysis::sweep::SweepError;
-use millimpact::analysis::sweep::rows::merge;
+use millimpact::analysis::sweep::merge;
 use millimpact::error::{Blame, Chain};
 use millimpact::output::files::{ReplaceDirError, replace_dir};
 use millimpact::{Case, CodeName, Method, Settings, StoreError, find_stored, verify};

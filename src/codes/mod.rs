@@ -13,7 +13,7 @@ pub mod deck;
 pub(crate) mod parse;
 pub mod runner;
 pub mod script;
-pub mod setup;
+pub(crate) mod setup;
 pub mod template;
 
 use std::ffi::OsString;
@@ -31,7 +31,9 @@ use lammps::conventions::Conventions;
 use lammps::probe::{ProbeError, ProbeReport};
 pub use parse::ParseError;
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
-pub use setup::{CodeSetup, CodeSphere, SetupError, prepare, prepare_with, setup_for_case};
+pub use setup::{
+    CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with, setup_for_case,
+};
 
 /// What a driver's parser returns.
 #[derive(Clone, Debug, PartialEq)]

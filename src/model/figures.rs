@@ -276,7 +276,7 @@ impl<T: Serialize, const Q: u8> Serialize for Suffixed<'_, T, Q> {
 
 /// `serialize_with` functions that write a flattened [`Figures`] with a suffix on each name:
 /// `#[serde(flatten, serialize_with = "suffix::vs_paper")]`.
-pub mod suffix {
+pub(crate) mod suffix {
     use super::Figures;
     use serde::{Serialize, Serializer};
 

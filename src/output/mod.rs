@@ -6,7 +6,8 @@
 //! Markdown forms lay out the same [`Section`]s.
 
 pub(crate) mod chart;
-pub mod csv_record;
+pub(crate) mod csv_record;
+pub use csv_record::{CsvRecords, RecordError, header_of};
 pub mod files;
 pub(crate) mod invocation;
 pub mod report_page;

@@ -30,7 +30,7 @@ pub fn a_cards_step_is_the_largest_within_the_tolerance() {
             let at = case.with_loss_coefficient(t.loss_coefficient);
             let fine = card(card_at.code, &at, Some(h), tolerance).unwrap();
             let n = card_at.steps_per_contact.expect("a count is found");
-            let tc = millimpact::codes::setup::elastic_contact_time(&at);
+            let tc = millimpact::codes::elastic_contact_time(&at);
             let coarse = card(card_at.code, &at, Some(tc / f64::from(n - 1)), tolerance).unwrap();
             let off = |r: &millimpact::analysis::compare::phase::Range| {
                 (r.min - e).abs().max((r.max - e).abs()) / e

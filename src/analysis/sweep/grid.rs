@@ -438,17 +438,6 @@ pub(crate) fn number(x: f64) -> String {
     }
 }
 
-/// A cell as written in a row: strings bare, numbers by `number`.
-pub fn cell(value: &Value) -> String {
-    match value {
-        Value::String(s) => s.clone(),
-        Value::Float(x) => number(*x),
-        Value::Integer(i) => i.to_string(),
-        Value::Boolean(b) => b.to_string(),
-        other => other.to_string(),
-    }
-}
-
 /// The normal form of a parameter cell for matching rows: a number by its value.
 pub(crate) fn normal_cell(text: &str) -> String {
     match text.parse::<f64>() {

@@ -9,7 +9,7 @@ use std::sync::atomic::AtomicBool;
 use serde::Serialize;
 
 use super::error::SweepError;
-use crate::analysis::run::{IntegrationOptions, RunRecord, RunReport, run_case, solve_failure};
+use crate::analysis::run::{IntegrationOptions, RunRecord, RunReport, solve_failure};
 use crate::error::UserError;
 use crate::model::case::Case;
 use crate::model::count::round_count;
@@ -85,24 +85,6 @@ pub struct SweepReport {
     pub rows: Vec<RunRecord>,
     /// The command that reproduces it.
     pub command: String,
-}
-
-/// Run `case` at each η of `values`.
-pub fn sweep(
-    case: &Case,
-    values: &[f64],
-    options: &IntegrationOptions,
-) -> Result<SweepReport, SweepError> {
-    let mut rows = Vec::with_capacity(values.len());
-    for &eta in values {
-        let at = case.with_loss_coefficient(eta);
-        let settings = options.settings(&at, false)?;
-        rows.push(run_case(&at, &settings)?.0.row());
-    }
-    Ok(SweepReport {
-        rows,
-        command: String::new(),
-    })
 }
 
 /// The headers of the table people read.

@@ -4,12 +4,17 @@
 pub(crate) mod batch;
 pub(crate) mod error;
 pub(crate) mod failed;
-pub mod grid;
-pub mod legacy;
-pub mod point;
+pub(crate) mod grid;
+pub use grid::{GridPoint, SweepFile};
+pub(crate) mod legacy;
+pub use legacy::{EtaRange, Streamed};
+pub(crate) mod point;
+pub use point::{GridOptions, method_rows, single_point};
 pub(crate) mod resume;
-pub mod row;
-pub mod rows;
+pub(crate) mod row;
+pub use row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, SweepRow};
+pub(crate) mod rows;
+pub use rows::{EncodedRows, RowFormat, RowWriter, merge};
 
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -18,10 +23,6 @@ use std::sync::mpsc;
 
 use crate::analysis::source::Source;
 pub use error::SweepError;
-use grid::{GridPoint, SweepFile};
-use point::{GridOptions, method_rows};
-use row::SweepRow;
-use rows::{EncodedRows, RowFormat};
 
 /// Points of our methods are computed and encoded in chunks of this many: a chunk is one
 /// message to the writer, and rk4-event steps its impacts together in lanes.

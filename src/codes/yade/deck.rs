@@ -1,5 +1,5 @@
 //! A YADE user's script (`millimpact deck`), read as YADE holds it after the script's set-up
-//! ([`super::dump`]: the script run by YADE's own Python with its stepping disarmed, then
+//! (`super::dump`: the script run by YADE's own Python with its stepping disarmed, then
 //! dumped): the materials of `O.materials` with every attribute after any later edit, the
 //! `InteractionLoop`'s functors with each `MatchMaker` evaluated per pair of materials,
 //! `O.dt`, and the bodies: spheres with their radii, materials and masses; walls, facets and
