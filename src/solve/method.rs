@@ -215,7 +215,7 @@ impl Method {
     }
 
     /// The method called `name`, if there is one.
-    pub fn from_name(name: &str) -> Option<Method> {
+    pub(crate) fn from_name(name: &str) -> Option<Method> {
         Method::ALL.iter().copied().find(|m| m.name() == name)
     }
 

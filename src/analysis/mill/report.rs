@@ -151,7 +151,7 @@ pub struct PowerBalance {
 
 impl PowerBalance {
     /// Whether both laws' routes agree within two standard errors.
-    pub fn closes(&self) -> bool {
+    pub(crate) fn closes(&self) -> bool {
         [self.written, self.switched]
             .iter()
             .all(|d| d.mean.abs() <= 2.0 * d.standard_error)

@@ -353,11 +353,6 @@ impl<W: Write> RowWriter<W> {
     pub(crate) fn flush(&mut self) -> std::io::Result<()> {
         self.out.flush()
     }
-
-    /// The format rows are written in.
-    pub fn format(&self) -> RowFormat {
-        self.format
-    }
 }
 
 /// Shards joined by [`merge`]: the text, and where its failed rows are.

@@ -66,7 +66,7 @@ impl MillLaw {
     }
 
     /// The other law.
-    pub fn other(self) -> MillLaw {
+    pub(crate) fn other(self) -> MillLaw {
         match self {
             MillLaw::Hertz => MillLaw::Paper,
             MillLaw::Paper => MillLaw::Hertz,
