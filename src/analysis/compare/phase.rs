@@ -60,7 +60,11 @@ pub(crate) type Offsets = Figures<f64, OFFSET_QUANTITIES>;
 impl Offsets {
     /// `(a − b)` relative to the paper's figures (the force time relative to the paper's
     /// contact time, which is also its force's duration).
-    pub(crate) fn between(a: &TrajectoryMetrics, b: &TrajectoryMetrics, paper: &ImpactFigures) -> Offsets {
+    pub(crate) fn between(
+        a: &TrajectoryMetrics,
+        b: &TrajectoryMetrics,
+        paper: &ImpactFigures,
+    ) -> Offsets {
         let paper = paper_metrics(paper);
         Offsets::from_fn(|q| (a.get(q) - b.get(q)) / paper.get(q))
     }
