@@ -248,21 +248,7 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
                     ))
                 })?);
             }
-            // Rows are appended in this version's column order, so a header in another
-            // order (an output of an older version) would put values under others' labels.
-            let columns = sweep.columns();
-            let width = headers.len().max(columns.len());
-            if let Some(i) =
-                (0..width).find(|&i| headers.get(i) != columns.get(i).map(String::as_str))
-            {
-                return Err(refuse(format!(
-                    "a file whose columns are this sweep's, in its order; column {} is `{}` where this version writes `{}`: start a new output",
-                    i + 1,
-                    headers.get(i).unwrap_or_default(),
-                    columns.get(i).map_or("", String::as_str)
-                ))
-                .into());
-            }
+            check_column_order(&headers, &sweep.columns()).map_err(refuse)?;
             let header_end = csv.position().byte();
             resumed.keep.push(0..header_end);
             resumed.kept_lines = usize::try_from(csv.position().line()).unwrap_or(1) - 1;
@@ -288,15 +274,36 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
             }
         }
     }
-    // The latest row that computed each point is kept; every other row goes.
+    keep_latest(&rows, &sweep.fingerprint, &mut resumed).map_err(refuse)?;
+    Ok(resumed)
+}
+
+/// Rows are appended in this version's column order, so a header in another order (an output
+/// of an older version) would put values under others' labels: the first column that differs,
+/// as what is allowed.
+fn check_column_order(headers: &csv::StringRecord, columns: &[String]) -> Result<(), String> {
+    let width = headers.len().max(columns.len());
+    match (0..width).find(|&i| headers.get(i) != columns.get(i).map(String::as_str)) {
+        Some(i) => Err(format!(
+            "a file whose columns are this sweep's, in its order; column {} is `{}` where this version writes `{}`: start a new output",
+            i + 1,
+            headers.get(i).unwrap_or_default(),
+            columns.get(i).map_or("", String::as_str)
+        )),
+        None => Ok(()),
+    }
+}
+
+/// Keep the latest row that computed each point and drop every other, counting them into
+/// `resumed`; a row of another sweep than `fingerprint` is refused.
+fn keep_latest(rows: &[ReadRow], fingerprint: &str, resumed: &mut Resumed) -> Result<(), String> {
     let mut latest: HashMap<PointKey, usize> = HashMap::new();
     for (i, row) in rows.iter().enumerate() {
-        if row.sweep != sweep.fingerprint {
-            return Err(refuse(format!(
-                "holds rows of sweep {}, not of this sweep ({})",
-                row.sweep, sweep.fingerprint
-            ))
-            .into());
+        if row.sweep != fingerprint {
+            return Err(format!(
+                "holds rows of sweep {}, not of this sweep ({fingerprint})",
+                row.sweep
+            ));
         }
         if row.ok {
             latest.insert(row.key, i);
@@ -317,7 +324,7 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
     }
     resumed.retried = retried.len();
     resumed.done = latest.into_keys().collect();
-    Ok(resumed)
+    Ok(())
 }
 
 #[cfg(test)]
