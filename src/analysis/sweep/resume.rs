@@ -248,7 +248,7 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
                     ))
                 })?);
             }
-            check_column_order(&headers, &sweep.columns()).map_err(refuse)?;
+            check_column_order(&headers, &sweep.columns()).map_err(|e| refuse(e.to_string()))?;
             let header_end = csv.position().byte();
             resumed.keep.push(0..header_end);
             resumed.kept_lines = usize::try_from(csv.position().line()).unwrap_or(1) - 1;
@@ -274,36 +274,64 @@ pub fn read_resumed(path: &Path, sweep: &SweepFile) -> Result<Resumed, SweepErro
             }
         }
     }
-    keep_latest(&rows, &sweep.fingerprint, &mut resumed).map_err(refuse)?;
+    keep_latest(&rows, &sweep.fingerprint, &mut resumed).map_err(|e| refuse(e.to_string()))?;
     Ok(resumed)
 }
 
+/// Why an existing output cannot be resumed, as what `--resume` allows.
+#[derive(Debug, thiserror::Error)]
+enum Unresumable {
+    /// A column other than this version writes at its place.
+    #[error(
+        "a file whose columns are this sweep's, in its order; column {column} is `{found}` where this version writes `{expected}`: start a new output"
+    )]
+    ColumnOrder {
+        /// The column's place, from 1.
+        column: usize,
+        /// The file's header there.
+        found: String,
+        /// This version's.
+        expected: String,
+    },
+    /// A row of another sweep.
+    #[error("holds rows of sweep {found}, not of this sweep ({expected})")]
+    OtherSweep {
+        /// The row's sweep fingerprint.
+        found: String,
+        /// This sweep's.
+        expected: String,
+    },
+}
+
 /// Rows are appended in this version's column order, so a header in another order (an output
-/// of an older version) would put values under others' labels: the first column that differs,
-/// as what is allowed.
-fn check_column_order(headers: &csv::StringRecord, columns: &[String]) -> Result<(), String> {
+/// of an older version) would put values under others' labels: the first column that differs
+/// is refused.
+fn check_column_order(headers: &csv::StringRecord, columns: &[String]) -> Result<(), Unresumable> {
     let width = headers.len().max(columns.len());
     match (0..width).find(|&i| headers.get(i) != columns.get(i).map(String::as_str)) {
-        Some(i) => Err(format!(
-            "a file whose columns are this sweep's, in its order; column {} is `{}` where this version writes `{}`: start a new output",
-            i + 1,
-            headers.get(i).unwrap_or_default(),
-            columns.get(i).map_or("", String::as_str)
-        )),
+        Some(i) => Err(Unresumable::ColumnOrder {
+            column: i + 1,
+            found: headers.get(i).unwrap_or_default().to_string(),
+            expected: columns.get(i).cloned().unwrap_or_default(),
+        }),
         None => Ok(()),
     }
 }
 
 /// Keep the latest row that computed each point and drop every other, counting them into
 /// `resumed`; a row of another sweep than `fingerprint` is refused.
-fn keep_latest(rows: &[ReadRow], fingerprint: &str, resumed: &mut Resumed) -> Result<(), String> {
+fn keep_latest(
+    rows: &[ReadRow],
+    fingerprint: &str,
+    resumed: &mut Resumed,
+) -> Result<(), Unresumable> {
     let mut latest: HashMap<PointKey, usize> = HashMap::new();
     for (i, row) in rows.iter().enumerate() {
         if row.sweep != fingerprint {
-            return Err(format!(
-                "holds rows of sweep {}, not of this sweep ({fingerprint})",
-                row.sweep
-            ));
+            return Err(Unresumable::OtherSweep {
+                found: row.sweep.clone(),
+                expected: fingerprint.to_string(),
+            });
         }
         if row.ok {
             latest.insert(row.key, i);
