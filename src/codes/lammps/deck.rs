@@ -136,6 +136,23 @@ fn read_model(
     Ok((model, k))
 }
 
+/// A deck's wall as the impact meets it: the plane `zplane 0 NULL`, with no material of its
+/// own (the granular model or the plugin's coefficients carry the wall's).
+fn plane_wall(id: &str, at: &SourceLine) -> DeckWall {
+    DeckWall {
+        name: id.to_string(),
+        type_id: None,
+        youngs_modulus: None,
+        poisson_ratio: None,
+        from: at.clone().into(),
+    }
+}
+
+/// The trap every wall's contact carries: its geometry met as a flat plane.
+fn plane_trap(geometry: &str) -> String {
+    format!("wall: `{geometry}` met as the plane zplane 0 NULL (R* = R at a flat wall)")
+}
+
 /// A wall fix as read.
 #[derive(Clone, Debug)]
 struct WallFix {
@@ -962,13 +979,7 @@ impl LammpsDeck {
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(DeckWall {
-                name: wall.id.clone(),
-                type_id: None,
-                youngs_modulus: None,
-                poisson_ratio: None,
-                from: wall.at.clone().into(),
-            });
+            walls.push(plane_wall(&wall.id, &wall.at));
             wall_lines.push(format!(
                 "fix {} {} wall/gran granular {} zplane 0 NULL",
                 wall.id,
@@ -985,10 +996,7 @@ impl LammpsDeck {
                     &wall.at,
                 )?;
                 traps.extend(law_traps);
-                traps.push(format!(
-                    "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
-                    wall.geometry
-                ));
+                traps.push(plane_trap(&wall.geometry));
                 contacts.push(DeckContact {
                     body: a,
                     partner: Partner::Wall(w),
@@ -1101,13 +1109,7 @@ impl LammpsDeck {
         let mut walls = Vec::new();
         let mut wall_lines = Vec::new();
         for (w, wall) in r.paper_walls.iter().enumerate() {
-            walls.push(DeckWall {
-                name: wall.id.clone(),
-                type_id: None,
-                youngs_modulus: None,
-                poisson_ratio: None,
-                from: wall.at.clone().into(),
-            });
+            walls.push(plane_wall(&wall.id, &wall.at));
             // The impact's sphere is in group all; the wall acts on it whatever the deck's group.
             wall_lines.push(format!(
                 "fix {} all wall/paper {} zplane 0 NULL",
@@ -1122,13 +1124,7 @@ impl LammpsDeck {
                     model: format!("wall/paper {}", wall.model[0]),
                     cor_entered: Some(exact::restitution(wall.coeff.eta)),
                     law: law(&wall.coeff, body.radius, body.mass),
-                    traps: vec![
-                        eta_trap(wall.coeff.eta),
-                        format!(
-                            "wall: `{}` met as the plane zplane 0 NULL (R* = R at a flat wall)",
-                            wall.geometry
-                        ),
-                    ],
+                    traps: vec![eta_trap(wall.coeff.eta), plane_trap(&wall.geometry)],
                     lines: vec![wall.at.clone().into()],
                 });
             }
