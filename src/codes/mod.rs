@@ -31,9 +31,8 @@ use lammps::conventions::Conventions;
 use lammps::probe::{ProbeError, ProbeReport};
 pub use parse::ParseError;
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
-pub use setup::{
-    CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with, setup_for_case,
-};
+pub(crate) use setup::setup_for_case;
+pub use setup::{CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with};
 
 /// What a driver's parser returns.
 #[derive(Clone, Debug, PartialEq)]

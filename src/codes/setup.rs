@@ -151,7 +151,7 @@ fn code_sphere(ball: &Ball) -> CodeSphere {
 /// The equivalent setup of `case` (physics.md §5) at time step `timestep` (s), with the run
 /// length left at zero: [`prepare`] sets it from the code's own law, and keeps the case's η
 /// only for a code that takes it.
-pub fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
+pub(crate) fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
     let scene = &case.scene;
     let (sphere, other_sphere, plate_material) = match scene {
         Scene::BallPlate { ball, plate } => (

@@ -103,7 +103,7 @@ impl Quantity {
     }
 
     /// Its bit in [`quantity`].
-    pub const fn bit(self) -> u8 {
+    pub(crate) const fn bit(self) -> u8 {
         1 << self as u8
     }
 

@@ -200,7 +200,7 @@ pub(crate) const CHUNG_OOI: [PublishedImpact; 8] = [
 /// A figure a benchmark row compares.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum Quantity {
+pub(crate) enum Quantity {
     /// The largest overlap, m.
     PeakOverlap,
     /// The largest normal force, N.

@@ -97,7 +97,7 @@ pub struct SourceRow {
 
 /// The paper's law's exact figures in the form a trajectory's are read
 /// (`ImpactFigures::metrics`).
-pub fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
+pub(crate) fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
     p.metrics()
 }
 
@@ -142,7 +142,7 @@ pub struct CaseComparison {
 }
 
 /// The restitutions at which the model differences are tabulated.
-pub const RESTITUTIONS: [f64; 8] = [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95];
+pub(crate) const RESTITUTIONS: [f64; 8] = [0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95];
 
 /// One code's law against the paper's law at one COR, both exact.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -242,7 +242,7 @@ impl Blame for CompareError {
 
 /// Each code's law, as its driver sets it up for `case` at each COR in `restitutions`,
 /// against the paper's law at the same COR, both integrated exactly.
-pub fn model_by_restitution(
+pub(crate) fn model_by_restitution(
     case: &Case,
     restitutions: &[f64],
 ) -> Result<Vec<ModelPoint>, CompareError> {
@@ -696,3 +696,6 @@ impl Summary for CompareReport {
         )]
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -12,7 +12,7 @@ use crate::model::figures::{Figures, quantity};
 use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
 
 /// Start phases swept by default.
-pub const DEFAULT_PHASES: usize = 32;
+pub(crate) const DEFAULT_PHASES: usize = 32;
 
 /// The smallest and largest value of one offset over the start phases.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -91,7 +91,7 @@ impl PhaseBand {
 
 /// The figures of `record`'s own law stepped as its code steps, started at phase `phi`
 /// (a gap of `φ v0 Δt` before the run's own start gap; `φ = 0` is the stored run's own start).
-pub fn stepped_at_phase(
+pub(crate) fn stepped_at_phase(
     record: &ReferenceRecord,
     phi: f64,
 ) -> Result<TrajectoryMetrics, TrajectoryError> {
@@ -107,7 +107,7 @@ pub fn stepped_at_phase(
 /// The integration offset (own law stepped − own law exact, relative to the paper's law) of
 /// `record`'s own law over `phases` start phases, against its own law at zero step error
 /// `exact`.
-pub fn start_phase_band(
+pub(crate) fn start_phase_band(
     record: &ReferenceRecord,
     exact: &TrajectoryMetrics,
     phases: usize,

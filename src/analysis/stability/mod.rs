@@ -39,7 +39,7 @@ use crate::solve::steppers::{State, rk4_step, verlet_step};
 use crate::solve::{Method, SolveError};
 
 /// The methods the grid runs, in report order.
-pub const METHODS: [Method; 4] = [
+pub(crate) const METHODS: [Method; 4] = [
     Method::Rk4,
     Method::Rk4Event,
     Method::Dopri5,

@@ -497,7 +497,7 @@ fn same_bodies(a: &CodeSetup, b: &CodeSetup) -> bool {
 }
 
 /// Every stored reference file under `folder`, sorted.
-pub fn stored_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
+pub(crate) fn stored_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
     let mut files = Vec::new();
     if !folder.is_dir() {
         return Ok(files);

@@ -463,25 +463,25 @@ fn refused(mut it: ProbeItem, message: &str) -> ProbeItem {
 }
 
 /// Hypothesis names, as the verdicts read.
-pub mod verdicts {
+pub(crate) mod verdicts {
     /// Wall `E* = E/(2(1−ν))`.
-    pub const ONE_MINUS_NU: &str = "E/(2(1-nu))";
+    pub(crate) const ONE_MINUS_NU: &str = "E/(2(1-nu))";
     /// Wall `E* = E/(2(1−ν²))`.
-    pub const ONE_MINUS_NU_SQUARED: &str = "E/(2(1-nu^2))";
+    pub(crate) const ONE_MINUS_NU_SQUARED: &str = "E/(2(1-nu^2))";
     /// `coeff_restitution` applies `√5 β(e)`.
-    pub const PRESENT: &str = "present: alpha = sqrt5 beta(e)";
+    pub(crate) const PRESENT: &str = "present: alpha = sqrt5 beta(e)";
     /// The build refuses `coeff_restitution`.
-    pub const ABSENT: &str = "absent (input refused)";
+    pub(crate) const ABSENT: &str = "absent (input refused)";
     /// `tsuji` applies `poly(e)`.
-    pub const POLY: &str = "poly(e)";
+    pub(crate) const POLY: &str = "poly(e)";
     /// `tsuji` applies `√2 poly(e)`.
     pub(crate) const SQRT2_POLY: &str = "sqrt2 poly(e)";
     /// Touching is contact: the dashpot pushes at step 0.
-    pub const CONTACT: &str = "contact: F = d v0";
+    pub(crate) const CONTACT: &str = "contact: F = d v0";
     /// Touching is not contact.
-    pub const NO_CONTACT: &str = "no contact: F = 0";
+    pub(crate) const NO_CONTACT: &str = "no contact: F = 0";
     /// The dashpot sees `v(n+½)`.
-    pub const HALF_STEP: &str = "half-step v(n+1/2)";
+    pub(crate) const HALF_STEP: &str = "half-step v(n+1/2)";
     /// The dashpot sees `v(n+1)`.
     pub(crate) const FULL_STEP: &str = "full-step v(n+1)";
 }

@@ -4,17 +4,17 @@
 
 use std::path::Path;
 
-use millimpact::analysis::compare::phase::{self, DEFAULT_PHASES, start_phase_band};
-use millimpact::analysis::compare::{RESTITUTIONS, model_by_restitution, paper_metrics};
-use millimpact::analysis::store;
-use millimpact::codes::CodeName;
-use millimpact::model::case::Case;
-use millimpact::model::exact;
-use millimpact::model::law::DashpotLaw;
-use millimpact::model::trajectory::{CodeTrajectory, trajectory_metrics};
-use millimpact::solve::Method;
-use millimpact::solve::dashpot::{accurate_metrics, own_law_metrics};
-use millimpact::solve::paper::{self, Settings};
+use crate::analysis::compare::phase::{self, DEFAULT_PHASES, start_phase_band};
+use crate::analysis::compare::{RESTITUTIONS, model_by_restitution, paper_metrics};
+use crate::analysis::store;
+use crate::codes::CodeName;
+use crate::model::case::Case;
+use crate::model::exact;
+use crate::model::law::DashpotLaw;
+use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
+use crate::solve::Method;
+use crate::solve::dashpot::{accurate_metrics, own_law_metrics};
+use crate::solve::paper::{self, Settings};
 
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
