@@ -48,24 +48,6 @@ fn snapshots_of_the_cor_against_speed_in_every_format() {
     }
 }
 
-/// A deck whose law's COR does not depend on the speed gets no speed trap however many speeds
-/// are asked: the LAMMPS granular example's tsuji law (damped Hertz, speed-free) from its
-/// recorded runs would need runs at several speeds, so the check is on the curve itself.
-#[test]
-fn a_speed_free_law_has_no_speed_trap() {
-    use millimpact::analysis::deck::speed::{SPEED_DEPENDENCE, SpeedCurve};
-    let curve = SpeedCurve {
-        pair: "1–1".into(),
-        speeds: vec![1.0, 2.0],
-        cor_realised: vec![0.5, 0.5],
-        cor_law: vec![0.5, 0.5 + 1e-12],
-        cor_closed_form: None,
-        spread: 1e-12,
-        depends_on_speed: 1e-12 > SPEED_DEPENDENCE,
-    };
-    assert_eq!(curve.trap(), None);
-}
-
 /// Bad `--impact-velocity` values: one line naming the value and what is allowed, exit 2,
 /// nothing on standard output, no code started.
 #[test]

@@ -1,10 +1,9 @@
-//! The LIGGGHTS driver: parser on a recorded sample, input rendering, the law it reports, and
+//! The LIGGGHTS driver: input rendering, the law it reports, and
 //! live runs of the installed `liggghts` binary for the three canonical cases.
 //!
 //! The live tests FAIL (not skip) when `liggghts` is not on PATH.
 
-use millimpact::codes::liggghts::{self, Liggghts};
-use millimpact::codes::runner::find_on_path;
+use millimpact::codes::liggghts::Liggghts;
 use millimpact::codes::{CodeDriver, CodeError, CodeRun, CodeSetup, RunOptions, run_code};
 use millimpact::model::law::DashpotLaw;
 use millimpact::model::scene::SceneKind;
@@ -33,11 +32,12 @@ fn canonical(scene: SceneKind, e: f64, rigid: bool) -> CodeSetup {
 }
 
 fn run(setup: &CodeSetup) -> CodeRun {
-    assert!(
-        find_on_path("liggghts").is_some(),
-        "the `liggghts` binary is not on PATH: this live test needs LIGGGHTS-PUBLIC 3.8.0 \
-         (Debian package `liggghts`); it fails rather than skips without it"
-    );
+    if let Err(e) = Liggghts.locate() {
+        panic!(
+            "{e}: this live test needs LIGGGHTS-PUBLIC 3.8.0 (Debian package `liggghts`); it \
+             fails rather than skips without it"
+        );
+    }
     run_code(&Liggghts, setup, &RunOptions::default())
         .unwrap_or_else(|e| panic!("LIGGGHTS run of {} failed: {e}", setup.case_name))
 }
@@ -48,52 +48,6 @@ const ALL_CASES: [(SceneKind, bool); 4] = [
     (SceneKind::BallBall, false),
     (SceneKind::RodEnd, false),
 ];
-
-// ---------------------------------------------------------------------------------------------
-// Parser, on a recorded run (tests/data/liggghts: ball on a rigid plate, e = 0.693889,
-// 40 steps per contact time, input impact.in as rendered by the driver).
-
-const SAMPLE_TRAJECTORY: &str = include_str!("data/liggghts/traj.txt");
-const SAMPLE_LOG: &str = include_str!("data/liggghts/log.txt");
-
-// The recorded first row is written exactly: t = 0, v = v0, F = 0.
-#[allow(clippy::float_cmp)]
-#[test]
-fn parser_reads_the_recorded_sample() {
-    let parsed = liggghts::parse_output(SAMPLE_TRAJECTORY, SAMPLE_LOG).unwrap();
-    let t = &parsed.trajectory;
-    assert_eq!(t.time.len(), 47);
-    assert_eq!(t.overlap.len(), 47);
-    assert_eq!(t.approach_velocity.len(), 47);
-    assert_eq!(t.normal_force.len(), 47);
-    assert_eq!(t.time[0], 0.0);
-    assert_eq!(t.approach_velocity[0], 2.0);
-    assert_eq!(t.normal_force[0], 0.0);
-    assert!(
-        t.overlap[0] < 0.0 && t.overlap[0] > -1e-11,
-        "start gap {}",
-        t.overlap[0]
-    );
-    assert_eq!(
-        parsed.version.as_deref(),
-        Some("LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26-19:42:32 by buildd, git commit unknown")
-    );
-    assert_eq!(parsed.loop_time, Some(0.000_179_447));
-    let m = trajectory_metrics(t).unwrap();
-    // Coarse steps (40 per contact) still give the target COR to a few 1e-3.
-    assert!((m.cor - e_target()).abs() < 5e-3, "COR {}", m.cor);
-    assert!(m.peak_deformation > 5.4e-5 && m.peak_deformation < 5.6e-5);
-}
-
-#[test]
-fn parser_rejects_a_short_row() {
-    let err = liggghts::parse_output("0 0 2 0\n1e-7 2e-7 1.99\n", SAMPLE_LOG)
-        .unwrap_err()
-        .to_string();
-    assert!(err.contains("expected 4 columns"), "{err}");
-    assert!(liggghts::parse_output("", SAMPLE_LOG).is_err());
-    assert_eq!(liggghts::loop_time("no loop here"), None);
-}
 
 // ---------------------------------------------------------------------------------------------
 // Rendering and the law (no binary needed).

@@ -375,7 +375,7 @@ fn live_the_heldout_drum_power_agrees_with_an_independent_measurement() {
             .as_array()
             .unwrap()
             .iter()
-            .find(|q| q["quantity"] == millimpact::analysis::mill::WEIGHT_POWER)
+            .find(|q| q["quantity"] == "power draw by the torque balance (ω × the weight's torque)")
             .expect("the mill's torque balance row");
         let (held, held_error) = (
             weight[side]["mean"].as_f64().unwrap(),

@@ -9,7 +9,6 @@ use millimpact::analysis::run::{RunError, run_case};
 use millimpact::analysis::sweep::SweepError;
 use millimpact::analysis::sweep::merge;
 use millimpact::error::{Blame, Chain};
-use millimpact::output::files::{ReplaceDirError, replace_dir};
 use millimpact::{Case, CodeName, Method, Settings, StoreError, find_stored, verify};
 
 mod common;
@@ -157,32 +156,5 @@ fn a_method_without_a_knob_has_no_precision_sweep() {
     match method_sweep(&case, Method::Exact, 1) {
         Err(PrecisionError::NoKnob { method }) => assert_eq!(method, Method::Exact),
         other => panic!("expected NoKnob, got {other:?}"),
-    }
-}
-
-#[test]
-fn replace_dir_keeps_the_fill_error_type_and_names_a_path_without_a_folder_name() {
-    #[derive(Debug)]
-    enum Mine {
-        Folder(ReplaceDirError),
-        Fill(&'static str),
-    }
-    impl From<ReplaceDirError> for Mine {
-        fn from(e: ReplaceDirError) -> Self {
-            Mine::Folder(e)
-        }
-    }
-    let parent = tempfile::tempdir().unwrap();
-    let out = parent.path().join("out");
-    let filled = replace_dir(&out, |_| Err::<(), _>(Mine::Fill("no figures")));
-    assert!(
-        matches!(filled, Err(Mine::Fill("no figures"))),
-        "{filled:?}"
-    );
-    assert!(!out.exists(), "a failed fill leaves no folder");
-    let root = replace_dir(Path::new("/"), |_| Ok::<(), Mine>(()));
-    match root {
-        Err(Mine::Folder(ReplaceDirError::NoName { path })) => assert_eq!(path, Path::new("/")),
-        other => panic!("expected NoName, got {other:?}"),
     }
 }

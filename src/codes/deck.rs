@@ -336,7 +336,7 @@ pub struct DeckOptions {
     /// Variables defined before the deck is read (`-var NAME VALUE`).
     pub variables: Vec<(String, String)>,
     /// How long a code that reads the deck itself (YADE runs the script's set-up) may take;
-    /// `None`: [`crate::codes::yade::dump::READ_TIME_LIMIT`].
+    /// `None`: the YADE reader's own limit, 120 s.
     pub time_limit: Option<std::time::Duration>,
 }
 

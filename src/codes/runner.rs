@@ -326,7 +326,7 @@ pub(crate) fn locate_override_or_path(code: &str, binary: &str) -> Result<Execut
 }
 
 /// Whether `binary` is an executable on PATH.
-pub fn find_on_path(binary: &str) -> Option<PathBuf> {
+pub(crate) fn find_on_path(binary: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;
     std::env::split_paths(&path)
         .map(|dir| dir.join(binary))

@@ -292,3 +292,37 @@ pub fn replace_dir<E: From<ReplaceDirError>>(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::{ReplaceDirError, replace_dir};
+
+    #[test]
+    fn replace_dir_keeps_the_fill_error_type_and_names_a_path_without_a_folder_name() {
+        #[derive(Debug)]
+        enum Mine {
+            Folder(ReplaceDirError),
+            Fill(&'static str),
+        }
+        impl From<ReplaceDirError> for Mine {
+            fn from(e: ReplaceDirError) -> Self {
+                Mine::Folder(e)
+            }
+        }
+        let parent = tempfile::tempdir().unwrap();
+        let out = parent.path().join("out");
+        let filled = replace_dir(&out, |_| Err::<(), _>(Mine::Fill("no figures")));
+        assert!(
+            matches!(filled, Err(Mine::Fill("no figures"))),
+            "{filled:?}"
+        );
+        assert!(!out.exists(), "a failed fill leaves no folder");
+        let root = replace_dir(Path::new("/"), |_| Ok::<(), Mine>(()));
+        match root {
+            Err(Mine::Folder(ReplaceDirError::NoName { path })) => assert_eq!(path, Path::new("/")),
+            other => panic!("expected NoName, got {other:?}"),
+        }
+    }
+}

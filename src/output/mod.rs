@@ -8,7 +8,7 @@
 pub(crate) mod chart;
 pub(crate) mod csv_record;
 pub use csv_record::{CsvRecords, RecordError, header_of};
-pub mod files;
+pub(crate) mod files;
 pub(crate) mod invocation;
 pub mod report_page;
 pub(crate) mod restitution_plot;

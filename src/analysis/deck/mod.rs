@@ -8,7 +8,7 @@
 //! against the radius, the steps per contact and the COR band they leave, the step against the
 //! Rayleigh time, the traps the lines meet, and the paper's η for the COR realised.
 
-pub mod speed;
+pub(crate) mod speed;
 
 use std::collections::BTreeMap;
 use std::path::Path;

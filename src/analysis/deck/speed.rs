@@ -9,7 +9,7 @@ use crate::model::law::DashpotLaw;
 
 /// The spread of a law's exact COR over the speeds checked above which the law is said to
 /// depend on the speed: far above the integration's 1e-12, far below any COR a user types.
-pub const SPEED_DEPENDENCE: f64 = 1e-6;
+pub(crate) const SPEED_DEPENDENCE: f64 = 1e-6;
 
 /// Müller & Pöschel's [3/6] Padé approximant of the COR of viscoelastic spheres (Phys. Rev. E
 /// 84, 021302, 2011): numerator coefficients of `x`, `x²`, `x³`.
@@ -193,5 +193,22 @@ mod tests {
         assert!((e2 + 1.153_44).abs() < 2e-5, "{e2}");
         assert!(e3.abs() < 2e-5, "{e3}");
         assert!((e4 - 0.798_27).abs() < 1e-3, "{e4}");
+    }
+
+    /// A deck whose law's COR does not depend on the speed gets no speed trap however many speeds
+    /// are asked: the LAMMPS granular example's tsuji law (damped Hertz, speed-free) from its
+    /// recorded runs would need runs at several speeds, so the check is on the curve itself.
+    #[test]
+    fn a_speed_free_law_has_no_speed_trap() {
+        let curve = SpeedCurve {
+            pair: "1–1".into(),
+            speeds: vec![1.0, 2.0],
+            cor_realised: vec![0.5, 0.5],
+            cor_law: vec![0.5, 0.5 + 1e-12],
+            cor_closed_form: None,
+            spread: 1e-12,
+            depends_on_speed: 1e-12 > SPEED_DEPENDENCE,
+        };
+        assert_eq!(curve.trap(), None);
     }
 }

@@ -15,11 +15,11 @@ use serde::Serialize;
 use crate::codes::liggghts::mill::MillDeck;
 
 /// Edges of the impact-energy bins, J (a bin below the first and one above the last besides).
-pub const ENERGY_BINS_J: [f64; 7] = [1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2];
+pub(crate) const ENERGY_BINS_J: [f64; 7] = [1e-8, 1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2];
 /// Edges of the peak-normal-force bins, N (a bin below the first and one above the last).
-pub const FORCE_BINS_N: [f64; 5] = [0.1, 1.0, 10.0, 100.0, 1000.0];
+pub(crate) const FORCE_BINS_N: [f64; 5] = [0.1, 1.0, 10.0, 100.0, 1000.0];
 /// A contact whose normal relative speed is below this is counted at rest, m/s.
-pub const REST_SPEED: f64 = 1e-3;
+pub(crate) const REST_SPEED: f64 = 1e-3;
 /// Two wall records of one particle in consecutive frames are one contact when their normals
 /// are within this cosine (30°): the contact slid from one facet of the mesh to the next.
 const SAME_WALL_CONTACT: f64 = 0.866;

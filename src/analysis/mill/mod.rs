@@ -16,10 +16,11 @@ use std::time::{Duration, Instant};
 
 use thiserror::Error;
 
-pub use contacts::{ContactEvent, ContactSample, ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED};
+pub use contacts::{ContactEvent, ContactSample};
+pub(crate) use report::TRACE_POINTS;
 pub use report::{
     Estimate, MillRecord, MillReport, MillRun, PowerBalance, ProfilePoint, QuantityRow,
-    SpectrumRow, TRACE_POINTS, TracePoint, Verdict, WEIGHT_POWER, difference,
+    SpectrumRow, TracePoint, Verdict, difference,
 };
 
 use crate::codes::deck::DeckError;
@@ -148,7 +149,7 @@ impl MillOptions {
 }
 
 /// Power and energy are averaged over this many consecutive blocks of the measured time.
-pub const BLOCKS: usize = 5;
+pub(crate) const BLOCKS: usize = 5;
 
 /// What one run gave.
 #[derive(Clone, Debug)]

@@ -11,7 +11,7 @@ use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary};
 
 /// The quantity of the power draw from the torque balance of the charge's weight.
-pub const WEIGHT_POWER: &str = "power draw by the torque balance (ω × the weight's torque)";
+pub(crate) const WEIGHT_POWER: &str = "power draw by the torque balance (ω × the weight's torque)";
 
 /// A mean with its standard error.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -180,7 +180,7 @@ pub struct SpectrumRow {
 }
 
 /// A run's power and energy are traced over this many equal stretches of the rotation.
-pub const TRACE_POINTS: usize = 100;
+pub(crate) const TRACE_POINTS: usize = 100;
 
 /// A run's power and energy over one stretch of the rotation (means over the stretch).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

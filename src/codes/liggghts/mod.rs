@@ -444,7 +444,7 @@ impl CodeDriver for Liggghts {
 ///
 /// Each trajectory row is `time overlap approach_velocity normal_force`; the log gives the
 /// version (first line, `LIGGGHTS (Version …)`) and the `Loop time of` figure.
-pub fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, ParseError> {
+pub(crate) fn parse_output(trajectory: &str, log: &str) -> Result<ParsedRun, ParseError> {
     let out = parse_columns(trajectory, TRAJECTORY_FILE)?;
     if out.time.is_empty() {
         return Err(ParseError::Empty {
@@ -468,7 +468,7 @@ pub(crate) fn version(log: &str) -> Option<String> {
 }
 
 /// The `Loop time of <seconds> on <n> procs for <steps> steps` figure, s.
-pub fn loop_time(log: &str) -> Option<f64> {
+pub(crate) fn loop_time(log: &str) -> Option<f64> {
     loop_line(log)?.first()?.parse().ok()
 }
 
@@ -482,4 +482,61 @@ fn loop_steps(log: &str) -> Option<u64> {
 pub(crate) fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{loop_time, parse_output};
+    use crate::model::trajectory::trajectory_metrics;
+
+    // The parser, on a recorded run (tests/data/liggghts: ball on a rigid plate, e = 0.693889,
+    // 40 steps per contact time, input impact.in as rendered by the driver).
+
+    const SAMPLE_TRAJECTORY: &str = include_str!("../../../tests/data/liggghts/traj.txt");
+    const SAMPLE_LOG: &str = include_str!("../../../tests/data/liggghts/log.txt");
+
+    // The recorded first row is written exactly: t = 0, v = v0, F = 0.
+    #[allow(clippy::float_cmp)]
+    #[test]
+    fn parser_reads_the_recorded_sample() {
+        let parsed = parse_output(SAMPLE_TRAJECTORY, SAMPLE_LOG).unwrap();
+        let t = &parsed.trajectory;
+        assert_eq!(t.time.len(), 47);
+        assert_eq!(t.overlap.len(), 47);
+        assert_eq!(t.approach_velocity.len(), 47);
+        assert_eq!(t.normal_force.len(), 47);
+        assert_eq!(t.time[0], 0.0);
+        assert_eq!(t.approach_velocity[0], 2.0);
+        assert_eq!(t.normal_force[0], 0.0);
+        assert!(
+            t.overlap[0] < 0.0 && t.overlap[0] > -1e-11,
+            "start gap {}",
+            t.overlap[0]
+        );
+        assert_eq!(
+            parsed.version.as_deref(),
+            Some(
+                "LIGGGHTS-PUBLIC 3.8.0, compiled 2022-01-26-19:42:32 by buildd, git commit unknown"
+            )
+        );
+        assert_eq!(parsed.loop_time, Some(0.000_179_447));
+        let m = trajectory_metrics(t).unwrap();
+        // Coarse steps (40 per contact) still give the target COR to a few 1e-3.
+        assert!(
+            (m.cor - (0.65f64 / 1.35).sqrt()).abs() < 5e-3,
+            "COR {}",
+            m.cor
+        );
+        assert!(m.peak_deformation > 5.4e-5 && m.peak_deformation < 5.6e-5);
+    }
+
+    #[test]
+    fn parser_rejects_a_short_row() {
+        let err = parse_output("0 0 2 0\n1e-7 2e-7 1.99\n", SAMPLE_LOG)
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("expected 4 columns"), "{err}");
+        assert!(parse_output("", SAMPLE_LOG).is_err());
+        assert_eq!(loop_time("no loop here"), None);
+    }
 }

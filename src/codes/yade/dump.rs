@@ -423,4 +423,67 @@ mod tests {
         let e = parse_dump(Path::new("s.py"), text).unwrap_err().to_string();
         assert!(e.starts_with("s.py: bodies[0]: "), "{e}");
     }
+
+    /// The YADE scripts of `tests/data/deck/yade/` and the shipped example, each with the dump of
+    /// its set-up `tests/deck.rs` reads.
+    fn yade_scripts_with_dumps() -> Vec<(std::path::PathBuf, std::path::PathBuf)> {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let data = root.join("tests/data/deck/yade");
+        let mut pairs = vec![
+            (
+                root.join("examples/decks/yade-mill/mill.py"),
+                data.join("mill.dump.json"),
+            ),
+            (
+                root.join("tests/data/deck/yade-capillary.py"),
+                data.join("capillary.dump.json"),
+            ),
+        ];
+        let mut scripts: Vec<_> = std::fs::read_dir(&data)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|x| x == "py"))
+            .collect();
+        scripts.sort();
+        for script in scripts {
+            let dump = script.with_extension("dump.json");
+            if dump.exists() || std::env::var_os("UPDATE_DECK_RUNS").is_some() {
+                pairs.push((script, dump));
+            }
+        }
+        pairs
+    }
+
+    /// The recorded dumps the fast tier reads are what YADE dumps of their scripts now;
+    /// `UPDATE_DECK_RUNS=1` records them again (a script whose set-up YADE refuses has none).
+    #[test]
+    #[ignore = "live: runs the set-up of every YADE script of tests/data/deck/yade in YADE"]
+    fn the_recorded_yade_dumps_are_what_yade_dumps_now() {
+        let pairs = yade_scripts_with_dumps();
+        assert!(pairs.len() > 10, "{pairs:?}");
+        for (script, dump) in pairs {
+            let live = match dump_script(&script, READ_TIME_LIMIT) {
+                Ok(text) => text,
+                Err(e) => {
+                    // Only a script YADE cannot set up has no dump.
+                    assert!(!dump.exists(), "{}: {e}", script.display());
+                    continue;
+                }
+            };
+            if std::env::var_os("UPDATE_DECK_RUNS").is_some() {
+                std::fs::write(&dump, &live).unwrap();
+            }
+            let recorded = std::fs::read_to_string(&dump).unwrap();
+            let (live, recorded) = (
+                parse_dump(&script, &live).unwrap(),
+                parse_dump(&script, &recorded).unwrap(),
+            );
+            // Part by part, so that a difference names its part.
+            let at = script.display();
+            assert_eq!(live.materials, recorded.materials, "{at}: materials");
+            assert_eq!(live.engines, recorded.engines, "{at}: engines");
+            assert_eq!(live.bodies, recorded.bodies, "{at}: bodies");
+            assert_eq!(live, recorded, "{at}");
+        }
+    }
 }

@@ -28,7 +28,6 @@ pub(crate) mod batch;
 pub(crate) mod card;
 pub mod deck;
 pub(crate) mod dump;
-pub use dump::{READ_TIME_LIMIT, dump_script, parse_dump};
 pub mod paper;
 
 pub(crate) use paper::YadePaper;
