@@ -2,8 +2,9 @@
 //! meet it, by the measured bounds of [`CorErrorBound`].
 //!
 //! Each method with a bound gets the coarsest resolution whose bound, times a margin to spare
-//! (`MARGIN`), is at most the tolerance; the cheapest of them is chosen by its work: the right-hand-side
-//! evaluations of one impact at that resolution, weighted by the method's cost per evaluation.
+//! (`MARGIN`), is at most the tolerance; the cheapest of them is chosen by its work: the
+//! right-hand-side evaluations of one impact at that resolution, weighted by the method's cost
+//! per evaluation.
 //! In the solver's dimensionless form an impact depends on the exponent and η alone, so one
 //! choice holds for every case of every scene and every loss coefficient.
 
