@@ -4,7 +4,6 @@
 
 use std::path::{Path, PathBuf};
 
-use millimpact::analysis::precision::{PrecisionError, method_sweep};
 use millimpact::analysis::run::{RunError, run_case};
 use millimpact::analysis::sweep::SweepError;
 use millimpact::analysis::sweep::merge;
@@ -148,13 +147,4 @@ fn a_shard_that_is_not_there_is_a_read_failure_not_the_users() {
     assert_eq!(path, missing);
     assert_eq!(source.kind(), std::io::ErrorKind::NotFound);
     assert!(!error.is_user_error());
-}
-
-#[test]
-fn a_method_without_a_knob_has_no_precision_sweep() {
-    let case = Case::load(&common::root().join("cases/ball_plate.toml")).unwrap();
-    match method_sweep(&case, Method::Exact, 1) {
-        Err(PrecisionError::NoKnob { method }) => assert_eq!(method, Method::Exact),
-        other => panic!("expected NoKnob, got {other:?}"),
-    }
 }

@@ -156,7 +156,7 @@ pub(crate) fn relative_errors<const Q: u8>(
 
 impl RunReport {
     /// Assemble the report of `outcome` for `case` by `method`.
-    pub fn new(case: &Case, method: Method, outcome: &Outcome) -> RunReport {
+    pub(crate) fn new(case: &Case, method: Method, outcome: &Outcome) -> RunReport {
         let law = case.law();
         let exact = exact::paper_impact(&law, case.impact_velocity);
         let f = &outcome.figures;

@@ -1,9 +1,10 @@
 //! Accuracy as the input: from a COR tolerance to the cheapest method and resolution known to
 //! meet it, by the measured bounds of [`CorErrorBound`].
 //!
-//! Each method with a bound gets the coarsest resolution whose bound, times [`MARGIN`], is at
-//! most the tolerance; the cheapest of them is chosen by its work: the right-hand-side
-//! evaluations of one impact at that resolution, weighted by the method's cost per evaluation.
+//! Each method with a bound gets the coarsest resolution whose bound, times a margin to spare
+//! (`MARGIN`), is at most the tolerance; the cheapest of them is chosen by its work: the
+//! right-hand-side evaluations of one impact at that resolution, weighted by the method's cost
+//! per evaluation.
 //! In the solver's dimensionless form an impact depends on the exponent and η alone, so one
 //! choice holds for every case of every scene and every loss coefficient.
 
@@ -17,7 +18,7 @@ use crate::solve::{CorErrorBound, Knob, Method};
 /// The bound is held to the tolerance with this factor to spare: the bound is the largest
 /// error measured on a grid of loss coefficients and resolutions, and a point between them may
 /// lie a little above it.
-pub const MARGIN: f64 = 1.25;
+pub(crate) const MARGIN: f64 = 1.25;
 
 /// Largest tolerance asked for: a relative COR error of 1 says nothing.
 pub(crate) const MAX_TOLERANCE: f64 = 1.0;
@@ -40,7 +41,7 @@ pub struct Choice {
 /// A tolerance no method is known to meet, or that is not a tolerance.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("{allowed}")]
-pub struct ToleranceRefused {
+pub(crate) struct ToleranceRefused {
     /// What is allowed.
     pub allowed: String,
 }
@@ -55,7 +56,7 @@ pub(crate) fn allowed_tolerances() -> String {
 }
 
 /// The smallest tolerance any method is known to meet.
-pub fn smallest_tolerance() -> f64 {
+pub(crate) fn smallest_tolerance() -> f64 {
     Method::ALL
         .iter()
         .filter_map(|m| {
@@ -137,7 +138,7 @@ fn two_digits(x: f64) -> f64 {
 
 /// The work of one impact by `method` at `resolution`: its right-hand-side evaluations on the
 /// balls' exponent at η = 0.5, weighted by the method's cost per evaluation.
-pub fn work(method: Method, resolution: Resolution) -> f64 {
+pub(crate) fn work(method: Method, resolution: Resolution) -> f64 {
     let Some(bound) = method.descriptor().cor_error_bound else {
         return f64::INFINITY;
     };
@@ -163,19 +164,7 @@ pub fn work(method: Method, resolution: Resolution) -> f64 {
 }
 
 /// The cheapest method and resolution known to meet a relative COR error of `tolerance`.
-///
-/// ```
-/// use millimpact::analysis::precision::choice::choose;
-/// use millimpact::analysis::source::Resolution;
-/// use millimpact::solve::Method;
-///
-/// let choice = choose(1e-10)?;
-/// assert_eq!(choice.method, Method::Rk4Event);
-/// assert!(matches!(choice.resolution, Resolution::StepsPerPeriod(n) if (458..=520).contains(&n)));
-/// assert!(choice.bound * 1.25 <= 1e-10);
-/// # Ok::<(), millimpact::analysis::precision::choice::ToleranceRefused>(())
-/// ```
-pub fn choose(tolerance: f64) -> Result<Choice, ToleranceRefused> {
+pub(crate) fn choose(tolerance: f64) -> Result<Choice, ToleranceRefused> {
     let refuse = || ToleranceRefused {
         allowed: allowed_tolerances(),
     };
@@ -202,7 +191,7 @@ pub fn choose(tolerance: f64) -> Result<Choice, ToleranceRefused> {
 
 impl Choice {
     /// The sentence a command prints: what was chosen and why.
-    pub fn sentence(&self) -> String {
+    pub(crate) fn sentence(&self) -> String {
         let mut text = format!(
             "COR tolerance {:e}: {} at {} (measured COR error at most {:.1e} over η in [0, 1) \
              for every scene)",
@@ -272,7 +261,82 @@ pub fn bound_of(method: Method) -> Option<CorErrorBound> {
 
 #[cfg(test)]
 mod tests {
+    use std::path::Path;
+
     use super::*;
+    use crate::analysis::run::{IntegrationOptions, run_case};
+    use crate::model::case::Case;
+
+    /// `count` loss coefficients on [0, 0.9999], then the extremes and the tail where
+    /// rk4-event's error is largest.
+    fn etas(count: usize) -> Vec<f64> {
+        let mut v: Vec<f64> = (0..count)
+            .map(|i| 0.9999 * i as f64 / (count - 1) as f64)
+            .collect();
+        v.extend([0.999, 0.9995, 0.99999, 1.0 - 1e-8]);
+        v
+    }
+
+    /// For each scene's case and tolerances from 1e-3 to the smallest allowed, the chosen
+    /// method and resolution run through `run_case` (what a sweep runs) meet the tolerance at
+    /// every η.
+    #[test]
+    fn the_choice_meets_the_tolerance_on_every_scene() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases");
+        let cases: Vec<Case> = ["ball_plate", "ball_ball", "rod_end"]
+            .iter()
+            .map(|n| Case::load(&root.join(format!("{n}.toml"))).unwrap())
+            .collect();
+        let mut tolerances = vec![
+            1e-3, 1e-5, 1e-7, 1e-8, 1e-9, 1e-10, 3e-11, 1e-11, 1e-12, 1e-13,
+        ];
+        tolerances.push(smallest_tolerance());
+        let grid = etas(401);
+        for tolerance in tolerances {
+            let choice = choose(tolerance).unwrap();
+            assert!(choice.bound * MARGIN <= tolerance);
+            let options = IntegrationOptions {
+                method: choice.method,
+                steps_per_period: Resolution::steps_per_period(Some(choice.resolution)),
+                rtol: Resolution::rtol(Some(choice.resolution)),
+                ..IntegrationOptions::default()
+            };
+            for case in &cases {
+                for &eta in &grid {
+                    let at = case.with_loss_coefficient(eta);
+                    let settings = options.settings(&at, false).unwrap();
+                    let (report, _) = run_case(&at, &settings).unwrap();
+                    assert!(
+                        report.error.cor.abs() <= tolerance,
+                        "{}: η = {eta}, tolerance {tolerance:e}: {} gives COR error {:e}",
+                        case.name,
+                        choice.sentence(),
+                        report.error.cor
+                    );
+                }
+            }
+        }
+    }
+
+    /// At 1e-10 the choice is rk4-event a little above the 458 steps per period the worst η
+    /// needs (the margin), and dopri5 is the runner-up at more work.
+    #[test]
+    fn at_1e_10_rk4_event_is_chosen() {
+        let choice = choose(1e-10).unwrap();
+        assert_eq!(choice.method, Method::Rk4Event);
+        let Resolution::StepsPerPeriod(n) = choice.resolution else {
+            panic!("{:?}", choice.resolution)
+        };
+        assert!((458..=520).contains(&n), "{n}");
+        let (runner, _, ratio) = choice.runner_up.unwrap();
+        assert_eq!(runner, Method::Dopri5);
+        assert!(ratio > 1.0);
+        assert!(
+            choice
+                .sentence()
+                .contains(&format!("rk4-event at {n} steps per period"))
+        );
+    }
 
     #[test]
     fn what_is_not_a_tolerance_is_refused() {

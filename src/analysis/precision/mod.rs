@@ -17,6 +17,8 @@
 //! run of the code.
 
 pub mod choice;
+#[cfg(test)]
+mod tests;
 
 use std::collections::BTreeMap;
 use std::hint::black_box;
@@ -58,7 +60,7 @@ pub(crate) const CODE_REPEATS: u32 = 3;
 
 /// One point of the work–precision diagram.
 #[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct WorkPrecisionPoint {
+pub(crate) struct WorkPrecisionPoint {
     /// The method or code.
     pub source: Source,
     /// What was swept.
@@ -91,7 +93,7 @@ pub(crate) type QuantityOrders = Checked<Option<f64>>;
 /// What a work–precision sweep varies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
-pub enum SweepKnob {
+pub(crate) enum SweepKnob {
     /// A fixed-step method's steps per undamped period.
     StepsPerPeriod,
     /// An adaptive method's relative tolerance.
@@ -237,7 +239,7 @@ pub(crate) const ORDER_NOTES: [(NoteSubject, &str); 6] = [
 ];
 
 /// Steps per period for the fixed-step sweeps: 19 values from 8 to 20000, geometric.
-pub fn steps_per_period_sweep() -> Vec<u32> {
+pub(crate) fn steps_per_period_sweep() -> Vec<u32> {
     let (lo, hi, count) = (8.0f64, 20000.0f64, 19);
     (0..count)
         .map(|k| {
@@ -249,12 +251,12 @@ pub fn steps_per_period_sweep() -> Vec<u32> {
 }
 
 /// Relative tolerances for the dopri5 sweep: 1e-3 to 1e-14, one per decade.
-pub fn rtol_sweep() -> Vec<f64> {
+pub(crate) fn rtol_sweep() -> Vec<f64> {
     (3..=14).map(|k| 10f64.powi(-k)).collect()
 }
 
 /// Steps per (elastic) contact time for a DEM code: five values from 20 to 2000, geometric.
-pub fn code_steps_sweep() -> Vec<u32> {
+pub(crate) fn code_steps_sweep() -> Vec<u32> {
     vec![20, 63, 200, 632, 2000]
 }
 
@@ -381,7 +383,7 @@ pub(crate) fn method_point(
 }
 
 /// The sweep of one method on `case`.
-pub fn method_sweep(
+pub(crate) fn method_sweep(
     case: &Case,
     method: Method,
     repeats: u32,
@@ -489,7 +491,7 @@ pub(crate) fn code_sweep(
 }
 
 /// Least-squares slope of `ln y` against `ln x`, over at least three points.
-pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
+pub(crate) fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
     let logs: Vec<(f64, f64)> = pairs
         .iter()
         .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
@@ -510,7 +512,7 @@ pub fn log_slope(pairs: &[(f64, f64)]) -> Option<f64> {
 /// the step being `1/value` for steps per period or contact, over the points in the asymptotic
 /// range (error above `ROUNDING_FLOOR`; for a method, at least
 /// `ASYMPTOTIC_STEPS_PER_PERIOD` steps per period). For dopri5 the slope against `rtol`.
-pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
+pub(crate) fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
     let usable = |p: &&WorkPrecisionPoint| {
         p.knob != SweepKnob::StepsPerPeriod || p.value >= ASYMPTOTIC_STEPS_PER_PERIOD
     };
@@ -533,7 +535,7 @@ pub fn observed_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
 /// late by a fraction of a step that depends on where the grid falls), a least-squares fit of
 /// the raw errors is dragged down by lucky alignments; the envelope measures how the worst case
 /// shrinks, which is what the order of a method promises.
-pub fn envelope_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
+pub(crate) fn envelope_orders(points: &[WorkPrecisionPoint]) -> QuantityOrders {
     let mut sorted: Vec<WorkPrecisionPoint> = points.to_vec();
     // Finest first: steps per period or contact descending, rtol ascending.
     sorted.sort_by(|a, b| {

@@ -38,6 +38,9 @@ use crate::solve::paper::{self, Settings};
 use crate::solve::steppers::{State, rk4_step, verlet_step};
 use crate::solve::{Method, SolveError};
 
+#[cfg(test)]
+mod tests;
+
 /// The methods the grid runs, in report order.
 pub(crate) const METHODS: [Method; 4] = [
     Method::Rk4,
@@ -50,7 +53,7 @@ pub(crate) const METHODS: [Method; 4] = [
 pub(crate) const ACCURATE_TOLERANCE: f64 = 1e-9;
 
 /// The largest loss coefficient of the grid.
-pub const ETA_MAX: f64 = 0.999999;
+pub(crate) const ETA_MAX: f64 = 0.999999;
 
 /// One case of the grid, with the parameters it was built from.
 #[derive(Clone, Debug)]
@@ -420,7 +423,7 @@ pub(crate) fn run_grid() -> Vec<CaseResult> {
 /// What the solver did with a step in seconds.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(tag = "verdict", content = "reason", rename_all = "snake_case")]
-pub enum SolverVerdict {
+pub(crate) enum SolverVerdict {
     /// It integrated.
     Ran,
     /// It refused the step as beyond the stability limit.
@@ -442,7 +445,7 @@ impl std::fmt::Display for SolverVerdict {
 /// The stability check of a fixed-step method at a step in seconds, just below or just above
 /// its limit.
 #[derive(Clone, Debug, Serialize)]
-pub struct LimitCheck {
+pub(crate) struct LimitCheck {
     /// Method.
     pub method: Method,
     /// The method's limit on `ω Δt`.
@@ -469,7 +472,7 @@ pub(crate) const LIMIT_MARGIN: f64 = 0.01;
 /// Growth of the largest `|(y, v)|` of `method`'s fixed-step map on `y'' = -y` at step `z`
 /// (so `ω Δt = z`), the last tenth of `LIMIT_STEPS` over the first tenth. RK4 is the
 /// crate's own step; Verlet is the solver's kick–drift–kick.
-pub fn step_map_growth(method: Method, z: f64) -> f64 {
+pub(crate) fn step_map_growth(method: Method, z: f64) -> f64 {
     let rhs = |s: &State| State::new(s[1], -s[0]);
     let mut s = State::new(0.0, 1.0);
     let tenth = LIMIT_STEPS / 10;
@@ -494,7 +497,7 @@ pub fn step_map_growth(method: Method, z: f64) -> f64 {
 /// bilateral undamped linear contact (whose eigenvalues `±iω` lie on the imaginary axis, so the
 /// limit is where each method's stability region meets that axis: `2√2` for RK4, 2 for
 /// Verlet).
-pub fn limit_checks() -> Vec<LimitCheck> {
+pub(crate) fn limit_checks() -> Vec<LimitCheck> {
     let rod = Rod {
         diameter: 0.03,
         length: 0.5,
