@@ -12,7 +12,7 @@ pub mod probe;
 pub mod report;
 pub mod run;
 pub mod source;
-pub mod stability;
+pub(crate) mod stability;
 pub mod store;
 pub mod sweep;
 pub(crate) mod tolerance;
