@@ -74,7 +74,7 @@ pub struct MethodDescriptor {
 ///
 /// Measured by `cargo run --release --example cor_error_bounds` (the largest error over 1001
 /// loss coefficients on [0, 0.9999] at each resolution, both exponents), and checked by
-/// `tests/tolerance_choice.rs` on a grid of resolutions.
+/// the unit tests of `analysis::precision::choice` on a grid of resolutions.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CorErrorBound {
     /// The bound's terms `(constant, order)`.

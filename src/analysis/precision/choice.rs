@@ -266,6 +266,7 @@ mod tests {
     use super::*;
     use crate::analysis::run::{IntegrationOptions, run_case};
     use crate::model::case::Case;
+    use crate::solve::Knob;
 
     /// `count` loss coefficients on [0, 0.9999], then the extremes and the tail where
     /// rk4-event's error is largest.
@@ -364,5 +365,38 @@ mod tests {
         };
         assert_eq!(format!("{r:e}"), "2.8e-10");
         assert!(bound * MARGIN <= 1e-10);
+    }
+
+    /// Every measured point lies under its bound (without the margin), on a grid of resolutions
+    /// other than the one the bound was measured on.
+    #[test]
+    fn the_bounds_hold_across_their_range() {
+        let etas = etas(301);
+        let mut checked = Vec::new();
+        for &method in Method::ALL {
+            let Some(bound) = bound_of(method) else {
+                continue;
+            };
+            checked.push(method);
+            let knob = method.descriptor().knob;
+            for k in 0..=16 {
+                let f = (f64::from(k) + 0.37) / 17.0;
+                let mut value = bound.coarsest.powf(1.0 - f) * bound.finest.powf(f);
+                if knob == Knob::StepsPerPeriod {
+                    value = value.round();
+                }
+                let worst = largest_cor_error(method, value, &etas, &[1.0, 1.5]);
+                let limit = bound.at(knob, value);
+                assert!(
+                    worst <= limit,
+                    "{method} at {value}: COR error {worst:e} above its bound {limit:e}"
+                );
+            }
+        }
+        // The tolerance choice picks among the methods with a bound: both must have been checked.
+        assert!(
+            checked.contains(&Method::Rk4Event) && checked.contains(&Method::Dopri5),
+            "methods with a measured bound: {checked:?}"
+        );
     }
 }
