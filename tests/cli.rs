@@ -489,3 +489,91 @@ fn verify_fails_on_a_case_that_disagrees() {
         .assert()
         .success();
 }
+
+/// What `command` prints on a terminal `columns` wide: run under a pseudo-terminal by
+/// util-linux's `script`, as a user's shell runs it, with the terminal's line ends undone.
+fn on_a_terminal(args: &str, columns: u16) -> String {
+    let bin = env!("CARGO_BIN_EXE_millimpact");
+    let out = std::process::Command::new("script")
+        .args(["--quiet", "--return", "--command"])
+        .arg(format!("{bin} {args}"))
+        .arg("/dev/null")
+        .current_dir(common::root())
+        .env("COLUMNS", columns.to_string())
+        .envs(common::codes_hidden())
+        .output()
+        .expect("util-linux `script` runs the command under a pseudo-terminal");
+    assert!(out.status.success(), "{args}: {out:?}");
+    String::from_utf8(out.stdout).unwrap().replace("\r\n", "\n")
+}
+
+fn widest(text: &str) -> usize {
+    text.lines().map(|l| l.chars().count()).max().unwrap_or(0)
+}
+
+/// On a terminal every command's table fits its width, split into tables of whole columns
+/// each led by the row's name (or, where the name takes more than half the width, as a record
+/// per row), and the same figures are all there; in a pipe the table is
+/// whole, as wide as its cells, whatever `COLUMNS` says. The line that reproduces the run is
+/// never broken.
+#[test]
+fn a_table_fits_the_terminal_and_a_pipe_gets_it_whole() {
+    for args in [
+        "stability",
+        "run cases/ball_plate.toml",
+        "compare cases/ball_plate.toml",
+    ] {
+        let piped = stdout(
+            millimpact()
+                .current_dir(common::root())
+                .envs(common::codes_hidden())
+                .env("COLUMNS", "80")
+                .args(args.split(' ')),
+        );
+        assert!(widest(&piped) > 80, "{args}: the piped table is whole");
+        let shown = on_a_terminal(args, 80);
+        let (body, footer) = shown.trim_end().rsplit_once('\n').unwrap();
+        assert!(widest(body) <= 80, "{args}:\n{shown}");
+        assert!(footer.starts_with("reproduce: "), "{args}: {footer}");
+        assert_eq!(footer, piped.trim_end().lines().last().unwrap(), "{args}");
+        // Every word of the piped text (cells and notes) is on the terminal too, but the
+        // times measured, which differ from run to run.
+        let words = |t: &str| -> std::collections::BTreeSet<String> {
+            let all: Vec<&str> = t
+                .split(|c: char| c.is_whitespace() || "│┆┌┐└┘├┤┬┴┼╞╡╪═─:·".contains(c))
+                .filter(|w| !w.is_empty())
+                .collect();
+            let timed = |k: usize| {
+                all.get(k + 1)
+                    .is_some_and(|u| ["s", "ms", "µs"].contains(&u.trim_end_matches(',')))
+            };
+            (0..all.len())
+                .filter(|&k| !timed(k))
+                .map(|k| all[k].to_string())
+                .collect()
+        };
+        let missing: Vec<_> = words(&piped).difference(&words(&shown)).cloned().collect();
+        assert!(
+            missing.is_empty(),
+            "{args}: missing on the terminal {missing:?}"
+        );
+        let tables = |t: &str| t.matches('┌').count();
+        match args {
+            // Short row names: the columns go into more tables, each led by the method.
+            "stability" => assert!(tables(&shown) > tables(&piped), "{shown}"),
+            // Its figures' row names are wider than half the terminal: a record per row; the
+            // attribution's (the code) are not: tables led by the code.
+            "compare cases/ball_plate.toml" => {
+                assert!(
+                    shown.contains("── source: paper law, exact\n   COR "),
+                    "{shown}"
+                );
+                assert!(
+                    shown.contains("│ code           ┆ Δt (s)      │"),
+                    "{shown}"
+                );
+            }
+            _ => {}
+        }
+    }
+}

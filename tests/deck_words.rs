@@ -12,12 +12,10 @@ mod common;
 use std::path::{Path, PathBuf};
 
 use common::{millimpact, root};
-use millimpact::analysis::deck::{
-    RecordedRuns, check_deck, read_deck, table_at_width, table_width,
-};
+use millimpact::analysis::deck::{RecordedRuns, check_deck, read_deck};
 use millimpact::codes::CodeName;
 use millimpact::codes::deck::{DeckOptions, TypeRef, UserDeck};
-use millimpact::output::{Format, export};
+use millimpact::output::{Format, export, table_at_width};
 use millimpact::solve::dashpot::accurate_metrics;
 
 const FRACTION: &str = "tests/data/deck/liggghts-fraction.in";
@@ -347,9 +345,14 @@ fn the_table_fits_the_width_it_is_given() {
     let full = export(&report, Format::Table).unwrap();
     let widest = |text: &str| text.lines().map(|l| l.chars().count()).max().unwrap();
     assert!(widest(&full) > 150, "{}", widest(&full));
+    // The footer is the command that reproduces the check: left whole, to be copied.
+    let footer = full.lines().last().unwrap();
+    assert!(footer.starts_with("reproduce: millimpact deck"), "{footer}");
     for width in [80, 100, 120] {
         let text = table_at_width(&report, width).unwrap();
-        assert!(widest(&text) <= usize::from(width), "{width}: {text}");
+        let (body, last) = text.trim_end().rsplit_once('\n').unwrap();
+        assert!(widest(body) <= usize::from(width), "{width}: {text}");
+        assert_eq!(last, footer, "{width}");
         // Every pair's row is in every table the columns were split into, and every figure
         // of the full table is in the narrow one.
         for i in &report.impacts {
@@ -376,15 +379,6 @@ fn the_table_fits_the_width_it_is_given() {
     );
     // Wide enough, it is the full table.
     assert_eq!(table_at_width(&report, 400).unwrap(), full);
-}
-
-#[test]
-fn the_width_is_columns_else_the_terminals_else_none() {
-    assert_eq!(table_width(Some("100"), Some(80)), Some(100));
-    assert_eq!(table_width(None, Some(80)), Some(80));
-    assert_eq!(table_width(Some("wide"), Some(80)), Some(80));
-    assert_eq!(table_width(Some("0"), None), None);
-    assert_eq!(table_width(None, None), None);
 }
 
 /// `ternary()` came to LAMMPS in 2022: LIGGGHTS 3.8 and the 2021 build stop at it, and so does

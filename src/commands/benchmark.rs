@@ -5,6 +5,7 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
 use millimpact::analysis::benchmark::cor_chart::cor_chart;
 use millimpact::analysis::benchmark::{
@@ -13,7 +14,6 @@ use millimpact::analysis::benchmark::{
 use millimpact::analysis::store::ReferenceOptions;
 use millimpact::codes::CodeName;
 use millimpact::error::{CheckFailed, UserError};
-use millimpact::output::export;
 
 pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
     let mut warnings = Vec::new();
@@ -93,7 +93,7 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
         ))
     });
     Ok(CommandOutput {
-        text: export(&report, args.format)?,
+        text: render(&report, args.format)?,
         failure,
         warnings,
     })

@@ -3,11 +3,11 @@
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::CalibrateArgs;
 use millimpact::analysis::calibrate::{CalibrateOptions, calibrate as calibrate_case};
 use millimpact::model::case::Case;
 use millimpact::model::shipped::shipped_case;
-use millimpact::output::export;
 
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<CommandOutput> {
     let case = match &args.case {
@@ -25,5 +25,5 @@ pub(super) fn calibrate(args: &CalibrateArgs) -> Result<CommandOutput> {
         tolerance: args.tolerance,
     };
     let report = calibrate_case(&case, &options)?;
-    Ok(CommandOutput::passed(export(&report, args.format)?))
+    Ok(CommandOutput::passed(render(&report, args.format)?))
 }

@@ -5,12 +5,12 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::CompareArgs;
 use millimpact::analysis::compare::{CompareOptions, compare as compare_cases};
 use millimpact::error::CheckFailed;
 use millimpact::model::case::Case;
 use millimpact::model::shipped::canonical_cases;
-use millimpact::output::export;
 
 pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
     let cases = if args.cases.is_empty() {
@@ -31,7 +31,7 @@ pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
     let failures = report.failures();
     Ok(CommandOutput {
         warnings,
-        text: export(&report, args.format)?,
+        text: render(&report, args.format)?,
         failure: (!failures.is_empty())
             .then(|| CheckFailed(format!("compare --live: {}", failures.join("; ")))),
     })

@@ -6,11 +6,11 @@ use std::time::{Duration, Instant};
 
 use anyhow::Result;
 
-use super::CommandOutput;
+use super::{CommandOutput, render};
 use crate::cli::DeckArgs;
 use millimpact::analysis::deck::{
     DeckReport, ImpactRun, ImpactRunner, LiveRunner, check_deck, failures, read_deck,
-    table_at_width, table_width, velocities as deck_velocities,
+    velocities as deck_velocities,
 };
 use millimpact::codes::CodeError;
 use millimpact::codes::deck::DeckImpactInput;
@@ -18,8 +18,6 @@ use millimpact::codes::deck::{DeckError, DeckOptions, GivenParticle, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::law::CodeLaw;
-use millimpact::output::Format;
-use millimpact::output::export;
 
 pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
     let given = Given {
@@ -34,16 +32,7 @@ pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
         .flat_map(|speeds| speeds.0.iter().copied())
         .collect();
     let report = check_with_progress(code, &deck, &velocities, &given, args.timeout)?;
-    let columns = std::env::var("COLUMNS").ok();
-    // The terminal's width only when the table goes to one (comfy-table asks the terminal).
-    let terminal = std::io::stdout()
-        .is_terminal()
-        .then(|| comfy_table::Table::new().width())
-        .flatten();
-    let text = match (args.format, table_width(columns.as_deref(), terminal)) {
-        (Format::Table, Some(width)) => table_at_width(&report, width)?,
-        (format, _) => export(&report, format)?,
-    };
+    let text = render(&report, args.format)?;
     let failed = failures(&report);
     Ok(CommandOutput {
         text,

@@ -5,12 +5,12 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::MillArgs;
 use millimpact::analysis::mill::{MillOptions, run_mill};
 use millimpact::codes::CodeName;
 use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::UserError;
-use millimpact::output::export;
 
 pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
     if !matches!(args.code, CodeName::Liggghts | CodeName::LiggghtsPaper) {
@@ -34,5 +34,5 @@ pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
         keep: args.keep.clone(),
     };
     let report = run_mill(&deck, &options, &|_| {})?;
-    Ok(CommandOutput::passed(export(&report, args.format)?))
+    Ok(CommandOutput::passed(render(&report, args.format)?))
 }

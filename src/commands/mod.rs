@@ -16,7 +16,7 @@ mod stability;
 mod sweep;
 mod verify;
 
-use std::io::Write;
+use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -34,6 +34,22 @@ use millimpact::analysis::sweep::SweepError;
 use millimpact::error::{Blame, CheckFailed, UserError};
 use millimpact::model::case::CaseError;
 use millimpact::output::files::write_atomic;
+use millimpact::output::{Format, OutputError, Summary, export, table_at_width, table_width};
+
+/// `summary` in `format` for standard output: on a terminal a table fits its width (or
+/// `COLUMNS`, where that is set); in a pipe or a file, and in every other format, it is
+/// written whole.
+fn render<S: Summary>(summary: &S, format: Format) -> Result<String, OutputError> {
+    // comfy-table asks the terminal for its width.
+    let terminal = std::io::stdout()
+        .is_terminal()
+        .then(|| comfy_table::Table::new().width());
+    let columns = std::env::var("COLUMNS").ok();
+    match (format, table_width(terminal, columns.as_deref())) {
+        (Format::Table, Some(width)) => table_at_width(summary, width),
+        (format, _) => export(summary, format),
+    }
+}
 
 /// Write the command's text; a closed pipe or a full disk is one line and exit 1, not a panic.
 fn print(text: &str) -> Result<(), std::io::Error> {

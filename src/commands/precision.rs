@@ -2,12 +2,12 @@
 
 use anyhow::Result;
 
+use super::render;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::PrecisionArgs;
 use millimpact::analysis::precision::{code_steps_sweep, precision_report};
 use millimpact::error::UserError;
 use millimpact::model::case::Case;
-use millimpact::output::export;
 use millimpact::output::work_precision_plot::work_precision_svg;
 use millimpact::solve::Method;
 
@@ -42,5 +42,5 @@ pub(super) fn precision(args: &PrecisionArgs) -> Result<CommandOutput> {
         let svg = work_precision_svg(&report.case, &report.series())?;
         write_output(path, svg.as_bytes(), "diagram")?;
     }
-    Ok(CommandOutput::passed(export(&report, args.format)?))
+    Ok(CommandOutput::passed(render(&report, args.format)?))
 }

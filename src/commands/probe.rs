@@ -3,10 +3,11 @@
 use anyhow::{Context, Result};
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::ProbeArgs;
 use millimpact::codes::{CodeName, Executable};
 use millimpact::error::{CheckFailed, UserError};
-use millimpact::output::{Format, export};
+use millimpact::output::Format;
 
 pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
     let driver = args.code.driver();
@@ -48,7 +49,7 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
     let text = if args.format == Format::Markdown {
         millimpact::analysis::probe::conventions_markdown(&report)? + "\n"
     } else {
-        export(&report, args.format)?
+        render(&report, args.format)?
     };
     // The table is printed either way; a build whose conventions stay open is one the drivers
     // will not plan for, which is a failed check (exit 1), not bad input.

@@ -5,11 +5,12 @@ use std::time::Duration;
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::ReferenceArgs;
 use millimpact::analysis::store::{ReferenceOptions, run_reference, save};
 use millimpact::error::UserError;
 use millimpact::model::case::Case;
-use millimpact::output::{Format, export};
+use millimpact::output::Format;
 
 pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     let mut case = Case::load(&args.case)?;
@@ -49,7 +50,7 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
     };
     let record = run_reference(args.code, &case, &options)?;
-    let mut text = export(&record, args.format)?;
+    let mut text = render(&record, args.format)?;
     if args.save {
         let path = save(&args.reference, &record)?;
         if matches!(args.format, Format::Table | Format::Markdown) {

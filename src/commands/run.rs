@@ -3,6 +3,7 @@
 use anyhow::Result;
 use serde::Serialize;
 
+use super::render;
 use super::{CommandOutput, check_output, write_output};
 use crate::cli::{IntegrationArgs, RunArgs};
 use millimpact::analysis::run::{
@@ -10,7 +11,7 @@ use millimpact::analysis::run::{
 };
 use millimpact::error::UserError;
 use millimpact::model::case::Case;
-use millimpact::output::{Section, Summary, csv_string, export};
+use millimpact::output::{Section, Summary, csv_string};
 
 /// The integration options the arguments name.
 pub(super) fn integration_options(args: &IntegrationArgs) -> IntegrationOptions {
@@ -72,7 +73,7 @@ pub(super) fn run(args: &RunArgs) -> Result<CommandOutput> {
         report,
         reproduce: reproduce_arguments(&case, &settings),
     };
-    let text = export(&summary, args.format)?;
+    let text = render(&summary, args.format)?;
     if let Some(path) = &args.trajectory {
         let csv = csv_string(&trajectory_rows(&case, &outcome.trajectory))?;
         write_output(path, csv.as_bytes(), "trajectory")?;

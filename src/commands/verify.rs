@@ -3,10 +3,10 @@
 use anyhow::Result;
 
 use super::CommandOutput;
+use super::render;
 use crate::cli::VerifyArgs;
 use millimpact::analysis::store::verify::verify as verify_all;
 use millimpact::error::CheckFailed;
-use millimpact::output::export;
 
 pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
     let mut warnings = Vec::new();
@@ -21,7 +21,7 @@ pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
     let failed = report.failed();
     Ok(CommandOutput {
         warnings,
-        text: export(&report, args.format)?,
+        text: render(&report, args.format)?,
         failure: (failed > 0).then(|| {
             CheckFailed(format!(
                 "verify: {failed} of {} checks disagree",

@@ -9,6 +9,8 @@ pub(crate) mod chart;
 pub(crate) mod csv_record;
 pub use csv_record::{CsvRecords, RecordError, header_of};
 pub(crate) mod files;
+mod fit;
+pub use fit::{table_at_width, table_width};
 pub(crate) mod invocation;
 pub mod report_page;
 pub(crate) mod restitution_plot;
@@ -146,6 +148,11 @@ pub trait Summary: Serialize {
     /// Lines after every section (table and Markdown formats): how to reproduce it.
     fn footer(&self) -> Vec<String> {
         Vec::new()
+    }
+    /// How many leading columns name a row: a table split to fit a width repeats them in every
+    /// part ([`table_at_width`]).
+    fn key_columns(&self) -> usize {
+        1
     }
 }
 

@@ -595,6 +595,11 @@ pub(crate) fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, B
 impl Summary for BenchmarkReport {
     type Record = BenchmarkRow;
 
+    /// The source, the quantity and the COR set.
+    fn key_columns(&self) -> usize {
+        3
+    }
+
     fn records(&self) -> Vec<BenchmarkRow> {
         self.rows.clone()
     }

@@ -36,7 +36,7 @@ use crate::model::figures::{Checked, Figures, Quantity, quantity};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
-use crate::output::{OutputError, Section, Summary, sci, signed};
+use crate::output::{Section, Summary, sci, signed};
 use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
@@ -1007,6 +1007,11 @@ fn percent(x: f64) -> String {
 impl Summary for DeckReport {
     type Record = DeckImpactRecord;
 
+    /// The pair and the speed.
+    fn key_columns(&self) -> usize {
+        2
+    }
+
     fn records(&self) -> Vec<DeckImpactRecord> {
         self.impacts
             .iter()
@@ -1247,133 +1252,4 @@ pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
                 .map(|f| format!("{} at {} m/s: {f}", i.pair, i.impact_velocity))
         })
         .collect()
-}
-
-/// The width the table of `deck` is laid out in, in characters: `COLUMNS` where it is set to a
-/// number (`columns`), else the terminal's (`terminal`, when standard output is one); none
-/// (the full table, as every format but the table keeps it) when neither is known, so that a
-/// pipe and a snapshot see the same text whatever the terminal.
-pub fn table_width(columns: Option<&str>, terminal: Option<u16>) -> Option<u16> {
-    columns
-        .and_then(|c| c.trim().parse::<u16>().ok())
-        .filter(|w| *w > 0)
-        .or(terminal)
-}
-
-/// Narrowest layout the table is wrapped into: below it each cell would break inside numbers.
-pub(crate) const NARROWEST_TABLE: u16 = 40;
-
-/// The report as a table that fits `width` characters: its cells wrapped where a column is too
-/// wide (comfy-table's dynamic arrangement), and every line of text under it (the traps, the
-/// warnings) wrapped at the width with its indent kept.
-pub fn table_at_width(report: &DeckReport, width: u16) -> Result<String, OutputError> {
-    let width = width.max(NARROWEST_TABLE);
-    let wrap = |line: &str, out: &mut String| {
-        for piece in wrap_line(line, usize::from(width)) {
-            out.push_str(&piece);
-            out.push('\n');
-        }
-    };
-    let mut text = String::new();
-    for section in report.sections() {
-        if let Some(row) = section
-            .rows
-            .iter()
-            .find(|r| r.len() != section.headers.len())
-        {
-            return Err(OutputError::RaggedTable {
-                title: section.title.clone().unwrap_or_default(),
-                expected: section.headers.len(),
-                found: row.len(),
-            });
-        }
-        if let Some(title) = &section.title {
-            wrap(title, &mut text);
-        }
-        if !section.headers.is_empty() {
-            for columns in column_groups(&section, usize::from(width)) {
-                let pick = |row: &[String]| -> Vec<String> {
-                    columns.iter().map(|&k| row[k].clone()).collect()
-                };
-                let mut table = comfy_table::Table::new();
-                table
-                    .load_style(comfy_table::presets::UTF8_FULL_CONDENSED)
-                    .set_content_arrangement(comfy_table::ContentArrangement::Dynamic)
-                    .set_width(width)
-                    .set_header(pick(&section.headers));
-                for row in &section.rows {
-                    table.add_row(pick(row));
-                }
-                text += &format!("{table}\n");
-            }
-        }
-        for line in &section.notes {
-            wrap(line, &mut text);
-        }
-    }
-    for line in report.footer() {
-        wrap(&line, &mut text);
-    }
-    Ok(text)
-}
-
-/// Columns the first two of which (the pair and the speed) name each row.
-const KEY_COLUMNS: usize = 2;
-
-/// The columns of `section` in groups that each fit `width` as one table, the key columns
-/// first in every group: all of them in one where the whole table fits. A column too wide
-/// even beside the keys alone gets a group of its own, and its cells wrap.
-fn column_groups(section: &Section, width: usize) -> Vec<Vec<usize>> {
-    // A column takes its widest cell, a space either side and one border.
-    let column_width = |k: usize| {
-        std::iter::once(&section.headers[k])
-            .chain(section.rows.iter().map(|r| &r[k]))
-            .map(|cell| cell.chars().count())
-            .max()
-            .unwrap_or(0)
-            + 3
-    };
-    let widths: Vec<usize> = (0..section.headers.len()).map(column_width).collect();
-    let keys = KEY_COLUMNS.min(widths.len());
-    let key_width = 1 + widths[..keys].iter().sum::<usize>();
-    let mut groups: Vec<Vec<usize>> = Vec::new();
-    let mut current: Vec<usize> = (0..keys).collect();
-    let mut used = key_width;
-    for (k, &column) in widths.iter().enumerate().skip(keys) {
-        if current.len() > keys && used + column > width {
-            groups.push(std::mem::replace(&mut current, (0..keys).collect()));
-            used = key_width;
-        }
-        current.push(k);
-        used += column;
-    }
-    groups.push(current);
-    groups
-}
-
-/// `line` broken at spaces into lines of at most `width` characters (a word longer than that
-/// stands alone), each continuation indented two more than the line's own indent.
-fn wrap_line(line: &str, width: usize) -> Vec<String> {
-    if line.chars().count() <= width {
-        return vec![line.to_string()];
-    }
-    let indent = line.len() - line.trim_start().len();
-    let hanging = " ".repeat(indent + 2);
-    let mut lines = Vec::new();
-    let mut current = line[..indent].to_string();
-    let mut empty = true;
-    for word in line.split_whitespace() {
-        let length = current.chars().count() + usize::from(!empty) + word.chars().count();
-        if !empty && length > width {
-            lines.push(std::mem::replace(&mut current, hanging.clone()));
-            empty = true;
-        }
-        if !empty {
-            current.push(' ');
-        }
-        current.push_str(word);
-        empty = false;
-    }
-    lines.push(current);
-    lines
 }

@@ -830,6 +830,11 @@ impl PrecisionReport {
 impl Summary for PrecisionReport {
     type Record = PointRecord;
 
+    /// The source and the knob.
+    fn key_columns(&self) -> usize {
+        2
+    }
+
     fn records(&self) -> Vec<PointRecord> {
         self.points
             .iter()

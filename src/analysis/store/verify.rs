@@ -705,6 +705,11 @@ fn cell(x: f64, text: impl Fn(f64) -> String) -> String {
 impl Summary for VerifyReport {
     type Record = VerifyRecord;
 
+    /// The case, the source and the check.
+    fn key_columns(&self) -> usize {
+        3
+    }
+
     fn records(&self) -> Vec<VerifyRecord> {
         self.rows
             .iter()
