@@ -24,6 +24,16 @@ fn case(name: &str) -> Case {
     Case::load(&root().join("cases").join(format!("{name}.toml"))).unwrap()
 }
 
+/// Each `(figure, value, reference)` within `tol` of its reference, relatively.
+fn assert_within(what: &str, tol: f64, figures: &[(&str, f64, f64)]) {
+    for &(figure, value, reference) in figures {
+        assert!(
+            rel(value, reference) < tol,
+            "{what}: {figure} {value} vs {reference}"
+        );
+    }
+}
+
 fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
 }
@@ -55,29 +65,15 @@ fn the_paper_law_read_as_a_trajectory_gives_the_closed_forms() {
         let e = exact::paper_impact(&law, v0);
         // Linear interpolation of the crossings and the sampled peak: O(h²) with h = T/4000.
         let tol = 1e-5;
-        assert!(
-            rel(m.contact_time, e.contact_time) < tol,
-            "{name}: overlap time {} vs {}",
-            m.contact_time,
-            e.contact_time
-        );
-        assert!(
-            rel(m.force_contact_time, e.contact_time) < tol,
-            "{name}: force time {} vs {}",
-            m.force_contact_time,
-            e.contact_time
-        );
-        assert!(
-            rel(m.compression_time, e.compression_time) < tol,
-            "{name}: compression {} vs {}",
-            m.compression_time,
-            e.compression_time
-        );
-        assert!(
-            rel(m.peak_force, e.peak_force) < tol,
-            "{name}: peak force {} vs {}",
-            m.peak_force,
-            e.peak_force
+        assert_within(
+            name,
+            tol,
+            &[
+                ("overlap time", m.contact_time, e.contact_time),
+                ("force time", m.force_contact_time, e.contact_time),
+                ("compression", m.compression_time, e.compression_time),
+                ("peak force", m.peak_force, e.peak_force),
+            ],
         );
         // The closed forms the comparison uses for the paper's law agree with the integration.
         let p = paper_metrics(&e);
@@ -175,35 +171,16 @@ fn damped_laws_event_figures_match_an_independent_integration() {
         let h = m.contact_time / 400_000.0;
         let r = rk4_reference(&l, v, h);
         let tol = 1e-7;
-        assert!(
-            rel(m.cor, r.cor) < tol,
-            "{what}: COR {} vs {}",
-            m.cor,
-            r.cor
-        );
-        assert!(
-            rel(m.peak_force, r.peak_force) < tol,
-            "{what}: peak force {} vs {}",
-            m.peak_force,
-            r.peak_force
-        );
-        assert!(
-            rel(m.contact_time, r.contact_time) < tol,
-            "{what}: overlap time {} vs {}",
-            m.contact_time,
-            r.contact_time
-        );
-        assert!(
-            rel(m.force_contact_time, r.force_contact_time) < tol,
-            "{what}: force time {} vs {}",
-            m.force_contact_time,
-            r.force_contact_time
-        );
-        assert!(
-            rel(m.compression_time, r.compression_time) < tol,
-            "{what}: compression {} vs {}",
-            m.compression_time,
-            r.compression_time
+        assert_within(
+            what,
+            tol,
+            &[
+                ("COR", m.cor, r.cor),
+                ("peak force", m.peak_force, r.peak_force),
+                ("overlap time", m.contact_time, r.contact_time),
+                ("force time", m.force_contact_time, r.force_contact_time),
+                ("compression", m.compression_time, r.compression_time),
+            ],
         );
         // The force ends well before the overlap: the model difference the old figures hid.
         assert!(m.force_contact_time < 0.95 * m.contact_time, "{what}");
