@@ -13,10 +13,13 @@ use super::{OutputError, Section, Summary};
 /// keeps it) in a pipe or a file, or where neither width is known.
 pub fn table_width(terminal: Option<Option<u16>>, columns: Option<&str>) -> Option<u16> {
     let reported = terminal?;
+    // A terminal that reports no columns (a pseudo-terminal given no size) is one of unknown
+    // width.
+    let known = |w: &u16| *w > 0;
     columns
         .and_then(|c| c.trim().parse::<u16>().ok())
-        .filter(|w| *w > 0)
-        .or(reported)
+        .filter(known)
+        .or(reported.filter(known))
 }
 
 /// Narrowest layout a table is wrapped into: below it each cell would break inside numbers.
@@ -197,6 +200,9 @@ mod tests {
         assert_eq!(table_width(Some(None), Some("120")), Some(120));
         assert_eq!(table_width(Some(None), Some("0")), None);
         assert_eq!(table_width(Some(None), None), None);
+        assert_eq!(table_width(Some(Some(0)), None), None);
+        assert_eq!(table_width(Some(Some(0)), Some("90")), Some(90));
+        assert_eq!(table_width(Some(Some(80)), Some("0")), Some(80));
     }
 
     #[test]
