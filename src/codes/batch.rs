@@ -2,12 +2,11 @@
 //! directory, time limit and kept log as [`super::run_code`], one parse per impact.
 
 use std::path::{Path, PathBuf};
-use std::process::Stdio;
-use std::time::Instant;
 
-use super::runner::RunOptions;
+use super::runner::process::Process;
+use super::runner::{RunOptions, whole_trajectory};
 use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun, RenderedInput};
-use crate::model::trajectory::{CodeTrajectory, check_trajectory};
+use crate::model::trajectory::CodeTrajectory;
 use thiserror::Error;
 
 /// Why impacts cannot run together in one process of a code.
@@ -74,11 +73,7 @@ pub fn run_batch(
     setups: &[CodeSetup],
     options: &RunOptions,
 ) -> Result<BatchRun, CodeError> {
-    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
-        code: driver.name().to_string(),
-        looked,
-    });
-    run_batch_with(driver, executable, setups, options)
+    run_batch_with(driver, super::runner::locate(driver), setups, options)
 }
 
 /// [`run_batch`] with the build at `executable` (or why none was found, reported once the
@@ -89,100 +84,48 @@ pub fn run_batch_with(
     setups: &[CodeSetup],
     options: &RunOptions,
 ) -> Result<BatchRun, CodeError> {
-    let code = driver.name().to_string();
-    let io_error = |context: &str| {
-        let code = code.clone();
-        let context = context.to_string();
-        move |source| CodeError::Io {
-            code,
-            context,
-            source,
-        }
+    let code = driver.name();
+    let unsupported = |reason: String| CodeError::Unsupported {
+        code: code.to_string(),
+        case: format!("a batch of {}", setups.len()),
+        reason,
     };
     let Some(runner) = driver.batch() else {
-        return Err(CodeError::Unsupported {
-            code: code.clone(),
-            case: format!("a batch of {}", setups.len()),
-            reason: BatchError::OnePerProcess.to_string(),
-        });
+        return Err(unsupported(BatchError::OnePerProcess.to_string()));
     };
     let input = runner
         .render_batch(setups)
-        .map_err(|reason| CodeError::Unsupported {
-            code: code.clone(),
-            case: format!("a batch of {}", setups.len()),
-            reason: reason.to_string(),
-        })?;
+        .map_err(|reason| unsupported(reason.to_string()))?;
     let executable = executable?;
     super::runner::check_conventions(driver, &executable, setups)?;
     let launch = runner.launch(executable, &input);
-    let parent = options
-        .scratch_parent
-        .clone()
-        .unwrap_or_else(std::env::temp_dir);
-    let scratch = tempfile::Builder::new()
-        .prefix(&format!("millimpact-{code}-batch-"))
-        .tempdir_in(&parent)
-        .map_err(io_error("creating a scratch directory"))?;
-    let workdir = scratch.path().to_path_buf();
-    std::fs::write(workdir.join(&input.file_name), &input.text)
-        .map_err(io_error("writing the input"))?;
-    let log_path = workdir.join("log.txt");
-    let log_file = std::fs::File::create(&log_path).map_err(io_error("creating the log"))?;
-    let log_err = log_file
-        .try_clone()
-        .map_err(io_error("duplicating the log handle"))?;
-    let started = Instant::now();
-    let mut child = launch.executable.command();
-    child
-        .args(&launch.args)
-        .current_dir(&workdir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::from(log_file))
-        .stderr(Stdio::from(log_err));
-    let mut child = super::runner::spawn_contained(&mut child, &workdir)
-        .map_err(io_error("starting the code"))?;
-    let status = super::runner::wait_contained(&mut child, options.timeout)
-        .map_err(io_error("waiting for the code"))?;
-    let wall_time = started.elapsed().as_secs_f64();
-    let Some(status) = status else {
-        return Err(CodeError::TimedOut {
-            code,
-            seconds: options.timeout.as_secs_f64(),
-            log: scratch.keep().join("log.txt"),
-        });
-    };
-    let log = super::runner::read_log(&log_path).map_err(io_error("reading the log"))?;
-    if !status.success() {
-        return Err(CodeError::Crashed {
-            code,
-            status: status.to_string(),
-            said: super::runner::error_line(&log),
-            log: scratch.keep().join("log.txt"),
-        });
-    }
+    let prefix = format!("millimpact-{code}-batch-");
+    let parent = options.scratch_folder();
+    let (ran, log) = Process::new(
+        &launch.executable,
+        &launch.args,
+        (&input.file_name, &input.text),
+        options.timeout,
+        &prefix,
+    )
+    .in_folder(&parent)
+    .run()
+    .map_err(|e| e.code_error(code))?
+    .succeeded(code)?;
     let runs: Vec<Result<ParsedRun, ParseError>> = runner
-        .parse_batch(setups, &workdir, &log)
+        .parse_batch(setups, ran.folder(), &log)
         .into_iter()
         .zip(setups)
         .enumerate()
         .map(|(i, (run, setup))| {
-            let run = run?;
             // Read as a single run is read: its whole trajectory, no more, no less.
-            let rows = run.trajectory.time.len() as u64;
-            let expected = driver.trajectory_rows(setup);
-            if rows != expected {
-                return Err(ParseError::RowCount {
-                    file: format!("the trajectory of impact {} of the batch", i + 1),
-                    rows,
-                    expected,
-                });
-            }
-            check_trajectory(&run.trajectory)?;
-            Ok(run)
+            whole_trajectory(driver, setup, run?, || {
+                format!("the trajectory of impact {} of the batch", i + 1)
+            })
         })
         .collect();
-    let kept = runs.iter().any(Result::is_err).then(|| scratch.keep());
+    let wall_time = ran.wall_time;
+    let kept = runs.iter().any(Result::is_err).then(|| ran.keep());
     Ok(BatchRun {
         runs,
         wall_time,

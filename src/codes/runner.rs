@@ -1,15 +1,17 @@
 //! Running an installed code: a scratch directory, a time limit, the log kept on any fault.
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, ExitStatus, Stdio};
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use thiserror::Error;
 
+pub(crate) mod process;
+
+use self::process::{Output, Process};
+pub(crate) use self::process::{stop_all_codes, stop_all_codes_and_exit};
 use super::parse::ParseError;
 use super::setup::CodeSetup;
-use super::{CodeDriver, Executable};
+use super::{CodeDriver, Executable, ParsedRun, RenderedInput};
 use crate::model::trajectory::{CodeTrajectory, check_trajectory};
 
 /// Why a build's executable was not found: each variant names where it was looked for.
@@ -177,6 +179,15 @@ pub(crate) fn error_line(log: &str) -> Option<String> {
         .map(String::from)
 }
 
+/// The last line of `log` that starts with `ERROR`: of a code whose output reached the log
+/// line by line, the one that stopped it (an earlier one may be a warning's echo).
+pub(crate) fn last_error_line(log: &str) -> Option<String> {
+    log.lines()
+        .map(str::trim)
+        .rfind(|line| line.starts_with("ERROR"))
+        .map(String::from)
+}
+
 /// A finished run of an external code.
 #[derive(Clone, Debug)]
 pub struct CodeRun {
@@ -203,6 +214,15 @@ pub struct RunOptions {
     pub timeout: Duration,
     /// Parent directory for scratch directories (the system temp dir by default).
     pub scratch_parent: Option<PathBuf>,
+}
+
+impl RunOptions {
+    /// The folder the scratch directories are made in.
+    pub(crate) fn scratch_folder(&self) -> PathBuf {
+        self.scratch_parent
+            .clone()
+            .unwrap_or_else(std::env::temp_dir)
+    }
 }
 
 impl Default for RunOptions {
@@ -385,6 +405,14 @@ pub(crate) fn check_conventions(
     }
 }
 
+/// The build `driver` runs, or the fault of its code that it is missing.
+pub(crate) fn locate(driver: &dyn CodeDriver) -> Result<Executable, CodeError> {
+    driver.locate().map_err(|looked| CodeError::MissingBinary {
+        code: driver.name().to_string(),
+        looked,
+    })
+}
+
 /// Render, run and parse one impact in `driver`'s code.
 ///
 /// The scratch directory is removed after a good run and kept, with its `log.txt`, after any
@@ -394,247 +422,80 @@ pub fn run_code(
     setup: &CodeSetup,
     options: &RunOptions,
 ) -> Result<CodeRun, CodeError> {
-    let code = driver.name().to_string();
-    let io_error = |context: &str| {
-        let code = code.clone();
-        let context = context.to_string();
-        move |source| CodeError::Io {
-            code,
-            context,
-            source,
-        }
-    };
-    let executable = driver.locate().map_err(|looked| CodeError::MissingBinary {
-        code: code.clone(),
-        looked,
-    })?;
+    let executable = locate(driver)?;
     check_conventions(driver, &executable, std::slice::from_ref(setup))?;
     let input = driver.render(setup)?;
-    let parent = options
-        .scratch_parent
-        .clone()
-        .unwrap_or_else(std::env::temp_dir);
-    std::fs::create_dir_all(&parent).map_err(io_error("creating the scratch parent"))?;
-    let scratch = tempfile::Builder::new()
-        .prefix(&format!("millimpact-{}-{}-", code, setup.case_name))
-        .tempdir_in(&parent)
-        .map_err(io_error("creating a scratch directory"))?;
-    let workdir = scratch.path().to_path_buf();
-    std::fs::write(workdir.join(&input.file_name), &input.text)
-        .map_err(io_error("writing the input"))?;
-    let log_path = workdir.join("log.txt");
-    let log_file = std::fs::File::create(&log_path).map_err(io_error("creating the log"))?;
-    let log_err = log_file
-        .try_clone()
-        .map_err(io_error("duplicating the log handle"))?;
+    run_rendered(driver, &executable, setup, &input, options, Output::AsIs)
+}
 
-    let started = Instant::now();
-    let mut child = executable.command();
-    child
-        .args(&input.args)
-        .current_dir(&workdir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::from(log_file))
-        .stderr(Stdio::from(log_err));
-    let mut child = spawn_contained(&mut child, &workdir).map_err(io_error("starting the code"))?;
-    let status =
-        wait_contained(&mut child, options.timeout).map_err(io_error("waiting for the code"))?;
-    let wall_time = started.elapsed().as_secs_f64();
-    let keep = |scratch: tempfile::TempDir| scratch.keep().join("log.txt");
-    let status = match status {
-        Some(status) => status,
-        None => {
-            return Err(CodeError::TimedOut {
-                code,
-                seconds: options.timeout.as_secs_f64(),
-                log: keep(scratch),
-            });
-        }
-    };
-    let log = read_log(&log_path).map_err(io_error("reading the log"))?;
-    if !status.success() {
-        return Err(CodeError::Crashed {
-            code,
-            status: status.to_string(),
-            said: error_line(&log),
-            log: keep(scratch),
-        });
-    }
-    let parsed = match driver.parse(setup, &workdir, &log) {
+/// Run `input`, rendered for `setup` (by `driver` or by a deck's reader), with `executable`,
+/// and read it as `driver` reads its runs: its parse, its trajectory's rows, a trajectory that
+/// holds together. As [`run_code`], the scratch directory is kept only after a failure.
+pub(crate) fn run_rendered(
+    driver: &dyn CodeDriver,
+    executable: &Executable,
+    setup: &CodeSetup,
+    input: &RenderedInput,
+    options: &RunOptions,
+    output: Output,
+) -> Result<CodeRun, CodeError> {
+    let code = driver.name();
+    let prefix = format!("millimpact-{code}-{}-", setup.case_name);
+    let parent = options.scratch_folder();
+    let (ran, log) = Process::new(
+        executable,
+        &input.args,
+        (&input.file_name, &input.text),
+        options.timeout,
+        &prefix,
+    )
+    .in_folder(&parent)
+    .output(output)
+    .run()
+    .map_err(|e| e.code_error(code))?
+    .succeeded(code)?;
+    let parsed = match driver
+        .parse(setup, ran.folder(), &log)
+        .and_then(|parsed| whole_trajectory(driver, setup, parsed, || "the trajectory".into()))
+    {
         Ok(parsed) => parsed,
-        Err(reason) => {
-            return Err(CodeError::Unparsable {
-                code,
-                reason,
-                log: keep(scratch),
-            });
-        }
+        Err(reason) => return Err(ran.unparsable(code, reason)),
     };
-    let rows = parsed.trajectory.time.len() as u64;
-    let expected = driver.trajectory_rows(setup);
-    if rows != expected {
-        return Err(CodeError::Unparsable {
-            code,
-            reason: ParseError::RowCount {
-                file: "the trajectory".to_string(),
-                rows,
-                expected,
-            },
-            log: keep(scratch),
-        });
-    }
-    if let Err(reason) = check_trajectory(&parsed.trajectory) {
-        return Err(CodeError::Unparsable {
-            code,
-            reason: reason.into(),
-            log: keep(scratch),
-        });
-    }
     Ok(CodeRun {
-        code,
+        code: code.to_string(),
         code_version: parsed.version.unwrap_or_else(|| "unknown".to_string()),
-        input: input.text,
+        input: input.text.clone(),
         trajectory: parsed.trajectory,
-        wall_time,
+        wall_time: ran.wall_time,
         loop_time: parsed.loop_time,
         log,
     })
 }
 
-/// The process groups of the codes running now, with their scratch directories: what
-/// [`stop_all_codes`] ends when millimpact itself is stopped.
-static LIVE: Mutex<Vec<(i32, PathBuf)>> = Mutex::new(Vec::new());
-
-/// Set once millimpact is exiting on a stop: from then on no code starts, and a code that ends is
-/// not reported as failed (it was stopped), so that the stop's own clean-up and exit are what
-/// happen.
-static STOPPING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-
-/// Wait, without return, for the stop in progress to exit the process.
-fn await_stop() -> ! {
-    loop {
-        std::thread::park();
+/// `run` as a run of `setup` is read: its whole trajectory, no more rows and no fewer than
+/// `driver` writes for it (`file` names the trajectory in the error), and one that holds
+/// together.
+pub(crate) fn whole_trajectory(
+    driver: &dyn CodeDriver,
+    setup: &CodeSetup,
+    run: ParsedRun,
+    file: impl FnOnce() -> String,
+) -> Result<ParsedRun, ParseError> {
+    let rows = run.trajectory.time.len() as u64;
+    let expected = driver.trajectory_rows(setup);
+    if rows != expected {
+        return Err(ParseError::RowCount {
+            file: file(),
+            rows,
+            expected,
+        });
     }
-}
-
-/// Start `command` in a process group of its own, so that the code and every process it starts
-/// can be ended together, and register it with its scratch directory `scratch`.
-pub(crate) fn spawn_contained(command: &mut Command, scratch: &Path) -> std::io::Result<Child> {
-    #[cfg(unix)]
-    std::os::unix::process::CommandExt::process_group(command, 0);
-    // Open MPI processes started alone (the Debian LIGGGHTS and LAMMPS) all put their session
-    // directory at the same place under TMPDIR (`ompi.<host>.<uid>/jf.0/1`), and two starting at
-    // once race on it: one fails `MPI_Init` ("mkdir ... File exists"). The run's own scratch
-    // folder as its TMPDIR gives each process its own, and goes with the scratch folder.
-    command.env("TMPDIR", scratch);
-    let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
-    if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
-        drop(live);
-        await_stop();
-    }
-    let child = command.spawn()?;
-    if let Ok(pid) = i32::try_from(child.id()) {
-        live.push((pid, scratch.to_path_buf()));
-    }
-    Ok(child)
-}
-
-/// Wait for a contained code at most `timeout`; past it, kill its whole process group (the code
-/// and any process it started, whatever signals they ignore) and return `None`.
-pub(crate) fn wait_contained(
-    child: &mut Child,
-    timeout: Duration,
-) -> std::io::Result<Option<ExitStatus>> {
-    let status = wait_timeout::ChildExt::wait_timeout(child, timeout);
-    if STOPPING.load(std::sync::atomic::Ordering::SeqCst) {
-        // The code ended because millimpact is being stopped: not a fault of the code to report.
-        await_stop();
-    }
-    let pid = i32::try_from(child.id()).unwrap_or(0);
-    if !matches!(status, Ok(Some(_))) {
-        kill_group(pid);
-        let _ = child.kill();
-        let _ = child.wait();
-    }
-    // The group may hold processes the code left behind: they go with it.
-    kill_group(pid);
-    LIVE.lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .retain(|(p, _)| *p != pid);
-    status
-}
-
-fn kill_group(pid: i32) {
-    #[cfg(unix)]
-    if pid > 0 {
-        // SAFETY: kill(2) with a negative pid signals the process group; no memory is shared.
-        unsafe {
-            libc::kill(-pid, libc::SIGKILL);
-        }
-    }
-}
-
-/// The environment variable that keeps the scratch directories of codes stopped by a Ctrl-C or
-/// SIGTERM of millimpact (any value but empty or `0`), to read what a stopped run had written.
-pub(crate) const KEEP_SCRATCH_VARIABLE: &str = "MILLIMPACT_KEEP_SCRATCH";
-
-/// End every code running now (their whole process groups) and remove their scratch
-/// directories, or keep them (each named on standard error) when [`KEEP_SCRATCH_VARIABLE`] asks.
-/// The runs they belonged to end as failed runs; millimpact goes on (a sweep keeps its rows).
-pub(crate) fn stop_all_codes() {
-    stop_codes(false);
-}
-
-/// Stop millimpact: no code starts from now on, every code running ends as [`stop_all_codes`]
-/// ends it (and is not reported as a failure of its own), and the process exits with `code`.
-/// What a Ctrl-C or SIGTERM of millimpact does.
-pub(crate) fn stop_all_codes_and_exit(code: i32) -> ! {
-    stop_codes(true);
-    std::process::exit(code);
-}
-
-fn stop_codes(exiting: bool) {
-    let keep = std::env::var_os(KEEP_SCRATCH_VARIABLE).is_some_and(|v| !v.is_empty() && v != "0");
-    let live = {
-        let mut live = LIVE.lock().unwrap_or_else(|e| e.into_inner());
-        if exiting {
-            STOPPING.store(true, std::sync::atomic::Ordering::SeqCst);
-        }
-        std::mem::take(&mut *live)
-    };
-    for (pid, scratch) in live {
-        kill_group(pid);
-        if keep {
-            eprintln!("stopped: scratch kept in {}", scratch.display());
-        } else {
-            let _ = std::fs::remove_dir_all(scratch);
-        }
-    }
+    check_trajectory(&run.trajectory)?;
+    Ok(run)
 }
 
 /// Most bytes of a code's log kept: its first and last halves, with a line saying what was cut.
 pub const MAX_LOG_BYTES: usize = 1 << 20;
-
-/// Read a code's log as text whatever bytes it holds (invalid UTF-8 is replaced, not an error),
-/// and cap the kept file at [`MAX_LOG_BYTES`], keeping its head and tail.
-pub(crate) fn read_log(path: &Path) -> std::io::Result<String> {
-    let bytes = std::fs::read(path)?;
-    if bytes.len() <= MAX_LOG_BYTES {
-        return Ok(String::from_utf8_lossy(&bytes).into_owned());
-    }
-    let half = MAX_LOG_BYTES / 2;
-    let mut kept = bytes[..half].to_vec();
-    kept.extend_from_slice(
-        format!(
-            "\n[millimpact: {} bytes of this log cut; the first and last {half} kept]\n",
-            bytes.len() - 2 * half
-        )
-        .as_bytes(),
-    );
-    kept.extend_from_slice(&bytes[bytes.len() - half..]);
-    std::fs::write(path, &kept)?;
-    Ok(String::from_utf8_lossy(&kept).into_owned())
-}
 
 #[cfg(test)]
 mod tests {

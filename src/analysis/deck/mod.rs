@@ -26,10 +26,9 @@ use crate::codes::deck::{
     DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckWall, Partner, TypeRef, UserDeck,
     rayleigh_time,
 };
-use crate::codes::{
-    CodeDriver, CodeError, CodeName, CodeSetup, ParseError, ParsedRun, RenderedInput, RunOptions,
-    run_code,
-};
+use crate::codes::runner::process::Output;
+use crate::codes::runner::{locate, run_rendered};
+use crate::codes::{CodeDriver, CodeError, CodeName, RunOptions};
 use crate::model::count::ceil_count;
 use crate::model::exact;
 use crate::model::figures::{Checked, Figures, Quantity, quantity};
@@ -37,7 +36,7 @@ use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
-use crate::solve::dashpot::{CodeStepping, StepScheme, accurate_metrics};
+use crate::solve::dashpot::{CodeStepping, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
 /// canonical cases' speed, typical of a ball's fall in a mill).
@@ -215,100 +214,29 @@ pub struct LiveRunner {
     pub options: RunOptions,
 }
 
-/// A driver that runs one prepared deck impact with the code's own executable and parser.
-struct DeckImpactDriver {
-    code: &'static dyn CodeDriver,
-    input: RenderedInput,
-    law: CodeLaw,
-}
-
-impl CodeDriver for DeckImpactDriver {
-    fn name(&self) -> &'static str {
-        self.code.name()
-    }
-    fn binary(&self) -> &'static str {
-        self.code.binary()
-    }
-    fn locate(&self) -> Result<crate::codes::Executable, crate::codes::LocateError> {
-        let mut executable = self.code.locate()?;
-        // LIGGGHTS stops on a fault found by one process (`error->one`: too many sorting bins,
-        // a particle lost) with MPI_Abort, which drops what its buffered standard output still
-        // holds, its `ERROR` line among it, and writes no log file: with standard output line
-        // buffered (coreutils' `stdbuf -oL`, preloaded) the kept log has the code's reason.
-        if Path::new(LINE_BUFFERING).is_file() {
-            executable
-                .env
-                .push(("LD_PRELOAD", std::ffi::OsString::from(LINE_BUFFERING)));
-            executable
-                .env
-                .push(("_STDBUF_O", std::ffi::OsString::from("L")));
-        }
-        Ok(executable)
-    }
-    fn render(&self, _setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        Ok(self.input.clone())
-    }
-    fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
-        self.code.parse(setup, workdir, log)
-    }
-    fn law(&self, _setup: &CodeSetup) -> CodeLaw {
-        self.law
-    }
-    fn trajectory_rows(&self, setup: &CodeSetup) -> u64 {
-        self.code.trajectory_rows(setup)
-    }
-    fn step_scheme(&self) -> StepScheme {
-        self.code.step_scheme()
-    }
-}
-
 impl ImpactRunner for LiveRunner {
     fn run(
         &self,
         code: CodeName,
         impact: &DeckImpactInput,
-        law: &CodeLaw,
+        _law: &CodeLaw,
     ) -> Result<ImpactRun, CodeError> {
-        let driver = DeckImpactDriver {
-            code: code.driver(),
-            input: impact.input.clone(),
-            law: *law,
-        };
-        let run = run_code(&driver, &impact.setup, &self.options).map_err(last_error_line)?;
+        let driver = code.driver();
+        let executable = locate(driver)?;
+        // A deck's faults stop LIGGGHTS by MPI_Abort (too many sorting bins, a particle lost):
+        // line-buffered, its log keeps the line that says why.
+        let run = run_rendered(
+            driver,
+            &executable,
+            &impact.setup,
+            &impact.input,
+            &self.options,
+            Output::LineBuffered,
+        )?;
         Ok(ImpactRun {
             trajectory: run.trajectory,
             code_version: run.code_version,
         })
-    }
-}
-
-/// coreutils' library behind `stdbuf`, which sets a program's standard streams' buffering.
-const LINE_BUFFERING: &str = "/usr/libexec/coreutils/libstdbuf.so";
-
-/// A crashed run with the code's own last `ERROR` line from its kept log: the last one is the
-/// one that stopped it (an earlier one may be a warning's echo).
-fn last_error_line(error: CodeError) -> CodeError {
-    match error {
-        CodeError::Crashed {
-            code,
-            status,
-            said,
-            log,
-        } => {
-            let last = crate::codes::runner::read_log(&log).ok().and_then(|text| {
-                text.lines()
-                    .map(str::trim)
-                    .rfind(|line| line.starts_with("ERROR"))
-                    .map(String::from)
-            });
-            CodeError::Crashed {
-                code,
-                status,
-                said: last.or(said),
-                log,
-            }
-        }
-        other => other,
     }
 }
 

@@ -12,7 +12,7 @@ mod report;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use thiserror::Error;
 
@@ -28,7 +28,8 @@ use crate::codes::liggghts::mill::{
     ATOMS_FILE, ENERGY_FILE, MAX_SEEDS, MillDeck, MillLaw, MillPlan, PAIRS_FILE, POSITIONS_FILE,
     RotatingMesh, WALLS_FILE,
 };
-use crate::codes::runner::{error_line, read_log, spawn_contained, wait_contained};
+use crate::codes::runner::locate;
+use crate::codes::runner::process::{Output, Process, Step};
 use crate::codes::{CodeError, CodeName};
 
 /// Why a mill comparison did not come to a result.
@@ -264,10 +265,6 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
     ))
 }
 
-/// coreutils' library behind `stdbuf`: LIGGGHTS's standard output line-buffered, so that a
-/// run stopped by `MPI_Abort` still leaves its `ERROR` line in the kept log.
-const LINE_BUFFERING: &str = "/usr/libexec/coreutils/libstdbuf.so";
-
 /// Run one law with one seed in a scratch folder (kept, with its `log.txt`, when anything
 /// fails), and read what it wrote.
 fn run_one(
@@ -276,95 +273,48 @@ fn run_one(
     plan: &MillPlan,
     options: &MillOptions,
 ) -> Result<RunResult, MillError> {
-    let (seed, timeout) = (plan.seed, options.timeout);
+    let seed = plan.seed;
     let code = match law {
         MillLaw::Hertz => options.hertz_code,
         MillLaw::Paper => CodeName::LiggghtsPaper,
     };
     let fail = |source: CodeError| MillError::Run { law, seed, source };
-    let io = |context: &str| {
-        let context = context.to_string();
-        move |source| {
-            fail(CodeError::Io {
-                code: code.name().into(),
-                context,
-                source,
-            })
-        }
-    };
-    let mut executable = code.driver().locate().map_err(|looked| {
-        fail(CodeError::MissingBinary {
-            code: code.name().into(),
-            looked,
-        })
-    })?;
-    if Path::new(LINE_BUFFERING).is_file() {
-        executable
-            .env
-            .push(("LD_PRELOAD", std::ffi::OsString::from(LINE_BUFFERING)));
-        executable
-            .env
-            .push(("_STDBUF_O", std::ffi::OsString::from("L")));
-    }
+    let executable = locate(code.driver()).map_err(fail)?;
+    let input = deck.render(law, plan);
+    let args = ["-in", "in.mill", "-log", "none"].map(String::from);
+    let prefix = format!("{law}-seed{seed}-");
     let parent = options.keep.clone().unwrap_or_else(std::env::temp_dir);
-    std::fs::create_dir_all(&parent).map_err(io("creating the folder for the runs"))?;
-    let scratch = tempfile::Builder::new()
-        .prefix(&format!("{law}-seed{seed}-"))
-        .tempdir_in(&parent)
-        .map_err(io("creating a scratch folder"))?;
-    let folder = scratch.path().to_path_buf();
-    std::fs::write(folder.join("in.mill"), deck.render(law, plan))
-        .map_err(io("writing the input"))?;
-    let log_path = folder.join("log.txt");
-    let log = std::fs::File::create(&log_path).map_err(io("creating the log"))?;
-    let log_err = log.try_clone().map_err(io("duplicating the log"))?;
-    let mut command = executable.command();
-    command
-        .args(["-in", "in.mill", "-log", "none"])
-        .current_dir(&folder)
-        .stdin(std::process::Stdio::null())
-        .stdout(std::process::Stdio::from(log))
-        .stderr(std::process::Stdio::from(log_err));
-    let started = Instant::now();
-    let mut child = spawn_contained(&mut command, &folder).map_err(io("starting the code"))?;
-    let status = wait_contained(&mut child, timeout).map_err(io("waiting for the code"))?;
-    let wall_time = started.elapsed().as_secs_f64();
-    let Some(status) = status else {
-        let log = scratch.keep().join("log.txt");
-        return Err(fail(CodeError::TimedOut {
-            code: code.name().into(),
-            seconds: timeout.as_secs_f64(),
-            log,
-        }));
-    };
-    let text = read_log(&log_path).map_err(io("reading the log"))?;
-    if !status.success() {
-        // The last ERROR line is the one that stopped it.
-        let said = text
-            .lines()
-            .map(str::trim)
-            .rfind(|l| l.starts_with("ERROR"))
-            .map(String::from)
-            .or_else(|| error_line(&text));
-        let log = scratch.keep().join("log.txt");
-        return Err(fail(CodeError::Crashed {
-            code: code.name().into(),
-            status: status.to_string(),
-            said,
-            log,
-        }));
-    }
-    match read_run(deck, law, plan, &folder) {
+    let (ran, _) = Process::new(
+        &executable,
+        &args,
+        ("in.mill", &input),
+        options.timeout,
+        &prefix,
+    )
+    .in_folder(&parent)
+    .output(Output::LineBuffered)
+    .run()
+    .map_err(|e| {
+        e.code_error_saying(code.name(), |step| match step {
+            Step::Parent => Some("creating the folder for the runs"),
+            Step::Scratch => Some("creating a scratch folder"),
+            Step::DuplicateLog => Some("duplicating the log"),
+            _ => None,
+        })
+    })
+    .and_then(|ran| ran.succeeded(code.name()))
+    .map_err(fail)?;
+    match read_run(deck, law, plan, ran.folder()) {
         Ok(mut result) => {
-            result.wall_time = wall_time;
+            result.wall_time = ran.wall_time;
             result.code = code.name().to_string();
             if options.keep.is_some() {
-                let _ = scratch.keep();
+                let _ = ran.keep();
             }
             Ok(result)
         }
         Err(mut error) => {
-            let kept = scratch.keep();
+            let kept = ran.keep();
             if let MillError::Output { folder, .. } | MillError::LostAtoms { folder, .. } =
                 &mut error
             {

@@ -11,7 +11,6 @@
 //! inconclusive conventions.
 
 use std::path::{Path, PathBuf};
-use std::process::Stdio;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -22,7 +21,8 @@ use thiserror::Error;
 pub use crate::codes::lammps::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 use crate::codes::lammps::conventions::{exact_hertz_alpha, tsuji_alpha};
 use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version};
-use crate::codes::runner::{cache_dir, read_log, spawn_contained, wait_contained};
+use crate::codes::runner::cache_dir;
+use crate::codes::runner::process::Process;
 use crate::codes::template::TemplateError;
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeSetup, Executable, Prober};
@@ -353,39 +353,25 @@ pub(crate) fn run_probe(
     run: &ProbeRun,
 ) -> Result<(ProbeOutcome, String), ProbeError> {
     let text = render_probe(run)?;
-    let io = |doing: &'static str, path: &std::path::Path| {
-        let path = path.to_path_buf();
-        move |source| ProbeError::Io {
-            doing,
-            path,
-            source,
-        }
-    };
-    let scratch = tempfile::Builder::new()
-        .prefix("millimpact-probe-")
-        .tempdir()
-        .map_err(io("creating a scratch directory in", &std::env::temp_dir()))?;
-    let dir = scratch.path();
-    let input = dir.join("probe.in");
-    std::fs::write(&input, text).map_err(io("writing", &input))?;
-    let log_path = dir.join("log.txt");
-    let log = std::fs::File::create(&log_path).map_err(io("creating", &log_path))?;
-    let err = log.try_clone().map_err(io("duplicating", &log_path))?;
-    let mut command = executable.command();
-    command
-        .args([
-            "-in", "probe.in", "-log", "none", "-nocite", "-echo", "none",
-        ])
-        .current_dir(dir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::from(log))
-        .stderr(Stdio::from(err));
-    let mut child =
-        spawn_contained(&mut command, dir).map_err(io("starting", &executable.program))?;
-    let status = wait_contained(&mut child, PROBE_TIMEOUT)
-        .map_err(io("waiting for", &executable.program))?;
-    let log = read_log(&log_path).unwrap_or_default();
-    let Some(status) = status else {
+    let args = [
+        "-in", "probe.in", "-log", "none", "-nocite", "-echo", "none",
+    ]
+    .map(String::from);
+    let ran = Process::new(
+        executable,
+        &args,
+        ("probe.in", &text),
+        PROBE_TIMEOUT,
+        "millimpact-probe-",
+    )
+    .run()
+    .map_err(|e| ProbeError::Io {
+        doing: e.step.doing(),
+        path: e.path,
+        source: e.source,
+    })?;
+    let log = ran.log().unwrap_or_default();
+    let Some(status) = ran.status else {
         return Ok((
             ProbeOutcome::Refused(format!("killed after {} s", PROBE_TIMEOUT.as_secs())),
             log,
@@ -394,7 +380,7 @@ pub(crate) fn run_probe(
     if !status.success() {
         return Ok((ProbeOutcome::Refused(error_line(&log)), log));
     }
-    let outcome = match std::fs::read_to_string(dir.join("trajectory.txt")) {
+    let outcome = match std::fs::read_to_string(ran.folder().join("trajectory.txt")) {
         Ok(t) => match parse_trajectory(&t) {
             Ok(traj) if traj.time.len() as u64 > run.steps => ProbeOutcome::Ran(traj),
             Ok(_) => ProbeOutcome::Refused("the trajectory is short".into()),

@@ -10,16 +10,16 @@
 //! message and the script's line.
 
 use std::collections::BTreeMap;
+use std::ffi::OsString;
 use std::path::{Path, PathBuf};
-use std::process::Stdio;
 use std::time::Duration;
 
 use serde::Deserialize;
 
 use super::Yade;
 use crate::codes::deck::{DeckError, DeckSource, SourceLine};
-use crate::codes::runner::{read_log, spawn_contained, wait_contained};
-use crate::codes::{CodeDriver, CodeError, RenderedInput};
+use crate::codes::runner::process::{LOG_FILE, Process, Step};
+use crate::codes::{CodeError, RenderedInput};
 
 /// The dumper, run by YADE's Python.
 const READER: &str = include_str!("read.py");
@@ -250,33 +250,11 @@ pub fn dump_script(path: &Path, time_limit: Duration) -> Result<String, DeckErro
         code: "yade".into(),
         source: Box::new(source),
     };
-    let io = |context: &str| {
-        let context = context.to_string();
-        move |source| {
-            fault(CodeError::Io {
-                code: "yade".into(),
-                context,
-                source,
-            })
-        }
-    };
-    let executable = Yade.locate().map_err(|looked| {
-        fault(CodeError::MissingBinary {
-            code: "yade".into(),
-            looked,
-        })
-    })?;
+    let executable = crate::codes::runner::locate(&Yade).map_err(fault)?;
     let script = std::fs::canonicalize(path).map_err(|source| DeckError::Read {
         path: path.to_path_buf(),
         source,
     })?;
-    let scratch = tempfile::Builder::new()
-        .prefix("millimpact-yade-read-")
-        .tempdir()
-        .map_err(io("creating a scratch directory"))?;
-    let workdir = scratch.path().to_path_buf();
-    link_script_folder(&script, &workdir);
-    std::fs::write(workdir.join(READER_FILE), READER).map_err(io("writing the reader"))?;
     let script_arg = script.display().to_string();
     let input = RenderedInput {
         file_name: READER_FILE.into(),
@@ -292,29 +270,27 @@ pub fn dump_script(path: &Path, time_limit: Duration) -> Result<String, DeckErro
             .args
             .extend([script_arg.clone(), DUMP_FILE.to_string()]);
     }
-    let log_path = workdir.join("log.txt");
-    let log_file = std::fs::File::create(&log_path).map_err(io("creating the log"))?;
-    let log_err = log_file
-        .try_clone()
-        .map_err(io("duplicating the log handle"))?;
-    let mut command = launch.executable.command();
-    command
-        .args(&launch.args)
-        .current_dir(&workdir)
-        .stdin(Stdio::null())
-        .stdout(Stdio::from(log_file))
-        .stderr(Stdio::from(log_err));
-    let mut child = spawn_contained(&mut command, &workdir).map_err(io("starting YADE"))?;
-    let status = wait_contained(&mut child, time_limit).map_err(io("waiting for YADE"))?;
-    let keep = |scratch: tempfile::TempDir| scratch.keep().join("log.txt");
-    let Some(status) = status else {
-        return Err(fault(CodeError::TimedOut {
-            code: "yade".into(),
-            seconds: time_limit.as_secs_f64(),
-            log: keep(scratch),
-        }));
+    let ran = Process::new(
+        &launch.executable,
+        &launch.args,
+        (READER_FILE, READER),
+        time_limit,
+        "millimpact-yade-read-",
+    )
+    .linking(script_folder_links(&script))
+    .run()
+    .map_err(|e| {
+        fault(e.code_error_saying("yade", |step| match step {
+            Step::Input => Some("writing the reader"),
+            Step::Start => Some("starting YADE"),
+            Step::Wait => Some("waiting for YADE"),
+            _ => None,
+        }))
+    })?;
+    let Some(status) = ran.status else {
+        return Err(fault(ran.timed_out("yade")));
     };
-    let log = read_log(&log_path).map_err(io("reading the log"))?;
+    let log = ran.log().map_err(|e| fault(e.code_error("yade")))?;
     if let Some((line, message)) = raised(&log) {
         let at = match line {
             Some(line) => DeckSource::Line(SourceLine {
@@ -330,28 +306,22 @@ pub fn dump_script(path: &Path, time_limit: Duration) -> Result<String, DeckErro
         });
     }
     if !status.success() {
-        return Err(fault(CodeError::Crashed {
-            code: "yade".into(),
-            status: status.to_string(),
-            said: log
-                .lines()
-                .rev()
-                .find(|l| !l.trim().is_empty())
-                .map(str::to_string),
-            log: keep(scratch),
-        }));
+        let said = log
+            .lines()
+            .rev()
+            .find(|l| !l.trim().is_empty())
+            .map(str::to_string);
+        return Err(fault(ran.crashed("yade", status, said)));
     }
-    let dump = workdir.join(DUMP_FILE);
-    match std::fs::read_to_string(&dump) {
+    match std::fs::read_to_string(ran.folder().join(DUMP_FILE)) {
         Ok(text) => Ok(text),
-        Err(source) => Err(fault(CodeError::Unparsable {
-            code: "yade".into(),
-            reason: crate::codes::ParseError::Read {
+        Err(source) => Err(fault(ran.unparsable(
+            "yade",
+            crate::codes::ParseError::Read {
                 path: PathBuf::from(DUMP_FILE),
                 source,
             },
-            log: keep(scratch),
-        })),
+        ))),
     }
 }
 
@@ -364,11 +334,11 @@ fn raised(log: &str) -> Option<(Option<usize>, String)> {
     })
 }
 
-/// Link every entry of the script's folder into the scratch folder, so that the files the
-/// script reads by relative paths (meshes, packings) are found while what it writes lands in
-/// the scratch folder. An entry that cannot be linked is left out: the script then says which
-/// file it misses.
-fn link_script_folder(script: &Path, workdir: &Path) {
+/// Every entry of the script's folder, to be linked into the scratch folder (its name there,
+/// what it leads to), so that the files the script reads by relative paths (meshes, packings)
+/// are found while what it writes lands in the scratch folder. An entry that cannot be linked
+/// is left out: the script then says which file it misses.
+fn script_folder_links(script: &Path) -> Vec<(OsString, PathBuf)> {
     // A script named without a folder is in the working folder; the links must point at
     // absolute paths, since they are read from the scratch folder.
     let folder = match script.parent() {
@@ -376,22 +346,20 @@ fn link_script_folder(script: &Path, workdir: &Path) {
         _ => Path::new("."),
     };
     let Ok(folder) = std::fs::canonicalize(folder) else {
-        return;
+        return Vec::new();
     };
     let Ok(entries) = std::fs::read_dir(&folder) else {
-        return;
+        return Vec::new();
     };
-    for entry in entries.flatten() {
-        let name = entry.file_name();
-        if [READER_FILE, DUMP_FILE, "log.txt"]
-            .iter()
-            .any(|own| name == *own)
-        {
-            continue;
-        }
-        #[cfg(unix)]
-        let _ = std::os::unix::fs::symlink(entry.path(), workdir.join(&name));
-    }
+    entries
+        .flatten()
+        .map(|entry| (entry.file_name(), entry.path()))
+        .filter(|(name, _)| {
+            ![READER_FILE, DUMP_FILE, LOG_FILE]
+                .iter()
+                .any(|own| name == *own)
+        })
+        .collect()
 }
 
 /// The text of line `line` (from 1) of the script at `path`, trimmed, where it can be read.
