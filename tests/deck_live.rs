@@ -4,7 +4,7 @@
 //! model difference the lines carry and the step's start-phase band put it.
 //!
 //! `UPDATE_DECK_RUNS=1 cargo test --release --test deck_live -- --ignored` also writes the runs
-//! at the snapshot speed to `tests/data/deck/` (read by `tests/deck.rs`).
+//! at the snapshot speed to `tests/data/deck/` (read by `tests/deck_report.rs`).
 
 mod common;
 
@@ -22,7 +22,7 @@ use millimpact::model::law::DashpotLaw;
 use millimpact::model::trajectory::trajectory_metrics;
 use millimpact::solve::dashpot::{accurate_metrics, step_trajectory_from};
 
-/// The speed the snapshots of `tests/deck.rs` are taken at, m/s.
+/// The speed the snapshots of `tests/deck_report.rs` are taken at, m/s.
 pub const SNAPSHOT_VELOCITY: f64 = 4.0;
 
 fn relative(a: f64, b: f64) -> f64 {

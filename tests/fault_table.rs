@@ -323,7 +323,7 @@ fn trials(dir: &Path) -> Vec<Trial> {
             &["deck", "tests/data/deck/kratos-conical/MaterialsDEM.json"],
         ),
         // A YADE script is read by YADE itself (its refusals from recorded dumps are tested in
-        // tests/deck.rs, live in tests/deck_live.rs): here by a YADE that dumps nothing.
+        // tests/deck_refusals.rs, live in tests/deck_live.rs): here by a YADE that dumps nothing.
         with(
             trial(
                 "deck",

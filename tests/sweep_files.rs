@@ -911,19 +911,26 @@ fn batch_equals_single_runs(code: &str, binary: &str) {
 #[ignore = "live: runs LAMMPS (bash scripts/test.sh)"]
 fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
     require("lmp", "LAMMPS (Debian package `lammps`)");
+    // One code process at a time, each a fraction of a second: the signal goes once two rows
+    // are in, and the fourteen left take seconds, so the sweep is always interrupted (no
+    // scheduling delay of the test's own process lets it finish first).
+    const ROWS: usize = 16;
     let dir = TempDir::new().unwrap();
     let file = dir.path().join("slow.toml");
     std::fs::write(
         &file,
         format!(
-            "base = \"{}\"\n[axes]\nloss_coefficient = {{ start = 0.05, stop = 0.95, count = 10 }}\ncode = [\"lammps\"]\nsteps_per_contact = [100]\n",
+            "base = \"{}\"\n[axes]\nloss_coefficient = {{ start = 0.05, stop = 0.95, count = {ROWS} }}\ncode = [\"lammps\"]\nsteps_per_contact = [100]\n",
             root().join("cases/ball_plate.toml").display()
         ),
     )
     .unwrap();
     let whole = dir.path().join("whole.csv");
     let one_at_a_time = ["--jobs", "1", "--batch", "1"];
+    let started = std::time::Instant::now();
     assert!(run_sweep(&file, &whole, &one_at_a_time).status.success());
+    let uninterrupted = started.elapsed();
+    assert_eq!(rows_by_parameters(&whole).len(), ROWS);
     let part = dir.path().join("part.csv");
     let child = std::process::Command::new(assert_cmd::cargo::cargo_bin("millimpact"))
         .current_dir(root())
@@ -936,8 +943,7 @@ fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    // Interrupt once a few rows are in (one code process at a time, each a fraction of a
-    // second).
+    // Interrupt as soon as two rows are in.
     let deadline = std::time::Instant::now() + std::time::Duration::from_secs(60);
     while std::fs::read_to_string(&part)
         .map(|t| t.lines().count())
@@ -955,15 +961,15 @@ fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
     let output = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&output.stderr);
     let kept = rows_by_parameters(&part);
-    if output.status.success() {
-        // The sweep ended before the signal arrived: nothing to resume.
-        assert_eq!(kept, rows_by_parameters(&whole));
-        return;
-    }
+    assert!(
+        !output.status.success(),
+        "the sweep finished before the signal ({} rows; the whole sweep took {uninterrupted:?}): {stderr}",
+        kept.len()
+    );
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert!(stderr.contains("interrupted"), "{stderr}");
     assert!(
-        kept.len() >= 2 && kept.len() < 10,
+        kept.len() >= 2 && kept.len() < ROWS,
         "{} rows kept",
         kept.len()
     );
@@ -971,7 +977,10 @@ fn ctrl_c_keeps_every_finished_row_and_resume_completes_the_sweep() {
         kept.values().all(|r| r["status"] == "ok"),
         "only finished rows"
     );
-    eprintln!("interrupted after {} of 10 rows", kept.len());
+    eprintln!(
+        "interrupted after {} of {ROWS} rows (the whole sweep: {uninterrupted:?})",
+        kept.len()
+    );
     let resumed = run_sweep(&file, &part, &["--resume", "--jobs", "1", "--batch", "1"]);
     assert!(resumed.status.success(), "{resumed:?}");
     assert_eq!(rows_by_parameters(&part), rows_by_parameters(&whole));

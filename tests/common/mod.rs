@@ -133,6 +133,7 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 }
 pub mod calibrate;
 pub mod codes;
+pub mod deck;
 pub mod mill;
 pub mod paper_build;
 

@@ -1,4 +1,4 @@
-# base.py with one line changed (a case of tests/deck.rs).
+# base.py with one line changed (a case of tests/deck_refusals.rs).
 steel = O.materials.append(FrictMat(young=2e11, poisson=0.3, density=7800))
 O.bodies.append(sphere((0, 0, 0), 0.01, material=steel))
 O.bodies.append(wall(-0.01, axis=2, material=steel))
