@@ -8,9 +8,11 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub(crate) mod conventions;
 pub mod damping;
 pub mod deck;
 pub(crate) mod parse;
+pub(crate) mod probe;
 pub mod runner;
 pub mod script;
 pub(crate) mod setup;
@@ -27,9 +29,9 @@ use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{CodeFrame, CodeStepping, StepScheme, own_law_metrics};
 pub(crate) use batch::BatchError;
-use lammps::conventions::Conventions;
-use lammps::probe::{ProbeError, ProbeReport};
+pub use conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 pub use parse::ParseError;
+pub use probe::{Hypothesis, Measured, ProbeError, ProbeItem, ProbeReport};
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
 pub(crate) use setup::setup_for_case;
 pub use setup::{CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with};

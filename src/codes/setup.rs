@@ -6,7 +6,7 @@ use serde::{Deserialize, Serialize};
 use super::CodeDriver;
 use thiserror::Error;
 
-use super::lammps::conventions::Conventions;
+use super::conventions::Conventions;
 use crate::model::case::Case;
 use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
