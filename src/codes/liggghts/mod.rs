@@ -26,8 +26,8 @@ use super::parse::{ParseError, parse_columns};
 use super::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use super::template::{exact_number, fill_template};
 use super::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParsedRun, RenderedInput,
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeName, CodeSetup, Executable,
+    LocateError, PaperBuild, ParsedRun, RenderedInput,
 };
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
@@ -396,6 +396,21 @@ impl CodeDriver for Liggghts {
 
     fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
         Some(&deck::LiggghtsDeck)
+    }
+
+    /// A deck that selects `model paper` (or `paper/linear`) runs in liggghts-paper, the build
+    /// that has the model: the stock build stops on it.
+    fn paper_build(&self) -> Option<PaperBuild> {
+        Some(PaperBuild {
+            code: CodeName::LiggghtsPaper,
+            selection: "normal model ",
+            lacks: "the stock liggghts build lacks the paper's model",
+            instead: "--code liggghts-paper, or no --code (a deck that selects model paper runs in liggghts-paper)",
+        })
+    }
+
+    fn mill_paper_build(&self) -> Option<CodeName> {
+        Some(CodeName::LiggghtsPaper)
     }
 
     fn name(&self) -> &'static str {
