@@ -176,7 +176,7 @@ fn render_uses_effective_values_and_no_clamp() {
 fn the_plan_follows_the_measured_conventions() {
     use millimpact::codes::lammps::DEBIAN_2021;
     use millimpact::codes::lammps::build_2025::JUL_2025;
-    use millimpact::codes::lammps::probe::{Conventions, DampingVelocity, TsujiFit};
+    use millimpact::codes::{Conventions, DampingVelocity, TsujiFit};
     let e = e_paper();
     let at = |c: Conventions| CodeSetup {
         conventions: Some(c),

@@ -9,11 +9,10 @@ mod common;
 
 use millimpact::analysis::probe::{conventions_markdown, generated_part};
 use millimpact::analysis::store::verify::{REMAINDER_TOLERANCE, TARGET_TOLERANCE};
-use millimpact::codes::CodeName;
-use millimpact::codes::lammps::probe::{
-    Conventions, DampingVelocity, ProbeReport, TsujiFit, WallModulus,
-};
 use millimpact::codes::lammps::{exact_hertz_alpha, tsuji_alpha};
+use millimpact::codes::{
+    CodeName, Conventions, DampingVelocity, ProbeReport, TsujiFit, WallModulus,
+};
 
 fn probe(code: CodeName) -> ProbeReport {
     let driver = code.driver();

@@ -6,7 +6,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::codes::lammps::probe::ProbeReport;
+use crate::codes::ProbeReport;
 use crate::output::{Format, OutputError, Section, Summary, export};
 
 /// Where a report's conventions table is kept in `reference/<code>/CONVENTIONS.md`: between

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use serde::{Serialize, Serializer};
 use thiserror::Error;
 
-use super::lammps::conventions::Conventions;
+use super::conventions::Conventions;
 use super::{CodeError, CodeSetup, CodeSphere, RenderedInput};
 use crate::model::law::{CodeLaw, ContactForce};
 use crate::model::scene::SceneKind;

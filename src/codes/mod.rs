@@ -8,9 +8,11 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub(crate) mod conventions;
 pub mod damping;
 pub mod deck;
 pub(crate) mod parse;
+pub(crate) mod probe;
 pub mod runner;
 pub mod script;
 pub(crate) mod setup;
@@ -27,9 +29,9 @@ use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{CodeFrame, CodeStepping, StepScheme, own_law_metrics};
 pub(crate) use batch::BatchError;
-use lammps::conventions::Conventions;
-use lammps::probe::{ProbeError, ProbeReport};
+pub use conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 pub use parse::ParseError;
+pub use probe::{Hypothesis, Measured, ProbeError, ProbeItem, ProbeReport};
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
 pub(crate) use setup::setup_for_case;
 pub use setup::{CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with};
@@ -175,6 +177,18 @@ pub trait CodeDriver: Send + Sync {
     fn deck(&self) -> Option<&dyn deck::DeckReader> {
         None
     }
+    /// Where the decks this build's reader reads run when they select the paper's law, for a
+    /// build that lacks the law (a stock build: its paper build has it); `None` where this
+    /// build runs such a deck itself, or reads no decks.
+    fn paper_build(&self) -> Option<PaperBuild> {
+        None
+    }
+    /// The build that runs the paper's law beside this build's damped Hertz in a mill
+    /// (`millimpact mill`: a drum deck run under both laws); `None` for a build that runs no
+    /// mill.
+    fn mill_paper_build(&self) -> Option<CodeName> {
+        None
+    }
     /// The code whose contact law this one integrates too (drawn as one in the figures).
     fn shares_law_with(&self) -> Option<CodeName> {
         None
@@ -209,6 +223,32 @@ pub trait CodeDriver: Send + Sync {
             Ok(report) if !report.ran() => Ok(None),
             Ok(report) => report.conventions().map(Some),
         }
+    }
+}
+
+/// A stock build's paper build as a user's deck meets it ([`CodeDriver::paper_build`]): the
+/// build of the same code that has the paper's law, and what the stock build says when asked
+/// to run a deck that selects the law itself (it would stop on the unknown style).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PaperBuild {
+    /// The build with the paper's law.
+    pub code: CodeName,
+    /// What the refusal calls the deck's selection, before the model as the deck writes it
+    /// (`normal model `, or nothing).
+    pub selection: &'static str,
+    /// Why the stock build cannot run such a deck.
+    pub lacks: &'static str,
+    /// What to run instead.
+    pub instead: &'static str,
+}
+
+impl PaperBuild {
+    /// Why `stock` refuses a deck that selects the paper's law with `model`.
+    pub fn refusal(&self, stock: CodeName, model: &str) -> String {
+        format!(
+            "{}`{model}` with --code {stock}: {}",
+            self.selection, self.lacks
+        )
     }
 }
 

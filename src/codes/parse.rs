@@ -1,5 +1,6 @@
-//! Reading a code's output back: the errors a parser reports and the column reader the
-//! LIGGGHTS and LAMMPS drivers share.
+//! Reading a code's output back: the errors a parser reports, the column reader the LIGGGHTS
+//! and LAMMPS drivers share, and the readers of what the Python drivers' scripts (YADE's,
+//! Kratos') print and write.
 
 use std::path::PathBuf;
 
@@ -117,6 +118,65 @@ pub(crate) fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, Pa
         out.normal_force.push(force);
     }
     Ok(out)
+}
+
+/// The value after `key` on the `MILLIMPACT` lines a driver's Python script prints (YADE's and
+/// Kratos' scripts report their figures so), up to the next blank.
+pub(crate) fn log_value<'a>(log: &'a str, key: &str) -> Option<&'a str> {
+    log.lines()
+        .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
+        .flat_map(|rest| rest.split_whitespace())
+        .find_map(|field| field.strip_prefix(key))
+}
+
+/// Read a trajectory written as comma-separated columns under a header that names them
+/// (`time`, `overlap`, `approach_velocity`, `normal_force`, in any order, among others), as
+/// the Python drivers' scripts write it. `file` names the file in error messages.
+pub(crate) fn parse_csv_columns(text: &str, file: &str) -> Result<CodeTrajectory, ParseError> {
+    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
+    let header = lines.next().ok_or_else(|| ParseError::Empty {
+        file: file.to_string(),
+    })?;
+    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
+    let find = |name: &'static str| {
+        columns
+            .iter()
+            .position(|c| *c == name)
+            .ok_or_else(|| ParseError::MissingColumn {
+                file: file.to_string(),
+                column: name,
+                header: header.to_string(),
+            })
+    };
+    let (it, iy, iv, iff) = (
+        find("time")?,
+        find("overlap")?,
+        find("approach_velocity")?,
+        find("normal_force")?,
+    );
+    let mut t = CodeTrajectory::default();
+    for (row, line) in lines.enumerate() {
+        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
+        if fields.len() != columns.len() {
+            return Err(ParseError::Row {
+                file: file.to_string(),
+                line: row + 2,
+                reason: format!("{} fields, header has {}", fields.len(), columns.len()),
+            });
+        }
+        let value = |i: usize| {
+            fields[i].parse::<f64>().map_err(|e| ParseError::Row {
+                file: file.to_string(),
+                line: row + 2,
+                reason: format!("`{}`: {e}", fields[i]),
+            })
+        };
+        t.time.push(value(it)?);
+        t.overlap.push(value(iy)?);
+        t.approach_velocity.push(value(iv)?);
+        t.normal_force.push(value(iff)?);
+    }
+    Ok(t)
 }
 
 #[cfg(test)]

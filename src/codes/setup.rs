@@ -6,12 +6,20 @@ use serde::{Deserialize, Serialize};
 use super::CodeDriver;
 use thiserror::Error;
 
-use super::lammps::conventions::Conventions;
+use super::conventions::Conventions;
 use crate::model::case::Case;
 use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
 use crate::solve::SolveError;
 use crate::solve::dashpot::own_law_metrics;
+
+/// Young's modulus, Pa, given to the wall that stands for a rigid plate in a code whose walls
+/// always mix their material into `E*`: at 1e30 the wall's `(1-ν²)/E` (1e-30) is below the
+/// rounding of a steel ball's compliance (4.55e-12 × 1.1e-16 = 5e-28), so the code's `E*` is
+/// the ball's `E/(1-ν²)` to the last bit.
+pub(crate) const RIGID_WALL_MODULUS: f64 = 1e30;
+/// Poisson's ratio given to that wall (irrelevant at [`RIGID_WALL_MODULUS`]).
+pub(crate) const RIGID_WALL_POISSON: f64 = 0.0;
 
 /// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]

@@ -7,19 +7,13 @@ use anyhow::Result;
 use super::CommandOutput;
 use super::render;
 use crate::cli::MillArgs;
-use millimpact::analysis::mill::{MillOptions, run_mill};
-use millimpact::codes::CodeName;
+use millimpact::analysis::mill::{MillOptions, mill_builds, run_mill};
 use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::UserError;
 
 pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
-    if !matches!(args.code, CodeName::Liggghts | CodeName::LiggghtsPaper) {
-        return Err(UserError::argument(
-            "--code",
-            args.code,
-            "liggghts or liggghts-paper (mill runs LIGGGHTS decks)",
-        )
-        .into());
+    if args.code.driver().mill_paper_build().is_none() {
+        return Err(UserError::argument("--code", args.code, mill_builds()).into());
     }
     let deck = MillDeck::read(&args.deck).map_err(UserError::from)?;
     let options = MillOptions {

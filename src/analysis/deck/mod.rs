@@ -310,7 +310,11 @@ pub fn read_deck(
         CodeName::ALL
             .iter()
             // The paper builds read with their stock build's reader, named once (as it).
-            .filter(|c| **c != CodeName::LiggghtsPaper && **c != CodeName::LammpsPaper)
+            .filter(|c| {
+                !CodeName::ALL
+                    .iter()
+                    .any(|s| s.driver().paper_build().is_some_and(|p| p.code == **c))
+            })
             .filter_map(|c| c.driver().deck().map(|d| format!("{c}: {}", d.reads())))
             .collect::<Vec<_>>()
             .join("; ")
@@ -345,10 +349,10 @@ pub fn read_deck(
     })
 }
 
-/// The build that runs `deck`, read by `read_by`'s reader: a LIGGGHTS deck whose lines select
-/// the paper's law (`model paper`, `model paper/linear`) runs in liggghts-paper, the build that
-/// has the model; asked for the stock build (`asked`), such a deck is refused, since the stock
-/// build stops on the unknown model.
+/// The build that runs `deck`, read by `read_by`'s reader: a deck whose lines select the
+/// paper's law (LIGGGHTS' `model paper`, the LAMMPS plugin's styles) runs in the reader's
+/// paper build, the build that has the law ([`CodeDriver::paper_build`]); asked for the stock
+/// build (`asked`), such a deck is refused, since the stock build stops on the unknown style.
 fn build_for(
     read_by: CodeName,
     asked: Option<CodeName>,
@@ -358,29 +362,13 @@ fn build_for(
         .contacts
         .iter()
         .find(|c| matches!(c.law, CodeLaw::Paper(_)));
-    match (read_by, paper) {
-        (CodeName::Liggghts, Some(c)) if asked == Some(CodeName::Liggghts) => {
-            Err(DeckError::unsupported(
-                c.lines[0].clone(),
-                format!(
-                    "normal model `{}` with --code liggghts: the stock liggghts build lacks the paper's model",
-                    c.model
-                ),
-                "--code liggghts-paper, or no --code (a deck that selects model paper runs in liggghts-paper)",
-            ))
-        }
-        (CodeName::Liggghts, Some(_)) => Ok((CodeName::LiggghtsPaper, deck)),
-        (CodeName::Lammps | CodeName::Lammps2025, Some(c)) if asked == Some(read_by) => {
-            Err(DeckError::unsupported(
-                c.lines[0].clone(),
-                format!(
-                    "`{}` with --code {read_by}: the plain build has not loaded the paper plugin",
-                    c.model
-                ),
-                "--code lammps-paper, or no --code (a deck that selects the paper plugin's styles runs in lammps-paper)",
-            ))
-        }
-        (CodeName::Lammps | CodeName::Lammps2025, Some(_)) => Ok((CodeName::LammpsPaper, deck)),
+    match (read_by.driver().paper_build(), paper) {
+        (Some(build), Some(c)) if asked == Some(read_by) => Err(DeckError::unsupported(
+            c.lines[0].clone(),
+            build.refusal(read_by, &c.model),
+            build.instead,
+        )),
+        (Some(build), Some(_)) => Ok((build.code, deck)),
         _ => Ok((read_by, deck)),
     }
 }

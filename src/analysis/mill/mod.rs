@@ -144,7 +144,7 @@ impl MillOptions {
             timeout: Duration::from_secs(3600),
             jobs: 2,
             keep: None,
-            hertz_code: CodeName::Liggghts,
+            hertz_code: MillDeck::DEFAULT_BUILD,
         }
     }
 }
@@ -182,6 +182,16 @@ pub(crate) struct RunResult {
     pub wall_time: f64,
 }
 
+/// The builds that run a mill, as a refused `--code` names them.
+pub(crate) fn mill_builds() -> String {
+    let builds: Vec<&str> = CodeName::ALL
+        .iter()
+        .filter(|c| c.driver().mill_paper_build().is_some())
+        .map(|c| c.name())
+        .collect();
+    format!("{} (mill runs LIGGGHTS decks)", builds.join(" or "))
+}
+
 /// The plan each run follows, checked against the deck.
 pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), MillError> {
     let refuse = |option: &'static str, value: String, allowed: String| MillError::Option {
@@ -190,6 +200,13 @@ pub fn plan(deck: &MillDeck, options: &MillOptions) -> Result<(MillPlan, f64), M
         value,
         allowed,
     };
+    if options.hertz_code.driver().mill_paper_build().is_none() {
+        return Err(refuse(
+            "--code",
+            options.hertz_code.to_string(),
+            mill_builds(),
+        ));
+    }
     let written = deck.rotation_steps as f64 * deck.timestep;
     let rotation_steps = match options.time {
         None => deck.rotation_steps,
@@ -276,7 +293,12 @@ fn run_one(
     let seed = plan.seed;
     let code = match law {
         MillLaw::Hertz => options.hertz_code,
-        MillLaw::Paper => CodeName::LiggghtsPaper,
+        // A build that runs no mill is refused by `plan` before any run.
+        MillLaw::Paper => options
+            .hertz_code
+            .driver()
+            .mill_paper_build()
+            .unwrap_or(options.hertz_code),
     };
     let fail = |source: CodeError| MillError::Run { law, seed, source };
     let executable = locate(code.driver()).map_err(fail)?;

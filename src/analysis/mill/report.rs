@@ -5,7 +5,6 @@ use serde::{Deserialize, Serialize};
 
 use super::contacts::{ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED, bin};
 use super::{BLOCKS, DEFAULT_CONTACT_EVERY, MillOptions, RunResult};
-use crate::codes::CodeName;
 use crate::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary};
@@ -483,7 +482,7 @@ pub(super) fn summarise(
         written: paired(&written, power, held),
         switched: paired(&switched, power, held),
     });
-    let code_given = (options.hertz_code != CodeName::Liggghts).then_some(options.hertz_code);
+    let code_given = (options.hertz_code != MillDeck::DEFAULT_BUILD).then_some(options.hertz_code);
     let reproduce = Invocation::new("mill")
         .arg(deck.path.display())
         .option_if("--code", code_given)

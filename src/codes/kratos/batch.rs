@@ -21,10 +21,9 @@
 
 use std::path::Path;
 
-use crate::codes::kratos::Kratos;
-use crate::codes::parse::ParseError;
+use crate::codes::kratos::{Kratos, parse_trajectory};
+use crate::codes::parse::{ParseError, log_value};
 use crate::codes::template::exact_number;
-use crate::codes::yade::{log_value, parse_trajectory};
 use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 

@@ -43,16 +43,16 @@ use std::path::{Path, PathBuf};
 use super::damping::{
     clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
 };
-use super::parse::ParseError;
+use super::parse::{ParseError, log_value, parse_csv_columns};
 use super::runner::{self, CodesDir, find_codes_dir};
 use super::template::{exact_number, fill_template};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
     RenderedInput,
 };
-use crate::codes::yade::{log_value, parse_trajectory};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
+use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{StepScheme, accurate_metrics};
 
 /// The Python template of one impact.
@@ -77,6 +77,11 @@ pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
 /// The files a run leaves in its scratch directory (besides the harness's `log.txt`): the
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
+
+/// Parse the script's `trajectory.csv` (header `iter,time,overlap,approach_velocity,normal_force`).
+pub(crate) fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
+    parse_csv_columns(text, TRAJECTORY_FILE)
+}
 
 /// The python of the installed Kratos, under the codes' folder (`find_codes_dir`).
 pub const PYTHON: &str = "kratos/bin/python";

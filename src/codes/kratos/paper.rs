@@ -27,12 +27,11 @@
 use std::ffi::OsString;
 use std::path::Path;
 
-use super::{dynamic_mass, hertz_stiffness};
+use super::{dynamic_mass, hertz_stiffness, parse_trajectory};
 use crate::codes::batch::{BatchError, parse_marked_batch};
-use crate::codes::parse::ParseError;
+use crate::codes::parse::{ParseError, log_value};
 use crate::codes::runner::{self, find_codes_dir};
 use crate::codes::template::exact_number;
-use crate::codes::yade::{log_value, parse_trajectory};
 use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
     ParsedRun, RenderedInput,

@@ -4,7 +4,16 @@
 
 use crate::codes::lammps::deck::LammpsDeck;
 use crate::codes::lammps::{DEBIAN_2021, Lammps};
-use crate::codes::{CodeDriver, Executable, LocateError};
+use crate::codes::{CodeDriver, CodeName, Executable, LocateError, PaperBuild};
+
+/// Where a LAMMPS user's deck that selects the paper plugin's styles runs: the plugin's build
+/// (every plain build's [`CodeDriver::paper_build`]), since a plain build has not loaded it.
+pub(crate) const PAPER_BUILD: PaperBuild = PaperBuild {
+    code: CodeName::LammpsPaper,
+    selection: "",
+    lacks: "the plain build has not loaded the paper plugin",
+    instead: "--code lammps-paper, or no --code (a deck that selects the paper plugin's styles runs in lammps-paper)",
+};
 
 /// The [`CodeDriver`] methods every LAMMPS build's driver shares, from its [`Build`]
 /// (`binary` and `locate` are each driver's own).
@@ -44,6 +53,10 @@ macro_rules! lammps_driver_methods {
 
         fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {
             Some($crate::codes::CodeName::Liggghts)
+        }
+
+        fn paper_build(&self) -> Option<$crate::codes::PaperBuild> {
+            Some($crate::codes::lammps::builds::PAPER_BUILD)
         }
 
         fn prober(&self) -> Option<&dyn $crate::codes::Prober> {

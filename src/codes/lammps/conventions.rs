@@ -1,8 +1,8 @@
 //! The conventions of a LAMMPS build that decide its equivalent setup and its law (measured by
-//! [`crate::codes::lammps::probe`]), and the damping fits they involve.
+//! [`crate::codes::lammps::probe`]; the type is the shared [`crate::codes::conventions`]), the
+//! conventions of the builds the drivers know, and the damping fits they involve.
 
-use serde::{Deserialize, Serialize};
-
+pub(crate) use crate::codes::conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
 use crate::model::law::DashpotLaw;
 
 /// Marshall's fit `α(e)` that LAMMPS's `damping tsuji` uses (without the √2 of newer source), as a function of the
@@ -47,26 +47,6 @@ pub fn exact_hertz_alpha(restitution: f64) -> f64 {
     5f64.sqrt() * DashpotLaw::damping_ratio(restitution)
 }
 
-/// The effective modulus `fix wall/gran … hertz/material E d ν` makes of `E` and `ν`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum WallModulus {
-    /// `E* = E / (2(1 − ν))` (29 Sep 2021).
-    HalfOverOneMinusNu,
-    /// `E* = E / (2(1 − ν²))`, the particle's material on both sides (22 Jul 2025).
-    HalfOverOneMinusNuSquared,
-}
-
-/// The damping ratio `damping tsuji` applies for the number `e_in` it is given.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum TsujiFit {
-    /// `α = poly(e_in)`, Marshall's fit without the √2 (up to at least 22 Jul 2025).
-    Polynomial,
-    /// `α = √2 · poly(e_in)` (newer source, lammps PR #5113).
-    Sqrt2Polynomial,
-}
-
 impl TsujiFit {
     /// The factor on the polynomial.
     pub(crate) fn factor(self) -> f64 {
@@ -80,31 +60,6 @@ impl TsujiFit {
     pub(crate) fn alpha(self, e_in: f64) -> f64 {
         self.factor() * tsuji_alpha(e_in)
     }
-}
-
-/// The velocity the dashpot sees in a step of `fix nve/sphere`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum DampingVelocity {
-    /// `v(n+½)`, after the first half kick (velocity Verlet as LAMMPS writes it).
-    HalfStep,
-    /// `v(n+1)`.
-    FullStep,
-}
-
-/// The conventions of one LAMMPS build that decide its equivalent setup and its law.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub struct Conventions {
-    /// The wall's effective modulus.
-    pub wall_modulus: WallModulus,
-    /// Whether `damping coeff_restitution` exists and applies `√5 β(e)` (Hertz).
-    pub coeff_restitution: bool,
-    /// What `damping tsuji` applies.
-    pub tsuji_fit: TsujiFit,
-    /// Whether a wall started exactly touching (overlap 0) is in contact.
-    pub touching_is_contact: bool,
-    /// The velocity the dashpot sees.
-    pub damping_velocity: DampingVelocity,
 }
 
 impl Conventions {

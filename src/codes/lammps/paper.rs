@@ -28,8 +28,8 @@ use crate::codes::lammps::build_2025::{self, venv_executable};
 use crate::codes::lammps::{
     INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
 };
-use crate::codes::liggghts::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
+use crate::codes::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,

@@ -14,6 +14,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::deck::{LiggghtsDeck, read_model, read_settings, read_wall};
+use crate::codes::CodeName;
 use crate::codes::deck::{DeckError, DeckOptions, DeckReader, SourceLine};
 use crate::codes::script::{Command, ScriptReader};
 use crate::model::exact;
@@ -297,6 +298,11 @@ fn restitution_of(
 }
 
 impl MillDeck {
+    /// The build that runs a mill deck's damped Hertz unless asked otherwise: the stock
+    /// LIGGGHTS build (its paper's law runs in the build's
+    /// [`CodeDriver::mill_paper_build`](crate::codes::CodeDriver::mill_paper_build)).
+    pub const DEFAULT_BUILD: CodeName = CodeName::Liggghts;
+
     /// Read the deck at `path`: refused in one line (file, line, what, what is allowed) when it
     /// has no rotating mesh, a mesh file that is not there, or a law the switch cannot express.
     pub fn read(path: &Path) -> Result<MillDeck, DeckError> {

@@ -23,10 +23,11 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
+use super::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use super::template::{exact_number, fill_template};
 use super::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParsedRun, RenderedInput,
+    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeName, CodeSetup, Executable,
+    LocateError, PaperBuild, ParsedRun, RenderedInput,
 };
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
@@ -36,14 +37,6 @@ const TEMPLATE: &str = include_str!("impact.in");
 const INPUT_FILE: &str = "impact.in";
 /// The trajectory file the template writes (one row per step, plus the initial state).
 pub(crate) const TRAJECTORY_FILE: &str = "traj.txt";
-
-/// Young's modulus given to a rigid wall's atom type, Pa. LIGGGHTS has no rigid wall: the
-/// wall type's `(1-ν²)/E` is always added to `1/E*`. At 1e30 that term (1e-30) is below the
-/// rounding of a steel ball's compliance (4.55e-12 × 1.1e-16 = 5e-28), so the code's `E*` is
-/// the ball's `E/(1-ν²)` to the last bit; no upper limit on E exists under `hard_particles yes`.
-pub(crate) const RIGID_WALL_MODULUS: f64 = 1e30;
-/// Poisson's ratio given to a rigid wall's atom type (irrelevant at [`RIGID_WALL_MODULUS`]).
-pub(crate) const RIGID_WALL_POISSON: f64 = 0.0;
 
 /// The gap, m, left between the surfaces at `t = 0` instead of exact contact.
 ///
@@ -65,6 +58,8 @@ fn code_mass(radius: f64, density: f64) -> f64 {
 /// `(E, ν)` of atom type 2: the plate, the rigid wall stand-in, or the second ball.
 fn partner_material(setup: &CodeSetup) -> Option<(f64, f64)> {
     match setup.scene {
+        // LIGGGHTS has no rigid wall (the wall type's `(1-ν²)/E` is always added to `1/E*`)
+        // and no upper limit on E under `hard_particles yes`: a rigid plate is a stiff type.
         SceneKind::BallPlate => Some(
             setup
                 .plate_material
@@ -401,6 +396,21 @@ impl CodeDriver for Liggghts {
 
     fn deck(&self) -> Option<&dyn super::deck::DeckReader> {
         Some(&deck::LiggghtsDeck)
+    }
+
+    /// A deck that selects `model paper` (or `paper/linear`) runs in liggghts-paper, the build
+    /// that has the model: the stock build stops on it.
+    fn paper_build(&self) -> Option<PaperBuild> {
+        Some(PaperBuild {
+            code: CodeName::LiggghtsPaper,
+            selection: "normal model ",
+            lacks: "the stock liggghts build lacks the paper's model",
+            instead: "--code liggghts-paper, or no --code (a deck that selects model paper runs in liggghts-paper)",
+        })
+    }
+
+    fn mill_paper_build(&self) -> Option<CodeName> {
+        Some(CodeName::LiggghtsPaper)
     }
 
     fn name(&self) -> &'static str {

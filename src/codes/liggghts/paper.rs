@@ -166,6 +166,10 @@ impl CodeDriver for LiggghtsPaper {
     fn deck(&self) -> Option<&dyn crate::codes::deck::DeckReader> {
         Some(&super::deck::LiggghtsDeck)
     }
+
+    fn mill_paper_build(&self) -> Option<crate::codes::CodeName> {
+        Some(crate::codes::CodeName::LiggghtsPaper)
+    }
 }
 
 /// The paper build's batches: many impacts in one process, its single inputs in sequence (as

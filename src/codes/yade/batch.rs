@@ -27,8 +27,9 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 use crate::codes::parse::ParseError;
+use crate::codes::parse::log_value;
 use crate::codes::template::exact_number;
-use crate::codes::yade::{Yade, log_value, parse_trajectory};
+use crate::codes::yade::{Yade, parse_trajectory};
 use crate::codes::{
     BatchError, BatchRunner, CodeSetup, Executable, Launch, ParsedRun, RenderedInput,
 };

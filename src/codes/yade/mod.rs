@@ -37,7 +37,7 @@ use std::path::Path;
 pub use super::damping::{
     clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
 };
-use super::parse::ParseError;
+use super::parse::{ParseError, log_value, parse_csv_columns};
 use super::template::{exact_number, fill_template};
 use super::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput,
@@ -317,58 +317,7 @@ impl CodeDriver for Yade {
     }
 }
 
-/// The value after `key` on the script's `MILLIMPACT` lines, up to the next blank.
-pub(super) fn log_value<'a>(log: &'a str, key: &str) -> Option<&'a str> {
-    log.lines()
-        .filter_map(|l| l.trim().strip_prefix("MILLIMPACT "))
-        .flat_map(|rest| rest.split_whitespace())
-        .find_map(|field| field.strip_prefix(key))
-}
-
 /// Parse the script's `trajectory.csv`: header `iter,time,overlap,approach_velocity,normal_force`.
 pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
-    let mut lines = text.lines().filter(|l| !l.trim().is_empty());
-    let header = lines.next().ok_or_else(|| ParseError::Empty {
-        file: TRAJECTORY_FILE.to_string(),
-    })?;
-    let columns: Vec<&str> = header.split(',').map(str::trim).collect();
-    let find = |name: &'static str| {
-        columns
-            .iter()
-            .position(|c| *c == name)
-            .ok_or_else(|| ParseError::MissingColumn {
-                file: TRAJECTORY_FILE.to_string(),
-                column: name,
-                header: header.to_string(),
-            })
-    };
-    let (it, iy, iv, iff) = (
-        find("time")?,
-        find("overlap")?,
-        find("approach_velocity")?,
-        find("normal_force")?,
-    );
-    let mut t = CodeTrajectory::default();
-    for (row, line) in lines.enumerate() {
-        let fields: Vec<&str> = line.split(',').map(str::trim).collect();
-        if fields.len() != columns.len() {
-            return Err(ParseError::Row {
-                file: TRAJECTORY_FILE.to_string(),
-                line: row + 2,
-                reason: format!("{} fields, header has {}", fields.len(), columns.len()),
-            });
-        }
-        let value = |i: usize| {
-            fields[i].parse::<f64>().map_err(|e| ParseError::Row {
-                file: TRAJECTORY_FILE.to_string(),
-                line: row + 2,
-                reason: format!("`{}`: {e}", fields[i]),
-            })
-        };
-        t.time.push(value(it)?);
-        t.overlap.push(value(iy)?);
-        t.approach_velocity.push(value(iv)?);
-        t.normal_force.push(value(iff)?);
-    }
-    Ok(t)
+    parse_csv_columns(text, TRAJECTORY_FILE)
 }
