@@ -22,17 +22,17 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use super::dump::{Dump, READ_TIME_LIMIT, dump_script, parse_dump};
+use super::dump::{Dump, READ_TIME_LIMIT, dump_script, line_text, parse_dump};
 use super::objects::{Class, FUNCTORS, Functor, Material, WallKind, edit_traps};
 use super::reading::{
-    Reading, WallRead, common_lines, dump_timestep, lacking, left_out_lines, refuse_before_reading,
+    Reading, WallRead, common_lines, lacking, left_out_lines, refuse_before_reading,
 };
 use super::viscel::{series, viscel_cn_from_en, viscel_en_from_cn};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckSource, DeckWall, Partner, Transplant, TypeRef, UserDeck,
+    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, RenderedInput};
@@ -736,6 +736,35 @@ impl YadeDeck {
         }
         Ok((walls, wall_lines))
     }
+}
+
+/// `O.dt` as YADE holds it after the set-up, s, and where the script sets it; refused where
+/// the script sets none or it is not positive.
+fn dump_timestep(path: &Path, dump: &Dump) -> Result<(f64, String), DeckError> {
+    let dt_line = dump.dt_line.ok_or_else(|| {
+        lacking(
+            path,
+            "the script sets no O.dt (YADE would step at its default)",
+            "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
+        )
+    })?;
+    let dt_at = SourceLine {
+        file: path.to_path_buf(),
+        line: dt_line,
+    };
+    let timestep = dump.dt.unwrap_or(f64::NAN);
+    if !(timestep > 0.0 && timestep.is_finite()) {
+        return Err(DeckError::unsupported(
+            &dt_at,
+            format!("O.dt = {timestep} after the set-up"),
+            "a positive time step, s",
+        ));
+    }
+    let timestep_from = match line_text(path, dt_line) {
+        Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
+        None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
+    };
+    Ok((timestep, timestep_from))
 }
 
 /// The InteractionLoop's geometry functor of one of `names` (the first one named in the error),

@@ -1,16 +1,16 @@
 //! What the deck reader takes from YADE's dump of a script (`super::dump`): the materials, the
 //! `InteractionLoop`'s functors, the spheres, and the walls (one per kind, material and mass),
 //! each with its line, and what the impacts leave out; what no reading can mend (`--var`, no
-//! `O.engines`, no `O.dt`) is refused first.
+//! `O.engines`) is refused first.
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
-use super::dump::{Attribute, BodyDump, Dump, EngineDump, FunctorDump, line_text};
+use super::dump::{Attribute, BodyDump, Dump, EngineDump, FunctorDump};
 use super::objects::{
     Functor, Material, WallKind, engine_left_out, known_functors, line_of, source, wall_name,
 };
-use crate::codes::deck::{DeckError, DeckOptions, DeckSource, SourceLine};
+use crate::codes::deck::{DeckError, DeckOptions, DeckSource};
 
 /// Walls of one kind, material and mass: one wall to the check.
 #[derive(Clone, Debug)]
@@ -341,35 +341,6 @@ pub(super) fn refuse_before_reading(
         ));
     }
     Ok(())
-}
-
-/// `O.dt` as YADE holds it after the set-up, s, and where the script sets it; refused where
-/// the script sets none or it is not positive.
-pub(super) fn dump_timestep(path: &Path, dump: &Dump) -> Result<(f64, String), DeckError> {
-    let dt_line = dump.dt_line.ok_or_else(|| {
-        lacking(
-            path,
-            "the script sets no O.dt (YADE would step at its default)",
-            "O.dt = NUMBER or O.dt = FACTOR * PWaveTimeStep()",
-        )
-    })?;
-    let dt_at = SourceLine {
-        file: path.to_path_buf(),
-        line: dt_line,
-    };
-    let timestep = dump.dt.unwrap_or(f64::NAN);
-    if !(timestep > 0.0 && timestep.is_finite()) {
-        return Err(DeckError::unsupported(
-            &dt_at,
-            format!("O.dt = {timestep} after the set-up"),
-            "a positive time step, s",
-        ));
-    }
-    let timestep_from = match line_text(path, dt_line) {
-        Some(text) => format!("{dt_at}, `{text}`; O.dt as YADE holds it after the set-up"),
-        None => format!("{dt_at}; O.dt as YADE holds it after the set-up"),
-    };
-    Ok((timestep, timestep_from))
 }
 
 /// What the script holds that the impacts leave out, one line per kind with its lines.
