@@ -33,7 +33,10 @@ pub(crate) mod batch;
 pub(crate) mod card;
 pub(crate) mod deck;
 mod files;
+mod materials;
+mod mdpa;
 pub mod paper;
+mod project;
 
 pub(crate) use paper::KratosPaper;
 

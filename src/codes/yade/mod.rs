@@ -28,7 +28,10 @@ pub(crate) mod batch;
 pub(crate) mod card;
 pub mod deck;
 pub(crate) mod dump;
+mod objects;
 pub mod paper;
+mod reading;
+mod viscel;
 
 pub(crate) use paper::YadePaper;
 
