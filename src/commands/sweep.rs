@@ -7,7 +7,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context, Result};
+use super::{Context, Result};
 
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
@@ -85,19 +85,16 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
     let sweep = EtaSweep::new(case, table?, axis, options, jobs(args), command.to_string());
     // Rows go to standard output as they are done.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let points = match sweep
-        .write(format, &mut out, args.plot.is_some())
-        .map_err(anyhow::Error::from)
-    {
+    let points = match sweep.write(format, &mut out, args.plot.is_some()) {
         Ok(points) => points,
         Err(e) if broken_pipe(&e) => return Ok(CommandOutput::passed(String::new())),
-        Err(e) => return Err(e),
+        Err(e) => return Err(e.into()),
     };
     if let Err(e) = out.flush() {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }
-        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+        return Err(e).context("writing the sweep's rows");
     }
     if let Some(path) = &args.plot {
         let svg = restitution_svg(&name, method.name(), &points, &exact::restitution)?;
@@ -107,8 +104,8 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
 }
 
 /// Whether `e` is a closed pipe (the reader has gone: what it read is what it wanted).
-fn broken_pipe(e: &anyhow::Error) -> bool {
-    e.chain().any(|c| {
+fn broken_pipe(e: &(dyn std::error::Error + 'static)) -> bool {
+    std::iter::successors(Some(e), |e| e.source()).any(|c| {
         c.downcast_ref::<std::io::Error>()
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
@@ -234,7 +231,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }
-        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+        return Err(e).context("writing the sweep's rows");
     }
     Ok(outcome(args, &writer, resumed.kept_rows))
 }
