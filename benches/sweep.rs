@@ -7,7 +7,8 @@
 //! - `chunked`: the path `millimpact sweep` takes now (`run_grid`): the case edited in place,
 //!   impacts stepped four at a time in lanes, rows encoded on the workers and written in grid
 //!   order by one writer.
-//! - `legacy`: the legacy form's path (`sweep CASE --loss-coefficient ... --tolerance 1e-10`).
+//! - `case-over-eta`: `sweep CASE --loss-coefficient ... --tolerance 1e-10`: the same grid, its
+//!   rows `run`'s records.
 //! - `floor`: the hand-written floor: the same impacts in lanes on two threads, their COR summed,
 //!   no case, no row, no output.
 //! - `floor-single-chain`: the same without lanes, one impact after another.
@@ -34,11 +35,10 @@ use millimpact::analysis::run::IntegrationOptions;
 use millimpact::analysis::source::Resolution;
 use millimpact::analysis::sweep::SweepRow;
 use millimpact::analysis::sweep::run_grid;
-use millimpact::analysis::sweep::{EtaRange, Streamed};
+use millimpact::analysis::sweep::{EtaSweep, loss_coefficient_axis};
 use millimpact::analysis::sweep::{GridOptions, method_rows, single_point};
 use millimpact::analysis::sweep::{GridPoint, SweepFile};
 use millimpact::analysis::sweep::{RowFormat, RowWriter};
-use millimpact::model::case::Case;
 use millimpact::model::law::PaperLaw;
 use millimpact::output::CsvRecords;
 use millimpact::output::Format;
@@ -57,6 +57,7 @@ fn options() -> GridOptions {
         timeout: Duration::from_secs(60),
         periods: 3.0,
         batch: 1,
+        timestep: None,
     }
 }
 
@@ -98,27 +99,26 @@ fn chunked(sweep: &SweepFile, indices: &[usize]) {
     .expect("the sweep runs");
 }
 
-/// The legacy form, streamed.
-fn legacy(case: &Case, settings: &Settings) {
+/// A case file over 10^4 values of η, streamed.
+fn case_over_eta(sweep: &SweepFile, settings: &Settings) {
     let options = IntegrationOptions {
         method: settings.method,
         steps_per_period: Some(settings.steps_per_period),
         ..IntegrationOptions::default()
     };
-    let streamed = Streamed {
-        case,
-        values: EtaRange {
-            start: 0.0,
-            step: 0.0001,
-            count: 10_000,
-        },
+    let case = &sweep.base_case;
+    let axis = loss_coefficient_axis("0:0.99995:0.0001", &case.path.display().to_string())
+        .expect("a range of 10^4 values");
+    EtaSweep::new(
+        case.clone(),
+        sweep.base.clone(),
+        axis,
         options,
-        command: String::new(),
-        jobs: THREADS,
-    };
-    streamed
-        .write(Format::Csv, &mut std::io::sink(), false)
-        .expect("the sweep runs");
+        THREADS,
+        String::new(),
+    )
+    .write(Format::Csv, &mut std::io::sink(), false)
+    .expect("the sweep runs");
 }
 
 /// The floor: impacts alone, in lanes or one after another, on two threads.
@@ -231,7 +231,9 @@ fn sweep_1e4(c: &mut Criterion) {
         b.iter(|| per_point(&sweep, &points, &pool))
     });
     group.bench_function("chunked", |b| b.iter(|| chunked(&sweep, &indices)));
-    group.bench_function("legacy", |b| b.iter(|| legacy(&case, &settings)));
+    group.bench_function("case-over-eta", |b| {
+        b.iter(|| case_over_eta(&sweep, &settings))
+    });
     group.bench_function("floor", |b| {
         b.iter(|| black_box(floor(&laws, &settings, true, &pool)))
     });

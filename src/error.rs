@@ -1,20 +1,13 @@
 //! The two kinds of failure a command ends with, and their exit codes: bad input (exit 2) and
 //! a check that ran and disagreed (exit 1). Any other failure (a code that crashed, a disk
-//! that is full) is exit 1 too, with its whole chain of causes.
+//! that is full) is exit 1 too, with its whole chain of causes. Each error type says which it
+//! is ([`Blame`]), in the module that defines it.
 
 use thiserror::Error;
 
-use crate::model::case::CaseError;
-
-/// An error in what the user asked for: exit code 2.
+/// An invalid command-line value: exit code 2.
 #[derive(Debug, Error)]
 pub enum UserError {
-    /// A case file is invalid.
-    #[error(transparent)]
-    Case(#[from] CaseError),
-    /// A user's deck cannot be checked as written.
-    #[error(transparent)]
-    Deck(#[from] crate::codes::deck::DeckError),
     /// A command-line value is invalid.
     #[error("{option} = {value}: {allowed}")]
     Argument {
@@ -50,6 +43,34 @@ impl UserError {
     }
 }
 
+/// Rows that could not be written or read back as CSV: not the input's fault.
+impl Blame for csv::Error {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
+/// A row or a report that could not be encoded as JSON: not the input's fault.
+impl Blame for serde_json::Error {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
+/// CSV held in memory that could not be taken back: not the input's fault.
+impl<W: std::fmt::Debug> Blame for csv::IntoInnerError<W> {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
+/// Text that is not UTF-8 where it was written as such: not the input's fault.
+impl Blame for std::string::FromUtf8Error {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// A check that ran and disagreed: exit code 1.
 #[derive(Debug, Error)]
 #[error("{0}")]
@@ -57,12 +78,18 @@ pub(crate) struct CheckFailed(pub String);
 
 /// Whether a failure lies in what the user gave (bad input, exit 2) or elsewhere (exit 1).
 ///
-/// Each library error type that can hold a user error answers for itself, a wrapper by asking
-/// what it wraps: a user error wrapped transparently (whose `source()` skips it) is still known
-/// as the user's. The binary's exit code asks each error in a failure's chain.
+/// Every error type a command can end with answers for itself, a wrapper by asking what it
+/// wraps: a user error wrapped transparently (whose `source()` skips it) is still known as the
+/// user's. The command line takes a failure only from a type that implements this trait, so a
+/// new error type states its exit code before a command can return it.
 pub trait Blame {
     /// Whether the failure is the user's: an invalid case, deck or option.
     fn is_user_error(&self) -> bool;
+
+    /// The exit code the failure ends the command line with: 2 for the user's, else 1.
+    fn exit_code(&self) -> u8 {
+        if self.is_user_error() { 2 } else { 1 }
+    }
 }
 
 impl Blame for UserError {
@@ -71,9 +98,10 @@ impl Blame for UserError {
     }
 }
 
-impl Blame for CaseError {
+/// A file that cannot be read or written, a closed pipe, a full disk: not the user's input.
+impl Blame for std::io::Error {
     fn is_user_error(&self) -> bool {
-        true
+        false
     }
 }
 

@@ -173,6 +173,14 @@ pub enum DeckError {
     },
 }
 
+/// A deck that cannot be checked as written is the user's (exit 2); a code that reads the deck
+/// and could not run is not (exit 1).
+impl crate::error::Blame for DeckError {
+    fn is_user_error(&self) -> bool {
+        !matches!(self, DeckError::Reader { .. })
+    }
+}
+
 impl DeckError {
     /// An unsupported or unresolvable line (or field).
     pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {

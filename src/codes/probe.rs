@@ -149,6 +149,13 @@ pub enum ProbeError {
     },
 }
 
+/// A build that could not be probed is the build's failure, not the input's.
+impl crate::error::Blame for ProbeError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// Relative agreement that counts as a match: the probes' numbers are read from 15-digit
 /// output, so a true hypothesis agrees to about 1e-12 and a false one is off by a factor.
 pub(crate) const MATCH_TOLERANCE: f64 = 1e-6;

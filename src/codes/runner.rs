@@ -56,6 +56,13 @@ pub enum LocateError {
     },
 }
 
+/// A code that cannot be found is the installation's failure, not the input's.
+impl crate::error::Blame for LocateError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// The name of the codes' folder in a project (where `scripts/install-dem-codes.sh` installs).
 pub(crate) const CODES_FOLDER: &str = ".codes";
 

@@ -1,6 +1,6 @@
 //! `millimpact calibrate`.
 
-use anyhow::Result;
+use super::Result;
 
 use super::CommandOutput;
 use super::render;

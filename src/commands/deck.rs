@@ -4,7 +4,7 @@ use std::io::IsTerminal;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
-use anyhow::Result;
+use super::Result;
 
 use super::{CommandOutput, render};
 use crate::cli::DeckArgs;
@@ -14,9 +14,9 @@ use millimpact::analysis::deck::{
 };
 use millimpact::codes::CodeError;
 use millimpact::codes::deck::DeckImpactInput;
-use millimpact::codes::deck::{DeckError, DeckOptions, GivenParticle, UserDeck};
+use millimpact::codes::deck::{DeckOptions, GivenParticle, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
-use millimpact::error::{CheckFailed, UserError};
+use millimpact::error::CheckFailed;
 use millimpact::model::law::CodeLaw;
 
 pub(super) fn deck(args: &DeckArgs) -> Result<CommandOutput> {
@@ -68,10 +68,8 @@ pub(super) fn read(
         variables: given.variables.to_vec(),
         time_limit: Some(given.time_limit),
     };
-    read_deck(path, code, &options).map_err(|error| match error {
-        DeckError::Reader { .. } => anyhow::Error::from(error),
-        error => UserError::from(error).into(),
-    })
+    // A deck error states its own exit code: the deck's fault, or the reading code's.
+    Ok(read_deck(path, code, &options)?)
 }
 
 /// Check `deck` in its code, now, at `velocities` (empty: the default ones).

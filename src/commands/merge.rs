@@ -1,6 +1,6 @@
 //! `millimpact merge`: join the shard outputs of one sweep.
 
-use anyhow::Result;
+use super::Result;
 
 use super::{CommandOutput, write_output};
 use crate::cli::MergeArgs;

@@ -2,12 +2,12 @@
 
 use std::time::Duration;
 
-use anyhow::Result;
+use super::Result;
 
 use super::CommandOutput;
 use super::render;
 use crate::cli::MillArgs;
-use millimpact::analysis::mill::{MillOptions, mill_builds, run_mill};
+use millimpact::analysis::mill::{MillError, MillOptions, mill_builds, run_mill};
 use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::UserError;
 
@@ -15,7 +15,7 @@ pub(super) fn mill(args: &MillArgs) -> Result<CommandOutput> {
     if args.code.driver().mill_paper_build().is_none() {
         return Err(UserError::argument("--code", args.code, mill_builds()).into());
     }
-    let deck = MillDeck::read(&args.deck).map_err(UserError::from)?;
+    let deck = MillDeck::read(&args.deck).map_err(MillError::from)?;
     let options = MillOptions {
         time: args.time,
         seeds: args.seeds,

@@ -20,19 +20,10 @@ use std::io::{IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use std::fmt::Display;
 
 use crate::cli::{Cli, Command};
-use millimpact::analysis::benchmark::BenchmarkError;
-use millimpact::analysis::compare::CompareError;
-use millimpact::analysis::deck::DeckCheckError;
-use millimpact::analysis::mill::MillError;
-use millimpact::analysis::report::ReportError;
-use millimpact::analysis::run::RunError;
-use millimpact::analysis::store::StoreError;
-use millimpact::analysis::sweep::SweepError;
 use millimpact::error::{Blame, CheckFailed, UserError};
-use millimpact::model::case::CaseError;
 use millimpact::output::files::write_atomic;
 use millimpact::output::{Format, OutputError, Summary, export, table_at_width, table_width};
 
@@ -87,8 +78,8 @@ pub(crate) fn run(cli: &Cli) -> ExitCode {
                 None => ExitCode::SUCCESS,
             }
         }
-        Err(error) => {
-            let code = exit_code(&error);
+        Err(failure) => {
+            let (error, code) = (&failure.error, failure.exit_code());
             if code == 2 {
                 eprintln!("error: {error}");
             } else {
@@ -96,6 +87,66 @@ pub(crate) fn run(cli: &Cli) -> ExitCode {
             }
             ExitCode::from(code)
         }
+    }
+}
+
+/// Why a command failed: the error with its chain of causes, and the exit code its type
+/// stated ([`Blame::exit_code`]) when it became a failure. Only a type that implements
+/// [`Blame`] becomes one, so an error type cannot reach `main` without stating its code.
+#[derive(Debug)]
+pub struct Failure {
+    /// The error, with the context the command added.
+    error: anyhow::Error,
+    /// The exit code.
+    code: u8,
+}
+
+impl<E: Blame + std::error::Error + Send + Sync + 'static> From<E> for Failure {
+    fn from(error: E) -> Self {
+        Failure {
+            code: error.exit_code(),
+            error: error.into(),
+        }
+    }
+}
+
+impl Failure {
+    /// The exit code.
+    pub fn exit_code(&self) -> u8 {
+        self.code
+    }
+}
+
+/// A command's result: a failure carries its exit code.
+pub type Result<T, E = Failure> = std::result::Result<T, E>;
+
+/// What a command says it was doing when it failed, the exit code kept.
+pub trait Context<T> {
+    /// Put `context` before the failure.
+    fn context<C: Display + Send + Sync + 'static>(self, context: C) -> Result<T>;
+    /// Put `context()` before the failure (made only if it failed).
+    fn with_context<C: Display + Send + Sync + 'static>(
+        self,
+        context: impl FnOnce() -> C,
+    ) -> Result<T>;
+}
+
+impl<T, E: Into<Failure>> Context<T> for std::result::Result<T, E> {
+    fn context<C: Display + Send + Sync + 'static>(self, context: C) -> Result<T> {
+        self.with_context(|| context)
+    }
+
+    fn with_context<C: Display + Send + Sync + 'static>(
+        self,
+        context: impl FnOnce() -> C,
+    ) -> Result<T> {
+        self.map_err(|e| {
+            let Failure { error, code } = e.into();
+            Failure {
+                error: error.context(context()),
+                code,
+            }
+        })
     }
 }
 
@@ -177,46 +228,6 @@ fn reference_folder(
     shipped_folder(given, "--reference", "reference", warnings)
 }
 
-/// The exit code of a failed command: 2 for bad input, 1 for everything else (a check that
-/// disagreed among them). Each error in the failure's chain of causes is asked whether it is
-/// the user's ([`Blame`]): a library error that wraps a user error says so, wherever the
-/// command's context put it.
-pub fn exit_code(error: &anyhow::Error) -> u8 {
-    if !error.is::<CheckFailed>() && error.chain().any(is_user_error) {
-        2
-    } else {
-        1
-    }
-}
-
-/// Whether one error of a chain is the user's: asked of every library error type that can
-/// hold a user error (a type missing here would make its user errors exit 1; the
-/// exit-code tests of each type below keep the list whole).
-fn is_user_error(cause: &(dyn std::error::Error + 'static)) -> bool {
-    macro_rules! ask {
-        ($($error:ty),+ $(,)?) => {
-            $(
-                if let Some(e) = cause.downcast_ref::<$error>() {
-                    return e.is_user_error();
-                }
-            )+
-        };
-    }
-    ask!(
-        UserError,
-        CaseError,
-        RunError,
-        StoreError,
-        SweepError,
-        CompareError,
-        ReportError,
-        BenchmarkError,
-        DeckCheckError,
-        MillError,
-    );
-    false
-}
-
 /// Run one parsed command.
 pub fn dispatch(command: &Command) -> Result<CommandOutput> {
     match command {
@@ -255,8 +266,13 @@ fn write_output(path: &Path, bytes: &[u8], what: &str) -> Result<()> {
 mod tests {
     use std::path::PathBuf;
 
-    use anyhow::Context;
+    use millimpact::analysis::compare::CompareError;
+    use millimpact::analysis::deck::DeckCheckError;
+    use millimpact::analysis::report::ReportError;
     use millimpact::analysis::run::RunError;
+    use millimpact::analysis::store::StoreError;
+    use millimpact::analysis::sweep::SweepError;
+    use millimpact::model::case::CaseError;
     use millimpact::solve::SolveError;
 
     use super::*;
@@ -289,7 +305,7 @@ mod tests {
     /// command's context; every other failure exits 1.
     #[test]
     fn the_exit_code_sees_a_user_error_through_every_wrapper() {
-        let user: Vec<anyhow::Error> = vec![
+        let user: Vec<Failure> = vec![
             UserError::argument("--rtol", 0, "a positive number").into(),
             CaseError::new("a.toml", "ball.radius", "-1", "a positive number").into(),
             unsolvable().into(),
@@ -300,7 +316,9 @@ mod tests {
             CompareError::from(no_reference_folder()).into(),
             ReportError::from(CompareError::from(no_reference_folder())).into(),
             ReportError::from(no_reference_folder()).into(),
-            anyhow::Error::from(SweepError::from(no_reference_folder())).context("sweeping"),
+            Err::<(), _>(SweepError::from(no_reference_folder()))
+                .context("sweeping")
+                .unwrap_err(),
             Err::<(), _>(ReportError::from(no_reference_folder()))
                 .context("building the report")
                 .unwrap_err(),
@@ -311,8 +329,8 @@ mod tests {
             ))
             .into(),
         ];
-        for error in &user {
-            assert_eq!(exit_code(error), 2, "{error:#}");
+        for failure in &user {
+            assert_eq!(failure.exit_code(), 2, "{:#}", failure.error);
         }
         let failed = RunError::Failed {
             case: PathBuf::from("cases/ball_plate.toml"),
@@ -321,7 +339,7 @@ mod tests {
                 steps: 10,
             },
         };
-        let other: Vec<anyhow::Error> = vec![
+        let other: Vec<Failure> = vec![
             SweepError::from(failed).into(),
             StoreError::Read {
                 path: PathBuf::from("reference/lammps/ball_plate.json"),
@@ -331,8 +349,8 @@ mod tests {
             CheckFailed("2 checks disagree".into()).into(),
             DeckCheckError::NoReader(millimpact::codes::CodeName::Lammps).into(),
         ];
-        for error in &other {
-            assert_eq!(exit_code(error), 1, "{error:#}");
+        for failure in &other {
+            assert_eq!(failure.exit_code(), 1, "{:#}", failure.error);
         }
     }
 }

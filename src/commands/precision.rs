@@ -1,6 +1,6 @@
 //! `millimpact precision`.
 
-use anyhow::Result;
+use super::Result;
 
 use super::render;
 use super::{CommandOutput, check_output, write_output};

@@ -1,6 +1,6 @@
 //! `millimpact probe`.
 
-use anyhow::{Context, Result};
+use super::{Context, Result};
 
 use super::CommandOutput;
 use super::render;
@@ -36,9 +36,7 @@ pub(super) fn probe(args: &ProbeArgs) -> Result<CommandOutput> {
                 format!("cannot be resolved: {e}"),
             )
         })?),
-        None => driver
-            .locate()
-            .map_err(|looked| anyhow::anyhow!("{}: {looked}", driver.name()))?,
+        None => driver.locate().context(driver.name())?,
     };
     let report = if args.refresh {
         prober.probe_afresh(&executable)

@@ -4,10 +4,10 @@ use std::time::Duration;
 
 use std::io::IsTerminal;
 
-use anyhow::{Context, Result};
+use super::{Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 
-use super::{CommandOutput, write_output};
+use super::{CommandOutput, Failure, write_output};
 use crate::cli::ReportArgs;
 use millimpact::analysis::mill::{MillError, MillOptions, plan, run_mill};
 use millimpact::analysis::report::{
@@ -132,7 +132,7 @@ fn read_mills(args: &ReportArgs) -> Result<Vec<(MillDeck, MillOptions)>> {
     args.mills
         .iter()
         .map(|path| {
-            let deck = MillDeck::read(path).map_err(UserError::from)?;
+            let deck = MillDeck::read(path).map_err(MillError::from)?;
             let options = MillOptions {
                 time: args.mill_time,
                 seeds: args.mill_seeds,
@@ -145,7 +145,7 @@ fn read_mills(args: &ReportArgs) -> Result<Vec<(MillDeck, MillOptions)>> {
                     option,
                     value,
                     allowed,
-                } => anyhow::Error::from(UserError::argument(
+                } => Failure::from(UserError::argument(
                     &option.replacen("--", "--mill-", 1),
                     value,
                     format!("{}: {allowed}", deck.display()),

@@ -1,6 +1,6 @@
 //! `millimpact run`.
 
-use anyhow::Result;
+use super::Result;
 use serde::Serialize;
 
 use super::render;

@@ -1,6 +1,6 @@
 //! `millimpact stability`.
 
-use anyhow::Result;
+use super::Result;
 
 use super::CommandOutput;
 use super::render;

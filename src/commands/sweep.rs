@@ -7,7 +7,7 @@ use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
-use anyhow::{Context, Result};
+use super::{Context, Result};
 
 use super::run::integration_options;
 use super::{CommandOutput, check_output, write_output};
@@ -15,8 +15,8 @@ use crate::cli::SweepArgs;
 use millimpact::analysis::precision::choice::choose;
 use millimpact::analysis::source::Resolution;
 use millimpact::analysis::source::Source;
+use millimpact::analysis::sweep::eta::{EtaSweep, loss_coefficient_axis};
 use millimpact::analysis::sweep::grid::{SweepFile, is_sweep_table, read_table};
-use millimpact::analysis::sweep::legacy::{Streamed, parse_eta_range};
 use millimpact::analysis::sweep::point::GridOptions;
 use millimpact::analysis::sweep::resume::{Resumed, point_keys, read_resumed};
 use millimpact::analysis::sweep::rows::{EncodedRows, RowFormat, RowWriter};
@@ -33,10 +33,11 @@ use millimpact::output::restitution_plot::restitution_svg;
 static STOP: AtomicBool = AtomicBool::new(false);
 
 pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
-    if let Ok(table) = read_table(&args.case)
-        && is_sweep_table(&table)
+    let table = read_table(&args.case);
+    if let Ok(table) = &table
+        && is_sweep_table(table)
     {
-        let sweep = SweepFile::from_table(&args.case, &table)?;
+        let sweep = SweepFile::from_table(&args.case, table)?;
         return sweep_file(args, &sweep);
     }
     let case = Case::load(&args.case)?;
@@ -50,19 +51,7 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         }
         .into());
     };
-    let values = parse_eta_range(range).map_err(|e| match e {
-        UserError::Argument {
-            option,
-            value,
-            allowed,
-        } => UserError::CaseArgument {
-            case: case.path.display().to_string(),
-            option,
-            value,
-            allowed,
-        },
-        other => other,
-    })?;
+    let axis = loss_coefficient_axis(range, &case.path.display().to_string())?;
     let format = Format::from_name(&args.format).ok_or_else(|| {
         UserError::argument(
             "--format",
@@ -92,44 +81,31 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
                 .option_if("--rtol", options.rtol);
         }
     }
-    let streamed = Streamed {
-        case: &case,
-        values,
-        options,
-        command: command.to_string(),
-        jobs: jobs(args),
-    };
+    let (name, method) = (case.name.clone(), options.method);
+    let sweep = EtaSweep::new(case, table?, axis, options, jobs(args), command.to_string());
     // Rows go to standard output as they are done.
     let mut out = std::io::BufWriter::new(std::io::stdout().lock());
-    let points = match streamed
-        .write(format, &mut out, args.plot.is_some())
-        .map_err(anyhow::Error::from)
-    {
+    let points = match sweep.write(format, &mut out, args.plot.is_some()) {
         Ok(points) => points,
         Err(e) if broken_pipe(&e) => return Ok(CommandOutput::passed(String::new())),
-        Err(e) => return Err(e),
+        Err(e) => return Err(e.into()),
     };
     if let Err(e) = out.flush() {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }
-        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+        return Err(e).context("writing the sweep's rows");
     }
     if let Some(path) = &args.plot {
-        let svg = restitution_svg(
-            &case.name,
-            options.method.name(),
-            &points,
-            &exact::restitution,
-        )?;
+        let svg = restitution_svg(&name, method.name(), &points, &exact::restitution)?;
         write_output(path, svg.as_bytes(), "figure")?;
     }
     Ok(CommandOutput::passed(String::new()))
 }
 
 /// Whether `e` is a closed pipe (the reader has gone: what it read is what it wanted).
-fn broken_pipe(e: &anyhow::Error) -> bool {
-    e.chain().any(|c| {
+fn broken_pipe(e: &(dyn std::error::Error + 'static)) -> bool {
+    std::iter::successors(Some(e), |e| e.source()).any(|c| {
         c.downcast_ref::<std::io::Error>()
             .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
     })
@@ -220,6 +196,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
         periods: args.integration.periods,
         batch: args.batch as usize,
+        timestep: None,
     };
     let bar = progress_bar(indices.len() as u64);
     let _ = ctrlc::set_handler(|| {
@@ -254,7 +231,7 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         if e.kind() == std::io::ErrorKind::BrokenPipe {
             return Ok(CommandOutput::passed(String::new()));
         }
-        return Err(anyhow::Error::from(e).context("writing the sweep's rows"));
+        return Err(e).context("writing the sweep's rows");
     }
     Ok(outcome(args, &writer, resumed.kept_rows))
 }

@@ -1,6 +1,6 @@
 //! `millimpact verify`.
 
-use anyhow::Result;
+use super::Result;
 
 use super::CommandOutput;
 use super::render;

@@ -43,6 +43,13 @@ pub struct CaseError {
     pub allowed: String,
 }
 
+/// An invalid case is the user's: exit code 2.
+impl crate::error::Blame for CaseError {
+    fn is_user_error(&self) -> bool {
+        true
+    }
+}
+
 impl CaseError {
     /// The rejection of `value` at `key` in `file`, with what is allowed.
     pub(crate) fn new(file: &str, key: &str, value: &str, allowed: &str) -> CaseError {

@@ -220,6 +220,13 @@ pub enum ReplaceDirError {
     },
 }
 
+/// A folder that could not be written is the system's failure, not the input's.
+impl crate::error::Blame for ReplaceDirError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// Write the folder `path` whole: `fill` writes into a fresh folder beside it, which then
 /// takes its place (an earlier folder there is moved aside and removed), so that no file of
 /// an earlier output survives and an interrupted write leaves the earlier folder as it was.

@@ -92,6 +92,13 @@ pub enum OutputError {
     },
 }
 
+/// Output that could not be laid out is not the input's fault.
+impl crate::error::Blame for OutputError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// One table of a summary as people read it: a title line, a header, rows of formatted
 /// cells, and lines of notes under it.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -141,6 +141,13 @@ pub enum CalibrateError {
     },
 }
 
+/// A card that could not be made is the code's or the solver's failure, not the input's.
+impl crate::error::Blame for CalibrateError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// The card of `code` for `case` (already at the COR's η).
 pub fn card(
     code: CodeName,

@@ -330,6 +330,13 @@ pub enum PrecisionError {
     },
 }
 
+/// A study that could not be made is a method's, a code's or its set-up's failure.
+impl crate::error::Blame for PrecisionError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
 /// One point of `method` on `law` at speed `v0` with `settings`: errors from a warm-up run,
 /// then the median of `repeats` timed batches.
 pub(crate) fn method_point(

@@ -554,6 +554,47 @@ impl SweepFile {
         })
     }
 
+    /// The grid of a case file (`case`, read from its `base` table) over one case axis, run
+    /// by one source: `sweep CASE --loss-coefficient`. Its fingerprint is of the base, the
+    /// axis and the source.
+    pub(crate) fn of_case(
+        case: Case,
+        base: Table,
+        axis: Axis,
+        source: ResolvedSource,
+    ) -> SweepFile {
+        let mut axes_table = Table::new();
+        let values = match &axis.values {
+            AxisValues::List(values) => Value::Array(values.clone()),
+            AxisValues::Spaced { start, count, .. } => Value::Table(Table::from_iter([
+                ("start".to_string(), Value::Float(*start)),
+                ("stop".to_string(), axis.values.get(count - 1)),
+                (
+                    "count".to_string(),
+                    Value::Integer(i64::try_from(*count).unwrap_or(i64::MAX)),
+                ),
+            ])),
+        };
+        axes_table.insert(axis.key.clone(), values);
+        // Who computes the points, by the columns of their rows.
+        let source_columns = PointSource::new(source.source, source.resolution);
+        if let Ok(columns) = Value::try_from(source_columns) {
+            axes_table.insert("source".to_string(), columns);
+        }
+        SweepFile {
+            path: case.path.clone(),
+            fingerprint: fingerprint(axes_table, &base, None),
+            base,
+            base_name: case.name.clone(),
+            base_path: case.path.clone(),
+            in_place: IN_PLACE_KEYS.contains(&axis.key.as_str()),
+            axes: vec![axis],
+            sources: vec![source],
+            base_case: case,
+            tolerance: None,
+        }
+    }
+
     /// How many points the grid has.
     pub(crate) fn len(&self) -> usize {
         self.axes.iter().map(|a| a.values.len()).product::<usize>() * self.sources.len()

@@ -1,13 +1,13 @@
 //! Sweeps: grids over case keys, methods, codes and resolutions (sweep files), their rows on
-//! disk, batches of code points, and the legacy one-axis form.
+//! disk, batches of code points, and a case file over a range of η (`--loss-coefficient`).
 
 pub(crate) mod batch;
 pub(crate) mod error;
+pub(crate) mod eta;
+pub use eta::{EtaSweep, loss_coefficient_axis};
 pub(crate) mod failed;
 pub(crate) mod grid;
 pub use grid::{GridPoint, SweepFile};
-pub(crate) mod legacy;
-pub use legacy::{EtaRange, Streamed};
 pub(crate) mod point;
 pub use point::{GridOptions, method_rows, single_point};
 pub(crate) mod resume;

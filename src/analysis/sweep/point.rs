@@ -25,10 +25,13 @@ pub struct GridOptions {
     pub periods: f64,
     /// Most impacts per code process (1: no batching).
     pub batch: usize,
+    /// Fixed-step methods: a step in seconds instead of steps per period (`sweep CASE
+    /// --loss-coefficient --timestep`; a sweep file gives steps per period).
+    pub timestep: Option<f64>,
 }
 
 /// The solver settings of a method point on `case`.
-fn method_settings(
+pub(crate) fn method_settings(
     point: &GridPoint,
     case: &crate::model::case::Case,
     options: &GridOptions,
@@ -41,27 +44,25 @@ fn method_settings(
         steps_per_period: Resolution::steps_per_period(point.source.resolution),
         rtol: Resolution::rtol(point.source.resolution),
         periods: options.periods,
-        ..IntegrationOptions::default()
+        timestep: options.timestep,
     };
     Ok(integration.settings(case, false)?)
 }
 
 /// A method point's law and speed with its solution.
-type Solved = (PaperLaw, f64, Outcome);
+pub(crate) type Solved = (PaperLaw, f64, Outcome);
 
-/// The rows of method points, in their order, each handed to `emit`: the same rows
-/// [`single_point`] gives each, with the case edited in place from point to point where the
-/// axes allow, and the impacts of one setting solved together ([`solve_many`]: rk4-event in
-/// lanes; a row's wall time is then the batch's divided among its impacts). One row is filled
-/// point after point, its storage reused. After `stop` is raised the points left are not run.
-/// An error of `emit` ends it and is returned.
-pub fn method_rows(
+/// Method points solved, in their order: each point's law and speed with its solution, or its
+/// error. The case is edited in place from point to point where the axes allow, and the
+/// impacts of one setting are solved together ([`solve_many`]: rk4-event in lanes; a wall time
+/// is then the batch's divided among its impacts). After `stop` is raised the points left are
+/// not run (and not in the answer).
+pub(crate) fn solve_points(
     sweep: &SweepFile,
     points: &[GridPoint],
     options: &GridOptions,
     stop: &AtomicBool,
-    emit: &mut dyn FnMut(&SweepRow) -> std::io::Result<()>,
-) -> std::io::Result<()> {
+) -> Vec<Result<Solved, SweepError>> {
     let mut cases = PointCases::new(sweep);
     // Each point's law and speed with its settings, where they could be had; and each
     // point's law and speed with its solution, or its error (set here if it had none).
@@ -112,10 +113,30 @@ pub fn method_rows(
             );
         }
     }
+    outcomes
+        .into_iter()
+        .map(|outcome| outcome.expect("every prepared point was solved"))
+        .collect()
+}
+
+/// The rows of method points, in their order, each handed to `emit`: the same rows
+/// [`single_point`] gives each, solved as [`solve_points`] solves them (a row's wall time may
+/// be a batch's share). One row is filled point after point, its storage reused. After `stop`
+/// is raised the points left are not run. An error of `emit` ends it and is returned.
+pub fn method_rows(
+    sweep: &SweepFile,
+    points: &[GridPoint],
+    options: &GridOptions,
+    stop: &AtomicBool,
+    emit: &mut dyn FnMut(&SweepRow) -> std::io::Result<()>,
+) -> std::io::Result<()> {
     let mut row = SweepRow::default();
-    for (point, outcome) in points.iter().zip(outcomes) {
+    for (point, outcome) in points
+        .iter()
+        .zip(solve_points(sweep, points, options, stop))
+    {
         sweep.set_point(&mut row, point);
-        match outcome.expect("every prepared point was solved") {
+        match outcome {
             Ok((law, v0, outcome)) => {
                 row.figures
                     .set_solution(&sweep.base_case.name, &law, v0, &outcome);
@@ -136,15 +157,8 @@ pub fn single_point(sweep: &SweepFile, point: &GridPoint, options: &GridOptions)
     let outcome = (|| -> Result<PointFigures, SweepError> {
         let case = sweep.case(point)?;
         match point.source.source {
-            Source::Method(method) => {
-                let integration = IntegrationOptions {
-                    method,
-                    steps_per_period: Resolution::steps_per_period(point.source.resolution),
-                    rtol: Resolution::rtol(point.source.resolution),
-                    periods: options.periods,
-                    ..IntegrationOptions::default()
-                };
-                let settings = integration.settings(&case, false)?;
+            Source::Method(_) => {
+                let settings = method_settings(point, &case, options)?;
                 Ok(PointFigures::of_method(&run_case(&case, &settings)?.0))
             }
             Source::Code(code) => {
@@ -187,6 +201,7 @@ mod tests {
             timeout: Duration::from_secs(1),
             periods: 3.0,
             batch: 1,
+            timestep: None,
         };
         let points: Vec<GridPoint> = (0..sweep.len()).map(|i| sweep.point(i)).collect();
         let stop = AtomicBool::new(false);
