@@ -60,8 +60,9 @@ fn anyhow_is_used_only_by_the_binary() {
         }
     }
     assert!(offenders.is_empty(), "anyhow in the library: {offenders:?}");
-    // The binary is where anyhow belongs: a scan that saw none of it read nothing.
-    assert!(binary_uses > 5, "{binary_uses} binary files use anyhow");
+    // The binary is where anyhow belongs (the command line's `Failure` holds one): a scan that
+    // saw none of it read nothing.
+    assert!(binary_uses >= 1, "{binary_uses} binary files use anyhow");
 }
 
 #[test]
