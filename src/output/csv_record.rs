@@ -595,13 +595,18 @@ mod tests {
             f64::INFINITY,
             f64::NEG_INFINITY,
         ];
-        // Every power of two, and its neighbours: where the shortest text is hardest.
-        for e in -1074..1024 {
-            let x = 2f64.powi(e);
+        // Every power of two, and its neighbours: where the shortest text is hardest. Built from
+        // their bits: `2f64.powi(e)` below 2^-1023 divides by an overflowed 2^-e and gives zero,
+        // which would leave the subnormal powers untested and step below zero's bits.
+        for e in -1074i32..1024 {
+            let bits = match u32::try_from(e + 1022) {
+                Ok(biased) => (u64::from(biased) + 1) << 52,
+                Err(_) => 1u64 << (e + 1074),
+            };
             edges.extend([
-                x,
-                f64::from_bits(x.to_bits() + 1),
-                f64::from_bits(x.to_bits() - 1),
+                f64::from_bits(bits),
+                f64::from_bits(bits + 1),
+                f64::from_bits(bits - 1),
             ]);
         }
         let records: Vec<(f64,)> = edges.iter().map(|&x| (x,)).collect();
