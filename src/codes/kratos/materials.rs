@@ -25,13 +25,26 @@ pub(super) fn missing(file: &Path, path: String, key: &str, supported: &str) -> 
     )
 }
 
-/// A material of the materials file and where it is.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Material<'f> {
-    file: &'f Path,
+/// An entry of one of the materials file's lists and where it is: its file and its index in
+/// the list.
+#[derive(Debug)]
+pub(super) struct Entry<'f, T> {
+    pub(super) file: &'f Path,
     pub(super) index: usize,
-    pub(super) typed: &'f files::Material,
+    pub(super) typed: &'f T,
 }
+
+/// Each of `list` (of the file at `file`) with its index.
+fn entries<'f, T>(file: &'f Path, list: &'f [T]) -> Vec<Entry<'f, T>> {
+    let entry = |(index, typed)| Entry { file, index, typed };
+    list.iter().enumerate().map(entry).collect()
+}
+
+/// A material of the materials file and where it is.
+pub(super) type Material<'f> = Entry<'f, files::Material>;
+
+/// A material relation (the contact settings of two materials) and where it is.
+pub(super) type Relation<'f> = Entry<'f, files::Relation>;
 
 impl Material<'_> {
     /// Its `material_id`.
@@ -67,14 +80,6 @@ impl Material<'_> {
             )
         })
     }
-}
-
-/// A material relation (the contact settings of two materials) and where it is.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Relation<'f> {
-    pub(super) file: &'f Path,
-    pub(super) index: usize,
-    pub(super) typed: &'f files::Relation,
 }
 
 impl Relation<'_> {
@@ -148,16 +153,7 @@ impl<'f> MaterialsSetup<'f> {
         file: &'f MaterialsFile,
         left_out: &mut Vec<String>,
     ) -> Result<Self, DeckError> {
-        let materials: Vec<Material<'f>> = file
-            .materials
-            .iter()
-            .enumerate()
-            .map(|(index, typed)| Material {
-                file: path,
-                index,
-                typed,
-            })
-            .collect();
+        let materials = entries(path, &file.materials);
         for (k, m) in materials.iter().enumerate() {
             if let Some(first) = materials[..k].iter().find(|o| o.id() == m.id()) {
                 return Err(DeckError::unsupported(
@@ -167,16 +163,7 @@ impl<'f> MaterialsSetup<'f> {
                 ));
             }
         }
-        let relations: Vec<Relation<'f>> = file
-            .material_relations
-            .iter()
-            .enumerate()
-            .map(|(index, typed)| Relation {
-                file: path,
-                index,
-                typed,
-            })
-            .collect();
+        let relations = entries(path, &file.material_relations);
         let assigned = assign_parts(path, file, &materials, left_out)?;
         let setup = MaterialsSetup {
             path,

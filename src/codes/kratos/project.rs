@@ -136,29 +136,19 @@ impl Project {
                 "3 (the 2D laws are not read)",
             ));
         }
-        let element = file
-            .element_type
-            .as_deref()
-            .unwrap_or("SphericPartDEMElement3D");
-        if element != "SphericPartDEMElement3D" {
-            return Err(refuse(
-                "ElementType",
-                element.to_string(),
-                "SphericPartDEMElement3D (discontinuum spheres)",
-            ));
-        }
-        let strategy = file
-            .solver_settings
-            .strategy
-            .as_deref()
-            .unwrap_or("sphere_strategy");
-        if strategy != "sphere_strategy" {
-            return Err(refuse(
-                "solver_settings.strategy",
-                strategy.to_string(),
-                "sphere_strategy (discontinuum spheres)",
-            ));
-        }
+        // Kratos' default element and strategy are the only ones of discontinuum spheres.
+        let spheres_only = |key: &str, value: Option<&str>, only: &str| {
+            let given = value.unwrap_or(only);
+            if given == only {
+                return Ok(());
+            }
+            let supported = format!("{only} (discontinuum spheres)");
+            Err(refuse(key, given.to_string(), &supported))
+        };
+        let element = file.element_type.as_deref();
+        spheres_only("ElementType", element, "SphericPartDEMElement3D")?;
+        let strategy = file.solver_settings.strategy.as_deref();
+        spheres_only("solver_settings.strategy", strategy, "sphere_strategy")?;
         let scheme = file
             .translational_scheme
             .as_deref()

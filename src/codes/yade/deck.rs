@@ -50,11 +50,6 @@ impl YadeDeck {
     /// The bodies: one per size of each material, the given ones replacing their type's.
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
         let mut bodies: Vec<DeckBody> = Vec::new();
-        let elastic = |m: &Material| match m.class {
-            // The young a ViscElMat's kn/cn or tc/en form does not use is no modulus of it.
-            Class::ViscEl if m.get("kn").is_some() || m.get("tc").is_some() => (None, None),
-            _ => (Some(m.value("young")), Some(m.value("poisson"))),
-        };
         let mut push = |t: u32, radius: f64, density: f64, mass: f64, from: String| {
             // The same size read twice is the same number, bit for bit.
             let known = bodies.iter().any(|b| {
@@ -63,7 +58,7 @@ impl YadeDeck {
                     && b.density.to_bits() == density.to_bits()
             });
             if !known {
-                let (youngs_modulus, poisson_ratio) = elastic(&r.materials[t as usize]);
+                let (youngs_modulus, poisson_ratio) = r.materials[t as usize].moduli();
                 bodies.push(DeckBody {
                     type_id: t,
                     radius,

@@ -131,6 +131,15 @@ impl Material {
         self.get(key).unwrap_or(f64::NAN)
     }
 
+    /// Its Young's modulus and Poisson's ratio, or neither for a ViscElMat whose kn, cn or tc, en
+    /// form uses no modulus.
+    pub(super) fn moduli(&self) -> (Option<f64>, Option<f64>) {
+        match self.class {
+            Class::ViscEl if self.get("kn").is_some() || self.get("tc").is_some() => (None, None),
+            _ => (Some(self.value("young")), Some(self.value("poisson"))),
+        }
+    }
+
     /// The material's label, where the script gave one.
     pub(super) fn label(&self) -> Option<String> {
         match self.values.get("label") {
