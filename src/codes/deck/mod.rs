@@ -16,8 +16,17 @@ use thiserror::Error;
 
 use super::lammps::conventions::Conventions;
 use super::{CodeError, CodeSetup, CodeSphere, RenderedInput};
+
+mod bodies;
+mod contacts;
+mod impact;
+mod reading;
+
 use crate::model::law::{CodeLaw, ContactForce};
 use crate::model::scene::SceneKind;
+pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
+pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
+pub(crate) use reading::ScriptReading;
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -174,6 +183,15 @@ pub enum DeckError {
 }
 
 impl DeckError {
+    /// A deck (`path`) that lacks `what`, naming what is `supported`.
+    pub(crate) fn lacking(path: &Path, what: &str, supported: &str) -> Self {
+        DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: what.into(),
+            supported: supported.into(),
+        }
+    }
+
     /// An unsupported or unresolvable line (or field).
     pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
         DeckError::Unsupported {
