@@ -15,18 +15,18 @@ use serde::{Serialize, Serializer};
 use thiserror::Error;
 
 use super::lammps::conventions::Conventions;
-use super::{CodeError, CodeSetup, CodeSphere, RenderedInput};
+use super::{CodeError, CodeSetup, RenderedInput};
 
 mod bodies;
 mod contacts;
 mod impact;
 mod reading;
 
-use crate::model::law::{CodeLaw, ContactForce};
-use crate::model::scene::SceneKind;
+use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
 pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
-pub(crate) use reading::ScriptReading;
+pub use impact::ImpactPlan;
+pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading};
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -372,70 +372,12 @@ pub struct DeckImpactInput {
 
 /// Which elastic constants of its bodies a deck's impact setup carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum BodyElasticity {
+pub enum BodyElasticity {
     /// The deck's own Young's modulus and Poisson's ratio of each type, where it gives them.
     FromDeck,
     /// None: the setup's law is the deck's contact lines alone, so no convention the driver
     /// forms from a sphere's own constants (its calibration card's traps) applies.
     Withheld,
-}
-
-impl UserDeck {
-    /// The setup of the impact of `self.contacts[contact]` at `velocity` (m/s), run for `steps`
-    /// steps of the deck's own time step: the pair's bodies, its law's mass, stiffness, exponent
-    /// and clamp, its entered COR and, for the paper's law, its η; `conventions` as the build
-    /// measured them, where the driver uses them.
-    pub(crate) fn impact_setup(
-        &self,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-        elasticity: BodyElasticity,
-        conventions: Option<Conventions>,
-    ) -> CodeSetup {
-        let c = &self.contacts[contact];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: match elasticity {
-                BodyElasticity::FromDeck => b.youngs_modulus.unwrap_or(f64::NAN),
-                BodyElasticity::Withheld => f64::NAN,
-            },
-            poisson_ratio: match elasticity {
-                BodyElasticity::FromDeck => b.poisson_ratio,
-                BodyElasticity::Withheld => None,
-            },
-        };
-        let (scene, other_sphere) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&self.bodies[o]))),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(&self.bodies[c.body]),
-            other_sphere,
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: self.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
-        setup
-    }
 }
 
 /// A code's capability to read its users' decks and run one pair's impact with their lines.
@@ -446,6 +388,13 @@ pub trait DeckReader: Send + Sync {
     fn reads(&self) -> &'static str;
     /// Read the deck at `path`.
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError>;
+    /// What this code's impact setups are formed with: which elastic constants their bodies
+    /// carry, and the conventions the build measured where its driver uses them.
+    fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
+        (BodyElasticity::FromDeck, None)
+    }
+    /// The input of a planned impact, in the code's own syntax.
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError>;
     /// The input of the impact of `deck.contacts[contact]` at `velocity` (m/s), run for `steps`
     /// steps of the deck's own time step.
     fn render(
@@ -454,7 +403,13 @@ pub trait DeckReader: Send + Sync {
         contact: usize,
         velocity: f64,
         steps: u64,
-    ) -> Result<DeckImpactInput, CodeError>;
+    ) -> Result<DeckImpactInput, CodeError> {
+        let (elasticity, conventions) = self.setup_basis();
+        self.input(
+            deck,
+            deck.impact_plan(contact, velocity, steps, elasticity, conventions),
+        )
+    }
 }
 
 /// The mass of a sphere, kg, as the codes form it from radius (m) and density (kg/m³).

@@ -35,6 +35,13 @@ impl LeftOut {
     }
 }
 
+/// The kind of left-out line of a script's neighbour, communication and domain settings.
+pub(crate) const NEIGHBOURS: &str =
+    "neighbour lists, communication and domain settings (the impact sets its own)";
+
+/// The kind of left-out line of a script's output and flow control.
+pub(crate) const OUTPUT: &str = "output and control";
+
 /// What a reader of a LAMMPS-family script (LAMMPS, LIGGGHTS) gathers from the commands the
 /// two read alike: the units, the box's types, the time step, the atoms and the lines left out.
 #[derive(Debug, Default)]
@@ -72,6 +79,12 @@ impl ScriptReading {
                 c,
             ),
             "run" | "rerun" | "minimize" => self.leave_out("the run itself", c),
+            "neighbor" | "neigh_modify" | "comm_modify" | "newton" | "processors" | "boundary"
+            | "atom_modify" => self.leave_out(NEIGHBOURS, c),
+            "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
+            | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
+            | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
+            | "jump" | "next" | "if" | "clear" | "quit" => self.leave_out(OUTPUT, c),
             _ => return Ok(false),
         }
         Ok(true)

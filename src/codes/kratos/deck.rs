@@ -33,8 +33,8 @@ use super::{
 };
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckSource, DeckWall, PairLaw, Partner, SourceLine, Transplant, UserDeck, WallOrder,
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
+    DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, UserDeck, WallOrder,
     body_contacts, wall_contacts,
 };
 use crate::codes::template::{exact_number, fill_template};
@@ -1401,15 +1401,8 @@ impl DeckReader for KratosDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let plan = deck.impact_plan(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let (body, other, setup, (v1, v2)) = (plan.body, plan.other, plan.setup, plan.velocities);
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (body, other, (v1, v2)) = (plan.body, plan.other, plan.velocities);
         let other_material = match plan.contact.partner {
             Partner::Body(o) => deck.bodies[o].type_id,
             Partner::Wall(w) => deck.walls[w].type_id.unwrap_or_default(),
@@ -1420,14 +1413,14 @@ impl DeckReader for KratosDeck {
         let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| {
             CodeError::Unsupported {
                 code: "kratos".into(),
-                case: setup.case_name.clone(),
+                case: plan.setup.case_name.clone(),
                 reason: e.to_string(),
             }
         })?;
         let values = [
-            ("scene", setup.scene.name().to_string()),
+            ("scene", plan.setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("material", body.type_id.to_string()),
             ("radius", num(body.radius)),
             ("velocity", num(v1)),
@@ -1441,7 +1434,7 @@ impl DeckReader for KratosDeck {
         let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| {
             CodeError::Unsupported {
                 code: "kratos".into(),
-                case: setup.case_name.clone(),
+                case: plan.setup.case_name.clone(),
                 reason: e.to_string(),
             }
         })?;
@@ -1451,7 +1444,7 @@ impl DeckReader for KratosDeck {
                 text,
                 args: vec![SCRIPT.to_string()],
             },
-            setup,
+            setup: plan.setup,
             start_gap,
         })
     }

@@ -23,9 +23,10 @@ use super::conventions::{Conventions, exact_hertz_alpha};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckError, DeckImpactInput, DeckOptions,
-    DeckReader, DeckWall, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
-    UserDeck, WallOrder, body_contacts, wall_contacts, whole_number,
+    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput,
+    DeckOptions, DeckReader, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
+    ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
+    wall_contacts, whole_number,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
@@ -257,6 +258,15 @@ fn paper_law(
     let traps = std::iter::once(eta_trap).chain(traps).collect();
     PairLaw::new(model, CodeLaw::Paper(law), Some(e), traps)
 }
+
+/// A deck's bodies, walls, pairs, the lines every impact carries and each wall's line.
+type Pairs = (
+    Vec<DeckBody>,
+    Vec<DeckWall>,
+    Vec<DeckContact>,
+    Vec<String>,
+    Vec<String>,
+);
 
 /// A `fix wall/paper` as read.
 #[derive(Clone, Debug)]
@@ -603,17 +613,8 @@ impl LammpsDeck {
                     _ => r.leave_out("other fixes (no part of a contact)", c),
                 },
                 "region" | "lattice" => r.leave_out("regions (the geometry)", c),
-                "neighbor" | "neigh_modify" | "comm_modify" | "comm_style" | "newton"
-                | "processors" | "boundary" | "atom_modify" | "dimension" => r.leave_out(
-                    "neighbour lists, communication and domain settings (the impact sets its own)",
-                    c,
-                ),
-                "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
-                | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
-                | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
-                | "jump" | "next" | "if" | "clear" | "quit" | "info" => {
-                    r.leave_out("output and control", c)
-                }
+                "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
+                "info" => r.leave_out(OUTPUT, c),
                 "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
                 | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify"
                 | "special_bonds" => r.leave_out("other settings", c),
@@ -856,12 +857,11 @@ impl LammpsDeck {
     /// type against each `fix wall/paper`; the law the paper's with the plugin's stiffness
     /// (`(4/3) E* sqrt(R*)` or `kn`), the reduced mass and η, the COR entered its closed form.
     fn read_paper(
-        r: Reading,
+        r: &Reading,
         path: &Path,
         options: &DeckOptions,
         types: u32,
-        (timestep, timestep_at): (f64, SourceLine),
-    ) -> Result<UserDeck, DeckError> {
+    ) -> Result<Pairs, DeckError> {
         if let Some((_, _, _, c)) = r.coeffs.first() {
             return Err(DeckError::unsupported(
                 &c.at,
@@ -901,7 +901,7 @@ impl LammpsDeck {
                 }
             }
         }
-        let bodies = Self::bodies(&r, path, options)?;
+        let bodies = Self::bodies(r, path, options)?;
         let mut contacts = Vec::new();
         if let Some(linear) = r.paper_linear {
             contacts = body_contacts(&bodies, |body, other| {
@@ -947,54 +947,23 @@ impl LammpsDeck {
                 )
             })
             .collect();
-        let left_out = r.script.left_out.lines();
         let mut common = vec![format!("plugin          load {}", super::PAPER_PLUGIN_FILE)];
         common.extend(r.pair.iter().map(|c| c.text.clone()));
         common.extend(r.paper_coeffs.iter().map(|x| x.3.text.clone()));
-        Ok(UserDeck {
-            path: path.to_path_buf(),
-            timestep,
-            timestep_from: timestep_at.to_string(),
-            bodies,
-            walls,
-            contacts,
-            representative_velocity: None,
-            left_out,
-            transplant: Transplant {
-                before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
-                common,
-                walls: wall_lines,
-                types,
-            },
-        })
-    }
-}
-
-impl DeckReader for LammpsDeck {
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.lines().any(|l| {
-            let w: Vec<&str> = l.split_whitespace().collect();
-            matches!(
-                w.as_slice(),
-                ["pair_style", "granular" | "paper" | "paper/linear", ..]
-            ) || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
-                || (w.first() == Some(&"fix")
-                    && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
-                    && w.get(4) == Some(&"granular"))
-        })
+        Ok((bodies, walls, contacts, common, wall_lines))
     }
 
-    fn reads(&self) -> &'static str {
-        "LAMMPS inputs (pair_style granular, fix wall/gran granular; the paper plugin's pair_style paper, paper/linear and fix wall/paper)"
-    }
-
-    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
-        let r = self.gather(path, options)?;
-        let (types, timestep, timestep_at) = r.script.checked(path, "LAMMPS")?;
-        if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
-            return Self::read_paper(r, path, options, types, (timestep, timestep_at));
-        }
-        let coeffs = PairCoeffLines::as_the_build_reads(&r, self.0.mixing, types)?;
+    /// A deck of `pair_style granular`: each pair of bodies by its `pair_coeff` or as the
+    /// build mixes it, each body against each `fix wall/gran granular`, by the conventions of
+    /// the build that will run it.
+    fn read_granular(
+        &self,
+        r: &Reading,
+        path: &Path,
+        options: &DeckOptions,
+        types: u32,
+    ) -> Result<Pairs, DeckError> {
+        let coeffs = PairCoeffLines::as_the_build_reads(r, self.0.mixing, types)?;
         if r.pair.is_some() {
             coeffs.check_every_pair_is_set(path)?;
         }
@@ -1005,7 +974,7 @@ impl DeckReader for LammpsDeck {
             .ok()
             .flatten()
             .unwrap_or(self.0.fallback);
-        let mut bodies = Self::bodies(&r, path, options)?;
+        let mut bodies = Self::bodies(r, path, options)?;
         coeffs.give_materials(&mut bodies);
         let mut contacts = body_contacts(&bodies, |body, other| {
             self.body_law(&conventions, &coeffs, path, body, other)
@@ -1034,6 +1003,42 @@ impl DeckReader for LammpsDeck {
             common.push(c.text.clone());
         }
         common.extend(r.coeffs.iter().map(|x| x.3.text.clone()));
+        Ok((bodies, walls, contacts, common, wall_lines))
+    }
+}
+
+impl DeckReader for LammpsDeck {
+    fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
+        let conventions = self.1.measured_conventions().ok().flatten();
+        (BodyElasticity::Withheld, conventions)
+    }
+
+    fn recognises(&self, _path: &Path, text: &str) -> bool {
+        text.lines().any(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            matches!(
+                w.as_slice(),
+                ["pair_style", "granular" | "paper" | "paper/linear", ..]
+            ) || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
+                || (w.first() == Some(&"fix")
+                    && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
+                    && w.get(4) == Some(&"granular"))
+        })
+    }
+
+    fn reads(&self) -> &'static str {
+        "LAMMPS inputs (pair_style granular, fix wall/gran granular; the paper plugin's pair_style paper, paper/linear and fix wall/paper)"
+    }
+
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
+        let r = self.gather(path, options)?;
+        let (types, timestep, timestep_at) = r.script.checked(path, "LAMMPS")?;
+        let (bodies, walls, contacts, common, wall_lines) =
+            if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
+                Self::read_paper(&r, path, options, types)?
+            } else {
+                self.read_granular(&r, path, options, types)?
+            };
         Ok(UserDeck {
             path: path.to_path_buf(),
             timestep,
@@ -1052,40 +1057,19 @@ impl DeckReader for LammpsDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let conventions = self.1.measured_conventions().ok().flatten();
-        let plan = deck.impact_plan(
-            contact,
-            velocity,
-            steps,
-            BodyElasticity::Withheld,
-            conventions,
-        );
-        let (c, body, other, setup, (v1, v2), reach) = (
-            plan.contact,
-            plan.body,
-            plan.other,
-            plan.setup,
-            plan.velocities,
-            plan.reach,
-        );
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other, (v1, v2)) = (plan.contact, plan.body, plan.other, plan.velocities);
         // A build that counts touching as contact starts a hair before touch, as its driver does.
-        let gap = self.0.start_gap(&setup);
+        let gap = self.0.start_gap(&plan.setup);
         let t = |x: TypeRef| match x {
             TypeRef::Type(t) => t,
             TypeRef::Wall => 1,
         };
         let r1 = body.radius;
-        let h = exact_number(4.0 * reach + velocity * setup.duration() + gap);
+        let h = exact_number(4.0 * plan.reach + plan.velocity * plan.setup.duration() + gap);
         let mut lines = vec![
             "# millimpact deck: one normal impact with the contact lines of a user's deck (its time step;".to_string(),
-            format!("# its lines between the markers, variables substituted). {} at {velocity} m/s, {}.", format_args!("{} on {}", c.types[0], c.types[1]), deck.path.display()),
+            format!("# its lines between the markers, variables substituted). {} at {} m/s, {}.", format_args!("{} on {}", c.types[0], c.types[1]), plan.velocity, deck.path.display()),
             "units           si".into(),
         ];
         lines.extend(deck.transplant.before_box.iter().cloned());
@@ -1161,7 +1145,7 @@ impl DeckReader for LammpsDeck {
             format!("fix             trajectory all print 1 \"${{t}} ${{overlap}} ${{approach}} ${{force}}\" file {TRAJECTORY_FILE} screen no title \"# time overlap approach_velocity normal_force\""),
             "thermo_style    custom step".into(),
             "thermo          0".into(),
-            format!("run             {steps}"),
+            format!("run             {}", plan.steps),
         ]);
         Ok(DeckImpactInput {
             input: RenderedInput {
@@ -1173,7 +1157,7 @@ impl DeckReader for LammpsDeck {
                 .map(String::from)
                 .to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }

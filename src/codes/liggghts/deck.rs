@@ -15,8 +15,8 @@ use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckError, DeckImpactInput, DeckOptions,
-    DeckReader, DeckWall, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
+    AtomSyntax, Bodies, DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
+    ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
     UserDeck, WallOrder, body_contacts, wall_contacts, whole_number,
 };
 use crate::codes::script::{Command, ScriptReader};
@@ -64,6 +64,14 @@ impl GranModel {
 
     fn on(&self, key: &str) -> bool {
         self.setting(key) == Some("on")
+    }
+
+    /// The trap of the tangential and rolling models, which act on no head-on impact.
+    fn idle_trap(&self) -> Option<String> {
+        (self.tangential != "no_history" || self.rolling != "off").then(|| format!(
+            "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
+            self.tangential, self.rolling
+        ))
     }
 }
 
@@ -460,15 +468,7 @@ impl LiggghtsDeck {
                 "pair_coeff" => r.pair_coeffs.push(c.clone()),
                 "fix" => Self::fix(c, &mut r)?,
                 "region" => r.leave_out("regions (the mill's geometry)", c),
-                "neighbor" | "neigh_modify" | "communicate" | "comm_modify" | "newton"
-                | "processors" | "boundary" | "atom_modify" | "modify_timing" => r.leave_out(
-                    "neighbour lists, communication and domain settings (the impact sets its own)",
-                    c,
-                ),
-                "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
-                | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
-                | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
-                | "jump" | "next" | "if" | "clear" | "quit" => r.leave_out("output and control", c),
+                "communicate" | "modify_timing" => r.leave_out(NEIGHBOURS, c),
                 "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
                 | "change_box" => r.leave_out("changes to the running simulation", c),
                 "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep"
@@ -655,6 +655,26 @@ impl Materials<'_> {
         Ok((ev, nuv, e.at.clone()))
     }
 
+    /// `E*` of the types `i` and `j`, Pa, the line of their moduli added to `lines`; at a
+    /// wall (of type `j`), the trap of the wall's own modulus added to `traps`.
+    fn y_star(
+        &self,
+        (i, j): (u32, u32),
+        needed_by: &str,
+        wall: bool,
+        traps: &mut Vec<String>,
+        lines: &mut Vec<SourceLine>,
+    ) -> Result<f64, DeckError> {
+        let (e1, nu1, e_at) = self.modulus(i, needed_by)?;
+        let (e2, nu2, _) = self.modulus(j, needed_by)?;
+        let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+        lines.push(e_at);
+        if wall {
+            traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
+        }
+        Ok(y_star)
+    }
+
     fn restitution(&self, i: u32, j: u32, needed_by: &str) -> Result<(f64, SourceLine), DeckError> {
         let p = self
             .r
@@ -690,15 +710,10 @@ impl Materials<'_> {
         let mut lines = vec![at.clone()];
         let (law, cor_entered) = match model.normal.as_str() {
             "hertz" | "hooke" => {
-                let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
-                let (e2, nu2, _) = self.modulus(j, &needed_by)?;
-                let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+                let wall = partner.is_none();
+                let y_star = self.y_star((i, j), &needed_by, wall, &mut traps, &mut lines)?;
                 let (e, e_line) = self.restitution(i, j, &needed_by)?;
-                lines.push(e_at);
                 lines.push(e_line);
-                if partner.is_none() {
-                    traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
-                }
                 if model.normal == "hertz" {
                     let k = 4.0 / 3.0 * y_star * r_star.sqrt();
                     (DashpotLaw::damped_hertz(m_star, k, e), Some(e))
@@ -779,12 +794,7 @@ impl Materials<'_> {
         } else {
             law
         };
-        if model.tangential != "no_history" || model.rolling != "off" {
-            traps.push(format!(
-                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
-                model.tangential, model.rolling
-            ));
-        }
+        traps.extend(model.idle_trap());
         Ok(PairLaw::new(&model.normal, law, cor_entered, traps).set_by(lines))
     }
 
@@ -809,13 +819,8 @@ impl Materials<'_> {
         ];
         let mut lines = vec![at.clone()];
         let (stiffness, exponent) = if model.normal == "paper" {
-            let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
-            let (e2, nu2, _) = self.modulus(j, &needed_by)?;
-            let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
-            lines.push(e_at);
-            if partner.is_none() {
-                traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
-            }
+            let wall = partner.is_none();
+            let y_star = self.y_star((i, j), &needed_by, wall, &mut traps, &mut lines)?;
             (4.0 / 3.0 * y_star * r_star.sqrt(), 1.5)
         } else {
             let kn_p = self.r.property("kn", self.path, &needed_by)?;
@@ -855,12 +860,7 @@ impl Materials<'_> {
             ));
         }
         lines.push(eta_p.at.clone());
-        if model.tangential != "no_history" || model.rolling != "off" {
-            traps.push(format!(
-                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
-                model.tangential, model.rolling
-            ));
-        }
+        traps.extend(model.idle_trap());
         let law = PaperLaw {
             mass: m_star,
             stiffness,
@@ -984,26 +984,14 @@ impl DeckReader for LiggghtsDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let plan = deck.impact_plan(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let (c, body, setup, (v1, v2), reach) = (
-            plan.contact,
-            plan.body,
-            plan.setup,
-            plan.velocities,
-            plan.reach,
-        );
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other) = (plan.contact, plan.body, plan.other);
+        let (v1, v2) = plan.velocities;
         let wall_line = match c.partner {
             Partner::Body(_) => None,
             Partner::Wall(w) => Some(deck.transplant.walls[w].clone()),
         };
-        let gap = super::contact_gap(&setup);
+        let gap = super::contact_gap(&plan.setup);
         let r1 = body.radius;
         let type_of = |t: TypeRef| match t {
             TypeRef::Type(t) => t,
@@ -1019,18 +1007,18 @@ impl DeckReader for LiggghtsDeck {
             )
         };
         let mut atoms = atom(1, type_of(c.types[0]), r1 + gap, body, -v1);
-        let (overlap, approach) = match plan.other {
+        let (overlap, approach) = match other {
             Some(other) => {
                 atoms.push('\n');
                 atoms.push_str(&atom(2, type_of(c.types[1]), -other.radius, other, -v2));
                 (
-                    format!("{}-(z[1]-z[2])", exact_number(reach)),
+                    format!("{}-(z[1]-z[2])", exact_number(plan.reach)),
                     "vz[2]-vz[1]".to_string(),
                 )
             }
             None => (format!("{}-z[1]", exact_number(r1)), "-vz[1]".to_string()),
         };
-        let half = 4.0 * reach + velocity * setup.duration() + gap;
+        let half = 4.0 * plan.reach + plan.velocity * plan.setup.duration() + gap;
         let h = exact_number(half);
         let mut lines = deck.transplant.common.clone();
         lines.extend(wall_line);
@@ -1051,22 +1039,22 @@ impl DeckReader for LiggghtsDeck {
         let values = [
             ("deck", deck.path.display().to_string()),
             ("pair", format!("{} on {}", c.types[0], c.types[1])),
-            ("velocity", exact_number(velocity)),
+            ("velocity", exact_number(plan.velocity)),
             ("before_box", deck.transplant.before_box.join("\n")),
             ("domain", format!("-{h} {h} -{h} {h} -{h} {h}")),
             ("types", deck.transplant.types.to_string()),
-            ("skin", exact_number(reach)),
+            ("skin", exact_number(plan.reach)),
             ("deck_lines", lines.join("\n")),
             ("timestep", exact_number(deck.timestep)),
             ("atoms", atoms),
             ("overlap", overlap),
             ("approach", approach),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
         ];
         let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
             code: Liggghts.name().into(),
-            case: setup.case_name.clone(),
+            case: plan.setup.case_name.clone(),
             reason: e.to_string(),
         })?;
         Ok(DeckImpactInput {
@@ -1077,7 +1065,7 @@ impl DeckReader for LiggghtsDeck {
                     .map(String::from)
                     .to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }

@@ -26,8 +26,8 @@ use super::dump::{
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckSource, DeckWall, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
+    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
+    DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, RenderedInput};
@@ -1320,18 +1320,7 @@ impl YadeDeck {
                 loop_at,
                 loop_at,
             )?;
-            let a = Side {
-                id: body.type_id,
-                material: m_a,
-                radius: body.radius,
-                mass: body.mass,
-            };
-            let b = Side {
-                id: other.type_id,
-                material: m_b,
-                radius: other.radius,
-                mass: other.mass,
-            };
+            let (a, b) = (Self::side(body, m_a), Self::side(other, m_b));
             let mass = reduced_mass(body.mass, other.mass);
             let mut pair = Self::pair_law(r, &a, &b, None, mass, geometry)?;
             pair.traps.extend(edit_traps(m_a));
@@ -1342,6 +1331,16 @@ impl YadeDeck {
             lines.dedup();
             Ok(pair.set_by(lines))
         })
+    }
+
+    /// A ball of `material` as the functors see it.
+    fn side<'a>(body: &DeckBody, material: &'a Material) -> Side<'a> {
+        Side {
+            id: body.type_id,
+            material,
+            radius: body.radius,
+            mass: body.mass,
+        }
     }
 
     /// The script's walls, with each body's contact against each pushed onto `contacts`; the
@@ -1379,12 +1378,7 @@ impl YadeDeck {
                 _ => 1.0,
             };
             let m_a = &r.materials[body.type_id as usize];
-            let a = Side {
-                id: body.type_id,
-                material: m_a,
-                radius: body.radius,
-                mass: body.mass,
-            };
+            let a = Self::side(body, m_a);
             let b = Side {
                 id: wall.material,
                 material: m_w,
@@ -1604,21 +1598,9 @@ impl DeckReader for YadeDeck {
         Self::read_dump(path, &dump, options)
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let plan = deck.impact_plan(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let (c, body, other, setup, (v1, v2)) = (
-            plan.contact,
-            plan.body,
-            plan.other,
-            plan.setup,
-            plan.velocities,
-        );
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other) = (plan.contact, plan.body, plan.other);
+        let (v1, v2) = plan.velocities;
         // The script starts the bodies one ulp apart (YADE's laws act at zero overlap).
         let gap = f64::from_bits(plan.reach.to_bits() + 1) - plan.reach;
         let placement = match c.partner {
@@ -1637,13 +1619,13 @@ impl DeckReader for YadeDeck {
             ("source", deck.path.display().to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
             ("pair", format!("{} on {}", c.types[0], c.types[1])),
-            ("speed", velocity.to_string()),
+            ("speed", plan.velocity.to_string()),
             (
                 "scene",
                 if other.is_some() { "ball_ball" } else { "wall" }.to_string(),
             ),
             ("timestep", exact_number(deck.timestep)),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("radius", exact_number(body.radius)),
             ("mass", exact_number(body.mass)),
             ("material", t(c.types[0])),
@@ -1667,7 +1649,7 @@ impl DeckReader for YadeDeck {
         ];
         let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
             code: "yade".into(),
-            case: setup.case_name.clone(),
+            case: plan.setup.case_name.clone(),
             reason: e.to_string(),
         })?;
         Ok(DeckImpactInput {
@@ -1676,7 +1658,7 @@ impl DeckReader for YadeDeck {
                 text,
                 args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }
