@@ -6,7 +6,6 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
-use super::reading::LeftOut;
 use super::{DeckBody, DeckError, DeckOptions, SourceLine, sphere_mass};
 use crate::codes::script::Command;
 
@@ -101,13 +100,9 @@ impl Atoms {
     }
 
     /// `set atom|type N … diameter D density RHO [mass M] [type T …]`: the sizes it gives and
-    /// the types it makes; a `set` on a group or a region is left out.
-    pub(crate) fn set(
-        &mut self,
-        c: &Command,
-        syntax: &AtomSyntax,
-        left_out: &mut LeftOut,
-    ) -> Result<(), DeckError> {
+    /// the types it makes; whether it sets atoms the reader knows (else it sets a group or a
+    /// region, and is left out).
+    pub(crate) fn set(&mut self, c: &Command, syntax: &AtomSyntax) -> Result<bool, DeckError> {
         let pick = |key: &str| -> Result<Option<f64>, DeckError> {
             match c.words.iter().position(|w| w == key) {
                 Some(k) => c.number(k + 1, key).map(Some),
@@ -165,10 +160,7 @@ impl Atoms {
                 }
             }
         }
-        if selected.is_none() && !makes {
-            left_out.leave_out("set commands on groups or regions", &c.at);
-        }
-        Ok(())
+        Ok(selected.is_some() || makes)
     }
 }
 

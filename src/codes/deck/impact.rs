@@ -1,14 +1,19 @@
 //! The plan of one pair's impact, what every reader's input is written from: the pair, its
 //! bodies, the setup its run is read with, the bodies' speeds and the reach between them.
 
-use super::{BodyElasticity, Conventions, DeckBody, DeckContact, Partner, UserDeck};
-use crate::codes::{CodeSetup, CodeSphere};
+use std::path::Path;
+
+use super::{
+    BodyElasticity, Conventions, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions,
+    DeckReader, Partner, UserDeck,
+};
+use crate::codes::{CodeError, CodeSetup, CodeSphere};
 use crate::model::law::{CodeLaw, ContactForce};
 use crate::model::scene::SceneKind;
 
 /// One pair's impact as planned, before a code's input is written for it.
 #[derive(Clone, Debug)]
-pub struct ImpactPlan<'d> {
+pub(crate) struct ImpactPlan<'d> {
     /// The pair.
     pub contact: &'d DeckContact,
     /// The moving body.
@@ -25,6 +30,50 @@ pub struct ImpactPlan<'d> {
     pub velocity: f64,
     /// The steps of the deck's own time step the run takes.
     pub steps: u64,
+}
+
+/// A code's deck reader as a dialect of the one pipeline: its syntax (what it recognises and
+/// reads) and how it writes a planned impact; the plan itself is formed once, for all.
+pub(crate) trait DeckDialect: Send + Sync {
+    /// Whether `text` (the file at `path`) is an input of this code.
+    fn recognises(&self, path: &Path, text: &str) -> bool;
+    /// What this reader reads, for an error that names it.
+    fn reads(&self) -> &'static str;
+    /// Read the deck at `path`.
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError>;
+    /// What this code's impact setups are formed with: which elastic constants their bodies
+    /// carry, and the conventions the build measured where its driver uses them.
+    fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
+        (BodyElasticity::FromDeck, None)
+    }
+    /// The input of a planned impact, in the code's own syntax.
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError>;
+}
+
+impl<T: DeckDialect> DeckReader for T {
+    fn recognises(&self, path: &Path, text: &str) -> bool {
+        DeckDialect::recognises(self, path, text)
+    }
+
+    fn reads(&self) -> &'static str {
+        DeckDialect::reads(self)
+    }
+
+    fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
+        DeckDialect::read(self, path, options)
+    }
+
+    fn render(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        steps: u64,
+    ) -> Result<DeckImpactInput, CodeError> {
+        let (elasticity, conventions) = self.setup_basis();
+        let plan = deck.impact_plan(contact, velocity, steps, elasticity, conventions);
+        self.input(deck, plan)
+    }
 }
 
 impl UserDeck {

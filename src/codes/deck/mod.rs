@@ -25,7 +25,7 @@ mod reading;
 use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
 pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
-pub use impact::ImpactPlan;
+pub(crate) use impact::{DeckDialect, ImpactPlan};
 pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading};
 
 /// Where something was written in a deck: a file and a line (from 1).
@@ -372,7 +372,7 @@ pub struct DeckImpactInput {
 
 /// Which elastic constants of its bodies a deck's impact setup carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum BodyElasticity {
+pub(crate) enum BodyElasticity {
     /// The deck's own Young's modulus and Poisson's ratio of each type, where it gives them.
     FromDeck,
     /// None: the setup's law is the deck's contact lines alone, so no convention the driver
@@ -388,13 +388,6 @@ pub trait DeckReader: Send + Sync {
     fn reads(&self) -> &'static str;
     /// Read the deck at `path`.
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError>;
-    /// What this code's impact setups are formed with: which elastic constants their bodies
-    /// carry, and the conventions the build measured where its driver uses them.
-    fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
-        (BodyElasticity::FromDeck, None)
-    }
-    /// The input of a planned impact, in the code's own syntax.
-    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError>;
     /// The input of the impact of `deck.contacts[contact]` at `velocity` (m/s), run for `steps`
     /// steps of the deck's own time step.
     fn render(
@@ -403,13 +396,7 @@ pub trait DeckReader: Send + Sync {
         contact: usize,
         velocity: f64,
         steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let (elasticity, conventions) = self.setup_basis();
-        self.input(
-            deck,
-            deck.impact_plan(contact, velocity, steps, elasticity, conventions),
-        )
-    }
+    ) -> Result<DeckImpactInput, CodeError>;
 }
 
 /// The mass of a sphere, kg, as the codes form it from radius (m) and density (kg/m³).

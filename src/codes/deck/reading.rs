@@ -73,7 +73,11 @@ impl ScriptReading {
                 let single = c.words.get(2).is_some_and(|w| w == "single");
                 self.atoms.create(t, &c.at, single);
             }
-            "set" => self.atoms.set(c, syntax, &mut self.left_out)?,
+            "set" => {
+                if !self.atoms.set(c, syntax)? {
+                    self.leave_out("set commands on groups or regions", c);
+                }
+            }
             "read_restart" | "read_data" | "read_dump" => self.leave_out(
                 "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
                 c,
@@ -88,6 +92,11 @@ impl ScriptReading {
             _ => return Ok(false),
         }
         Ok(true)
+    }
+
+    /// The error of a command the code's reader does not take (`supported`: those it does).
+    pub(crate) fn unknown(c: &Command, supported: &str) -> DeckError {
+        DeckError::unsupported(&c.at, format!("command `{}`", c.name()), supported)
     }
 
     /// Leave out the command `c`, of the kind `what`.

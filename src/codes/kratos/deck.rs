@@ -33,7 +33,7 @@ use super::{
 };
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
+    DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
     DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, UserDeck, WallOrder,
     body_contacts, wall_contacts,
 };
@@ -1303,7 +1303,7 @@ fn assign_parts(
     Ok(assigned)
 }
 
-impl DeckReader for KratosDeck {
+impl DeckDialect for KratosDeck {
     fn recognises(&self, path: &Path, text: &str) -> bool {
         let looks_like =
             path.extension().is_some_and(|e| e == "json") || text.trim_start().starts_with('{');

@@ -23,8 +23,8 @@ use super::conventions::{Conventions, exact_hertz_alpha};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput,
-    DeckOptions, DeckReader, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
+    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
+    DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
     ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
     wall_contacts, whole_number,
 };
@@ -618,10 +618,9 @@ impl LammpsDeck {
                 "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
                 | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify"
                 | "special_bonds" => r.leave_out("other settings", c),
-                other => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("command `{other}`"),
+                _ => {
+                    return Err(ScriptReading::unknown(
+                        c,
                         "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
                     ));
                 }
@@ -1007,7 +1006,7 @@ impl LammpsDeck {
     }
 }
 
-impl DeckReader for LammpsDeck {
+impl DeckDialect for LammpsDeck {
     fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
         let conventions = self.1.measured_conventions().ok().flatten();
         (BodyElasticity::Withheld, conventions)

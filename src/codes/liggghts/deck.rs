@@ -15,7 +15,7 @@ use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    AtomSyntax, Bodies, DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckWall,
+    AtomSyntax, Bodies, DeckBody, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckWall,
     ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
     UserDeck, WallOrder, body_contacts, wall_contacts, whole_number,
 };
@@ -473,10 +473,9 @@ impl LiggghtsDeck {
                 | "change_box" => r.leave_out("changes to the running simulation", c),
                 "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep"
                 | "run_style" | "atom_style_modify" => r.leave_out("other settings", c),
-                other => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("command `{other}`"),
+                _ => {
+                    return Err(ScriptReading::unknown(
+                        c,
                         "the LIGGGHTS commands of a granular deck (units, atom_style, create_box, region, fix, pair_style gran, pair_coeff, timestep, create_atoms, set, include, variable, output and run commands)",
                     ));
                 }
@@ -893,7 +892,7 @@ fn wall_modulus_trap(j: u32, own: (f64, f64), wall: (f64, f64), y_star: f64) -> 
     )
 }
 
-impl DeckReader for LiggghtsDeck {
+impl DeckDialect for LiggghtsDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.lines().map(str::trim).any(|l| {
             let words: Vec<&str> = l.split_whitespace().collect();

@@ -26,7 +26,7 @@ use super::dump::{
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader, DeckSource,
+    DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
     DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
 };
 use crate::codes::template::{exact_number, fill_template};
@@ -789,8 +789,8 @@ impl YadeDeck {
     }
 
     /// The deck YADE's dump `dump_text` (of the script at `path`) describes: what
-    /// [`DeckReader::read`] returns once YADE has run the script's set-up. The fast tests read
-    /// recorded dumps with it.
+    /// [`DeckReader::read`](crate::codes::deck::DeckReader::read) returns once YADE has run
+    /// the script's set-up. The fast tests read recorded dumps with it.
     pub fn read_dump(
         path: &Path,
         dump_text: &str,
@@ -1578,7 +1578,7 @@ fn common_lines(r: &Reading) -> Result<Vec<String>, DeckError> {
     Ok(common)
 }
 
-impl DeckReader for YadeDeck {
+impl DeckDialect for YadeDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.contains("O.engines")
             || text.contains("O.bodies.append")
