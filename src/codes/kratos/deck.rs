@@ -39,8 +39,9 @@ use super::{
 };
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
+    DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, UserDeck, WallOrder,
+    body_contacts, wall_contacts,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, RenderedInput};
@@ -70,21 +71,13 @@ fn split_part(name: &str) -> (&str, Option<&str>) {
     }
 }
 
-/// The law a relation makes Kratos integrate between a particle and its partner.
-struct PairLaw {
-    law: DashpotLaw,
-    name: String,
-    entered: f64,
-    traps: Vec<String>,
-    at: DeckSource,
-}
-
 /// The other side of a pair: a particle (its material, radius, mass) or a wall's material.
 enum Side<'m, 'a> {
     Particle(&'m Material<'a>, f64, f64),
     Wall(&'m Material<'a>, &'m str),
 }
 
+/// The law a relation makes Kratos integrate between a particle and its partner.
 fn pair_law(
     relation: &Relation<'_>,
     own: (&Material<'_>, f64, f64),
@@ -192,13 +185,7 @@ fn pair_law(
             "wall: {parts} met as a flat RigidFace3D3N plane (R* = R)"
         ));
     }
-    Ok(PairLaw {
-        law,
-        name,
-        entered,
-        traps,
-        at: relation.at(),
-    })
+    Ok(PairLaw::new(name, law, Some(entered), traps).set_by([relation.at()]))
 }
 
 /// The relation's `COEFFICIENT_OF_RESTITUTION`, refused where missing (Kratos reads it as 0)
@@ -508,54 +495,42 @@ impl<'f> MaterialsSetup<'f> {
         if let Some((g, at)) = &project.global_damping {
             extra_traps.push(format!("GlobalDamping {g} ({at}) is left out: in the simulation it also damps each particle's motion, so its rebounds are lower than the COR here"));
         }
-        let mut contacts = Vec::new();
         let mut used_relations = BTreeSet::new();
-        let mut push = |body: usize,
-                        partner: Partner,
-                        types: [TypeRef; 2],
-                        relation: &Relation<'_>,
-                        pl: PairLaw| {
+        // Each pair's law with the traps of the project's search and damping.
+        let mut with_project = |relation: &Relation<'_>, mut pl: PairLaw, at_wall: bool| {
             used_relations.insert(relation.index);
-            let mut traps = pl.traps;
-            traps.extend(
-                project
-                    .search
-                    .as_ref()
-                    .map(|s| s.trap(matches!(partner, Partner::Wall(_)), project.timestep)),
-            );
-            traps.extend(extra_traps.iter().cloned());
-            contacts.push(DeckContact {
-                body,
-                partner,
-                types,
-                model: pl.name,
-                cor_entered: Some(pl.entered),
-                law: pl.law.into(),
-                traps,
-                lines: vec![pl.at],
-            });
+            let search = project.search.as_ref();
+            pl.traps
+                .extend(search.map(|s| s.trap(at_wall, project.timestep)));
+            pl.traps.extend(extra_traps.iter().cloned());
+            pl
         };
-        for (a, body) in bodies.iter().enumerate() {
+        let mut contacts = body_contacts(bodies, |body, other| {
+            let relation = self.relation(body.type_id, other.type_id)?;
             let own = (self.material(body.type_id), body.radius, body.mass);
-            for (b, other) in bodies.iter().enumerate().skip(a) {
-                let relation = self.relation(body.type_id, other.type_id)?;
-                let side = Side::Particle(self.material(other.type_id), other.radius, other.mass);
-                let pl = pair_law(relation, own, &side)?;
-                let types = [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)];
-                push(a, Partner::Body(b), types, relation, pl);
-            }
-        }
-        for (w, wall) in walls.iter().enumerate() {
-            let wall_id = wall.type_id.unwrap_or_default();
-            for (a, body) in bodies.iter().enumerate() {
+            let side = Side::Particle(self.material(other.type_id), other.radius, other.mass);
+            Ok(with_project(
+                relation,
+                pair_law(relation, own, &side)?,
+                false,
+            ))
+        })?;
+        contacts.extend(wall_contacts(
+            bodies,
+            walls,
+            WallOrder::ByWall,
+            |wall, body| {
+                let wall_id = wall.type_id.unwrap_or_default();
                 let relation = self.relation(body.type_id, wall_id)?;
                 let side = Side::Wall(self.material(wall_id), &wall.name);
                 let own = (self.material(body.type_id), body.radius, body.mass);
-                let pl = pair_law(relation, own, &side)?;
-                let types = [TypeRef::Type(body.type_id), TypeRef::Wall];
-                push(a, Partner::Wall(w), types, relation, pl);
-            }
-        }
+                Ok(with_project(
+                    relation,
+                    pair_law(relation, own, &side)?,
+                    true,
+                ))
+            },
+        )?);
         Ok((contacts, used_relations))
     }
 
@@ -602,7 +577,7 @@ impl<'f> MaterialsSetup<'f> {
     }
 }
 
-impl DeckReader for KratosDeck {
+impl DeckDialect for KratosDeck {
     fn recognises(&self, path: &Path, text: &str) -> bool {
         let looks_like =
             path.extension().is_some_and(|e| e == "json") || text.trim_start().starts_with('{');
@@ -700,36 +675,26 @@ impl DeckReader for KratosDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let c = &deck.contacts[contact];
-        let body = &deck.bodies[c.body];
-        let (other, other_material) = match c.partner {
-            Partner::Body(o) => (Some(&deck.bodies[o]), deck.bodies[o].type_id),
-            Partner::Wall(w) => (None, deck.walls[w].type_id.unwrap_or_default()),
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (body, other, (v1, v2)) = (plan.body, plan.other, plan.velocities);
+        let other_material = match plan.contact.partner {
+            Partner::Body(o) => deck.bodies[o].type_id,
+            Partner::Wall(w) => deck.walls[w].type_id.unwrap_or_default(),
         };
-        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let (v1, v2) = setup.centre_of_mass_velocities();
         // The script starts the bodies one ulp apart (`math.nextafter`), as the driver does.
-        let reach = body.radius + other.map_or(0.0, |o| o.radius);
-        let start_gap = reach.next_up() - reach;
+        let start_gap = plan.reach.next_up() - plan.reach;
         let num = exact_number;
         let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| {
             CodeError::Unsupported {
                 code: "kratos".into(),
-                case: setup.case_name.clone(),
+                case: plan.setup.case_name.clone(),
                 reason: e.to_string(),
             }
         })?;
         let values = [
-            ("scene", setup.scene.name().to_string()),
+            ("scene", plan.setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("material", body.type_id.to_string()),
             ("radius", num(body.radius)),
             ("velocity", num(v1)),
@@ -743,7 +708,7 @@ impl DeckReader for KratosDeck {
         let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| {
             CodeError::Unsupported {
                 code: "kratos".into(),
-                case: setup.case_name.clone(),
+                case: plan.setup.case_name.clone(),
                 reason: e.to_string(),
             }
         })?;
@@ -753,7 +718,7 @@ impl DeckReader for KratosDeck {
                 text,
                 args: vec![SCRIPT.to_string()],
             },
-            setup,
+            setup: plan.setup,
             start_gap,
         })
     }

@@ -17,17 +17,18 @@
 //! `kn`) of its `pair_coeff`, every pair of types must have one, and the impacts run in
 //! lammps-paper.
 
-use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
+    DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
+    ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
+    wall_contacts, whole_number,
 };
-use crate::codes::script::{Command, ScriptReader, check_si_units, checked_timestep};
+use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
@@ -231,6 +232,42 @@ fn paper_coeff(
     Ok(PaperCoeff { eta, stiffness })
 }
 
+/// The paper's law the plugin's coefficients give a pair of `R*` and mass `(r_star, mass)`: its
+/// η, the COR it is built to realise entered, a trap saying so first among `traps`.
+fn paper_law(
+    model: &str,
+    coeff: &PaperCoeff,
+    (r_star, mass): (f64, f64),
+    traps: Vec<String>,
+) -> PairLaw {
+    let (stiffness, exponent) = match coeff.stiffness {
+        PaperStiffness::Hertz(modulus) => (4.0 / 3.0 * modulus * r_star.sqrt(), 1.5),
+        PaperStiffness::Linear(kn) => (kn, 1.0),
+    };
+    let law = PaperLaw {
+        mass,
+        stiffness,
+        exponent,
+        loss_coefficient: coeff.eta,
+    };
+    let e = exact::restitution(coeff.eta);
+    let eta_trap = format!(
+        "eta is η itself, not a COR: {} gives e = sqrt((1 − η)/(1 + η)) = {e:.6}",
+        coeff.eta
+    );
+    let traps = std::iter::once(eta_trap).chain(traps).collect();
+    PairLaw::new(model, CodeLaw::Paper(law), Some(e), traps)
+}
+
+/// A deck's bodies, walls, pairs, the lines every impact carries and each wall's line.
+type Pairs = (
+    Vec<DeckBody>,
+    Vec<DeckWall>,
+    Vec<DeckContact>,
+    Vec<String>,
+    Vec<String>,
+);
+
 /// A `fix wall/paper` as read.
 #[derive(Clone, Debug)]
 struct PaperWall {
@@ -244,23 +281,11 @@ struct PaperWall {
 
 #[derive(Default)]
 struct Reading {
-    units: Option<Command>,
+    script: ScriptReading,
     atom_style: Option<Command>,
-    types: Option<u32>,
     pair: Option<Command>,
     coeffs: Vec<(String, String, GranularModel, Command)>,
     walls: Vec<WallFix>,
-    atoms_of_type: BTreeMap<u32, SourceLine>,
-    /// Types whose atoms a `set … type|type/fraction|type/ratio|type/subset N` made, with
-    /// that line's text.
-    set_made: HashMap<u32, String>,
-    /// Types a `fix pour` or `fix deposit` inserts.
-    inserted: Vec<u32>,
-    atom_types: Vec<u32>,
-    set_type: HashMap<u32, [Option<f64>; 3]>,
-    set_atom: HashMap<usize, [Option<f64>; 3]>,
-    timestep: Option<(f64, SourceLine)>,
-    left_out: BTreeMap<String, (std::path::PathBuf, Vec<usize>)>,
     /// `pair_style paper` (`Some(false)`) or `paper/linear` (`Some(true)`).
     paper_linear: Option<bool>,
     paper_coeffs: Vec<(String, String, PaperCoeff, Command)>,
@@ -269,27 +294,22 @@ struct Reading {
 
 impl Reading {
     fn leave_out(&mut self, what: &str, c: &Command) {
-        self.left_out
-            .entry(what.to_string())
-            .or_insert_with(|| (c.at.file.clone(), Vec::new()))
-            .1
-            .push(c.at.line);
+        self.script.leave_out(what, c);
     }
 }
 
 fn whole(x: f64, c: &Command, what: &str) -> Result<u32, DeckError> {
-    if x >= 1.0 && x.fract() == 0.0 && x <= f64::from(u32::MAX) {
-        // A positive whole number below u32::MAX: the conversion is exact.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        Ok(x as u32)
-    } else {
-        Err(DeckError::unsupported(
-            &c.at,
-            format!("{what} `{x}`"),
-            "a whole number from 1",
-        ))
-    }
+    whole_number(x, &c.at, what, "a whole number from 1")
 }
+
+/// LAMMPS's atom commands; its `set`: diameter, density or mass, and the four keywords that make types.
+const SYNTAX: AtomSyntax = AtomSyntax {
+    whole,
+    type_label: "the type",
+    mass: true,
+    makes: &["type", "type/fraction", "type/ratio", "type/subset"],
+    refuses: |_, _| Ok(()),
+};
 
 /// Whether pair_coeff's `I`/`J` (a number or `*`, `n*`, `*n`, `m*n`) covers type `t`.
 fn covers(range: &str, t: u32, types: u32) -> bool {
@@ -307,26 +327,6 @@ fn covers(range: &str, t: u32, types: u32) -> bool {
             _ => false,
         },
     }
-}
-
-/// The error of a deck that lacks `what`, naming what is `supported`.
-fn lacking(path: &Path, what: &str, supported: &str) -> DeckError {
-    DeckError::Lacking {
-        file: path.to_path_buf(),
-        what: what.into(),
-        supported: supported.into(),
-    }
-}
-
-/// What the deck holds that the impacts leave out, one line per kind with its lines.
-fn left_out_lines(r: &Reading) -> Vec<String> {
-    r.left_out
-        .iter()
-        .map(|(what, (file, lines))| {
-            let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-            format!("{what}: {}:{}", file.display(), lines.join(","))
-        })
-        .collect()
 }
 
 /// The deck's `pair_coeff` lines of `pair_style granular`, each `I J` as the build reads it.
@@ -382,7 +382,7 @@ impl<'a> PairCoeffLines<'a> {
         let types = self.types;
         for t in 1..=types {
             if self.for_pair(t, t).is_none() {
-                return Err(lacking(
+                return Err(DeckError::lacking(
                     path,
                     &format!("no pair_coeff sets the type {t} with itself"),
                     &format!(
@@ -495,12 +495,15 @@ impl LammpsDeck {
         let commands = ScriptReader::read_for(path, &options.variables, lacking)?;
         let mut r = Reading::default();
         for c in &commands {
+            if r.script.command(c, &SYNTAX)? {
+                continue;
+            }
             match c.name() {
-                "units" => r.units = Some(c.clone()),
                 "atom_style" => r.atom_style = Some(c.clone()),
-                "create_box" => r.types = Some(whole(c.number(1, "the number of atom types")?, c, "create_box")?),
-                "timestep" => r.timestep = Some((c.number(1, "the time step")?, c.at.clone())),
-                "plugin" => r.leave_out("plugin commands (the impact loads the paper plugin itself)", c),
+                "plugin" => r.leave_out(
+                    "plugin commands (the impact loads the paper plugin itself)",
+                    c,
+                ),
                 "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
                     r.paper_linear = Some(c.words[1] == "paper/linear");
                     r.pair = Some(c.clone());
@@ -508,23 +511,37 @@ impl LammpsDeck {
                 "pair_coeff" if r.paper_linear.is_some() => {
                     let linear = r.paper_linear == Some(true);
                     let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
-                    r.paper_coeffs.push((c.word(1, "I")?.to_string(), c.word(2, "J")?.to_string(), coeff, c.clone()));
+                    r.paper_coeffs.push((
+                        c.word(1, "I")?.to_string(),
+                        c.word(2, "J")?.to_string(),
+                        coeff,
+                        c.clone(),
+                    ));
                 }
                 "pair_style" => {
                     if c.word(1, "a pair style")? != "granular" {
-                        return Err(DeckError::unsupported(&c.at, format!("pair_style {}", c.words[1]), "pair_style granular, or paper and paper/linear of the paper plugin"));
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("pair_style {}", c.words[1]),
+                            "pair_style granular, or paper and paper/linear of the paper plugin",
+                        ));
                     }
                     r.pair = Some(c.clone());
                 }
                 "pair_coeff" => {
                     let (model, k) = read_model(c, 3, &[])?;
                     if k != c.words.len() {
-                        return Err(DeckError::unsupported(&c.at, format!("`{}`", c.text), "pair_coeff I J MODEL …"));
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("`{}`", c.text),
+                            "pair_coeff I J MODEL …",
+                        ));
                     }
                     if !c.words[3..].iter().any(|w| w == "tangential") {
                         return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
                     }
-                    r.coeffs.push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
+                    r.coeffs
+                        .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
                 }
                 "fix" => match c.word(3, "the fix style")? {
                     "wall/paper" => {
@@ -535,7 +552,13 @@ impl LammpsDeck {
                         let linear = match c.word(4, "hertz or linear")? {
                             "hertz" => false,
                             "linear" => true,
-                            other => return Err(DeckError::unsupported(&c.at, format!("wall/paper model `{other}`"), "hertz, linear")),
+                            other => {
+                                return Err(DeckError::unsupported(
+                                    &c.at,
+                                    format!("wall/paper model `{other}`"),
+                                    "hertz, linear",
+                                ));
+                            }
                         };
                         r.paper_walls.push(PaperWall {
                             id: c.words[1].clone(),
@@ -547,12 +570,20 @@ impl LammpsDeck {
                     }
                     "wall/gran" | "wall/gran/region" => {
                         if c.word(4, "granular")? != "granular" {
-                            return Err(DeckError::unsupported(&c.at, format!("fix {} {}", c.words[3], c.words[4]), "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS"));
+                            return Err(DeckError::unsupported(
+                                &c.at,
+                                format!("fix {} {}", c.words[3], c.words[4]),
+                                "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
+                            ));
                         }
                         let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
                         let (model, k) = read_model(c, 5, &stops)?;
                         if k >= c.words.len() {
-                            return Err(DeckError::unsupported(&c.at, "a wall without its style".into(), "xplane, yplane, zplane, zcylinder, region"));
+                            return Err(DeckError::unsupported(
+                                &c.at,
+                                "a wall without its style".into(),
+                                "xplane, yplane, zplane, zcylinder, region",
+                            ));
                         }
                         r.walls.push(WallFix {
                             id: c.words[1].clone(),
@@ -562,111 +593,40 @@ impl LammpsDeck {
                             geometry: c.words[k..].join(" "),
                         });
                     }
-                    "nve/sphere" => r.leave_out("the integrator (the impact runs fix nve/sphere, as the deck)", c),
-                    "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid" | "rigid/small" => {
-                        return Err(DeckError::unsupported(&c.at, format!("fix {}: an integrator whose step the harness does not model", c.words[3]), "fix nve/sphere"));
+                    "nve/sphere" => r.leave_out(
+                        "the integrator (the impact runs fix nve/sphere, as the deck)",
+                        c,
+                    ),
+                    "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid"
+                    | "rigid/small" => {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!(
+                                "fix {}: an integrator whose step the harness does not model",
+                                c.words[3]
+                            ),
+                            "fix nve/sphere",
+                        ));
                     }
                     "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
                     "pour" | "deposit" => Self::inserts(c, &mut r)?,
                     _ => r.leave_out("other fixes (no part of a contact)", c),
                 },
-                "create_atoms" => {
-                    let t = whole(c.number(1, "the atom type")?, c, "type")?;
-                    r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
-                    if c.words.get(2).is_some_and(|w| w == "single") {
-                        r.atom_types.push(t);
-                    }
-                }
-                "set" => {
-                    let pick = |key: &str| -> Result<Option<f64>, DeckError> {
-                        match c.words.iter().position(|w| w == key) {
-                            Some(k) => c.number(k + 1, key).map(Some),
-                            None => Ok(None),
-                        }
-                    };
-                    let values = [pick("diameter")?, pick("density")?, pick("mass")?];
-                    let merge = |slot: &mut [Option<f64>; 3]| {
-                        for (s, v) in slot.iter_mut().zip(values) {
-                            *s = v.or(*s);
-                        }
-                    };
-                    // The size the selected atoms have once this line is done, where known.
-                    let selected = match c.word(1, "atom or type")? {
-                        "type" => {
-                            let slot = r.set_type.entry(whole(c.number(2, "the type")?, c, "type")?).or_default();
-                            merge(slot);
-                            Some(*slot)
-                        }
-                        "atom" => {
-                            let slot = r.set_atom.entry(whole(c.number(2, "the atom id")?, c, "atom")? as usize).or_default();
-                            merge(slot);
-                            Some(*slot)
-                        }
-                        _ => None,
-                    };
-                    if !Self::set_makes_types(c, selected, &mut r)? && selected.is_none() {
-                        r.leave_out("set commands on groups or regions", c);
-                    }
-                }
                 "region" | "lattice" => r.leave_out("regions (the geometry)", c),
-                "read_data" | "read_restart" | "read_dump" => r.leave_out("particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)", c),
-                "neighbor" | "neigh_modify" | "comm_modify" | "comm_style" | "newton" | "processors" | "boundary" | "atom_modify" | "dimension" => {
-                    r.leave_out("neighbour lists, communication and domain settings (the impact sets its own)", c)
-                }
-                "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify" | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart" | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label" | "jump" | "next" | "if" | "clear" | "quit" | "info" => {
-                    r.leave_out("output and control", c)
-                }
-                "run" | "rerun" | "minimize" => r.leave_out("the run itself", c),
-                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify" | "special_bonds" => {
-                    r.leave_out("other settings", c)
-                }
-                other => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("command `{other}`"),
+                "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
+                "info" => r.leave_out(OUTPUT, c),
+                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
+                | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify"
+                | "special_bonds" => r.leave_out("other settings", c),
+                _ => {
+                    return Err(ScriptReading::unknown(
+                        c,
                         "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
                     ));
                 }
             }
         }
         Ok(r)
-    }
-
-    /// The types `set`'s `type N`, `type/fraction N …`, `type/ratio N …` and `type/subset N …`
-    /// make out of the selected atoms (which keep their size and density, `selected` where
-    /// known); whether the line makes any.
-    fn set_makes_types(
-        c: &Command,
-        selected: Option<[Option<f64>; 3]>,
-        r: &mut Reading,
-    ) -> Result<bool, DeckError> {
-        let mut makes = false;
-        for (k, word) in c.words.iter().enumerate().skip(3) {
-            if !matches!(
-                word.as_str(),
-                "type" | "type/fraction" | "type/ratio" | "type/subset"
-            ) {
-                continue;
-            }
-            let t = whole(c.number(k + 1, "the new atom type")?, c, word)?;
-            makes = true;
-            let exists = r.atoms_of_type.contains_key(&t);
-            r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
-            r.set_made.entry(t).or_insert_with(|| c.text.clone());
-            if let Some(size) = selected {
-                let slot = r.set_type.entry(t).or_default();
-                // A type with no atoms yet takes the selected atoms' size whole (a
-                // `set type N …` before this line set no atom of it).
-                if exists {
-                    for (s, v) in slot.iter_mut().zip(size) {
-                        *s = s.or(v);
-                    }
-                } else {
-                    *slot = size;
-                }
-            }
-        }
-        Ok(makes)
     }
 
     /// `fix ID group pour N TYPE SEED …` and `fix ID group deposit N TYPE M SEED …` make atoms
@@ -676,10 +636,8 @@ impl LammpsDeck {
     fn inserts(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
         r.leave_out("particle insertion (the types it makes are read)", c);
         let t = whole(c.number(5, "the inserted atom type")?, c, "type")?;
-        r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
-        r.set_made.entry(t).or_insert_with(|| c.text.clone());
-        r.inserted.push(t);
         if c.words[3] != "pour" {
+            r.script.atoms.insert(t, c, None, None);
             return Ok(());
         }
         let position = |key: &str| c.words.iter().position(|w| w == key);
@@ -699,97 +657,17 @@ impl LammpsDeck {
                 (lo == hi).then_some(lo)
             }
         };
-        let slot = r.set_type.entry(t).or_default();
-        slot[0] = slot[0].or(diameter);
-        slot[1] = slot[1].or(density);
+        r.script.atoms.insert(t, c, diameter, density);
         Ok(())
     }
 
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
-        let mut bodies: Vec<DeckBody> = Vec::new();
-        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: format!(
-                    "--particle {}:{}:{}: atom types count from 1",
-                    p.type_id, p.radius, p.density
-                ),
-                supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck"
-                    .into(),
-            });
-        }
-        let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
-        let mut push = |t: u32, radius: f64, density: f64, from: String| {
-            // The same size read twice is the same number, bit for bit.
-            #[allow(clippy::float_cmp)]
-            let known = bodies
-                .iter()
-                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
-            if !known {
-                bodies.push(DeckBody {
-                    type_id: t,
-                    radius,
-                    density,
-                    mass: sphere_mass(radius, density),
-                    youngs_modulus: None,
-                    poisson_ratio: None,
-                    from,
-                });
-            }
-        };
-        for (t, at) in &r.atoms_of_type {
-            if given.contains(t) {
-                continue;
-            }
-            let of_type = r.set_type.get(t).copied().unwrap_or_default();
-            let mut found = false;
-            let size = |own: [Option<f64>; 3]| -> Option<(f64, f64)> {
-                let d = own[0].or(of_type[0])?;
-                let r = d / 2.0;
-                let density = own[1]
-                    .or(of_type[1])
-                    .or_else(|| own[2].or(of_type[2]).map(|m| m / sphere_mass(r, 1.0)))?;
-                Some((r, density))
-            };
-            for (index, atom_type) in r.atom_types.iter().enumerate() {
-                if atom_type == t
-                    && let Some((radius, density)) =
-                        size(r.set_atom.get(&(index + 1)).copied().unwrap_or_default())
-                {
-                    push(*t, radius, density, format!("atom {} ({at})", index + 1));
-                    found = true;
-                }
-            }
-            if !found {
-                let (radius, density) = size([None; 3]).ok_or_else(|| {
-                    DeckError::unsupported(at, match r.set_made.get(t) {
-                        Some(text) => format!("atoms of type {t} come from `{text}` without a diameter and density (or mass) the reader can know for them"),
-                        None => format!("atoms of type {t} are created without a diameter and density (or mass) set for them"),
-                    }, &if r.inserted.contains(t) {
-                        format!("--particle {t}:RADIUS:DENSITY (atoms inserted during the run take no `set`)")
-                    } else {
-                        format!("`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY")
-                    })
-                })?;
-                push(*t, radius, density, format!("set type {t} ({at})"));
-            }
-        }
-        for p in &options.particles {
-            push(
-                p.type_id,
-                p.radius,
-                p.density,
-                format!("--particle {}:{}:{}", p.type_id, p.radius, p.density),
-            );
-        }
-        if bodies.is_empty() {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: "no particle sizes (no create_atoms with set diameter and density)".into(),
-                supported: "give them with --particle TYPE:RADIUS:DENSITY".into(),
-            });
-        }
-        Ok(bodies)
+        let mut bodies = Bodies::new(path, options)?;
+        bodies.push_atoms(&r.script.atoms, " (or mass)")?;
+        bodies.finish(
+            path,
+            "no particle sizes (no create_atoms with set diameter and density)",
+        )
     }
 
     /// The law the coefficients `c` make the build integrate between a particle (radius, mass)
@@ -885,131 +763,92 @@ impl LammpsDeck {
 }
 
 impl LammpsDeck {
-    /// Each pair of bodies with the law its `pair_coeff` line gives it, or the build mixes from
+    /// The law of a pair of bodies: its `pair_coeff` line's, or the one the build mixes from
     /// the two types' own lines.
-    fn body_contacts(
+    fn body_law(
         &self,
         conventions: &Conventions,
         coeffs: &PairCoeffLines<'_>,
-        bodies: &[DeckBody],
         path: &Path,
-    ) -> Result<Vec<DeckContact>, DeckError> {
-        let mut contacts = Vec::new();
-        for (a, body) in bodies.iter().enumerate() {
-            for (b, other) in bodies.iter().enumerate().skip(a) {
-                let (i, j) = (body.type_id, other.type_id);
-                let (coefficients, model, mut traps, lines, at, mixed) = match coeffs.for_pair(i, j)
-                {
-                    Some((model, c)) => {
-                        let (coefficients, traps) = model.coefficients(conventions, false);
-                        (
-                            coefficients,
-                            format!("{} damping {}", model.normal, model.damping),
-                            traps,
-                            vec![c.at.clone().into()],
-                            &c.at,
-                            false,
-                        )
-                    }
-                    None => {
-                        let own = |t: u32| {
-                            coeffs.for_pair(t, t).ok_or_else(|| lacking(path, &format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"))
-                        };
-                        let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
-                        let pair = self.0.mixing.mix(
-                            conventions,
-                            (i.min(j), ma, &ca.at.to_string()),
-                            (i.max(j), mb, &cb.at.to_string()),
-                        );
-                        (
-                            pair.coefficients,
-                            pair.model,
-                            pair.traps,
-                            vec![ca.at.clone().into(), cb.at.clone().into()],
-                            &cb.at,
-                            true,
-                        )
-                    }
-                };
-                let (law, entered, law_traps) = self.law(
-                    conventions,
-                    &coefficients,
-                    (body.radius, body.mass),
-                    Some((other.radius, other.mass)),
-                    at,
-                )?;
-                traps.extend(law_traps);
-                // A mixed pair has no COR of its own: what it realises is said in its traps.
-                let entered = if mixed {
-                    traps.push(mixed_cor(
-                        &law,
-                        entered,
-                        [i, j],
-                        [coeffs.for_pair(i, i), coeffs.for_pair(j, j)].map(|o| o.map(|(m, _)| m)),
-                    ));
-                    None
-                } else {
-                    entered
-                };
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Body(b),
-                    types: [TypeRef::Type(i), TypeRef::Type(j)],
-                    model,
-                    cor_entered: entered,
-                    law: law.into(),
+        body: &DeckBody,
+        other: &DeckBody,
+    ) -> Result<PairLaw, DeckError> {
+        let (i, j) = (body.type_id, other.type_id);
+        let (coefficients, model, mut traps, lines, at, mixed) = match coeffs.for_pair(i, j) {
+            Some((model, c)) => {
+                let (coefficients, traps) = model.coefficients(conventions, false);
+                (
+                    coefficients,
+                    format!("{} damping {}", model.normal, model.damping),
                     traps,
-                    lines,
-                });
+                    vec![c.at.clone()],
+                    &c.at,
+                    false,
+                )
             }
-        }
-        Ok(contacts)
+            None => {
+                let own = |t: u32| {
+                    coeffs.for_pair(t, t).ok_or_else(|| DeckError::lacking(path, &format!("no pair_coeff sets the types {i} and {j}, nor {t} {t} to mix them from"), "a pair_coeff for every pair of types in use, or I I and J J to mix it from, or * *"))
+                };
+                let ((ma, ca), (mb, cb)) = (own(i.min(j))?, own(i.max(j))?);
+                let pair = self.0.mixing.mix(
+                    conventions,
+                    (i.min(j), ma, &ca.at.to_string()),
+                    (i.max(j), mb, &cb.at.to_string()),
+                );
+                (
+                    pair.coefficients,
+                    pair.model,
+                    pair.traps,
+                    vec![ca.at.clone(), cb.at.clone()],
+                    &cb.at,
+                    true,
+                )
+            }
+        };
+        let (law, entered, law_traps) = self.law(
+            conventions,
+            &coefficients,
+            (body.radius, body.mass),
+            Some((other.radius, other.mass)),
+            at,
+        )?;
+        traps.extend(law_traps);
+        // A mixed pair has no COR of its own: what it realises is said in its traps.
+        let entered = if mixed {
+            traps.push(mixed_cor(
+                &law,
+                entered,
+                [i, j],
+                [coeffs.for_pair(i, i), coeffs.for_pair(j, j)].map(|o| o.map(|(m, _)| m)),
+            ));
+            None
+        } else {
+            entered
+        };
+        Ok(PairLaw::new(model, law, entered, traps).set_by(lines))
     }
 
-    /// The deck's `fix wall/gran granular` walls, each met as the plane `zplane 0 NULL`, with
-    /// each body's contact against each pushed onto `contacts`; the walls and the line each
-    /// impact carries for its wall.
-    fn wall_contacts(
+    /// The law of a body against a `fix wall/gran granular` wall, met as the plane
+    /// `zplane 0 NULL`.
+    fn wall_law(
         &self,
-        r: &Reading,
         conventions: &Conventions,
-        bodies: &[DeckBody],
-        contacts: &mut Vec<DeckContact>,
-    ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
-        let mut walls = Vec::new();
-        let mut wall_lines = Vec::new();
-        for (w, wall) in r.walls.iter().enumerate() {
-            walls.push(plane_wall(&wall.id, &wall.at));
-            wall_lines.push(format!(
-                "fix {} {} wall/gran granular {} zplane 0 NULL",
-                wall.id,
-                wall.group,
-                wall.model.words.join(" ")
-            ));
-            for (a, body) in bodies.iter().enumerate() {
-                let (coefficients, mut traps) = wall.model.coefficients(conventions, true);
-                let (law, entered, law_traps) = self.law(
-                    conventions,
-                    &coefficients,
-                    (body.radius, body.mass),
-                    None,
-                    &wall.at,
-                )?;
-                traps.extend(law_traps);
-                traps.push(plane_trap(&wall.geometry));
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Wall(w),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    model: format!("{} damping {}", wall.model.normal, wall.model.damping),
-                    cor_entered: entered,
-                    law: law.into(),
-                    traps,
-                    lines: vec![wall.at.clone().into()],
-                });
-            }
-        }
-        Ok((walls, wall_lines))
+        wall: &WallFix,
+        body: &DeckBody,
+    ) -> Result<PairLaw, DeckError> {
+        let (coefficients, mut traps) = wall.model.coefficients(conventions, true);
+        let (law, entered, law_traps) = self.law(
+            conventions,
+            &coefficients,
+            (body.radius, body.mass),
+            None,
+            &wall.at,
+        )?;
+        traps.extend(law_traps);
+        traps.push(plane_trap(&wall.geometry));
+        let model = format!("{} damping {}", wall.model.normal, wall.model.damping);
+        Ok(PairLaw::new(model, law, entered, traps).set_by([&wall.at]))
     }
 
     /// A deck of the paper plugin: each pair of particle types by its `pair_coeff` (every pair
@@ -1017,12 +856,11 @@ impl LammpsDeck {
     /// type against each `fix wall/paper`; the law the paper's with the plugin's stiffness
     /// (`(4/3) E* sqrt(R*)` or `kn`), the reduced mass and η, the COR entered its closed form.
     fn read_paper(
-        r: Reading,
+        r: &Reading,
         path: &Path,
         options: &DeckOptions,
         types: u32,
-        (timestep, timestep_at): (f64, SourceLine),
-    ) -> Result<UserDeck, DeckError> {
+    ) -> Result<Pairs, DeckError> {
         if let Some((_, _, _, c)) = r.coeffs.first() {
             return Err(DeckError::unsupported(
                 &c.at,
@@ -1062,97 +900,118 @@ impl LammpsDeck {
                 }
             }
         }
-        let bodies = Self::bodies(&r, path, options)?;
-        let law = |coeff: &PaperCoeff, r_star: f64, mass: f64| {
-            let (stiffness, exponent) = match coeff.stiffness {
-                PaperStiffness::Hertz(modulus) => (4.0 / 3.0 * modulus * r_star.sqrt(), 1.5),
-                PaperStiffness::Linear(kn) => (kn, 1.0),
-            };
-            CodeLaw::Paper(PaperLaw {
-                mass,
-                stiffness,
-                exponent,
-                loss_coefficient: coeff.eta,
-            })
-        };
-        let eta_trap = |eta: f64| {
-            format!(
-                "eta is η itself, not a COR: {eta} gives e = sqrt((1 − η)/(1 + η)) = {:.6}",
-                exact::restitution(eta)
-            )
-        };
+        let bodies = Self::bodies(r, path, options)?;
         let mut contacts = Vec::new();
         if let Some(linear) = r.paper_linear {
-            for (a, body) in bodies.iter().enumerate() {
-                for (b, other) in bodies.iter().enumerate().skip(a) {
-                    let (i, j) = (body.type_id, other.type_id);
-                    let Some((_, _, coeff, c)) = coeff_for(i.min(j), i.max(j)) else {
-                        unreachable!("every pair of types was checked above")
-                    };
-                    contacts.push(DeckContact {
-                        body: a,
-                        partner: Partner::Body(b),
-                        types: [TypeRef::Type(i), TypeRef::Type(j)],
-                        model: if linear { "paper/linear" } else { "paper" }.into(),
-                        cor_entered: Some(exact::restitution(coeff.eta)),
-                        law: law(
-                            coeff,
-                            pair_radius(body.radius, other.radius),
-                            reduced_mass(body.mass, other.mass),
-                        ),
-                        traps: vec![eta_trap(coeff.eta)],
-                        lines: vec![c.at.clone().into()],
-                    });
-                }
-            }
+            contacts = body_contacts(&bodies, |body, other| {
+                let (i, j) = (body.type_id, other.type_id);
+                let Some((_, _, coeff, c)) = coeff_for(i.min(j), i.max(j)) else {
+                    unreachable!("every pair of types was checked above")
+                };
+                let pair = (
+                    pair_radius(body.radius, other.radius),
+                    reduced_mass(body.mass, other.mass),
+                );
+                let model = if linear { "paper/linear" } else { "paper" };
+                Ok(paper_law(model, coeff, pair, vec![]).set_by([&c.at]))
+            })?;
         }
-        let mut walls = Vec::new();
-        let mut wall_lines = Vec::new();
-        for (w, wall) in r.paper_walls.iter().enumerate() {
-            walls.push(plane_wall(&wall.id, &wall.at));
-            // The impact's sphere is in group all; the wall acts on it whatever the deck's group.
-            wall_lines.push(format!(
-                "fix {} all wall/paper {} zplane 0 NULL",
-                wall.id,
-                wall.model.join(" ")
-            ));
-            for (a, body) in bodies.iter().enumerate() {
-                contacts.push(DeckContact {
-                    body: a,
-                    partner: Partner::Wall(w),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    model: format!("wall/paper {}", wall.model[0]),
-                    cor_entered: Some(exact::restitution(wall.coeff.eta)),
-                    law: law(&wall.coeff, body.radius, body.mass),
-                    traps: vec![eta_trap(wall.coeff.eta), plane_trap(&wall.geometry)],
-                    lines: vec![wall.at.clone().into()],
-                });
-            }
-        }
-        let left_out = left_out_lines(&r);
+        contacts.extend(wall_contacts(
+            &bodies,
+            &r.paper_walls,
+            WallOrder::ByWall,
+            |wall, body| {
+                let model = format!("wall/paper {}", wall.model[0]);
+                let plane = vec![plane_trap(&wall.geometry)];
+                Ok(
+                    paper_law(&model, &wall.coeff, (body.radius, body.mass), plane)
+                        .set_by([&wall.at]),
+                )
+            },
+        )?);
+        let walls = r
+            .paper_walls
+            .iter()
+            .map(|w| plane_wall(&w.id, &w.at))
+            .collect();
+        // The impact's sphere is in group all; the wall acts on it whatever the deck's group.
+        let wall_lines = r
+            .paper_walls
+            .iter()
+            .map(|wall| {
+                format!(
+                    "fix {} all wall/paper {} zplane 0 NULL",
+                    wall.id,
+                    wall.model.join(" ")
+                )
+            })
+            .collect();
         let mut common = vec![format!("plugin          load {}", super::PAPER_PLUGIN_FILE)];
         common.extend(r.pair.iter().map(|c| c.text.clone()));
         common.extend(r.paper_coeffs.iter().map(|x| x.3.text.clone()));
-        Ok(UserDeck {
-            path: path.to_path_buf(),
-            timestep,
-            timestep_from: timestep_at.to_string(),
-            bodies,
-            walls,
-            contacts,
-            representative_velocity: None,
-            left_out,
-            transplant: Transplant {
-                before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
-                common,
-                walls: wall_lines,
-                types,
-            },
-        })
+        Ok((bodies, walls, contacts, common, wall_lines))
+    }
+
+    /// A deck of `pair_style granular`: each pair of bodies by its `pair_coeff` or as the
+    /// build mixes it, each body against each `fix wall/gran granular`, by the conventions of
+    /// the build that will run it.
+    fn read_granular(
+        &self,
+        r: &Reading,
+        path: &Path,
+        options: &DeckOptions,
+        types: u32,
+    ) -> Result<Pairs, DeckError> {
+        let coeffs = PairCoeffLines::as_the_build_reads(r, self.0.mixing, types)?;
+        if r.pair.is_some() {
+            coeffs.check_every_pair_is_set(path)?;
+        }
+        // The conventions of the build that will run it: its probe, else its fallback.
+        let conventions = self
+            .1
+            .measured_conventions()
+            .ok()
+            .flatten()
+            .unwrap_or(self.0.fallback);
+        let mut bodies = Self::bodies(r, path, options)?;
+        coeffs.give_materials(&mut bodies);
+        let mut contacts = body_contacts(&bodies, |body, other| {
+            self.body_law(&conventions, &coeffs, path, body, other)
+        })?;
+        contacts.extend(wall_contacts(
+            &bodies,
+            &r.walls,
+            WallOrder::ByWall,
+            |wall, body| self.wall_law(&conventions, wall, body),
+        )?);
+        let walls = r.walls.iter().map(|w| plane_wall(&w.id, &w.at)).collect();
+        let wall_lines = r
+            .walls
+            .iter()
+            .map(|wall| {
+                format!(
+                    "fix {} {} wall/gran granular {} zplane 0 NULL",
+                    wall.id,
+                    wall.group,
+                    wall.model.words.join(" ")
+                )
+            })
+            .collect();
+        let mut common = Vec::new();
+        if let Some(c) = &r.pair {
+            common.push(c.text.clone());
+        }
+        common.extend(r.coeffs.iter().map(|x| x.3.text.clone()));
+        Ok((bodies, walls, contacts, common, wall_lines))
     }
 }
 
-impl DeckReader for LammpsDeck {
+impl DeckDialect for LammpsDeck {
+    fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
+        let conventions = self.1.measured_conventions().ok().flatten();
+        (BodyElasticity::Withheld, conventions)
+    }
+
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.lines().any(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
@@ -1172,38 +1031,13 @@ impl DeckReader for LammpsDeck {
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let r = self.gather(path, options)?;
-        check_si_units(r.units.as_ref(), path, "LAMMPS")?;
-        let types = r.types.ok_or_else(|| {
-            lacking(
-                path,
-                "no create_box (the number of atom types)",
-                "create_box N REGION",
-            )
-        })?;
-        let (timestep, timestep_at) = checked_timestep(r.timestep.as_ref(), path)?;
-        if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
-            return Self::read_paper(r, path, options, types, (timestep, timestep_at));
-        }
-        let coeffs = PairCoeffLines::as_the_build_reads(&r, self.0.mixing, types)?;
-        if r.pair.is_some() {
-            coeffs.check_every_pair_is_set(path)?;
-        }
-        // The conventions of the build that will run it: its probe, else its fallback.
-        let conventions = self
-            .1
-            .measured_conventions()
-            .ok()
-            .flatten()
-            .unwrap_or(self.0.fallback);
-        let mut bodies = Self::bodies(&r, path, options)?;
-        coeffs.give_materials(&mut bodies);
-        let mut contacts = self.body_contacts(&conventions, &coeffs, &bodies, path)?;
-        let (walls, wall_lines) = self.wall_contacts(&r, &conventions, &bodies, &mut contacts)?;
-        let mut common = Vec::new();
-        if let Some(c) = &r.pair {
-            common.push(c.text.clone());
-        }
-        common.extend(r.coeffs.iter().map(|x| x.3.text.clone()));
+        let (types, timestep, timestep_at) = r.script.checked(path, "LAMMPS")?;
+        let (bodies, walls, contacts, common, wall_lines) =
+            if r.paper_linear.is_some() || !r.paper_walls.is_empty() {
+                Self::read_paper(&r, path, options, types)?
+            } else {
+                self.read_granular(&r, path, options, types)?
+            };
         Ok(UserDeck {
             path: path.to_path_buf(),
             timestep,
@@ -1212,7 +1046,7 @@ impl DeckReader for LammpsDeck {
             walls,
             contacts,
             representative_velocity: None,
-            left_out: left_out_lines(&r),
+            left_out: r.script.left_out.lines(),
             transplant: Transplant {
                 before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),
                 common,
@@ -1222,40 +1056,19 @@ impl DeckReader for LammpsDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let c = &deck.contacts[contact];
-        let body = &deck.bodies[c.body];
-        let other = match c.partner {
-            Partner::Body(o) => Some(&deck.bodies[o]),
-            Partner::Wall(_) => None,
-        };
-        let conventions = self.1.measured_conventions().ok().flatten();
-        let setup = deck.impact_setup(
-            contact,
-            velocity,
-            steps,
-            BodyElasticity::Withheld,
-            conventions,
-        );
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other, (v1, v2)) = (plan.contact, plan.body, plan.other, plan.velocities);
         // A build that counts touching as contact starts a hair before touch, as its driver does.
-        let gap = self.0.start_gap(&setup);
-        let (v1, v2) = setup.centre_of_mass_velocities();
+        let gap = self.0.start_gap(&plan.setup);
         let t = |x: TypeRef| match x {
             TypeRef::Type(t) => t,
             TypeRef::Wall => 1,
         };
         let r1 = body.radius;
-        let reach = r1 + other.map_or(0.0, |o| o.radius);
-        let h = exact_number(4.0 * reach + velocity * setup.duration() + gap);
+        let h = exact_number(4.0 * plan.reach + plan.velocity * plan.setup.duration() + gap);
         let mut lines = vec![
             "# millimpact deck: one normal impact with the contact lines of a user's deck (its time step;".to_string(),
-            format!("# its lines between the markers, variables substituted). {} at {velocity} m/s, {}.", format_args!("{} on {}", c.types[0], c.types[1]), deck.path.display()),
+            format!("# its lines between the markers, variables substituted). {} at {} m/s, {}.", format_args!("{} on {}", c.types[0], c.types[1]), plan.velocity, deck.path.display()),
             "units           si".into(),
         ];
         lines.extend(deck.transplant.before_box.iter().cloned());
@@ -1331,7 +1144,7 @@ impl DeckReader for LammpsDeck {
             format!("fix             trajectory all print 1 \"${{t}} ${{overlap}} ${{approach}} ${{force}}\" file {TRAJECTORY_FILE} screen no title \"# time overlap approach_velocity normal_force\""),
             "thermo_style    custom step".into(),
             "thermo          0".into(),
-            format!("run             {steps}"),
+            format!("run             {}", plan.steps),
         ]);
         Ok(DeckImpactInput {
             input: RenderedInput {
@@ -1343,7 +1156,7 @@ impl DeckReader for LammpsDeck {
                 .map(String::from)
                 .to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }

@@ -10,15 +10,16 @@
 //! `global_properties.cpp`) and confirmed by the live tests; `reference/liggghts/CONVENTIONS.md`
 //! has the measurements.
 
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::path::Path;
 
 use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck, sphere_mass,
+    AtomSyntax, Bodies, DeckBody, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckWall,
+    ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
+    UserDeck, WallOrder, body_contacts, wall_contacts, whole_number,
 };
-use crate::codes::script::{Command, ScriptReader, check_si_units, checked_timestep};
+use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
@@ -63,6 +64,14 @@ impl GranModel {
 
     fn on(&self, key: &str) -> bool {
         self.setting(key) == Some("on")
+    }
+
+    /// The trap of the tangential and rolling models, which act on no head-on impact.
+    fn idle_trap(&self) -> Option<String> {
+        (self.tangential != "no_history" || self.rolling != "off").then(|| format!(
+            "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
+            self.tangential, self.rolling
+        ))
     }
 }
 
@@ -131,9 +140,8 @@ pub(super) struct WallFix {
 /// Everything the reader gathers in one pass.
 #[derive(Default)]
 struct Reading {
-    units: Option<Command>,
+    script: ScriptReading,
     before_box: Vec<String>,
-    types: Option<(u32, SourceLine)>,
     properties: HashMap<String, Property>,
     property_lines: Vec<String>,
     pair: Option<(GranModel, Command)>,
@@ -141,28 +149,32 @@ struct Reading {
     walls: Vec<WallFix>,
     meshes: HashMap<String, (u32, SourceLine)>,
     templates: Vec<(u32, Option<f64>, Option<f64>, Command)>,
-    atoms_of_type: BTreeMap<u32, SourceLine>,
-    /// Types whose atoms a `set … type|type/fraction N` made, with that line's text.
-    set_made: HashMap<u32, String>,
-    atom_types: Vec<u32>,
-    set_type: HashMap<u32, (Option<f64>, Option<f64>)>,
-    set_atom: HashMap<usize, (Option<f64>, Option<f64>)>,
-    timestep: Option<(f64, SourceLine)>,
     hard_particles: bool,
     soft_particles: bool,
-    left_out: BTreeMap<String, Vec<usize>>,
-    left_out_files: BTreeMap<String, std::path::PathBuf>,
 }
+
+/// LIGGGHTS 3.8's atom commands; its `set`: diameter and density, and `type`, `type/fraction` (no `type/ratio`,
+/// `type/subset`: "Illegal set command").
+const SYNTAX: AtomSyntax = AtomSyntax {
+    whole: |t, c, _| type_number(t, c),
+    type_label: "the atom type",
+    mass: false,
+    makes: &["type", "type/fraction"],
+    refuses: |c, word| match word {
+        "type/ratio" | "type/subset" => Err(DeckError::unsupported(
+            &c.at,
+            format!(
+                "set … {word}: LIGGGHTS 3.8 has no such keyword (it stops: \"Illegal set command\")"
+            ),
+            "set … type N, or type/fraction N FRACTION SEED",
+        )),
+        _ => Ok(()),
+    },
+};
 
 impl Reading {
     fn leave_out(&mut self, what: &str, command: &Command) {
-        self.left_out
-            .entry(what.to_string())
-            .or_default()
-            .push(command.at.line);
-        self.left_out_files
-            .entry(what.to_string())
-            .or_insert_with(|| command.at.file.clone());
+        self.script.leave_out(what, command);
     }
 
     fn property(&self, name: &str, file: &Path, needed_by: &str) -> Result<&Property, DeckError> {
@@ -408,17 +420,7 @@ pub(super) fn read_wall(
 }
 
 fn type_number(t: f64, command: &Command) -> Result<u32, DeckError> {
-    if t >= 1.0 && t.fract() == 0.0 && t <= f64::from(u32::MAX) {
-        // A positive whole number below u32::MAX: the conversion is exact.
-        #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-        Ok(t as u32)
-    } else {
-        Err(DeckError::unsupported(
-            &command.at,
-            format!("type `{t}`"),
-            "a whole atom type from 1",
-        ))
-    }
+    whole_number(t, &command.at, "type", "a whole atom type from 1")
 }
 
 /// `key constant VALUE` in a particle template (`density constant 7800`).
@@ -438,8 +440,10 @@ impl LiggghtsDeck {
             ScriptReader::read_for(path, &options.variables, ("LIGGGHTS 3.8", &["ternary"]))?;
         let mut r = Reading::default();
         for c in &commands {
+            if r.script.command(c, &SYNTAX)? {
+                continue;
+            }
             match c.name() {
-                "units" => r.units = Some(c.clone()),
                 "atom_style" => r.before_box.push(c.text.clone()),
                 "hard_particles" => {
                     r.hard_particles = c.word(1, "yes or no")? == "yes";
@@ -449,11 +453,6 @@ impl LiggghtsDeck {
                     r.soft_particles = c.word(1, "yes or no")? == "yes";
                     r.before_box.push(c.text.clone());
                 }
-                "create_box" => {
-                    let n = c.number(1, "the number of atom types")?;
-                    r.types = Some((type_number(n, c)?, c.at.clone()));
-                }
-                "timestep" => r.timestep = Some((c.number(1, "the time step")?, c.at.clone())),
                 "pair_style" => {
                     if c.word(1, "a pair style")? != "gran" {
                         return Err(DeckError::unsupported(
@@ -467,38 +466,16 @@ impl LiggghtsDeck {
                     r.pair = Some((model, c.clone()));
                 }
                 "pair_coeff" => r.pair_coeffs.push(c.clone()),
-                "read_restart" | "read_data" | "read_dump" => r.leave_out(
-                    "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
-                    c,
-                ),
                 "fix" => Self::fix(c, &mut r)?,
-                "create_atoms" => {
-                    let t = type_number(c.number(1, "the atom type")?, c)?;
-                    r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
-                    if c.words.get(2).is_some_and(|w| w == "single") {
-                        r.atom_types.push(t);
-                    }
-                }
-                "set" => Self::set(c, &mut r)?,
                 "region" => r.leave_out("regions (the mill's geometry)", c),
-                "neighbor" | "neigh_modify" | "communicate" | "comm_modify" | "newton"
-                | "processors" | "boundary" | "atom_modify" | "modify_timing" => {
-                    r.leave_out("neighbour lists, communication and domain settings (the impact sets its own)", c)
-                }
-                "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
-                | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
-                | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
-                | "jump" | "next" | "if" | "clear" | "quit" => r.leave_out("output and control", c),
-                "run" | "rerun" | "minimize" => r.leave_out("the run itself", c),
-                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box" => {
-                    r.leave_out("changes to the running simulation", c)
-                }
-                "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep" | "run_style"
-                | "atom_style_modify" => r.leave_out("other settings", c),
-                other => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("command `{other}`"),
+                "communicate" | "modify_timing" => r.leave_out(NEIGHBOURS, c),
+                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
+                | "change_box" => r.leave_out("changes to the running simulation", c),
+                "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep"
+                | "run_style" | "atom_style_modify" => r.leave_out("other settings", c),
+                _ => {
+                    return Err(ScriptReading::unknown(
+                        c,
                         "the LIGGGHTS commands of a granular deck (units, atom_style, create_box, region, fix, pair_style gran, pair_coeff, timestep, create_atoms, set, include, variable, output and run commands)",
                     ));
                 }
@@ -570,6 +547,7 @@ impl LiggghtsDeck {
                 let density = constant_after(c, "density")?;
                 let radius = constant_after(c, "radius")?;
                 r.templates.push((t, radius, density, c.clone()));
+                r.script.atoms.made_elsewhere(t);
             }
             "particletemplate/multisphere" | "particletemplate/superquadric" => {
                 return Err(DeckError::unsupported(
@@ -611,214 +589,32 @@ impl LiggghtsDeck {
         Ok(())
     }
 
-    fn set(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
-        let target = c.word(1, "atom or type")?;
-        let pick = |key: &str| -> Result<Option<f64>, DeckError> {
-            match c.words.iter().position(|w| w == key) {
-                Some(k) => c.number(k + 1, key).map(Some),
-                None => Ok(None),
-            }
-        };
-        let diameter = pick("diameter")?;
-        let density = pick("density")?;
-        let merge = |slot: &mut (Option<f64>, Option<f64>)| {
-            slot.0 = diameter.or(slot.0);
-            slot.1 = density.or(slot.1);
-        };
-        // The size the atoms this line selects have once it is done (where the reader knows it).
-        let selected = match target {
-            "type" => {
-                let t = type_number(c.number(2, "the atom type")?, c)?;
-                let slot = r.set_type.entry(t).or_default();
-                merge(slot);
-                Some(*slot)
-            }
-            "atom" => {
-                let id = type_number(c.number(2, "the atom id")?, c)? as usize;
-                let slot = r.set_atom.entry(id).or_default();
-                merge(slot);
-                Some(*slot)
-            }
-            _ => None,
-        };
-        // `type N` and `type/fraction N FRACTION SEED` make atoms of type N out of the selected
-        // ones, which keep their size and density; LIGGGHTS 3.8 has no type/ratio or
-        // type/subset ("Illegal set command").
-        let mut makes = false;
-        for (k, word) in c.words.iter().enumerate().skip(3) {
-            match word.as_str() {
-                "type" | "type/fraction" => {
-                    let t = type_number(c.number(k + 1, "the new atom type")?, c)?;
-                    makes = true;
-                    let exists =
-                        r.atoms_of_type.contains_key(&t) || r.templates.iter().any(|x| x.0 == t);
-                    r.atoms_of_type.entry(t).or_insert_with(|| c.at.clone());
-                    r.set_made.entry(t).or_insert_with(|| c.text.clone());
-                    if let Some(size) = selected {
-                        let slot = r.set_type.entry(t).or_default();
-                        // A type with no atoms yet takes the selected atoms' size whole (a
-                        // `set type N …` before this line set no atom of it).
-                        *slot = if exists {
-                            (slot.0.or(size.0), slot.1.or(size.1))
-                        } else {
-                            size
-                        };
-                    }
-                }
-                "type/ratio" | "type/subset" => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!(
-                            "set … {word}: LIGGGHTS 3.8 has no such keyword (it stops: \"Illegal set command\")"
-                        ),
-                        "set … type N, or type/fraction N FRACTION SEED",
-                    ));
-                }
-                _ => {}
-            }
-        }
-        if selected.is_none() && !makes {
-            r.leave_out("set commands on groups or regions", c);
-        }
-        Ok(())
-    }
-
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
-        let mut bodies: Vec<DeckBody> = Vec::new();
-        let push = |bodies: &mut Vec<DeckBody>, t: u32, radius: f64, density: f64, from: String| {
-            // The same size read twice is the same number, bit for bit.
-            #[allow(clippy::float_cmp)]
-            let known = bodies
-                .iter()
-                .any(|b| b.type_id == t && b.radius == radius && b.density == density);
-            if !known {
-                bodies.push(DeckBody {
-                    type_id: t,
-                    radius,
-                    density,
-                    mass: sphere_mass(radius, density),
-                    youngs_modulus: None,
-                    poisson_ratio: None,
-                    from,
-                });
-            }
-        };
-        if let Some(p) = options.particles.iter().find(|p| p.type_id == 0) {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: format!(
-                    "--particle {}:{}:{}: atom types count from 1",
-                    p.type_id, p.radius, p.density
-                ),
-                supported: "--particle TYPE:RADIUS:DENSITY with TYPE an atom type of the deck"
-                    .into(),
-            });
-        }
-        let given: Vec<u32> = options.particles.iter().map(|p| p.type_id).collect();
+        let mut bodies = Bodies::new(path, options)?;
         for (t, radius, density, c) in &r.templates {
-            if given.contains(t) {
+            if bodies.given(*t) {
                 continue;
             }
-            match (radius, density) {
-                (Some(radius), Some(density)) => push(
-                    &mut bodies,
-                    *t,
-                    *radius,
-                    *density,
-                    format!("{} ({})", c.words[1], c.at),
-                ),
-                _ => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!(
-                            "the template {} has no constant radius and density",
-                            c.words[1]
-                        ),
-                        &format!(
-                            "`radius constant R` and `density constant RHO`, or --particle {t}:RADIUS:DENSITY"
-                        ),
-                    ));
-                }
-            }
+            let (Some(radius), Some(density)) = (radius, density) else {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    format!(
+                        "the template {} has no constant radius and density",
+                        c.words[1]
+                    ),
+                    &format!(
+                        "`radius constant R` and `density constant RHO`, or --particle {t}:RADIUS:DENSITY"
+                    ),
+                ));
+            };
+            bodies.push(*t, *radius, *density, format!("{} ({})", c.words[1], c.at));
         }
-        for (t, at) in &r.atoms_of_type {
-            if given.contains(t) {
-                continue;
-            }
-            let of_type = r.set_type.get(t).copied().unwrap_or_default();
-            let mut found = false;
-            for (index, atom_type) in r.atom_types.iter().enumerate() {
-                if atom_type != t {
-                    continue;
-                }
-                let own = r.set_atom.get(&(index + 1)).copied().unwrap_or_default();
-                if let (Some(d), Some(rho)) = (own.0.or(of_type.0), own.1.or(of_type.1)) {
-                    push(
-                        &mut bodies,
-                        *t,
-                        d / 2.0,
-                        rho,
-                        format!("atom {} ({at})", index + 1),
-                    );
-                    found = true;
-                }
-            }
-            if !found {
-                match of_type {
-                    (Some(d), Some(rho)) => {
-                        push(
-                            &mut bodies,
-                            *t,
-                            d / 2.0,
-                            rho,
-                            format!("set type {t} ({at})"),
-                        );
-                    }
-                    _ => {
-                        return Err(DeckError::unsupported(
-                            at,
-                            match r.set_made.get(t) {
-                                Some(text) => format!(
-                                    "atoms of type {t} come from `{text}` without a diameter and density the reader can know for them"
-                                ),
-                                None => format!(
-                                    "atoms of type {t} are created without a diameter and density set for them"
-                                ),
-                            },
-                            &format!(
-                                "`set type {t} diameter D density RHO`, or --particle {t}:RADIUS:DENSITY"
-                            ),
-                        ));
-                    }
-                }
-            }
-        }
-        for p in &options.particles {
-            push(
-                &mut bodies,
-                p.type_id,
-                p.radius,
-                p.density,
-                format!("--particle {}:{}:{}", p.type_id, p.radius, p.density),
-            );
-        }
-        if bodies.is_empty() {
-            return Err(DeckError::Lacking {
-                file: path.to_path_buf(),
-                what: "no particle sizes (no particletemplate/sphere, no create_atoms with set diameter and density)".into(),
-                supported: "give them with --particle TYPE:RADIUS:DENSITY".into(),
-            });
-        }
-        Ok(bodies)
+        bodies.push_atoms(&r.script.atoms, "")?;
+        bodies.finish(
+            path,
+            "no particle sizes (no particletemplate/sphere, no create_atoms with set diameter and density)",
+        )
     }
-}
-
-/// The law, entered COR and traps of one pair under `model`, `j` the partner's type.
-struct PairLaw {
-    law: CodeLaw,
-    cor_entered: Option<f64>,
-    traps: Vec<String>,
-    lines: Vec<SourceLine>,
 }
 
 struct Materials<'a> {
@@ -858,6 +654,26 @@ impl Materials<'_> {
         Ok((ev, nuv, e.at.clone()))
     }
 
+    /// `E*` of the types `i` and `j`, Pa, the line of their moduli added to `lines`; at a
+    /// wall (of type `j`), the trap of the wall's own modulus added to `traps`.
+    fn y_star(
+        &self,
+        (i, j): (u32, u32),
+        needed_by: &str,
+        wall: bool,
+        traps: &mut Vec<String>,
+        lines: &mut Vec<SourceLine>,
+    ) -> Result<f64, DeckError> {
+        let (e1, nu1, e_at) = self.modulus(i, needed_by)?;
+        let (e2, nu2, _) = self.modulus(j, needed_by)?;
+        let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+        lines.push(e_at);
+        if wall {
+            traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
+        }
+        Ok(y_star)
+    }
+
     fn restitution(&self, i: u32, j: u32, needed_by: &str) -> Result<(f64, SourceLine), DeckError> {
         let p = self
             .r
@@ -893,15 +709,10 @@ impl Materials<'_> {
         let mut lines = vec![at.clone()];
         let (law, cor_entered) = match model.normal.as_str() {
             "hertz" | "hooke" => {
-                let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
-                let (e2, nu2, _) = self.modulus(j, &needed_by)?;
-                let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
+                let wall = partner.is_none();
+                let y_star = self.y_star((i, j), &needed_by, wall, &mut traps, &mut lines)?;
                 let (e, e_line) = self.restitution(i, j, &needed_by)?;
-                lines.push(e_at);
                 lines.push(e_line);
-                if partner.is_none() {
-                    traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
-                }
                 if model.normal == "hertz" {
                     let k = 4.0 / 3.0 * y_star * r_star.sqrt();
                     (DashpotLaw::damped_hertz(m_star, k, e), Some(e))
@@ -982,18 +793,8 @@ impl Materials<'_> {
         } else {
             law
         };
-        if model.tangential != "no_history" || model.rolling != "off" {
-            traps.push(format!(
-                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
-                model.tangential, model.rolling
-            ));
-        }
-        Ok(PairLaw {
-            law: law.into(),
-            cor_entered,
-            traps,
-            lines,
-        })
+        traps.extend(model.idle_trap());
+        Ok(PairLaw::new(&model.normal, law, cor_entered, traps).set_by(lines))
     }
 
     /// The paper's law LIGGGHTS integrates under `model paper` (`C = (4/3) E* sqrt(R*)`, formed
@@ -1017,13 +818,8 @@ impl Materials<'_> {
         ];
         let mut lines = vec![at.clone()];
         let (stiffness, exponent) = if model.normal == "paper" {
-            let (e1, nu1, e_at) = self.modulus(i, &needed_by)?;
-            let (e2, nu2, _) = self.modulus(j, &needed_by)?;
-            let y_star = 1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2);
-            lines.push(e_at);
-            if partner.is_none() {
-                traps.push(wall_modulus_trap(j, (e1, nu1), (e2, nu2), y_star));
-            }
+            let wall = partner.is_none();
+            let y_star = self.y_star((i, j), &needed_by, wall, &mut traps, &mut lines)?;
             (4.0 / 3.0 * y_star * r_star.sqrt(), 1.5)
         } else {
             let kn_p = self.r.property("kn", self.path, &needed_by)?;
@@ -1063,23 +859,20 @@ impl Materials<'_> {
             ));
         }
         lines.push(eta_p.at.clone());
-        if model.tangential != "no_history" || model.rolling != "off" {
-            traps.push(format!(
-                "tangential {} and rolling_friction {} act on no head-on impact: kept, and they change nothing here",
-                model.tangential, model.rolling
-            ));
-        }
-        Ok(PairLaw {
-            law: CodeLaw::Paper(PaperLaw {
-                mass: m_star,
-                stiffness,
-                exponent,
-                loss_coefficient: eta,
-            }),
-            cor_entered: Some(exact::restitution(eta)),
+        traps.extend(model.idle_trap());
+        let law = PaperLaw {
+            mass: m_star,
+            stiffness,
+            exponent,
+            loss_coefficient: eta,
+        };
+        Ok(PairLaw::new(
+            &model.normal,
+            CodeLaw::Paper(law),
+            Some(exact::restitution(eta)),
             traps,
-            lines,
-        })
+        )
+        .set_by(lines))
     }
 }
 
@@ -1099,7 +892,7 @@ fn wall_modulus_trap(j: u32, own: (f64, f64), wall: (f64, f64), y_star: f64) -> 
     )
 }
 
-impl DeckReader for LiggghtsDeck {
+impl DeckDialect for LiggghtsDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.lines().map(str::trim).any(|l| {
             let words: Vec<&str> = l.split_whitespace().collect();
@@ -1117,13 +910,7 @@ impl DeckReader for LiggghtsDeck {
 
     fn read(&self, path: &Path, options: &DeckOptions) -> Result<UserDeck, DeckError> {
         let r = Self::gather(path, options)?;
-        check_si_units(r.units.as_ref(), path, "LIGGGHTS")?;
-        let (types, _) = r.types.clone().ok_or_else(|| DeckError::Lacking {
-            file: path.to_path_buf(),
-            what: "no create_box (the number of atom types)".into(),
-            supported: "create_box N REGION".into(),
-        })?;
-        let (timestep, timestep_at) = checked_timestep(r.timestep.as_ref(), path)?;
+        let (types, timestep, timestep_at) = r.script.checked(path, "LIGGGHTS")?;
         let (pair_model, pair_command) = r.pair.clone().ok_or_else(|| DeckError::Lacking {
             file: path.to_path_buf(),
             what: "no pair_style gran line".into(),
@@ -1141,22 +928,40 @@ impl DeckReader for LiggghtsDeck {
             }
         }
         let (walls, wall_lines) = deck_walls(&r, &materials)?;
-        let mut contacts = body_contacts(&materials, &bodies, &pair_model, &pair_command)?;
-        contacts.extend(wall_contacts(&r, &materials, &bodies)?);
+        let mut contacts = body_contacts(&bodies, |body, other| {
+            materials.pair_law(
+                &pair_model,
+                (body.type_id, body.radius, body.mass),
+                other.type_id,
+                Some((other.radius, other.mass)),
+                &pair_command.at,
+            )
+        })?;
+        contacts.extend(wall_contacts(
+            &bodies,
+            &r.walls,
+            WallOrder::ByBody,
+            |wall, body| {
+                let mut pl = materials.pair_law(
+                    &wall.model,
+                    (body.type_id, body.radius, body.mass),
+                    wall.wall_type,
+                    None,
+                    &wall.at,
+                )?;
+                pl.traps.push(format!(
+                    "wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)",
+                    wall.geometry
+                ));
+                Ok(pl)
+            },
+        )?);
         let representative_velocity = r.properties.get("characteristicVelocity").and_then(|p| {
             p.values
                 .first()
                 .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
         });
-        let left_out = r
-            .left_out
-            .iter()
-            .map(|(what, lines)| {
-                let file = r.left_out_files[what].display();
-                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
-                format!("{what}: {file}:{}", lines.join(","))
-            })
-            .collect();
+        let left_out = r.script.left_out.lines();
         let mut common = r.property_lines.clone();
         common.push(pair_command.text.clone());
         common.extend(r.pair_coeffs.iter().map(|c| c.text.clone()));
@@ -1178,22 +983,14 @@ impl DeckReader for LiggghtsDeck {
         })
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let c = &deck.contacts[contact];
-        let body = &deck.bodies[c.body];
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other) = (plan.contact, plan.body, plan.other);
+        let (v1, v2) = plan.velocities;
         let wall_line = match c.partner {
             Partner::Body(_) => None,
             Partner::Wall(w) => Some(deck.transplant.walls[w].clone()),
         };
-        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let gap = super::contact_gap(&setup);
-        let (v1, v2) = setup.centre_of_mass_velocities();
+        let gap = super::contact_gap(&plan.setup);
         let r1 = body.radius;
         let type_of = |t: TypeRef| match t {
             TypeRef::Type(t) => t,
@@ -1209,24 +1006,18 @@ impl DeckReader for LiggghtsDeck {
             )
         };
         let mut atoms = atom(1, type_of(c.types[0]), r1 + gap, body, -v1);
-        let (overlap, approach, reach) = match c.partner {
-            Partner::Body(o) => {
-                let other = &deck.bodies[o];
+        let (overlap, approach) = match other {
+            Some(other) => {
                 atoms.push('\n');
                 atoms.push_str(&atom(2, type_of(c.types[1]), -other.radius, other, -v2));
                 (
-                    format!("{}-(z[1]-z[2])", exact_number(r1 + other.radius)),
+                    format!("{}-(z[1]-z[2])", exact_number(plan.reach)),
                     "vz[2]-vz[1]".to_string(),
-                    r1 + other.radius,
                 )
             }
-            Partner::Wall(_) => (
-                format!("{}-z[1]", exact_number(r1)),
-                "-vz[1]".to_string(),
-                r1,
-            ),
+            None => (format!("{}-z[1]", exact_number(r1)), "-vz[1]".to_string()),
         };
-        let half = 4.0 * reach + velocity * setup.duration() + gap;
+        let half = 4.0 * plan.reach + plan.velocity * plan.setup.duration() + gap;
         let h = exact_number(half);
         let mut lines = deck.transplant.common.clone();
         lines.extend(wall_line);
@@ -1247,22 +1038,22 @@ impl DeckReader for LiggghtsDeck {
         let values = [
             ("deck", deck.path.display().to_string()),
             ("pair", format!("{} on {}", c.types[0], c.types[1])),
-            ("velocity", exact_number(velocity)),
+            ("velocity", exact_number(plan.velocity)),
             ("before_box", deck.transplant.before_box.join("\n")),
             ("domain", format!("-{h} {h} -{h} {h} -{h} {h}")),
             ("types", deck.transplant.types.to_string()),
-            ("skin", exact_number(reach)),
+            ("skin", exact_number(plan.reach)),
             ("deck_lines", lines.join("\n")),
             ("timestep", exact_number(deck.timestep)),
             ("atoms", atoms),
             ("overlap", overlap),
             ("approach", approach),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
         ];
         let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
             code: Liggghts.name().into(),
-            case: setup.case_name.clone(),
+            case: plan.setup.case_name.clone(),
             reason: e.to_string(),
         })?;
         Ok(DeckImpactInput {
@@ -1273,7 +1064,7 @@ impl DeckReader for LiggghtsDeck {
                     .map(String::from)
                     .to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }
@@ -1286,7 +1077,7 @@ fn check_types_declared(r: &Reading, types: u32, path: &Path) -> Result<(), Deck
         .templates
         .iter()
         .map(|x| x.0)
-        .chain(r.atoms_of_type.keys().copied())
+        .chain(r.script.atoms.of_type.keys().copied())
         .chain(r.walls.iter().map(|w| w.wall_type))
     {
         if t > types {
@@ -1348,74 +1139,6 @@ fn deck_walls(
         );
     }
     Ok((walls, wall_lines))
-}
-
-/// Each pair of bodies with the law the deck's `pair_style gran` line gives it.
-fn body_contacts(
-    materials: &Materials<'_>,
-    bodies: &[DeckBody],
-    pair_model: &GranModel,
-    pair_command: &Command,
-) -> Result<Vec<DeckContact>, DeckError> {
-    let mut contacts = Vec::new();
-    for (a, body) in bodies.iter().enumerate() {
-        for (b, other) in bodies.iter().enumerate().skip(a) {
-            let pl = materials.pair_law(
-                pair_model,
-                (body.type_id, body.radius, body.mass),
-                other.type_id,
-                Some((other.radius, other.mass)),
-                &pair_command.at,
-            )?;
-            contacts.push(DeckContact {
-                body: a,
-                partner: Partner::Body(b),
-                types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
-                model: pair_model.normal.clone(),
-                cor_entered: pl.cor_entered,
-                law: pl.law,
-                traps: pl.traps,
-                lines: pl.lines.into_iter().map(Into::into).collect(),
-            });
-        }
-    }
-    Ok(contacts)
-}
-
-/// Each body against each wall, with the law the wall's own model gives it.
-fn wall_contacts(
-    r: &Reading,
-    materials: &Materials<'_>,
-    bodies: &[DeckBody],
-) -> Result<Vec<DeckContact>, DeckError> {
-    let mut contacts = Vec::new();
-    for (a, body) in bodies.iter().enumerate() {
-        for (w, wall) in r.walls.iter().enumerate() {
-            let pl = materials.pair_law(
-                &wall.model,
-                (body.type_id, body.radius, body.mass),
-                wall.wall_type,
-                None,
-                &wall.at,
-            )?;
-            let mut traps = pl.traps;
-            traps.push(format!(
-                "wall: {} met as a flat plane (LIGGGHTS takes R* = R at any wall)",
-                wall.geometry
-            ));
-            contacts.push(DeckContact {
-                body: a,
-                partner: Partner::Wall(w),
-                types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                model: wall.model.normal.clone(),
-                cor_entered: pl.cor_entered,
-                law: pl.law,
-                traps,
-                lines: pl.lines.into_iter().map(Into::into).collect(),
-            });
-        }
-    }
-    Ok(contacts)
 }
 
 /// The model specification of the deck's `pair_style gran` line (`model hertz tangential …`),

@@ -31,8 +31,8 @@ use super::viscel::{series, viscel_cn_from_en, viscel_en_from_cn};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
-    BodyElasticity, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions, DeckReader,
-    DeckSource, DeckWall, Partner, SourceLine, Transplant, TypeRef, UserDeck,
+    DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
+    DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
 };
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeError, RenderedInput};
@@ -114,8 +114,8 @@ impl YadeDeck {
     }
 
     /// The deck YADE's dump `dump_text` (of the script at `path`) describes: what
-    /// [`DeckReader::read`] returns once YADE has run the script's set-up. The fast tests read
-    /// recorded dumps with it.
+    /// [`DeckReader::read`](crate::codes::deck::DeckReader::read) returns once YADE has run
+    /// the script's set-up. The fast tests read recorded dumps with it.
     pub fn read_dump(
         path: &Path,
         dump_text: &str,
@@ -178,14 +178,6 @@ struct Side<'a> {
     radius: f64,
     /// Its mass as YADE holds it (0 for a wall or facet).
     mass: f64,
-}
-
-/// The pair's law, entered COR, model name and traps.
-struct PairLaw {
-    law: DashpotLaw,
-    entered: Option<f64>,
-    model: String,
-    traps: Vec<String>,
 }
 
 impl YadeDeck {
@@ -361,21 +353,17 @@ impl YadeDeck {
             Some((_, w)) => format!("E* = {e_star:.4e} Pa: the wall's material ({}: E = {:e} Pa, ν = {}) is mixed in, E1 E2/((1−ν1²) E2 + (1−ν2²) E1); a wall meant rigid needs a far larger young", w.name, b.material.value("young"), b.material.value("poisson")),
             None => format!("E* = {e_star:.4e} Pa = E1 E2/((1−ν1²) E2 + (1−ν2²) E1) of the two materials"),
         });
-        Ok(PairLaw {
-            law,
-            entered: en,
-            model: format!(
-                "Hertz–Mindlin{}",
-                if en.is_some() {
-                    " en"
-                } else if betan.is_some() {
-                    " betan"
-                } else {
-                    ""
-                }
-            ),
-            traps,
-        })
+        let model = format!(
+            "Hertz–Mindlin{}",
+            if en.is_some() {
+                " en"
+            } else if betan.is_some() {
+                " betan"
+            } else {
+                ""
+            }
+        );
+        Ok(PairLaw::new(model, law, en, traps))
     }
 
     /// `Ip2_FrictMat_FrictMat_FrictPhys`: a linear spring from the materials' moduli and the
@@ -399,12 +387,7 @@ impl YadeDeck {
             format!("FrictPhys is a linear spring, kn = 2 E1 R1 E2 R2/(E1 R1 + E2 R2) = {kn:.4e} N/m from the materials' young and the radii the geometry gives them (not Hertz: its stiffness does not grow with the overlap)"),
             "no contact damping: the contact is elastic and its COR departs from 1 by the step alone (YADE dissipates here only through NewtonIntegrator's damping, 0 in this script)".into(),
         ];
-        Ok(PairLaw {
-            law,
-            entered: None,
-            model: "FrictPhys linear".into(),
-            traps,
-        })
+        Ok(PairLaw::new("FrictPhys linear", law, None, traps))
     }
 
     // Two materials' values are compared exactly: YADE averages what differs, and mRtype is a
@@ -548,12 +531,7 @@ impl YadeDeck {
             damping_exponent: 0.0,
             clamp_attractive: true,
         };
-        Ok(PairLaw {
-            law,
-            entered,
-            model,
-            traps,
-        })
+        Ok(PairLaw::new(model, law, entered, traps))
     }
 }
 
@@ -602,56 +580,36 @@ impl YadeDeck {
         bodies: &[DeckBody],
         loop_at: &DeckSource,
     ) -> Result<Vec<DeckContact>, DeckError> {
-        let mut contacts = Vec::new();
-        for (i, body) in bodies.iter().enumerate() {
-            for (j, other) in bodies.iter().enumerate().skip(i) {
-                let m_a = &r.materials[body.type_id as usize];
-                let m_b = &r.materials[other.type_id as usize];
-                let geometry = geometry_for(
-                    r,
-                    ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
-                    loop_at,
-                    loop_at,
-                )?;
-                let a = Side {
-                    id: body.type_id,
-                    material: m_a,
-                    radius: body.radius,
-                    mass: body.mass,
-                };
-                let b = Side {
-                    id: other.type_id,
-                    material: m_b,
-                    radius: other.radius,
-                    mass: other.mass,
-                };
-                let mut pair = Self::pair_law(
-                    r,
-                    &a,
-                    &b,
-                    None,
-                    reduced_mass(body.mass, other.mass),
-                    geometry,
-                )?;
-                pair.traps.extend(edit_traps(m_a));
-                if body.type_id != other.type_id {
-                    pair.traps.extend(edit_traps(m_b));
-                }
-                let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
-                lines.dedup();
-                contacts.push(DeckContact {
-                    body: i,
-                    partner: Partner::Body(j),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)],
-                    model: pair.model,
-                    cor_entered: pair.entered,
-                    law: pair.law.into(),
-                    traps: pair.traps,
-                    lines,
-                });
+        crate::codes::deck::body_contacts(bodies, |body, other| {
+            let m_a = &r.materials[body.type_id as usize];
+            let m_b = &r.materials[other.type_id as usize];
+            let geometry = geometry_for(
+                r,
+                ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
+                loop_at,
+                loop_at,
+            )?;
+            let (a, b) = (Self::side(body, m_a), Self::side(other, m_b));
+            let mass = reduced_mass(body.mass, other.mass);
+            let mut pair = Self::pair_law(r, &a, &b, None, mass, geometry)?;
+            pair.traps.extend(edit_traps(m_a));
+            if body.type_id != other.type_id {
+                pair.traps.extend(edit_traps(m_b));
             }
+            let mut lines = vec![m_a.at.clone(), m_b.at.clone(), loop_at.clone()];
+            lines.dedup();
+            Ok(pair.set_by(lines))
+        })
+    }
+
+    /// A ball of `material` as the functors see it.
+    fn side<'a>(body: &DeckBody, material: &'a Material) -> Side<'a> {
+        Side {
+            id: body.type_id,
+            material,
+            radius: body.radius,
+            mass: body.mass,
         }
-        Ok(contacts)
     }
 
     /// The script's walls, with each body's contact against each pushed onto `contacts`; the
@@ -663,17 +621,8 @@ impl YadeDeck {
         contacts: &mut Vec<DeckContact>,
     ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
         let mut walls = Vec::new();
-        let mut wall_lines = Vec::new();
-        for (w, wall) in r.walls.iter().enumerate() {
+        for wall in &r.walls {
             let m_w = &r.materials[wall.material as usize];
-            let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
-            let factor = match wall.kind {
-                WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
-                    HERTZIAN_WALL_RADIUS_FACTOR
-                }
-                WallKind::Facet => 2.0,
-                _ => 1.0,
-            };
             let (young, poisson) = match m_w.class {
                 Class::ViscEl if m_w.get("kn").is_some() || m_w.get("tc").is_some() => (None, None),
                 _ => (Some(m_w.value("young")), Some(m_w.value("poisson"))),
@@ -685,51 +634,46 @@ impl YadeDeck {
                 poisson_ratio: poisson,
                 from: wall.at.clone(),
             });
-            wall_lines.push(wall_placement(wall));
-            for (i, body) in bodies.iter().enumerate() {
-                let m_a = &r.materials[body.type_id as usize];
-                let a = Side {
-                    id: body.type_id,
-                    material: m_a,
-                    radius: body.radius,
-                    mass: body.mass,
-                };
-                let b = Side {
-                    id: wall.material,
-                    material: m_w,
-                    radius: factor * body.radius,
-                    mass: wall.mass,
-                };
-                let pair = Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
-                let mut traps = pair.traps;
-                if wall.lines.len() > 1 {
-                    traps.push(format!(
-                        "{} bodies of this kind and material (lines {}) are one wall here",
-                        wall.lines.len(),
-                        wall.lines
-                            .iter()
-                            .map(usize::to_string)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ));
-                }
-                traps.extend(edit_traps(m_a));
-                if wall.material != body.type_id {
-                    traps.extend(edit_traps(m_w));
-                }
-                contacts.push(DeckContact {
-                    body: i,
-                    partner: Partner::Wall(w),
-                    types: [TypeRef::Type(body.type_id), TypeRef::Wall],
-                    model: pair.model,
-                    cor_entered: pair.entered,
-                    law: pair.law.into(),
-                    traps,
-                    lines: vec![m_a.at.clone(), wall.at.clone(), loop_at.clone()],
-                });
-            }
         }
-        Ok((walls, wall_lines))
+        let order = WallOrder::ByWall;
+        let laws = crate::codes::deck::wall_contacts(bodies, &r.walls, order, |wall, body| {
+            let m_w = &r.materials[wall.material as usize];
+            let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
+            let factor = match wall.kind {
+                WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
+                    HERTZIAN_WALL_RADIUS_FACTOR
+                }
+                WallKind::Facet => 2.0,
+                _ => 1.0,
+            };
+            let m_a = &r.materials[body.type_id as usize];
+            let a = Self::side(body, m_a);
+            let b = Side {
+                id: wall.material,
+                material: m_w,
+                radius: factor * body.radius,
+                mass: wall.mass,
+            };
+            let mut pair = Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
+            if wall.lines.len() > 1 {
+                pair.traps.push(format!(
+                    "{} bodies of this kind and material (lines {}) are one wall here",
+                    wall.lines.len(),
+                    wall.lines
+                        .iter()
+                        .map(usize::to_string)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ));
+            }
+            pair.traps.extend(edit_traps(m_a));
+            if wall.material != body.type_id {
+                pair.traps.extend(edit_traps(m_w));
+            }
+            Ok(pair.set_by([m_a.at.clone(), wall.at.clone(), loop_at.clone()]))
+        })?;
+        contacts.extend(laws);
+        Ok((walls, r.walls.iter().map(wall_placement).collect()))
     }
 }
 
@@ -820,7 +764,7 @@ fn wall_placement(wall: &WallRead) -> String {
     snippet
 }
 
-impl DeckReader for YadeDeck {
+impl DeckDialect for YadeDeck {
     fn recognises(&self, _path: &Path, text: &str) -> bool {
         text.contains("O.engines")
             || text.contains("O.bodies.append")
@@ -840,32 +784,14 @@ impl DeckReader for YadeDeck {
         Self::read_dump(path, &dump, options)
     }
 
-    fn render(
-        &self,
-        deck: &UserDeck,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-    ) -> Result<DeckImpactInput, CodeError> {
-        let c = &deck.contacts[contact];
-        let body = &deck.bodies[c.body];
-        let other = match c.partner {
-            Partner::Body(o) => Some(&deck.bodies[o]),
-            Partner::Wall(_) => None,
-        };
-        let setup = deck.impact_setup(contact, velocity, steps, BodyElasticity::FromDeck, None);
-        let (v1, v2) = setup.centre_of_mass_velocities();
+    fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError> {
+        let (c, body, other) = (plan.contact, plan.body, plan.other);
+        let (v1, v2) = plan.velocities;
         // The script starts the bodies one ulp apart (YADE's laws act at zero overlap).
-        let next_up = |x: f64| f64::from_bits(x.to_bits() + 1);
-        let (placement, gap) = match c.partner {
-            Partner::Body(o) => {
-                let reach = body.radius + deck.bodies[o].radius;
-                (String::new(), next_up(reach) - reach)
-            }
-            Partner::Wall(w) => (
-                deck.transplant.walls[w].clone(),
-                next_up(body.radius) - body.radius,
-            ),
+        let gap = f64::from_bits(plan.reach.to_bits() + 1) - plan.reach;
+        let placement = match c.partner {
+            Partner::Body(_) => String::new(),
+            Partner::Wall(w) => deck.transplant.walls[w].clone(),
         };
         let t = |x: TypeRef| match x {
             TypeRef::Type(t) => t.to_string(),
@@ -879,13 +805,13 @@ impl DeckReader for YadeDeck {
             ("source", deck.path.display().to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
             ("pair", format!("{} on {}", c.types[0], c.types[1])),
-            ("speed", velocity.to_string()),
+            ("speed", plan.velocity.to_string()),
             (
                 "scene",
                 if other.is_some() { "ball_ball" } else { "wall" }.to_string(),
             ),
             ("timestep", exact_number(deck.timestep)),
-            ("steps", steps.to_string()),
+            ("steps", plan.steps.to_string()),
             ("radius", exact_number(body.radius)),
             ("mass", exact_number(body.mass)),
             ("material", t(c.types[0])),
@@ -909,7 +835,7 @@ impl DeckReader for YadeDeck {
         ];
         let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
             code: "yade".into(),
-            case: setup.case_name.clone(),
+            case: plan.setup.case_name.clone(),
             reason: e.to_string(),
         })?;
         Ok(DeckImpactInput {
@@ -918,7 +844,7 @@ impl DeckReader for YadeDeck {
                 text,
                 args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
             },
-            setup,
+            setup: plan.setup,
             start_gap: gap,
         })
     }

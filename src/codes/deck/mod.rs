@@ -15,9 +15,18 @@ use serde::{Serialize, Serializer};
 use thiserror::Error;
 
 use super::conventions::Conventions;
-use super::{CodeError, CodeSetup, CodeSphere, RenderedInput};
-use crate::model::law::{CodeLaw, ContactForce};
-use crate::model::scene::SceneKind;
+use super::{CodeError, CodeSetup, RenderedInput};
+
+mod bodies;
+mod contacts;
+mod impact;
+mod reading;
+
+use crate::model::law::CodeLaw;
+pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
+pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
+pub(crate) use impact::{DeckDialect, ImpactPlan};
+pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading};
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -182,6 +191,15 @@ impl crate::error::Blame for DeckError {
 }
 
 impl DeckError {
+    /// A deck (`path`) that lacks `what`, naming what is `supported`.
+    pub(crate) fn lacking(path: &Path, what: &str, supported: &str) -> Self {
+        DeckError::Lacking {
+            file: path.to_path_buf(),
+            what: what.into(),
+            supported: supported.into(),
+        }
+    }
+
     /// An unsupported or unresolvable line (or field).
     pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
         DeckError::Unsupported {
@@ -368,64 +386,6 @@ pub(crate) enum BodyElasticity {
     /// None: the setup's law is the deck's contact lines alone, so no convention the driver
     /// forms from a sphere's own constants (its calibration card's traps) applies.
     Withheld,
-}
-
-impl UserDeck {
-    /// The setup of the impact of `self.contacts[contact]` at `velocity` (m/s), run for `steps`
-    /// steps of the deck's own time step: the pair's bodies, its law's mass, stiffness, exponent
-    /// and clamp, its entered COR and, for the paper's law, its η; `conventions` as the build
-    /// measured them, where the driver uses them.
-    pub(crate) fn impact_setup(
-        &self,
-        contact: usize,
-        velocity: f64,
-        steps: u64,
-        elasticity: BodyElasticity,
-        conventions: Option<Conventions>,
-    ) -> CodeSetup {
-        let c = &self.contacts[contact];
-        let sphere = |b: &DeckBody| CodeSphere {
-            radius: b.radius,
-            density: b.density,
-            mass: b.mass,
-            youngs_modulus: match elasticity {
-                BodyElasticity::FromDeck => b.youngs_modulus.unwrap_or(f64::NAN),
-                BodyElasticity::Withheld => f64::NAN,
-            },
-            poisson_ratio: match elasticity {
-                BodyElasticity::FromDeck => b.poisson_ratio,
-                BodyElasticity::Withheld => None,
-            },
-        };
-        let (scene, other_sphere) = match c.partner {
-            Partner::Body(o) => (SceneKind::BallBall, Some(sphere(&self.bodies[o]))),
-            Partner::Wall(_) => (SceneKind::BallPlate, None),
-        };
-        let mut setup = CodeSetup {
-            case_name: format!("deck-{contact}-{}-{}", c.types[0], c.types[1]),
-            scene,
-            sphere: sphere(&self.bodies[c.body]),
-            other_sphere,
-            plate_material: None,
-            effective_modulus: None,
-            effective_radius: None,
-            reduced_mass: c.law.mass(),
-            stiffness: c.law.stiffness(),
-            exponent: c.law.exponent(),
-            impact_velocity: velocity,
-            target_restitution: c.cor_entered.unwrap_or(f64::NAN),
-            loss_coefficient: match c.law {
-                CodeLaw::Paper(law) => Some(law.loss_coefficient),
-                CodeLaw::Dashpot(_) => None,
-            },
-            timestep: self.timestep,
-            steps,
-            clamp_attractive: c.law.clamp_attractive(),
-            conventions,
-        };
-        setup.effective_radius = Some(setup.pair_radius());
-        setup
-    }
 }
 
 /// A code's capability to read its users' decks and run one pair's impact with their lines.

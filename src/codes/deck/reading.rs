@@ -1,0 +1,125 @@
+//! What a reader keeps as it goes through a deck beside what the impact carries: the lines it
+//! leaves out, by kind, said back to the user with where they stand.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use super::bodies::{AtomSyntax, Atoms};
+use super::{DeckError, SourceLine};
+use crate::codes::script::{Command, check_si_units, checked_timestep};
+
+/// The lines of a deck the impacts leave out, by what they are (the mill's geometry, output,
+/// the run itself), each kind with the file of its first line and the lines.
+#[derive(Debug, Default)]
+pub(crate) struct LeftOut(BTreeMap<String, (PathBuf, Vec<usize>)>);
+
+impl LeftOut {
+    /// Leave out the line `at`, of the kind `what`.
+    pub(crate) fn leave_out(&mut self, what: &str, at: &SourceLine) {
+        self.0
+            .entry(what.to_string())
+            .or_insert_with(|| (at.file.clone(), Vec::new()))
+            .1
+            .push(at.line);
+    }
+
+    /// One line per kind: `what: file:line,line,…`.
+    pub(crate) fn lines(&self) -> Vec<String> {
+        self.0
+            .iter()
+            .map(|(what, (file, lines))| {
+                let lines: Vec<String> = lines.iter().map(usize::to_string).collect();
+                format!("{what}: {}:{}", file.display(), lines.join(","))
+            })
+            .collect()
+    }
+}
+
+/// The kind of left-out line of a script's neighbour, communication and domain settings.
+pub(crate) const NEIGHBOURS: &str =
+    "neighbour lists, communication and domain settings (the impact sets its own)";
+
+/// The kind of left-out line of a script's output and flow control.
+pub(crate) const OUTPUT: &str = "output and control";
+
+/// What a reader of a LAMMPS-family script (LAMMPS, LIGGGHTS) gathers from the commands the
+/// two read alike: the units, the box's types, the time step, the atoms and the lines left out.
+#[derive(Debug, Default)]
+pub(crate) struct ScriptReading {
+    /// The `units` line.
+    pub units: Option<Command>,
+    /// The number of atom types `create_box` declares.
+    pub types: Option<u32>,
+    /// The time step, s, and where it is set.
+    pub timestep: Option<(f64, SourceLine)>,
+    /// The atoms the script makes.
+    pub atoms: Atoms,
+    /// The lines the impacts leave out.
+    pub left_out: LeftOut,
+}
+
+impl ScriptReading {
+    /// Read `c` where it is one of the commands both codes read alike; whether it was.
+    pub(crate) fn command(&mut self, c: &Command, syntax: &AtomSyntax) -> Result<bool, DeckError> {
+        match c.name() {
+            "units" => self.units = Some(c.clone()),
+            "create_box" => {
+                let n = c.number(1, "the number of atom types")?;
+                self.types = Some((syntax.whole)(n, c, "create_box")?);
+            }
+            "timestep" => self.timestep = Some((c.number(1, "the time step")?, c.at.clone())),
+            "create_atoms" => {
+                let t = (syntax.whole)(c.number(1, "the atom type")?, c, "type")?;
+                let single = c.words.get(2).is_some_and(|w| w == "single");
+                self.atoms.create(t, &c.at, single);
+            }
+            "set" => {
+                if !self.atoms.set(c, syntax)? {
+                    self.leave_out("set commands on groups or regions", c);
+                }
+            }
+            "read_restart" | "read_data" | "read_dump" => self.leave_out(
+                "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
+                c,
+            ),
+            "run" | "rerun" | "minimize" => self.leave_out("the run itself", c),
+            "neighbor" | "neigh_modify" | "comm_modify" | "newton" | "processors" | "boundary"
+            | "atom_modify" => self.leave_out(NEIGHBOURS, c),
+            "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
+            | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
+            | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
+            | "jump" | "next" | "if" | "clear" | "quit" => self.leave_out(OUTPUT, c),
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+
+    /// The error of a command the code's reader does not take (`supported`: those it does).
+    pub(crate) fn unknown(c: &Command, supported: &str) -> DeckError {
+        DeckError::unsupported(&c.at, format!("command `{}`", c.name()), supported)
+    }
+
+    /// Leave out the command `c`, of the kind `what`.
+    pub(crate) fn leave_out(&mut self, what: &str, c: &Command) {
+        self.left_out.leave_out(what, &c.at);
+    }
+
+    /// The number of atom types and the time step with where it is set, once the units are
+    /// checked to be SI (`code`: whose default they are otherwise); what lacks is refused.
+    pub(crate) fn checked(
+        &self,
+        path: &Path,
+        code: &str,
+    ) -> Result<(u32, f64, SourceLine), DeckError> {
+        check_si_units(self.units.as_ref(), path, code)?;
+        let types = self.types.ok_or_else(|| {
+            DeckError::lacking(
+                path,
+                "no create_box (the number of atom types)",
+                "create_box N REGION",
+            )
+        })?;
+        let (timestep, at) = checked_timestep(self.timestep.as_ref(), path)?;
+        Ok((types, timestep, at))
+    }
+}
