@@ -393,7 +393,7 @@ mod tests {
     }
 
     /// The YADE scripts of `tests/data/deck/yade/` and the shipped example, each with the dump of
-    /// its set-up `tests/deck.rs` reads.
+    /// its set-up `tests/deck_reading_yade.rs` reads.
     fn yade_scripts_with_dumps() -> Vec<(std::path::PathBuf, std::path::PathBuf)> {
         let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
         let data = root.join("tests/data/deck/yade");
