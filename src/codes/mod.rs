@@ -8,6 +8,7 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub(crate) mod batch_fns;
 pub mod damping;
 pub mod deck;
 pub(crate) mod parse;

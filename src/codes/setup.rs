@@ -268,3 +268,14 @@ pub fn prepare_with(
     setup.steps = ceil_count(1.05 * contact / dt).map_or(u64::MAX, |n| n.saturating_add(3));
     Ok(setup)
 }
+
+/// The setup of the shipped case `cases/<scene>.toml` at loss coefficient `eta` for `code`, at
+/// 200 steps per contact and with no probe: what the drivers' unit tests render.
+#[cfg(test)]
+pub(crate) fn shipped_setup(code: super::CodeName, scene: &str, eta: f64) -> CodeSetup {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(format!("{scene}.toml"));
+    let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+    prepare_with(code.driver(), &case, Some(200), None, false, None).unwrap()
+}

@@ -21,11 +21,12 @@
 
 use std::path::Path;
 
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::kratos::Kratos;
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
 use crate::codes::yade::{log_value, parse_trajectory};
-use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -44,16 +45,8 @@ pub(super) const SCRIPT: &str = include_str!("batch.py");
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
-        return Err(BatchError::Empty);
-    };
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the batch script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
+    let first = &setups[0];
     let mut impacts = String::new();
     let shared = |values: &[(&'static str, String)]| -> Vec<String> {
         values
@@ -119,52 +112,18 @@ pub(crate) fn parse_batch(
 }
 
 /// Kratos' batches: many impacts side by side in one stage.
-pub(crate) struct KratosBatch;
-
-impl BatchRunner for KratosBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+pub(crate) static KRATOS_BATCH: BatchFns =
+    BatchFns::new(MAX_BATCH, render_batch, parse_batch).costing(IMPACTS_PER_START);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
     use crate::codes::kratos::RUN_FILES;
-    use crate::model::case::Case;
+    use crate::codes::setup::shipped_setup;
 
     fn setup(scene: &str, eta: f64) -> CodeSetup {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-        crate::codes::prepare_with(
-            CodeName::Kratos.driver(),
-            &case,
-            Some(200),
-            None,
-            false,
-            None,
-        )
-        .unwrap()
+        shipped_setup(CodeName::Kratos, scene, eta)
     }
 
     #[test]

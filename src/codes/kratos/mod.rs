@@ -452,7 +452,7 @@ impl CodeDriver for Kratos {
     }
 
     fn batch(&self) -> Option<&dyn super::BatchRunner> {
-        Some(&batch::KratosBatch)
+        Some(&batch::KRATOS_BATCH)
     }
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {

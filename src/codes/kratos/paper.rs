@@ -29,6 +29,7 @@ use std::path::Path;
 
 use super::{dynamic_mass, hertz_stiffness};
 use crate::codes::batch::{BatchError, parse_marked_batch};
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::parse::ParseError;
 use crate::codes::runner::{self, find_codes_dir};
 use crate::codes::template::exact_number;
@@ -133,16 +134,8 @@ impl KratosPaper {
 /// The script running `setups` side by side in one stage under `gravity` (m/s², downwards
 /// along z; the driver's runs have none), or why they cannot run together.
 pub fn render_script(setups: &[CodeSetup], gravity: f64) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
-        return Err(BatchError::Empty);
-    };
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the script's size")?;
+    let first = &setups[0];
     let mut impacts = String::new();
     for s in setups {
         if s.timestep.to_bits() != first.timestep.to_bits() {
@@ -291,7 +284,7 @@ impl CodeDriver for KratosPaper {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&KratosPaperBatch)
+        Some(&PAPER_BATCH)
     }
 
     fn card(&self) -> Option<&dyn CalibrationCard> {
@@ -306,30 +299,9 @@ impl CodeDriver for KratosPaper {
 }
 
 /// Many impacts side by side in one stage: any scenes, one time step.
-struct KratosPaperBatch;
-
-impl BatchRunner for KratosPaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_script(setups, 0.0)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_runs(setups, workdir, log)
-    }
-}
+static PAPER_BATCH: BatchFns =
+    BatchFns::new(MAX_BATCH, |setups| render_script(setups, 0.0), parse_runs)
+        .costing(IMPACTS_PER_START);
 
 /// The card: the impact's values and the line that hands Kratos the force.
 struct KratosPaperCard;

@@ -16,7 +16,7 @@ use crate::codes::lammps::{
     Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
 };
 use crate::codes::parse::ParseError;
-use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, CodeError, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 2.5 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
@@ -35,15 +35,27 @@ pub(crate) fn render_batch(
     build: &Build,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
+    render_sequence("src/codes/lammps/batch.rs", setups, |setup| {
+        build.render(setup)
+    })
+}
+
+/// The batch input of the single inputs `single` renders for `setups`, in sequence, each
+/// writing its own trajectory file; `source` names the file that made it.
+pub(crate) fn render_sequence(
+    source: &str,
+    setups: &[CodeSetup],
+    single: impl Fn(&CodeSetup) -> Result<RenderedInput, CodeError>,
+) -> Result<RenderedInput, BatchError> {
     let own_file = format!(" file {TRAJECTORY_FILE} ");
     render_in_sequence(
         "LAMMPS",
-        "src/codes/lammps/batch.rs",
+        source,
         setups,
         MAX_BATCH,
         // The single input names its trajectory file once, in its `fix print`.
         |i, setup| {
-            Ok(build.render(setup)?.text.replacen(
+            Ok(single(setup)?.text.replacen(
                 &own_file,
                 &format!(" file {} ", batch_trajectory_file(i)),
                 1,
@@ -97,54 +109,17 @@ pub(crate) fn parse_batch(
         .collect()
 }
 
-/// A LAMMPS build's batches: many impacts in one process, in sequence.
-pub(crate) struct LammpsBatch(pub &'static Build);
-
-impl BatchRunner for LammpsBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(self.0, setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
     use crate::codes::lammps::DEBIAN_2021;
-    use crate::model::case::Case;
+    use crate::codes::setup::shipped_setup;
 
     fn setups(scene: &str) -> Vec<CodeSetup> {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
         [0.0, 0.35, 0.9]
-            .into_iter()
-            .map(|eta| {
-                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-                crate::codes::prepare_with(
-                    CodeName::Lammps.driver(),
-                    &case,
-                    Some(200),
-                    None,
-                    false,
-                    None,
-                )
-                .unwrap()
-            })
-            .collect()
+            .map(|eta| shipped_setup(CodeName::Lammps, scene, eta))
+            .to_vec()
     }
 
     #[test]

@@ -22,12 +22,10 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use crate::codes::batch::{BatchError, render_in_sequence};
-use crate::codes::lammps::batch::{MAX_BATCH, batch_trajectory_file, parse_batch};
+use crate::codes::batch_fns::BatchFns;
+use crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
 use crate::codes::lammps::build_2025::{self, venv_executable};
-use crate::codes::lammps::{
-    INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
-};
+use crate::codes::lammps::{INPUT_FILE, LOG_FILE, paper_plugin_modulus, parse_run};
 use crate::codes::liggghts::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::{exact_number, fill_template};
@@ -306,7 +304,7 @@ impl CodeDriver for LammpsPaper {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&LammpsPaperBatch)
+        Some(&PAPER_BATCH)
     }
 
     fn card(&self) -> Option<&dyn CalibrationCard> {
@@ -324,48 +322,15 @@ impl CodeDriver for LammpsPaper {
 
 /// The plugin build's batches: its single inputs in sequence, each loading the plugin (LAMMPS
 /// keeps a loaded plugin's styles across `clear` and ignores the repeated load).
-pub(crate) struct LammpsPaperBatch;
-
-impl BatchRunner for LammpsPaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        let own_file = format!(" file {TRAJECTORY_FILE} ");
-        render_in_sequence(
-            "LAMMPS",
-            "src/codes/lammps/paper.rs",
-            setups,
-            MAX_BATCH,
-            |i, setup| {
-                Ok(LammpsPaper.render(setup)?.text.replacen(
-                    &own_file,
-                    &format!(" file {} ", batch_trajectory_file(i)),
-                    1,
-                ))
-            },
-            &[
-                "-in",
-                crate::codes::lammps::batch::BATCH_INPUT_FILE,
-                "-log",
-                LOG_FILE,
-                "-nocite",
-                "-echo",
-                "none",
-            ],
-        )
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+static PAPER_BATCH: BatchFns = BatchFns::new(
+    MAX_BATCH,
+    |setups| {
+        render_sequence("src/codes/lammps/paper.rs", setups, |setup| {
+            LammpsPaper.render(setup)
+        })
+    },
+    parse_batch,
+);
 
 /// The plugin build's calibration card: the lines that select the paper's law.
 pub(crate) struct LammpsPaperCard;

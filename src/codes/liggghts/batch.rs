@@ -18,9 +18,10 @@
 use std::path::Path;
 
 use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
+use crate::codes::batch_fns::BatchFns;
 use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, loop_line, parse_output, version};
 use crate::codes::parse::ParseError;
-use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 1 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
@@ -109,53 +110,19 @@ pub(crate) fn parse_batch(
         .collect()
 }
 
-/// Liggghts's batches: many impacts in one process, in sequence.
-pub(crate) struct LiggghtsBatch;
-
-impl BatchRunner for LiggghtsBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+/// The stock build's batches: many impacts in one process, in sequence.
+pub(crate) static LIGGGHTS_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
-    use crate::model::case::Case;
+    use crate::codes::setup::shipped_setup;
 
     fn setups(scene: &str) -> Vec<CodeSetup> {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
         [0.0, 0.35, 0.9]
-            .into_iter()
-            .map(|eta| {
-                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-                crate::codes::prepare_with(
-                    CodeName::Liggghts.driver(),
-                    &case,
-                    Some(200),
-                    None,
-                    false,
-                    None,
-                )
-                .unwrap()
-            })
-            .collect()
+            .map(|eta| shipped_setup(CodeName::Liggghts, scene, eta))
+            .to_vec()
     }
 
     #[test]

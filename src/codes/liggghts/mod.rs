@@ -428,7 +428,7 @@ impl CodeDriver for Liggghts {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&batch::LiggghtsBatch)
+        Some(&batch::LIGGGHTS_BATCH)
     }
 
     fn law(&self, setup: &CodeSetup) -> CodeLaw {

@@ -26,12 +26,11 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::parse::ParseError;
 use crate::codes::template::exact_number;
 use crate::codes::yade::{Yade, log_value, parse_trajectory};
-use crate::codes::{
-    BatchError, BatchRunner, CodeSetup, Executable, Launch, ParsedRun, RenderedInput,
-};
+use crate::codes::{BatchError, CodeSetup, Executable, Launch, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -214,16 +213,7 @@ pub(crate) fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the batch script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
     let mut impacts = String::new();
     for s in setups {
         // The single script's values, as Python literals (the scene's name quoted); `en` for
@@ -367,50 +357,20 @@ pub(crate) fn parse_batch(
     )
 }
 
-/// Yade's batches: many impacts in one process, side by side in groups.
-pub(crate) struct YadeBatch;
-
-impl BatchRunner for YadeBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-
-    fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {
-        launch(executable, input)
-    }
-}
+/// YADE's batches: many impacts in one process, side by side in groups.
+pub(crate) static YADE_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch)
+    .costing(IMPACTS_PER_START)
+    .launched_by(launch);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
     use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
-    use crate::model::case::Case;
+    use crate::codes::setup::shipped_setup;
 
     fn setup(scene: &str, eta: f64) -> CodeSetup {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-        crate::codes::prepare_with(CodeName::Yade.driver(), &case, Some(200), None, false, None)
-            .unwrap()
+        shipped_setup(CodeName::Yade, scene, eta)
     }
 
     #[test]

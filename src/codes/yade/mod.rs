@@ -293,7 +293,7 @@ impl CodeDriver for Yade {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&batch::YadeBatch)
+        Some(&batch::YADE_BATCH)
     }
 
     fn law(&self, setup: &CodeSetup) -> CodeLaw {

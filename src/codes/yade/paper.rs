@@ -30,10 +30,11 @@ use std::path::Path;
 use super::Yade;
 use super::batch::{PREAMBLE, launch};
 use crate::codes::batch::marked_trajectory_file;
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, Launch,
-    ParseError, ParsedRun, RenderedInput,
+    BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParseError,
+    ParsedRun, RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -232,7 +233,7 @@ impl CodeDriver for YadePaper {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&YadePaperBatch)
+        Some(&PAPER_BATCH)
     }
 
     fn card(&self) -> Option<&dyn CalibrationCard> {
@@ -246,51 +247,23 @@ impl CodeDriver for YadePaper {
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
-struct YadePaperBatch;
+static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, super::batch::parse_batch)
+    .costing(IMPACTS_PER_START)
+    .launched_by(launch);
 
-impl BatchRunner for YadePaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        if setups.is_empty() {
-            return Err(BatchError::Empty);
-        }
-        if setups.len() > MAX_BATCH {
-            return Err(BatchError::TooMany {
-                count: setups.len(),
-                most: MAX_BATCH,
-                why: "the batch script's size",
-            });
-        }
-        let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
-        let text = YadePaper.script(setups, &files)?;
-        Ok(RenderedInput {
-            file_name: super::batch::BATCH_SCRIPT.into(),
-            text,
-            args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
-                .map(String::from)
-                .to_vec(),
-        })
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        super::batch::parse_batch(setups, workdir, log)
-    }
-
-    fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {
-        launch(executable, input)
-    }
+/// The script running `setups`, each writing its own trajectory file, as a batch of YADE's is
+/// run.
+fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
+    let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
+    let text = YadePaper.script(setups, &files)?;
+    Ok(RenderedInput {
+        file_name: super::batch::BATCH_SCRIPT.into(),
+        text,
+        args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
+            .map(String::from)
+            .to_vec(),
+    })
 }
 
 /// The paper build's card: the impact's law as the hook is given it, and the engines.
