@@ -14,6 +14,7 @@ pub mod deck;
 pub(crate) mod parse;
 pub mod runner;
 pub mod script;
+pub(crate) mod script_values;
 pub(crate) mod setup;
 pub mod template;
 

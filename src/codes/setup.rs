@@ -125,6 +125,28 @@ impl CodeSetup {
     pub fn duration(&self) -> f64 {
         self.timestep * self.steps as f64
     }
+
+    /// The second body's material `(E, ν)` in a ball scene: the other ball's (ν 0 where it has
+    /// none), else the plate's, else `rigid`, the material the code's wall stands for a rigid
+    /// plate with.
+    pub(crate) fn second_material(&self, rigid: (f64, f64)) -> (f64, f64) {
+        match (self.scene, self.other_sphere, self.plate_material) {
+            (SceneKind::BallBall, Some(other), _) => {
+                (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
+            }
+            (_, _, Some(plate)) => plate,
+            _ => rigid,
+        }
+    }
+
+    /// `code`'s refusal of this setup, for `reason`.
+    pub(crate) fn unsupported(&self, code: &str, reason: impl Into<String>) -> super::CodeError {
+        super::CodeError::Unsupported {
+            code: code.into(),
+            case: self.case_name.clone(),
+            reason: reason.into(),
+        }
+    }
 }
 
 /// Default number of steps per estimated contact time for a code's time step.

@@ -24,6 +24,7 @@ use std::path::Path;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::kratos::Kratos;
 use crate::codes::parse::ParseError;
+use crate::codes::script_values::python_dict;
 use crate::codes::template::exact_number;
 use crate::codes::yade::{log_value, parse_trajectory};
 use crate::codes::{BatchError, CodeSetup, ParsedRun, RenderedInput};
@@ -67,15 +68,8 @@ pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchE
                 what: "scene, or the wall's material or ball radius (one wall per batch)",
             });
         }
-        // The single script's values, as Python literals (names quoted).
-        let fields: Vec<String> = values
-            .into_iter()
-            .map(|(key, value)| match key {
-                "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
-                _ => format!("\"{key}\": {value}"),
-            })
-            .collect();
-        impacts += &format!("    {{{}}},\n", fields.join(", "));
+        // The single script's values, as Python literals.
+        impacts += &format!("    {},\n", python_dict(&values));
     }
     // Far enough apart that no two impacts' bodies or walls (squares of side 8 R) ever meet.
     let reach = setups
@@ -131,13 +125,8 @@ mod tests {
         let setups = [setup("rod_end", 0.1), setup("rod_end", 0.6)];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
-            for (key, value) in Kratos.script_values(s).unwrap() {
-                let cell = match key {
-                    "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
-                    _ => format!("\"{key}\": {value}"),
-                };
-                assert!(text.contains(&cell), "{cell}");
-            }
+            let impact = python_dict(&Kratos.script_values(s).unwrap());
+            assert!(text.contains(&impact), "{impact}");
         }
         // A batch writes its own files, not a single run's.
         assert!(!text.contains(&format!("\"{}\"", RUN_FILES[1])));

@@ -31,6 +31,7 @@ use super::Yade;
 use super::batch::{PREAMBLE, launch};
 use crate::codes::batch::marked_trajectory_file;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
+use crate::codes::script_values::{body_values, python_dict, without};
 use crate::codes::template::exact_number;
 use crate::codes::{
     BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParseError,
@@ -121,35 +122,25 @@ impl YadePaper {
     /// One impact's values as a Python dict literal (every number exact), or why it cannot run.
     fn impact_literal(&self, setup: &CodeSetup) -> Result<String, CodeError> {
         self.validate(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
         let law = Self::paper_law(setup);
-        let num = exact_number;
-        let fields = [
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("mass", num(s.mass)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
-            ("other_velocity", num(v2)),
-            ("stiffness", num(law.stiffness)),
-            ("exponent", num(law.exponent)),
-            ("loss_coefficient", num(law.loss_coefficient)),
-            ("pair_mass", num(law.mass)),
-        ];
-        let mut text = format!("{{\"scene\": \"{}\"", setup.scene.name());
-        for (key, value) in fields {
-            text += &format!(", \"{key}\": {value}");
-        }
-        Ok(text + "}")
+        // The hook forms the law from C, n, η and the pair's mass, and the plate is its plane.
+        let mut values = without(
+            body_values(setup, super::RIGID_WALL),
+            &[
+                "other_density",
+                "other_young",
+                "other_poisson",
+                "wall_young",
+                "wall_poisson",
+            ],
+        );
+        values.extend([
+            ("stiffness", exact_number(law.stiffness)),
+            ("exponent", exact_number(law.exponent)),
+            ("loss_coefficient", exact_number(law.loss_coefficient)),
+            ("pair_mass", exact_number(law.mass)),
+        ]);
+        Ok(python_dict(&values))
     }
 
     /// The script that runs `setups`, writing impact `i`'s rows to `files[i]`: consecutive
