@@ -11,6 +11,7 @@ pub mod batch;
 pub(crate) mod batch_fns;
 pub mod damping;
 pub mod deck;
+pub(crate) mod paper_law;
 pub(crate) mod parse;
 pub mod runner;
 pub mod script;

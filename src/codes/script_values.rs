@@ -1,9 +1,11 @@
 //! A setup's values as the Python scripts of YADE and Kratos are given them: every number
 //! exact ([`exact_number`]), under the names both codes' templates use, and as the Python dict
-//! literal a script's list of impacts holds.
+//! literal a script's list of impacts holds; and the numbers the scripts report back.
 
-use super::CodeSetup;
+use std::str::FromStr;
+
 use super::template::exact_number;
+use super::{CodeSetup, ParseError};
 use crate::model::scene::SceneKind;
 
 /// The two bodies of `setup` as the scripts take them, in the order they list them: the scene,
@@ -67,4 +69,20 @@ pub(crate) fn python_dict(values: &[(&str, String)]) -> String {
         })
         .collect();
     format!("{{{}}}", fields.join(", "))
+}
+
+/// A number a script reported, `value` as its `MILLIMPACT` line gives it, read as `T`: `None`
+/// where it reported none, an error naming `field` where it does not read.
+pub(crate) fn reported<T: FromStr>(
+    value: Option<&str>,
+    field: &'static str,
+) -> Result<Option<T>, ParseError> {
+    value
+        .map(|v| {
+            v.parse::<T>().map_err(|_| ParseError::BadValue {
+                field,
+                value: v.to_string(),
+            })
+        })
+        .transpose()
 }

@@ -139,6 +139,42 @@ impl CodeSetup {
         }
     }
 
+    /// The start of a run in a code whose deck puts sphere 1 at `height` above the contact
+    /// point, moving down, and below it the plane `z = 0` or, for two balls, sphere 2 at
+    /// `−r2`, both at the velocities of the centre-of-mass frame ([`CodeFrame`]); `mass` is a
+    /// sphere's mass as the code forms it.
+    ///
+    /// [`CodeFrame`]: crate::solve::dashpot::CodeFrame
+    pub(crate) fn frame_below(
+        &self,
+        height: f64,
+        mass: impl Fn(&CodeSphere) -> f64,
+    ) -> crate::solve::dashpot::CodeFrame {
+        use crate::solve::dashpot::{CodeFrame, FrameBody};
+        let (v1, v2) = self.centre_of_mass_velocities();
+        let upper = FrameBody {
+            height,
+            velocity: -v1,
+            mass: mass(&self.sphere),
+        };
+        match self.other_sphere {
+            Some(other) if self.scene == SceneKind::BallBall => CodeFrame {
+                reach: self.sphere.radius + other.radius,
+                upper,
+                lower: Some(FrameBody {
+                    height: -other.radius,
+                    velocity: -v2,
+                    mass: mass(&other),
+                }),
+            },
+            _ => CodeFrame {
+                reach: self.sphere.radius,
+                upper,
+                lower: None,
+            },
+        }
+    }
+
     /// `code`'s refusal of this setup, for `reason`.
     pub(crate) fn unsupported(&self, code: &str, reason: impl Into<String>) -> super::CodeError {
         super::CodeError::Unsupported {

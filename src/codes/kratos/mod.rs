@@ -47,7 +47,7 @@ use super::damping::{
 };
 use super::parse::ParseError;
 use super::runner::{self, CodesDir, find_codes_dir};
-use super::script_values::body_values;
+use super::script_values::{body_values, reported};
 use super::template::{exact_number, fill_template};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
@@ -207,6 +207,14 @@ fn locate_python(driver: &dyn CodeDriver) -> Result<Executable, LocateError> {
     })
 }
 
+/// Refuses a run whose script reports other than `asked` steps.
+fn check_steps(log: &str, asked: u64) -> Result<(), ParseError> {
+    match reported::<u64>(log_value(log, "iterations="), "iterations")? {
+        Some(ran) if ran != asked => Err(ParseError::StepCount { ran, asked }),
+        _ => Ok(()),
+    }
+}
+
 /// A sphere's mass as Kratos forms it from density and radius, kg (it may differ from the
 /// case's `4/3 π R³ ρ` in the last bit).
 pub fn particle_mass(radius: f64, density: f64) -> f64 {
@@ -329,28 +337,10 @@ impl CodeDriver for Kratos {
         let path = workdir.join(TRAJECTORY_FILE);
         let text =
             std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
-        if let Some(ran) = log_value(log, "iterations=") {
-            let ran = ran.parse::<u64>().map_err(|_| ParseError::BadValue {
-                field: "iterations",
-                value: ran.to_string(),
-            })?;
-            if ran != setup.steps {
-                return Err(ParseError::StepCount {
-                    ran,
-                    asked: setup.steps,
-                });
-            }
-        }
+        check_steps(log, setup.steps)?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
-            loop_time: log_value(log, "loop_time=")
-                .map(|v| {
-                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
-                        field: "loop_time",
-                        value: v.to_string(),
-                    })
-                })
-                .transpose()?,
+            loop_time: reported(log_value(log, "loop_time="), "loop_time")?,
             version: log_value(log, "version=").map(str::to_string),
         })
     }

@@ -29,13 +29,14 @@ use std::path::Path;
 use super::{dynamic_mass, hertz_stiffness};
 use crate::codes::batch::{BatchError, parse_marked_batch};
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::parse::ParseError;
-use crate::codes::script_values::{body_values, python_dict, without};
+use crate::codes::script_values::{body_values, python_dict, reported, without};
 use crate::codes::template::exact_number;
 use crate::codes::yade::{log_value, parse_trajectory};
 use crate::codes::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParsedRun, RenderedInput,
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
+    RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -171,26 +172,11 @@ fn parse_runs(
 /// The script's own account of the run: its step count and the largest difference between a
 /// node's total force and the force applied to it.
 fn check_log(setups: &[CodeSetup], log: &str) -> Result<(), ParseError> {
-    let asked = setups.iter().map(|s| s.steps).max().unwrap_or(0);
-    if let Some(ran) = log_value(log, "iterations=") {
-        let ran = ran.parse::<u64>().map_err(|_| ParseError::BadValue {
-            field: "iterations",
-            value: ran.to_string(),
-        })?;
-        if ran != asked {
-            return Err(ParseError::StepCount { ran, asked });
-        }
+    super::check_steps(log, setups.iter().map(|s| s.steps).max().unwrap_or(0))?;
+    match reported::<f64>(log_value(log, "force_mismatch="), "force_mismatch")? {
+        Some(mismatch) if mismatch != 0.0 => Err(ParseError::ForeignForce { mismatch }),
+        _ => Ok(()),
     }
-    if let Some(said) = log_value(log, "force_mismatch=") {
-        let mismatch = said.parse::<f64>().map_err(|_| ParseError::BadValue {
-            field: "force_mismatch",
-            value: said.to_string(),
-        })?;
-        if mismatch != 0.0 {
-            return Err(ParseError::ForeignForce { mismatch });
-        }
-    }
-    Ok(())
 }
 
 impl CodeDriver for KratosPaper {
@@ -233,21 +219,7 @@ impl CodeDriver for KratosPaper {
         StepScheme::LeapFrog
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&PAPER_BATCH)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&KratosPaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, KratosPaperCard);
 
     /// The law liggghts-paper integrates, stepped through the same positions (symplectic
     /// Euler and velocity Verlet see the same state): drawn as one in the figures.

@@ -25,11 +25,12 @@ use super::{
     pair_property, parse_run, render_deck, validate_scene,
 };
 use crate::codes::batch_fns::BatchFns;
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParseError, ParsedRun, RenderedInput,
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
+    ParsedRun, RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -145,21 +146,7 @@ impl CodeDriver for LiggghtsPaper {
         Some(code_frame(setup))
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&PAPER_BATCH)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&LiggghtsPaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, LiggghtsPaperCard);
 
     /// A LIGGGHTS user's deck, read as the stock build's (this build runs the stock models as
     /// Debian's does, and the paper's).

@@ -46,7 +46,7 @@ use crate::codes::damping::{
     clamped_hertz_law, clamped_linear_law, fit_restitution, hertz_input_or_target,
     refuse_for_clamped_law, rod_damping_ratio,
 };
-use crate::codes::script_values::body_values;
+use crate::codes::script_values::{body_values, reported};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
@@ -185,14 +185,7 @@ impl CodeDriver for Yade {
             std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
-            loop_time: log_value(log, "loop_time=")
-                .map(|v| {
-                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
-                        field: "loop_time",
-                        value: v.to_string(),
-                    })
-                })
-                .transpose()?,
+            loop_time: reported(log_value(log, "loop_time="), "loop_time")?,
             version: log_value(log, "version=").map(str::to_string).or_else(|| {
                 log.lines()
                     .find_map(|l| l.trim().strip_prefix("Welcome to Yade "))

@@ -31,11 +31,12 @@ use super::Yade;
 use super::batch::{PREAMBLE, launch};
 use crate::codes::batch::marked_trajectory_file;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::script_values::{body_values, python_dict, without};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParseError,
-    ParsedRun, RenderedInput,
+    BatchError, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun,
+    RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -215,21 +216,7 @@ impl CodeDriver for YadePaper {
         Some(code_frame(setup))
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&PAPER_BATCH)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&YadePaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, YadePaperCard);
 
     /// The paper's law, as liggghts-paper integrates it (drawn as one in the figures).
     fn shares_law_with(&self) -> Option<crate::codes::CodeName> {
