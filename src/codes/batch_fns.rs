@@ -116,3 +116,24 @@ pub(crate) fn check_batch_size(
     }
     Ok(())
 }
+
+/// Checks `code`'s batch of [`shipped_setups`](super::setup::shipped_setups) in every scene
+/// is one run per setup, in order, each but the last followed by `clear` (a batch made by
+/// `render_in_sequence`), and hands each run to `check` with its scene, its index and its single
+/// run's input.
+#[cfg(test)]
+pub(crate) fn check_runs_in_sequence(
+    code: super::CodeName,
+    check: impl Fn(&str, usize, &str, &str),
+) {
+    let driver = code.driver();
+    for scene in ["ball_plate", "ball_ball", "rod_end"] {
+        let setups = super::setup::shipped_setups(code, scene);
+        let batch = driver.batch().unwrap().render_batch(&setups).unwrap();
+        let runs: Vec<&str> = batch.text.split("clear\n").collect();
+        assert_eq!(runs.len(), setups.len(), "{scene}");
+        for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
+            check(scene, i, run, &driver.render(setup).unwrap().text);
+        }
+    }
+}

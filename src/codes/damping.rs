@@ -5,7 +5,9 @@
 //! clamped laws those two codes build from them, with what the codes refuse and what they
 //! realise.
 
+use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::sync::{Mutex, OnceLock};
 
 use super::{CodeError, CodeSetup};
 use crate::model::law::DashpotLaw;
@@ -37,25 +39,28 @@ pub fn thornton_damping_ratio(restitution: f64) -> f64 {
 /// Remembered by `en`: every inversion below starts by checking the ends of the domain, the
 /// same two values for every target, and the root finder reads its bracket's ends again.
 fn hertz_mindlin_cor(en: f64) -> f64 {
-    type Memo = std::sync::Mutex<std::collections::HashMap<u64, f64>>;
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    let memo = MEMO.get_or_init(Default::default);
-    if let Some(&known) = memo
-        .lock()
-        .ok()
-        .and_then(|m| m.get(&en.to_bits()).copied())
-        .as_ref()
-    {
+    static MEMO: Memo<f64> = OnceLock::new();
+    remembered(&MEMO, en, 1_000_000, integrate_hertz_mindlin_cor)
+}
+
+/// A pure function's results kept by the bits of its argument.
+type Memo<T> = OnceLock<Mutex<HashMap<u64, T>>>;
+
+/// `compute(x)`, kept in `memo` by the bits of `x` and read from it when asked again; a memo
+/// that holds `most` results is emptied before it takes another.
+fn remembered<T: Copy>(memo: &Memo<T>, x: f64, most: usize, compute: impl FnOnce(f64) -> T) -> T {
+    let memo = memo.get_or_init(Default::default);
+    if let Some(known) = memo.lock().ok().and_then(|m| m.get(&x.to_bits()).copied()) {
         return known;
     }
-    let cor = integrate_hertz_mindlin_cor(en);
+    let value = compute(x);
     if let Ok(mut m) = memo.lock() {
-        if m.len() >= 1_000_000 {
+        if m.len() >= most {
             m.clear();
         }
-        m.insert(en.to_bits(), cor);
+        m.insert(x.to_bits(), value);
     }
-    cor
+    value
 }
 
 fn integrate_hertz_mindlin_cor(en: f64) -> f64 {
@@ -108,25 +113,8 @@ impl roots::Convergency<f64> for BracketWidth {
 pub fn hertz_input_restitution(target: f64) -> Option<f64> {
     // Each inversion integrates the law some eight times, and a run asks for it several times
     // (sizing, input, law, expected COR): remembered by target, a pure function's results.
-    type Memo = std::sync::Mutex<std::collections::HashMap<u64, Option<f64>>>;
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    let memo = MEMO.get_or_init(Default::default);
-    if let Some(&known) = memo
-        .lock()
-        .ok()
-        .and_then(|m| m.get(&target.to_bits()).copied())
-        .as_ref()
-    {
-        return known;
-    }
-    let found = invert_hertz_fit(target);
-    if let Ok(mut m) = memo.lock() {
-        if m.len() >= 100_000 {
-            m.clear();
-        }
-        m.insert(target.to_bits(), found);
-    }
-    found
+    static MEMO: Memo<Option<f64>> = OnceLock::new();
+    remembered(&MEMO, target, 100_000, invert_hertz_fit)
 }
 
 /// Thornton's fit inverted through the clamped law: a bracket around the fit's own answer,
@@ -194,17 +182,22 @@ pub fn clamped_linear_damping_ratio(restitution: f64) -> Option<f64> {
     while g(hi) < target {
         hi *= 2.0;
     }
-    let mut lo = 0.0;
-    for _ in 0..200 {
+    let x = bisect(0.0, hi, 200, |x| g(x) < target);
+    Some(x / (1.0 + x * x).sqrt())
+}
+
+/// The middle of `[lo, hi]` after `halvings` halvings towards where `below` changes from true
+/// (below the root) to false.
+fn bisect(mut lo: f64, mut hi: f64, halvings: usize, below: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..halvings {
         let mid = 0.5 * (lo + hi);
-        if g(mid) < target {
+        if below(mid) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    let x = 0.5 * (lo + hi);
-    Some(x / (1.0 + x * x).sqrt())
+    0.5 * (lo + hi)
 }
 
 /// Clamped damped Hertz of damping ratio `beta` (Thornton's `β_n`, Kratos' `γ`):
@@ -306,19 +299,13 @@ mod tests {
     /// The inversion as it was before: sixty halvings of the whole domain, every midpoint
     /// integrated afresh.
     fn bisection(target: f64) -> Option<f64> {
-        let (mut lo, mut hi) = EN_DOMAIN;
+        let (lo, hi) = EN_DOMAIN;
         if integrate_hertz_mindlin_cor(lo) > target || integrate_hertz_mindlin_cor(hi) < target {
             return None;
         }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if integrate_hertz_mindlin_cor(mid) < target {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some(0.5 * (lo + hi))
+        Some(bisect(lo, hi, 60, |en| {
+            integrate_hertz_mindlin_cor(en) < target
+        }))
     }
 
     /// The COR of the law a code builds from `en` for a steel ball on a plate, integrated

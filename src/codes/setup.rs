@@ -337,3 +337,12 @@ pub(crate) fn shipped_setup(code: super::CodeName, scene: &str, eta: f64) -> Cod
     let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
     prepare_with(code.driver(), &case, Some(200), None, false, None).unwrap()
 }
+
+/// The setups of `cases/<scene>.toml` for `code` at three loss coefficients across the range
+/// ([`shipped_setup`]): a batch's worth.
+#[cfg(test)]
+pub(crate) fn shipped_setups(code: super::CodeName, scene: &str) -> Vec<CodeSetup> {
+    [0.0, 0.35, 0.9]
+        .map(|eta| shipped_setup(code, scene, eta))
+        .to_vec()
+}

@@ -116,13 +116,12 @@ mod tests {
     use crate::codes::kratos::RUN_FILES;
     use crate::codes::setup::shipped_setup;
 
-    fn setup(scene: &str, eta: f64) -> CodeSetup {
-        shipped_setup(CodeName::Kratos, scene, eta)
-    }
-
     #[test]
     fn the_script_lists_each_impact_with_its_single_scripts_values() {
-        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.6)];
+        let setups = [
+            shipped_setup(CodeName::Kratos, "rod_end", 0.1),
+            shipped_setup(CodeName::Kratos, "rod_end", 0.6),
+        ];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
             let impact = python_dict(&Kratos.script_values(s).unwrap());
@@ -130,7 +129,7 @@ mod tests {
         }
         // A batch writes its own files, not a single run's.
         assert!(!text.contains(&format!("\"{}\"", RUN_FILES[1])));
-        let mut finer = setup("rod_end", 0.6);
+        let mut finer = shipped_setup(CodeName::Kratos, "rod_end", 0.6);
         finer.timestep /= 2.0;
         assert!(matches!(
             render_batch(&[setups[0].clone(), finer]),

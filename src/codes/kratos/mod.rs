@@ -334,9 +334,7 @@ impl CodeDriver for Kratos {
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+        let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
         check_steps(log, setup.steps)?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,

@@ -15,7 +15,7 @@ use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::lammps::{
     Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
 };
-use crate::codes::parse::ParseError;
+use crate::codes::parse::{ParseError, read_output};
 use crate::codes::{BatchError, CodeError, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 2.5 kB to the screen output, which is kept
@@ -97,9 +97,7 @@ pub(crate) fn parse_batch(
         .iter()
         .enumerate()
         .map(|(i, _)| {
-            let path = workdir.join(batch_trajectory_file(i));
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| ParseError::Read { path, source })?;
+            let text = read_output(workdir.join(batch_trajectory_file(i)))?;
             Ok(ParsedRun {
                 trajectory: parse_trajectory(&text)?,
                 loop_time: loops.get(i).copied().flatten(),
@@ -113,35 +111,22 @@ pub(crate) fn parse_batch(
 mod tests {
     use super::*;
     use crate::codes::CodeName;
-    use crate::codes::lammps::DEBIAN_2021;
-    use crate::codes::setup::shipped_setup;
-
-    fn setups(scene: &str) -> Vec<CodeSetup> {
-        [0.0, 0.35, 0.9]
-            .map(|eta| shipped_setup(CodeName::Lammps, scene, eta))
-            .to_vec()
-    }
+    use crate::codes::batch_fns::check_runs_in_sequence;
+    use crate::codes::setup::shipped_setups;
 
     #[test]
     fn a_batch_is_the_single_inputs_in_sequence_each_writing_its_own_file() {
-        for scene in ["ball_plate", "ball_ball", "rod_end"] {
-            let setups = setups(scene);
-            let batch = render_batch(&DEBIAN_2021, &setups).unwrap();
-            let runs: Vec<&str> = batch.text.split("clear\n").collect();
-            assert_eq!(runs.len(), setups.len(), "{scene}");
-            for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
-                let single = DEBIAN_2021.render(setup).unwrap().text;
-                let own = run.replace(&batch_trajectory_file(i), TRAJECTORY_FILE);
-                assert!(own.ends_with(&single), "{scene} {i}: the single input");
-                assert!(run.contains(&format!(" file {} ", batch_trajectory_file(i))));
-            }
-        }
+        check_runs_in_sequence(CodeName::Lammps, |scene, i, run, single| {
+            let own = run.replace(&batch_trajectory_file(i), TRAJECTORY_FILE);
+            assert!(own.ends_with(single), "{scene} {i}: the single input");
+            assert!(run.contains(&format!(" file {} ", batch_trajectory_file(i))));
+        });
     }
 
     #[test]
     fn each_run_of_a_batch_gets_its_own_loop_time() {
         let dir = tempfile::tempdir().unwrap();
-        let setups = setups("ball_ball");
+        let setups = shipped_setups(CodeName::Lammps, "ball_ball");
         for i in 0..setups.len() {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),

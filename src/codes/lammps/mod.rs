@@ -42,7 +42,7 @@ pub(crate) use paper::LammpsPaper;
 
 use std::path::Path;
 
-use super::parse::{ParseError, parse_columns};
+use super::parse::{ParseError, parse_columns, read_output};
 use super::template::{exact_number, fill_template};
 use super::{CodeError, CodeSetup, CodeSphere, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
@@ -380,9 +380,7 @@ pub(crate) fn deck_input(text: String) -> RenderedInput {
 
 /// Parse a single run's files in `workdir` (every build writes the same ones).
 pub(crate) fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
-    let path = workdir.join(TRAJECTORY_FILE);
-    let text =
-        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let text = read_output(workdir.join(TRAJECTORY_FILE))?;
     let trajectory = parse_trajectory(&text)?;
     // The screen output normally holds both lines; the log file is the fallback.
     let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();

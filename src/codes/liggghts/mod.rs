@@ -282,9 +282,7 @@ pub(crate) fn parse_run(
     workdir: &Path,
     log: &str,
 ) -> Result<ParsedRun, ParseError> {
-    let path = workdir.join(TRAJECTORY_FILE);
-    let text =
-        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
     let parsed = parse_output(&text, log)?;
     if let Some(ran) = loop_steps(log)
         && ran != setup.steps

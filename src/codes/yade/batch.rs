@@ -369,18 +369,14 @@ mod tests {
     use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
     use crate::codes::setup::shipped_setup;
 
-    fn setup(scene: &str, eta: f64) -> CodeSetup {
-        shipped_setup(CodeName::Yade, scene, eta)
-    }
-
     #[test]
     fn groups_hold_one_scene_and_step_and_at_most_a_mask_each() {
         let mut setups: Vec<CodeSetup> = (0..65)
-            .map(|i| setup("ball_plate", i as f64 / 100.0))
+            .map(|i| shipped_setup(CodeName::Yade, "ball_plate", i as f64 / 100.0))
             .collect();
-        setups.push(setup("rod_end", 0.3));
-        setups.push(setup("rod_end", 0.4));
-        let mut finer = setup("rod_end", 0.5);
+        setups.push(shipped_setup(CodeName::Yade, "rod_end", 0.3));
+        setups.push(shipped_setup(CodeName::Yade, "rod_end", 0.4));
+        let mut finer = shipped_setup(CodeName::Yade, "rod_end", 0.5);
         finer.timestep /= 2.0;
         setups.push(finer);
         let g = groups(&setups);
@@ -391,7 +387,10 @@ mod tests {
 
     #[test]
     fn the_script_lists_each_impact_with_its_single_scripts_values() {
-        let setups = [setup("ball_ball", 0.1), setup("ball_ball", 0.7)];
+        let setups = [
+            shipped_setup(CodeName::Yade, "ball_ball", 0.1),
+            shipped_setup(CodeName::Yade, "ball_ball", 0.7),
+        ];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
             let mut values = Yade.script_values(s).unwrap();
@@ -406,14 +405,19 @@ mod tests {
         }
         assert!(text.contains("GROUPS = [[0, 1]]"));
         // A rod's contact is kn and cn: its `en` is not inverted for a batch.
-        let rod = render_batch(&[setup("rod_end", 0.3)]).unwrap().text;
+        let rod = render_batch(&[shipped_setup(CodeName::Yade, "rod_end", 0.3)])
+            .unwrap()
+            .text;
         assert!(!rod.contains("\"restitution\": "), "{rod}");
     }
 
     #[test]
     fn each_impact_reads_its_own_loop_time() {
         let dir = tempfile::tempdir().unwrap();
-        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.2)];
+        let setups = [
+            shipped_setup(CodeName::Yade, "rod_end", 0.1),
+            shipped_setup(CodeName::Yade, "rod_end", 0.2),
+        ];
         for i in 0..2 {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),
@@ -501,7 +505,11 @@ mod tests {
     fn a_batch_runs_by_the_launcher_s_python_or_else_by_the_launcher() {
         let dir = tempfile::tempdir().unwrap();
         let library = library_in(dir.path());
-        let input = render_batch(&[setup("rod_end", 0.3), setup("rod_end", 0.4)]).unwrap();
+        let input = render_batch(&[
+            shipped_setup(CodeName::Yade, "rod_end", 0.3),
+            shipped_setup(CodeName::Yade, "rod_end", 0.4),
+        ])
+        .unwrap();
         let python = launch(
             Executable::plain(launcher(dir.path(), "#!/usr/bin/python3.11", &library)),
             &input,

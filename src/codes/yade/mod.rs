@@ -180,9 +180,7 @@ impl CodeDriver for Yade {
         workdir: &Path,
         log: &str,
     ) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+        let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
             loop_time: reported(log_value(log, "loop_time="), "loop_time")?,
