@@ -1,11 +1,17 @@
 //! The damping the codes derive from a restitution coefficient, shared by the drivers whose
 //! codes use it: Thornton et al.'s fit for damped Hertz (YADE's `Ip2_FrictMat_FrictMat_MindlinPhys`
 //! and Kratos' `DEM_D_Hertz_viscous_Coulomb` both take `en` through it), the `en` that makes the
-//! clamped law realise a target, and the damping ratio of a clamped linear dashpot.
+//! clamped law realise a target, and the damping ratio of a clamped linear dashpot; and the
+//! clamped laws those two codes build from them, with what the codes refuse and what they
+//! realise.
 
+use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::sync::{Mutex, OnceLock};
 
+use super::{CodeError, CodeSetup};
 use crate::model::law::DashpotLaw;
+use crate::model::scene::SceneKind;
 use crate::solve::dashpot::accurate_metrics;
 
 /// The damping ratio `β_n` (Kratos: `γ`) derived from a restitution coefficient `e` for the
@@ -33,37 +39,32 @@ pub fn thornton_damping_ratio(restitution: f64) -> f64 {
 /// Remembered by `en`: every inversion below starts by checking the ends of the domain, the
 /// same two values for every target, and the root finder reads its bracket's ends again.
 fn hertz_mindlin_cor(en: f64) -> f64 {
-    type Memo = std::sync::Mutex<std::collections::HashMap<u64, f64>>;
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    let memo = MEMO.get_or_init(Default::default);
-    if let Some(&known) = memo
-        .lock()
-        .ok()
-        .and_then(|m| m.get(&en.to_bits()).copied())
-        .as_ref()
-    {
+    static MEMO: Memo<f64> = OnceLock::new();
+    remembered(&MEMO, en, 1_000_000, integrate_hertz_mindlin_cor)
+}
+
+/// A pure function's results kept by the bits of its argument.
+type Memo<T> = OnceLock<Mutex<HashMap<u64, T>>>;
+
+/// `compute(x)`, kept in `memo` by the bits of `x` and read from it when asked again; a memo
+/// that holds `most` results is emptied before it takes another.
+fn remembered<T: Copy>(memo: &Memo<T>, x: f64, most: usize, compute: impl FnOnce(f64) -> T) -> T {
+    let memo = memo.get_or_init(Default::default);
+    if let Some(known) = memo.lock().ok().and_then(|m| m.get(&x.to_bits()).copied()) {
         return known;
     }
-    let cor = integrate_hertz_mindlin_cor(en);
+    let value = compute(x);
     if let Ok(mut m) = memo.lock() {
-        if m.len() >= 1_000_000 {
+        if m.len() >= most {
             m.clear();
         }
-        m.insert(en.to_bits(), cor);
+        m.insert(x.to_bits(), value);
     }
-    cor
+    value
 }
 
 fn integrate_hertz_mindlin_cor(en: f64) -> f64 {
-    let beta = thornton_damping_ratio(en);
-    let unit = DashpotLaw {
-        mass: 1.0,
-        stiffness: 1.0,
-        exponent: 1.5,
-        damping: 2.0 * beta * 1.5f64.sqrt(),
-        damping_exponent: 0.25,
-        clamp_attractive: true,
-    };
+    let unit = clamped_hertz_law(1.0, 1.0, thornton_damping_ratio(en));
     accurate_metrics(&unit, 1.0, INVERSION_RTOL).map_or(f64::NAN, |m| m.cor)
 }
 
@@ -112,25 +113,8 @@ impl roots::Convergency<f64> for BracketWidth {
 pub fn hertz_input_restitution(target: f64) -> Option<f64> {
     // Each inversion integrates the law some eight times, and a run asks for it several times
     // (sizing, input, law, expected COR): remembered by target, a pure function's results.
-    type Memo = std::sync::Mutex<std::collections::HashMap<u64, Option<f64>>>;
-    static MEMO: std::sync::OnceLock<Memo> = std::sync::OnceLock::new();
-    let memo = MEMO.get_or_init(Default::default);
-    if let Some(&known) = memo
-        .lock()
-        .ok()
-        .and_then(|m| m.get(&target.to_bits()).copied())
-        .as_ref()
-    {
-        return known;
-    }
-    let found = invert_hertz_fit(target);
-    if let Ok(mut m) = memo.lock() {
-        if m.len() >= 100_000 {
-            m.clear();
-        }
-        m.insert(target.to_bits(), found);
-    }
-    found
+    static MEMO: Memo<Option<f64>> = OnceLock::new();
+    remembered(&MEMO, target, 100_000, invert_hertz_fit)
 }
 
 /// Thornton's fit inverted through the clamped law: a bracket around the fit's own answer,
@@ -198,17 +182,113 @@ pub fn clamped_linear_damping_ratio(restitution: f64) -> Option<f64> {
     while g(hi) < target {
         hi *= 2.0;
     }
-    let mut lo = 0.0;
-    for _ in 0..200 {
+    let x = bisect(0.0, hi, 200, |x| g(x) < target);
+    Some(x / (1.0 + x * x).sqrt())
+}
+
+/// The middle of `[lo, hi]` after `halvings` halvings towards where `below` changes from true
+/// (below the root) to false.
+fn bisect(mut lo: f64, mut hi: f64, halvings: usize, below: impl Fn(f64) -> bool) -> f64 {
+    for _ in 0..halvings {
         let mid = 0.5 * (lo + hi);
-        if g(mid) < target {
+        if below(mid) {
             lo = mid;
         } else {
             hi = mid;
         }
     }
-    let x = 0.5 * (lo + hi);
-    Some(x / (1.0 + x * x).sqrt())
+    0.5 * (lo + hi)
+}
+
+/// Clamped damped Hertz of damping ratio `beta` (Thornton's `β_n`, Kratos' `γ`):
+/// `F = k y^1.5 + 2 β sqrt(1.5 M k) y^0.25 ẏ`, never attractive, as YADE's
+/// `Law2_ScGeom_MindlinPhys_Mindlin` and Kratos' `DEM_D_Hertz_viscous_Coulomb` integrate it.
+pub(crate) fn clamped_hertz_law(mass: f64, stiffness: f64, beta: f64) -> DashpotLaw {
+    DashpotLaw {
+        mass,
+        stiffness,
+        exponent: 1.5,
+        // β times the critical damping of the tangent stiffness 1.5 k y^0.5.
+        damping: 2.0 * beta * (1.5 * mass * stiffness).sqrt(),
+        damping_exponent: 0.25,
+        clamp_attractive: true,
+    }
+}
+
+/// The linear spring–dashpot `F = k y + 2 ζ sqrt(M k) ẏ` of damping ratio `zeta`, never
+/// attractive (YADE's `ViscElPhys`, Kratos' `DEM_D_Linear_Custom_Constants`).
+pub(crate) fn clamped_linear_law(mass: f64, stiffness: f64, zeta: f64) -> DashpotLaw {
+    DashpotLaw {
+        mass,
+        stiffness,
+        exponent: 1.0,
+        damping: 2.0 * zeta * (mass * stiffness).sqrt(),
+        damping_exponent: 0.0,
+        clamp_attractive: true,
+    }
+}
+
+/// The damping ratio of the clamped linear dashpot that realises `setup`'s target
+/// ([`clamped_linear_damping_ratio`]), saturated at 1 for a restitution it cannot reach (which
+/// [`refuse_for_clamped_law`] refuses before a run).
+pub(crate) fn rod_damping_ratio(setup: &CodeSetup) -> f64 {
+    clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0)
+}
+
+/// The `en` a code with Thornton's fit is given for `setup` ([`hertz_input_restitution`]), or
+/// the target itself where no `en` realises it.
+pub(crate) fn hertz_input_or_target(setup: &CodeSetup) -> f64 {
+    hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
+}
+
+/// What a code whose clamped laws take their damping from the restitution (YADE, Kratos)
+/// refuses before it runs as `code`: a restitution outside `(0, 1]`, no positive time step or
+/// no steps, a ball pair without its second ball, and a rod's restitution below what its
+/// clamped linear law (`linear_law`, as the code names it) reaches.
+pub(crate) fn refuse_for_clamped_law(
+    code: &str,
+    setup: &CodeSetup,
+    linear_law: &str,
+) -> Result<(), CodeError> {
+    let e = setup.target_restitution;
+    if !(e > 0.0 && e <= 1.0) {
+        return Err(setup.unsupported(code, format!("restitution {e} outside (0, 1]")));
+    }
+    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
+        return Err(setup.unsupported(code, "time step and step count must be positive"));
+    }
+    match setup.scene {
+        SceneKind::BallBall if setup.other_sphere.is_none() => {
+            Err(setup.unsupported(code, "ball_ball needs a second sphere"))
+        }
+        SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(setup.unsupported(
+            code,
+            format!(
+                "{linear_law} clamps its force, and an underdamped clamped linear dashpot \
+                     cannot rebound with e = {e} < exp(-2)"
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// How far the COR of a law built through Thornton's fit may lie from the target before
+/// [`fit_restitution`] reports it: the fit is good to a few 1e-4 for `e ≤ 0.9` and fails
+/// towards `e → 1`.
+pub(crate) const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
+
+/// The COR `law`, the code's law for `setup`, realises where it lies more than
+/// [`RESTITUTION_FIT_TOLERANCE`] from the target (the `CodeDriver::expected_restitution` of YADE
+/// and Kratos): for a ball scene, whose damping comes through Thornton's fit; never for the
+/// rod, whose damping is solved for the clamped law and realises the target.
+pub(crate) fn fit_restitution(setup: &CodeSetup, law: &DashpotLaw) -> Option<f64> {
+    if setup.scene == SceneKind::RodEnd {
+        return None;
+    }
+    let cor = accurate_metrics(law, setup.impact_velocity, 1e-10)
+        .ok()?
+        .cor;
+    ((cor - setup.target_restitution).abs() > RESTITUTION_FIT_TOLERANCE).then_some(cor)
 }
 
 #[cfg(test)]
@@ -219,34 +299,20 @@ mod tests {
     /// The inversion as it was before: sixty halvings of the whole domain, every midpoint
     /// integrated afresh.
     fn bisection(target: f64) -> Option<f64> {
-        let (mut lo, mut hi) = EN_DOMAIN;
+        let (lo, hi) = EN_DOMAIN;
         if integrate_hertz_mindlin_cor(lo) > target || integrate_hertz_mindlin_cor(hi) < target {
             return None;
         }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if integrate_hertz_mindlin_cor(mid) < target {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        Some(0.5 * (lo + hi))
+        Some(bisect(lo, hi, 60, |en| {
+            integrate_hertz_mindlin_cor(en) < target
+        }))
     }
 
     /// The COR of the law a code builds from `en` for a steel ball on a plate, integrated
     /// apart from the inversion: at its own scale and speed, at relative tolerance 1e-15,
     /// where the COR has converged to about 1e-13.
     fn realised_cor(en: f64) -> f64 {
-        let (mass, stiffness) = (0.26, 2.0e10);
-        let law = DashpotLaw {
-            mass,
-            stiffness,
-            exponent: 1.5,
-            damping: 2.0 * thornton_damping_ratio(en) * (1.5 * mass * stiffness).sqrt(),
-            damping_exponent: 0.25,
-            clamp_attractive: true,
-        };
+        let law = clamped_hertz_law(0.26, 2.0e10, thornton_damping_ratio(en));
         accurate_metrics(&law, 1.3, 1e-15).unwrap().cor
     }
 

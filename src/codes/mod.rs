@@ -8,13 +8,16 @@
 //! code's trajectory into the same figures the solver reports.
 
 pub mod batch;
+pub(crate) mod batch_fns;
 pub(crate) mod conventions;
 pub mod damping;
 pub mod deck;
+pub(crate) mod paper_law;
 pub(crate) mod parse;
 pub(crate) mod probe;
 pub mod runner;
 pub mod script;
+pub(crate) mod script_values;
 pub(crate) mod setup;
 pub mod template;
 

@@ -86,6 +86,11 @@ pub enum ParseError {
     Trajectory(#[from] TrajectoryError),
 }
 
+/// The text of the file at `path` that a run wrote, or why it cannot be read.
+pub(crate) fn read_output(path: PathBuf) -> Result<String, ParseError> {
+    std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })
+}
+
 /// Read a trajectory written as whitespace-separated columns `time overlap approach_velocity
 /// normal_force`, one row per line; blank lines and `#` comments are skipped. `file` names the
 /// file in error messages.

@@ -133,6 +133,64 @@ impl CodeSetup {
     pub fn duration(&self) -> f64 {
         self.timestep * self.steps as f64
     }
+
+    /// The second body's material `(E, ν)` in a ball scene: the other ball's (ν 0 where it has
+    /// none), else the plate's, else `rigid`, the material the code's wall stands for a rigid
+    /// plate with.
+    pub(crate) fn second_material(&self, rigid: (f64, f64)) -> (f64, f64) {
+        match (self.scene, self.other_sphere, self.plate_material) {
+            (SceneKind::BallBall, Some(other), _) => {
+                (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
+            }
+            (_, _, Some(plate)) => plate,
+            _ => rigid,
+        }
+    }
+
+    /// The start of a run in a code whose deck puts sphere 1 at `height` above the contact
+    /// point, moving down, and below it the plane `z = 0` or, for two balls, sphere 2 at
+    /// `−r2`, both at the velocities of the centre-of-mass frame ([`CodeFrame`]); `mass` is a
+    /// sphere's mass as the code forms it.
+    ///
+    /// [`CodeFrame`]: crate::solve::dashpot::CodeFrame
+    pub(crate) fn frame_below(
+        &self,
+        height: f64,
+        mass: impl Fn(&CodeSphere) -> f64,
+    ) -> crate::solve::dashpot::CodeFrame {
+        use crate::solve::dashpot::{CodeFrame, FrameBody};
+        let (v1, v2) = self.centre_of_mass_velocities();
+        let upper = FrameBody {
+            height,
+            velocity: -v1,
+            mass: mass(&self.sphere),
+        };
+        match self.other_sphere {
+            Some(other) if self.scene == SceneKind::BallBall => CodeFrame {
+                reach: self.sphere.radius + other.radius,
+                upper,
+                lower: Some(FrameBody {
+                    height: -other.radius,
+                    velocity: -v2,
+                    mass: mass(&other),
+                }),
+            },
+            _ => CodeFrame {
+                reach: self.sphere.radius,
+                upper,
+                lower: None,
+            },
+        }
+    }
+
+    /// `code`'s refusal of this setup, for `reason`.
+    pub(crate) fn unsupported(&self, code: &str, reason: impl Into<String>) -> super::CodeError {
+        super::CodeError::Unsupported {
+            code: code.into(),
+            case: self.case_name.clone(),
+            reason: reason.into(),
+        }
+    }
 }
 
 /// Default number of steps per estimated contact time for a code's time step.
@@ -275,4 +333,24 @@ pub fn prepare_with(
     // A step so small that the count passes u64 saturates: the run then meets its time limit.
     setup.steps = ceil_count(1.05 * contact / dt).map_or(u64::MAX, |n| n.saturating_add(3));
     Ok(setup)
+}
+
+/// The setup of the shipped case `cases/<scene>.toml` at loss coefficient `eta` for `code`, at
+/// 200 steps per contact and with no probe: what the drivers' unit tests render.
+#[cfg(test)]
+pub(crate) fn shipped_setup(code: super::CodeName, scene: &str, eta: f64) -> CodeSetup {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("cases")
+        .join(format!("{scene}.toml"));
+    let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
+    prepare_with(code.driver(), &case, Some(200), None, false, None).unwrap()
+}
+
+/// The setups of `cases/<scene>.toml` for `code` at three loss coefficients across the range
+/// ([`shipped_setup`]): a batch's worth.
+#[cfg(test)]
+pub(crate) fn shipped_setups(code: super::CodeName, scene: &str) -> Vec<CodeSetup> {
+    [0.0, 0.35, 0.9]
+        .map(|eta| shipped_setup(code, scene, eta))
+        .to_vec()
 }

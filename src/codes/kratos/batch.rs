@@ -21,10 +21,12 @@
 
 use std::path::Path;
 
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::kratos::{Kratos, parse_trajectory};
 use crate::codes::parse::{ParseError, log_value};
+use crate::codes::script_values::python_dict;
 use crate::codes::template::exact_number;
-use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, CodeSetup, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -43,16 +45,8 @@ pub(super) const SCRIPT: &str = include_str!("batch.py");
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
-        return Err(BatchError::Empty);
-    };
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the batch script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
+    let first = &setups[0];
     let mut impacts = String::new();
     let shared = |values: &[(&'static str, String)]| -> Vec<String> {
         values
@@ -73,15 +67,8 @@ pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchE
                 what: "scene, or the wall's material or ball radius (one wall per batch)",
             });
         }
-        // The single script's values, as Python literals (names quoted).
-        let fields: Vec<String> = values
-            .into_iter()
-            .map(|(key, value)| match key {
-                "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
-                _ => format!("\"{key}\": {value}"),
-            })
-            .collect();
-        impacts += &format!("    {{{}}},\n", fields.join(", "));
+        // The single script's values, as Python literals.
+        impacts += &format!("    {},\n", python_dict(&values));
     }
     // Far enough apart that no two impacts' bodies or walls (squares of side 8 R) ever meet.
     let reach = setups
@@ -118,70 +105,30 @@ pub(crate) fn parse_batch(
 }
 
 /// Kratos' batches: many impacts side by side in one stage.
-pub(crate) struct KratosBatch;
-
-impl BatchRunner for KratosBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+pub(crate) static KRATOS_BATCH: BatchFns =
+    BatchFns::new(MAX_BATCH, render_batch, parse_batch).costing(IMPACTS_PER_START);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
     use crate::codes::kratos::RUN_FILES;
-    use crate::model::case::Case;
-
-    fn setup(scene: &str, eta: f64) -> CodeSetup {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-        crate::codes::prepare_with(
-            CodeName::Kratos.driver(),
-            &case,
-            Some(200),
-            None,
-            false,
-            None,
-        )
-        .unwrap()
-    }
+    use crate::codes::setup::shipped_setup;
 
     #[test]
     fn the_script_lists_each_impact_with_its_single_scripts_values() {
-        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.6)];
+        let setups = [
+            shipped_setup(CodeName::Kratos, "rod_end", 0.1),
+            shipped_setup(CodeName::Kratos, "rod_end", 0.6),
+        ];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
-            for (key, value) in Kratos.script_values(s).unwrap() {
-                let cell = match key {
-                    "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
-                    _ => format!("\"{key}\": {value}"),
-                };
-                assert!(text.contains(&cell), "{cell}");
-            }
+            let impact = python_dict(&Kratos.script_values(s).unwrap());
+            assert!(text.contains(&impact), "{impact}");
         }
         // A batch writes its own files, not a single run's.
         assert!(!text.contains(&format!("\"{}\"", RUN_FILES[1])));
-        let mut finer = setup("rod_end", 0.6);
+        let mut finer = shipped_setup(CodeName::Kratos, "rod_end", 0.6);
         finer.timestep /= 2.0;
         assert!(matches!(
             render_batch(&[setups[0].clone(), finer]),

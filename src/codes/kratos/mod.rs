@@ -15,8 +15,9 @@
 //!   wall), `R* = R` at a wall, the total normal force clamped at zero. `γ` comes from
 //!   `COEFFICIENT_OF_RESTITUTION` through Thornton's fit, with Kratos' cut-offs
 //!   ([`hertz_damping_gamma`]): the law YADE builds from its `en`, so the driver gives the same
-//!   compensated `en` ([`hertz_input_restitution`]). `M` is the reduced mass of two balls, the
-//!   ball's own at a wall; Kratos forms each mass from density and radius ([`particle_mass`]).
+//!   compensated `en` ([`hertz_input_restitution`](super::damping::hertz_input_restitution)).
+//!   `M` is the reduced mass of two balls, the ball's own at a wall; Kratos forms each mass
+//!   from density and radius ([`particle_mass`]).
 //! - Rod end: `DEM_D_Linear_Custom_Constants` with `K_NORMAL` in the contact's sub-properties
 //!   and `DAMPING_GAMMA` set directly: `F = k y + 2 γ sqrt(M k) ẏ`, clamped at zero, `γ` the
 //!   damping ratio at which the clamped dashpot realises the target.
@@ -44,10 +45,12 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
 use super::damping::{
-    clamped_linear_damping_ratio, hertz_input_restitution, thornton_damping_ratio,
+    clamped_hertz_law, clamped_linear_law, fit_restitution, hertz_input_or_target,
+    refuse_for_clamped_law, rod_damping_ratio, thornton_damping_ratio,
 };
 use super::parse::{ParseError, log_value, parse_csv_columns};
 use super::runner::{self, CodesDir, find_codes_dir};
+use super::script_values::{body_values, reported};
 use super::template::{exact_number, fill_template};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
@@ -56,7 +59,7 @@ use super::{
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
-use crate::solve::dashpot::{StepScheme, accurate_metrics};
+use crate::solve::dashpot::StepScheme;
 
 /// The Python template of one impact.
 const TEMPLATE: &str = include_str!("impact.py");
@@ -98,10 +101,6 @@ pub const SCHEME: &str = "Symplectic_Euler";
 /// and `ν` into `E*`; at this value the wall's share of the compliance is below double
 /// precision.
 pub const RIGID_WALL_MODULUS: f64 = 1e30;
-
-/// How far the COR of [`CodeDriver::law`] may lie from the target before
-/// [`CodeDriver::expected_restitution`] reports it (Thornton's fit, as for YADE).
-pub(crate) const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
 
 /// Above this restitution Kratos' `GammaForHertzThornton` gives no damping at all.
 pub(crate) const UNDAMPED_ABOVE: f64 = 0.999;
@@ -200,6 +199,30 @@ pub fn python_in(codes: &CodesDir) -> Result<PathBuf, LocateError> {
     }
 }
 
+/// The python that runs `driver`'s scripts (a build of Kratos): the one in its
+/// `MILLIMPACT_<NAME>_BINARY` if set, else the venv's under the codes' folder ([`python_in`]);
+/// with one OpenMP thread.
+fn locate_python(driver: &dyn CodeDriver) -> Result<Executable, LocateError> {
+    let variable = runner::binary_override_variable(driver.name());
+    let program = if std::env::var_os(&variable).is_some() {
+        runner::locate_override_or_path(driver.name(), driver.binary())?.program
+    } else {
+        python_in(&find_codes_dir())?
+    };
+    Ok(Executable {
+        program,
+        env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
+    })
+}
+
+/// Refuses a run whose script reports other than `asked` steps.
+fn check_steps(log: &str, asked: u64) -> Result<(), ParseError> {
+    match reported::<u64>(log_value(log, "iterations="), "iterations")? {
+        Some(ran) if ran != asked => Err(ParseError::StepCount { ran, asked }),
+        _ => Ok(()),
+    }
+}
+
 /// A sphere's mass as Kratos forms it from density and radius, kg (it may differ from the
 /// case's `4/3 π R³ ρ` in the last bit).
 pub fn particle_mass(radius: f64, density: f64) -> f64 {
@@ -212,17 +235,8 @@ pub(crate) fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
 }
 
-/// The second body's material `(E, ν)` in the ball scenes: the other ball, the plate, or the
-/// stand-in for a rigid plate.
-fn second_material(setup: &CodeSetup) -> (f64, f64) {
-    match (setup.scene, setup.other_sphere, setup.plate_material) {
-        (SceneKind::BallBall, Some(other), _) => {
-            (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
-        }
-        (_, _, Some(plate)) => plate,
-        _ => (RIGID_WALL_MODULUS, 0.0),
-    }
-}
+/// The stand-in for a rigid plate: a wall of [`RIGID_WALL_MODULUS`], `ν = 0`.
+const RIGID_WALL: (f64, f64) = (RIGID_WALL_MODULUS, 0.0);
 
 /// The mass the dashpot sees, from Kratos' own particle masses.
 fn dynamic_mass(setup: &CodeSetup) -> f64 {
@@ -241,7 +255,7 @@ fn dynamic_mass(setup: &CodeSetup) -> f64 {
 /// wall.
 fn hertz_stiffness(setup: &CodeSetup) -> f64 {
     let s = setup.sphere;
-    let (e2, nu2) = second_material(setup);
+    let (e2, nu2) = setup.second_material(RIGID_WALL);
     let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
     let radius = match (setup.scene, setup.other_sphere) {
         (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
@@ -251,76 +265,19 @@ fn hertz_stiffness(setup: &CodeSetup) -> f64 {
     4.0 / 3.0 * modulus * radius.sqrt()
 }
 
-/// The `COEFFICIENT_OF_RESTITUTION` the driver gives a ball scene's contact.
-fn input_restitution(setup: &CodeSetup) -> f64 {
-    hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
-}
-
-/// The rod's damping ratio (saturated for a restitution `render` refuses).
-fn rod_damping_ratio(setup: &CodeSetup) -> f64 {
-    clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0)
-}
-
-impl Kratos {
-    fn unsupported(&self, setup: &CodeSetup, reason: impl Into<String>) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason: reason.into(),
-        }
-    }
-
-    fn check(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let e = setup.target_restitution;
-        if !(e > 0.0 && e <= 1.0) {
-            return Err(self.unsupported(setup, format!("restitution {e} outside (0, 1]")));
-        }
-        if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-            return Err(self.unsupported(setup, "time step and step count must be positive"));
-        }
-        match setup.scene {
-            SceneKind::BallBall if setup.other_sphere.is_none() => {
-                Err(self.unsupported(setup, "ball_ball needs a second sphere"))
-            }
-            SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(self
-                .unsupported(
-                    setup,
-                    format!(
-                        "DEM_D_Linear_Custom_Constants clamps its force, and an underdamped \
-                         clamped linear dashpot cannot rebound with e = {e} < exp(-2)"
-                    ),
-                )),
-            _ => Ok(()),
-        }
-    }
-}
-
 impl Kratos {
     /// The clamped damped law Kratos integrates for `setup` (linear for the rod).
     pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
         let mass = dynamic_mass(setup);
         match setup.scene {
-            SceneKind::RodEnd => DashpotLaw {
-                mass,
-                stiffness: setup.stiffness,
-                exponent: 1.0,
-                damping: 2.0 * rod_damping_ratio(setup) * (mass * setup.stiffness).sqrt(),
-                damping_exponent: 0.0,
-                clamp_attractive: true,
-            },
-            SceneKind::BallPlate | SceneKind::BallBall => {
-                let stiffness = hertz_stiffness(setup);
-                let gamma = hertz_damping_gamma(input_restitution(setup));
-                DashpotLaw {
-                    mass,
-                    stiffness,
-                    exponent: 1.5,
-                    // γ times the critical damping of the tangent stiffness 1.5 k y^0.5.
-                    damping: 2.0 * gamma * (1.5 * mass * stiffness).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                }
+            SceneKind::RodEnd => {
+                clamped_linear_law(mass, setup.stiffness, rod_damping_ratio(setup))
             }
+            SceneKind::BallPlate | SceneKind::BallBall => clamped_hertz_law(
+                mass,
+                hertz_stiffness(setup),
+                hertz_damping_gamma(hertz_input_or_target(setup)),
+            ),
         }
     }
 
@@ -330,50 +287,22 @@ impl Kratos {
         &self,
         setup: &CodeSetup,
     ) -> Result<Vec<(&'static str, String)>, CodeError> {
-        self.check(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let (wall_young, wall_poisson) = match setup.scene {
-            SceneKind::BallBall => (0.0, 0.0),
-            _ => second_material(setup),
-        };
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
+        refuse_for_clamped_law(self.name(), setup, "DEM_D_Linear_Custom_Constants")?;
         let (restitution, linear_stiffness, damping_gamma) = match setup.scene {
             // The linear law's γ is set directly: Kratos' own bisection from a restitution
             // solves the same clamped closed form, but stops at 1e-4 in γ.
             SceneKind::RodEnd => (1.0, setup.stiffness, rod_damping_ratio(setup)),
             // A negative γ leaves the one Kratos derives from the restitution.
-            _ => (input_restitution(setup), 0.0, -1.0),
+            _ => (hertz_input_or_target(setup), 0.0, -1.0),
         };
-        let num = exact_number;
-        Ok(vec![
-            ("scene", setup.scene.name().to_string()),
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("mass", num(s.mass)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
-            ("other_density", num(other.map_or(0.0, |o| o.density))),
-            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
-            (
-                "other_poisson",
-                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
-            ),
-            ("other_velocity", num(v2)),
-            ("wall_young", num(wall_young)),
-            ("wall_poisson", num(wall_poisson)),
-            ("restitution", num(restitution)),
-            ("linear_stiffness", num(linear_stiffness)),
-            ("damping_gamma", num(damping_gamma)),
+        let mut values = body_values(setup, RIGID_WALL);
+        values.extend([
+            ("restitution", exact_number(restitution)),
+            ("linear_stiffness", exact_number(linear_stiffness)),
+            ("damping_gamma", exact_number(damping_gamma)),
             ("scheme", SCHEME.to_string()),
-        ])
+        ]);
+        Ok(values)
     }
 }
 
@@ -398,22 +327,13 @@ impl CodeDriver for Kratos {
     /// with `OMP_NUM_THREADS=1`: Kratos' default of two OpenMP threads makes a one-sphere
     /// run's loop five to ten times slower.
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = runner::binary_override_variable(self.name());
-        let program = if std::env::var_os(&variable).is_some() {
-            runner::locate_override_or_path(self.name(), self.binary())?.program
-        } else {
-            python_in(&find_codes_dir())?
-        };
-        Ok(Executable {
-            program,
-            env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
-        })
+        locate_python(self)
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let values = self.script_values(setup)?;
         let text = fill_template(&with_common(TEMPLATE), &values)
-            .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+            .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
         Ok(RenderedInput {
             file_name: SCRIPT.to_string(),
             text,
@@ -422,31 +342,11 @@ impl CodeDriver for Kratos {
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
-        if let Some(ran) = log_value(log, "iterations=") {
-            let ran = ran.parse::<u64>().map_err(|_| ParseError::BadValue {
-                field: "iterations",
-                value: ran.to_string(),
-            })?;
-            if ran != setup.steps {
-                return Err(ParseError::StepCount {
-                    ran,
-                    asked: setup.steps,
-                });
-            }
-        }
+        let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
+        check_steps(log, setup.steps)?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
-            loop_time: log_value(log, "loop_time=")
-                .map(|v| {
-                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
-                        field: "loop_time",
-                        value: v.to_string(),
-                    })
-                })
-                .transpose()?,
+            loop_time: reported(log_value(log, "loop_time="), "loop_time")?,
             version: log_value(log, "version=").map(str::to_string),
         })
     }
@@ -460,19 +360,11 @@ impl CodeDriver for Kratos {
     }
 
     fn batch(&self) -> Option<&dyn super::BatchRunner> {
-        Some(&batch::KratosBatch)
+        Some(&batch::KRATOS_BATCH)
     }
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
-        if setup.scene == SceneKind::RodEnd {
-            // γ is solved for the clamped law: it realises the target.
-            return None;
-        }
-        let law = self.dashpot_law(setup);
-        let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
-            .ok()?
-            .cor;
-        ((cor - setup.target_restitution).abs() > RESTITUTION_FIT_TOLERANCE).then_some(cor)
+        fit_restitution(setup, &self.dashpot_law(setup))
     }
 }
 
@@ -480,6 +372,7 @@ impl CodeDriver for Kratos {
 mod tests {
     use super::*;
     use crate::codes::CodeSphere;
+    use crate::codes::damping::hertz_input_restitution;
 
     /// The recorded run in `tests/data/kratos`: a steel ball on a steel plate, target 0.6944,
     /// 40 steps per elastic contact time, 50 steps.

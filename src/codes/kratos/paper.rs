@@ -24,17 +24,18 @@
 //! `v_{n+1} = v_n + Δt F/m`, `x_{n+1} = x_n + Δt v_{n+1}`; the harness steps the law the same
 //! way ([`StepScheme::LeapFrog`]), from the same start (touching, exactly zero overlap).
 
-use std::ffi::OsString;
 use std::path::Path;
 
 use super::{dynamic_mass, hertz_stiffness, parse_trajectory};
 use crate::codes::batch::{BatchError, parse_marked_batch};
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::parse::{ParseError, log_value};
-use crate::codes::runner::{self, find_codes_dir};
+use crate::codes::script_values::{body_values, python_dict, reported, without};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParsedRun, RenderedInput,
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
+    RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -65,14 +66,6 @@ const CLAMP_REFUSAL: &str = "the paper's law applied through EXTERNAL_APPLIED_FO
 pub struct KratosPaper;
 
 impl KratosPaper {
-    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason,
-        }
-    }
-
     /// What the build refuses before it runs: what every build of the paper's law refuses
     /// ([`refuse_for_paper_law`]).
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
@@ -98,64 +91,32 @@ impl KratosPaper {
     fn script_values(&self, setup: &CodeSetup) -> Result<Vec<(&'static str, String)>, CodeError> {
         self.validate(setup)?;
         let law = self.paper_law(setup);
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
-        let num = exact_number;
-        Ok(vec![
-            ("scene", setup.scene.name().to_string()),
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_density", num(other.map_or(0.0, |o| o.density))),
-            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
-            (
-                "other_poisson",
-                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
-            ),
-            ("other_velocity", num(v2)),
-            ("stiffness", num(law.stiffness)),
-            ("exponent", num(law.exponent)),
-            ("loss_coefficient", num(law.loss_coefficient)),
+        // Kratos forms the masses from the densities, and the hook is the plate.
+        let mut values = without(
+            body_values(setup, super::RIGID_WALL),
+            &["mass", "other_mass", "wall_young", "wall_poisson"],
+        );
+        values.extend([
+            ("stiffness", exact_number(law.stiffness)),
+            ("exponent", exact_number(law.exponent)),
+            ("loss_coefficient", exact_number(law.loss_coefficient)),
             ("scheme", super::SCHEME.to_string()),
-        ])
+        ]);
+        Ok(values)
     }
 }
 
 /// The script running `setups` side by side in one stage under `gravity` (m/s², downwards
 /// along z; the driver's runs have none), or why they cannot run together.
 pub fn render_script(setups: &[CodeSetup], gravity: f64) -> Result<RenderedInput, BatchError> {
-    let Some(first) = setups.first() else {
-        return Err(BatchError::Empty);
-    };
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the script's size")?;
+    let first = &setups[0];
     let mut impacts = String::new();
     for s in setups {
         if s.timestep.to_bits() != first.timestep.to_bits() {
             return Err(BatchError::Differ { what: "time step" });
         }
-        let fields: Vec<String> = KratosPaper
-            .script_values(s)?
-            .into_iter()
-            .map(|(key, value)| match key {
-                "scene" | "scheme" => format!("\"{key}\": \"{value}\""),
-                _ => format!("\"{key}\": {value}"),
-            })
-            .collect();
-        impacts += &format!("    {{{}}},\n", fields.join(", "));
+        impacts += &format!("    {},\n", python_dict(&KratosPaper.script_values(s)?));
     }
     // Far enough apart that no two impacts' bodies ever come within each other's search.
     let reach = setups
@@ -210,26 +171,11 @@ fn parse_runs(
 /// The script's own account of the run: its step count and the largest difference between a
 /// node's total force and the force applied to it.
 fn check_log(setups: &[CodeSetup], log: &str) -> Result<(), ParseError> {
-    let asked = setups.iter().map(|s| s.steps).max().unwrap_or(0);
-    if let Some(ran) = log_value(log, "iterations=") {
-        let ran = ran.parse::<u64>().map_err(|_| ParseError::BadValue {
-            field: "iterations",
-            value: ran.to_string(),
-        })?;
-        if ran != asked {
-            return Err(ParseError::StepCount { ran, asked });
-        }
+    super::check_steps(log, setups.iter().map(|s| s.steps).max().unwrap_or(0))?;
+    match reported::<f64>(log_value(log, "force_mismatch="), "force_mismatch")? {
+        Some(mismatch) if mismatch != 0.0 => Err(ParseError::ForeignForce { mismatch }),
+        _ => Ok(()),
     }
-    if let Some(said) = log_value(log, "force_mismatch=") {
-        let mismatch = said.parse::<f64>().map_err(|_| ParseError::BadValue {
-            field: "force_mismatch",
-            value: said.to_string(),
-        })?;
-        if mismatch != 0.0 {
-            return Err(ParseError::ForeignForce { mismatch });
-        }
-    }
-    Ok(())
 }
 
 impl CodeDriver for KratosPaper {
@@ -244,22 +190,13 @@ impl CodeDriver for KratosPaper {
     /// `MILLIMPACT_KRATOS_PAPER_BINARY` if set (a python that imports Kratos), else the Kratos
     /// venv's python under the codes' folder; one OpenMP thread, as the stock driver's.
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = runner::binary_override_variable(self.name());
-        let program = if std::env::var_os(&variable).is_some() {
-            runner::locate_override_or_path(self.name(), self.binary())?.program
-        } else {
-            super::python_in(&find_codes_dir())?
-        };
-        Ok(Executable {
-            program,
-            env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
-        })
+        super::locate_python(self)
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         render_script(std::slice::from_ref(setup), 0.0).map_err(|e| match e {
             BatchError::Impact(e) => e,
-            other => self.unsupported(setup, other.to_string()),
+            other => setup.unsupported(self.name(), other.to_string()),
         })
     }
 
@@ -281,21 +218,7 @@ impl CodeDriver for KratosPaper {
         StepScheme::LeapFrog
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&KratosPaperBatch)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&KratosPaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, KratosPaperCard);
 
     /// The law liggghts-paper integrates, stepped through the same positions (symplectic
     /// Euler and velocity Verlet see the same state): drawn as one in the figures.
@@ -305,30 +228,9 @@ impl CodeDriver for KratosPaper {
 }
 
 /// Many impacts side by side in one stage: any scenes, one time step.
-struct KratosPaperBatch;
-
-impl BatchRunner for KratosPaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_script(setups, 0.0)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_runs(setups, workdir, log)
-    }
-}
+static PAPER_BATCH: BatchFns =
+    BatchFns::new(MAX_BATCH, |setups| render_script(setups, 0.0), parse_runs)
+        .costing(IMPACTS_PER_START);
 
 /// The card: the impact's values and the line that hands Kratos the force.
 struct KratosPaperCard;

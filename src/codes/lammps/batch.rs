@@ -15,8 +15,8 @@ use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::lammps::{
     Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
 };
-use crate::codes::parse::ParseError;
-use crate::codes::{BatchError, BatchRunner, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::parse::{ParseError, read_output};
+use crate::codes::{BatchError, CodeError, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 2.5 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
@@ -35,15 +35,27 @@ pub(crate) fn render_batch(
     build: &Build,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
+    render_sequence("src/codes/lammps/batch.rs", setups, |setup| {
+        build.render(setup)
+    })
+}
+
+/// The batch input of the single inputs `single` renders for `setups`, in sequence, each
+/// writing its own trajectory file; `source` names the file that made it.
+pub(crate) fn render_sequence(
+    source: &str,
+    setups: &[CodeSetup],
+    single: impl Fn(&CodeSetup) -> Result<RenderedInput, CodeError>,
+) -> Result<RenderedInput, BatchError> {
     let own_file = format!(" file {TRAJECTORY_FILE} ");
     render_in_sequence(
         "LAMMPS",
-        "src/codes/lammps/batch.rs",
+        source,
         setups,
         MAX_BATCH,
         // The single input names its trajectory file once, in its `fix print`.
         |i, setup| {
-            Ok(build.render(setup)?.text.replacen(
+            Ok(single(setup)?.text.replacen(
                 &own_file,
                 &format!(" file {} ", batch_trajectory_file(i)),
                 1,
@@ -85,9 +97,7 @@ pub(crate) fn parse_batch(
         .iter()
         .enumerate()
         .map(|(i, _)| {
-            let path = workdir.join(batch_trajectory_file(i));
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| ParseError::Read { path, source })?;
+            let text = read_output(workdir.join(batch_trajectory_file(i)))?;
             Ok(ParsedRun {
                 trajectory: parse_trajectory(&text)?,
                 loop_time: loops.get(i).copied().flatten(),
@@ -97,76 +107,26 @@ pub(crate) fn parse_batch(
         .collect()
 }
 
-/// A LAMMPS build's batches: many impacts in one process, in sequence.
-pub(crate) struct LammpsBatch(pub &'static Build);
-
-impl BatchRunner for LammpsBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(self.0, setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
-    use crate::codes::lammps::DEBIAN_2021;
-    use crate::model::case::Case;
-
-    fn setups(scene: &str) -> Vec<CodeSetup> {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        [0.0, 0.35, 0.9]
-            .into_iter()
-            .map(|eta| {
-                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-                crate::codes::prepare_with(
-                    CodeName::Lammps.driver(),
-                    &case,
-                    Some(200),
-                    None,
-                    false,
-                    None,
-                )
-                .unwrap()
-            })
-            .collect()
-    }
+    use crate::codes::batch_fns::check_runs_in_sequence;
+    use crate::codes::setup::shipped_setups;
 
     #[test]
     fn a_batch_is_the_single_inputs_in_sequence_each_writing_its_own_file() {
-        for scene in ["ball_plate", "ball_ball", "rod_end"] {
-            let setups = setups(scene);
-            let batch = render_batch(&DEBIAN_2021, &setups).unwrap();
-            let runs: Vec<&str> = batch.text.split("clear\n").collect();
-            assert_eq!(runs.len(), setups.len(), "{scene}");
-            for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
-                let single = DEBIAN_2021.render(setup).unwrap().text;
-                let own = run.replace(&batch_trajectory_file(i), TRAJECTORY_FILE);
-                assert!(own.ends_with(&single), "{scene} {i}: the single input");
-                assert!(run.contains(&format!(" file {} ", batch_trajectory_file(i))));
-            }
-        }
+        check_runs_in_sequence(CodeName::Lammps, |scene, i, run, single| {
+            let own = run.replace(&batch_trajectory_file(i), TRAJECTORY_FILE);
+            assert!(own.ends_with(single), "{scene} {i}: the single input");
+            assert!(run.contains(&format!(" file {} ", batch_trajectory_file(i))));
+        });
     }
 
     #[test]
     fn each_run_of_a_batch_gets_its_own_loop_time() {
         let dir = tempfile::tempdir().unwrap();
-        let setups = setups("ball_ball");
+        let setups = shipped_setups(CodeName::Lammps, "ball_ball");
         for i in 0..setups.len() {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),

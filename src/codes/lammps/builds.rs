@@ -40,7 +40,14 @@ macro_rules! lammps_driver_methods {
         }
 
         fn batch(&self) -> Option<&dyn $crate::codes::BatchRunner> {
-            Some(&$crate::codes::lammps::batch::LammpsBatch(&$build))
+            use $crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_batch};
+            static BATCH: $crate::codes::batch_fns::BatchFns =
+                $crate::codes::batch_fns::BatchFns::new(
+                    MAX_BATCH,
+                    |setups| render_batch(&$build, setups),
+                    parse_batch,
+                );
+            Some(&BATCH)
         }
 
         fn law(&self, setup: &$crate::codes::CodeSetup) -> $crate::model::law::CodeLaw {

@@ -42,9 +42,9 @@ pub(crate) use paper::LammpsPaper;
 
 use std::path::Path;
 
-use super::parse::{ParseError, parse_columns};
+use super::parse::{ParseError, parse_columns, read_output};
 use super::template::{exact_number, fill_template};
-use super::{CodeError, CodeSetup, ParsedRun, RenderedInput};
+use super::{CodeError, CodeSetup, CodeSphere, ParsedRun, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::SpringModel;
 use crate::model::trajectory::CodeTrajectory;
@@ -283,9 +283,6 @@ impl Build {
                 "no steps or no positive timestep".into(),
             ));
         }
-        let s = setup.sphere;
-        let gap = self.start_gap(setup);
-        let (v1, v2) = setup.centre_of_mass_velocities();
         let mut values = vec![
             ("contact", plan.model_args.clone()),
             (
@@ -299,49 +296,16 @@ impl Build {
             ("timestep", exact_number(setup.timestep)),
             ("steps", setup.steps.to_string()),
         ];
-        let text = match setup.other_sphere {
-            None => {
-                // The box only has to hold the sphere through a contact: a few radii.
-                values.extend([
-                    ("box_lo", exact_number(-4.0 * s.radius)),
-                    ("box_hi", exact_number(4.0 * s.radius)),
-                    ("box_top", exact_number(8.0 * s.radius)),
-                    ("z0", exact_number(s.radius + gap)),
-                    ("radius", exact_number(s.radius)),
-                    ("diameter", exact_number(2.0 * s.radius)),
-                    ("mass", exact_number(s.mass)),
-                    ("vz", exact_number(-v1)),
-                ]);
-                fill_template(WALL_TEMPLATE, &values)
-            }
-            Some(o) => {
-                let half = 4.0 * (s.radius + o.radius);
-                values.extend([
-                    ("box_lo", exact_number(-half)),
-                    ("box_hi", exact_number(half)),
-                    ("x1", exact_number(-s.radius - gap)),
-                    ("x2", exact_number(o.radius)),
-                    ("diameter1", exact_number(2.0 * s.radius)),
-                    ("mass1", exact_number(s.mass)),
-                    ("vx1", exact_number(v1)),
-                    ("diameter2", exact_number(2.0 * o.radius)),
-                    ("mass2", exact_number(o.mass)),
-                    ("vx2", exact_number(v2)),
-                    ("radius_sum", exact_number(s.radius + o.radius)),
-                ]);
-                fill_template(PAIR_TEMPLATE, &values)
-            }
-        }
-        .map_err(|reason| unsupported(self.name, setup, reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: INPUT_FILE.into(),
-            text,
-            args: [
-                "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-            ]
-            .map(String::from)
-            .to_vec(),
-        })
+        let pair = setup.other_sphere;
+        values.extend(body_values(setup, pair, self.start_gap(setup)));
+        let template = if pair.is_some() {
+            PAIR_TEMPLATE
+        } else {
+            WALL_TEMPLATE
+        };
+        let text = fill_template(template, &values)
+            .map_err(|reason| unsupported(self.name, setup, reason.to_string()))?;
+        Ok(deck_input(text))
     }
 
     /// The law the build integrates for `setup`.
@@ -360,11 +324,63 @@ impl Build {
     }
 }
 
+/// Where a deck puts the bodies of `setup`, sphere 1 `gap` farther from touching: the box, the
+/// spheres and their velocities in the centre-of-mass frame, for the wall template or, given
+/// the second ball `pair`, for the pair template.
+pub(crate) fn body_values(
+    setup: &CodeSetup,
+    pair: Option<CodeSphere>,
+    gap: f64,
+) -> Vec<(&'static str, String)> {
+    let s = setup.sphere;
+    let (v1, v2) = setup.centre_of_mass_velocities();
+    match pair {
+        // The box only has to hold the sphere through a contact: a few radii.
+        None => vec![
+            ("box_lo", exact_number(-4.0 * s.radius)),
+            ("box_hi", exact_number(4.0 * s.radius)),
+            ("box_top", exact_number(8.0 * s.radius)),
+            ("z0", exact_number(s.radius + gap)),
+            ("radius", exact_number(s.radius)),
+            ("diameter", exact_number(2.0 * s.radius)),
+            ("mass", exact_number(s.mass)),
+            ("vz", exact_number(-v1)),
+        ],
+        Some(o) => {
+            let half = 4.0 * (s.radius + o.radius);
+            vec![
+                ("box_lo", exact_number(-half)),
+                ("box_hi", exact_number(half)),
+                ("x1", exact_number(-s.radius - gap)),
+                ("x2", exact_number(o.radius)),
+                ("diameter1", exact_number(2.0 * s.radius)),
+                ("mass1", exact_number(s.mass)),
+                ("vx1", exact_number(v1)),
+                ("diameter2", exact_number(2.0 * o.radius)),
+                ("mass2", exact_number(o.mass)),
+                ("vx2", exact_number(v2)),
+                ("radius_sum", exact_number(s.radius + o.radius)),
+            ]
+        }
+    }
+}
+
+/// The input of a deck whose text is `text`: its file, and the arguments that run it.
+pub(crate) fn deck_input(text: String) -> RenderedInput {
+    RenderedInput {
+        file_name: INPUT_FILE.into(),
+        text,
+        args: [
+            "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
+        ]
+        .map(String::from)
+        .to_vec(),
+    }
+}
+
 /// Parse a single run's files in `workdir` (every build writes the same ones).
 pub(crate) fn parse_run(workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
-    let path = workdir.join(TRAJECTORY_FILE);
-    let text =
-        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let text = read_output(workdir.join(TRAJECTORY_FILE))?;
     let trajectory = parse_trajectory(&text)?;
     // The screen output normally holds both lines; the log file is the fallback.
     let file_log = std::fs::read_to_string(workdir.join(LOG_FILE)).unwrap_or_default();

@@ -22,23 +22,22 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
-use crate::codes::batch::{BatchError, render_in_sequence};
-use crate::codes::lammps::batch::{MAX_BATCH, batch_trajectory_file, parse_batch};
+use crate::codes::batch_fns::BatchFns;
+use crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
 use crate::codes::lammps::build_2025::{self, venv_executable};
-use crate::codes::lammps::{
-    INPUT_FILE, LOG_FILE, TRAJECTORY_FILE, paper_plugin_modulus, parse_run,
-};
+use crate::codes::lammps::{body_values, deck_input, paper_plugin_modulus, parse_run};
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParseError, ParsedRun, RenderedInput,
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
+    ParsedRun, RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
-use crate::solve::dashpot::{CodeFrame, FrameBody};
+use crate::solve::dashpot::CodeFrame;
 
 const WALL_TEMPLATE: &str = include_str!("paper_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
@@ -89,26 +88,16 @@ pub fn plugin_stiffness(setup: &CodeSetup) -> f64 {
 }
 
 impl LammpsPaper {
-    fn unsupported(&self, setup: &CodeSetup, reason: String) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason,
-        }
-    }
-
     /// What the plugin refuses, reported before it is run: what every build of the paper's
     /// law refuses ([`refuse_for_paper_law`]; the plugin stops the run on η out of range too),
     /// and a ball scene without both bodies' materials.
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
         refuse_for_paper_law(self.name(), setup, CLAMP_REFUSAL)?;
         if setup.scene != SceneKind::RodEnd && materials(setup).is_none() {
-            return Err(CodeError::Unsupported {
-                code: self.name().into(),
-                case: setup.case_name.clone(),
-                reason: "a ball scene needs both bodies' Young's modulus and Poisson's ratio"
-                    .into(),
-            });
+            return Err(setup.unsupported(
+                self.name(),
+                "a ball scene needs both bodies' Young's modulus and Poisson's ratio",
+            ));
         }
         Ok(())
     }
@@ -194,57 +183,31 @@ impl CodeDriver for LammpsPaper {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         self.validate(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
         let mut values = vec![
             ("timestep", exact_number(setup.timestep)),
             ("steps", setup.steps.to_string()),
         ];
-        let text = match setup.other_sphere {
-            Some(o) if setup.scene == SceneKind::BallBall => {
-                let half = 4.0 * (s.radius + o.radius);
+        // The paper's force vanishes at zero overlap: the bodies start touching.
+        let pair = setup
+            .other_sphere
+            .filter(|_| setup.scene == SceneKind::BallBall);
+        values.extend(body_values(setup, pair, 0.0));
+        let template = match pair {
+            Some(_) => {
                 values.extend([
-                    ("box_lo", exact_number(-half)),
-                    ("box_hi", exact_number(half)),
-                    ("x1", exact_number(-s.radius)),
-                    ("x2", exact_number(o.radius)),
-                    ("diameter1", exact_number(2.0 * s.radius)),
-                    ("mass1", exact_number(s.mass)),
-                    ("vx1", exact_number(v1)),
-                    ("diameter2", exact_number(2.0 * o.radius)),
-                    ("mass2", exact_number(o.mass)),
-                    ("vx2", exact_number(v2)),
-                    ("radius_sum", exact_number(s.radius + o.radius)),
                     ("pair_style", "paper".into()),
                     ("pair_coeffs", Self::pair_coeffs(setup)),
                 ]);
-                fill_template(PAIR_TEMPLATE, &values)
+                PAIR_TEMPLATE
             }
-            _ => {
-                values.extend([
-                    ("box_lo", exact_number(-4.0 * s.radius)),
-                    ("box_hi", exact_number(4.0 * s.radius)),
-                    ("box_top", exact_number(8.0 * s.radius)),
-                    ("z0", exact_number(s.radius)),
-                    ("radius", exact_number(s.radius)),
-                    ("diameter", exact_number(2.0 * s.radius)),
-                    ("mass", exact_number(s.mass)),
-                    ("vz", exact_number(-v1)),
-                    ("wall_model", Self::wall_model(setup)),
-                ]);
-                fill_template(WALL_TEMPLATE, &values)
+            None => {
+                values.push(("wall_model", Self::wall_model(setup)));
+                WALL_TEMPLATE
             }
-        }
-        .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: INPUT_FILE.into(),
-            text,
-            args: [
-                "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-            ]
-            .map(String::from)
-            .to_vec(),
-        })
+        };
+        let text = fill_template(template, &values)
+            .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
+        Ok(deck_input(text))
     }
 
     fn parse(
@@ -272,46 +235,10 @@ impl CodeDriver for LammpsPaper {
     /// `x = r2` (heights `r1` and `−r2`: a negation, which rounds nothing), with the masses
     /// the deck sets.
     fn frame(&self, setup: &CodeSetup) -> Option<CodeFrame> {
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let r1 = setup.sphere.radius;
-        let upper = FrameBody {
-            height: r1,
-            velocity: -v1,
-            mass: setup.sphere.mass,
-        };
-        Some(match setup.other_sphere {
-            Some(other) if setup.scene == SceneKind::BallBall => CodeFrame {
-                reach: r1 + other.radius,
-                upper,
-                lower: Some(FrameBody {
-                    height: -other.radius,
-                    velocity: -v2,
-                    mass: other.mass,
-                }),
-            },
-            _ => CodeFrame {
-                reach: r1,
-                upper,
-                lower: None,
-            },
-        })
+        Some(setup.frame_below(setup.sphere.radius, |s| s.mass))
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&LammpsPaperBatch)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&LammpsPaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, LammpsPaperCard);
 
     /// A LAMMPS user's deck, read as LAMMPS 2025 reads it (this build is that binary with the
     /// plugin); a deck that selects the plugin's styles is read with the plugin's rules.
@@ -324,48 +251,15 @@ impl CodeDriver for LammpsPaper {
 
 /// The plugin build's batches: its single inputs in sequence, each loading the plugin (LAMMPS
 /// keeps a loaded plugin's styles across `clear` and ignores the repeated load).
-pub(crate) struct LammpsPaperBatch;
-
-impl BatchRunner for LammpsPaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        let own_file = format!(" file {TRAJECTORY_FILE} ");
-        render_in_sequence(
-            "LAMMPS",
-            "src/codes/lammps/paper.rs",
-            setups,
-            MAX_BATCH,
-            |i, setup| {
-                Ok(LammpsPaper.render(setup)?.text.replacen(
-                    &own_file,
-                    &format!(" file {} ", batch_trajectory_file(i)),
-                    1,
-                ))
-            },
-            &[
-                "-in",
-                crate::codes::lammps::batch::BATCH_INPUT_FILE,
-                "-log",
-                LOG_FILE,
-                "-nocite",
-                "-echo",
-                "none",
-            ],
-        )
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+static PAPER_BATCH: BatchFns = BatchFns::new(
+    MAX_BATCH,
+    |setups| {
+        render_sequence("src/codes/lammps/paper.rs", setups, |setup| {
+            LammpsPaper.render(setup)
+        })
+    },
+    parse_batch,
+);
 
 /// The plugin build's calibration card: the lines that select the paper's law.
 pub(crate) struct LammpsPaperCard;

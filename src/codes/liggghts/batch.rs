@@ -18,9 +18,10 @@
 use std::path::Path;
 
 use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
+use crate::codes::batch_fns::BatchFns;
 use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, loop_line, parse_output, version};
-use crate::codes::parse::ParseError;
-use crate::codes::{BatchError, BatchRunner, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::parse::{ParseError, read_output};
+use crate::codes::{BatchError, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 1 kB to the screen output, which is kept
 /// whole up to [`crate::codes::runner::MAX_LOG_BYTES`].
@@ -88,9 +89,7 @@ pub(crate) fn parse_batch(
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let path = workdir.join(batch_trajectory_file(i));
-            let text = std::fs::read_to_string(&path)
-                .map_err(|source| ParseError::Read { path, source })?;
+            let text = read_output(workdir.join(batch_trajectory_file(i)))?;
             let line = loops.get(i).copied().unwrap_or_default();
             let mut run = parse_output(&text, line)?;
             if let Some(words) = loop_line(line)
@@ -109,78 +108,32 @@ pub(crate) fn parse_batch(
         .collect()
 }
 
-/// Liggghts's batches: many impacts in one process, in sequence.
-pub(crate) struct LiggghtsBatch;
-
-impl BatchRunner for LiggghtsBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+/// The stock build's batches: many impacts in one process, in sequence.
+pub(crate) static LIGGGHTS_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
-    use crate::model::case::Case;
-
-    fn setups(scene: &str) -> Vec<CodeSetup> {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        [0.0, 0.35, 0.9]
-            .into_iter()
-            .map(|eta| {
-                let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-                crate::codes::prepare_with(
-                    CodeName::Liggghts.driver(),
-                    &case,
-                    Some(200),
-                    None,
-                    false,
-                    None,
-                )
-                .unwrap()
-            })
-            .collect()
-    }
+    use crate::codes::batch_fns::check_runs_in_sequence;
+    use crate::codes::setup::shipped_setups;
 
     #[test]
     fn a_batch_is_the_single_inputs_in_sequence_each_writing_its_own_file() {
-        for scene in ["ball_plate", "ball_ball", "rod_end"] {
-            let setups = setups(scene);
-            let batch = render_batch(&setups).unwrap();
-            let runs: Vec<&str> = batch.text.split("clear\n").collect();
-            assert_eq!(runs.len(), setups.len(), "{scene}");
-            for (i, (run, setup)) in runs.iter().zip(&setups).enumerate() {
-                let single = Liggghts.render(setup).unwrap().text;
-                let own = run
-                    .replace(&batch_trajectory_file(i), TRAJECTORY_FILE)
-                    .replace(INITIAL_ROW.1, INITIAL_ROW.0);
-                assert!(own.ends_with(&single), "{scene} {i}: the single input");
-                assert_eq!(run.matches(INITIAL_ROW.1).count(), 1, "{scene} {i}");
-                assert!(!run.contains(TRAJECTORY_FILE), "{scene} {i}: its own file");
-            }
-        }
+        check_runs_in_sequence(CodeName::Liggghts, |scene, i, run, single| {
+            let own = run
+                .replace(&batch_trajectory_file(i), TRAJECTORY_FILE)
+                .replace(INITIAL_ROW.1, INITIAL_ROW.0);
+            assert!(own.ends_with(single), "{scene} {i}: the single input");
+            assert_eq!(run.matches(INITIAL_ROW.1).count(), 1, "{scene} {i}");
+            assert!(!run.contains(TRAJECTORY_FILE), "{scene} {i}: its own file");
+        });
     }
 
     #[test]
     fn each_run_of_a_batch_gets_its_own_loop_time_and_step_count() {
         let dir = tempfile::tempdir().unwrap();
-        let setups = setups("rod_end");
+        let setups = shipped_setups(CodeName::Liggghts, "rod_end");
         for i in 0..setups.len() {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),

@@ -31,7 +31,7 @@ use super::{
 };
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, reduced_mass};
-use crate::solve::dashpot::{CodeFrame, FrameBody};
+use crate::solve::dashpot::CodeFrame;
 
 const TEMPLATE: &str = include_str!("impact.in");
 const INPUT_FILE: &str = "impact.in";
@@ -96,29 +96,9 @@ pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
 /// centre-of-mass frame and the masses as LIGGGHTS computes them, every number as the deck
 /// writes it (exactly).
 pub(crate) fn code_frame(setup: &CodeSetup) -> CodeFrame {
-    let (v1, v2) = setup.centre_of_mass_velocities();
-    let r1 = setup.sphere.radius;
-    let upper = FrameBody {
-        height: r1 + contact_gap(setup),
-        velocity: -v1,
-        mass: code_mass(r1, setup.sphere.density),
-    };
-    match setup.other_sphere {
-        Some(other) if setup.scene == SceneKind::BallBall => CodeFrame {
-            reach: r1 + other.radius,
-            upper,
-            lower: Some(FrameBody {
-                height: -other.radius,
-                velocity: -v2,
-                mass: code_mass(other.radius, other.density),
-            }),
-        },
-        _ => CodeFrame {
-            reach: r1,
-            upper,
-            lower: None,
-        },
-    }
+    setup.frame_below(setup.sphere.radius + contact_gap(setup), |s| {
+        code_mass(s.radius, s.density)
+    })
 }
 
 /// The code's spring constant for `setup`: Hertz `(4/3) E* sqrt(R*)` with its own `E*` for a
@@ -297,9 +277,7 @@ pub(crate) fn parse_run(
     workdir: &Path,
     log: &str,
 ) -> Result<ParsedRun, ParseError> {
-    let path = workdir.join(TRAJECTORY_FILE);
-    let text =
-        std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+    let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
     let parsed = parse_output(&text, log)?;
     if let Some(ran) = loop_steps(log)
         && ran != setup.steps
@@ -438,7 +416,7 @@ impl CodeDriver for Liggghts {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&batch::LiggghtsBatch)
+        Some(&batch::LIGGGHTS_BATCH)
     }
 
     fn law(&self, setup: &CodeSetup) -> CodeLaw {

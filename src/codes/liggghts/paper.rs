@@ -24,12 +24,13 @@ use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
 };
-use crate::codes::batch::BatchError;
+use crate::codes::batch_fns::BatchFns;
+use crate::codes::paper_law::paper_law_methods;
 use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError,
-    ParseError, ParsedRun, RenderedInput,
+    CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
+    ParsedRun, RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -145,21 +146,7 @@ impl CodeDriver for LiggghtsPaper {
         Some(code_frame(setup))
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&LiggghtsPaperBatch)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&LiggghtsPaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, LiggghtsPaperCard);
 
     /// A LIGGGHTS user's deck, read as the stock build's (this build runs the stock models as
     /// Debian's does, and the paper's).
@@ -174,26 +161,11 @@ impl CodeDriver for LiggghtsPaper {
 
 /// The paper build's batches: many impacts in one process, its single inputs in sequence (as
 /// the stock build's), each with its own η.
-pub(crate) struct LiggghtsPaperBatch;
-
-impl BatchRunner for LiggghtsPaperBatch {
-    fn max_batch(&self) -> usize {
-        super::batch::MAX_BATCH
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch_with(&LiggghtsPaper, setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-}
+static PAPER_BATCH: BatchFns = BatchFns::new(
+    super::batch::MAX_BATCH,
+    |setups| render_batch_with(&LiggghtsPaper, setups),
+    parse_batch,
+);
 
 /// The paper build's calibration card: the lines that select the paper's law.
 pub(crate) struct LiggghtsPaperCard;

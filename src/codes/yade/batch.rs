@@ -26,13 +26,12 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::parse::ParseError;
 use crate::codes::parse::log_value;
 use crate::codes::template::exact_number;
 use crate::codes::yade::{Yade, parse_trajectory};
-use crate::codes::{
-    BatchError, BatchRunner, CodeSetup, Executable, Launch, ParsedRun, RenderedInput,
-};
+use crate::codes::{BatchError, CodeSetup, Executable, Launch, ParsedRun, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -215,16 +214,7 @@ pub(crate) fn groups(setups: &[CodeSetup]) -> Vec<Vec<usize>> {
 
 /// The batch script for `setups`, or why they cannot run as one.
 pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > MAX_BATCH {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most: MAX_BATCH,
-            why: "the batch script's size",
-        });
-    }
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
     let mut impacts = String::new();
     for s in setups {
         // The single script's values, as Python literals (the scene's name quoted); `en` for
@@ -368,60 +358,26 @@ pub(crate) fn parse_batch(
     )
 }
 
-/// Yade's batches: many impacts in one process, side by side in groups.
-pub(crate) struct YadeBatch;
-
-impl BatchRunner for YadeBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        render_batch(setups)
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        parse_batch(setups, workdir, log)
-    }
-
-    fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {
-        launch(executable, input)
-    }
-}
+/// YADE's batches: many impacts in one process, side by side in groups.
+pub(crate) static YADE_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch)
+    .costing(IMPACTS_PER_START)
+    .launched_by(launch);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::codes::CodeName;
     use crate::codes::batch::marked_trajectory_file as batch_trajectory_file;
-    use crate::model::case::Case;
-
-    fn setup(scene: &str, eta: f64) -> CodeSetup {
-        let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("cases")
-            .join(format!("{scene}.toml"));
-        let case = Case::load(&path).unwrap().with_loss_coefficient(eta);
-        crate::codes::prepare_with(CodeName::Yade.driver(), &case, Some(200), None, false, None)
-            .unwrap()
-    }
+    use crate::codes::setup::shipped_setup;
 
     #[test]
     fn groups_hold_one_scene_and_step_and_at_most_a_mask_each() {
         let mut setups: Vec<CodeSetup> = (0..65)
-            .map(|i| setup("ball_plate", i as f64 / 100.0))
+            .map(|i| shipped_setup(CodeName::Yade, "ball_plate", i as f64 / 100.0))
             .collect();
-        setups.push(setup("rod_end", 0.3));
-        setups.push(setup("rod_end", 0.4));
-        let mut finer = setup("rod_end", 0.5);
+        setups.push(shipped_setup(CodeName::Yade, "rod_end", 0.3));
+        setups.push(shipped_setup(CodeName::Yade, "rod_end", 0.4));
+        let mut finer = shipped_setup(CodeName::Yade, "rod_end", 0.5);
         finer.timestep /= 2.0;
         setups.push(finer);
         let g = groups(&setups);
@@ -432,7 +388,10 @@ mod tests {
 
     #[test]
     fn the_script_lists_each_impact_with_its_single_scripts_values() {
-        let setups = [setup("ball_ball", 0.1), setup("ball_ball", 0.7)];
+        let setups = [
+            shipped_setup(CodeName::Yade, "ball_ball", 0.1),
+            shipped_setup(CodeName::Yade, "ball_ball", 0.7),
+        ];
         let text = render_batch(&setups).unwrap().text;
         for s in &setups {
             let mut values = Yade.script_values(s).unwrap();
@@ -447,14 +406,19 @@ mod tests {
         }
         assert!(text.contains("GROUPS = [[0, 1]]"));
         // A rod's contact is kn and cn: its `en` is not inverted for a batch.
-        let rod = render_batch(&[setup("rod_end", 0.3)]).unwrap().text;
+        let rod = render_batch(&[shipped_setup(CodeName::Yade, "rod_end", 0.3)])
+            .unwrap()
+            .text;
         assert!(!rod.contains("\"restitution\": "), "{rod}");
     }
 
     #[test]
     fn each_impact_reads_its_own_loop_time() {
         let dir = tempfile::tempdir().unwrap();
-        let setups = [setup("rod_end", 0.1), setup("rod_end", 0.2)];
+        let setups = [
+            shipped_setup(CodeName::Yade, "rod_end", 0.1),
+            shipped_setup(CodeName::Yade, "rod_end", 0.2),
+        ];
         for i in 0..2 {
             std::fs::write(
                 dir.path().join(batch_trajectory_file(i)),
@@ -542,7 +506,11 @@ mod tests {
     fn a_batch_runs_by_the_launcher_s_python_or_else_by_the_launcher() {
         let dir = tempfile::tempdir().unwrap();
         let library = library_in(dir.path());
-        let input = render_batch(&[setup("rod_end", 0.3), setup("rod_end", 0.4)]).unwrap();
+        let input = render_batch(&[
+            shipped_setup(CodeName::Yade, "rod_end", 0.3),
+            shipped_setup(CodeName::Yade, "rod_end", 0.4),
+        ])
+        .unwrap();
         let python = launch(
             Executable::plain(launcher(dir.path(), "#!/usr/bin/python3.11", &library)),
             &input,

@@ -45,10 +45,15 @@ use super::template::{exact_number, fill_template};
 use super::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParsedRun, RenderedInput,
 };
+use crate::codes::damping::{
+    clamped_hertz_law, clamped_linear_law, fit_restitution, hertz_input_or_target,
+    refuse_for_clamped_law, rod_damping_ratio,
+};
+use crate::codes::script_values::{body_values, reported};
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
 use crate::model::trajectory::CodeTrajectory;
-use crate::solve::dashpot::{StepScheme, accurate_metrics};
+use crate::solve::dashpot::StepScheme;
 
 /// The Python template of one impact.
 const TEMPLATE: &str = include_str!("impact.py");
@@ -67,11 +72,6 @@ pub const RIGID_WALL_MODULUS: f64 = 1e30;
 /// The radius `Ig2_Wall_Sphere_ScGeom(hertzian=True)` gives the wall, in sphere radii.
 pub(crate) const HERTZIAN_WALL_RADIUS_FACTOR: f64 = 1e8;
 
-/// How far the COR of [`CodeDriver::law`] may lie from the target before
-/// [`CodeDriver::expected_restitution`] reports it: Thornton's fit is good to a few 1e-4 for
-/// `e ≤ 0.9` and fails towards `e → 1`.
-pub(crate) const RESTITUTION_FIT_TOLERANCE: f64 = 1e-3;
-
 /// The YADE driver.
 pub struct Yade;
 
@@ -80,22 +80,13 @@ fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
     e1 * e2 / ((1.0 - nu1 * nu1) * e2 + (1.0 - nu2 * nu2) * e1)
 }
 
-/// The second body's material `(E, ν)` in the ball scenes: the other ball, the plate, or the
-/// stand-in for a rigid plate.
-fn second_material(setup: &CodeSetup) -> (f64, f64) {
-    match (setup.scene, setup.other_sphere, setup.plate_material) {
-        (SceneKind::BallBall, Some(other), _) => {
-            (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
-        }
-        (_, _, Some(plate)) => plate,
-        _ => (RIGID_WALL_MODULUS, 0.0),
-    }
-}
+/// The stand-in for a rigid plate: a wall of [`RIGID_WALL_MODULUS`], `ν = 0`.
+const RIGID_WALL: (f64, f64) = (RIGID_WALL_MODULUS, 0.0);
 
 /// Effective modulus and radius YADE uses for a ball scene.
 fn hertz_parameters(setup: &CodeSetup) -> (f64, f64) {
     let s = setup.sphere;
-    let (e2, nu2) = second_material(setup);
+    let (e2, nu2) = setup.second_material(RIGID_WALL);
     let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
     let r1 = s.radius;
     let r2 = match (setup.scene, setup.other_sphere) {
@@ -105,77 +96,23 @@ fn hertz_parameters(setup: &CodeSetup) -> (f64, f64) {
     (modulus, pair_radius(r1, r2))
 }
 
-/// The mass the dashpot sees: the reduced mass of two balls, the moving body's at a wall.
-fn dynamic_mass(setup: &CodeSetup) -> f64 {
-    setup.pair_mass()
-}
-
 impl Yade {
-    fn unsupported(&self, setup: &CodeSetup, reason: impl Into<String>) -> CodeError {
-        CodeError::Unsupported {
-            code: self.name().into(),
-            case: setup.case_name.clone(),
-            reason: reason.into(),
-        }
-    }
-
-    fn check(&self, setup: &CodeSetup) -> Result<(), CodeError> {
-        let e = setup.target_restitution;
-        if !(e > 0.0 && e <= 1.0) {
-            return Err(self.unsupported(setup, format!("restitution {e} outside (0, 1]")));
-        }
-        if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-            return Err(self.unsupported(setup, "time step and step count must be positive"));
-        }
-        match setup.scene {
-            SceneKind::BallBall if setup.other_sphere.is_none() => {
-                Err(self.unsupported(setup, "ball_ball needs a second sphere"))
-            }
-            SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(self
-                .unsupported(
-                    setup,
-                    format!(
-                        "ViscElPhys clamps its force, and an underdamped clamped linear dashpot \
-                         cannot rebound with e = {e} < exp(-2)"
-                    ),
-                )),
-            _ => Ok(()),
-        }
-    }
-}
-
-impl Yade {
-    /// The clamped damped law YADE integrates for `setup` (linear for the rod).
+    /// The clamped damped law YADE integrates for `setup` (linear for the rod), with the mass
+    /// of the relative motion ([`CodeSetup::pair_mass`]).
     pub fn dashpot_law(&self, setup: &CodeSetup) -> DashpotLaw {
-        let mass = dynamic_mass(setup);
+        let mass = setup.pair_mass();
         match setup.scene {
             SceneKind::RodEnd => {
-                // Only reachable for a restitution `render` refuses; saturate rather than fail.
-                let zeta = clamped_linear_damping_ratio(setup.target_restitution).unwrap_or(1.0);
-                DashpotLaw {
-                    mass,
-                    stiffness: setup.stiffness,
-                    exponent: 1.0,
-                    damping: 2.0 * zeta * (mass * setup.stiffness).sqrt(),
-                    damping_exponent: 0.0,
-                    clamp_attractive: true,
-                }
+                clamped_linear_law(mass, setup.stiffness, rod_damping_ratio(setup))
             }
             SceneKind::BallPlate | SceneKind::BallBall => {
                 let (modulus, radius) = hertz_parameters(setup);
                 let stiffness = 4.0 / 3.0 * modulus * radius.sqrt();
-                let en = hertz_input_restitution(setup.target_restitution)
-                    .unwrap_or(setup.target_restitution);
-                let beta = thornton_damping_ratio(en);
-                DashpotLaw {
+                clamped_hertz_law(
                     mass,
                     stiffness,
-                    exponent: 1.5,
-                    // β_n times the critical damping of the tangent stiffness 1.5 k y^0.5.
-                    damping: 2.0 * beta * (1.5 * mass * stiffness).sqrt(),
-                    damping_exponent: 0.25,
-                    clamp_attractive: true,
-                }
+                    thornton_damping_ratio(hertz_input_or_target(setup)),
+                )
             }
         }
     }
@@ -183,7 +120,7 @@ impl Yade {
     /// The `en` the script gives `Ip2_FrictMat_FrictMat_MindlinPhys` (Thornton's fit inverted
     /// through the clamped law: some sixty integrations of it, the first time for a target).
     pub(crate) fn input_restitution(setup: &CodeSetup) -> f64 {
-        hertz_input_restitution(setup.target_restitution).unwrap_or(setup.target_restitution)
+        hertz_input_or_target(setup)
     }
 
     /// The values the script template is filled with for `setup` but its `en`
@@ -194,16 +131,7 @@ impl Yade {
         &self,
         setup: &CodeSetup,
     ) -> Result<Vec<(&'static str, String)>, CodeError> {
-        self.check(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let (wall_young, wall_poisson) = match setup.scene {
-            SceneKind::BallBall => (0.0, 0.0),
-            _ => second_material(setup),
-        };
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
+        refuse_for_clamped_law(self.name(), setup, "ViscElPhys")?;
         let (linear_stiffness, linear_damping) = match setup.scene {
             SceneKind::RodEnd => {
                 let law = self.dashpot_law(setup);
@@ -211,31 +139,12 @@ impl Yade {
             }
             _ => (0.0, 0.0),
         };
-        let num = exact_number;
-        Ok(vec![
-            ("scene", setup.scene.name().to_string()),
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("mass", num(s.mass)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
-            ("other_density", num(other.map_or(0.0, |o| o.density))),
-            ("other_young", num(other.map_or(0.0, |o| o.youngs_modulus))),
-            (
-                "other_poisson",
-                num(other.and_then(|o| o.poisson_ratio).unwrap_or(0.0)),
-            ),
-            ("other_velocity", num(v2)),
-            ("wall_young", num(wall_young)),
-            ("wall_poisson", num(wall_poisson)),
-            ("linear_stiffness", num(linear_stiffness)),
-            ("linear_damping", num(linear_damping)),
-        ])
+        let mut values = body_values(setup, RIGID_WALL);
+        values.extend([
+            ("linear_stiffness", exact_number(linear_stiffness)),
+            ("linear_damping", exact_number(linear_damping)),
+        ]);
+        Ok(values)
     }
 }
 
@@ -260,7 +169,7 @@ impl CodeDriver for Yade {
         let mut values = self.script_values(setup)?;
         values.push(("restitution", exact_number(Self::input_restitution(setup))));
         let text = fill_template(TEMPLATE, &values)
-            .map_err(|reason| self.unsupported(setup, reason.to_string()))?;
+            .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
         Ok(RenderedInput {
             file_name: SCRIPT.to_string(),
             text,
@@ -274,19 +183,10 @@ impl CodeDriver for Yade {
         workdir: &Path,
         log: &str,
     ) -> Result<ParsedRun, ParseError> {
-        let path = workdir.join(TRAJECTORY_FILE);
-        let text =
-            std::fs::read_to_string(&path).map_err(|source| ParseError::Read { path, source })?;
+        let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
         Ok(ParsedRun {
             trajectory: parse_trajectory(&text)?,
-            loop_time: log_value(log, "loop_time=")
-                .map(|v| {
-                    v.parse::<f64>().map_err(|_| ParseError::BadValue {
-                        field: "loop_time",
-                        value: v.to_string(),
-                    })
-                })
-                .transpose()?,
+            loop_time: reported(log_value(log, "loop_time="), "loop_time")?,
             version: log_value(log, "version=").map(str::to_string).or_else(|| {
                 log.lines()
                     .find_map(|l| l.trim().strip_prefix("Welcome to Yade "))
@@ -296,7 +196,7 @@ impl CodeDriver for Yade {
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&batch::YadeBatch)
+        Some(&batch::YADE_BATCH)
     }
 
     fn law(&self, setup: &CodeSetup) -> CodeLaw {
@@ -308,15 +208,7 @@ impl CodeDriver for Yade {
     }
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
-        if setup.scene == SceneKind::RodEnd {
-            // The damping is solved for the clamped law: it realises the target.
-            return None;
-        }
-        let law = self.dashpot_law(setup);
-        let cor = accurate_metrics(&law, setup.impact_velocity, 1e-10)
-            .ok()?
-            .cor;
-        ((cor - setup.target_restitution).abs() > RESTITUTION_FIT_TOLERANCE).then_some(cor)
+        fit_restitution(setup, &self.dashpot_law(setup))
     }
 }
 

@@ -30,10 +30,13 @@ use std::path::Path;
 use super::Yade;
 use super::batch::{PREAMBLE, launch};
 use crate::codes::batch::marked_trajectory_file;
+use crate::codes::batch_fns::{BatchFns, check_batch_size};
+use crate::codes::paper_law::paper_law_methods;
+use crate::codes::script_values::{body_values, python_dict, without};
 use crate::codes::template::exact_number;
 use crate::codes::{
-    BatchError, BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, Launch,
-    ParseError, ParsedRun, RenderedInput,
+    BatchError, CalibrationCard, CodeDriver, CodeError, CodeSetup, ParseError, ParsedRun,
+    RenderedInput,
 };
 use crate::codes::{paper_loss_coefficient, refuse_for_paper_law};
 use crate::model::law::{CodeLaw, PaperLaw};
@@ -120,35 +123,25 @@ impl YadePaper {
     /// One impact's values as a Python dict literal (every number exact), or why it cannot run.
     fn impact_literal(&self, setup: &CodeSetup) -> Result<String, CodeError> {
         self.validate(setup)?;
-        let s = setup.sphere;
-        let (v1, v2) = setup.centre_of_mass_velocities();
-        let other = setup
-            .other_sphere
-            .filter(|_| setup.scene == SceneKind::BallBall);
         let law = Self::paper_law(setup);
-        let num = exact_number;
-        let fields = [
-            ("timestep", num(setup.timestep)),
-            ("steps", setup.steps.to_string()),
-            ("radius", num(s.radius)),
-            ("mass", num(s.mass)),
-            ("density", num(s.density)),
-            ("young", num(s.youngs_modulus)),
-            ("poisson", num(s.poisson_ratio.unwrap_or(0.0))),
-            ("velocity", num(v1)),
-            ("other_radius", num(other.map_or(0.0, |o| o.radius))),
-            ("other_mass", num(other.map_or(0.0, |o| o.mass))),
-            ("other_velocity", num(v2)),
-            ("stiffness", num(law.stiffness)),
-            ("exponent", num(law.exponent)),
-            ("loss_coefficient", num(law.loss_coefficient)),
-            ("pair_mass", num(law.mass)),
-        ];
-        let mut text = format!("{{\"scene\": \"{}\"", setup.scene.name());
-        for (key, value) in fields {
-            text += &format!(", \"{key}\": {value}");
-        }
-        Ok(text + "}")
+        // The hook forms the law from C, n, η and the pair's mass, and the plate is its plane.
+        let mut values = without(
+            body_values(setup, super::RIGID_WALL),
+            &[
+                "other_density",
+                "other_young",
+                "other_poisson",
+                "wall_young",
+                "wall_poisson",
+            ],
+        );
+        values.extend([
+            ("stiffness", exact_number(law.stiffness)),
+            ("exponent", exact_number(law.exponent)),
+            ("loss_coefficient", exact_number(law.loss_coefficient)),
+            ("pair_mass", exact_number(law.mass)),
+        ]);
+        Ok(python_dict(&values))
     }
 
     /// The script that runs `setups`, writing impact `i`'s rows to `files[i]`: consecutive
@@ -223,21 +216,7 @@ impl CodeDriver for YadePaper {
         Some(code_frame(setup))
     }
 
-    fn takes_loss_coefficient(&self) -> bool {
-        true
-    }
-
-    fn clamp_refusal(&self) -> Option<&'static str> {
-        Some(CLAMP_REFUSAL)
-    }
-
-    fn batch(&self) -> Option<&dyn BatchRunner> {
-        Some(&YadePaperBatch)
-    }
-
-    fn card(&self) -> Option<&dyn CalibrationCard> {
-        Some(&YadePaperCard)
-    }
+    paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, YadePaperCard);
 
     /// The paper's law, as liggghts-paper integrates it (drawn as one in the figures).
     fn shares_law_with(&self) -> Option<crate::codes::CodeName> {
@@ -246,51 +225,23 @@ impl CodeDriver for YadePaper {
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
-struct YadePaperBatch;
+static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, super::batch::parse_batch)
+    .costing(IMPACTS_PER_START)
+    .launched_by(launch);
 
-impl BatchRunner for YadePaperBatch {
-    fn max_batch(&self) -> usize {
-        MAX_BATCH
-    }
-
-    fn impacts_per_start(&self) -> usize {
-        IMPACTS_PER_START
-    }
-
-    fn render_batch(&self, setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-        if setups.is_empty() {
-            return Err(BatchError::Empty);
-        }
-        if setups.len() > MAX_BATCH {
-            return Err(BatchError::TooMany {
-                count: setups.len(),
-                most: MAX_BATCH,
-                why: "the batch script's size",
-            });
-        }
-        let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
-        let text = YadePaper.script(setups, &files)?;
-        Ok(RenderedInput {
-            file_name: super::batch::BATCH_SCRIPT.into(),
-            text,
-            args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
-                .map(String::from)
-                .to_vec(),
-        })
-    }
-
-    fn parse_batch(
-        &self,
-        setups: &[CodeSetup],
-        workdir: &Path,
-        log: &str,
-    ) -> Vec<Result<ParsedRun, ParseError>> {
-        super::batch::parse_batch(setups, workdir, log)
-    }
-
-    fn launch(&self, executable: Executable, input: &RenderedInput) -> Launch {
-        launch(executable, input)
-    }
+/// The script running `setups`, each writing its own trajectory file, as a batch of YADE's is
+/// run.
+fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
+    check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
+    let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
+    let text = YadePaper.script(setups, &files)?;
+    Ok(RenderedInput {
+        file_name: super::batch::BATCH_SCRIPT.into(),
+        text,
+        args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
+            .map(String::from)
+            .to_vec(),
+    })
 }
 
 /// The paper build's card: the impact's law as the hook is given it, and the engines.
