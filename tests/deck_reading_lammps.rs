@@ -311,3 +311,32 @@ pair_coeff 2 2 hertz 1.3e11 8e8 damping viscoelastic tangential linear_nohistory
         .expect("a spring–dashpot law");
     assert_eq!(law.never_separates(), None);
 }
+
+/// `synchronized_verlet` is a flag and `heat area K` a model with one coefficient, as LAMMPS
+/// reads them: a line that ends in either reads, with its contact model whole, and a line cut
+/// short after `heat` ends the model at the line's end rather than past it.
+#[test]
+fn the_heat_model_and_synchronized_verlet_are_read_as_lammps_reads_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let normal = "pair_coeff * * hertz/material 6.3e10 0.7 0.22 damping tsuji tangential linear_nohistory 0 0";
+    for tail in [
+        "synchronized_verlet",
+        "heat area 5.0 synchronized_verlet",
+        "synchronized_verlet heat none",
+        "heat radius 2.0",
+    ] {
+        let path = dir.path().join("in.sync");
+        std::fs::write(&path, two_types(&format!("{normal} {tail}\n"))).unwrap();
+        let deck = read_with(CodeName::Lammps2025, &path);
+        assert_eq!(deck.contacts.len(), 3, "{tail}");
+        assert!(
+            deck.transplant.common.iter().any(|l| l.ends_with(tail)),
+            "{tail}: {:?}",
+            deck.transplant.common
+        );
+    }
+    let path = dir.path().join("in.cut");
+    std::fs::write(&path, two_types(&format!("{normal} heat\n"))).unwrap();
+    hide_codes();
+    let _ = read_deck(&path, Some(CodeName::Lammps2025), &DeckOptions::default());
+}

@@ -20,6 +20,7 @@
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
+use super::granular::read_model;
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
@@ -38,104 +39,6 @@ use crate::solve::dashpot::accurate_metrics;
 
 /// The deck reader of one LAMMPS build, with the driver that probes it.
 pub(crate) struct LammpsDeck(pub &'static Build, pub &'static dyn CodeDriver);
-
-const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
-const DAMPING: &str = "damping velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution (a build from 2023 on)";
-
-/// Read a granular model from `words[start..]`, up to the first word of `stop` (a wall style).
-fn read_model(
-    c: &Command,
-    start: usize,
-    stop: &[&str],
-) -> Result<(GranularModel, usize), DeckError> {
-    let normal = c.word(start, "a normal model")?.to_string();
-    let n = match normal.as_str() {
-        "hooke" | "hertz" => 2,
-        "hertz/material" => 3,
-        other => {
-            return Err(DeckError::unsupported(
-                &c.at,
-                format!("normal model `{other}`"),
-                NORMAL,
-            ));
-        }
-    };
-    let values = (start + 1..start + 1 + n)
-        .map(|k| c.number(k, &normal))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut model = GranularModel {
-        normal,
-        values,
-        damping: "viscoelastic".into(),
-        limit_damping: false,
-        tangential: String::new(),
-        rolling: String::new(),
-        twisting: String::new(),
-        words: Vec::new(),
-    };
-    let mut k = start + 1 + n;
-    while let Some(word) = c.words.get(k) {
-        if stop.contains(&word.as_str()) {
-            break;
-        }
-        match word.as_str() {
-            "damping" => {
-                model.damping = c.word(k + 1, "a damping model")?.to_string();
-                k += 2;
-            }
-            "limit_damping" => {
-                model.limit_damping = true;
-                k += 1;
-            }
-            "tangential" | "rolling" | "twisting" => {
-                let style = c.word(k + 1, word)?.to_string();
-                let args = match (word.as_str(), style.as_str()) {
-                    ("tangential", "linear_nohistory") => 2,
-                    ("tangential", _) => 3,
-                    ("rolling", "sds") => 3,
-                    ("twisting", "marshall") => 0,
-                    ("twisting", "sds") => 3,
-                    _ => 0,
-                };
-                let named = if style == "none" {
-                    String::new()
-                } else {
-                    style.clone()
-                };
-                match word.as_str() {
-                    "tangential" => model.tangential = named,
-                    "rolling" => model.rolling = named,
-                    _ => model.twisting = named,
-                }
-                k += 2 + args;
-            }
-            "heat" | "synchronized_verlet" => k += 2,
-            other => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    format!("`{other}` in a granular model"),
-                    &format!("{NORMAL}; {DAMPING}; tangential, rolling, twisting; limit_damping"),
-                ));
-            }
-        }
-    }
-    let known = [
-        "velocity",
-        "mass_velocity",
-        "viscoelastic",
-        "tsuji",
-        "coeff_restitution",
-    ];
-    if !known.contains(&model.damping.as_str()) {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("damping {}", model.damping),
-            DAMPING,
-        ));
-    }
-    model.words = c.words[start..k].to_vec();
-    Ok((model, k))
-}
 
 /// A deck's wall as the impact meets it: the plane `zplane 0 NULL`, with no material of its
 /// own (the granular model or the plugin's coefficients carry the wall's).

@@ -33,6 +33,7 @@ pub(crate) mod builds;
 pub(crate) mod card;
 pub(crate) mod conventions;
 pub(crate) mod deck;
+pub(crate) mod granular;
 pub(crate) mod mixing;
 pub mod paper;
 pub mod probe;

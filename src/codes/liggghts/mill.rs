@@ -13,7 +13,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use super::deck::{LiggghtsDeck, read_model, read_settings, read_wall};
+use super::deck::LiggghtsDeck;
+use super::gran::{read_model, read_settings, read_wall};
 use crate::codes::CodeName;
 use crate::codes::deck::{DeckError, DeckOptions, DeckReader, SourceLine};
 use crate::codes::script::{Command, ScriptReader};
@@ -455,7 +456,7 @@ impl MillDeck {
     /// or where the lines disagree (`before`: the law of the lines above).
     fn law_of(
         c: &Command,
-        model: &super::deck::GranModel,
+        model: &super::gran::GranModel,
         before: Option<MillLaw>,
     ) -> Result<MillLaw, DeckError> {
         let law = match model.normal.as_str() {

@@ -14,6 +14,7 @@
 pub(crate) mod batch;
 pub(crate) mod card;
 pub(crate) mod deck;
+pub(crate) mod gran;
 pub mod mill;
 pub mod paper;
 
