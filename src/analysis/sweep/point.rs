@@ -120,7 +120,7 @@ pub(crate) fn solve_points(
 }
 
 /// The rows of method points, in their order, each handed to `emit`: the same rows
-/// [`single_point`] gives each, solved as [`solve_points`] solves them (a row's wall time may
+/// [`single_point`] gives each, solved as `solve_points` solves them (a row's wall time may
 /// be a batch's share). One row is filled point after point, its storage reused. After `stop`
 /// is raised the points left are not run. An error of `emit` ends it and is returned.
 pub fn method_rows(
