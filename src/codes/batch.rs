@@ -134,6 +134,25 @@ pub fn run_batch_with(
     })
 }
 
+/// Refuses a batch of no impacts, or of more than `most`, which `why` limits.
+pub(crate) fn check_batch_size(
+    setups: &[CodeSetup],
+    most: usize,
+    why: &'static str,
+) -> Result<(), BatchError> {
+    if setups.is_empty() {
+        return Err(BatchError::Empty);
+    }
+    if setups.len() > most {
+        return Err(BatchError::TooMany {
+            count: setups.len(),
+            most,
+            why,
+        });
+    }
+    Ok(())
+}
+
 /// A batch input made of single inputs in sequence, as LIGGGHTS and LAMMPS run them: each but
 /// the last followed by `clear` (which deletes every atom, fix and setting and restores the
 /// defaults, as a fresh start would), so that every impact steps through its single run's input
@@ -147,16 +166,7 @@ pub(crate) fn render_in_sequence(
     mut single: impl FnMut(usize, &CodeSetup) -> Result<String, BatchError>,
     args: &[&str],
 ) -> Result<RenderedInput, BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > most {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most,
-            why: "the screen output kept whole",
-        });
-    }
+    check_batch_size(setups, most, "the screen output kept whole")?;
     let mut decks = Vec::with_capacity(setups.len());
     for (i, setup) in setups.iter().enumerate() {
         let mut deck = single(i, setup)?;

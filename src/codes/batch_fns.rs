@@ -5,6 +5,7 @@
 use std::path::Path;
 
 use super::batch::BatchError;
+pub(crate) use super::batch::check_batch_size;
 use super::{BatchRunner, CodeSetup, Executable, Launch, ParseError, ParsedRun, RenderedInput};
 
 /// Renders one input for the independent impacts of its setups, or says why they cannot run
@@ -96,25 +97,6 @@ impl BatchRunner for BatchFns {
             },
         }
     }
-}
-
-/// Refuses a batch of no impacts, or of more than `most`, which `why` limits.
-pub(crate) fn check_batch_size(
-    setups: &[CodeSetup],
-    most: usize,
-    why: &'static str,
-) -> Result<(), BatchError> {
-    if setups.is_empty() {
-        return Err(BatchError::Empty);
-    }
-    if setups.len() > most {
-        return Err(BatchError::TooMany {
-            count: setups.len(),
-            most,
-            why,
-        });
-    }
-    Ok(())
 }
 
 /// Checks `code`'s batch of [`shipped_setups`](super::setup::shipped_setups) in every scene
