@@ -159,11 +159,15 @@ pub const MIN_STEPS_PER_CONTACT: u32 = 20;
 /// Most undamped periods a bilateral run follows (each costs ~1000 steps).
 pub const MAX_PERIODS: f64 = 1000.0;
 
-fn parse_periods(text: &str) -> Result<f64, String> {
-    let periods: f64 = text
-        .trim()
+/// `text` as a number, or why not (`what`: a number, or a number of seconds).
+fn number(text: &str, what: &str) -> Result<f64, String> {
+    text.trim()
         .parse()
-        .map_err(|_| format!("`{text}` is not a number"))?;
+        .map_err(|_| format!("`{text}` is not {what}"))
+}
+
+fn parse_periods(text: &str) -> Result<f64, String> {
+    let periods = number(text, "a number")?;
     if periods.is_finite() && periods > 0.0 && periods <= MAX_PERIODS {
         Ok(periods)
     } else {
@@ -172,10 +176,7 @@ fn parse_periods(text: &str) -> Result<f64, String> {
 }
 
 fn parse_rtol(text: &str) -> Result<f64, String> {
-    let rtol: f64 = text
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{text}` is not a number"))?;
+    let rtol = number(text, "a number")?;
     let min = millimpact::analysis::run::MIN_RTOL;
     if (min..1.0).contains(&rtol) {
         Ok(rtol)
@@ -188,10 +189,7 @@ fn parse_rtol(text: &str) -> Result<f64, String> {
 
 /// A COR tolerance: a number the choice of a method can meet.
 fn parse_tolerance(text: &str) -> Result<f64, String> {
-    let tolerance: f64 = text
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{text}` is not a number"))?;
+    let tolerance = number(text, "a number")?;
     millimpact::analysis::precision::choice::choose(tolerance)
         .map(|_| tolerance)
         .map_err(|e| format!("must be {e}"))
@@ -202,10 +200,7 @@ pub const MAX_TIMEOUT: f64 = 86_400.0;
 
 /// A time limit in seconds: finite, above zero, at most [`MAX_TIMEOUT`].
 fn parse_timeout(text: &str) -> Result<f64, String> {
-    let seconds: f64 = text
-        .trim()
-        .parse()
-        .map_err(|_| format!("`{text}` is not a number of seconds"))?;
+    let seconds = number(text, "a number of seconds")?;
     if seconds.is_finite() && seconds > 0.0 && seconds <= MAX_TIMEOUT {
         Ok(seconds)
     } else {

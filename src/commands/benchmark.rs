@@ -33,12 +33,7 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
             )
             .into());
         }
-        let reference = super::shipped_folder(
-            args.reference.as_deref(),
-            "--reference",
-            "reference",
-            &mut warnings,
-        )?;
+        let reference = super::reference_folder(args.reference.as_deref(), false, &mut warnings)?;
         CodeRuns::Stored(reference.join(STORED_FOLDER))
     };
     let options = BenchmarkOptions {
@@ -67,7 +62,7 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
         let mut files = Vec::new();
         for figure in figures {
             for (extension, text) in [("svg", figure.svg), ("csv", figure.csv)] {
-                let path = folder.join(format!("{}.{extension}", figure.stem));
+                let path = folder.join(format!("{}.{extension}", figure.id));
                 super::check_output("--chart", Some(&path), &[])?;
                 files.push((path, text));
             }

@@ -9,18 +9,9 @@ use super::render;
 use crate::cli::CompareArgs;
 use millimpact::analysis::compare::{CompareOptions, compare as compare_cases};
 use millimpact::error::CheckFailed;
-use millimpact::model::case::Case;
-use millimpact::model::shipped::canonical_cases;
 
 pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
-    let cases = if args.cases.is_empty() {
-        canonical_cases()?
-    } else {
-        args.cases
-            .iter()
-            .map(|p| Case::load(p))
-            .collect::<Result<Vec<_>, _>>()?
-    };
+    let cases = super::cases_or_canonical(&args.cases)?;
     let mut warnings = Vec::new();
     let options = CompareOptions {
         live: args.live,

@@ -228,6 +228,16 @@ fn reference_folder(
     shipped_folder(given, "--reference", "reference", warnings)
 }
 
+/// The cases at `paths`, or the canonical ones (as shipped in cases/ and built in) when none
+/// is given.
+fn cases_or_canonical(paths: &[PathBuf]) -> Result<Vec<millimpact::model::case::Case>> {
+    if paths.is_empty() {
+        return Ok(millimpact::model::shipped::canonical_cases()?);
+    }
+    let load = |p: &PathBuf| millimpact::model::case::Case::load(p);
+    Ok(paths.iter().map(load).collect::<Result<_, _>>()?)
+}
+
 /// Run one parsed command.
 pub fn dispatch(command: &Command) -> Result<CommandOutput> {
     match command {

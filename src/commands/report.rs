@@ -15,8 +15,6 @@ use millimpact::analysis::report::{
 };
 use millimpact::codes::liggghts::mill::MillDeck;
 use millimpact::error::{CheckFailed, UserError};
-use millimpact::model::case::Case;
-use millimpact::model::shipped::canonical_cases;
 use millimpact::output::files::{REPORT_MARKER, check_report_dir, replace_dir};
 use millimpact::output::report_page::render_pages;
 
@@ -44,14 +42,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     // Before any work: a folder that holds someone else's files is refused, never written.
     check_report_dir("--out", &args.out)
         .map_err(|e| UserError::argument(e.option, e.path.display(), e.reason))?;
-    let cases = if args.cases.is_empty() {
-        canonical_cases()?
-    } else {
-        args.cases
-            .iter()
-            .map(|p| Case::load(p))
-            .collect::<Result<Vec<_>, _>>()?
-    };
+    let cases = super::cases_or_canonical(&args.cases)?;
     // The decks are read before any work too: one that cannot be checked runs nothing.
     let given = super::deck::Given {
         particles: &args.deck_particle,

@@ -11,12 +11,7 @@ use millimpact::error::CheckFailed;
 pub(super) fn verify(args: &VerifyArgs) -> Result<CommandOutput> {
     let mut warnings = Vec::new();
     let cases = super::shipped_folder(args.cases.as_deref(), "--cases", "cases", &mut warnings)?;
-    let reference = super::shipped_folder(
-        args.reference.as_deref(),
-        "--reference",
-        "reference",
-        &mut warnings,
-    )?;
+    let reference = super::reference_folder(args.reference.as_deref(), false, &mut warnings)?;
     let report = verify_all(&cases, &reference)?;
     let failed = report.failed();
     Ok(CommandOutput {

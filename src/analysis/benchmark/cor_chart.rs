@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use super::{BenchmarkError, BenchmarkReport, CHUNG_OOI, Quantity};
+use crate::analysis::report::ReportFigure;
 use crate::codes::damping::thornton_damping_ratio;
 use crate::codes::lammps::tsuji_alpha;
 use crate::model::law::DashpotLaw;
@@ -123,21 +124,6 @@ pub(crate) struct CorChart {
     pub points: Vec<CorPoint>,
 }
 
-/// A figure of the chart: its file stem, title and caption, the SVG and the CSV of its points.
-#[derive(Clone, Debug)]
-pub(crate) struct ChartFigure {
-    /// File stem (`<stem>.svg`, `<stem>.csv`).
-    pub stem: String,
-    /// Its title.
-    pub title: String,
-    /// What it shows.
-    pub caption: String,
-    /// The figure.
-    pub svg: String,
-    /// Its points.
-    pub csv: String,
-}
-
 /// Series whose every point lies within this of another's are drawn as one, named after all
 /// of them: far below what the figure resolves, and far above rounding.
 const SAME_CURVE: f64 = 1e-9;
@@ -221,8 +207,25 @@ impl CorChart {
             .collect()
     }
 
-    /// The figures: one per test-3 material (the runs), and one of the typed laws.
-    pub(crate) fn figures(&self) -> Result<Vec<ChartFigure>, OutputError> {
+    /// The figures: one per test-3 material (the runs), and one of the typed laws; each
+    /// `id` is the file stem of its `.svg` and `.csv`.
+    pub(crate) fn figures(&self) -> Result<Vec<ReportFigure>, OutputError> {
+        let figure = |id: String, chart: Chart, caption: String, material| {
+            let points: Vec<&CorPoint> = self
+                .points
+                .iter()
+                // A run's points have a material, a typed law's none.
+                .filter(|p| p.material == material)
+                .collect();
+            Ok::<_, OutputError>(ReportFigure {
+                id,
+                title: chart.title.clone(),
+                caption,
+                svg: chart_svg(&chart, 960, 520)?,
+                csv: csv_string(&points)?,
+                command: "millimpact benchmark chung-ooi --chart DIR".into(),
+            })
+        };
         let mut figures = Vec::new();
         for impact in CHUNG_OOI.iter().filter(|i| i.test == 3) {
             let chart = Chart {
@@ -234,18 +237,12 @@ impl CorChart {
                 y_label: "COR realised − COR set".into(),
                 series: merge_coinciding(self.series(Curve::Run, Some(impact.material))),
             };
-            let points: Vec<&CorPoint> = self
-                .points
-                .iter()
-                .filter(|p| p.curve == Curve::Run && p.material == Some(impact.material))
-                .collect();
-            figures.push(ChartFigure {
-                stem: format!("cor-chart-{}", impact.case),
-                title: chart.title.clone(),
-                caption: format!("Chung & Ooi's test 3, {}: the COR each source realises minus the COR set, at each COR set. The paper's law (η = (1 − e²)/(1 + e²)) exactly, by rk4-event and in liggghts-paper; each other code as its driver sets it up, from its stored run at 1,000 steps per contact: what is left is each code's step.", impact.material),
-                svg: chart_svg(&chart, 960, 520)?,
-                csv: csv_string(&points)?,
-            });
+            figures.push(figure(
+                format!("cor-chart-{}", impact.case),
+                chart,
+                format!("Chung & Ooi's test 3, {}: the COR each source realises minus the COR set, at each COR set. The paper's law (η = (1 − e²)/(1 + e²)) exactly, by rk4-event and in liggghts-paper; each other code as its driver sets it up, from its stored run at 1,000 steps per contact: what is left is each code's step.", impact.material),
+                Some(impact.material),
+            )?);
         }
         let chart = Chart {
             title: "The COR set typed into each code's law: COR realised − COR set".into(),
@@ -253,18 +250,12 @@ impl CorChart {
             y_label: "COR realised − COR typed".into(),
             series: self.series(Curve::Typed, None),
         };
-        let points: Vec<&CorPoint> = self
-            .points
-            .iter()
-            .filter(|p| p.curve == Curve::Typed)
-            .collect();
-        figures.push(ChartFigure {
-            stem: "cor-chart-typed".into(),
-            title: chart.title.clone(),
-            caption: "The COR each code's law realises when the COR is typed into it directly, minus the COR typed (exact, integrated to 1e-12; the COR of these laws depends on neither material nor speed): Thornton's fit (YADE, Kratos), tsuji's fit without its √2 (LAMMPS), the clamp of limitForce / limit_damping, and unclamped damped Hertz, which realises what is typed.".into(),
-            svg: chart_svg(&chart, 960, 520)?,
-            csv: csv_string(&points)?,
-        });
+        figures.push(figure(
+            "cor-chart-typed".into(),
+            chart,
+            "The COR each code's law realises when the COR is typed into it directly, minus the COR typed (exact, integrated to 1e-12; the COR of these laws depends on neither material nor speed): Thornton's fit (YADE, Kratos), tsuji's fit without its √2 (LAMMPS), the clamp of limitForce / limit_damping, and unclamped damped Hertz, which realises what is typed.".into(),
+            None,
+        )?);
         Ok(figures)
     }
 }

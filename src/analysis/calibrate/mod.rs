@@ -4,18 +4,17 @@
 //! offset below a tolerance, and the traps the card avoids.
 
 use serde::Serialize;
-use thiserror::Error;
 
 use super::compare::phase::Range;
-use crate::codes::{self, CodeName, SetupError, setup::elastic_contact_time};
+use super::store::{CodeLawError, own_law_exact, prepare};
+use crate::codes::{CodeName, setup::elastic_contact_time};
 use crate::model::case::Case;
 use crate::model::exact;
 use crate::model::law::CodeLaw;
 use crate::model::trajectory::trajectory_metrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, joules, sci, signed};
-use crate::solve::SolveError;
-use crate::solve::dashpot::{CodeStepping, own_law_metrics};
+use crate::solve::dashpot::CodeStepping;
 
 /// Start phases sampled when a card predicts a stepped COR.
 pub(crate) const CARD_PHASES: usize = 16;
@@ -120,33 +119,9 @@ fn band(law: &CodeLaw, v0: f64, dt: f64, steps: u64, stepping: &CodeStepping) ->
     }
 }
 
-/// Why a code's calibration card could not be made; each variant names the code.
-#[derive(Debug, Error)]
-pub enum CalibrateError {
-    /// The code's run could not be sized from its own law.
-    #[error("{code}: sizing the run from the code's law")]
-    Setup {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SetupError,
-    },
-    /// The code's own law could not be integrated at zero step error.
-    #[error("{code}: its own law at zero step error")]
-    OwnLaw {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SolveError,
-    },
-}
-
-/// A card that could not be made is the code's or the solver's failure, not the input's.
-impl crate::error::Blame for CalibrateError {
-    fn is_user_error(&self) -> bool {
-        false
-    }
-}
+/// Why a code's calibration card could not be made: the run could not be sized, or the code's
+/// own law not integrated; it names the code.
+pub type CalibrateError = CodeLawError;
 
 /// The card of `code` for `case` (already at the COR's η).
 pub fn card(
@@ -158,8 +133,7 @@ pub fn card(
     let driver = code.driver();
     let target = case.restitution();
     let v0 = case.impact_velocity;
-    let setup = codes::prepare(driver, case, None, timestep, false)
-        .map_err(|source| CalibrateError::Setup { code, source })?;
+    let setup = prepare(code, case, None, timestep, false)?;
     let law = driver.law(&setup);
     let stepping = driver.stepping(&setup);
     let (settings, unsupported) = match driver.render(&setup) {
@@ -178,8 +152,7 @@ pub fn card(
         }
         Err(e) => (Vec::new(), Some(e.to_string())),
     };
-    let exact = own_law_metrics(&law, v0, 1e-12)
-        .map_err(|source| CalibrateError::OwnLaw { code, source })?;
+    let exact = own_law_exact(code, &law, v0, 1e-12)?;
     // A step too small to count in u64 cannot be run either: saturate, the run refuses it.
     let steps_for = |dt: f64| {
         crate::model::count::ceil_count(1.05 * exact.contact_time / dt)

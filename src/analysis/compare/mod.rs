@@ -10,16 +10,17 @@ use std::time::Duration;
 use serde::Serialize;
 use thiserror::Error;
 
-use super::store::{self, Attribution, ReferenceOptions, ReferenceRecord, StoreError};
+use super::store::{
+    self, Attribution, CodeLawError, ReferenceOptions, ReferenceRecord, StoreError, own_law_exact,
+};
 use crate::codes::{CodeName, setup_for_case};
 use crate::error::{Blame, Chain};
 use crate::model::case::Case;
-use crate::model::exact::{self, ImpactFigures};
+use crate::model::exact;
 use crate::model::figures::{Elastic, Figures, Measured, Quantity, quantity};
-use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics};
+use crate::model::trajectory::TrajectoryMetrics;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
-use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Method, SolveError};
 use phase::{DEFAULT_PHASES, OFFSET_QUANTITIES, Offsets, PhaseBand};
@@ -93,12 +94,6 @@ pub struct SourceRow {
     /// contact's.
     #[serde(flatten, serialize_with = "crate::model::figures::suffix::vs_elastic")]
     pub vs_elastic: Elastic,
-}
-
-/// The paper's law's exact figures in the form a trajectory's are read
-/// (`ImpactFigures::metrics`).
-pub(crate) fn paper_metrics(p: &ImpactFigures) -> TrajectoryMetrics {
-    p.metrics()
 }
 
 /// A code's attribution for one case.
@@ -202,22 +197,9 @@ impl From<&ModelPoint> for ModelPointRecord {
 /// Why a comparison could not be made; each variant names the code or the case.
 #[derive(Debug, Error)]
 pub enum CompareError {
-    /// A code's own law could not be integrated at zero step error.
-    #[error("{code}: its own law at zero step error")]
-    OwnLaw {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SolveError,
-    },
-    /// A code's own law, stepped as the code steps, gives no impact figures.
-    #[error("{code}: own law stepped")]
-    SteppedLaw {
-        /// The code.
-        code: CodeName,
-        /// What is wrong with the trajectory.
-        source: TrajectoryError,
-    },
+    /// A code's own law could not be integrated, exactly or stepped as the code steps.
+    #[error(transparent)]
+    Law(#[from] CodeLawError),
     /// The paper's law could not be integrated by the paper's method.
     #[error("{}: rk4 (the paper's method)", case.display())]
     PaperMethod {
@@ -250,12 +232,11 @@ pub(crate) fn model_by_restitution(
     for &e in restitutions {
         let at = case.with_loss_coefficient(exact::loss_coefficient(e));
         let paper = exact::paper_impact(&at.law(), at.impact_velocity);
-        let p = paper_metrics(&paper);
+        let p = paper.metrics();
         let setup = setup_for_case(&at, 1.0);
         for &code in CodeName::ALL {
             let law = code.driver().law(&setup);
-            let m = own_law_metrics(&law, at.impact_velocity, 1e-12)
-                .map_err(|source| CompareError::OwnLaw { code, source })?;
+            let m = own_law_exact(code, &law, at.impact_velocity, 1e-12)?;
             points.push(ModelPoint {
                 case: case.name.clone(),
                 code,
@@ -299,11 +280,10 @@ pub(crate) fn code_attribution(
     r: &ReferenceRecord,
 ) -> Result<(CodeAttribution, TrajectoryMetrics, TrajectoryMetrics), CompareError> {
     let code = r.code;
-    let own_exact = own_law_metrics(&r.law, r.setup.impact_velocity, 1e-13)
-        .map_err(|source| CompareError::OwnLaw { code, source })?;
-    let stepped = |source| CompareError::SteppedLaw { code, source };
+    let own_exact = own_law_exact(code, &r.law, r.setup.impact_velocity, 1e-13)?;
+    let stepped = |source| CodeLawError::SteppedLaw { code, source };
     let own_stepped = phase::stepped_at_phase(r, 0.0).map_err(stepped)?;
-    let paper = paper_metrics(&r.paper_exact);
+    let paper = r.paper_exact.metrics();
     let band = phase::start_phase_band(r, &own_exact, DEFAULT_PHASES).map_err(stepped)?;
     Ok((
         CodeAttribution {
@@ -332,7 +312,7 @@ pub(crate) fn compare_case(
     let exact = exact::paper_impact(&law, v0);
     let contact = case.scene.elastic_contact(v0);
     let base = Baseline {
-        paper: paper_metrics(&exact),
+        paper: exact.metrics(),
         elastic: Figures {
             peak_deformation: contact.peak_deformation,
             contact_time: contact.contact_time,
@@ -352,7 +332,7 @@ pub(crate) fn compare_case(
     })?;
     rows.push(base.row(
         CompareSource::PaperRk4,
-        paper_metrics(&rk4.figures),
+        rk4.figures.metrics(),
         Some(rk4.wall_time),
     ));
     let mut attribution = Vec::new();

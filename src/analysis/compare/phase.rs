@@ -5,7 +5,6 @@
 
 use serde::Serialize;
 
-use super::paper_metrics;
 use crate::analysis::store::ReferenceRecord;
 use crate::model::exact::ImpactFigures;
 use crate::model::figures::{Figures, quantity};
@@ -65,7 +64,7 @@ impl Offsets {
         b: &TrajectoryMetrics,
         paper: &ImpactFigures,
     ) -> Offsets {
-        let paper = paper_metrics(paper);
+        let paper = paper.metrics();
         Offsets::from_fn(|q| (a.get(q) - b.get(q)) / paper.get(q))
     }
 }

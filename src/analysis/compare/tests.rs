@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use crate::analysis::compare::phase::{self, DEFAULT_PHASES, start_phase_band};
-use crate::analysis::compare::{RESTITUTIONS, model_by_restitution, paper_metrics};
+use crate::analysis::compare::{RESTITUTIONS, model_by_restitution};
 use crate::analysis::store;
 use crate::codes::CodeName;
 use crate::model::case::Case;
@@ -76,7 +76,7 @@ fn the_paper_law_read_as_a_trajectory_gives_the_closed_forms() {
             ],
         );
         // The closed forms the comparison uses for the paper's law agree with the integration.
-        let p = paper_metrics(&e);
+        let p = e.metrics();
         assert!(
             rel(p.force_contact_time, m.force_contact_time) < tol,
             "{name}"

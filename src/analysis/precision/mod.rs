@@ -29,16 +29,15 @@ use thiserror::Error;
 
 use super::run::relative_errors;
 use super::source::Source;
+use super::store::{CodeLawError, code_metrics, own_law_exact};
 use crate::codes::{self, CodeError, CodeName, RunOptions, SetupError};
 use crate::model::case::Case;
 use crate::model::count::{ceil_count, round_count};
 use crate::model::exact;
 use crate::model::figures::{Checked, suffix};
 use crate::model::law::PaperLaw;
-use crate::model::trajectory::{TrajectoryError, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, seconds};
-use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Knob, Method, SolveError, Stats};
 
@@ -309,25 +308,12 @@ pub enum PrecisionError {
         /// Why.
         source: SetupError,
     },
-    /// A code's own law could not be integrated at zero step error.
-    #[error("{code}: its own law at zero step error")]
-    OwnLaw {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SolveError,
-    },
+    /// The code's own law could not be integrated, or its trajectory gives no figures.
+    #[error(transparent)]
+    Law(#[from] CodeLawError),
     /// The code failed to run, or its output could not be read.
     #[error(transparent)]
     Code(#[from] CodeError),
-    /// The code's trajectory gives no impact figures.
-    #[error("{code}")]
-    Trajectory {
-        /// The code.
-        code: CodeName,
-        /// What is wrong with the trajectory.
-        source: TrajectoryError,
-    },
 }
 
 /// A study that could not be made is a method's, a code's or its set-up's failure.
@@ -401,40 +387,35 @@ pub(crate) fn method_sweep(
         contact: case.contact,
         ..Settings::default()
     };
-    match method.descriptor().knob {
-        Knob::Rtol => rtol_sweep()
-            .into_iter()
-            .map(|rtol| {
-                let s = Settings { rtol, ..base };
-                method_point(
-                    &law,
-                    case.impact_velocity,
-                    &s,
-                    SweepKnob::Rtol,
-                    rtol,
-                    repeats,
-                )
-            })
-            .collect(),
-        Knob::None => Err(PrecisionError::NoKnob { method }),
-        Knob::StepsPerPeriod => steps_per_period_sweep()
-            .into_iter()
-            .map(|n| {
-                let s = Settings {
-                    steps_per_period: n,
-                    ..base
-                };
-                method_point(
-                    &law,
-                    case.impact_velocity,
-                    &s,
-                    SweepKnob::StepsPerPeriod,
-                    n as f64,
-                    repeats,
-                )
-            })
-            .collect(),
-    }
+    let (knob, settings): (SweepKnob, Vec<(f64, Settings)>) = match method.descriptor().knob {
+        Knob::Rtol => (
+            SweepKnob::Rtol,
+            rtol_sweep()
+                .into_iter()
+                .map(|rtol| (rtol, Settings { rtol, ..base }))
+                .collect(),
+        ),
+        Knob::StepsPerPeriod => (
+            SweepKnob::StepsPerPeriod,
+            steps_per_period_sweep()
+                .into_iter()
+                .map(|n| {
+                    (
+                        f64::from(n),
+                        Settings {
+                            steps_per_period: n,
+                            ..base
+                        },
+                    )
+                })
+                .collect(),
+        ),
+        Knob::None => return Err(PrecisionError::NoKnob { method }),
+    };
+    settings
+        .iter()
+        .map(|(value, s)| method_point(&law, case.impact_velocity, s, knob, *value, repeats))
+        .collect()
 }
 
 /// The sweep of one DEM code on `case` over `steps_per_contact`, `repeats` timed runs per point
@@ -459,8 +440,7 @@ pub(crate) fn code_sweep(
                 source,
             }
         })?;
-        let reference = own_law_metrics(&driver.law(&setup), setup.impact_velocity, 1e-13)
-            .map_err(|source| PrecisionError::OwnLaw { code, source })?;
+        let reference = own_law_exact(code, &driver.law(&setup), setup.impact_velocity, 1e-13)?;
         if !warmed {
             // The first start of a code pays for loading its libraries from disk.
             codes::run_code(driver, &setup, &options)?;
@@ -478,8 +458,7 @@ pub(crate) fn code_sweep(
             last = Some(run);
         }
         let run = last.expect("at least one run");
-        let metrics = trajectory_metrics(&run.trajectory)
-            .map_err(|source| PrecisionError::Trajectory { code, source })?;
+        let metrics = code_metrics(code, &run.trajectory)?;
         let error = absolute_errors(&metrics.select(), &reference.select());
         points.push(WorkPrecisionPoint {
             source: Source::Code(code),

@@ -20,8 +20,8 @@ use super::compare::{
 use super::deck::DeckReport;
 use super::precision::{PrecisionError, method_sweep};
 use super::stability::{METHODS, stability_report};
-use super::store::{self, StoreError};
-use crate::codes::{self, CodeName, SetupError};
+use super::store::{self, CodeLawError, StoreError, own_law_exact};
+use crate::codes::{self, CodeName};
 use crate::error::Blame;
 use crate::model::case::{Case, CaseError, ContactKind};
 use crate::model::exact;
@@ -30,7 +30,6 @@ use crate::model::shipped::shipped_case;
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
 use crate::output::{Format, OutputError, Section, Summary, csv_string, export};
-use crate::solve::dashpot::own_law_metrics;
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Method, SolveError};
 
@@ -140,22 +139,9 @@ pub enum ReportError {
         /// Why.
         source: SolveError,
     },
-    /// A code's run could not be sized from its own law.
-    #[error("{code}: sizing the run from the code's law")]
-    Setup {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SetupError,
-    },
-    /// A code's own law could not be integrated at zero step error.
-    #[error("{code}: its own law at zero step error")]
-    OwnLaw {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SolveError,
-    },
+    /// A code's run could not be sized, or its own law not integrated.
+    #[error(transparent)]
+    Law(#[from] CodeLawError),
     /// A code's card offers a setting to take at its word, but not for this setup.
     #[error("{code}: no setting to take at its word")]
     NoSettingAtItsWord {
@@ -266,7 +252,7 @@ fn figure_2() -> Result<Vec<ReportFigure>, ReportError> {
     let grid: Vec<f64> = (0..=1500).map(|i| t_end * i as f64 / 1500.0).collect();
     let ms = 1e3;
     let um = 1e6;
-    let paper_y = out
+    let paper_y: Vec<(f64, f64)> = out
         .trajectory
         .iter()
         .map(|s| (s.t * ms, s.y * um))
@@ -282,38 +268,44 @@ fn figure_2() -> Result<Vec<ReportFigure>, ReportError> {
         "Rod end on a rigid plate, η = {}, two-sided contact (paper Eq. 14), the paper's RK4 at T/1000; beside it the damped harmonic oscillator with the same undamped frequency and the same loss per half-cycle (ζ = {:.4}, speed ratio e = {:.4} per half-cycle). The paper's law decays linearly in amplitude ratio per half-cycle with a kinked velocity at each turning point; the oscillator's is smooth.",
         law.loss_coefficient, zeta, e
     );
-    Ok(vec![
+    [
+        (
+            "displacement",
+            "2a",
+            "approach y (µm)",
+            paper_y,
+            osc_y,
+            "y_um",
+        ),
+        (
+            "velocity",
+            "2b",
+            "approach rate ẏ (m/s)",
+            paper_v,
+            osc_v,
+            "v_m_per_s",
+        ),
+    ]
+    .into_iter()
+    .map(|(what, number, y_label, paper, oscillator, column)| {
+        let chart = Chart {
+            title: format!("Figure {number}: rod end {what}, η = 0.35"),
+            x_label: "time t (ms)".into(),
+            y_label: y_label.into(),
+            series: vec![
+                Series::new("paper's law, bilateral", paper, Style::Line),
+                Series::new("damped oscillator, same loss", oscillator, Style::Thin),
+            ],
+        };
         figure(
-            "fig2-displacement",
-            Chart {
-                title: "Figure 2a: rod end displacement, η = 0.35".into(),
-                x_label: "time t (ms)".into(),
-                y_label: "approach y (µm)".into(),
-                series: vec![
-                    Series::new("paper's law, bilateral", paper_y, Style::Line),
-                    Series::new("damped oscillator, same loss", osc_y, Style::Thin),
-                ],
-            },
+            &format!("fig2-{what}"),
+            chart,
             &caption,
             command,
-            ("t_ms", "y_um"),
-        )?,
-        figure(
-            "fig2-velocity",
-            Chart {
-                title: "Figure 2b: rod end velocity, η = 0.35".into(),
-                x_label: "time t (ms)".into(),
-                y_label: "approach rate ẏ (m/s)".into(),
-                series: vec![
-                    Series::new("paper's law, bilateral", paper_v, Style::Line),
-                    Series::new("damped oscillator, same loss", osc_v, Style::Thin),
-                ],
-            },
-            &caption,
-            command,
-            ("t_ms", "v_m_per_s"),
-        )?,
-    ])
+            ("t_ms", column),
+        )
+    })
+    .collect()
 }
 
 /// The paper's Figure 3: COR against η, rod (line) and ball (dots) by the paper's RK4, the
@@ -404,8 +396,7 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>, ReportError> {
     )];
     for &code in CodeName::ALL {
         let driver = code.driver();
-        let setup = codes::prepare(driver, case, None, None, false)
-            .map_err(|source| ReportError::Setup { code, source })?;
+        let setup = store::prepare(code, case, None, None, false)?;
         let own = driver.law(&setup);
         let t = driver.stepping(&setup).trajectory(
             &own,
@@ -421,28 +412,18 @@ fn force_figures(case: &Case) -> Result<Vec<ReportFigure>, ReportError> {
             .position(|&y| y <= 0.0)
             .map_or(t.time.len(), |k| k + 2);
         let name = CompareSource::CodeLawStepped(code).to_string();
-        loops.push(Series::new(
-            name.clone(),
+        let style = if driver.shares_law_with().is_some() {
+            Style::Thin
+        } else {
+            Style::Line
+        };
+        let force = |x: &[f64], scale: f64| -> Vec<(f64, f64)> {
             (0..end)
-                .map(|i| (t.overlap[i] * um, t.normal_force[i] * kn))
-                .collect(),
-            if code.driver().shares_law_with().is_some() {
-                Style::Thin
-            } else {
-                Style::Line
-            },
-        ));
-        times.push(Series::new(
-            name,
-            (0..end)
-                .map(|i| (t.time[i] * us, t.normal_force[i] * kn))
-                .collect(),
-            if code.driver().shares_law_with().is_some() {
-                Style::Thin
-            } else {
-                Style::Line
-            },
-        ));
+                .map(|i| (x[i] * scale, t.normal_force[i] * kn))
+                .collect()
+        };
+        loops.push(Series::new(name.clone(), force(&t.overlap, um), style));
+        times.push(Series::new(name, force(&t.time, us), style));
     }
     let n = &case.name;
     let caption_loop = format!(
@@ -550,9 +531,7 @@ fn realised_vs_requested() -> Result<(ReportFigure, ReportTable), ReportError> {
         Ok(())
     };
     let cor_of = |code: CodeName, law: &CodeLaw, v0: f64| -> Result<f64, ReportError> {
-        own_law_metrics(law, v0, 1e-11)
-            .map(|m| m.cor)
-            .map_err(|source| ReportError::OwnLaw { code, source })
+        Ok(own_law_exact(code, law, v0, 1e-11)?.cor)
     };
     for &code in CodeName::ALL {
         add(
@@ -762,18 +741,7 @@ fn benchmark_cor_chart(reference: &Path) -> Result<Vec<ReportFigure>, ReportErro
         ..BenchmarkOptions::default()
     };
     let report = benchmark::chung_ooi(&options)?;
-    Ok(cor_chart(&report)?
-        .figures()?
-        .into_iter()
-        .map(|f| ReportFigure {
-            id: f.stem,
-            title: f.title,
-            caption: f.caption,
-            svg: f.svg,
-            csv: f.csv,
-            command: "millimpact benchmark chung-ooi --chart DIR".into(),
-        })
-        .collect())
+    Ok(cor_chart(&report)?.figures()?)
 }
 
 /// Build the report for `cases`; `progress` is told each stage as it starts (one per case

@@ -23,6 +23,8 @@
 
 use std::time::Instant;
 
+use rayon::prelude::*;
+
 use serde::ser::SerializeMap;
 use serde::{Serialize, Serializer};
 
@@ -394,30 +396,11 @@ pub(crate) fn run_grid() -> Vec<CaseResult> {
         .into_iter()
         .flat_map(|g| METHODS.map(|m| (g.clone(), m)))
         .collect();
-    let threads = 2usize;
-    let mut slots: Vec<Option<CaseResult>> = vec![None; jobs.len()];
-    std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|k| {
-                let jobs = &jobs;
-                scope.spawn(move || {
-                    (k..jobs.len())
-                        .step_by(threads)
-                        .map(|i| (i, run_one(&jobs[i].0, jobs[i].1)))
-                        .collect::<Vec<_>>()
-                })
-            })
-            .collect();
-        for handle in handles {
-            for (i, result) in handle.join().expect("a grid worker panicked") {
-                slots[i] = Some(result);
-            }
-        }
-    });
-    slots
-        .into_iter()
-        .map(|r| r.expect("every job ran"))
-        .collect()
+    let run = |job: &(GridCase, Method)| run_one(&job.0, job.1);
+    match rayon::ThreadPoolBuilder::new().num_threads(2).build() {
+        Ok(pool) => pool.install(|| jobs.par_iter().map(run).collect()),
+        Err(_) => jobs.iter().map(run).collect(),
+    }
 }
 
 /// What the solver did with a step in seconds.

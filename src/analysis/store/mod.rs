@@ -26,7 +26,9 @@ use crate::model::exact::{self, ImpactFigures};
 use crate::model::figures::{Figures, quantity};
 use crate::model::law::CodeLaw;
 use crate::model::scene::SceneKind;
-use crate::model::trajectory::{TrajectoryError, TrajectoryMetrics, trajectory_metrics};
+use crate::model::trajectory::{
+    CodeTrajectory, TrajectoryError, TrajectoryMetrics, trajectory_metrics,
+};
 use crate::output::files::write_atomic;
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, seconds, signed};
@@ -37,41 +39,12 @@ use crate::solve::dashpot::{CodeStepping, StepScheme, own_law_metrics};
 /// names the code, the file or the folder it concerns.
 #[derive(Debug, Error)]
 pub enum StoreError {
-    /// The code's run could not be sized from its own law.
-    #[error("{code}: sizing the run from the code's law")]
-    Setup {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SetupError,
-    },
+    /// The code's run could not be sized, or its trajectory or its own law gave no figures.
+    #[error(transparent)]
+    Law(#[from] CodeLawError),
     /// The code failed to run, or its output could not be read.
     #[error(transparent)]
     Code(#[from] CodeError),
-    /// The code's trajectory gives no impact figures.
-    #[error("{code}")]
-    Trajectory {
-        /// The code.
-        code: CodeName,
-        /// What is wrong with the trajectory.
-        source: TrajectoryError,
-    },
-    /// The code's own law, stepped as the code steps, gives no impact figures.
-    #[error("{code}: own law stepped")]
-    SteppedLaw {
-        /// The code.
-        code: CodeName,
-        /// What is wrong with the trajectory.
-        source: TrajectoryError,
-    },
-    /// The code's own law could not be integrated at zero step error.
-    #[error("{code}: its own law at zero step error")]
-    ExactLaw {
-        /// The code.
-        code: CodeName,
-        /// Why.
-        source: SolveError,
-    },
     /// A file or folder could not be read.
     #[error("reading {}", path.display())]
     Read {
@@ -88,26 +61,13 @@ pub enum StoreError {
         /// What the JSON reader found.
         source: serde_json::Error,
     },
-    /// The store's folder for a code could not be made.
-    #[error("creating {}", path.display())]
-    CreateFolder {
-        /// The folder.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The lock file that serialises saves could not be opened.
-    #[error("opening the lock {}", path.display())]
-    OpenLock {
-        /// The lock file.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
-    },
-    /// The lock could not be taken.
-    #[error("locking {}", path.display())]
-    Lock {
-        /// The lock file.
+    /// The store's folder for a code could not be made, the lock that serialises saves not
+    /// opened or taken, or the reference file not written.
+    #[error("{doing} {}", path.display())]
+    Io {
+        /// What was being done (`creating`, `opening the lock`, `locking`, `writing`).
+        doing: &'static str,
+        /// The folder, lock or file.
         path: PathBuf,
         /// Why.
         source: std::io::Error,
@@ -119,14 +79,6 @@ pub enum StoreError {
         path: PathBuf,
         /// Why.
         source: serde_json::Error,
-    },
-    /// The reference file could not be written.
-    #[error("writing {}", path.display())]
-    Write {
-        /// The reference file.
-        path: PathBuf,
-        /// Why.
-        source: std::io::Error,
     },
     /// The reference file holds runs of other bodies under the same case name: the user's.
     #[error(
@@ -182,6 +134,108 @@ impl Blame for StoreError {
             _ => false,
         }
     }
+}
+
+/// Why a code's run could not be sized, or its trajectory or its own law gave no figures; each
+/// variant names the code.
+#[derive(Debug, Error)]
+pub enum CodeLawError {
+    /// The code's run could not be sized from its own law.
+    #[error("{code}: sizing the run from the code's law")]
+    Setup {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SetupError,
+    },
+    /// The code's trajectory gives no impact figures.
+    #[error("{code}")]
+    Trajectory {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+    /// The code's own law, stepped as the code steps, gives no impact figures.
+    #[error("{code}: own law stepped")]
+    SteppedLaw {
+        /// The code.
+        code: CodeName,
+        /// What is wrong with the trajectory.
+        source: TrajectoryError,
+    },
+    /// The code's own law could not be integrated at zero step error.
+    #[error("{code}: its own law at zero step error")]
+    OwnLaw {
+        /// The code.
+        code: CodeName,
+        /// Why.
+        source: SolveError,
+    },
+}
+
+/// A run that cannot be sized or read is the code's or the solver's failure, not the input's.
+impl Blame for CodeLawError {
+    fn is_user_error(&self) -> bool {
+        false
+    }
+}
+
+/// The equivalent setup of `case` in `code` (see [`codes::prepare`]).
+pub(crate) fn prepare(
+    code: CodeName,
+    case: &Case,
+    steps_per_contact: Option<u32>,
+    timestep: Option<f64>,
+    clamp_attractive: bool,
+) -> Result<CodeSetup, CodeLawError> {
+    codes::prepare(
+        code.driver(),
+        case,
+        steps_per_contact,
+        timestep,
+        clamp_attractive,
+    )
+    .map_err(|source| CodeLawError::Setup { code, source })
+}
+
+/// The impact figures of a code's `trajectory`.
+pub(crate) fn code_metrics(
+    code: CodeName,
+    trajectory: &CodeTrajectory,
+) -> Result<TrajectoryMetrics, CodeLawError> {
+    trajectory_metrics(trajectory).map_err(|source| CodeLawError::Trajectory { code, source })
+}
+
+/// The figures of `law` (the law of `code`) at `v0`, integrated to `rtol`: at zero step error.
+pub(crate) fn own_law_exact(
+    code: CodeName,
+    law: &CodeLaw,
+    v0: f64,
+    rtol: f64,
+) -> Result<TrajectoryMetrics, CodeLawError> {
+    own_law_metrics(law, v0, rtol).map_err(|source| CodeLawError::OwnLaw { code, source })
+}
+
+/// The code's own law for `setup`, stepped as the code steps it at the setup's step and at
+/// zero step error (rtol 1e-13).
+pub(crate) fn own_law(
+    code: CodeName,
+    setup: &CodeSetup,
+) -> Result<(CodeLaw, TrajectoryMetrics, TrajectoryMetrics), CodeLawError> {
+    let driver = code.driver();
+    let law = driver.law(setup);
+    let stepped = driver.stepping(setup).trajectory(
+        &law,
+        setup.impact_velocity,
+        setup.timestep,
+        setup.steps,
+        0.0,
+    );
+    let at_step =
+        trajectory_metrics(&stepped).map_err(|source| CodeLawError::SteppedLaw { code, source })?;
+    let exact = own_law_exact(code, &law, setup.impact_velocity, 1e-13)?;
+    Ok((law, at_step, exact))
 }
 
 /// One run of one code on one case at one η.
@@ -333,34 +387,20 @@ pub fn run_reference(
 ) -> Result<ReferenceRecord, StoreError> {
     let started = std::time::Instant::now();
     let driver = code.driver();
-    let setup = codes::prepare(
-        driver,
+    let setup = prepare(
+        code,
         case,
         options.steps_per_contact,
         options.timestep,
         options.clamp_attractive,
-    )
-    .map_err(|source| StoreError::Setup { code, source })?;
+    )?;
     let run_options = RunOptions {
         timeout: options.timeout,
         ..RunOptions::default()
     };
     let run = run_code(driver, &setup, &run_options)?;
-    let metrics = trajectory_metrics(&run.trajectory)
-        .map_err(|source| StoreError::Trajectory { code, source })?;
-    let law = driver.law(&setup);
-    let scheme = driver.step_scheme();
-    let stepped = driver.stepping(&setup).trajectory(
-        &law,
-        setup.impact_velocity,
-        setup.timestep,
-        setup.steps,
-        0.0,
-    );
-    let law_at_step =
-        trajectory_metrics(&stepped).map_err(|source| StoreError::SteppedLaw { code, source })?;
-    let law_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)
-        .map_err(|source| StoreError::ExactLaw { code, source })?;
+    let metrics = code_metrics(code, &run.trajectory)?;
+    let (law, law_at_step, law_exact) = own_law(code, &setup)?;
     let command = Invocation::new("reference")
         .option("--code", code)
         .arg(case.path.display())
@@ -389,7 +429,7 @@ pub fn run_reference(
         loop_time: run.loop_time,
         whole_wall_time: Some(started.elapsed().as_secs_f64()),
         law,
-        step_scheme: scheme,
+        step_scheme: driver.step_scheme(),
         law_at_step,
         law_exact,
         paper_exact: exact::paper_impact(&case.law(), case.impact_velocity),
@@ -427,10 +467,15 @@ pub fn load(path: &Path) -> Result<ReferenceFile, StoreError> {
 pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf, StoreError> {
     let path = reference_path(folder, record.code, &record.case);
     let dir = path.parent().unwrap_or(folder);
-    std::fs::create_dir_all(dir).map_err(|source| StoreError::CreateFolder {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    let io = |doing, path: &Path| {
+        let path = path.to_path_buf();
+        move |source| StoreError::Io {
+            doing,
+            path,
+            source,
+        }
+    };
+    std::fs::create_dir_all(dir).map_err(io("creating", dir))?;
     // Saves of one record file are serialised across processes, and the file is read under the
     // lock: two saves finishing together both land, neither replaces the other's run.
     let lock_path = dir.join(format!(".{}.lock", record.case));
@@ -439,14 +484,8 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf, StoreErr
         .truncate(false)
         .write(true)
         .open(&lock_path)
-        .map_err(|source| StoreError::OpenLock {
-            path: lock_path.clone(),
-            source,
-        })?;
-    lock.lock().map_err(|source| StoreError::Lock {
-        path: lock_path.clone(),
-        source,
-    })?;
+        .map_err(io("opening the lock", &lock_path))?;
+    lock.lock().map_err(io("locking", &lock_path))?;
     let mut file = if path.exists() {
         load(&path)?
     } else {
@@ -476,10 +515,7 @@ pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf, StoreErr
         path: path.clone(),
         source,
     })? + "\n";
-    write_atomic(&path, text.as_bytes()).map_err(|source| StoreError::Write {
-        path: path.clone(),
-        source,
-    })?;
+    write_atomic(&path, text.as_bytes()).map_err(io("writing", &path))?;
     drop(lock);
     Ok(path)
 }

@@ -158,15 +158,16 @@ pub(crate) fn verify_cases(dir: &Path) -> Result<Vec<VerifyRow>, StoreError> {
                 ..Differences::default()
             };
             rows.push(VerifyRow {
-                case: case.name.clone(),
-                loss_coefficient: None,
-                source: Source::Method(method),
                 stored: false,
-                check: Check::ClosedForm,
                 pass: tolerance.admits(&differences),
-                differences,
-                tolerance,
-                detail: None,
+                ..finding(
+                    &case.name,
+                    None,
+                    Source::Method(method),
+                    Check::ClosedForm,
+                    None,
+                )
+                .measured(differences, tolerance)
             });
         }
     }
@@ -197,6 +198,17 @@ fn finding(
         tolerance: Tolerance::splat(NOT_APPLICABLE),
         pass: detail.is_none(),
         detail,
+    }
+}
+
+impl VerifyRow {
+    /// The row with the `differences` it checked and their `tolerance`.
+    fn measured(self, differences: Differences, tolerance: Tolerance) -> VerifyRow {
+        VerifyRow {
+            differences,
+            tolerance,
+            ..self
+        }
     }
 }
 
@@ -531,17 +543,7 @@ fn own_law_stepped_row(record: &ReferenceRecord, name: &str, regenerate: &str) -
         }
         detail + &format!("regenerate: {regenerate}")
     });
-    VerifyRow {
-        case: name.to_string(),
-        loss_coefficient: eta,
-        source,
-        stored: true,
-        check: Check::OwnLawStepped,
-        pass,
-        differences,
-        tolerance,
-        detail,
-    }
+    finding(name, eta, source, Check::OwnLawStepped, detail).measured(differences, tolerance)
 }
 
 /// The COR the stored run's own law realises, exactly, against the COR the code was asked for,
@@ -555,25 +557,19 @@ fn target_row(record: &ReferenceRecord, name: &str) -> VerifyRow {
         ..Differences::splat(NOT_APPLICABLE)
     };
     let pass = differences.cor.abs() <= TARGET_TOLERANCE;
-    VerifyRow {
-        case: name.to_string(),
-        loss_coefficient: Some(record.loss_coefficient),
-        source: Source::Code(record.code),
-        stored: true,
-        check: Check::Target,
-        pass,
-        differences,
-        tolerance: Tolerance {
-            cor: TARGET_TOLERANCE,
-            ..Tolerance::splat(NOT_APPLICABLE)
-        },
-        detail: (!pass).then(|| {
-            format!(
-                "its own law realises {realised}, the code was asked for {}",
-                record.cor_target()
-            )
-        }),
-    }
+    let detail = (!pass).then(|| {
+        format!(
+            "its own law realises {realised}, the code was asked for {}",
+            record.cor_target()
+        )
+    });
+    let tolerance = Tolerance {
+        cor: TARGET_TOLERANCE,
+        ..Tolerance::splat(NOT_APPLICABLE)
+    };
+    let eta = Some(record.loss_coefficient);
+    finding(name, eta, Source::Code(record.code), Check::Target, detail)
+        .measured(differences, tolerance)
 }
 
 /// A finding for each run of every code on each `expected` case (present in `cases`) at each

@@ -14,14 +14,12 @@ use super::grid::{GridPoint, SweepFile};
 use super::point::{GridOptions, single_point};
 use super::row::{CodeFigures, PointFigures, SweepRow};
 use crate::analysis::source::{Resolution, Source};
-use crate::analysis::store::StoreError;
+use crate::analysis::store::{StoreError, code_metrics, own_law};
 use crate::codes::batch::run_batch;
 use crate::codes::{CodeName, CodeSetup, ParsedRun, RunOptions, prepare};
 use crate::error::Chain;
 use crate::model::case::Case;
 use crate::model::exact;
-use crate::model::trajectory::trajectory_metrics;
-use crate::solve::dashpot::own_law_metrics;
 
 /// Most bytes of trajectory files one batch may write (about 80 bytes per step and impact).
 pub(crate) const MAX_BATCH_BYTES: f64 = 2e8;
@@ -178,20 +176,8 @@ fn batch_figures(
     batch: usize,
 ) -> Result<CodeFigures, StoreError> {
     let driver = code.driver();
-    let metrics = trajectory_metrics(&run.trajectory)
-        .map_err(|source| StoreError::Trajectory { code, source })?;
-    let law = driver.law(setup);
-    let stepped = driver.stepping(setup).trajectory(
-        &law,
-        setup.impact_velocity,
-        setup.timestep,
-        setup.steps,
-        0.0,
-    );
-    let at_step =
-        trajectory_metrics(&stepped).map_err(|source| StoreError::SteppedLaw { code, source })?;
-    let own_exact = own_law_metrics(&law, setup.impact_velocity, 1e-13)
-        .map_err(|source| StoreError::ExactLaw { code, source })?;
+    let metrics = code_metrics(code, &run.trajectory)?;
+    let (_, at_step, own_exact) = own_law(code, setup)?;
     let paper = case.law();
     Ok(CodeFigures {
         case: case.name.clone(),

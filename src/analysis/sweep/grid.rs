@@ -29,6 +29,7 @@ use super::row::{AxisValue, PointFigures, PointSource, RowIdentity, RowStatus, S
 use crate::analysis::precision::choice::{Choice, allowed_tolerances, choose, resolution_text};
 use crate::analysis::run::MIN_RTOL;
 pub(crate) use crate::analysis::source::{Resolution, Source};
+use crate::analysis::store::hex;
 use crate::codes::CodeName;
 use crate::error::Chain;
 use crate::model::case::{Case, CaseError, IN_PLACE_KEYS};
@@ -165,7 +166,8 @@ pub(crate) fn is_sweep_table(table: &Table) -> bool {
     table.contains_key("axes") || table.contains_key("base")
 }
 
-fn parse_toml(path: &Path) -> Result<Table, CaseError> {
+/// Read a file as TOML (a sweep file, its base case, or a file to tell the two apart).
+pub(crate) fn read_table(path: &Path) -> Result<Table, CaseError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|e| CaseError {
         file: file.clone(),
@@ -179,11 +181,6 @@ fn parse_toml(path: &Path) -> Result<Table, CaseError> {
         value: "(not TOML)".into(),
         allowed: format!("invalid TOML: {}", e.message().replace('\n', " ")),
     })
-}
-
-/// Read a file as TOML (for telling a sweep file from a case file).
-pub(crate) fn read_table(path: &Path) -> Result<Table, CaseError> {
-    parse_toml(path)
 }
 
 /// The base case of a sweep file: its table, its name and where it came from (its own file,
@@ -206,7 +203,7 @@ fn read_base(
         )),
         Some(Value::String(s)) => {
             let base_path = path.parent().unwrap_or(Path::new("")).join(s);
-            let base = parse_toml(&base_path).map_err(|e| {
+            let base = read_table(&base_path).map_err(|e| {
                 fail(
                     "base",
                     &format!("\"{s}\""),
@@ -446,15 +443,11 @@ pub(crate) fn normal_cell(text: &str) -> String {
     }
 }
 
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
-}
-
 impl SweepFile {
     /// Read and validate a sweep file. Errors are one line naming the file, the key, the
     /// value and what is allowed.
     pub fn load(path: &Path) -> Result<SweepFile, CaseError> {
-        let table = parse_toml(path)?;
+        let table = read_table(path)?;
         Self::from_table(path, &table)
     }
 
@@ -632,11 +625,8 @@ impl SweepFile {
 
     /// The points of shard `k` of `n` (1-based; every n-th point from the k-th), or all.
     pub fn points(&self, shard: Option<(usize, usize)>) -> Vec<GridPoint> {
-        let (k, n) = shard.unwrap_or((1, 1));
-        (k - 1..self.len())
-            .step_by(n)
-            .map(|i| self.point(i))
-            .collect()
+        let indices = self.indices(shard);
+        indices.into_iter().map(|i| self.point(i)).collect()
     }
 
     /// The indices of the points of shard `k` of `n` (1-based; every n-th point from the
