@@ -143,19 +143,22 @@ fn refuse_for_sweep_files(args: &SweepArgs) -> Result<(), UserError> {
             allowed: "not for a sweep file: give `tolerance = ...` in the file".into(),
         });
     }
-    if let Some(v) = i.steps_per_period {
-        return Err(refuse("--steps-per-period", v.to_string()));
+    let given = [
+        (
+            "--steps-per-period",
+            i.steps_per_period.map(|v| v.to_string()),
+        ),
+        ("--timestep", i.timestep.map(|v| v.to_string())),
+        ("--rtol", i.rtol.map(|v| v.to_string())),
+        (
+            "--method",
+            (i.method != millimpact::solve::Method::Rk4Event).then(|| i.method.to_string()),
+        ),
+    ];
+    match given.into_iter().find_map(|(option, v)| Some((option, v?))) {
+        Some((option, v)) => Err(refuse(option, v)),
+        None => Ok(()),
     }
-    if let Some(v) = i.timestep {
-        return Err(refuse("--timestep", v.to_string()));
-    }
-    if let Some(v) = i.rtol {
-        return Err(refuse("--rtol", v.to_string()));
-    }
-    if i.method != millimpact::solve::Method::Rk4Event {
-        return Err(refuse("--method", i.method.to_string()));
-    }
-    Ok(())
 }
 
 fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {

@@ -3,11 +3,13 @@
 //! and the tables of `millimpact mill`, each figure with its data and the command that
 //! reproduces it.
 
-use super::{DataFile, Report, ReportError, ReportFigure, ReportPart, figure, table_from};
+use super::{
+    DataFile, Report, ReportError, ReportFigure, ReportPart, data_files, figure, table_from,
+};
 use crate::analysis::mill::{MillReport, MillRun, SpectrumRow};
 use crate::codes::liggghts::mill::MillLaw;
+use crate::output::Summary;
 use crate::output::chart::{Chart, Series, Style, chart_svg};
-use crate::output::{Format, Summary, export};
 
 /// The legend name of a run: its law, its build and, with several seeds, its seed.
 fn run_name(mill: &MillReport, run: &MillRun) -> String {
@@ -221,18 +223,12 @@ pub fn mill_part(
 ) -> Result<(ReportPart, Vec<DataFile>), ReportError> {
     let stem = format!("mill-{number}");
     let mut figures = vec![power_figure(&stem, mill)?];
-    figures.extend(spectrum_figure(
-        &stem,
-        mill,
-        "impact_energy",
-        "impact energy ½ m* v_n² (J)",
-    )?);
-    figures.extend(spectrum_figure(
-        &stem,
-        mill,
-        "peak_force",
-        "peak normal force (N)",
-    )?);
+    for (spectrum, quantity) in [
+        ("impact_energy", "impact energy ½ m* v_n² (J)"),
+        ("peak_force", "peak normal force (N)"),
+    ] {
+        figures.extend(spectrum_figure(&stem, mill, spectrum, quantity)?);
+    }
     figures.extend(profile_figure(&stem, mill)?);
     let names = ["figures", "spectra", "runs"];
     let tables = mill
@@ -255,17 +251,7 @@ pub fn mill_part(
         figures,
         tables,
     };
-    let data = vec![
-        DataFile {
-            name: format!("{stem}.json"),
-            text: export(mill, Format::Json)?,
-        },
-        DataFile {
-            name: format!("{stem}.csv"),
-            text: export(mill, Format::Csv)?,
-        },
-    ];
-    Ok((part, data))
+    Ok((part, data_files(&stem, mill)?))
 }
 
 /// Add the parts of the users' own mills to `report`, with their data and reproduce commands.

@@ -1017,17 +1017,20 @@ pub fn deck_part(
             .collect(),
         tables,
     };
-    let data = vec![
-        DataFile {
-            name: format!("{stem}.json"),
-            text: export(check, Format::Json)?,
-        },
-        DataFile {
-            name: format!("{stem}.csv"),
-            text: export(check, Format::Csv)?,
-        },
-    ];
-    Ok((part, data))
+    Ok((part, data_files(&stem, check)?))
+}
+
+/// `summary` as its command exports it, `<stem>.json` and `<stem>.csv`.
+fn data_files<S: Summary>(stem: &str, summary: &S) -> Result<Vec<DataFile>, OutputError> {
+    [Format::Json, Format::Csv]
+        .into_iter()
+        .map(|format| {
+            Ok(DataFile {
+                name: format!("{stem}.{}", format.name()),
+                text: export(summary, format)?,
+            })
+        })
+        .collect()
 }
 
 /// The COR each pair of a deck realises against the impact speed, beside its law's exact COR

@@ -532,24 +532,21 @@ fn same_bodies(a: &CodeSetup, b: &CodeSetup) -> bool {
         && a.impact_velocity == b.impact_velocity
 }
 
+/// The files in `dir` whose extension is `extension`, unsorted.
+pub(crate) fn files_in(dir: &Path, extension: &str) -> std::io::Result<Vec<PathBuf>> {
+    Ok(std::fs::read_dir(dir)?
+        .flatten()
+        .map(|entry| entry.path())
+        .filter(|p| p.extension().is_some_and(|x| x == extension))
+        .collect())
+}
+
 /// Every stored reference file under `folder`, sorted.
 pub(crate) fn stored_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
-    let mut files = Vec::new();
-    if !folder.is_dir() {
-        return Ok(files);
-    }
-    for code in CodeName::ALL {
-        let dir = folder.join(code.name());
-        let Ok(entries) = std::fs::read_dir(&dir) else {
-            continue;
-        };
-        for entry in entries.flatten() {
-            let path = entry.path();
-            if path.extension().is_some_and(|x| x == "json") {
-                files.push(path);
-            }
-        }
-    }
+    let mut files: Vec<PathBuf> = CodeName::ALL
+        .iter()
+        .flat_map(|code| files_in(&folder.join(code.name()), "json").unwrap_or_default())
+        .collect();
     files.sort();
     Ok(files)
 }

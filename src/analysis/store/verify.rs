@@ -8,7 +8,9 @@ use serde::Serialize;
 use crate::analysis::benchmark::{CHUNG_OOI, STEPS_PER_CONTACT, STORED_FOLDER};
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
-use crate::analysis::store::{ReferenceRecord, Shown, StoreError, hex, load, stored_files};
+use crate::analysis::store::{
+    ReferenceRecord, Shown, StoreError, files_in, hex, load, stored_files,
+};
 use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
 use crate::error::Chain;
@@ -120,14 +122,10 @@ impl VerifyReport {
 
 /// The case files in `dir`, sorted by name.
 pub(crate) fn case_files(dir: &Path) -> Result<Vec<PathBuf>, StoreError> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(dir)
-        .map_err(|reason| StoreError::CasesUnreadable {
-            folder: dir.to_path_buf(),
-            reason,
-        })?
-        .filter_map(|entry| entry.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
+    let mut files = files_in(dir, "toml").map_err(|reason| StoreError::CasesUnreadable {
+        folder: dir.to_path_buf(),
+        reason,
+    })?;
     files.sort();
     if files.is_empty() {
         return Err(StoreError::NoCaseFiles {
@@ -616,26 +614,17 @@ pub(crate) const MAX_STORED_STEPS: u64 = 10_000_000;
 /// JSON files in `folder` that are not records: directly in `folder`, or in a folder that is
 /// not a known code's.
 fn stray_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
-    let mut out = Vec::new();
-    let entries = std::fs::read_dir(folder).map_err(|source| StoreError::Read {
+    let read = |source| StoreError::Read {
         path: folder.to_path_buf(),
         source,
-    })?;
-    for entry in entries.flatten() {
+    };
+    let mut out: Vec<PathBuf> = files_in(folder, "json").map_err(read)?;
+    out.retain(|p| p.is_file());
+    for entry in std::fs::read_dir(folder).map_err(read)?.flatten() {
         let path = entry.path();
         let name = entry.file_name().to_string_lossy().into_owned();
-        if path.is_file() && path.extension().is_some_and(|x| x == "json") {
-            out.push(path);
-        } else if path.is_dir() && CodeName::from_name(&name).is_none() {
-            let Ok(inner) = std::fs::read_dir(&path) else {
-                continue;
-            };
-            out.extend(
-                inner
-                    .flatten()
-                    .map(|e| e.path())
-                    .filter(|p| p.extension().is_some_and(|x| x == "json")),
-            );
+        if path.is_dir() && CodeName::from_name(&name).is_none() {
+            out.extend(files_in(&path, "json").unwrap_or_default());
         }
     }
     out.sort();

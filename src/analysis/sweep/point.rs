@@ -64,10 +64,10 @@ pub(crate) fn solve_points(
     stop: &AtomicBool,
 ) -> Vec<Result<Solved, SweepError>> {
     let mut cases = PointCases::new(sweep);
-    // Each point's law and speed with its settings, where they could be had; and each
-    // point's law and speed with its solution, or its error (set here if it had none).
-    let mut prepared: Vec<Option<(PaperLaw, f64, Settings)>> = Vec::new();
+    // Each point's solution or error (set here if it had no settings), and the points that
+    // have settings: their place, law, speed and settings.
     let mut outcomes: Vec<Option<Result<Solved, SweepError>>> = Vec::new();
+    let mut pending: Vec<(usize, PaperLaw, f64, Settings)> = Vec::new();
     for point in points {
         if stop.load(Ordering::Relaxed) {
             break;
@@ -75,37 +75,21 @@ pub(crate) fn solve_points(
         let ready = (|| -> Result<_, SweepError> {
             let case = cases.case(point)?;
             let settings = method_settings(point, case, options)?;
-            Ok((case.law(), case.impact_velocity, settings))
+            Ok((outcomes.len(), case.law(), case.impact_velocity, settings))
         })();
         match ready {
             Ok(ready) => {
-                prepared.push(Some(ready));
+                pending.push(ready);
                 outcomes.push(None);
             }
-            Err(e) => {
-                prepared.push(None);
-                outcomes.push(Some(Err(e)));
-            }
+            Err(e) => outcomes.push(Some(Err(e))),
         }
     }
-    let mut pending: Vec<usize> = (0..prepared.len())
-        .filter(|&i| prepared[i].is_some())
-        .collect();
-    while let Some(&first) = pending.first() {
-        let Some((_, _, settings)) = prepared[first] else {
-            pending.remove(0);
-            continue;
-        };
-        let (same, rest): (Vec<usize>, Vec<usize>) = pending
-            .iter()
-            .partition(|&&i| matches!(&prepared[i], Some((_, _, s)) if *s == settings));
+    while let Some(&(_, _, _, settings)) = pending.first() {
+        let (same, rest): (Vec<_>, Vec<_>) = pending.into_iter().partition(|p| p.3 == settings);
         pending = rest;
-        let items: Vec<(PaperLaw, f64)> = same
-            .iter()
-            .filter_map(|&i| prepared[i].map(|(law, v0, _)| (law, v0)))
-            .collect();
-        for ((&i, &(law, v0)), solved) in same.iter().zip(&items).zip(solve_many(&items, &settings))
-        {
+        let items: Vec<(PaperLaw, f64)> = same.iter().map(|&(_, law, v0, _)| (law, v0)).collect();
+        for (&(i, law, v0, _), solved) in same.iter().zip(solve_many(&items, &settings)) {
             outcomes[i] = Some(
                 solved
                     .map(|o| (law, v0, o))

@@ -311,18 +311,22 @@ pub struct SweepRow {
     pub status: RowStatus,
 }
 
-/// The field names of a flat record type, in declaration order, as serde names them.
-fn field_names<T: Serialize + Default>() -> Vec<String> {
-    // Serialising a record of scalars into memory cannot fail.
-    let header = crate::output::csv_record::header_of(&T::default()).unwrap_or_default();
+/// The cells of the first CSV record in `bytes`.
+fn first_record(bytes: &[u8]) -> Vec<String> {
     csv::ReaderBuilder::new()
         .has_headers(false)
-        .from_reader(header.as_slice())
+        .from_reader(bytes)
         .records()
         .next()
         .and_then(Result::ok)
         .map(|r| r.iter().map(String::from).collect())
         .unwrap_or_default()
+}
+
+/// The field names of a flat record type, in declaration order, as serde names them.
+fn field_names<T: Serialize + Default>() -> Vec<String> {
+    // Serialising a record of scalars into memory cannot fail.
+    first_record(&crate::output::csv_record::header_of(&T::default()).unwrap_or_default())
 }
 
 /// The columns of a sweep's rows, given its case-axis keys: identity, axes, source, figures,
@@ -350,14 +354,7 @@ pub(crate) fn key_cells(axes: &[AxisValue], source: &PointSource) -> Vec<String>
     let mut records = CsvRecords::default();
     // Serialising scalars into memory cannot fail.
     let _ = records.push(&(AxisValues(axes), source));
-    csv::ReaderBuilder::new()
-        .has_headers(false)
-        .from_reader(records.as_bytes())
-        .records()
-        .next()
-        .and_then(Result::ok)
-        .map(|r| r.iter().map(String::from).collect())
-        .unwrap_or_default()
+    first_record(records.as_bytes())
 }
 
 /// The case-axis values of a row as one serde sequence (a CSV record's middle fields).
