@@ -1,6 +1,5 @@
 //! `millimpact deck`.
 
-use std::io::IsTerminal;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -102,19 +101,13 @@ fn check_with_progress(
     timeout: f64,
 ) -> Result<DeckReport> {
     let live = live_runner(timeout);
-    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
-        return check_with(code, deck, velocities, given, &live);
-    }
     let runs = deck.contacts.len() * deck_velocities(deck, velocities).0.len();
-    let bar = indicatif::ProgressBar::with_draw_target(
-        Some(runs as u64),
-        indicatif::ProgressDrawTarget::hidden(),
-    );
-    if let Ok(style) = indicatif::ProgressStyle::with_template(
-        "{bar:40} {pos}/{len} impacts  {per_sec}  ETA {eta}",
-    ) {
-        bar.set_style(style);
-    }
+    let template = "{bar:40} {pos}/{len} impacts  {per_sec}  ETA {eta}";
+    let Some(bar) = super::progress_bar(runs as u64, template) else {
+        return check_with(code, deck, velocities, given, &live);
+    };
+    // Hidden until the runs have taken a second.
+    bar.set_draw_target(indicatif::ProgressDrawTarget::hidden());
     let runner = Progress {
         inner: &live,
         bar: bar.clone(),

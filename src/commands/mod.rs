@@ -42,6 +42,19 @@ fn render<S: Summary>(summary: &S, format: Format) -> Result<String, OutputError
     }
 }
 
+/// A progress bar of `len` steps drawn with `template` on standard error; none when standard
+/// error is not a terminal or `CI` is set.
+fn progress_bar(len: u64, template: &str) -> Option<indicatif::ProgressBar> {
+    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(template) {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
 /// Write the command's text; a closed pipe or a full disk is one line and exit 1, not a panic.
 fn print(text: &str) -> Result<(), std::io::Error> {
     let mut out = std::io::stdout().lock();

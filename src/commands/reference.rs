@@ -27,9 +27,6 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
             UserError::argument("--timestep", dt, "must be a finite number > 0 (seconds)").into(),
         );
     }
-    if let Some(0) = args.steps_per_contact {
-        return Err(UserError::argument("--steps-per-contact", 0, "must be at least 1").into());
-    }
     if args.clamp
         && let Some(why) = args.code.driver().clamp_refusal()
     {

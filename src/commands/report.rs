@@ -2,10 +2,7 @@
 
 use std::time::Duration;
 
-use std::io::IsTerminal;
-
 use super::{Context, Result};
-use indicatif::{ProgressBar, ProgressStyle};
 
 use super::{CommandOutput, Failure, write_output};
 use crate::cli::ReportArgs;
@@ -62,12 +59,11 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
         revision: revision(),
     };
-    // A progress bar on a terminal, none when output is piped or under CI.
-    let interactive = std::io::stderr().is_terminal()
-        && std::env::var_os("CI").is_none()
-        && (args.live || !args.decks.is_empty() || !args.mills.is_empty());
+    // A progress bar on a terminal, for a report that runs codes.
     let stages = cases.len() as u64 + 4 + decks.len() as u64 + mills.len() as u64;
-    let bar = interactive.then(|| progress_bar(stages));
+    let bar = (args.live || !args.decks.is_empty() || !args.mills.is_empty())
+        .then(|| super::progress_bar(stages, "{bar:30} {pos}/{len} {msg}"))
+        .flatten();
     let mut progress = |stage: &str| {
         if let Some(bar) = &bar {
             bar.set_message(stage.to_string());
@@ -149,15 +145,6 @@ fn read_mills(args: &ReportArgs) -> Result<Vec<(MillDeck, MillOptions)>> {
 }
 
 /// The report's progress bar, one step per stage.
-fn progress_bar(stages: u64) -> ProgressBar {
-    let bar = ProgressBar::new(stages);
-    bar.set_style(
-        ProgressStyle::with_template("{bar:30} {pos}/{len} {msg}")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar
-}
-
 /// Write the report's files into `out` (replaced whole); how many were written, the marker not
 /// counted.
 fn write_report(out: &std::path::Path, report: &Report, html: &str, md: &str) -> Result<usize> {

@@ -1,7 +1,7 @@
 //! `millimpact sweep`: a sweep file's grid (rows appended as they finish, resumable,
 //! shardable), or a case over a range of η.
 
-use std::io::{IsTerminal, Write};
+use std::io::Write;
 use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -201,7 +201,10 @@ fn sweep_file(args: &SweepArgs, sweep: &SweepFile) -> Result<CommandOutput> {
         batch: args.batch as usize,
         timestep: None,
     };
-    let bar = progress_bar(indices.len() as u64);
+    let bar = super::progress_bar(
+        indices.len() as u64,
+        "{bar:40} {pos}/{len} points  {per_sec}  ETA {eta}",
+    );
     let _ = ctrlc::set_handler(|| {
         // The codes running now end at once; the rows already finished are kept.
         if STOP.swap(true, Ordering::SeqCst) {
@@ -373,19 +376,4 @@ fn outcome<W: Write>(args: &SweepArgs, writer: &RowWriter<W>, kept_rows: usize) 
         "; --out FILE keeps the rows for --resume to retry them"
     };
     failed(format!("{failures}{retry}, --allow-failures exits 0"))
-}
-
-/// A progress bar with rate and ETA on a terminal; none when standard error is not one or
-/// `CI` is set.
-fn progress_bar(len: u64) -> Option<indicatif::ProgressBar> {
-    if !std::io::stderr().is_terminal() || std::env::var_os("CI").is_some() {
-        return None;
-    }
-    let bar = indicatif::ProgressBar::new(len);
-    if let Ok(style) =
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} points  {per_sec}  ETA {eta}")
-    {
-        bar.set_style(style);
-    }
-    Some(bar)
 }

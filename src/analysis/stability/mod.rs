@@ -373,12 +373,7 @@ pub(crate) fn run_one(grid_case: &GridCase, method: Method) -> CaseResult {
         run_report.exact.figures.contact_time,
     );
     result.accurate = result.finite && tolerance.admits(&differences);
-    let accurate_everywhere = Tolerance {
-        cor: ACCURATE_TOLERANCE,
-        peak_deformation: ACCURATE_TOLERANCE,
-        contact_time: ACCURATE_TOLERANCE,
-        ..Tolerance::default()
-    };
+    let accurate_everywhere = Tolerance::splat(ACCURATE_TOLERANCE);
     result.pass = if method.held_accurate() {
         result.finite
             && result.cor_in_range
