@@ -119,17 +119,14 @@ fn band(law: &CodeLaw, v0: f64, dt: f64, steps: u64, stepping: &CodeStepping) ->
     }
 }
 
-/// Why a code's calibration card could not be made: the run could not be sized, or the code's
-/// own law not integrated; it names the code.
-pub type CalibrateError = CodeLawError;
-
-/// The card of `code` for `case` (already at the COR's η).
+/// The card of `code` for `case` (already at the COR's η); it fails when the run cannot be
+/// sized or the code's own law not integrated.
 pub fn card(
     code: CodeName,
     case: &Case,
     timestep: Option<f64>,
     tolerance: f64,
-) -> Result<Card, CalibrateError> {
+) -> Result<Card, CodeLawError> {
     let driver = code.driver();
     let target = case.restitution();
     let v0 = case.impact_velocity;
@@ -219,7 +216,7 @@ pub fn card(
 }
 
 /// Calibrate `case` for every COR in the options.
-pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration, CalibrateError> {
+pub fn calibrate(case: &Case, options: &CalibrateOptions) -> Result<Calibration, CodeLawError> {
     let law = case.law();
     let v0 = case.impact_velocity;
     let impact_energy = 0.5 * law.mass * v0 * v0;
