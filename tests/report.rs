@@ -4,7 +4,6 @@
 
 use std::path::Path;
 use std::process::Command;
-use std::time::Instant;
 
 mod common;
 
@@ -33,20 +32,17 @@ fn write_and_check_the_report(codes_hidden: bool) -> (tempfile::TempDir, Vec<Str
     if codes_hidden {
         command.envs(common::codes_hidden());
     }
-    let started = Instant::now();
     let run = command
         .current_dir(root)
         .args(["report", "--out"])
         .arg(out.path())
         .output()
         .unwrap();
-    let elapsed = started.elapsed().as_secs_f64();
     assert!(
         run.status.success(),
         "{}",
         String::from_utf8_lossy(&run.stderr)
     );
-    assert!(elapsed < 60.0, "the report took {elapsed:.1} s");
     let html = std::fs::read_to_string(out.path().join("index.html")).unwrap();
     let md = std::fs::read_to_string(out.path().join("index.md")).unwrap();
     // Every figure is inline in the page, and its SVG and CSV are beside it.

@@ -168,44 +168,34 @@ pub fn export<S: Summary>(summary: &S, format: Format) -> Result<String, OutputE
     match format {
         Format::Json => Ok(serde_json::to_string_pretty(summary)? + "\n"),
         Format::Csv => csv_string(&summary.records()),
-        Format::Table => {
+        Format::Table | Format::Markdown => {
+            let markdown = format == Format::Markdown;
             let mut text = String::new();
             for section in summary.sections() {
                 section.check()?;
                 if let Some(title) = &section.title {
-                    text += &format!("{title}\n");
+                    text += &if markdown {
+                        format!("### {title}\n\n")
+                    } else {
+                        format!("{title}\n")
+                    };
                 }
                 if !section.headers.is_empty() {
-                    let mut table = new_table(&section.headers);
-                    for row in &section.rows {
-                        table.add_row(row.clone());
+                    if markdown {
+                        text += &markdown_table(&section.headers, &section.rows);
+                        text.push('\n');
+                    } else {
+                        let mut table = new_table(&section.headers);
+                        for row in &section.rows {
+                            table.add_row(row.clone());
+                        }
+                        text += &format!("{table}\n");
                     }
-                    text += &format!("{table}\n");
                 }
                 for line in &section.notes {
                     text += &format!("{line}\n");
                 }
-            }
-            for line in summary.footer() {
-                text += &format!("{line}\n");
-            }
-            Ok(text)
-        }
-        Format::Markdown => {
-            let mut text = String::new();
-            for section in summary.sections() {
-                section.check()?;
-                if let Some(title) = &section.title {
-                    text += &format!("### {title}\n\n");
-                }
-                if !section.headers.is_empty() {
-                    text += &markdown_table(&section.headers, &section.rows);
-                    text.push('\n');
-                }
-                for line in &section.notes {
-                    text += &format!("{line}\n");
-                }
-                if !section.notes.is_empty() {
+                if markdown && !section.notes.is_empty() {
                     text.push('\n');
                 }
             }

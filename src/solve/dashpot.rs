@@ -64,6 +64,28 @@ pub(crate) fn paper_force_in_step(law: &PaperLaw, y: f64, v: f64, timestep: f64)
     elastic * branch
 }
 
+impl CodeTrajectory {
+    /// An empty trajectory with room for a run of `steps` steps; only a hint: a count beyond
+    /// memory is left to grow as the steps come.
+    fn for_steps(steps: u64) -> CodeTrajectory {
+        let rows = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
+        CodeTrajectory {
+            time: Vec::with_capacity(rows),
+            overlap: Vec::with_capacity(rows),
+            approach_velocity: Vec::with_capacity(rows),
+            normal_force: Vec::with_capacity(rows),
+        }
+    }
+
+    /// Append one row: time (s), overlap (m), approach rate (m/s), force (N).
+    fn push_row(&mut self, time: f64, overlap: f64, approach_velocity: f64, force: f64) {
+        self.time.push(time);
+        self.overlap.push(overlap);
+        self.approach_velocity.push(approach_velocity);
+        self.normal_force.push(force);
+    }
+}
+
 /// How a DEM code advances one step.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -108,14 +130,7 @@ pub fn step_trajectory_from<L: StepForce + ?Sized>(
     scheme: StepScheme,
     gap: f64,
 ) -> CodeTrajectory {
-    // Only a hint: a count beyond memory is left to grow as the steps come.
-    let capacity = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
-    let mut out = CodeTrajectory {
-        time: Vec::with_capacity(capacity),
-        overlap: Vec::with_capacity(capacity),
-        approach_velocity: Vec::with_capacity(capacity),
-        normal_force: Vec::with_capacity(capacity),
-    };
+    let mut out = CodeTrajectory::for_steps(steps);
     let (mut y, mut v) = (-gap, impact_velocity);
     let mut force = match scheme {
         StepScheme::VelocityVerlet => 0.0,
@@ -123,13 +138,7 @@ pub fn step_trajectory_from<L: StepForce + ?Sized>(
     };
     let h = timestep;
     let inverse_mass = 1.0 / law.mass();
-    let mut push = |k: u64, y: f64, v: f64, f: f64| {
-        out.time.push(k as f64 * h);
-        out.overlap.push(y);
-        out.approach_velocity.push(v);
-        out.normal_force.push(f);
-    };
-    push(0, y, v, force);
+    out.push_row(0.0, y, v, force);
     for k in 1..=steps {
         match scheme {
             StepScheme::VelocityVerlet => {
@@ -146,7 +155,7 @@ pub fn step_trajectory_from<L: StepForce + ?Sized>(
                 force = law.force_in_step(y, v, h);
             }
         }
-        push(k, y, v, force);
+        out.push_row(k as f64 * h, y, v, force);
     }
     out
 }
@@ -193,13 +202,7 @@ pub(crate) fn step_in_frame<L: StepForce + ?Sized>(
     timestep: f64,
     steps: u64,
 ) -> CodeTrajectory {
-    let capacity = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
-    let mut out = CodeTrajectory {
-        time: Vec::with_capacity(capacity),
-        overlap: Vec::with_capacity(capacity),
-        approach_velocity: Vec::with_capacity(capacity),
-        normal_force: Vec::with_capacity(capacity),
-    };
+    let mut out = CodeTrajectory::for_steps(steps);
     let h = timestep;
     // fix nve/sphere's dtf = 0.5 dt ftm2v (ftm2v = 1 in SI units), dtfm = dtf / m.
     let dtf = 0.5 * h;
@@ -219,13 +222,12 @@ pub(crate) fn step_in_frame<L: StepForce + ?Sized>(
     };
     let approach = |a: &FrameBody, b: &FrameBody| b.velocity - a.velocity;
     let mut force = 0.0;
-    let mut push = |k: u64, y: f64, v: f64, f: f64| {
-        out.time.push(k as f64 * h);
-        out.overlap.push(y);
-        out.approach_velocity.push(v);
-        out.normal_force.push(f);
-    };
-    push(0, overlap(&upper, &lower), approach(&upper, &lower), force);
+    out.push_row(
+        0.0,
+        overlap(&upper, &lower),
+        approach(&upper, &lower),
+        force,
+    );
     for k in 1..=steps {
         let kick = |body: &mut FrameBody, f: f64| {
             body.velocity += dtf / body.mass * f;
@@ -242,7 +244,7 @@ pub(crate) fn step_in_frame<L: StepForce + ?Sized>(
         if moves_lower {
             kick(&mut lower, -force);
         }
-        push(k, y, approach(&upper, &lower), force);
+        out.push_row(k as f64 * h, y, approach(&upper, &lower), force);
     }
     out
 }
@@ -264,13 +266,7 @@ pub(crate) fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
     timestep: f64,
     steps: u64,
 ) -> CodeTrajectory {
-    let capacity = usize::try_from(steps).map_or(0, |n| n.saturating_add(1).min(1 << 24));
-    let mut out = CodeTrajectory {
-        time: Vec::with_capacity(capacity),
-        overlap: Vec::with_capacity(capacity),
-        approach_velocity: Vec::with_capacity(capacity),
-        normal_force: Vec::with_capacity(capacity),
-    };
+    let mut out = CodeTrajectory::for_steps(steps);
     let h = timestep;
     let (mut upper, mut lower) = (frame.upper, frame.lower);
     for k in 0..=steps {
@@ -280,10 +276,7 @@ pub(crate) fn step_in_leap_frog_frame<L: StepForce + ?Sized>(
         };
         let rate = lower.as_ref().map_or(0.0, |l| l.velocity) - upper.velocity;
         let force = law.force_in_step(y, rate, h);
-        out.time.push(k as f64 * h);
-        out.overlap.push(y);
-        out.approach_velocity.push(rate);
-        out.normal_force.push(force);
+        out.push_row(k as f64 * h, y, rate, force);
         upper.velocity += h * (force / upper.mass);
         upper.height += upper.velocity * h;
         if let Some(lower) = &mut lower {
