@@ -543,10 +543,10 @@ fn a_table_fits_the_terminal_and_a_pipe_gets_it_whole() {
                 .split(|c: char| c.is_whitespace() || "│┆┌┐└┘├┤┬┴┼╞╡╪═─:·".contains(c))
                 .filter(|w| !w.is_empty())
                 .collect();
-            let timed = |k: usize| {
-                all.get(k + 1)
-                    .is_some_and(|u| ["s", "ms", "µs"].contains(&u.trim_end_matches(',')))
-            };
+            // A time and its unit: the unit too, since the same time may read 900 µs in one
+            // run and 1.2 ms in the next.
+            let unit = |w: &str| ["s", "ms", "µs"].contains(&w.trim_end_matches(','));
+            let timed = |k: usize| unit(all[k]) || all.get(k + 1).is_some_and(|u| unit(u));
             (0..all.len())
                 .filter(|&k| !timed(k))
                 .map(|k| all[k].to_string())
