@@ -18,7 +18,7 @@ pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
     } else {
         args.cases
             .iter()
-            .map(|p| Case::load(p))
+            .map(|p| Case::load(p).and_then(|c| c.refuse_oblique("compare").map(|_| c)))
             .collect::<Result<Vec<_>, _>>()?
     };
     let mut warnings = Vec::new();

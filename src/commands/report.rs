@@ -49,7 +49,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     } else {
         args.cases
             .iter()
-            .map(|p| Case::load(p))
+            .map(|p| Case::load(p).and_then(|c| c.refuse_oblique("report").map(|_| c)))
             .collect::<Result<Vec<_>, _>>()?
     };
     // The decks are read before any work too: one that cannot be checked runs nothing.
