@@ -142,11 +142,17 @@ impl Contact {
         self.slip0 + SLIP_FACTOR * s[2]
     }
 
-    /// The tangential force inside the bound.
+    /// The dashpot coefficient `γ̂ = 2 ζ sqrt(k̂)` at stiffness `k`.
+    #[inline]
+    fn damping(&self, k: f64) -> f64 {
+        self.two_zeta * k.sqrt()
+    }
+
+    /// The tangential force inside the bound: spring and dashpot.
     #[inline]
     fn spring_force(&self, s: &State) -> f64 {
         let k = self.stiffness(s[0]);
-        -k * s[3] - self.two_zeta * k.sqrt() * self.slip(s)
+        -k * s[3] - self.damping(k) * self.slip(s)
     }
 
     /// The smooth right-hand side of one regime on one branch.
@@ -162,17 +168,25 @@ impl Contact {
     }
 
     /// The regime's event function, positive while the regime holds: inside the bound, the
-    /// margin `μ F_n − k̂ |ξ|`; on it, `y` times the excess of the spring's trial rate over the
-    /// bound's rate, `σ k̂ slip y − μ F_n (n − κ) ẏ` (κ the power of `k̂` in `y`).
+    /// margin `μ F_n − |k̂ ξ + γ̂ slip|`; on it, `y` times the excess of the trial force's rate
+    /// (the spring following the slip, the dashpot the slip's rate) over the bound's:
+    /// `σ k̂ slip y − μ F_n (n − κ) ẏ − σ (κ/2) γ̂ ẏ slip − (7/2) γ̂ μ F_n y`, κ the power of `k̂`
+    /// in `y` (for γ̂ = 0 the first two terms).
     #[inline]
     fn regime_event(&self, s: &State, direction: f64, regime: Regime) -> f64 {
         let f_n = self.normal(s[0], direction);
         let k = self.stiffness(s[0]);
+        let gamma = self.damping(k);
+        let slip = self.slip(s);
+        let kappa = self.stiffness_power;
         match regime {
-            Regime::Stick => self.mu * f_n - k * s[3].abs(),
+            Regime::Stick => self.mu * f_n - (k * s[3] + gamma * slip).abs(),
             Regime::Slip(sigma) => {
-                sigma * k * self.slip(s) * s[0].max(0.0)
-                    - self.mu * f_n * (self.n - self.stiffness_power) * s[1]
+                let y = s[0].max(0.0);
+                sigma * k * slip * y
+                    - self.mu * f_n * (self.n - kappa) * s[1]
+                    - sigma * 0.5 * kappa * gamma * s[1] * slip
+                    - SLIP_FACTOR * gamma * self.mu * f_n * y
             }
         }
     }
@@ -196,12 +210,32 @@ impl Contact {
         }
     }
 
+    /// The regime at a jump of the bound (the turning point), with the spring cut back to the
+    /// bound where it is beyond it: on the bound if the spring's trial rate leaves it, else
+    /// inside it.
+    fn settle(&self, s: &mut State, direction: f64, regime: Regime) -> Regime {
+        let bound = self.mu * self.normal(s[0], direction);
+        let trial = -self.spring_force(s);
+        let sigma = match regime {
+            Regime::Slip(sigma) => sigma,
+            Regime::Stick if trial.abs() > bound => trial.signum(),
+            Regime::Stick => return Regime::Stick,
+        };
+        self.enter(s, direction, Regime::Slip(sigma));
+        if self.regime_event(s, direction, Regime::Slip(sigma)) >= 0.0 {
+            Regime::Slip(sigma)
+        } else {
+            Regime::Stick
+        }
+    }
+
     /// Enter `regime` at state `s` on branch `direction`: on the bound, the spring sits on it.
     fn enter(&self, s: &mut State, direction: f64, regime: Regime) {
         if let Regime::Slip(sigma) = regime {
             let k = self.stiffness(s[0]);
             if k > 0.0 {
-                s[3] = sigma * self.mu * self.normal(s[0], direction) / k;
+                let force = sigma * self.mu * self.normal(s[0], direction);
+                s[3] = (force - self.damping(k) * self.slip(s)) / k;
             }
         }
     }
@@ -310,7 +344,11 @@ fn march4(
         // The earliest of the events that crossed on this step, located on the step itself.
         let mut first: Option<(f64, State, usize)> = None;
         for (i, (&a, &b)) in g.iter().zip(&g_next).enumerate() {
-            if a > 0.0 && b <= 0.0 {
+            // A phase starts on the root of the event that began it (or at first contact, where
+            // every force vanishes): an event that leaves such a start on the wrong side has
+            // crossed at once, however small the start's rounding.
+            let from_root = steps == 0 && a.abs() <= 1e-12 && b < 0.0;
+            if (a > 0.0 && b <= 0.0) || from_root {
                 let (theta, state) = locate4(stepper, f, &y, h, events[i], a, b, stats);
                 if first.as_ref().is_none_or(|(t0, _, _)| theta < *t0) {
                     first = Some((theta, state, i));
@@ -427,24 +465,26 @@ fn phased(
                     stats,
                 });
             }
-            // The turning point: the force drops to the unloading branch, and a spring now
-            // beyond the lower bound slides.
+            // The turning point: the bound drops to the unloading branch; a spring beyond it
+            // is cut back to it, and slides on only if its trial rate still leaves the bound.
             direction = -1.0;
             s[1] = s[1].min(0.0);
-            if regime == Regime::Stick
-                && contact.stiffness(s[0]) * s[3].abs() > contact.mu * contact.normal(s[0], -1.0)
-            {
-                regime = Regime::Slip(s[3].signum());
+            let settled = contact.settle(&mut s, direction, regime);
+            if settled != regime {
                 changes += 1;
+                if settled == Regime::Stick {
+                    slid_throughout = false;
+                }
             }
-            contact.enter(&mut s, direction, regime);
+            regime = settled;
         } else {
             regime = match regime {
                 Regime::Stick => {
-                    let sigma = if s[3] == 0.0 {
+                    let trial = -contact.spring_force(&s);
+                    let sigma = if trial == 0.0 {
                         contact.slip(&s).signum()
                     } else {
-                        s[3].signum()
+                        trial.signum()
                     };
                     Regime::Slip(sigma)
                 }
@@ -462,16 +502,16 @@ fn phased(
 }
 
 /// The tangential force as a DEM code applies it at state `s` with normal force `f_n`: the
-/// spring and dashpot, or the bound against the spring where the spring exceeds it; and
-/// whether it is on the bound.
+/// spring and dashpot, or the bound in their direction where they exceed it; and whether it is
+/// on the bound.
 #[inline]
 fn bounded_force(contact: &Contact, s: &State, f_n: f64) -> (f64, bool) {
-    let k = contact.stiffness(s[0]);
+    let trial = contact.spring_force(s);
     let bound = contact.mu * f_n.abs();
-    if k * s[3].abs() > bound {
-        (-s[3].signum() * bound, true)
+    if trial.abs() > bound {
+        (trial.signum() * bound, true)
     } else {
-        (contact.spring_force(s), false)
+        (trial, false)
     }
 }
 
@@ -525,13 +565,9 @@ fn fixed(contact: &Contact, h: f64, method: Method) -> Result<Scaled, SolveError
                 let xi = s[3] + h * slip_half;
                 f_n = contact.normal(y, if w_half > 0.0 { 1.0 } else { -1.0 });
                 let mut at = State::new(y, w_half, p_half, xi);
-                let on = cut_back(contact, &mut at, f_n);
-                let k = contact.stiffness(y);
-                f_t = if on {
-                    -at[3].signum() * contact.mu * f_n.abs()
-                } else {
-                    -k * at[3] - contact.two_zeta * k.sqrt() * slip_half
-                };
+                let (force, on) = bounded_force(contact, &at, f_n);
+                cut_back(contact, &mut at, f_n);
+                f_t = force;
                 stats.rhs_evaluations += 1;
                 s = State::new(y, w_half - 0.5 * h * f_n, p_half + 0.5 * h * f_t, at[3]);
                 on
@@ -560,19 +596,15 @@ fn fixed(contact: &Contact, h: f64, method: Method) -> Result<Scaled, SolveError
     })
 }
 
-/// Cut the spring back to the Coulomb bound `μ |f_n|`, as LIGGGHTS does after adding a step's
-/// slip; whether it was beyond it.
+/// Cut the spring back so that spring and dashpot meet the Coulomb bound `μ |f_n|`, as a DEM
+/// code does after adding a step's slip; whether they were beyond it.
 fn cut_back(contact: &Contact, s: &mut State, f_n: f64) -> bool {
+    let (force, on_bound) = bounded_force(contact, s, f_n);
     let k = contact.stiffness(s[0]);
-    let bound = contact.mu * f_n.abs();
-    if k * s[3].abs() > bound {
-        if k > 0.0 {
-            s[3] = s[3].signum() * bound / k;
-        }
-        true
-    } else {
-        false
+    if on_bound && k > 0.0 {
+        s[3] = -(force + contact.damping(k) * contact.slip(s)) / k;
     }
+    on_bound
 }
 
 /// Integrate the tangential half of the oblique `case` with `settings` (its method and knob,
