@@ -277,8 +277,11 @@ pub fn gross_sliding_holds(
 ) -> Option<bool> {
     let s = slip.abs();
     let rigid = s >= SLIP_FACTOR * friction * (1.0 + restitution) * normal_velocity;
+    // The ball scenes' exponent is exactly 1.5 (`SpringModel::exponent`).
+    #[allow(clippy::float_cmp)]
+    let hertz = exponent == 1.5;
     let spring = match law.spring {
-        TangentialSpring::Mindlin if exponent == 1.5 => {
+        TangentialSpring::Mindlin if hertz => {
             s * 8.0 * shear_modulus * radius.sqrt()
                 >= friction * (1.0 + eta) * hertz_stiffness * normal_velocity
         }
