@@ -386,3 +386,29 @@ fn the_binary_refuses_what_it_cannot_run() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("not yet run by the DEM codes"), "{stderr}");
 }
+
+/// A fixed step the normal half takes but the tangential spring does not is refused (exit 2),
+/// naming the spring; the normal check alone would let it run and print the blown-up spring.
+#[test]
+fn a_step_beyond_the_tangential_springs_limit_is_refused() {
+    let text = format!(
+        "scene = \"ball_plate\"\nimpact_velocity = 1.0\nloss_coefficient = 0.3\n\
+         tangential_velocity = 0.2\nfriction_coefficient = 0.5\n{STEEL_BALL}[plate]\nrigid = true\n\
+         [tangential]\nspring = \"linear\"\nstiffness = 1e12\n"
+    );
+    let case = oblique_case(&text);
+    let settings = IntegrationOptions {
+        method: Method::Verlet,
+        steps_per_period: Some(200),
+        ..IntegrationOptions::default()
+    }
+    .settings(&case, false)
+    .unwrap();
+    let error = run_case(&case, &settings).unwrap_err();
+    assert!(millimpact::Blame::is_user_error(&error));
+    assert!(error.to_string().contains("tangential spring"), "{error}");
+    // The normal half alone is stable at that step.
+    let mut normal = case.clone();
+    normal.oblique = None;
+    assert!(run_case(&normal, &settings).is_ok());
+}

@@ -870,6 +870,15 @@ pub enum RunError {
         /// The solver's refusal.
         source: SolveError,
     },
+    /// A fixed step (from `--timestep` or `--steps-per-period`) beyond the method's stability
+    /// limit on the tangential spring of an oblique case: the user's (exit 2).
+    #[error("{}: the tangential spring: {source}", case.display())]
+    TangentialUnstable {
+        /// The case file.
+        case: PathBuf,
+        /// The solver's refusal.
+        source: SolveError,
+    },
     /// `--method exact` on an oblique case that no tangential closed form covers: the user's.
     #[error(
         "{}: --method exact: no tangential closed form holds for this oblique case (gross sliding needs |slip| >= 3.5 μ (1+e) v_n and a history spring that reaches the bound at once; the stick reversal a proportional spring of ratio 2/7, η = 0 and no damping); use an integrating method",
@@ -893,7 +902,9 @@ impl Blame for RunError {
     fn is_user_error(&self) -> bool {
         matches!(
             self,
-            RunError::Unsolvable { .. } | RunError::NoClosedForm { .. }
+            RunError::Unsolvable { .. }
+                | RunError::NoClosedForm { .. }
+                | RunError::TangentialUnstable { .. }
         )
     }
 }
@@ -906,7 +917,13 @@ pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, Outcome)
         return Ok((RunReport::new(case, settings.method, &outcome), outcome));
     }
     let oblique = solve_oblique(case, settings)
-        .map_err(|e| solve_failure(&case.path, e))?
+        .map_err(|source| match source {
+            SolveError::Unstable { .. } => RunError::TangentialUnstable {
+                case: case.path.clone(),
+                source,
+            },
+            source => solve_failure(&case.path, source),
+        })?
         .ok_or_else(|| RunError::NoClosedForm {
             case: case.path.clone(),
         })?;
