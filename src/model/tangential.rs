@@ -42,7 +42,9 @@ pub enum TangentialSpring {
     /// classic `gran/hertz/history` scales both springs by `sqrt(R* δ)` (its `Kt NULL` is
     /// `2 Kn / 7`).
     Proportional {
-        /// `k_t` over the normal secant stiffness, dimensionless.
+        /// `k_t` over the normal secant stiffness, dimensionless (the case's
+        /// `stiffness_ratio`).
+        #[serde(rename = "stiffness_ratio")]
         ratio: f64,
     },
 }
