@@ -412,3 +412,21 @@ fn a_step_beyond_the_tangential_springs_limit_is_refused() {
     normal.oblique = None;
     assert!(run_case(&normal, &settings).is_ok());
 }
+
+/// The JSON of an oblique run, every key and value but the wall time, by the closed forms (no
+/// step counts to drift) and by rk4-event (its work pinned): a change of a field's name or
+/// value is a visible change in review.
+#[test]
+fn oblique_json_is_as_reviewed() {
+    for (name, method) in [
+        ("ball_ball_sliding", Method::Exact),
+        ("ball_plate_spin", Method::Rk4Event),
+    ] {
+        let report = run(&held_out(name), method);
+        let mut settings = insta::Settings::clone_current();
+        settings.add_redaction(".wall_time", "[time]");
+        settings.bind(|| {
+            insta::assert_json_snapshot!(format!("oblique_{name}_{method}"), report);
+        });
+    }
+}
