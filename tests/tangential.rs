@@ -336,6 +336,13 @@ fn bad_tangential_input_is_refused_in_one_line() {
         ),
         (
             format!(
+                "scene = \"ball_plate\"\nimpact_velocity = 1.0\nloss_coefficient = 0.3\nfriction_coefficient = 0.1\n{plate}[tangential]\ndamping_ratio = 0.2\n"
+            ),
+            "tangential.damping_ratio",
+            "0.2",
+        ),
+        (
+            format!(
                 "scene = \"ball_plate\"\nimpact_velocity = 1.0\nloss_coefficient = 0.3\nfriction_coefficient = 0.1\ncontact = \"bilateral\"\n{plate}"
             ),
             "contact",

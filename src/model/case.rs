@@ -622,6 +622,18 @@ impl Reader<'_> {
                 "must be a finite number >= 0 (a negative dashpot creates energy)",
             ));
         }
+        if damping_ratio > 0.0 && !matches!(spring, TangentialSpring::Linear { .. }) {
+            // γ_t = 2 ζ sqrt(k_t M*) grows as δ^¼ from first contact while the bound μ F_n grows
+            // as δ^1.5: the dashpot alone exceeds the bound there, and the law (a spring that
+            // must cancel it) has no regime the integration can start from.
+            return Err(self.error(
+                "tangential.damping_ratio",
+                &damping_ratio.to_string(),
+                &format!(
+                    "a dashpot is taken with spring = \"linear\" only (on the \"{spring_name}\" spring, which vanishes at first contact, it outgrows the Coulomb bound there); use 0"
+                ),
+            ));
+        }
         Ok(TangentialLaw {
             spring,
             damping_ratio,

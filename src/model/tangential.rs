@@ -61,8 +61,8 @@ pub struct TangentialLaw {
     #[serde(flatten)]
     pub spring: TangentialSpring,
     /// Damping ratio `ζ`, dimensionless, of the dashpot `γ_t = 2 ζ sqrt(k_t M*)` (`M*` the
-    /// reduced mass); 0 for none. LIGGGHTS' `tangential_damping on` under `model hertz` is
-    /// `ζ = sqrt(5/6) |β|`, `β = ln e / sqrt(ln² e + π²)`.
+    /// reduced mass); 0 for none, and a case gives more only with the linear spring. With a
+    /// dashpot the Coulomb bound applies to spring and dashpot together (LAMMPS' rule).
     pub damping_ratio: f64,
 }
 
