@@ -203,6 +203,37 @@ proptest! {
         prop_assert_eq!(form.kind, ClosedFormKind::GrossSliding);
     }
 
+    /// The two located methods agree in partial slip and in every other regime of the
+    /// default law (Mindlin's spring, no dashpot), where no closed form holds: the regime
+    /// changes are located, not stepped over.
+    #[test]
+    fn located_methods_agree_where_no_closed_form_holds(
+        mu in 0.05f64..1.0,
+        eta in 0.0f64..0.9,
+        v_t in -2.0f64..2.0,
+        omega in -300.0f64..300.0,
+        two_balls in any::<bool>(),
+        proportional in any::<bool>(),
+    ) {
+        let scene = if two_balls {
+            format!("scene = \"ball_ball\"\nother_ball_motion = \"opposed\"\n{STEEL_BALL}")
+        } else {
+            format!("scene = \"ball_plate\"\n{STEEL_BALL}[plate]\nrigid = false\nyoungs_modulus = 7.0e10\npoisson_ratio = 0.25\n")
+        };
+        let spring = if proportional { "[tangential]\nspring = \"proportional\"\n" } else { "" };
+        let text = format!(
+            "impact_velocity = 1.5\nloss_coefficient = {eta:e}\ntangential_velocity = {v_t:e}\n\
+             angular_velocity = {omega:e}\nfriction_coefficient = {mu}\n{scene}{spring}"
+        );
+        let case = oblique_case(&text);
+        let a = solve_oblique(&case, &dopri5()).unwrap().unwrap();
+        let settings = Settings { method: Method::Rk4Event, steps_per_period: 4000, ..Settings::default() };
+        let b = solve_oblique(&case, &settings).unwrap().unwrap();
+        let scale = a.slip_in.abs().max(1e-3);
+        prop_assert!((a.slip_out - b.slip_out).abs() < 1e-6 * scale, "{} against {}: {text}", a.slip_out, b.slip_out);
+        prop_assert!((a.impulse - b.impulse).abs() < 1e-6 * scale * case.law().mass, "{text}");
+    }
+
     /// A passive law (a constant tangential spring, Coulomb, a dashpot of any ratio, the
     /// paper's dissipative normal law) never adds kinetic energy, in partial slip too, for a
     /// ball on a plate and for two balls.
