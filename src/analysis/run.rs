@@ -11,8 +11,10 @@ use crate::error::{Blame, UserError};
 use crate::model::case::{Case, ContactKind};
 use crate::model::exact::{self, ImpactFigures};
 use crate::model::figures::{Checked, Elastic, Exact, Figures, Quantity, quantity, suffix};
+use crate::model::tangential::{ClosedFormKind, TangentialBodies, TangentialLaw, normalised_angle};
 use crate::output::{Section, Summary, sci, seconds, signed};
 use crate::solve::paper::{self, Outcome, Sample, Settings};
+use crate::solve::tangential::{ObliqueOutcome, closed_form, solve_oblique};
 use crate::solve::{Knob, Method, SolveError, Stats};
 
 /// The quantities of the closed forms a run is printed beside.
@@ -85,6 +87,222 @@ pub struct RunReport {
     /// Where the run leaves the range its model or method is valid in (see [`warnings`]);
     /// a warning does not change the exit code.
     pub warnings: Vec<String>,
+    /// The tangential half of an oblique or spinning case (absent for a normal one, whose
+    /// output is what it always was).
+    #[serde(flatten)]
+    pub tangential: Option<TangentialReport>,
+}
+
+/// The tangential half of an oblique or spinning impact: the inputs, what the run gives, the
+/// closed form where one holds. Velocities along the contact plane's axis `t`, spins with the
+/// sign of the case (positive: rolling towards `+t`); angles in degrees from the normal.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TangentialReport {
+    /// The ball's centre velocity along the plane at first contact, m/s.
+    pub tangential_velocity: f64,
+    /// The ball's spin at first contact, rad/s.
+    pub angular_velocity: f64,
+    /// Coulomb's μ.
+    pub friction_coefficient: f64,
+    /// The tangential law (`spring`, its constant, `damping_ratio`).
+    pub tangential_law: TangentialLaw,
+    /// The ball's centre velocity along the plane at separation, m/s.
+    pub tangential_velocity_out: f64,
+    /// The ball's spin at separation, rad/s.
+    pub angular_velocity_out: f64,
+    /// Ball–ball: the other ball's centre velocity at separation, m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub other_tangential_velocity_out: Option<f64>,
+    /// Ball–ball: the other ball's spin at separation, rad/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub other_angular_velocity_out: Option<f64>,
+    /// The slip of the contact point at first contact and at separation, m/s.
+    pub slip_velocity_in: f64,
+    /// See `slip_velocity_in`.
+    pub slip_velocity_out: f64,
+    /// Angle of the incident relative centre velocity from the normal, degrees:
+    /// `atan2(v_t, v_n)`.
+    pub incident_angle: f64,
+    /// Angle of the rebound relative centre velocity from the normal, degrees:
+    /// `atan2(v_t', e v_n)` with this run's normal COR `e`.
+    pub rebound_angle: f64,
+    /// Tangential COR of the contact point, `slip_out / slip_in` (−1: the slip reversed whole,
+    /// 0: rolling); absent without slip.
+    pub tangential_restitution: Option<f64>,
+    /// Thornton's normalised incident angle `ψ = 2 slip_in / (μ (1+e) v_n)`; absent at μ = 0.
+    pub normalised_incident_angle: Option<f64>,
+    /// Thornton's normalised rebound angle `ψ' = 2 slip_out / (μ (1+e) v_n)`; in gross sliding
+    /// `ψ' = ψ − 7`.
+    pub normalised_rebound_angle: Option<f64>,
+    /// Whether the force stayed on the Coulomb bound the whole contact.
+    pub slid_throughout: bool,
+    /// Changes of the tangential regime (inside the bound, on it).
+    pub regime_changes: u32,
+    /// Kinetic energy of the tangential motion (translation along the plane and spin) at
+    /// first contact and at separation, J.
+    pub tangential_energy_in: f64,
+    /// See `tangential_energy_in`.
+    pub tangential_energy_out: f64,
+    /// Steps and right-hand-side evaluations of the coupled integration.
+    pub tangential_steps: u64,
+    /// See `tangential_steps`.
+    pub tangential_rhs_evaluations: u64,
+    /// The closed form, where one holds for the case (gross sliding, the stick reversal).
+    pub tangential_exact: Option<TangentialExact>,
+}
+
+/// A tangential closed form beside the run.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct TangentialExact {
+    /// Which closed form.
+    pub kind: ClosedFormKind,
+    /// The ball's centre velocity at separation, m/s.
+    pub tangential_velocity_out: f64,
+    /// The ball's spin at separation, rad/s.
+    pub angular_velocity_out: f64,
+    /// Relative error of the run's `tangential_velocity_out`.
+    pub tangential_velocity_error: f64,
+    /// Relative error of the run's `angular_velocity_out`.
+    pub angular_velocity_error: f64,
+}
+
+impl TangentialReport {
+    /// The report of `outcome` for `case`, oblique.
+    fn new(case: &Case, outcome: &ObliqueOutcome) -> Option<TangentialReport> {
+        let oblique = case.oblique.as_ref()?;
+        let bodies = TangentialBodies::of(&case.scene, oblique)?;
+        let v_n = case.impact_velocity;
+        let e = outcome.restitution;
+        let mu = oblique.friction_coefficient;
+        let relative_in = oblique.tangential_velocity
+            - bodies.other.map_or(0.0, |(_, _, m)| m.tangential_velocity);
+        let relative_out =
+            outcome.ball.tangential_velocity - outcome.other.map_or(0.0, |m| m.tangential_velocity);
+        let exact = closed_form(case).map(|form| {
+            let (ball, _) = bodies.after(form.impulse);
+            TangentialExact {
+                kind: form.kind,
+                tangential_velocity_out: ball.tangential_velocity,
+                angular_velocity_out: ball.angular_velocity,
+                tangential_velocity_error: relative(
+                    outcome.ball.tangential_velocity,
+                    ball.tangential_velocity,
+                ),
+                angular_velocity_error: relative(
+                    outcome.ball.angular_velocity,
+                    ball.angular_velocity,
+                ),
+            }
+        });
+        Some(TangentialReport {
+            tangential_velocity: oblique.tangential_velocity,
+            angular_velocity: oblique.angular_velocity,
+            friction_coefficient: mu,
+            tangential_law: oblique.law,
+            tangential_velocity_out: outcome.ball.tangential_velocity,
+            angular_velocity_out: outcome.ball.angular_velocity,
+            other_tangential_velocity_out: outcome.other.map(|m| m.tangential_velocity),
+            other_angular_velocity_out: outcome.other.map(|m| m.angular_velocity),
+            slip_velocity_in: outcome.slip_in,
+            slip_velocity_out: outcome.slip_out,
+            incident_angle: relative_in.atan2(v_n).to_degrees(),
+            rebound_angle: relative_out.atan2(e * v_n).to_degrees(),
+            tangential_restitution: (outcome.slip_in != 0.0)
+                .then(|| outcome.slip_out / outcome.slip_in),
+            normalised_incident_angle: normalised_angle(outcome.slip_in, v_n, mu, e),
+            normalised_rebound_angle: normalised_angle(outcome.slip_out, v_n, mu, e),
+            slid_throughout: outcome.slid_throughout,
+            regime_changes: outcome.regime_changes,
+            tangential_energy_in: outcome.tangential_energy_in,
+            tangential_energy_out: outcome.tangential_energy_out,
+            tangential_steps: outcome.stats.steps,
+            tangential_rhs_evaluations: outcome.stats.rhs_evaluations,
+            tangential_exact: exact,
+        })
+    }
+
+    /// The rows of the human table.
+    fn rows(&self) -> Vec<Vec<String>> {
+        let exact = self.tangential_exact;
+        let row = |name: &str, run: f64, exact: Option<f64>| {
+            vec![
+                name.to_string(),
+                sci(run),
+                exact.map(sci).unwrap_or_default(),
+                exact.map(|x| signed(relative(run, x))).unwrap_or_default(),
+            ]
+        };
+        vec![
+            row(
+                "tangential velocity out (m/s)",
+                self.tangential_velocity_out,
+                exact.map(|x| x.tangential_velocity_out),
+            ),
+            row(
+                "angular velocity out (rad/s)",
+                self.angular_velocity_out,
+                exact.map(|x| x.angular_velocity_out),
+            ),
+            row("slip velocity out (m/s)", self.slip_velocity_out, None),
+            row("rebound angle (°)", self.rebound_angle, None),
+        ]
+    }
+
+    /// The notes of the human table.
+    fn notes(&self) -> Vec<String> {
+        let psi = match (
+            self.normalised_incident_angle,
+            self.normalised_rebound_angle,
+        ) {
+            (Some(a), Some(b)) => format!(", Thornton's ψ = {} → ψ' = {}", sci(a), sci(b)),
+            _ => String::new(),
+        };
+        vec![
+            format!(
+                "tangential: v_t = {} m/s, ω = {} rad/s, μ = {}, law {}; {}, {} regime changes{psi}",
+                self.tangential_velocity,
+                self.angular_velocity,
+                self.friction_coefficient,
+                law_name(&self.tangential_law),
+                if self.slid_throughout {
+                    "slid throughout"
+                } else {
+                    "not sliding throughout"
+                },
+                self.regime_changes
+            ),
+            match self.tangential_exact {
+                Some(x) => format!("tangential closed form: {}", closed_form_name(x.kind)),
+                None => "tangential closed form: none holds for this case (partial slip)".into(),
+            },
+        ]
+    }
+}
+
+/// The law as the human table names it.
+fn law_name(law: &TangentialLaw) -> String {
+    use crate::model::tangential::TangentialSpring;
+    let spring = match law.spring {
+        TangentialSpring::Mindlin => "history, Mindlin spring 8 G* sqrt(R* δ)".to_string(),
+        TangentialSpring::Linear { stiffness } => {
+            format!("history, linear spring {} N/m", sci(stiffness))
+        }
+        TangentialSpring::Proportional { ratio } => {
+            format!("history, spring {ratio} × the normal secant stiffness")
+        }
+    };
+    if law.damping_ratio > 0.0 {
+        format!("{spring}, damping ratio {}", law.damping_ratio)
+    } else {
+        spring
+    }
+}
+
+fn closed_form_name(kind: ClosedFormKind) -> &'static str {
+    match kind {
+        ClosedFormKind::GrossSliding => "Coulomb sliding throughout",
+        ClosedFormKind::StickReversal => "stick reversal (2/7 spring, no slip)",
+    }
 }
 
 /// Largest peak deformation, as a fraction of the effective radius R*, inside Hertz's
@@ -157,6 +375,16 @@ pub(crate) fn relative_errors<const Q: u8>(
 impl RunReport {
     /// Assemble the report of `outcome` for `case` by `method`.
     pub(crate) fn new(case: &Case, method: Method, outcome: &Outcome) -> RunReport {
+        RunReport::with_tangential(case, method, outcome, None)
+    }
+
+    /// [`RunReport::new`] with the tangential half of an oblique case.
+    pub(crate) fn with_tangential(
+        case: &Case,
+        method: Method,
+        outcome: &Outcome,
+        oblique: Option<&ObliqueOutcome>,
+    ) -> RunReport {
         let law = case.law();
         let exact = exact::paper_impact(&law, case.impact_velocity);
         let f = &outcome.figures;
@@ -207,6 +435,7 @@ impl RunReport {
             hertz_elastic,
             crossing_speeds: outcome.crossing_speeds.clone(),
             warnings: warnings(case, method, f),
+            tangential: oblique.and_then(|o| TangentialReport::new(case, o)),
         }
     }
 
@@ -270,6 +499,11 @@ impl RunReport {
             ),
         ];
         let rows = compared.chain(rest);
+        let tangential_rows = self
+            .tangential
+            .as_ref()
+            .map(|t| t.rows())
+            .unwrap_or_default();
         for (name, run, exact, error) in rows {
             t.rows.push(vec![
                 name.to_string(),
@@ -282,6 +516,7 @@ impl RunReport {
                 error.map(signed).unwrap_or_default(),
             ]);
         }
+        t.rows.extend(tangential_rows);
         let mut text = format!(
             "steps {}, rhs evaluations {}, wall time {}",
             self.steps,
@@ -308,6 +543,9 @@ impl RunReport {
                 "speeds through zero approach (m/s): {}",
                 speeds.join(", ")
             ));
+        }
+        if let Some(tangential) = &self.tangential {
+            notes.extend(tangential.notes());
         }
         t.notes = notes;
         vec![t]
@@ -632,6 +870,24 @@ pub enum RunError {
         /// The solver's refusal.
         source: SolveError,
     },
+    /// A fixed step (from `--timestep` or `--steps-per-period`) beyond the method's stability
+    /// limit on the tangential spring of an oblique case: the user's (exit 2).
+    #[error("{}: the tangential spring: {source}", case.display())]
+    TangentialUnstable {
+        /// The case file.
+        case: PathBuf,
+        /// The solver's refusal.
+        source: SolveError,
+    },
+    /// `--method exact` on an oblique case that no tangential closed form covers: the user's.
+    #[error(
+        "{}: --method exact: no tangential closed form holds for this oblique case (gross sliding needs |slip| >= 3.5 μ (1+e) v_n and a history spring that reaches the bound at once; the stick reversal a proportional spring of ratio 2/7, η = 0 and no damping); use an integrating method",
+        case.display()
+    )]
+    NoClosedForm {
+        /// The case file.
+        case: PathBuf,
+    },
     /// The integration failed for another reason.
     #[error("{}: integration failed", case.display())]
     Failed {
@@ -644,7 +900,12 @@ pub enum RunError {
 
 impl Blame for RunError {
     fn is_user_error(&self) -> bool {
-        matches!(self, RunError::Unsolvable { .. })
+        matches!(
+            self,
+            RunError::Unsolvable { .. }
+                | RunError::NoClosedForm { .. }
+                | RunError::TangentialUnstable { .. }
+        )
     }
 }
 
@@ -652,7 +913,24 @@ impl Blame for RunError {
 pub fn run_case(case: &Case, settings: &Settings) -> Result<(RunReport, Outcome), RunError> {
     let outcome = paper::solve(&case.law(), case.impact_velocity, settings)
         .map_err(|e| solve_failure(&case.path, e))?;
-    Ok((RunReport::new(case, settings.method, &outcome), outcome))
+    if case.oblique.is_none() {
+        return Ok((RunReport::new(case, settings.method, &outcome), outcome));
+    }
+    let oblique = solve_oblique(case, settings)
+        .map_err(|source| match source {
+            SolveError::Unstable { .. } => RunError::TangentialUnstable {
+                case: case.path.clone(),
+                source,
+            },
+            source => solve_failure(&case.path, source),
+        })?
+        .ok_or_else(|| RunError::NoClosedForm {
+            case: case.path.clone(),
+        })?;
+    Ok((
+        RunReport::with_tangential(case, settings.method, &outcome, Some(&oblique)),
+        outcome,
+    ))
 }
 
 /// The error of a solve of the case read from `path` that failed: a step beyond the

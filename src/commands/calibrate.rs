@@ -11,7 +11,11 @@ use millimpact::model::shipped::shipped_case;
 
 pub(super) fn calibrate(args: &CalibrateArgs) -> Result<CommandOutput> {
     let case = match &args.case {
-        Some(path) => Case::load(path)?,
+        Some(path) => {
+            let case = Case::load(path)?;
+            case.refuse_oblique("calibrate")?;
+            case
+        }
         None => shipped_case("ball_plate")?,
     };
     let restitutions = match (args.cor, args.cor_range) {

@@ -11,7 +11,7 @@ use millimpact::analysis::compare::{CompareOptions, compare as compare_cases};
 use millimpact::error::CheckFailed;
 
 pub(super) fn compare(args: &CompareArgs) -> Result<CommandOutput> {
-    let cases = super::cases_or_canonical(&args.cases)?;
+    let cases = super::cases_or_canonical(&args.cases, "compare")?;
     let mut warnings = Vec::new();
     let options = CompareOptions {
         live: args.live,

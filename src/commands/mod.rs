@@ -243,11 +243,18 @@ fn reference_folder(
 
 /// The cases at `paths`, or the canonical ones (as shipped in cases/ and built in) when none
 /// is given.
-fn cases_or_canonical(paths: &[PathBuf]) -> Result<Vec<millimpact::model::case::Case>> {
+fn cases_or_canonical(
+    paths: &[PathBuf],
+    command: &str,
+) -> Result<Vec<millimpact::model::case::Case>> {
     if paths.is_empty() {
         return Ok(millimpact::model::shipped::canonical_cases()?);
     }
-    let load = |p: &PathBuf| millimpact::model::case::Case::load(p);
+    // The DEM codes run normal impacts only: an oblique case is refused before any work.
+    let load = |p: &PathBuf| {
+        let case = millimpact::model::case::Case::load(p)?;
+        case.refuse_oblique(command).map(|()| case)
+    };
     Ok(paths.iter().map(load).collect::<Result<_, _>>()?)
 }
 

@@ -13,6 +13,7 @@ use millimpact::solve::Method;
 
 pub(super) fn precision(args: &PrecisionArgs) -> Result<CommandOutput> {
     let case = Case::load(&args.case)?;
+    case.refuse_oblique("precision")?;
     check_output("--plot", args.plot.as_deref(), &[&args.case])?;
     let methods: Vec<Method> = if args.methods.is_empty() {
         Method::ALL

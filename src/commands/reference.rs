@@ -14,6 +14,7 @@ use millimpact::output::Format;
 
 pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     let mut case = Case::load(&args.case)?;
+    case.refuse_oblique("reference")?;
     if let Some(eta) = args.loss_coefficient {
         if !(0.0..1.0).contains(&eta) {
             return Err(UserError::argument("--loss-coefficient", eta, "must be in [0, 1)").into());

@@ -39,7 +39,7 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
     // Before any work: a folder that holds someone else's files is refused, never written.
     check_report_dir("--out", &args.out)
         .map_err(|e| UserError::argument(e.option, e.path.display(), e.reason))?;
-    let cases = super::cases_or_canonical(&args.cases)?;
+    let cases = super::cases_or_canonical(&args.cases, "report")?;
     // The decks are read before any work too: one that cannot be checked runs nothing.
     let given = super::deck::Given {
         particles: &args.deck_particle,

@@ -38,9 +38,11 @@ pub(super) fn sweep(args: &SweepArgs) -> Result<CommandOutput> {
         && is_sweep_table(table)
     {
         let sweep = SweepFile::from_table(&args.case, table)?;
+        sweep.base_case.refuse_oblique("sweep")?;
         return sweep_file(args, &sweep);
     }
     let case = Case::load(&args.case)?;
+    case.refuse_oblique("sweep")?;
     check_output("--plot", args.plot.as_deref(), &[&args.case])?;
     let Some(range) = &args.loss_coefficient else {
         return Err(UserError::CaseArgument {

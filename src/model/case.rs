@@ -14,6 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::model::exact;
 use crate::model::law::PaperLaw;
 use crate::model::scene::{Ball, Material, Plate, Rod, Scene, SceneKind, StiffnessConvention};
+use crate::model::tangential::{Oblique, OtherBallMotion, TangentialLaw, TangentialSpring};
 
 /// One-sided (physical impact) or two-sided (paper Eq. 14) contact.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -79,6 +80,9 @@ pub struct Case {
     pub stiffness: StiffnessConvention,
     /// Unilateral or bilateral contact.
     pub contact: ContactKind,
+    /// The tangential half of an oblique or spinning impact (ball scenes); `None` for a normal
+    /// impact, which every case written before the tangential keys is.
+    pub oblique: Option<Oblique>,
 }
 
 impl Case {
@@ -122,6 +126,24 @@ impl Case {
             }
         }
         Ok(())
+    }
+
+    /// Refuse an oblique case where `what` would run only its normal half (the DEM codes'
+    /// drivers and the commands built on them take normal impacts only): one line naming the
+    /// file and the first tangential key.
+    pub fn refuse_oblique(&self, what: &str) -> Result<(), CaseError> {
+        match &self.oblique {
+            None => Ok(()),
+            Some(o) => Err(CaseError::new(
+                &self.path.display().to_string(),
+                "tangential_velocity",
+                &o.tangential_velocity.to_string(),
+                &format!(
+                    "an oblique case is not yet run by the DEM codes ({what} takes normal \
+                     impacts only; `millimpact run` integrates it)"
+                ),
+            )),
+        }
     }
 
     /// The paper's law for this case.
@@ -302,6 +324,18 @@ pub(crate) fn case_keys() -> Vec<String> {
 /// reads the case anew for them.
 pub(crate) const IN_PLACE_KEYS: [&str; 3] = ["impact_velocity", "loss_coefficient", "restitution"];
 
+/// The top-level keys of an oblique or spinning case (ball scenes), apart from the sweep's
+/// axes: a sweep edits normal impacts only.
+const OBLIQUE_KEYS: [&str; 4] = [
+    "tangential_velocity",
+    "angular_velocity",
+    "friction_coefficient",
+    "other_ball_motion",
+];
+
+/// The keys of `[tangential]`.
+const TANGENTIAL_KEYS: [&str; 4] = ["spring", "stiffness", "stiffness_ratio", "damping_ratio"];
+
 const TOP_KEYS: [&str; 6] = [
     "scene",
     "impact_velocity",
@@ -374,11 +408,23 @@ impl Reader<'_> {
                     "not used by scene \"rod_end\" (its stiffness is the rod's, π D² E / (4H))",
                 ));
             }
-            if !known_table && !TOP_KEYS.contains(&key.as_str()) {
+            let oblique_key = OBLIQUE_KEYS.contains(&key.as_str()) || key == "tangential";
+            if oblique_key && kind == SceneKind::RodEnd {
                 return Err(self.error(
                     key,
                     &value.to_string(),
-                    &format!("unknown key; allowed at top level: {}", TOP_KEYS.join(", ")),
+                    "not used by scene \"rod_end\": a rod's end strikes the plate normally (oblique and spinning impacts are ball scenes)",
+                ));
+            }
+            if !known_table && !oblique_key && !TOP_KEYS.contains(&key.as_str()) {
+                return Err(self.error(
+                    key,
+                    &value.to_string(),
+                    &format!(
+                        "unknown key; allowed at top level: {}, and for the ball scenes {} and [tangential]",
+                        TOP_KEYS.join(", "),
+                        OBLIQUE_KEYS.join(", ")
+                    ),
                 ));
             }
         }
@@ -424,6 +470,14 @@ impl Reader<'_> {
             }
             SceneKind::RodEnd => Scene::RodEnd { rod: self.rod(t)? },
         };
+        let oblique = self.oblique(t, kind)?;
+        if oblique.is_some() && contact == ContactKind::Bilateral {
+            return Err(self.error(
+                "contact",
+                "\"bilateral\"",
+                "an oblique case is a unilateral impact (the bodies separate once)",
+            ));
+        }
         let case = Case {
             name,
             path: path.to_path_buf(),
@@ -432,9 +486,158 @@ impl Reader<'_> {
             loss_coefficient,
             stiffness,
             contact,
+            oblique,
         };
         case.check_representable(self.file)?;
         Ok(case)
+    }
+
+    /// The tangential half, if the case has any of its keys; `friction_coefficient` is then
+    /// required.
+    fn oblique(&self, t: &Table, kind: SceneKind) -> Result<Option<Oblique>, CaseError> {
+        let given = OBLIQUE_KEYS.iter().any(|k| t.contains_key(*k)) || t.contains_key("tangential");
+        if !given {
+            return Ok(None);
+        }
+        let friction_coefficient = match t.get("friction_coefficient") {
+            None => {
+                return Err(self.error(
+                    "friction_coefficient",
+                    "(missing)",
+                    "required by an oblique or spinning case: Coulomb's μ, a finite number >= 0",
+                ));
+            }
+            v => self.number_of("friction_coefficient", v)?,
+        };
+        if friction_coefficient < 0.0 {
+            return Err(self.error(
+                "friction_coefficient",
+                &friction_coefficient.to_string(),
+                "must be a finite number >= 0",
+            ));
+        }
+        let signed = |key: &str| -> Result<f64, CaseError> {
+            match t.get(key) {
+                None => Ok(0.0),
+                v => self.number_of(key, v),
+            }
+        };
+        let tangential_velocity = signed("tangential_velocity")?;
+        let angular_velocity = signed("angular_velocity")?;
+        let other_ball = match t.get("other_ball_motion") {
+            None => OtherBallMotion::AtRest,
+            Some(v) if kind != SceneKind::BallBall => {
+                return Err(self.error(
+                    "other_ball_motion",
+                    &v.to_string(),
+                    "used by scene \"ball_ball\" only",
+                ));
+            }
+            Some(Value::String(s)) if s == "at_rest" => OtherBallMotion::AtRest,
+            Some(Value::String(s)) if s == "opposed" => OtherBallMotion::Opposed,
+            Some(v) => {
+                return Err(self.error(
+                    "other_ball_motion",
+                    &v.to_string(),
+                    "must be \"at_rest\" or \"opposed\" (centre at -tangential_velocity, the same spin)",
+                ));
+            }
+        };
+        let law = match t.get("tangential") {
+            None => TangentialLaw::default(),
+            Some(Value::Table(table)) => self.tangential_law(table)?,
+            Some(v) => return Err(self.error("tangential", &v.to_string(), "must be a table")),
+        };
+        Ok(Some(Oblique {
+            tangential_velocity,
+            angular_velocity,
+            friction_coefficient,
+            other_ball,
+            law,
+        }))
+    }
+
+    /// The `[tangential]` table: `spring` ("mindlin", default; "linear" with `stiffness`;
+    /// "proportional" with `stiffness_ratio`, default 2/7) and `damping_ratio` (default 0).
+    fn tangential_law(&self, table: &Table) -> Result<TangentialLaw, CaseError> {
+        self.only_keys(table, "tangential", &TANGENTIAL_KEYS)?;
+        let spring_name = match table.get("spring") {
+            None => "mindlin",
+            Some(Value::String(s)) => s.as_str(),
+            Some(v) => {
+                return Err(self.error(
+                    "tangential.spring",
+                    &v.to_string(),
+                    "must be \"mindlin\", \"linear\" or \"proportional\"",
+                ));
+            }
+        };
+        let refuse_key = |key: &str, spring: &str| -> Result<(), CaseError> {
+            match table.get(key) {
+                Some(v) => Err(self.error(
+                    &format!("tangential.{key}"),
+                    &v.to_string(),
+                    &format!("not used by spring \"{spring}\""),
+                )),
+                None => Ok(()),
+            }
+        };
+        let spring = match spring_name {
+            "mindlin" => {
+                refuse_key("stiffness", "mindlin")?;
+                refuse_key("stiffness_ratio", "mindlin")?;
+                TangentialSpring::Mindlin
+            }
+            "linear" => {
+                refuse_key("stiffness_ratio", "linear")?;
+                TangentialSpring::Linear {
+                    stiffness: self.positive(table, "tangential", "stiffness")?,
+                }
+            }
+            "proportional" => {
+                refuse_key("stiffness", "proportional")?;
+                TangentialSpring::Proportional {
+                    ratio: match table.get("stiffness_ratio") {
+                        None => 2.0 / 7.0,
+                        Some(_) => self.positive(table, "tangential", "stiffness_ratio")?,
+                    },
+                }
+            }
+            other => {
+                return Err(self.error(
+                    "tangential.spring",
+                    &format!("\"{other}\""),
+                    "must be \"mindlin\", \"linear\" or \"proportional\"",
+                ));
+            }
+        };
+        let damping_ratio = match table.get("damping_ratio") {
+            None => 0.0,
+            v => self.number_of("tangential.damping_ratio", v)?,
+        };
+        if damping_ratio < 0.0 {
+            return Err(self.error(
+                "tangential.damping_ratio",
+                &damping_ratio.to_string(),
+                "must be a finite number >= 0 (a negative dashpot creates energy)",
+            ));
+        }
+        if damping_ratio > 0.0 && !matches!(spring, TangentialSpring::Linear { .. }) {
+            // γ_t = 2 ζ sqrt(k_t M*) grows as δ^¼ from first contact while the bound μ F_n grows
+            // as δ^1.5: the dashpot alone exceeds the bound there, and the law (a spring that
+            // must cancel it) has no regime the integration can start from.
+            return Err(self.error(
+                "tangential.damping_ratio",
+                &damping_ratio.to_string(),
+                &format!(
+                    "a dashpot is taken with spring = \"linear\" only (on the \"{spring_name}\" spring, which vanishes at first contact, it outgrows the Coulomb bound there); use 0"
+                ),
+            ));
+        }
+        Ok(TangentialLaw {
+            spring,
+            damping_ratio,
+        })
     }
 
     /// η from the case's `loss_coefficient` or `restitution` (exactly one given).

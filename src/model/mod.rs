@@ -8,4 +8,5 @@ pub mod figures;
 pub mod law;
 pub mod scene;
 pub(crate) mod shipped;
+pub mod tangential;
 pub mod trajectory;

@@ -11,6 +11,7 @@ pub(crate) mod method;
 pub mod paper;
 pub(crate) mod series;
 pub(crate) mod steppers;
+pub mod tangential;
 
 use serde::{Deserialize, Serialize};
 use thiserror::Error;

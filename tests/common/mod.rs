@@ -75,6 +75,7 @@ pub fn case(name: &str, scene: Scene, v0: f64, eta: f64) -> Case {
         loss_coefficient: eta,
         stiffness: StiffnessConvention::Hertz,
         contact: ContactKind::Unilateral,
+        oblique: None,
     }
 }
 

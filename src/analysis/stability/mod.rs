@@ -98,6 +98,7 @@ fn make_case(name: String, scene: Scene, v0: f64, eta: f64) -> Case {
         loss_coefficient: eta,
         stiffness: StiffnessConvention::Hertz,
         contact: ContactKind::Unilateral,
+        oblique: None,
     }
 }
 
