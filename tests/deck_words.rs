@@ -325,7 +325,7 @@ fn a_failed_run_shows_no_figures() {
     let row = table.lines().find(|l| l.contains("2–wall")).unwrap();
     assert_eq!(
         row,
-        "│ 2–wall ┆ 2        ┆ 0.7         ┆ failed (see warnings) ┆ —                               ┆ —                ┆ —                                   ┆ —                ┆ —                  ┆ —         │"
+        "│ 2–wall ┆ 2        ┆ 0.7         ┆ failed (see warnings)               ┆ —                               ┆ —                ┆ —                                   ┆ —                ┆ —                  ┆ —         │"
     );
 }
 

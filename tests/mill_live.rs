@@ -57,14 +57,13 @@ fn live_the_example_mill_runs_both_laws() {
         let mean = power[law]["mean"].as_f64().unwrap();
         assert!(mean > 0.0, "{law} power {mean}");
     }
-    // The verdict is what the numbers say: resolved beyond two standard errors, else not.
-    let difference = power["difference"]["mean"].as_f64().unwrap();
-    let error = power["difference"]["standard_error"].as_f64().unwrap();
-    let resolved = difference.abs() > 2.0 * error;
-    assert_eq!(
-        power["verdict"],
-        if resolved { "resolved" } else { "not_resolved" }
-    );
+    // One seed is too few to call anything resolved: a difference beyond Student's t at its
+    // degrees of freedom (five blocks per law) only says to run more seeds.
+    for q in quantities {
+        assert_ne!(q["verdict"], "resolved", "{q}");
+    }
+    let df = power["difference"]["degrees_of_freedom"].as_f64().unwrap();
+    assert!((4.0..=8.0).contains(&df), "{df}");
     for q in quantities {
         for law in ["written", "switched", "difference"] {
             for field in ["mean", "standard_error"] {

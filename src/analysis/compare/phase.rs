@@ -33,7 +33,7 @@ impl Default for Range {
 }
 
 impl Range {
-    fn add(&mut self, x: f64) {
+    pub(crate) fn add(&mut self, x: f64) {
         if x.is_finite() {
             self.min = self.min.min(x);
             self.max = self.max.max(x);
@@ -101,6 +101,23 @@ pub(crate) fn stepped_at_phase(
             .stepping()
             .trajectory(&record.law, v0, dt, record.steps + 2, phi * v0 * dt);
     trajectory_metrics(&trajectory)
+}
+
+/// The mean of `at(φ)` over `phases` start phases `φ = k / phases` (uniform over one step:
+/// where a user's run meets its first contact), with its range; a phase whose value is not
+/// finite is left out of both (the mean is NaN where none is).
+pub(crate) fn over_phases(phases: usize, mut at: impl FnMut(f64) -> f64) -> (f64, Range) {
+    let mut range = Range::default();
+    let (mut sum, mut n) = (0.0, 0usize);
+    for k in 0..phases {
+        let x = at(k as f64 / phases as f64);
+        range.add(x);
+        if x.is_finite() {
+            sum += x;
+            n += 1;
+        }
+    }
+    (if n > 0 { sum / n as f64 } else { f64::NAN }, range)
 }
 
 /// The integration offset (own law stepped − own law exact, relative to the paper's law) of

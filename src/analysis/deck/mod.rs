@@ -19,7 +19,7 @@ use serde::ser::SerializeMap;
 use serde::{Deserialize, Serialize, Serializer};
 use thiserror::Error;
 
-use super::compare::phase::Range;
+use super::compare::phase::{DEFAULT_PHASES, Range, over_phases};
 use super::run::HERTZ_MAX_STRAIN;
 use super::store::verify::REMAINDER_TOLERANCE;
 use crate::codes::deck::{
@@ -32,10 +32,11 @@ use crate::codes::{CodeDriver, CodeError, CodeName, RunOptions};
 use crate::model::count::ceil_count;
 use crate::model::exact;
 use crate::model::figures::{Checked, Figures, Quantity, quantity};
-use crate::model::law::{CodeLaw, DashpotLaw};
+use crate::model::law::{CodeLaw, ContactForce, DashpotLaw};
 use crate::model::trajectory::{CodeTrajectory, TrajectoryMetrics, trajectory_metrics};
 use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
+use crate::solve::Method;
 use crate::solve::dashpot::{CodeStepping, accurate_metrics};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
@@ -47,8 +48,6 @@ pub(crate) const MIN_STEPS_PER_CONTACT: f64 = 20.0;
 /// Largest time step, as a fraction of the Rayleigh time, before a warning (the usual rule
 /// of DEM practice is 10 to 20 %).
 pub(crate) const MAX_RAYLEIGH_FRACTION: f64 = 0.2;
-/// Start phases over which the step's COR band is taken.
-pub(crate) const PHASES: usize = 16;
 /// Most steps one impact may run (a step this small for the contact is a deck error).
 pub(crate) const MAX_STEPS: u64 = 20_000_000;
 
@@ -64,6 +63,9 @@ pub struct DeckImpact {
     pub run: String,
     /// The wall's name, for a wall pair.
     pub wall: Option<String>,
+    /// The walls this row stands for where several are identical for the pair (the same law,
+    /// model, COR entered and material): one impact is run for all; empty for one wall.
+    pub identical_walls: Vec<String>,
     /// The normal model as the deck names it.
     pub model: String,
     /// Radius of the moving particle, m.
@@ -75,10 +77,19 @@ pub struct DeckImpact {
     /// The COR the user entered for the pair (none for a model that takes stiffness and
     /// damping directly).
     pub cor_entered: Option<f64>,
-    /// What the user's code realised with the user's lines: the COR (`cor_realised`), the
-    /// largest overlap (`peak_overlap`, m), the contact time by overlap and by force (s).
+    /// What the user's code realised with the user's lines: the COR (`cor_realised`) averaged
+    /// over where the first contact falls within a step (a user's simulation meets every start
+    /// phase: the run's own, at the start of a step, plus the code's own law stepped over the
+    /// others), the largest overlap (`peak_overlap`, m) and the contact time by overlap and by
+    /// force (s) of the run itself.
     #[serde(flatten, serialize_with = "realised_names")]
     pub realised: Figures<f64, REALISED>,
+    /// The COR realised over the start phases: smallest and largest (`cor_realised` is their
+    /// mean).
+    pub cor_realised_band: Range,
+    /// The COR of the run itself, whose first contact falls at the start of a step: one point
+    /// of `cor_realised_band`.
+    pub cor_realised_run: f64,
     /// The COR of the code's own law at zero step error.
     pub cor_law: f64,
     /// The COR of the code's own law stepped as the code steps, from the run's start.
@@ -86,9 +97,10 @@ pub struct DeckImpact {
     /// `cor_law − cor_entered`: what the lines mean differs from what was typed (a clamp, a
     /// fit); none without an entered COR.
     pub model_difference: Option<f64>,
-    /// `cor_law_stepped − cor_law`: the step's error.
+    /// The step's error averaged over the start phases: the code's own law stepped as the code
+    /// steps − the law exact.
     pub integration_difference: f64,
-    /// `cor_realised − cor_law_stepped`: what nothing explains.
+    /// `cor_realised_run − cor_law_stepped`: what nothing explains (the same at every phase).
     pub remainder: f64,
     /// The step's COR error over where the first contact falls within a step.
     pub integration_band: Range,
@@ -107,7 +119,7 @@ pub struct DeckImpact {
     pub rayleigh_time: Option<f64>,
     /// Time step over that Rayleigh time.
     pub step_over_rayleigh: Option<f64>,
-    /// The paper's η that gives the COR realised: `(1 − e²)/(1 + e²)`.
+    /// The paper's η that gives the COR realised (phase-averaged): `(1 − e²)/(1 + e²)`.
     pub paper_loss_coefficient: f64,
     /// The law the code integrates for the pair.
     pub law: CodeLaw,
@@ -399,11 +411,74 @@ fn pair_label(deck: &UserDeck, contact: usize) -> String {
     }
 }
 
+/// Per contact, the contacts it stands for: itself and each later contact of the same
+/// particle against a wall identical for it (the same law, model, COR entered and wall
+/// material: their traps differ only by the wall's name), which is then run no more (a deck
+/// with seven identical mesh walls checks one); empty for a contact another stands for.
+fn identical_wall_groups(deck: &UserDeck) -> Vec<Vec<usize>> {
+    let same = |a: &crate::codes::deck::DeckContact, b: &crate::codes::deck::DeckContact| {
+        let (Partner::Wall(x), Partner::Wall(y)) = (a.partner, b.partner) else {
+            return false;
+        };
+        let (x, y) = (&deck.walls[x], &deck.walls[y]);
+        a.body == b.body
+            && a.law == b.law
+            && a.model == b.model
+            && a.cor_entered == b.cor_entered
+            && x.type_id == y.type_id
+            && x.youngs_modulus == y.youngs_modulus
+            && x.poisson_ratio == y.poisson_ratio
+    };
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); deck.contacts.len()];
+    let mut taken = vec![false; deck.contacts.len()];
+    for (k, c) in deck.contacts.iter().enumerate() {
+        if taken[k] {
+            continue;
+        }
+        groups[k].push(k);
+        for (j, other) in deck.contacts.iter().enumerate().skip(k + 1) {
+            if !taken[j] && same(c, other) {
+                taken[j] = true;
+                groups[k].push(j);
+            }
+        }
+    }
+    groups
+}
+
+/// The label of a row that stands for the contacts `group`: the first's, with `×n` where it
+/// stands for `n` identical walls.
+fn group_label(deck: &UserDeck, group: &[usize]) -> String {
+    let label = pair_label(deck, group[0]);
+    if group.len() > 1 {
+        format!("{label} ×{}", group.len())
+    } else {
+        label
+    }
+}
+
+/// The names of the walls a row stands for (empty for one).
+fn group_walls(deck: &UserDeck, group: &[usize]) -> Vec<String> {
+    if group.len() < 2 {
+        return Vec::new();
+    }
+    group
+        .iter()
+        .filter_map(|&k| match deck.contacts[k].partner {
+            Partner::Wall(w) => Some(deck.walls[w].name.clone()),
+            Partner::Body(_) => None,
+        })
+        .collect()
+}
+
 /// The impact speeds: the given ones, else half, once and twice a representative speed (the
 /// deck's own, else `DEFAULT_VELOCITY`), with where they come from.
 pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
     if !given.is_empty() {
-        return (given.to_vec(), GIVEN.into());
+        let mut given = given.to_vec();
+        given.sort_by(f64::total_cmp);
+        given.dedup_by(|a, b| a.total_cmp(b).is_eq());
+        return (given, GIVEN.into());
     }
     let (v, from) = match &deck.representative_velocity {
         Some((v, from)) => (*v, format!("around the deck's {from}")),
@@ -415,9 +490,10 @@ pub fn velocities(deck: &UserDeck, given: &[f64]) -> (Vec<f64>, String) {
     (vec![0.5 * v, v, 2.0 * v], from)
 }
 
-/// One impact planned: its contact, speed and input.
+/// One impact planned: its contact (with those it stands for), speed and input.
 struct Planned {
     contact: usize,
+    group: Vec<usize>,
     velocity: f64,
     steps: u64,
     impact: DeckImpactInput,
@@ -430,6 +506,7 @@ enum Plan {
     /// Not run: the law never separates the bodies (damping ratio ζ ≥ 1).
     NeverSeparates {
         contact: usize,
+        group: Vec<usize>,
         velocity: f64,
         zeta: f64,
     },
@@ -470,12 +547,18 @@ pub fn check_deck(
     let driver = code.driver();
     let dt = deck.timestep;
     let mut planned = Vec::new();
+    let groups = identical_wall_groups(deck);
     for (k, contact) in deck.contacts.iter().enumerate() {
+        let group = &groups[k];
+        if group.is_empty() {
+            continue;
+        }
         for &v in &velocities.0 {
             // A contact with no end has no step count and nothing a run could measure.
             if let Some(zeta) = contact.law.dashpot().and_then(DashpotLaw::never_separates) {
                 planned.push(Plan::NeverSeparates {
                     contact: k,
+                    group: group.clone(),
                     velocity: v,
                     zeta,
                 });
@@ -506,6 +589,7 @@ pub fn check_deck(
             let impact = reader.render(deck, k, v, steps)?;
             planned.push(Plan::Run(Box::new(Planned {
                 contact: k,
+                group: group.clone(),
                 velocity: v,
                 steps,
                 impact,
@@ -523,11 +607,15 @@ pub fn check_deck(
                 ),
                 Err(e) => (impact_row(deck, p, driver, Err(&e)), None),
             },
-            &Plan::NeverSeparates {
+            Plan::NeverSeparates {
                 contact,
+                group,
                 velocity,
                 zeta,
-            } => (never_separating_row(deck, contact, velocity, zeta), None),
+            } => (
+                never_separating_row(deck, *contact, group, *velocity, *zeta),
+                None,
+            ),
         })
         .collect();
     let version = rows.iter().find_map(|(_, v)| v.clone());
@@ -668,6 +756,40 @@ fn stepped_cor(
     trajectory_metrics(&trajectory).map_or(f64::NAN, |m| m.cor)
 }
 
+/// `ω Δt` at the contact's stiffest, its peak overlap `peak` (m): `ω² = (dF/dy)/M` of the
+/// law's elastic force `k yⁿ`, whose stiffness `n k yⁿ⁻¹` grows with the overlap.
+fn step_stability(law: &CodeLaw, peak: f64, timestep: f64) -> f64 {
+    let n = law.exponent();
+    let stiffness = n * law.stiffness() * peak.powf(n - 1.0);
+    (stiffness / ContactForce::mass(law)).sqrt() * timestep
+}
+
+/// An impact speed, m/s, to four significant digits with no trailing zeros (`0.5`, `1.235`):
+/// a speed derived from a deck's own (half of it, twice it) is not printed to 16 digits.
+pub(crate) fn speed_text(v: f64) -> String {
+    if !v.is_normal() {
+        return v.to_string();
+    }
+    // Digits after the point for four significant ones, none below zero.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    let decimals = (3.0 - v.abs().log10().floor()).clamp(0.0, 15.0) as usize;
+    let text = format!("{v:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+/// A COR or η to six decimals, never `-0.000000` (a value that rounds to zero is zero).
+fn fixed(x: f64) -> String {
+    let text = format!("{x:.6}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.bytes().all(|b| b == b'0' || b == b'.') => rest.to_string(),
+        _ => text,
+    }
+}
+
 /// The smaller Rayleigh time of a pair's particles, s (none where a particle has no Young's
 /// modulus).
 fn smallest_rayleigh_time(body: &DeckBody, partner: Option<&DeckBody>) -> Option<f64> {
@@ -684,7 +806,13 @@ fn smallest_rayleigh_time(body: &DeckBody, partner: Option<&DeckBody>) -> Option
 
 /// The row of an impact not run because its law never separates the bodies: the law and the
 /// traps, the figures NaN, and why.
-fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f64) -> DeckImpact {
+fn never_separating_row(
+    deck: &UserDeck,
+    contact: usize,
+    group: &[usize],
+    velocity: f64,
+    zeta: f64,
+) -> DeckImpact {
     let c = &deck.contacts[contact];
     let body = &deck.bodies[c.body];
     let partner_body = match c.partner {
@@ -693,7 +821,7 @@ fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f6
     };
     let nan = f64::NAN;
     let rayleigh = smallest_rayleigh_time(body, partner_body);
-    let pair = pair_label(deck, contact);
+    let pair = group_label(deck, group);
     DeckImpact {
         types: c.types,
         run: format!("{pair}@{velocity} (not run)"),
@@ -702,6 +830,7 @@ fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f6
             Partner::Wall(w) => Some(deck.walls[w].name.clone()),
             Partner::Body(_) => None,
         },
+        identical_walls: group_walls(deck, group),
         model: c.model.clone(),
         radius: body.radius,
         partner_radius: partner_body.map(|o| o.radius),
@@ -712,6 +841,8 @@ fn never_separating_row(deck: &UserDeck, contact: usize, velocity: f64, zeta: f6
             force_contact_time: f64::INFINITY,
             ..Figures::splat(nan)
         },
+        cor_realised_band: Range { min: nan, max: nan },
+        cor_realised_run: nan,
         cor_law: 0.0,
         cor_law_stepped: nan,
         model_difference: c.cor_entered.map(|e| -e),
@@ -764,26 +895,28 @@ fn impact_row(
     let nan = f64::NAN;
     // A failed run has no figures: not even the law stepped, which would read as the run's.
     let mut band = Range { min: nan, max: nan };
-    let mut cor_law_stepped = nan;
+    let (mut cor_law_stepped, mut integration) = (nan, nan);
     if metrics.is_some() {
         let stepping = driver.stepping(&p.impact.setup);
         cor_law_stepped = stepped_cor(&law, &stepping, &p.impact, p.steps, 0.0);
-        band = Range {
-            min: f64::INFINITY,
-            max: f64::NEG_INFINITY,
-        };
-        for k in 0..PHASES {
-            let phase = k as f64 / PHASES as f64 * v * dt;
-            let d = stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phase) - cor_law;
-            if d.is_finite() {
-                band.min = band.min.min(d);
-                band.max = band.max.max(d);
-            }
-        }
+        // A gap of φ v0 Δt more puts the first contact a fraction φ of a step earlier; one
+        // step more covers it.
+        (integration, band) = over_phases(DEFAULT_PHASES, |phi| {
+            stepped_cor(&law, &stepping, &p.impact, p.steps + 1, phi * v * dt) - cor_law
+        });
     }
-    let realised = metrics
+    let mut realised = metrics
         .as_ref()
         .map_or(Figures::splat(nan), realised_figures);
+    let cor_realised_run = realised.cor;
+    // What the code does beyond its law stepped does not depend on where the contact falls
+    // within a step: the run's own remainder, carried to every phase.
+    let remainder = cor_realised_run - cor_law_stepped;
+    realised.cor = cor_law + integration + remainder;
+    let cor_realised_band = Range {
+        min: cor_law + band.min + remainder,
+        max: cor_law + band.max + remainder,
+    };
     let cor_realised = realised.cor;
     let steps_per_contact = realised.contact_time / dt;
     let mut warnings = Vec::new();
@@ -802,10 +935,25 @@ fn impact_row(
             signed(band.max)
         ));
     }
-    if cor_realised > 1.0 {
+    let stiffest = exact.map_or(nan, |m| step_stability(&law, m.peak_deformation, dt));
+    // The step's own predicted error: the code's law stepped as the code steps, at its worst
+    // start phase; a run that stays within it (COR 1 to 2e-10 at thousands of steps per
+    // contact) gains nothing the step does not explain.
+    let predicted = band.min.abs().max(band.max.abs());
+    // Velocity Verlet's and leap-frog's limit: beyond it a step multiplies the energy of an
+    // oscillation instead of keeping it.
+    let limit = Method::Verlet.stability_limit().unwrap_or(f64::INFINITY);
+    if stiffest > limit {
         warnings.push(format!(
-            "energy gain: the run's COR {cor_realised:.6} exceeds 1: the bodies leave faster than they came; the step ({} s) is too long for this contact ({steps_per_contact:.1} steps), which the step integrates unstably",
-            sci(dt)
+            "unstable: at the peak overlap the contact's stiffness gives ω Δt = {stiffest:.2}, beyond the stability limit {limit} of the code's step (velocity Verlet or leap-frog): the step ({} s, {steps_per_contact:.1} steps per contact) integrates this contact unstably, and the COR it gives ({}) is the step's, not the law's",
+            sci(dt),
+            fixed(cor_realised)
+        ));
+    } else if cor_realised - 1.0 > predicted + REMAINDER_TOLERANCE {
+        warnings.push(format!(
+            "energy gain: the phase-averaged COR {} exceeds 1 by {:.2e}, beyond the step's own predicted error {predicted:.2e} (the code's law stepped as it steps, at its worst start phase): the bodies leave faster than they came by more than the step explains",
+            fixed(cor_realised),
+            cor_realised - 1.0
         ));
     }
     let step_over_rayleigh = rayleigh.map(|t| dt / t);
@@ -825,7 +973,6 @@ fn impact_row(
             c.cor_entered.unwrap_or(nan)
         ));
     }
-    let remainder = cor_realised - cor_law_stepped;
     if (remainder / cor_law_stepped).abs() > REMAINDER_TOLERANCE {
         warnings.push(format!(
             "remainder: the run differs from the code's own law stepped as it steps by {} in COR (more than {REMAINDER_TOLERANCE:e}): the code does something its lines, as read, do not say",
@@ -834,22 +981,25 @@ fn impact_row(
     }
     DeckImpact {
         types: c.types,
-        pair: pair_label(deck, p.contact),
+        pair: group_label(deck, &p.group),
         run: record_key(&p.impact),
         wall: match c.partner {
             Partner::Wall(w) => Some(deck.walls[w].name.clone()),
             Partner::Body(_) => None,
         },
+        identical_walls: group_walls(deck, &p.group),
         model: c.model.clone(),
         radius: body.radius,
         partner_radius: partner_body.map(|o| o.radius),
         impact_velocity: v,
         cor_entered: c.cor_entered,
         realised,
+        cor_realised_band,
+        cor_realised_run,
         cor_law,
         cor_law_stepped,
         model_difference,
-        integration_difference: cor_law_stepped - cor_law,
+        integration_difference: integration,
         remainder,
         integration_band: band,
         peak_overlap_ratio: ratio,
@@ -910,6 +1060,12 @@ pub struct DeckImpactRecord {
     pub paper_loss_coefficient: f64,
     /// Warnings, joined by ` | `.
     pub warnings: String,
+    /// The smallest COR realised over the start phases (`cor_realised` is the mean).
+    pub cor_realised_min: f64,
+    /// The largest.
+    pub cor_realised_max: f64,
+    /// The COR of the run itself (first contact at the start of a step).
+    pub cor_realised_run: f64,
 }
 
 fn percent(x: f64) -> String {
@@ -951,12 +1107,15 @@ impl Summary for DeckReport {
                 step_over_rayleigh: i.step_over_rayleigh,
                 paper_loss_coefficient: i.paper_loss_coefficient,
                 warnings: i.warnings.join(" | "),
+                cor_realised_min: i.cor_realised_band.min,
+                cor_realised_max: i.cor_realised_band.max,
+                cor_realised_run: i.cor_realised_run,
             })
             .collect()
     }
 
     fn sections(&self) -> Vec<Section> {
-        let speeds: Vec<String> = self.velocities.iter().map(|v| v.to_string()).collect();
+        let speeds: Vec<String> = self.velocities.iter().map(|&v| speed_text(v)).collect();
         let mut table = Section::new(
             Some(format!(
                 "{}: {} ({}), Δt = {} s ({}); impact speeds {} m/s ({})",
@@ -972,7 +1131,7 @@ impl Summary for DeckReport {
                 "pair",
                 "v0 (m/s)",
                 "COR entered",
-                "COR realised",
+                "COR realised, phase-averaged [band]",
                 "model / integration / remainder",
                 "contact time (s)",
                 "steps per contact [step's COR band]",
@@ -986,7 +1145,7 @@ impl Summary for DeckReport {
                 // No figures for a run that failed: why is under warnings.
                 let mut row = vec![
                     i.pair.clone(),
-                    i.impact_velocity.to_string(),
+                    speed_text(i.impact_velocity),
                     i.cor_entered.map_or("—".into(), |e| format!("{e}")),
                     // A planned impact with no steps was never run (its law never separates).
                     if i.steps == 0 {
@@ -1002,9 +1161,14 @@ impl Summary for DeckReport {
             }
             table.rows.push(vec![
                 i.pair.clone(),
-                i.impact_velocity.to_string(),
+                speed_text(i.impact_velocity),
                 i.cor_entered.map_or("—".into(), |e| format!("{e}")),
-                format!("{:.6}", i.realised.cor),
+                format!(
+                    "{} [{}, {}]",
+                    fixed(i.realised.cor),
+                    fixed(i.cor_realised_band.min),
+                    fixed(i.cor_realised_band.max)
+                ),
                 format!(
                     "{} / {} / {}",
                     i.model_difference.map_or("—".into(), signed),
@@ -1020,10 +1184,24 @@ impl Summary for DeckReport {
                 ),
                 percent(i.peak_overlap_ratio),
                 i.step_over_rayleigh.map_or("—".into(), percent),
-                format!("{:.6}", i.paper_loss_coefficient),
+                fixed(i.paper_loss_coefficient),
             ]);
         }
-        table.notes.push("model: the COR of the code's own law (what these lines make it integrate) − the COR entered; integration: that law stepped as the code steps − the law exact; remainder: the run − the law stepped (absolute COR differences); the band: the step's COR error over where the first contact falls within a step".into());
+        table.notes.push(format!("COR realised, phase-averaged: a user's run meets its first contacts anywhere within a step, so the COR is averaged over {DEFAULT_PHASES} start phases (the run's own at the start of a step, the code's law stepped from the others plus the run's remainder), in brackets its smallest and largest"));
+        table.notes.push("model: the COR of the code's own law (what these lines make it integrate) − the COR entered; integration: that law stepped as the code steps − the law exact, phase-averaged; remainder: the run − the law stepped from the run's start; the step's COR band: the step's COR error over the start phases".into());
+        let mut merged: Vec<String> = self
+            .impacts
+            .iter()
+            .filter(|i| !i.identical_walls.is_empty())
+            .map(|i| format!("{}: walls {}", i.pair, i.identical_walls.join(", ")))
+            .collect();
+        merged.dedup();
+        if !merged.is_empty() {
+            table.notes.push(format!(
+                "identical walls (the same law, model, COR entered and material for the particle), one row and one impact for all: {}",
+                merged.join("; ")
+            ));
+        }
         let mut out = vec![table];
         if !self.cor_against_speed.is_empty() {
             out.push(speed_section(&self.cor_against_speed));
@@ -1067,7 +1245,7 @@ impl Summary for DeckReport {
             .impacts
             .iter()
             .flat_map(|i| {
-                let at = format!("{} at {} m/s", i.pair, i.impact_velocity);
+                let at = format!("{} at {} m/s", i.pair, speed_text(i.impact_velocity));
                 i.failure
                     .iter()
                     .map(|f| format!("  {at}: failed: {f}"))
@@ -1117,9 +1295,9 @@ fn speed_section(curves: &[speed::SpeedCurve]) -> Section {
             let (realised, law) = (curve.cor_realised[k], curve.cor_law[k]);
             section.rows.push(vec![
                 curve.pair.clone(),
-                v.to_string(),
+                speed_text(v),
                 if realised.is_finite() {
-                    format!("{realised:.6}")
+                    fixed(realised)
                 } else {
                     "—".into()
                 },
@@ -1165,7 +1343,7 @@ pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
         .filter_map(|i| {
             i.failure
                 .as_ref()
-                .map(|f| format!("{} at {} m/s: {f}", i.pair, i.impact_velocity))
+                .map(|f| format!("{} at {} m/s: {f}", i.pair, speed_text(i.impact_velocity)))
         })
         .collect()
 }

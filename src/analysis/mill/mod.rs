@@ -8,6 +8,7 @@
 mod charge;
 mod contacts;
 mod report;
+mod stats;
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -22,6 +23,7 @@ pub use report::{
     Estimate, MillRecord, MillReport, MillRun, PowerBalance, ProfilePoint, QuantityRow,
     SpectrumRow, TracePoint, Verdict, difference,
 };
+pub use stats::MIN_SEEDS;
 
 use crate::codes::deck::DeckError;
 use crate::codes::liggghts::mill::{

@@ -1,9 +1,11 @@
 //! The comparison's figures, with their uncertainty: block means (or means over seeds) and
-//! standard errors per law, and each difference between the laws with its standard error.
+//! standard errors per law with their degrees of freedom, and each difference between the laws
+//! with its standard error, judged by Student's t at Welch–Satterthwaite's degrees of freedom.
 
 use serde::{Deserialize, Serialize};
 
 use super::contacts::{ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED, bin};
+use super::stats::{CONFIDENCE, MIN_SEEDS, lag1, t_factor, welch};
 use super::{BLOCKS, DEFAULT_CONTACT_EVERY, MillOptions, RunResult};
 use crate::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
 use crate::output::invocation::Invocation;
@@ -19,16 +21,29 @@ pub struct Estimate {
     pub mean: f64,
     /// Its standard error.
     pub standard_error: f64,
+    /// The degrees of freedom of the standard error: runs − 1 over seeds, blocks − 1 within one
+    /// run, Welch–Satterthwaite's for a difference (`None`: a Poisson count's, taken as normal).
+    #[serde(default)]
+    pub degrees_of_freedom: Option<f64>,
+    /// The lag-1 autocorrelation of the block means the standard error is taken from (one run
+    /// only; `None` over seeds, whose runs are independent): well above zero, the blocks are
+    /// not independent and the standard error is too small.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lag1_autocorrelation: Option<f64>,
 }
 
 /// Whether a difference stands out of its uncertainty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Verdict {
-    /// More than two standard errors from zero.
+    /// Beyond Student's two-sided 95 % t at its degrees of freedom, with at least
+    /// `MIN_SEEDS` runs per law.
     Resolved,
-    /// Within two standard errors of zero.
+    /// Within Student's t of zero.
     NotResolved,
+    /// Beyond Student's t, but from fewer than `MIN_SEEDS` runs per law: a hint to run more
+    /// seeds, not a conclusion.
+    TooFewSeeds,
 }
 
 impl std::fmt::Display for Verdict {
@@ -36,20 +51,26 @@ impl std::fmt::Display for Verdict {
         f.write_str(match self {
             Verdict::Resolved => "resolved",
             Verdict::NotResolved => "not resolved",
+            Verdict::TooFewSeeds => "beyond t, too few seeds",
         })
     }
 }
 
-/// `b − a` with the standard error of independent estimates, and whether it is resolved.
-pub fn difference(a: Estimate, b: Estimate) -> (Estimate, Verdict) {
+/// `b − a` with the standard error of independent estimates and its Welch–Satterthwaite
+/// degrees of freedom, and whether it is resolved from `seeds` runs per law.
+pub fn difference(a: Estimate, b: Estimate, seeds: usize) -> (Estimate, Verdict) {
     let d = Estimate {
         mean: b.mean - a.mean,
         standard_error: a.standard_error.hypot(b.standard_error),
+        degrees_of_freedom: welch(a, b),
+        lag1_autocorrelation: None,
     };
-    let verdict = if d.mean.abs() > 2.0 * d.standard_error {
-        Verdict::Resolved
-    } else {
+    let verdict = if d.mean.abs() <= t_factor(d.degrees_of_freedom) * d.standard_error {
         Verdict::NotResolved
+    } else if seeds < MIN_SEEDS {
+        Verdict::TooFewSeeds
+    } else {
+        Verdict::Resolved
     };
     (d, verdict)
 }
@@ -68,9 +89,14 @@ fn block_means(values: &[f64]) -> Vec<f64> {
         .collect()
 }
 
-/// The mean of `values` and its standard error from `BLOCKS` consecutive blocks.
+/// The mean of `values` and its standard error from `BLOCKS` consecutive blocks, with the
+/// blocks' lag-1 autocorrelation.
 fn block_estimate(values: &[f64]) -> Estimate {
-    spread(&block_means(values))
+    let blocks = block_means(values);
+    Estimate {
+        lag1_autocorrelation: lag1(&blocks),
+        ..spread(&blocks)
+    }
 }
 
 /// Per law, the mean of `a − b` with its standard error, paired: block by block within one run
@@ -84,14 +110,17 @@ fn paired(
     if runs.len() == 1 {
         let (a, b) = (block_means(&a(runs[0])), block_means(&b(runs[0])));
         let d: Vec<f64> = a.iter().zip(&b).map(|(x, y)| x - y).collect();
-        spread(&d)
+        Estimate {
+            lag1_autocorrelation: lag1(&d),
+            ..spread(&d)
+        }
     } else {
         let d: Vec<f64> = runs.iter().map(|r| mean(&a(r)) - mean(&b(r))).collect();
         spread(&d)
     }
 }
 
-/// The mean of independent `values` and its standard error.
+/// The mean of independent `values` and its standard error, with `n − 1` degrees of freedom.
 fn spread(values: &[f64]) -> Estimate {
     let n = values.len() as f64;
     let mean = values.iter().sum::<f64>() / n;
@@ -99,6 +128,8 @@ fn spread(values: &[f64]) -> Estimate {
     Estimate {
         mean,
         standard_error: (variance / n).sqrt(),
+        degrees_of_freedom: Some(n - 1.0),
+        lag1_autocorrelation: None,
     }
 }
 
@@ -149,11 +180,11 @@ pub struct PowerBalance {
 }
 
 impl PowerBalance {
-    /// Whether both laws' routes agree within two standard errors.
+    /// Whether both laws' routes agree within Student's t at their degrees of freedom.
     pub(crate) fn closes(&self) -> bool {
         [self.written, self.switched]
             .iter()
-            .all(|d| d.mean.abs() <= 2.0 * d.standard_error)
+            .all(|d| d.mean.abs() <= t_factor(d.degrees_of_freedom) * d.standard_error)
     }
 }
 
@@ -320,6 +351,8 @@ fn rate(runs: &[&RunResult], window: f64, keep: impl Fn(&super::ContactEvent) ->
     Estimate {
         mean: count / window,
         standard_error: count.sqrt() / window,
+        degrees_of_freedom: None,
+        lag1_autocorrelation: None,
     }
 }
 
@@ -333,6 +366,7 @@ fn spectrum_rows(
     written: &[&RunResult],
     switched: &[&RunResult],
     window: f64,
+    seeds: usize,
 ) -> Vec<SpectrumRow> {
     let mut spectra = Vec::new();
     let mut pairs: Vec<String> = runs
@@ -359,7 +393,7 @@ fn spectrum_rows(
                         ) == k
                 };
                 let (a, b) = (rate(written, window, keep), rate(switched, window, keep));
-                let (difference, verdict) = difference(a, b);
+                let (difference, verdict) = difference(a, b, seeds);
                 let (low, high) = edges(bins, k);
                 spectra.push(SpectrumRow {
                     pair: pair.clone(),
@@ -397,8 +431,9 @@ pub(super) fn summarise(
     };
     let window = plan.spectra_steps as f64 * deck.timestep;
     let mut quantities = Vec::new();
+    let seeds = options.seeds;
     let mut push = |quantity: &str, unit: &str, a: Estimate, b: Estimate| {
-        let (difference, verdict) = difference(a, b);
+        let (difference, verdict) = difference(a, b, seeds);
         quantities.push(QuantityRow {
             quantity: quantity.into(),
             unit: unit.into(),
@@ -476,7 +511,7 @@ pub(super) fn summarise(
             over_runs(&written, rest),
             over_runs(&switched, rest),
         );
-        spectra = spectrum_rows(runs, &written, &switched, window);
+        spectra = spectrum_rows(runs, &written, &switched, window, seeds);
     }
     let power_balance = weighed.then(|| PowerBalance {
         written: paired(&written, power, held),
@@ -561,6 +596,9 @@ pub struct MillRecord {
     pub difference_standard_error: f64,
     /// Whether the difference is resolved.
     pub verdict: Verdict,
+    /// The degrees of freedom of the difference's standard error (Welch–Satterthwaite; empty:
+    /// Poisson counts, taken as normal).
+    pub difference_degrees_of_freedom: Option<f64>,
 }
 
 fn pm(e: Estimate) -> String {
@@ -591,6 +629,7 @@ impl Summary for MillReport {
             difference: q.difference.mean,
             difference_standard_error: q.difference.standard_error,
             verdict: q.verdict,
+            difference_degrees_of_freedom: q.difference.degrees_of_freedom,
         });
         let spectra = self.spectra.iter().map(|s| MillRecord {
             kind: "spectrum",
@@ -608,6 +647,7 @@ impl Summary for MillReport {
             difference: s.difference.mean,
             difference_standard_error: s.difference.standard_error,
             verdict: s.verdict,
+            difference_degrees_of_freedom: s.difference.degrees_of_freedom,
         });
         quantities.chain(spectra).collect()
     }
@@ -647,22 +687,51 @@ impl Summary for MillReport {
         }
         let uncertainty = if self.seeds > 1 {
             format!(
-                "means over {} seeds, standard errors from their spread",
-                self.seeds
+                "means over {} seeds, standard errors from their spread ({} degrees of freedom per law)",
+                self.seeds,
+                self.seeds - 1
             )
         } else {
             format!(
-                "block means over {BLOCKS} consecutive blocks, standard errors from their spread"
+                "block means over {BLOCKS} consecutive blocks, standard errors from their spread ({} degrees of freedom per law)",
+                BLOCKS - 1
             )
         };
         figures.notes = vec![format!(
-            "Δt {:e} s; {} settling steps as written, then {} rotation steps (from {}); power and energy after the first {:.4} s of rotation, {uncertainty}; a difference within two standard errors is not resolved",
+            "Δt {:e} s; {} settling steps as written, then {} rotation steps (from {}); power and energy after the first {:.4} s of rotation, {uncertainty}; a difference is resolved beyond Student's two-sided {:.0} % t at its Welch–Satterthwaite degrees of freedom, from at least {MIN_SEEDS} seeds per law",
             self.timestep,
             self.settling_steps,
             self.rotation_steps,
             self.rotation_from,
-            self.transient
+            self.transient,
+            100.0 * CONFIDENCE
         )];
+        if self.seeds < MIN_SEEDS {
+            figures.notes.push(format!(
+                "{} seed{} per law: below {MIN_SEEDS} nothing is called resolved (one seed's blocks leave out how the charge differs from seed to seed, and a few seeds' spread is itself uncertain by a factor of two); a difference beyond t is marked \"beyond t, too few seeds\"; run --seeds {MIN_SEEDS} or more to conclude",
+                self.seeds,
+                if self.seeds == 1 { "" } else { "s" }
+            ));
+        }
+        let correlated: Vec<String> = self
+            .quantities
+            .iter()
+            .filter_map(|q| {
+                let (a, b) = (
+                    q.written.lag1_autocorrelation?,
+                    q.switched.lag1_autocorrelation?,
+                );
+                Some(format!("{} {a:+.2}, {b:+.2}", q.quantity))
+            })
+            .collect();
+        if !correlated.is_empty() {
+            figures.notes.push(format!(
+                "the blocks' lag-1 autocorrelation ({}, {}): {}; near zero the blocks are independent, well above it the standard errors are too small",
+                self.written_law,
+                self.switched_law,
+                correlated.join("; ")
+            ));
+        }
         if let Some(balance) = self.power_balance {
             let mesh = self.quantities.iter().find(|q| q.quantity == "power draw");
             let relative = |d: Estimate, of: Option<f64>| {
@@ -679,9 +748,9 @@ impl Summary for MillReport {
                 relative(balance.switched, mesh.map(|q| q.switched.mean)),
                 self.switched_law,
                 if balance.closes() {
-                    "it closes within two standard errors"
+                    "it closes within Student's t"
                 } else {
-                    "it does not close within two standard errors"
+                    "it does not close within Student's t"
                 }
             ));
         }

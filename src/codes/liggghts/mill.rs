@@ -39,14 +39,21 @@ pub(crate) const WALLS_FILE: &str = "millimpact_walls.txt";
 pub(crate) const POSITIONS_FILE: &str = "millimpact_positions.txt";
 
 /// Seeds (primes above 10000, as LIGGGHTS's random seeds must be) that replace a deck's
-/// insertion seeds for its second and later seeds.
-const SEEDS: [u64; 24] = [
+/// insertion seeds for its second and later seeds, six for each.
+const SEEDS: [u64; (MAX_SEEDS - 1) * 6] = [
     10007, 10009, 10037, 10039, 10061, 10067, 10069, 10079, 10091, 10093, 10099, 10103, 10111,
-    10133, 10139, 10141, 10151, 10159, 10163, 10169, 10177, 10181, 10193, 10211,
+    10133, 10139, 10141, 10151, 10159, 10163, 10169, 10177, 10181, 10193, 10211, 10223, 10243,
+    10247, 10253, 10259, 10267, 10271, 10273, 10289, 10301, 10303, 10313, 10321, 10331, 10333,
+    10337, 10343, 10357, 10369, 10391, 10399, 10427, 10429, 10433, 10453, 10457, 10459, 10463,
+    10477, 10487, 10499, 10501, 10513, 10529, 10531, 10559, 10567, 10589, 10597, 10601, 10607,
+    10613, 10627, 10631, 10639, 10651, 10657, 10663, 10667, 10687, 10691, 10709, 10711, 10723,
+    10729, 10733, 10739, 10753, 10771, 10781, 10789, 10799, 10831, 10837, 10847, 10853,
 ];
 
-/// The most seeds a mill comparison takes (each needs its own insertion seeds).
-pub(crate) const MAX_SEEDS: usize = 4;
+/// The most seeds a mill comparison takes (each needs its own insertion seeds): enough for a
+/// difference between the laws to be resolved at Student's t with the degrees of freedom
+/// of more than four runs per law.
+pub(crate) const MAX_SEEDS: usize = 16;
 
 /// A normal contact law the mill comparison runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
