@@ -219,12 +219,8 @@ pub(crate) fn clamped_hertz_law(mass: f64, stiffness: f64, beta: f64) -> Dashpot
 /// attractive (YADE's `ViscElPhys`, Kratos' `DEM_D_Linear_Custom_Constants`).
 pub(crate) fn clamped_linear_law(mass: f64, stiffness: f64, zeta: f64) -> DashpotLaw {
     DashpotLaw {
-        mass,
-        stiffness,
-        exponent: 1.0,
         damping: 2.0 * zeta * (mass * stiffness).sqrt(),
-        damping_exponent: 0.0,
-        clamp_attractive: true,
+        ..DashpotLaw::linear(mass, stiffness, 1.0).clamped()
     }
 }
 

@@ -345,13 +345,7 @@ pub(crate) fn refuse_for_paper_law(
     setup: &CodeSetup,
     clamp_refusal: &str,
 ) -> Result<(), CodeError> {
-    let refuse = |reason: String| {
-        Err(CodeError::Unsupported {
-            code: code.into(),
-            case: setup.case_name.clone(),
-            reason,
-        })
-    };
+    let refuse = |reason: String| Err(setup.unsupported(code, reason));
     let eta = paper_loss_coefficient(setup);
     if !(0.0..1.0).contains(&eta) {
         return refuse(format!(

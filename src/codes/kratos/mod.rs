@@ -49,7 +49,7 @@ use super::damping::{
     refuse_for_clamped_law, rod_damping_ratio, thornton_damping_ratio,
 };
 use super::parse::{ParseError, log_value, parse_csv_columns};
-use super::runner::{self, CodesDir, find_codes_dir};
+use super::runner::{self, CodesDir};
 use super::script_values::{body_values, reported};
 use super::template::{exact_number, fill_template};
 use super::{
@@ -78,7 +78,7 @@ fn with_common(template: &str) -> String {
 pub(crate) const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = super::parse::CSV_TRAJECTORY_FILE;
 
 /// The files a run leaves in its scratch directory (besides the harness's `log.txt`): the
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
@@ -203,14 +203,11 @@ pub fn python_in(codes: &CodesDir) -> Result<PathBuf, LocateError> {
 /// `MILLIMPACT_<NAME>_BINARY` if set, else the venv's under the codes' folder ([`python_in`]);
 /// with one OpenMP thread.
 fn locate_python(driver: &dyn CodeDriver) -> Result<Executable, LocateError> {
-    let variable = runner::binary_override_variable(driver.name());
-    let program = if std::env::var_os(&variable).is_some() {
-        runner::locate_override_or_path(driver.name(), driver.binary())?.program
-    } else {
-        python_in(&find_codes_dir())?
-    };
+    let found = runner::locate_override_or_installed(driver, |codes, _| {
+        python_in(codes).map(Executable::plain)
+    })?;
     Ok(Executable {
-        program,
+        program: found.program,
         env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
     })
 }

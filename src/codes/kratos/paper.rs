@@ -26,7 +26,7 @@
 
 use std::path::Path;
 
-use super::{dynamic_mass, hertz_stiffness, parse_trajectory};
+use super::{dynamic_mass, hertz_stiffness};
 use crate::codes::batch::{BatchError, parse_marked_batch};
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::paper_law::paper_law_methods;
@@ -159,13 +159,7 @@ fn parse_runs(
     if !refusals.is_empty() {
         return refusals.into_iter().map(Err).collect();
     }
-    parse_marked_batch(
-        setups.len(),
-        workdir,
-        log,
-        log_value(log, "version="),
-        parse_trajectory,
-    )
+    parse_marked_batch(setups, workdir, log)
 }
 
 /// The script's own account of the run: its step count and the largest difference between a

@@ -20,14 +20,14 @@
 //! operations), stepped by the harness in the deck's own coordinates ([`LammpsPaper::frame`]).
 
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::codes::batch_fns::BatchFns;
 use crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
 use crate::codes::lammps::build_2025::{self, venv_executable};
 use crate::codes::lammps::{body_values, deck_input, paper_plugin_modulus, parse_run};
 use crate::codes::paper_law::paper_law_methods;
-use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
+use crate::codes::runner::locate_override_or_installed;
 use crate::codes::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{
@@ -42,7 +42,7 @@ use crate::solve::dashpot::CodeFrame;
 const WALL_TEMPLATE: &str = include_str!("paper_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
 
-/// The folder under the codes' folder ([`find_codes_dir`]) the plugin is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`](crate::codes::runner::find_codes_dir)) the plugin is installed in.
 pub(crate) const INSTALL_DIR: &str = "lammps-paper";
 /// The plugin inside [`INSTALL_DIR`].
 pub(crate) const PLUGIN_PATH: &str = "lib/paperplugin.so";
@@ -152,33 +152,24 @@ impl CodeDriver for LammpsPaper {
     /// `paperplugin.so` on its own library path), else the 2025 venv's binary with the
     /// project's plugin folder ahead of its library path.
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = binary_override_variable(self.name());
-        if std::env::var_os(&variable).is_some() {
-            return locate_override_or_path(self.name(), self.binary());
-        }
-        let codes = find_codes_dir();
-        let folder = codes.path.join(INSTALL_DIR);
-        let venv = codes.path.join(build_2025::INSTALL_DIR);
-        let missing = |expected: &'static str, folder: PathBuf| LocateError::NotInstalled {
-            expected,
-            folder,
-            origin: codes.origin,
-            variable: variable.clone(),
-        };
-        if !folder.join(PLUGIN_PATH).is_file() {
-            return Err(missing(PLUGIN_PATH, folder));
-        }
-        let mut executable = venv_executable(&venv)
-            .ok_or_else(|| missing("lib/python3.*/site-packages/lammps/lmp", venv.clone()))?;
-        for (name, value) in &mut executable.env {
-            if *name == "LD_LIBRARY_PATH" {
-                let mut path = OsString::from(folder.join(PLUGIN_FOLDER));
-                path.push(":");
-                path.push(&*value);
-                *value = path;
+        locate_override_or_installed(self, |codes, missing| {
+            let folder = codes.path.join(INSTALL_DIR);
+            let venv = codes.path.join(build_2025::INSTALL_DIR);
+            if !folder.join(PLUGIN_PATH).is_file() {
+                return Err(missing(PLUGIN_PATH, folder));
             }
-        }
-        Ok(executable)
+            let mut executable = venv_executable(&venv)
+                .ok_or_else(|| missing(build_2025::VENV_BINARY, venv.clone()))?;
+            for (name, value) in &mut executable.env {
+                if *name == "LD_LIBRARY_PATH" {
+                    let mut path = OsString::from(folder.join(PLUGIN_FOLDER));
+                    path.push(":");
+                    path.push(&*value);
+                    *value = path;
+                }
+            }
+            Ok(executable)
+        })
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {

@@ -153,11 +153,7 @@ pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
 /// The checks LIGGGHTS itself would fail on, whatever the contact model, reported before it is
 /// run by `code`.
 pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
-    let unsupported = |reason: String| CodeError::Unsupported {
-        code: code.into(),
-        case: setup.case_name.clone(),
-        reason,
-    };
+    let unsupported = |reason: String| setup.unsupported(code, reason);
     if !(setup.timestep > 0.0 && setup.impact_velocity > 0.0 && setup.steps > 0) {
         return Err(unsupported(
             "timestep, impact velocity and steps must be positive".into(),
@@ -250,11 +246,8 @@ pub(crate) fn render_deck(
         ("force", "fz[1]".to_string()),
         ("steps", setup.steps.to_string()),
     ];
-    let text = fill_template(TEMPLATE, &values).map_err(|reason| CodeError::Unsupported {
-        code: code.into(),
-        case: setup.case_name.clone(),
-        reason: reason.to_string(),
-    })?;
+    let text = fill_template(TEMPLATE, &values)
+        .map_err(|reason| setup.unsupported(code, reason.to_string()))?;
     Ok(RenderedInput {
         file_name: INPUT_FILE.to_string(),
         // A style without settings leaves no trailing blank on its lines.
@@ -299,11 +292,10 @@ impl Liggghts {
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
         let e = setup.target_restitution;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(CodeError::Unsupported {
-                code: self.name().into(),
-                case: setup.case_name.clone(),
-                reason: format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
-            });
+            return Err(setup.unsupported(
+                self.name(),
+                format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
+            ));
         }
         validate_scene(self.name(), setup)
     }

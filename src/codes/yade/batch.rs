@@ -26,12 +26,11 @@
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 
+use crate::codes::batch::parse_marked_batch;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
-use crate::codes::parse::ParseError;
-use crate::codes::parse::log_value;
 use crate::codes::template::exact_number;
-use crate::codes::yade::{Yade, parse_trajectory};
-use crate::codes::{BatchError, CodeSetup, Executable, Launch, ParsedRun, RenderedInput};
+use crate::codes::yade::Yade;
+use crate::codes::{BatchError, CodeSetup, Executable, Launch, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -343,23 +342,8 @@ pub(crate) fn launch(executable: Executable, input: &RenderedInput) -> Launch {
     }
 }
 
-/// Each impact's run from a batch.
-pub(crate) fn parse_batch(
-    setups: &[CodeSetup],
-    workdir: &Path,
-    log: &str,
-) -> Vec<Result<ParsedRun, ParseError>> {
-    crate::codes::batch::parse_marked_batch(
-        setups.len(),
-        workdir,
-        log,
-        log_value(log, "version="),
-        parse_trajectory,
-    )
-}
-
 /// YADE's batches: many impacts in one process, side by side in groups.
-pub(crate) static YADE_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch)
+pub(crate) static YADE_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_marked_batch)
     .costing(IMPACTS_PER_START)
     .launched_by(launch);
 
@@ -427,7 +411,7 @@ mod tests {
             .unwrap();
         }
         let log = "MILLIMPACT version=2023.02a\nMILLIMPACT impact=1 loop_time=0.25\nMILLIMPACT impact=2 loop_time=0.5\n";
-        let runs = parse_batch(&setups, dir.path(), log);
+        let runs = parse_marked_batch(&setups, dir.path(), log);
         let times: Vec<Option<f64>> = runs.iter().map(|r| r.as_ref().unwrap().loop_time).collect();
         assert_eq!(times, [Some(0.25), Some(0.5)]);
         assert_eq!(

@@ -62,7 +62,7 @@ const TEMPLATE: &str = include_str!("impact.py");
 const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = super::parse::CSV_TRAJECTORY_FILE;
 
 /// Young's modulus given to the wall that stands for a rigid plate, Pa. YADE mixes the wall's
 /// material into `E*`; at this value the wall's share of the compliance, about

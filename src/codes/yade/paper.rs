@@ -29,7 +29,7 @@ use std::path::Path;
 
 use super::Yade;
 use super::batch::{PREAMBLE, launch};
-use crate::codes::batch::marked_trajectory_file;
+use crate::codes::batch::{marked_trajectory_file, parse_marked_batch};
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::paper_law::paper_law_methods;
 use crate::codes::script_values::{body_values, python_dict, without};
@@ -225,7 +225,7 @@ impl CodeDriver for YadePaper {
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
-static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, super::batch::parse_batch)
+static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_marked_batch)
     .costing(IMPACTS_PER_START)
     .launched_by(launch);
 
