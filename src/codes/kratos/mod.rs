@@ -40,6 +40,8 @@ pub mod paper;
 mod project;
 
 pub(crate) use paper::KratosPaper;
+// The deck reader mixes its materials as the driver does.
+pub(crate) use super::setup::mixed_modulus;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -100,7 +102,7 @@ pub const SCHEME: &str = "Symplectic_Euler";
 /// Young's modulus of the wall that stands for a rigid plate, Pa: Kratos mixes the wall's `E`
 /// and `ν` into `E*`; at this value the wall's share of the compliance is below double
 /// precision.
-pub const RIGID_WALL_MODULUS: f64 = 1e30;
+pub const RIGID_WALL_MODULUS: f64 = super::setup::RIGID_WALL_MODULUS;
 
 /// Above this restitution Kratos' `GammaForHertzThornton` gives no damping at all.
 pub(crate) const UNDAMPED_ABOVE: f64 = 0.999;
@@ -226,15 +228,6 @@ pub fn particle_mass(radius: f64, density: f64) -> f64 {
     density * (4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius)
 }
 
-/// `E*` as `DEM_D_Hertz_viscous_Coulomb` (and `DEM_D_Linear_viscous_Coulomb`) forms it from two
-/// materials.
-pub(crate) fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
-    e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
-}
-
-/// The stand-in for a rigid plate: a wall of [`RIGID_WALL_MODULUS`], `ν = 0`.
-const RIGID_WALL: (f64, f64) = (RIGID_WALL_MODULUS, 0.0);
-
 /// The mass the dashpot sees, from Kratos' own particle masses.
 fn dynamic_mass(setup: &CodeSetup) -> f64 {
     let m1 = particle_mass(setup.sphere.radius, setup.sphere.density);
@@ -248,12 +241,11 @@ fn dynamic_mass(setup: &CodeSetup) -> f64 {
 }
 
 /// The Hertz stiffness `(4/3) E* sqrt(R*)` of a ball scene as Kratos' Hertz law forms it: `E*`
-/// mixed from both materials ([`mixed_modulus`]), `R*` the pair's, the ball's own at the flat
+/// mixed from both materials ([`CodeSetup::mixed_modulus`]), `R*` the pair's, the ball's own at the flat
 /// wall.
 fn hertz_stiffness(setup: &CodeSetup) -> f64 {
     let s = setup.sphere;
-    let (e2, nu2) = setup.second_material(RIGID_WALL);
-    let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+    let modulus = setup.mixed_modulus();
     let radius = match (setup.scene, setup.other_sphere) {
         (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
         // RigidFace3D3N is flat: the sphere's own radius.
@@ -292,7 +284,7 @@ impl Kratos {
             // A negative γ leaves the one Kratos derives from the restitution.
             _ => (hertz_input_or_target(setup), 0.0, -1.0),
         };
-        let mut values = body_values(setup, RIGID_WALL);
+        let mut values = body_values(setup);
         values.extend([
             ("restitution", exact_number(restitution)),
             ("linear_stiffness", exact_number(linear_stiffness)),

@@ -93,7 +93,7 @@ impl KratosPaper {
         let law = self.paper_law(setup);
         // Kratos forms the masses from the densities, and the hook is the plate.
         let mut values = without(
-            body_values(setup, super::RIGID_WALL),
+            body_values(setup),
             &["mass", "other_mass", "wall_young", "wall_poisson"],
         );
         values.extend([

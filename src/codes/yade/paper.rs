@@ -126,7 +126,7 @@ impl YadePaper {
         let law = Self::paper_law(setup);
         // The hook forms the law from C, n, η and the pair's mass, and the plate is its plane.
         let mut values = without(
-            body_values(setup, super::RIGID_WALL),
+            body_values(setup),
             &[
                 "other_density",
                 "other_young",
