@@ -250,13 +250,8 @@ pub(crate) fn refuse_for_clamped_law(
     if !(e > 0.0 && e <= 1.0) {
         return Err(setup.unsupported(code, format!("restitution {e} outside (0, 1]")));
     }
-    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-        return Err(setup.unsupported(code, "time step and step count must be positive"));
-    }
+    setup.refuse_unrunnable(code)?;
     match setup.scene {
-        SceneKind::BallBall if setup.other_sphere.is_none() => {
-            Err(setup.unsupported(code, "ball_ball needs a second sphere"))
-        }
         SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(setup.unsupported(
             code,
             format!(

@@ -356,13 +356,7 @@ pub(crate) fn refuse_for_paper_law(
     if setup.clamp_attractive {
         return refuse(clamp_refusal.to_string());
     }
-    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-        return refuse("time step and step count must be positive".into());
-    }
-    if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
-        return refuse("ball_ball needs a second sphere".into());
-    }
-    Ok(())
+    setup.refuse_unrunnable(code)
 }
 
 pub mod kratos;

@@ -161,6 +161,18 @@ impl CodeSetup {
         mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2)
     }
 
+    /// Refuses, as a fault of `code`, a setup that has no positive time step or no steps, or
+    /// a ball pair without its second ball: what no code can run.
+    pub(crate) fn refuse_unrunnable(&self, code: &str) -> Result<(), super::CodeError> {
+        if !(self.timestep > 0.0 && self.timestep.is_finite()) || self.steps == 0 {
+            return Err(self.unsupported(code, "time step and step count must be positive"));
+        }
+        if self.scene == SceneKind::BallBall && self.other_sphere.is_none() {
+            return Err(self.unsupported(code, "ball_ball needs a second sphere"));
+        }
+        Ok(())
+    }
+
     /// The start of a run in a code whose deck puts sphere 1 at `height` above the contact
     /// point, moving down, and below it the plane `z = 0` or, for two balls, sphere 2 at
     /// `−r2`, both at the velocities of the centre-of-mass frame ([`CodeFrame`]); `mass` is a

@@ -80,11 +80,7 @@ pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchE
         exact_number(2.0 * reach),
         super::with_common(SCRIPT),
     );
-    Ok(RenderedInput {
-        file_name: BATCH_SCRIPT.into(),
-        text,
-        args: vec![BATCH_SCRIPT.to_string()],
-    })
+    Ok(super::script_input(BATCH_SCRIPT, text))
 }
 
 /// Kratos' batches: many impacts side by side in one stage.

@@ -86,6 +86,15 @@ pub(crate) const TRAJECTORY_FILE: &str = super::parse::CSV_TRAJECTORY_FILE;
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
 
+/// The script `file` holding `text`, run by the python [`Kratos::locate`] finds.
+fn script_input(file: &str, text: String) -> RenderedInput {
+    RenderedInput {
+        file_name: file.to_string(),
+        text,
+        args: vec![file.to_string()],
+    }
+}
+
 /// Parse the script's `trajectory.csv` (header `iter,time,overlap,approach_velocity,normal_force`).
 pub(crate) fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
     parse_csv_columns(text, TRAJECTORY_FILE)
@@ -323,11 +332,7 @@ impl CodeDriver for Kratos {
         let values = self.script_values(setup)?;
         let text = fill_template(&with_common(TEMPLATE), &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: SCRIPT.to_string(),
-            text,
-            args: vec![SCRIPT.to_string()],
-        })
+        Ok(script_input(SCRIPT, text))
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {

@@ -136,11 +136,7 @@ pub fn render_script(setups: &[CodeSetup], gravity: f64) -> Result<RenderedInput
         exact_number(gravity),
         super::with_common(SCRIPT),
     );
-    Ok(RenderedInput {
-        file_name: SCRIPT_FILE.into(),
-        text,
-        args: vec![SCRIPT_FILE.to_string()],
-    })
+    Ok(super::script_input(SCRIPT_FILE, text))
 }
 
 /// Each impact's run from a script's `log` and files in `workdir`: refused as a whole when the

@@ -354,16 +354,17 @@ pub(crate) fn body_values(
     }
 }
 
+/// The arguments that run the input file `input`, its log in [`LOG_FILE`].
+pub(crate) fn run_args(input: &str) -> [&str; 7] {
+    ["-in", input, "-log", LOG_FILE, "-nocite", "-echo", "none"]
+}
+
 /// The input of a deck whose text is `text`: its file, and the arguments that run it.
 pub(crate) fn deck_input(text: String) -> RenderedInput {
     RenderedInput {
         file_name: INPUT_FILE.into(),
         text,
-        args: [
-            "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-        ]
-        .map(String::from)
-        .to_vec(),
+        args: run_args(INPUT_FILE).map(String::from).to_vec(),
     }
 }
 

@@ -271,7 +271,16 @@ pub(crate) fn parse_run(
     workdir: &Path,
     log: &str,
 ) -> Result<ParsedRun, ParseError> {
-    let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
+    parse_trajectory_file(setup, &workdir.join(TRAJECTORY_FILE), log)
+}
+
+/// [`parse_run`] of the trajectory at `path`, with the screen `log` of its run.
+pub(crate) fn parse_trajectory_file(
+    setup: &CodeSetup,
+    path: &Path,
+    log: &str,
+) -> Result<ParsedRun, ParseError> {
+    let text = super::parse::read_output(path.to_path_buf())?;
     let parsed = parse_output(&text, log)?;
     if let Some(ran) = loop_steps(log)
         && ran != setup.steps
@@ -460,7 +469,7 @@ fn loop_steps(log: &str) -> Option<u64> {
 }
 
 /// The words after `Loop time of` on the last such line.
-pub(crate) fn loop_line(log: &str) -> Option<Vec<&str>> {
+fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
 }

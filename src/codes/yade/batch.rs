@@ -29,7 +29,7 @@ use std::path::{Path, PathBuf};
 use crate::codes::batch::parse_marked_batch;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::template::exact_number;
-use crate::codes::yade::Yade;
+use crate::codes::yade::{Yade, script_input};
 use crate::codes::{BatchError, CodeSetup, Executable, Launch, RenderedInput};
 use crate::model::scene::SceneKind;
 
@@ -249,11 +249,7 @@ pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchE
         exact_number(8.0 * reach),
         groups.join(", "),
     );
-    Ok(RenderedInput {
-        file_name: BATCH_SCRIPT.into(),
-        text,
-        args: ["-j1", "-n", "-x", BATCH_SCRIPT].map(String::from).to_vec(),
-    })
+    Ok(script_input(BATCH_SCRIPT, text))
 }
 
 /// YADE's launcher read as a Python script: the interpreter its first line names (with that

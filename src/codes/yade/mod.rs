@@ -160,11 +160,7 @@ impl CodeDriver for Yade {
         values.push(("restitution", exact_number(Self::input_restitution(setup))));
         let text = fill_template(TEMPLATE, &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: SCRIPT.to_string(),
-            text,
-            args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
-        })
+        Ok(script_input(SCRIPT, text))
     }
 
     fn parse(
@@ -199,6 +195,16 @@ impl CodeDriver for Yade {
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
         fit_restitution(setup, &self.dashpot_law(setup))
+    }
+}
+
+/// The script `file` holding `text`, run by YADE's launcher with one thread and no shell
+/// (`yade -j1 -n -x FILE`).
+pub(crate) fn script_input(file: &str, text: String) -> RenderedInput {
+    RenderedInput {
+        file_name: file.to_string(),
+        text,
+        args: ["-j1", "-n", "-x", file].map(String::from).to_vec(),
     }
 }
 

@@ -191,11 +191,7 @@ impl CodeDriver for YadePaper {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let text = self.script(std::slice::from_ref(setup), &[TRAJECTORY_FILE.to_string()])?;
-        Ok(RenderedInput {
-            file_name: SCRIPT_FILE.to_string(),
-            text,
-            args: ["-j1", "-n", "-x", SCRIPT_FILE].map(String::from).to_vec(),
-        })
+        Ok(super::script_input(SCRIPT_FILE, text))
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
@@ -235,13 +231,7 @@ fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
     let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
     let text = YadePaper.script(setups, &files)?;
-    Ok(RenderedInput {
-        file_name: super::batch::BATCH_SCRIPT.into(),
-        text,
-        args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
-            .map(String::from)
-            .to_vec(),
-    })
+    Ok(super::script_input(super::batch::BATCH_SCRIPT, text))
 }
 
 /// The paper build's card: the impact's law as the hook is given it, and the engines.
