@@ -153,6 +153,22 @@ impl CodeSetup {
         }
     }
 
+    /// The second body's material `(E, ν)` in a ball scene as a code with a material per body
+    /// gives it: the other ball's (`None` where it has no ν), the plate's or the rigid plate's
+    /// stand-in ([`RIGID_WALL_MODULUS`], ν 0); `None` for the rod.
+    pub(crate) fn partner_material(&self) -> Option<(f64, f64)> {
+        match self.scene {
+            SceneKind::BallPlate => Some(
+                self.plate_material
+                    .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
+            ),
+            SceneKind::BallBall => self
+                .other_sphere
+                .and_then(|o| o.poisson_ratio.map(|nu| (o.youngs_modulus, nu))),
+            SceneKind::RodEnd => None,
+        }
+    }
+
     /// `E*` of a ball scene as YADE's and Kratos' Hertz laws mix the sphere's material with
     /// the [`second_material`](CodeSetup::second_material) ([`mixed_modulus`]).
     pub(crate) fn mixed_modulus(&self) -> f64 {

