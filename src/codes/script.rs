@@ -823,7 +823,8 @@ impl<'a> Expression<'a> {
 
     fn call(&mut self, name: &str) -> Result<f64, DeckError> {
         // The functions of one argument, by name (`ln` is e-based, `log` 10-based).
-        const ONE: [(&str, fn(f64) -> f64); 14] = [
+        type OneArgument = fn(f64) -> f64;
+        const ONE: [(&str, OneArgument); 14] = [
             ("sqrt", f64::sqrt),
             ("exp", f64::exp),
             ("ln", f64::ln),
