@@ -3,10 +3,10 @@
 
 use std::path::{Path, PathBuf};
 
+use super::parse::{CSV_TRAJECTORY_FILE, log_value, parse_csv_columns};
 use super::runner::process::Process;
 use super::runner::{RunOptions, whole_trajectory};
 use super::{CodeDriver, CodeError, CodeSetup, Executable, ParseError, ParsedRun, RenderedInput};
-use crate::model::trajectory::CodeTrajectory;
 use thiserror::Error;
 
 /// Why impacts cannot run together in one process of a code.
@@ -209,23 +209,23 @@ pub(crate) fn marked_trajectory_file(index: usize) -> String {
     format!("trajectory-{}.csv", index + 1)
 }
 
-/// Each of `impacts` runs of a batch whose script writes [`marked_trajectory_file`]s, read by
-/// `parse` (the code's own trajectory reader), and prints one `MILLIMPACT impact=K loop_time=T`
-/// line per impact ([`marked_loop_time`]); `version` is the build's, as the log says it.
+/// Each run of a batch of `setups` whose script writes [`marked_trajectory_file`]s (read as the
+/// single scripts' [`CSV_TRAJECTORY_FILE`] is read), prints one `MILLIMPACT impact=K
+/// loop_time=T` line per impact ([`marked_loop_time`]) and the build's `version=`, as YADE's
+/// and Kratos' scripts do.
 pub(crate) fn parse_marked_batch(
-    impacts: usize,
+    setups: &[CodeSetup],
     workdir: &Path,
     log: &str,
-    version: Option<&str>,
-    parse: fn(&str) -> Result<CodeTrajectory, ParseError>,
 ) -> Vec<Result<ParsedRun, ParseError>> {
-    (0..impacts)
+    let version = log_value(log, "version=");
+    (0..setups.len())
         .map(|i| {
             let path = workdir.join(marked_trajectory_file(i));
             let text = std::fs::read_to_string(&path)
                 .map_err(|source| ParseError::Read { path, source })?;
             Ok(ParsedRun {
-                trajectory: parse(&text)?,
+                trajectory: parse_csv_columns(&text, CSV_TRAJECTORY_FILE)?,
                 loop_time: marked_loop_time(log, i),
                 version: version.map(str::to_string),
             })

@@ -219,12 +219,8 @@ pub(crate) fn clamped_hertz_law(mass: f64, stiffness: f64, beta: f64) -> Dashpot
 /// attractive (YADE's `ViscElPhys`, Kratos' `DEM_D_Linear_Custom_Constants`).
 pub(crate) fn clamped_linear_law(mass: f64, stiffness: f64, zeta: f64) -> DashpotLaw {
     DashpotLaw {
-        mass,
-        stiffness,
-        exponent: 1.0,
         damping: 2.0 * zeta * (mass * stiffness).sqrt(),
-        damping_exponent: 0.0,
-        clamp_attractive: true,
+        ..DashpotLaw::linear(mass, stiffness, 1.0).clamped()
     }
 }
 
@@ -254,13 +250,8 @@ pub(crate) fn refuse_for_clamped_law(
     if !(e > 0.0 && e <= 1.0) {
         return Err(setup.unsupported(code, format!("restitution {e} outside (0, 1]")));
     }
-    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-        return Err(setup.unsupported(code, "time step and step count must be positive"));
-    }
+    setup.refuse_unrunnable(code)?;
     match setup.scene {
-        SceneKind::BallBall if setup.other_sphere.is_none() => {
-            Err(setup.unsupported(code, "ball_ball needs a second sphere"))
-        }
         SceneKind::RodEnd if clamped_linear_damping_ratio(e).is_none() => Err(setup.unsupported(
             code,
             format!(

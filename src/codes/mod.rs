@@ -345,13 +345,7 @@ pub(crate) fn refuse_for_paper_law(
     setup: &CodeSetup,
     clamp_refusal: &str,
 ) -> Result<(), CodeError> {
-    let refuse = |reason: String| {
-        Err(CodeError::Unsupported {
-            code: code.into(),
-            case: setup.case_name.clone(),
-            reason,
-        })
-    };
+    let refuse = |reason: String| Err(setup.unsupported(code, reason));
     let eta = paper_loss_coefficient(setup);
     if !(0.0..1.0).contains(&eta) {
         return refuse(format!(
@@ -362,13 +356,7 @@ pub(crate) fn refuse_for_paper_law(
     if setup.clamp_attractive {
         return refuse(clamp_refusal.to_string());
     }
-    if !(setup.timestep > 0.0 && setup.timestep.is_finite()) || setup.steps == 0 {
-        return refuse("time step and step count must be positive".into());
-    }
-    if setup.scene == SceneKind::BallBall && setup.other_sphere.is_none() {
-        return refuse("ball_ball needs a second sphere".into());
-    }
-    Ok(())
+    setup.refuse_unrunnable(code)
 }
 
 pub mod kratos;

@@ -134,6 +134,9 @@ pub(crate) fn log_value<'a>(log: &'a str, key: &str) -> Option<&'a str> {
         .find_map(|field| field.strip_prefix(key))
 }
 
+/// The trajectory file a Python driver's single script writes (YADE's, Kratos').
+pub(crate) const CSV_TRAJECTORY_FILE: &str = "trajectory.csv";
+
 /// Read a trajectory written as comma-separated columns under a header that names them
 /// (`time`, `overlap`, `approach_velocity`, `normal_force`, in any order, among others), as
 /// the Python drivers' scripts write it. `file` names the file in error messages.

@@ -352,6 +352,31 @@ pub(crate) fn locate_override_or_path(code: &str, binary: &str) -> Result<Execut
         })
 }
 
+/// The executable of a build installed in the codes' folder ([`find_codes_dir`]): as
+/// [`locate_override_or_path`] finds it where the build's [`binary_override_variable`] is set
+/// (a user's own build), else what `installed` finds in the codes' folder, given the error
+/// that names what is missing there (what was looked for, in which folder).
+pub(crate) fn locate_override_or_installed(
+    driver: &dyn CodeDriver,
+    installed: impl FnOnce(
+        &CodesDir,
+        &dyn Fn(&'static str, PathBuf) -> LocateError,
+    ) -> Result<Executable, LocateError>,
+) -> Result<Executable, LocateError> {
+    let variable = binary_override_variable(driver.name());
+    if std::env::var_os(&variable).is_some() {
+        return locate_override_or_path(driver.name(), driver.binary());
+    }
+    let codes = find_codes_dir();
+    let missing = |expected, folder| LocateError::NotInstalled {
+        expected,
+        folder,
+        origin: codes.origin,
+        variable: variable.clone(),
+    };
+    installed(&codes, &missing)
+}
+
 /// Whether `binary` is an executable on PATH.
 pub(crate) fn find_on_path(binary: &str) -> Option<PathBuf> {
     let path = std::env::var_os("PATH")?;

@@ -822,10 +822,28 @@ impl<'a> Expression<'a> {
     }
 
     fn call(&mut self, name: &str) -> Result<f64, DeckError> {
-        const KNOWN: [&str; 16] = [
-            "sqrt", "exp", "ln", "log", "abs", "sin", "cos", "tan", "asin", "acos", "atan", "ceil",
-            "floor", "round", "atan2", "ternary",
+        // The functions of one argument, by name (`ln` is e-based, `log` 10-based).
+        type OneArgument = fn(f64) -> f64;
+        const ONE: [(&str, OneArgument); 14] = [
+            ("sqrt", f64::sqrt),
+            ("exp", f64::exp),
+            ("ln", f64::ln),
+            ("log", f64::log10),
+            ("abs", f64::abs),
+            ("sin", f64::sin),
+            ("cos", f64::cos),
+            ("tan", f64::tan),
+            ("asin", f64::asin),
+            ("acos", f64::acos),
+            ("atan", f64::atan),
+            ("ceil", f64::ceil),
+            ("floor", f64::floor),
+            ("round", f64::round),
         ];
+        let one = ONE
+            .iter()
+            .find(|(known, _)| *known == name)
+            .map(|&(_, f)| f);
         if name == "min" || name == "max" {
             // Not the smaller of two numbers: LAMMPS and LIGGGHTS stop at `min(3,4)` ("Invalid
             // special function").
@@ -841,7 +859,7 @@ impl<'a> Expression<'a> {
                 self.text
             )));
         }
-        if !KNOWN.contains(&name) {
+        if one.is_none() && name != "atan2" && name != "ternary" {
             return Err(self.fail(format!(
                 "`{name}()` in `{}`: a function this reader does not evaluate (one of {FUNCTIONS} is)",
                 self.text
@@ -862,50 +880,29 @@ impl<'a> Expression<'a> {
                 _ => return Err(self.fail(format!("unbalanced parentheses in `{}`", self.text))),
             }
         }
-        let one = |f: fn(f64) -> f64| -> Result<f64, DeckError> {
-            match args[..] {
-                [x] => Ok(f(x)),
-                _ => Err(self.fail(format!("{name}() takes one argument in `{}`", self.text))),
+        let value = match (one, name, &args[..]) {
+            (Some(f), _, [x]) => f(*x),
+            (Some(_), ..) => {
+                return Err(self.fail(format!("{name}() takes one argument in `{}`", self.text)));
             }
-        };
-        let two = |f: fn(f64, f64) -> f64| -> Result<f64, DeckError> {
-            match args[..] {
-                [x, y] => Ok(f(x, y)),
-                _ => Err(self.fail(format!("{name}() takes two arguments in `{}`", self.text))),
+            (_, "atan2", [y, x]) => y.atan2(*x),
+            (_, "atan2", _) => {
+                return Err(self.fail(format!("{name}() takes two arguments in `{}`", self.text)));
             }
-        };
-        let value = match name {
-            "sqrt" => one(f64::sqrt)?,
-            "exp" => one(f64::exp)?,
-            "ln" => one(f64::ln)?,
-            "log" => one(f64::log10)?,
-            "abs" => one(f64::abs)?,
-            "sin" => one(f64::sin)?,
-            "cos" => one(f64::cos)?,
-            "tan" => one(f64::tan)?,
-            "asin" => one(f64::asin)?,
-            "acos" => one(f64::acos)?,
-            "atan" => one(f64::atan)?,
-            "ceil" => one(f64::ceil)?,
-            "floor" => one(f64::floor)?,
-            "round" => one(f64::round)?,
-            "atan2" => two(f64::atan2)?,
-            "ternary" => match args[..] {
-                [c, a, b] => {
-                    if c != 0.0 {
-                        a
-                    } else {
-                        b
-                    }
+            // `ternary`, the one function left.
+            (_, _, [c, a, b]) => {
+                if *c != 0.0 {
+                    *a
+                } else {
+                    *b
                 }
-                _ => {
-                    return Err(self.fail(format!(
-                        "ternary() takes three arguments in `{}`",
-                        self.text
-                    )));
-                }
-            },
-            _ => unreachable!("a function of the list above"),
+            }
+            _ => {
+                return Err(self.fail(format!(
+                    "ternary() takes three arguments in `{}`",
+                    self.text
+                )));
+            }
         };
         if value.is_finite() {
             Ok(value)

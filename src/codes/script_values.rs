@@ -12,12 +12,12 @@ use crate::model::scene::SceneKind;
 /// the time step and the steps, the moving sphere, the other ball (zeros at a wall), the two
 /// velocities of the centre-of-mass frame, and the wall's material (`rigid` for a rigid plate,
 /// zeros between two balls). A script that needs fewer leaves out the ones it has no use for.
-pub(crate) fn body_values(setup: &CodeSetup, rigid: (f64, f64)) -> Vec<(&'static str, String)> {
+pub(crate) fn body_values(setup: &CodeSetup) -> Vec<(&'static str, String)> {
     let s = setup.sphere;
     let (v1, v2) = setup.centre_of_mass_velocities();
     let (wall_young, wall_poisson) = match setup.scene {
         SceneKind::BallBall => (0.0, 0.0),
-        _ => setup.second_material(rigid),
+        _ => setup.second_material(),
     };
     let other = setup
         .other_sphere

@@ -21,6 +21,13 @@ pub(crate) const RIGID_WALL_MODULUS: f64 = 1e30;
 /// Poisson's ratio given to that wall (irrelevant at [`RIGID_WALL_MODULUS`]).
 pub(crate) const RIGID_WALL_POISSON: f64 = 0.0;
 
+/// `E*` of two materials as YADE's `Ip2_FrictMat_FrictMat_MindlinPhys` and Kratos'
+/// `DEM_D_Hertz_viscous_Coulomb` (and `DEM_D_Linear_viscous_Coulomb`) form it, with their
+/// operations: `E1 E2 / ((1−ν1²) E2 + (1−ν2²) E1)`.
+pub(crate) fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
+    e1 * e2 / ((1.0 - nu1 * nu1) * e2 + (1.0 - nu2 * nu2) * e1)
+}
+
 /// One sphere in a DEM code (a ball, or the sphere that stands for the rod).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct CodeSphere {
@@ -135,16 +142,51 @@ impl CodeSetup {
     }
 
     /// The second body's material `(E, ν)` in a ball scene: the other ball's (ν 0 where it has
-    /// none), else the plate's, else `rigid`, the material the code's wall stands for a rigid
-    /// plate with.
-    pub(crate) fn second_material(&self, rigid: (f64, f64)) -> (f64, f64) {
+    /// none), else the plate's, else the rigid plate's stand-in ([`RIGID_WALL_MODULUS`], ν 0).
+    pub(crate) fn second_material(&self) -> (f64, f64) {
         match (self.scene, self.other_sphere, self.plate_material) {
             (SceneKind::BallBall, Some(other), _) => {
                 (other.youngs_modulus, other.poisson_ratio.unwrap_or(0.0))
             }
             (_, _, Some(plate)) => plate,
-            _ => rigid,
+            _ => (RIGID_WALL_MODULUS, RIGID_WALL_POISSON),
         }
+    }
+
+    /// The second body's material `(E, ν)` in a ball scene as a code with a material per body
+    /// gives it: the other ball's (`None` where it has no ν), the plate's or the rigid plate's
+    /// stand-in ([`RIGID_WALL_MODULUS`], ν 0); `None` for the rod.
+    pub(crate) fn partner_material(&self) -> Option<(f64, f64)> {
+        match self.scene {
+            SceneKind::BallPlate => Some(
+                self.plate_material
+                    .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
+            ),
+            SceneKind::BallBall => self
+                .other_sphere
+                .and_then(|o| o.poisson_ratio.map(|nu| (o.youngs_modulus, nu))),
+            SceneKind::RodEnd => None,
+        }
+    }
+
+    /// `E*` of a ball scene as YADE's and Kratos' Hertz laws mix the sphere's material with
+    /// the [`second_material`](CodeSetup::second_material) ([`mixed_modulus`]).
+    pub(crate) fn mixed_modulus(&self) -> f64 {
+        let s = self.sphere;
+        let (e2, nu2) = self.second_material();
+        mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2)
+    }
+
+    /// Refuses, as a fault of `code`, a setup that has no positive time step or no steps, or
+    /// a ball pair without its second ball: what no code can run.
+    pub(crate) fn refuse_unrunnable(&self, code: &str) -> Result<(), super::CodeError> {
+        if !(self.timestep > 0.0 && self.timestep.is_finite()) || self.steps == 0 {
+            return Err(self.unsupported(code, "time step and step count must be positive"));
+        }
+        if self.scene == SceneKind::BallBall && self.other_sphere.is_none() {
+            return Err(self.unsupported(code, "ball_ball needs a second sphere"));
+        }
+        Ok(())
     }
 
     /// The start of a run in a code whose deck puts sphere 1 at `height` above the contact

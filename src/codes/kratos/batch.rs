@@ -19,14 +19,12 @@
 //! Side by side rather than one after another: importing Kratos and initialising a stage cost
 //! far more than an impact's steps, and the loop's Python calls a step are shared.
 
-use std::path::Path;
-
+use crate::codes::batch::parse_marked_batch;
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
-use crate::codes::kratos::{Kratos, parse_trajectory};
-use crate::codes::parse::{ParseError, log_value};
+use crate::codes::kratos::Kratos;
 use crate::codes::script_values::python_dict;
 use crate::codes::template::exact_number;
-use crate::codes::{BatchError, CodeSetup, ParsedRun, RenderedInput};
+use crate::codes::{BatchError, CodeSetup, RenderedInput};
 use crate::model::scene::SceneKind;
 
 /// Most impacts in one batch.
@@ -82,31 +80,12 @@ pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchE
         exact_number(2.0 * reach),
         super::with_common(SCRIPT),
     );
-    Ok(RenderedInput {
-        file_name: BATCH_SCRIPT.into(),
-        text,
-        args: vec![BATCH_SCRIPT.to_string()],
-    })
-}
-
-/// Each impact's run from a batch.
-pub(crate) fn parse_batch(
-    setups: &[CodeSetup],
-    workdir: &Path,
-    log: &str,
-) -> Vec<Result<ParsedRun, ParseError>> {
-    crate::codes::batch::parse_marked_batch(
-        setups.len(),
-        workdir,
-        log,
-        log_value(log, "version="),
-        parse_trajectory,
-    )
+    Ok(super::script_input(BATCH_SCRIPT, text))
 }
 
 /// Kratos' batches: many impacts side by side in one stage.
 pub(crate) static KRATOS_BATCH: BatchFns =
-    BatchFns::new(MAX_BATCH, render_batch, parse_batch).costing(IMPACTS_PER_START);
+    BatchFns::new(MAX_BATCH, render_batch, parse_marked_batch).costing(IMPACTS_PER_START);
 
 #[cfg(test)]
 mod tests {

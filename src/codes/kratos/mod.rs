@@ -40,6 +40,8 @@ pub mod paper;
 mod project;
 
 pub(crate) use paper::KratosPaper;
+// The deck reader mixes its materials as the driver does.
+pub(crate) use super::setup::mixed_modulus;
 
 use std::ffi::OsString;
 use std::path::{Path, PathBuf};
@@ -49,7 +51,7 @@ use super::damping::{
     refuse_for_clamped_law, rod_damping_ratio, thornton_damping_ratio,
 };
 use super::parse::{ParseError, log_value, parse_csv_columns};
-use super::runner::{self, CodesDir, find_codes_dir};
+use super::runner::{self, CodesDir};
 use super::script_values::{body_values, reported};
 use super::template::{exact_number, fill_template};
 use super::{
@@ -78,11 +80,20 @@ fn with_common(template: &str) -> String {
 pub(crate) const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = super::parse::CSV_TRAJECTORY_FILE;
 
 /// The files a run leaves in its scratch directory (besides the harness's `log.txt`): the
 /// script and its trajectory; Kratos writes nothing else when its output options are off.
 pub const RUN_FILES: [&str; 2] = [SCRIPT, TRAJECTORY_FILE];
+
+/// The script `file` holding `text`, run by the python [`Kratos::locate`] finds.
+fn script_input(file: &str, text: String) -> RenderedInput {
+    RenderedInput {
+        file_name: file.to_string(),
+        text,
+        args: vec![file.to_string()],
+    }
+}
 
 /// Parse the script's `trajectory.csv` (header `iter,time,overlap,approach_velocity,normal_force`).
 pub(crate) fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
@@ -100,7 +111,7 @@ pub const SCHEME: &str = "Symplectic_Euler";
 /// Young's modulus of the wall that stands for a rigid plate, Pa: Kratos mixes the wall's `E`
 /// and `ν` into `E*`; at this value the wall's share of the compliance is below double
 /// precision.
-pub const RIGID_WALL_MODULUS: f64 = 1e30;
+pub const RIGID_WALL_MODULUS: f64 = super::setup::RIGID_WALL_MODULUS;
 
 /// Above this restitution Kratos' `GammaForHertzThornton` gives no damping at all.
 pub(crate) const UNDAMPED_ABOVE: f64 = 0.999;
@@ -203,14 +214,11 @@ pub fn python_in(codes: &CodesDir) -> Result<PathBuf, LocateError> {
 /// `MILLIMPACT_<NAME>_BINARY` if set, else the venv's under the codes' folder ([`python_in`]);
 /// with one OpenMP thread.
 fn locate_python(driver: &dyn CodeDriver) -> Result<Executable, LocateError> {
-    let variable = runner::binary_override_variable(driver.name());
-    let program = if std::env::var_os(&variable).is_some() {
-        runner::locate_override_or_path(driver.name(), driver.binary())?.program
-    } else {
-        python_in(&find_codes_dir())?
-    };
+    let found = runner::locate_override_or_installed(driver, |codes, _| {
+        python_in(codes).map(Executable::plain)
+    })?;
     Ok(Executable {
-        program,
+        program: found.program,
         env: vec![("OMP_NUM_THREADS", OsString::from("1"))],
     })
 }
@@ -229,15 +237,6 @@ pub fn particle_mass(radius: f64, density: f64) -> f64 {
     density * (4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius)
 }
 
-/// `E*` as `DEM_D_Hertz_viscous_Coulomb` (and `DEM_D_Linear_viscous_Coulomb`) forms it from two
-/// materials.
-pub(crate) fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
-    e1 * e2 / (e2 * (1.0 - nu1 * nu1) + e1 * (1.0 - nu2 * nu2))
-}
-
-/// The stand-in for a rigid plate: a wall of [`RIGID_WALL_MODULUS`], `ν = 0`.
-const RIGID_WALL: (f64, f64) = (RIGID_WALL_MODULUS, 0.0);
-
 /// The mass the dashpot sees, from Kratos' own particle masses.
 fn dynamic_mass(setup: &CodeSetup) -> f64 {
     let m1 = particle_mass(setup.sphere.radius, setup.sphere.density);
@@ -251,12 +250,11 @@ fn dynamic_mass(setup: &CodeSetup) -> f64 {
 }
 
 /// The Hertz stiffness `(4/3) E* sqrt(R*)` of a ball scene as Kratos' Hertz law forms it: `E*`
-/// mixed from both materials ([`mixed_modulus`]), `R*` the pair's, the ball's own at the flat
+/// mixed from both materials ([`CodeSetup::mixed_modulus`]), `R*` the pair's, the ball's own at the flat
 /// wall.
 fn hertz_stiffness(setup: &CodeSetup) -> f64 {
     let s = setup.sphere;
-    let (e2, nu2) = setup.second_material(RIGID_WALL);
-    let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
+    let modulus = setup.mixed_modulus();
     let radius = match (setup.scene, setup.other_sphere) {
         (SceneKind::BallBall, Some(o)) => pair_radius(s.radius, o.radius),
         // RigidFace3D3N is flat: the sphere's own radius.
@@ -295,7 +293,7 @@ impl Kratos {
             // A negative γ leaves the one Kratos derives from the restitution.
             _ => (hertz_input_or_target(setup), 0.0, -1.0),
         };
-        let mut values = body_values(setup, RIGID_WALL);
+        let mut values = body_values(setup);
         values.extend([
             ("restitution", exact_number(restitution)),
             ("linear_stiffness", exact_number(linear_stiffness)),
@@ -334,11 +332,7 @@ impl CodeDriver for Kratos {
         let values = self.script_values(setup)?;
         let text = fill_template(&with_common(TEMPLATE), &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: SCRIPT.to_string(),
-            text,
-            args: vec![SCRIPT.to_string()],
-        })
+        Ok(script_input(SCRIPT, text))
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {

@@ -26,7 +26,7 @@
 
 use std::path::Path;
 
-use super::{dynamic_mass, hertz_stiffness, parse_trajectory};
+use super::{dynamic_mass, hertz_stiffness};
 use crate::codes::batch::{BatchError, parse_marked_batch};
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::paper_law::paper_law_methods;
@@ -93,7 +93,7 @@ impl KratosPaper {
         let law = self.paper_law(setup);
         // Kratos forms the masses from the densities, and the hook is the plate.
         let mut values = without(
-            body_values(setup, super::RIGID_WALL),
+            body_values(setup),
             &["mass", "other_mass", "wall_young", "wall_poisson"],
         );
         values.extend([
@@ -136,11 +136,7 @@ pub fn render_script(setups: &[CodeSetup], gravity: f64) -> Result<RenderedInput
         exact_number(gravity),
         super::with_common(SCRIPT),
     );
-    Ok(RenderedInput {
-        file_name: SCRIPT_FILE.into(),
-        text,
-        args: vec![SCRIPT_FILE.to_string()],
-    })
+    Ok(super::script_input(SCRIPT_FILE, text))
 }
 
 /// Each impact's run from a script's `log` and files in `workdir`: refused as a whole when the
@@ -159,13 +155,7 @@ fn parse_runs(
     if !refusals.is_empty() {
         return refusals.into_iter().map(Err).collect();
     }
-    parse_marked_batch(
-        setups.len(),
-        workdir,
-        log,
-        log_value(log, "version="),
-        parse_trajectory,
-    )
+    parse_marked_batch(setups, workdir, log)
 }
 
 /// The script's own account of the run: its step count and the largest difference between a

@@ -13,7 +13,7 @@ use std::path::Path;
 
 use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::lammps::{
-    Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version,
+    Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version, run_args,
 };
 use crate::codes::parse::{ParseError, read_output};
 use crate::codes::{BatchError, CodeError, CodeSetup, ParsedRun, RenderedInput};
@@ -61,15 +61,7 @@ pub(crate) fn render_sequence(
                 1,
             ))
         },
-        &[
-            "-in",
-            BATCH_INPUT_FILE,
-            "-log",
-            LOG_FILE,
-            "-nocite",
-            "-echo",
-            "none",
-        ],
+        &run_args(BATCH_INPUT_FILE),
     )
 }
 

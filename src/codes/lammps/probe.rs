@@ -22,8 +22,8 @@ use crate::codes::lammps::conventions::{
 };
 use crate::codes::lammps::{Build, WALL_TEMPLATE, parse_trajectory, parse_version};
 use crate::codes::probe::{Hypothesis, Measured, ProbeError, ProbeItem, ProbeReport, decide};
-use crate::codes::runner::cache_dir;
 use crate::codes::runner::process::Process;
+use crate::codes::runner::{self, cache_dir};
 use crate::codes::template::{TemplateError, exact_number, fill_template};
 use crate::codes::{CodeSetup, Executable, Prober};
 use crate::model::trajectory::CodeTrajectory;
@@ -64,69 +64,52 @@ pub(crate) const HOOKE: (f64, f64) = (1e6, 100.0);
 /// velocity by 0.4 %, a thousand times what the comparison resolves.
 pub(crate) const HALF_STEP_PROBE: (f64, f64) = (1e-4, 1e-5);
 
-/// The runs of the LAMMPS probe, in order.
+/// The runs of the LAMMPS probe, in order: one step each.
 pub(crate) fn probe_runs() -> Vec<ProbeRun> {
     let (k, d) = HOOKE;
     let (overlap, dt) = HALF_STEP_PROBE;
-    vec![
-        ProbeRun {
-            name: "wall-modulus",
-            contact: format!(
-                "hertz/material {} 0 {PROBE_POISSON} damping velocity",
-                exact_number(PROBE_MODULUS)
-            ),
-            overlap: HERTZ_OVERLAP,
-            approach: 0.0,
-            timestep: 1e-7,
-            steps: 1,
-        },
-        ProbeRun {
-            name: "coeff-restitution",
-            contact: format!(
-                "hertz/material {} {PROBE_RESTITUTION} 0 damping coeff_restitution",
-                exact_number(PROBE_MODULUS)
-            ),
-            overlap: HERTZ_OVERLAP,
-            approach: 1.0,
-            timestep: 1e-7,
-            steps: 1,
-        },
-        ProbeRun {
-            name: "tsuji-fit",
-            contact: format!(
-                "hertz/material {} {PROBE_RESTITUTION} 0 damping tsuji",
-                exact_number(PROBE_MODULUS)
-            ),
-            overlap: HERTZ_OVERLAP,
-            approach: 1.0,
-            timestep: 1e-7,
-            steps: 1,
-        },
-        ProbeRun {
-            name: "touching",
-            contact: format!(
-                "hooke {} {} damping velocity",
-                exact_number(k),
-                exact_number(d)
-            ),
-            overlap: 0.0,
-            approach: 1.0,
-            timestep: 1e-7,
-            steps: 1,
-        },
-        ProbeRun {
-            name: "damping-velocity",
-            contact: format!(
-                "hooke {} {} damping velocity",
-                exact_number(k),
-                exact_number(d)
-            ),
-            overlap,
-            approach: 1.0,
-            timestep: dt,
-            steps: 1,
-        },
+    let (e, y) = (exact_number(PROBE_MODULUS), HERTZ_OVERLAP);
+    let hertz = |rest: String| format!("hertz/material {e} {rest}");
+    let hooke = format!(
+        "hooke {} {} damping velocity",
+        exact_number(k),
+        exact_number(d)
+    );
+    [
+        (
+            "wall-modulus",
+            hertz(format!("0 {PROBE_POISSON} damping velocity")),
+            y,
+            0.0,
+            1e-7,
+        ),
+        (
+            "coeff-restitution",
+            hertz(format!("{PROBE_RESTITUTION} 0 damping coeff_restitution")),
+            y,
+            1.0,
+            1e-7,
+        ),
+        (
+            "tsuji-fit",
+            hertz(format!("{PROBE_RESTITUTION} 0 damping tsuji")),
+            y,
+            1.0,
+            1e-7,
+        ),
+        ("touching", hooke.clone(), 0.0, 1.0, 1e-7),
+        ("damping-velocity", hooke, overlap, 1.0, dt),
     ]
+    .into_iter()
+    .map(|(name, contact, overlap, approach, timestep)| ProbeRun {
+        name,
+        contact,
+        overlap,
+        approach,
+        timestep,
+        steps: 1,
+    })
+    .collect()
 }
 
 /// The input of one probe run (the driver's wall template, so the probe exercises the same
@@ -160,12 +143,10 @@ pub(crate) enum ProbeOutcome {
     Refused(String),
 }
 
+/// The build's first `ERROR` line, else its last line.
 fn error_line(log: &str) -> String {
-    log.lines()
-        .find(|l| l.trim_start().starts_with("ERROR"))
-        .unwrap_or_else(|| log.lines().last().unwrap_or("no output"))
-        .trim()
-        .to_string()
+    runner::error_line(log)
+        .unwrap_or_else(|| log.lines().last().unwrap_or("no output").trim().to_string())
 }
 
 /// Time limit of one probe run: a one-step run is start-up alone (0.1 to 0.7 s here), so a
@@ -857,6 +838,13 @@ mod tests {
         assert_eq!(starts(build.path()), 3 * probe_runs().len());
     }
 
+    /// Gives the file at `path` one fixed modification time.
+    fn set_modified(path: &Path) {
+        let file = std::fs::File::options().write(true).open(path).unwrap();
+        file.set_modified(std::time::UNIX_EPOCH + Duration::from_secs(1_000_000))
+            .unwrap();
+    }
+
     #[test]
     fn a_changed_executable_is_probed_again() {
         let build = tempfile::tempdir().unwrap();
@@ -866,13 +854,7 @@ mod tests {
         probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
         assert_eq!(starts(build.path()), n);
         // Touched: same size, another modification time.
-        let file = std::fs::File::options()
-            .write(true)
-            .open(&lmp.program)
-            .unwrap();
-        file.set_modified(std::time::UNIX_EPOCH + Duration::from_secs(1_000_000))
-            .unwrap();
-        drop(file);
+        set_modified(&lmp.program);
         probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
         assert_eq!(starts(build.path()), 2 * n, "a new modification time");
         probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
@@ -881,13 +863,7 @@ mod tests {
         let mut script = std::fs::read_to_string(&lmp.program).unwrap();
         script.push_str("# rebuilt\n");
         std::fs::write(&lmp.program, script).unwrap();
-        let file = std::fs::File::options()
-            .write(true)
-            .open(&lmp.program)
-            .unwrap();
-        file.set_modified(std::time::UNIX_EPOCH + Duration::from_secs(1_000_000))
-            .unwrap();
-        drop(file);
+        set_modified(&lmp.program);
         probe_lammps_kept("lammps", &lmp, Some(cache.path()), false).unwrap();
         assert_eq!(starts(build.path()), 3 * n, "another size");
         // Started with another environment.

@@ -19,8 +19,8 @@ use std::path::Path;
 
 use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::batch_fns::BatchFns;
-use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, loop_line, parse_output, version};
-use crate::codes::parse::{ParseError, read_output};
+use crate::codes::liggghts::{Liggghts, TRAJECTORY_FILE, parse_trajectory_file, version};
+use crate::codes::parse::ParseError;
 use crate::codes::{BatchError, CodeDriver, CodeSetup, ParsedRun, RenderedInput};
 
 /// Most impacts in one batch: each run adds about 1 kB to the screen output, which is kept
@@ -89,21 +89,12 @@ pub(crate) fn parse_batch(
         .iter()
         .enumerate()
         .map(|(i, s)| {
-            let text = read_output(workdir.join(batch_trajectory_file(i)))?;
             let line = loops.get(i).copied().unwrap_or_default();
-            let mut run = parse_output(&text, line)?;
-            if let Some(words) = loop_line(line)
-                && let Some(at) = words.iter().position(|w| *w == "for")
-                && let Some(Ok(ran)) = words.get(at + 1).map(|w| w.parse::<u64>())
-                && ran != s.steps
-            {
-                return Err(ParseError::StepCount {
-                    ran,
-                    asked: s.steps,
-                });
-            }
-            run.version = code_version.clone();
-            Ok(run)
+            let run = parse_trajectory_file(s, &workdir.join(batch_trajectory_file(i)), line)?;
+            Ok(ParsedRun {
+                version: code_version.clone(),
+                ..run
+            })
         })
         .collect()
 }

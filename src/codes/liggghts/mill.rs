@@ -74,6 +74,15 @@ impl MillLaw {
         }
     }
 
+    /// The property its deck gives each type pair (`coefficientRestitution` of the Hertz
+    /// model, `lossCoefficient` of the paper's).
+    fn property(self) -> &'static str {
+        match self {
+            MillLaw::Hertz => "coefficientRestitution",
+            MillLaw::Paper => "lossCoefficient",
+        }
+    }
+
     /// The other law.
     pub(crate) fn other(self) -> MillLaw {
         match self {
@@ -226,6 +235,26 @@ fn is_property(c: &Command, name: &str) -> bool {
         && c.words.get(4).is_some_and(|w| w == name)
 }
 
+/// The commands that write the deck's own output (left out of the instrumented runs).
+const OUTPUT_COMMANDS: [&str; 9] = [
+    "dump",
+    "dump_modify",
+    "undump",
+    "restart",
+    "write_restart",
+    "write_data",
+    "write_dump",
+    "log",
+    "shell",
+];
+
+/// A fix style that takes an insertion seed.
+fn is_insertion(style: &str) -> bool {
+    style.starts_with("insert/")
+        || style.starts_with("particletemplate/")
+        || style.starts_with("particledistribution/")
+}
+
 fn is_mesh_fix(c: &Command) -> bool {
     c.name() == "fix"
         && c.words
@@ -286,10 +315,7 @@ fn restitution_of(
     law: MillLaw,
     tables: &[(&str, Vec<f64>, SourceLine)],
 ) -> Result<Vec<f64>, DeckError> {
-    let wanted = match law {
-        MillLaw::Hertz => "coefficientRestitution",
-        MillLaw::Paper => "lossCoefficient",
-    };
+    let wanted = law.property();
     let (_, table, _) = tables
         .iter()
         .rev()
@@ -390,27 +416,18 @@ impl MillDeck {
                     }
                     rotating.push(Self::rotation(c, &meshes)?);
                 }
-                "fix"
-                    if style.starts_with("insert/")
-                        || style.starts_with("particletemplate/")
-                        || style.starts_with("particledistribution/") =>
-                {
-                    insertion_seeds += 1;
-                }
+                "fix" if is_insertion(style) => insertion_seeds += 1,
                 "fix" if style == "gravity" => gravity = gravity_of(c)?.or(gravity),
-                "fix" if is_property(c, "coefficientRestitution") => tables.push((
-                    "coefficientRestitution",
-                    pair_table(c, "coefficientRestitution", types)?,
-                    c.at.clone(),
-                )),
-                "fix" if is_property(c, "lossCoefficient") => tables.push((
-                    "lossCoefficient",
-                    pair_table(c, "lossCoefficient", types)?,
-                    c.at.clone(),
-                )),
-                "dump" | "dump_modify" | "undump" | "restart" | "write_restart" | "write_data"
-                | "write_dump" | "log" | "shell" => {
-                    left_out.push(format!("{} ({})", c.text, c.at));
+                "fix" => {
+                    for law in [MillLaw::Hertz, MillLaw::Paper] {
+                        if is_property(c, law.property()) {
+                            let name = law.property();
+                            tables.push((name, pair_table(c, name, types)?, c.at.clone()));
+                        }
+                    }
+                }
+                _ if OUTPUT_COMMANDS.contains(&c.name()) => {
+                    left_out.push(format!("{} ({})", c.text, c.at))
                 }
                 _ => {}
             }
@@ -603,13 +620,6 @@ impl MillDeck {
             plan.contact_every,
             plan.seed
         )];
-        let table = |values: Vec<f64>| {
-            values
-                .iter()
-                .map(|v| format!("{v:e}"))
-                .collect::<Vec<_>>()
-                .join(" ")
-        };
         let mut seeds = SEEDS[(plan.seed.saturating_sub(1)) * 6..].iter();
         let mut rotation_done = 0u64;
         for (index, c) in self.commands.iter().enumerate() {
@@ -629,46 +639,32 @@ impl MillDeck {
             }
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
             match c.name() {
-                "dump" | "dump_modify" | "undump" | "restart" | "write_restart" | "write_data"
-                | "write_dump" | "log" | "shell" => {
-                    out.push(format!("# left out (output): {}", c.text));
+                _ if OUTPUT_COMMANDS.contains(&c.name()) => {
+                    out.push(format!("# left out (output): {}", c.text))
                 }
                 "pair_style" => {
-                    let name = match law {
-                        MillLaw::Hertz => "coefficientRestitution",
-                        MillLaw::Paper => "lossCoefficient",
-                    };
-                    let values = match law {
-                        MillLaw::Hertz => self.restitution.clone(),
-                        MillLaw::Paper => self
-                            .restitution
-                            .iter()
-                            .map(|&e| (1.0 - e * e) / (1.0 + e * e))
-                            .collect(),
-                    };
                     if law != self.law {
+                        let table: Vec<String> = (self.restitution.iter())
+                            .map(|&e| match law {
+                                MillLaw::Hertz => e,
+                                MillLaw::Paper => exact::loss_coefficient(e),
+                            })
+                            .map(|v| format!("{v:e}"))
+                            .collect();
                         out.push(format!(
-                            "fix millimpact_law all property/global {name} peratomtypepair {n} {}",
-                            table(values)
+                            "fix millimpact_law all property/global {} peratomtypepair {n} {}",
+                            law.property(),
+                            table.join(" ")
                         ));
                     }
                     out.push(self.switched(c, law));
                 }
                 "fix" if style == "wall/gran" => out.push(self.switched(c, law)),
-                "fix"
-                    if law != self.law
-                        && (is_property(c, "coefficientRestitution") && law == MillLaw::Hertz
-                            || is_property(c, "lossCoefficient") && law == MillLaw::Paper) =>
-                {
+                "fix" if law != self.law && is_property(c, law.property()) => {
                     out.push(format!("# replaced by millimpact_law: {}", c.text));
                 }
                 "fix" if is_mesh_fix(c) => out.push(self.mesh_line(c, &folder)),
-                "fix"
-                    if plan.seed > 0
-                        && (style.starts_with("insert/")
-                            || style.starts_with("particletemplate/")
-                            || style.starts_with("particledistribution/")) =>
-                {
+                "fix" if plan.seed > 0 && is_insertion(style) => {
                     let mut words = c.words.clone();
                     let k = if style.starts_with("insert/") {
                         words.iter().position(|w| w == "seed").map(|k| k + 1)

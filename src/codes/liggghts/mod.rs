@@ -24,7 +24,6 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use super::parse::{ParseError, parse_columns};
-use super::setup::{RIGID_WALL_MODULUS, RIGID_WALL_POISSON};
 use super::template::{exact_number, fill_template};
 use super::{
     BatchRunner, CalibrationCard, CodeDriver, CodeError, CodeName, CodeSetup, Executable,
@@ -56,28 +55,14 @@ fn code_mass(radius: f64, density: f64) -> f64 {
     4.0 * PI / 3.0 * radius * radius * radius * density
 }
 
-/// `(E, ν)` of atom type 2: the plate, the rigid wall stand-in, or the second ball.
-fn partner_material(setup: &CodeSetup) -> Option<(f64, f64)> {
-    match setup.scene {
-        // LIGGGHTS has no rigid wall (the wall type's `(1-ν²)/E` is always added to `1/E*`)
-        // and no upper limit on E under `hard_particles yes`: a rigid plate is a stiff type.
-        SceneKind::BallPlate => Some(
-            setup
-                .plate_material
-                .unwrap_or((RIGID_WALL_MODULUS, RIGID_WALL_POISSON)),
-        ),
-        SceneKind::BallBall => setup
-            .other_sphere
-            .and_then(|o| o.poisson_ratio.map(|nu| (o.youngs_modulus, nu))),
-        SceneKind::RodEnd => None,
-    }
-}
-
 /// The effective modulus LIGGGHTS uses for a ball scene, Pa: its `createYeff`,
-/// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included).
+/// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included), type 2
+/// being the [`CodeSetup::partner_material`]. LIGGGHTS has no rigid wall (the wall type's
+/// `(1-ν²)/E` is always added to `1/E*`) and no upper limit on E under `hard_particles yes`:
+/// a rigid plate is a stiff type.
 pub(crate) fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
     let nu1 = setup.sphere.poisson_ratio?;
-    let (e2, nu2) = partner_material(setup)?;
+    let (e2, nu2) = setup.partner_material()?;
     let e1 = setup.sphere.youngs_modulus;
     Some(1.0 / ((1.0 - nu1 * nu1) / e1 + (1.0 - nu2 * nu2) / e2))
 }
@@ -135,7 +120,7 @@ pub(crate) fn pair_property(name: &str, value: &str) -> String {
 /// sphere, type 2 the plate (or its rigid stand-in) or the second sphere.
 pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
     let nu1 = setup.sphere.poisson_ratio.unwrap_or_default();
-    let (e2, nu2) = partner_material(setup).unwrap_or_default();
+    let (e2, nu2) = setup.partner_material().unwrap_or_default();
     [
         format!(
             "fix youngsModulus          all property/global youngsModulus peratomtype {} {}",
@@ -153,11 +138,7 @@ pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
 /// The checks LIGGGHTS itself would fail on, whatever the contact model, reported before it is
 /// run by `code`.
 pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
-    let unsupported = |reason: String| CodeError::Unsupported {
-        code: code.into(),
-        case: setup.case_name.clone(),
-        reason,
-    };
+    let unsupported = |reason: String| setup.unsupported(code, reason);
     if !(setup.timestep > 0.0 && setup.impact_velocity > 0.0 && setup.steps > 0) {
         return Err(unsupported(
             "timestep, impact velocity and steps must be positive".into(),
@@ -168,7 +149,7 @@ pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeEr
     }
     if setup.scene != SceneKind::RodEnd {
         let nu1 = setup.sphere.poisson_ratio;
-        let nu2 = partner_material(setup).map(|(_, nu)| nu);
+        let nu2 = setup.partner_material().map(|(_, nu)| nu);
         for nu in [nu1, nu2] {
             match nu {
                 Some(nu) if (0.0..=0.5).contains(&nu) => {}
@@ -250,11 +231,8 @@ pub(crate) fn render_deck(
         ("force", "fz[1]".to_string()),
         ("steps", setup.steps.to_string()),
     ];
-    let text = fill_template(TEMPLATE, &values).map_err(|reason| CodeError::Unsupported {
-        code: code.into(),
-        case: setup.case_name.clone(),
-        reason: reason.to_string(),
-    })?;
+    let text = fill_template(TEMPLATE, &values)
+        .map_err(|reason| setup.unsupported(code, reason.to_string()))?;
     Ok(RenderedInput {
         file_name: INPUT_FILE.to_string(),
         // A style without settings leaves no trailing blank on its lines.
@@ -278,7 +256,16 @@ pub(crate) fn parse_run(
     workdir: &Path,
     log: &str,
 ) -> Result<ParsedRun, ParseError> {
-    let text = super::parse::read_output(workdir.join(TRAJECTORY_FILE))?;
+    parse_trajectory_file(setup, &workdir.join(TRAJECTORY_FILE), log)
+}
+
+/// [`parse_run`] of the trajectory at `path`, with the screen `log` of its run.
+pub(crate) fn parse_trajectory_file(
+    setup: &CodeSetup,
+    path: &Path,
+    log: &str,
+) -> Result<ParsedRun, ParseError> {
+    let text = super::parse::read_output(path.to_path_buf())?;
     let parsed = parse_output(&text, log)?;
     if let Some(ran) = loop_steps(log)
         && ran != setup.steps
@@ -299,11 +286,10 @@ impl Liggghts {
     fn validate(&self, setup: &CodeSetup) -> Result<(), CodeError> {
         let e = setup.target_restitution;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(CodeError::Unsupported {
-                code: self.name().into(),
-                case: setup.case_name.clone(),
-                reason: format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
-            });
+            return Err(setup.unsupported(
+                self.name(),
+                format!("LIGGGHTS requires 0.05 < coefficientRestitution <= 1, got {e}"),
+            ));
         }
         validate_scene(self.name(), setup)
     }
@@ -468,7 +454,7 @@ fn loop_steps(log: &str) -> Option<u64> {
 }
 
 /// The words after `Loop time of` on the last such line.
-pub(crate) fn loop_line(log: &str) -> Option<Vec<&str>> {
+fn loop_line(log: &str) -> Option<Vec<&str>> {
     let line = log.lines().rev().find(|l| l.starts_with("Loop time of "))?;
     Some(line["Loop time of ".len()..].split_whitespace().collect())
 }

@@ -26,7 +26,7 @@ use super::{
 };
 use crate::codes::batch_fns::BatchFns;
 use crate::codes::paper_law::paper_law_methods;
-use crate::codes::runner::{binary_override_variable, find_codes_dir, locate_override_or_path};
+use crate::codes::runner::locate_override_or_installed;
 use crate::codes::template::exact_number;
 use crate::codes::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParseError,
@@ -37,7 +37,7 @@ use crate::model::law::{CodeLaw, PaperLaw};
 use crate::model::scene::SceneKind;
 use crate::solve::dashpot::CodeFrame;
 
-/// The folder under the codes' folder ([`find_codes_dir`]) the build is installed in.
+/// The folder under the codes' folder ([`find_codes_dir`](crate::codes::runner::find_codes_dir)) the build is installed in.
 pub(crate) const INSTALL_DIR: &str = "liggghts-paper";
 /// The executable inside [`INSTALL_DIR`].
 pub(crate) const BINARY_PATH: &str = "bin/liggghts-paper";
@@ -103,23 +103,15 @@ impl CodeDriver for LiggghtsPaper {
     /// `MILLIMPACT_LIGGGHTS_PAPER_BINARY` if set (a user's own build), else the project's
     /// build in the codes' folder.
     fn locate(&self) -> Result<Executable, LocateError> {
-        let variable = binary_override_variable(self.name());
-        if std::env::var_os(&variable).is_some() {
-            return locate_override_or_path(self.name(), self.binary());
-        }
-        let codes = find_codes_dir();
-        let folder = codes.path.join(INSTALL_DIR);
-        let program = folder.join(BINARY_PATH);
-        if program.is_file() {
-            Ok(Executable::plain(program))
-        } else {
-            Err(LocateError::NotInstalled {
-                expected: BINARY_PATH,
-                folder,
-                origin: codes.origin,
-                variable,
-            })
-        }
+        locate_override_or_installed(self, |codes, missing| {
+            let folder = codes.path.join(INSTALL_DIR);
+            let program = folder.join(BINARY_PATH);
+            if program.is_file() {
+                Ok(Executable::plain(program))
+            } else {
+                Err(missing(BINARY_PATH, folder))
+            }
+        })
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {

@@ -62,12 +62,12 @@ const TEMPLATE: &str = include_str!("impact.py");
 const SCRIPT: &str = "impact.py";
 
 /// The trajectory file the script writes.
-pub(crate) const TRAJECTORY_FILE: &str = "trajectory.csv";
+pub(crate) const TRAJECTORY_FILE: &str = super::parse::CSV_TRAJECTORY_FILE;
 
 /// Young's modulus given to the wall that stands for a rigid plate, Pa. YADE mixes the wall's
 /// material into `E*`; at this value the wall's share of the compliance, about
 /// `(1-ν²)E_ball / E_wall ≈ 1e-19` for steel, is below double precision.
-pub const RIGID_WALL_MODULUS: f64 = 1e30;
+pub const RIGID_WALL_MODULUS: f64 = super::setup::RIGID_WALL_MODULUS;
 
 /// The radius `Ig2_Wall_Sphere_ScGeom(hertzian=True)` gives the wall, in sphere radii.
 pub(crate) const HERTZIAN_WALL_RADIUS_FACTOR: f64 = 1e8;
@@ -75,20 +75,10 @@ pub(crate) const HERTZIAN_WALL_RADIUS_FACTOR: f64 = 1e8;
 /// The YADE driver.
 pub struct Yade;
 
-/// `E*` as `Ip2_FrictMat_FrictMat_MindlinPhys` forms it from two materials.
-fn mixed_modulus(e1: f64, nu1: f64, e2: f64, nu2: f64) -> f64 {
-    e1 * e2 / ((1.0 - nu1 * nu1) * e2 + (1.0 - nu2 * nu2) * e1)
-}
-
-/// The stand-in for a rigid plate: a wall of [`RIGID_WALL_MODULUS`], `ν = 0`.
-const RIGID_WALL: (f64, f64) = (RIGID_WALL_MODULUS, 0.0);
-
 /// Effective modulus and radius YADE uses for a ball scene.
 fn hertz_parameters(setup: &CodeSetup) -> (f64, f64) {
-    let s = setup.sphere;
-    let (e2, nu2) = setup.second_material(RIGID_WALL);
-    let modulus = mixed_modulus(s.youngs_modulus, s.poisson_ratio.unwrap_or(0.0), e2, nu2);
-    let r1 = s.radius;
+    let modulus = setup.mixed_modulus();
+    let r1 = setup.sphere.radius;
     let r2 = match (setup.scene, setup.other_sphere) {
         (SceneKind::BallBall, Some(other)) => other.radius,
         _ => HERTZIAN_WALL_RADIUS_FACTOR * r1,
@@ -139,7 +129,7 @@ impl Yade {
             }
             _ => (0.0, 0.0),
         };
-        let mut values = body_values(setup, RIGID_WALL);
+        let mut values = body_values(setup);
         values.extend([
             ("linear_stiffness", exact_number(linear_stiffness)),
             ("linear_damping", exact_number(linear_damping)),
@@ -170,11 +160,7 @@ impl CodeDriver for Yade {
         values.push(("restitution", exact_number(Self::input_restitution(setup))));
         let text = fill_template(TEMPLATE, &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
-        Ok(RenderedInput {
-            file_name: SCRIPT.to_string(),
-            text,
-            args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
-        })
+        Ok(script_input(SCRIPT, text))
     }
 
     fn parse(
@@ -209,6 +195,16 @@ impl CodeDriver for Yade {
 
     fn expected_restitution(&self, setup: &CodeSetup) -> Option<f64> {
         fit_restitution(setup, &self.dashpot_law(setup))
+    }
+}
+
+/// The script `file` holding `text`, run by YADE's launcher with one thread and no shell
+/// (`yade -j1 -n -x FILE`).
+pub(crate) fn script_input(file: &str, text: String) -> RenderedInput {
+    RenderedInput {
+        file_name: file.to_string(),
+        text,
+        args: ["-j1", "-n", "-x", file].map(String::from).to_vec(),
     }
 }
 

@@ -29,7 +29,7 @@ use std::path::Path;
 
 use super::Yade;
 use super::batch::{PREAMBLE, launch};
-use crate::codes::batch::marked_trajectory_file;
+use crate::codes::batch::{marked_trajectory_file, parse_marked_batch};
 use crate::codes::batch_fns::{BatchFns, check_batch_size};
 use crate::codes::paper_law::paper_law_methods;
 use crate::codes::script_values::{body_values, python_dict, without};
@@ -126,7 +126,7 @@ impl YadePaper {
         let law = Self::paper_law(setup);
         // The hook forms the law from C, n, η and the pair's mass, and the plate is its plane.
         let mut values = without(
-            body_values(setup, super::RIGID_WALL),
+            body_values(setup),
             &[
                 "other_density",
                 "other_young",
@@ -191,11 +191,7 @@ impl CodeDriver for YadePaper {
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
         let text = self.script(std::slice::from_ref(setup), &[TRAJECTORY_FILE.to_string()])?;
-        Ok(RenderedInput {
-            file_name: SCRIPT_FILE.to_string(),
-            text,
-            args: ["-j1", "-n", "-x", SCRIPT_FILE].map(String::from).to_vec(),
-        })
+        Ok(super::script_input(SCRIPT_FILE, text))
     }
 
     fn parse(&self, setup: &CodeSetup, workdir: &Path, log: &str) -> Result<ParsedRun, ParseError> {
@@ -225,7 +221,7 @@ impl CodeDriver for YadePaper {
 }
 
 /// The paper build's batches: every impact of one time step in one scene, one hook for all.
-static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, super::batch::parse_batch)
+static PAPER_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_marked_batch)
     .costing(IMPACTS_PER_START)
     .launched_by(launch);
 
@@ -235,13 +231,7 @@ fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
     check_batch_size(setups, MAX_BATCH, "the batch script's size")?;
     let files: Vec<String> = (0..setups.len()).map(marked_trajectory_file).collect();
     let text = YadePaper.script(setups, &files)?;
-    Ok(RenderedInput {
-        file_name: super::batch::BATCH_SCRIPT.into(),
-        text,
-        args: ["-j1", "-n", "-x", super::batch::BATCH_SCRIPT]
-            .map(String::from)
-            .to_vec(),
-    })
+    Ok(super::script_input(super::batch::BATCH_SCRIPT, text))
 }
 
 /// The paper build's card: the impact's law as the hook is given it, and the engines.
