@@ -126,7 +126,7 @@ fn an_included_file_names_its_own_lines_and_a_missing_one_is_named() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.starts_with("cannot read ") && e.contains("nowhere.in"),
+        e.contains("in.main:8: include ") && e.contains("`nowhere.in` does not exist"),
         "{e}"
     );
 }
@@ -348,8 +348,17 @@ fn a_kratos_setup_lacking_a_part_says_what_and_how_to_give_it() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("no material_relations entry for the materials 2 (high_chrome_iron) and 2 (high_chrome_iron)"), "{e}");
-    // No .mdpa to take the radii from: named, with the flag that gives them.
-    let (_d, path) = kratos_deck(|_| {}, |p| p["problem_name"] = "elsewhere".into());
+    // No .mdpa of the problem's name: Kratos stops at it, and so does the check.
+    let (d, path) = kratos_deck(|_| {}, |p| p["problem_name"] = "elsewhere".into());
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("problem_name: ") && e.contains("`elsewhereDEM.mdpa` does not exist"),
+        "{e}"
+    );
+    // An .mdpa with no sphere to take the radii from: named, with the flag that gives them.
+    std::fs::write(d.path().join("elsewhereDEM.mdpa"), "").unwrap();
     let e = read_deck(&path, None, &DeckOptions::default())
         .unwrap_err()
         .to_string();

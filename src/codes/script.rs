@@ -234,6 +234,10 @@ impl ScriptReader {
                     ));
                 }
                 let included = resolve_include(path, name);
+                // The code stops at an include it cannot open: so does the check, at its line.
+                if !included.is_file() {
+                    return Err(DeckError::missing(&at, "include", name, &included));
+                }
                 self.depth += 1;
                 let result = self.file(&included);
                 self.depth -= 1;

@@ -35,6 +35,23 @@ impl LeftOut {
     }
 }
 
+/// The file word `k` of `c` names (`what`: a data file, a mesh file), found as the code finds
+/// it where the user runs the deck from its own folder: beside the file of the line. A file
+/// that is not there is refused at the line, as the code stops there.
+pub(crate) fn named_file(c: &Command, k: usize, what: &str) -> Result<PathBuf, DeckError> {
+    let name = c.word(k, what)?;
+    let path = if Path::new(name).is_absolute() {
+        PathBuf::from(name)
+    } else {
+        c.at.file.parent().unwrap_or(Path::new(".")).join(name)
+    };
+    if path.is_file() {
+        Ok(path)
+    } else {
+        Err(DeckError::missing(&c.at, what, name, &path))
+    }
+}
+
 /// The kind of left-out line of a script's neighbour, communication and domain settings.
 pub(crate) const NEIGHBOURS: &str =
     "neighbour lists, communication and domain settings (the impact sets its own)";
@@ -78,10 +95,13 @@ impl ScriptReading {
                     self.leave_out("set commands on groups or regions", c);
                 }
             }
-            "read_restart" | "read_data" | "read_dump" => self.leave_out(
+            "read_restart" | "read_data" | "read_dump" => {
+                named_file(c, 1, "data file")?;
+                self.leave_out(
                 "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
                 c,
-            ),
+                );
+            }
             "run" | "rerun" | "minimize" => self.leave_out("the run itself", c),
             "neighbor" | "neigh_modify" | "comm_modify" | "newton" | "processors" | "boundary"
             | "atom_modify" => self.leave_out(NEIGHBOURS, c),

@@ -21,7 +21,7 @@ use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, DeckBody, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckWall,
     ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
-    UserDeck, WallOrder, body_contacts, wall_contacts,
+    UserDeck, WallOrder, body_contacts, named_file, wall_contacts,
 };
 use crate::codes::script::{Command, ScriptReader};
 use crate::codes::template::{exact_number, fill_template};
@@ -245,6 +245,10 @@ impl LiggghtsDeck {
                     )
                 })?;
                 let t = type_number(c.number(k + 1, "the mesh's type")?, c)?;
+                // LIGGGHTS stops at a mesh it cannot open ("Cannot open mesh file").
+                if let Some(f) = c.words.iter().position(|w| w == "file") {
+                    named_file(c, f + 1, "mesh file")?;
+                }
                 r.meshes.insert(c.words[1].clone(), (t, c.at.clone()));
                 r.leave_out(
                     "mesh walls' geometry (each wall/gran wall is met as a flat plane)",
