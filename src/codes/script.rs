@@ -113,6 +113,9 @@ enum Variable {
     Text(String),
 }
 
+/// A line that could not be read, with the number of commands read before it.
+pub(crate) type Unread = (usize, DeckError);
+
 /// Reads a script and its includes.
 #[derive(Debug, Default)]
 pub struct ScriptReader {
@@ -126,6 +129,11 @@ pub struct ScriptReader {
     /// Whether `variable` lines are kept among the commands (a whole deck written out again
     /// needs them: `v_NAME` references are resolved by the code at run time).
     keep_variables: bool,
+    /// Whether a line that cannot be read is kept in `errors` and the reading goes on (so
+    /// that one pass names every such line), rather than ending the reading.
+    go_on: bool,
+    /// The lines that could not be read, each with the number of commands read before it.
+    errors: Vec<Unread>,
 }
 
 /// Most nested includes followed (a file that includes itself stops here).
@@ -153,15 +161,37 @@ impl ScriptReader {
             lacking,
             ..ScriptReader::default()
         };
-        for (name, value) in preset {
-            reader
-                .variables
-                .insert(name.clone(), Variable::Text(value.clone()));
-            // `-var` makes an index-style variable.
-            reader.styles.insert(name.clone(), ("index".into(), None));
-        }
+        reader.preset(preset);
         reader.file(path)?;
         Ok(reader.commands)
+    }
+
+    /// [`ScriptReader::read_for`] that reads on past a line it cannot read: the commands
+    /// read, and each line that could not be, with the number of commands read before it
+    /// (where it stands among them). Only a deck that cannot be opened ends the reading.
+    pub(crate) fn read_each(
+        path: &Path,
+        preset: &[(String, String)],
+        lacking: (&'static str, &'static [&'static str]),
+    ) -> Result<(Vec<Command>, Vec<Unread>), DeckError> {
+        let mut reader = ScriptReader {
+            lacking,
+            go_on: true,
+            ..ScriptReader::default()
+        };
+        reader.preset(preset);
+        reader.file(path)?;
+        Ok((reader.commands, reader.errors))
+    }
+
+    /// Define the variables `preset` as `-var NAME VALUE` on the command line defines them.
+    fn preset(&mut self, preset: &[(String, String)]) {
+        for (name, value) in preset {
+            self.variables
+                .insert(name.clone(), Variable::Text(value.clone()));
+            // `-var` makes an index-style variable.
+            self.styles.insert(name.clone(), ("index".into(), None));
+        }
     }
 
     /// [`ScriptReader::read_for`] keeping the `variable` lines among the commands (with their
@@ -203,16 +233,29 @@ impl ScriptReader {
                 file: path.to_path_buf(),
                 line: first_line,
             };
-            self.line(&line, at, path)?;
+            let read = self.line(&line, at, path);
+            self.went_on(read)?;
         }
         if !pending.is_empty() {
             let at = SourceLine {
                 file: path.to_path_buf(),
                 line: first_line,
             };
-            self.line(&pending, at, path)?;
+            let read = self.line(&pending, at, path);
+            self.went_on(read)?;
         }
         Ok(())
+    }
+
+    /// A line's reading: its error kept where the reading goes on past it, else returned.
+    fn went_on(&mut self, read: Result<(), DeckError>) -> Result<(), DeckError> {
+        match read {
+            Err(e) if self.go_on => {
+                self.errors.push((self.commands.len(), e));
+                Ok(())
+            }
+            other => other,
+        }
     }
 
     fn line(&mut self, raw: &str, at: SourceLine, path: &Path) -> Result<(), DeckError> {

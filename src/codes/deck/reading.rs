@@ -52,6 +52,32 @@ pub(crate) fn named_file(c: &Command, k: usize, what: &str) -> Result<PathBuf, D
     }
 }
 
+/// Every line of a script the check cannot honour, found in one pass, as one error: the
+/// units' refusal first (a deck in other units is refused whatever else it holds), then the
+/// lines in the order the code reads them (`read`: the lines the reader could not read, each
+/// with the number of commands before it; `taken`: the commands it could not take, each with
+/// its index among the commands).
+pub(crate) fn every_refusal(
+    units: Option<DeckError>,
+    read: Vec<(usize, DeckError)>,
+    taken: Vec<(usize, DeckError)>,
+) -> Result<(), DeckError> {
+    // A line that could not be read comes before the command at its place: (place, 0) sorts
+    // before (place, 1).
+    let mut all: Vec<((usize, u8), DeckError)> = read
+        .into_iter()
+        .map(|(k, e)| ((k, 0), e))
+        .chain(taken.into_iter().map(|(k, e)| ((k, 1), e)))
+        .collect();
+    all.sort_by_key(|(k, _)| *k);
+    DeckError::all(
+        units
+            .into_iter()
+            .chain(all.into_iter().map(|(_, e)| e))
+            .collect(),
+    )
+}
+
 /// The kind of left-out line of a script's neighbour, communication and domain settings.
 pub(crate) const NEIGHBOURS: &str =
     "neighbour lists, communication and domain settings (the impact sets its own)";

@@ -27,9 +27,9 @@ use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
     ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
-    wall_contacts, whole_number,
+    every_refusal, wall_contacts, whole_number,
 };
-use crate::codes::script::{Command, ScriptReader};
+use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
@@ -395,141 +395,151 @@ impl LammpsDeck {
             } else {
                 ("", &[])
             };
-        let commands = ScriptReader::read_for(path, &options.variables, lacking)?;
+        let (commands, unread) = ScriptReader::read_each(path, &options.variables, lacking)?;
         let mut r = Reading::default();
-        for c in &commands {
-            if r.script.command(c, &SYNTAX)? {
-                continue;
-            }
-            match c.name() {
-                "atom_style" => r.atom_style = Some(c.clone()),
-                "plugin" => r.leave_out(
-                    "plugin commands (the impact loads the paper plugin itself)",
-                    c,
-                ),
-                "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
-                    r.paper_linear = Some(c.words[1] == "paper/linear");
-                    r.pair = Some(c.clone());
-                }
-                "pair_coeff" if r.paper_linear.is_some() => {
-                    let linear = r.paper_linear == Some(true);
-                    let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
-                    r.paper_coeffs.push((
-                        c.word(1, "I")?.to_string(),
-                        c.word(2, "J")?.to_string(),
-                        coeff,
-                        c.clone(),
-                    ));
-                }
-                "pair_style" => {
-                    if c.word(1, "a pair style")? != "granular" {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!("pair_style {}", c.words[1]),
-                            "pair_style granular, or paper and paper/linear of the paper plugin",
-                        ));
-                    }
-                    r.pair = Some(c.clone());
-                }
-                "pair_coeff" => {
-                    let (model, k) = read_model(c, 3, &[])?;
-                    if k != c.words.len() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!("`{}`", c.text),
-                            "pair_coeff I J MODEL …",
-                        ));
-                    }
-                    if !c.words[3..].iter().any(|w| w == "tangential") {
-                        return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
-                    }
-                    r.coeffs
-                        .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
-                }
-                "fix" => match c.word(3, "the fix style")? {
-                    "wall/paper" => {
-                        let planes = ["xplane", "yplane", "zplane"];
-                        let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
-                            DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
-                        })?;
-                        let linear = match c.word(4, "hertz or linear")? {
-                            "hertz" => false,
-                            "linear" => true,
-                            other => {
-                                return Err(DeckError::unsupported(
-                                    &c.at,
-                                    format!("wall/paper model `{other}`"),
-                                    "hertz, linear",
-                                ));
-                            }
-                        };
-                        r.paper_walls.push(PaperWall {
-                            id: c.words[1].clone(),
-                            coeff: paper_coeff(c, 5, k, linear, false)?,
-                            model: c.words[4..k].to_vec(),
-                            at: c.at.clone(),
-                            geometry: c.words[k..].join(" "),
-                        });
-                    }
-                    "wall/gran" | "wall/gran/region" => {
-                        if c.word(4, "granular")? != "granular" {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                format!("fix {} {}", c.words[3], c.words[4]),
-                                "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
-                            ));
-                        }
-                        let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
-                        let (model, k) = read_model(c, 5, &stops)?;
-                        if k >= c.words.len() {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                "a wall without its style".into(),
-                                "xplane, yplane, zplane, zcylinder, region",
-                            ));
-                        }
-                        r.walls.push(WallFix {
-                            id: c.words[1].clone(),
-                            group: c.words[2].clone(),
-                            model,
-                            at: c.at.clone(),
-                            geometry: c.words[k..].join(" "),
-                        });
-                    }
-                    "nve/sphere" => r.leave_out(
-                        "the integrator (the impact runs fix nve/sphere, as the deck)",
-                        c,
-                    ),
-                    "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid"
-                    | "rigid/small" => {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!(
-                                "fix {}: an integrator whose step the harness does not model",
-                                c.words[3]
-                            ),
-                            "fix nve/sphere",
-                        ));
-                    }
-                    "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
-                    "pour" | "deposit" => Self::inserts(c, &mut r)?,
-                    _ => r.leave_out("other fixes (no part of a contact)", c),
-                },
-                "region" | "lattice" => r.leave_out("regions (the geometry)", c),
-                "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
-                "info" => r.leave_out(OUTPUT, c),
-                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
-                | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify"
-                | "special_bonds" => r.leave_out("other settings", c),
-                _ => {
-                    return Err(ScriptReading::unknown(
-                        c,
-                        "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
-                    ));
-                }
+        let mut refused = Vec::new();
+        for (k, c) in commands.iter().enumerate() {
+            if let Err(e) = Self::command(c, &mut r) {
+                refused.push((k, e));
             }
         }
+        let units = check_si_units(r.script.units.as_ref(), path, "LAMMPS").err();
+        every_refusal(units, unread, refused)?;
         Ok(r)
+    }
+
+    fn command(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        if r.script.command(c, &SYNTAX)? {
+            return Ok(());
+        }
+        match c.name() {
+            "atom_style" => r.atom_style = Some(c.clone()),
+            "plugin" => r.leave_out(
+                "plugin commands (the impact loads the paper plugin itself)",
+                c,
+            ),
+            "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
+                r.paper_linear = Some(c.words[1] == "paper/linear");
+                r.pair = Some(c.clone());
+            }
+            "pair_coeff" if r.paper_linear.is_some() => {
+                let linear = r.paper_linear == Some(true);
+                let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
+                r.paper_coeffs.push((
+                    c.word(1, "I")?.to_string(),
+                    c.word(2, "J")?.to_string(),
+                    coeff,
+                    c.clone(),
+                ));
+            }
+            "pair_style" => {
+                if c.word(1, "a pair style")? != "granular" {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("pair_style {}", c.words[1]),
+                        "pair_style granular, or paper and paper/linear of the paper plugin",
+                    ));
+                }
+                r.pair = Some(c.clone());
+            }
+            "pair_coeff" => {
+                let (model, k) = read_model(c, 3, &[])?;
+                if k != c.words.len() {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("`{}`", c.text),
+                        "pair_coeff I J MODEL …",
+                    ));
+                }
+                if !c.words[3..].iter().any(|w| w == "tangential") {
+                    return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
+                }
+                r.coeffs
+                    .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
+            }
+            "fix" => match c.word(3, "the fix style")? {
+                "wall/paper" => {
+                    let planes = ["xplane", "yplane", "zplane"];
+                    let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
+                        DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
+                    })?;
+                    let linear = match c.word(4, "hertz or linear")? {
+                        "hertz" => false,
+                        "linear" => true,
+                        other => {
+                            return Err(DeckError::unsupported(
+                                &c.at,
+                                format!("wall/paper model `{other}`"),
+                                "hertz, linear",
+                            ));
+                        }
+                    };
+                    r.paper_walls.push(PaperWall {
+                        id: c.words[1].clone(),
+                        coeff: paper_coeff(c, 5, k, linear, false)?,
+                        model: c.words[4..k].to_vec(),
+                        at: c.at.clone(),
+                        geometry: c.words[k..].join(" "),
+                    });
+                }
+                "wall/gran" | "wall/gran/region" => {
+                    if c.word(4, "granular")? != "granular" {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("fix {} {}", c.words[3], c.words[4]),
+                            "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
+                        ));
+                    }
+                    let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
+                    let (model, k) = read_model(c, 5, &stops)?;
+                    if k >= c.words.len() {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            "a wall without its style".into(),
+                            "xplane, yplane, zplane, zcylinder, region",
+                        ));
+                    }
+                    r.walls.push(WallFix {
+                        id: c.words[1].clone(),
+                        group: c.words[2].clone(),
+                        model,
+                        at: c.at.clone(),
+                        geometry: c.words[k..].join(" "),
+                    });
+                }
+                "nve/sphere" => r.leave_out(
+                    "the integrator (the impact runs fix nve/sphere, as the deck)",
+                    c,
+                ),
+                "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid" | "rigid/small" => {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!(
+                            "fix {}: an integrator whose step the harness does not model",
+                            c.words[3]
+                        ),
+                        "fix nve/sphere",
+                    ));
+                }
+                "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
+                "pour" | "deposit" => Self::inserts(c, r)?,
+                _ => r.leave_out("other fixes (no part of a contact)", c),
+            },
+            "region" | "lattice" => r.leave_out("regions (the geometry)", c),
+            "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
+            "info" => r.leave_out(OUTPUT, c),
+            "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box"
+            | "reset_timestep" | "run_style" | "mass" | "pair_modify" | "special_bonds" => {
+                r.leave_out("other settings", c)
+            }
+            _ => {
+                return Err(ScriptReading::unknown(
+                    c,
+                    "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `fix ID group pour N TYPE SEED …` and `fix ID group deposit N TYPE M SEED …` make atoms
