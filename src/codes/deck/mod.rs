@@ -19,12 +19,14 @@ use super::{CodeError, CodeSetup, RenderedInput};
 
 mod bodies;
 mod contacts;
+mod data;
 mod impact;
 mod reading;
 
 use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
 pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
+pub(crate) use data::DataFile;
 pub(crate) use impact::{DeckDialect, ImpactPlan};
 pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading, every_refusal, named_file};
 

@@ -5,6 +5,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::bodies::{AtomSyntax, Atoms};
+use super::data::DataFile;
 use super::{DeckError, SourceLine};
 use crate::codes::script::{Command, check_si_units, checked_timestep};
 
@@ -116,12 +117,30 @@ impl ScriptReading {
                 let single = c.words.get(2).is_some_and(|w| w == "single");
                 self.atoms.create(t, &c.at, single);
             }
+            // The group is known for a later `set group`; the line is the dialect's to leave out.
+            "group" => {
+                self.atoms.group(c);
+                return Ok(false);
+            }
             "set" => {
                 if !self.atoms.set(c, syntax)? {
                     self.leave_out("set commands on groups or regions", c);
                 }
             }
-            "read_restart" | "read_data" | "read_dump" => {
+            "read_data" => {
+                let path = named_file(c, 1, "data file")?;
+                let data = DataFile::read(&path, &c.at)?;
+                if let Some(n) = data.types {
+                    self.types = Some(n);
+                }
+                let append = c.words.iter().any(|w| w == "add");
+                self.atoms.read_data(&data.atoms, &c.at, append);
+                self.leave_out(
+                    "the data file's positions and box (its atoms' sizes are read)",
+                    c,
+                );
+            }
+            "read_restart" | "read_dump" => {
                 named_file(c, 1, "data file")?;
                 self.leave_out(
                 "particles read from a file (give their sizes with --particle TYPE:RADIUS:DENSITY)",
