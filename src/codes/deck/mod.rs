@@ -28,7 +28,9 @@ pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
 pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
 pub(crate) use data::DataFile;
 pub(crate) use impact::{DeckDialect, ImpactPlan};
-pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading, every_refusal, named_file};
+pub(crate) use reading::{
+    NEIGHBOURS, OUTPUT, ScriptReading, every_refusal, named_file, with_includes,
+};
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]

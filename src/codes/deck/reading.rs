@@ -79,6 +79,33 @@ pub(crate) fn every_refusal(
     )
 }
 
+/// A script's text with the text of the files its `include` lines name (found beside the
+/// including file, as the reader finds them; three levels deep, unreadable ones skipped):
+/// what tells whose deck it is may stand in an included file.
+pub(crate) fn with_includes(path: &Path, text: &str) -> String {
+    fn gather(path: &Path, text: &str, depth: usize, all: &mut String) {
+        all.push_str(text);
+        all.push('\n');
+        if depth == 0 {
+            return;
+        }
+        for line in text.lines() {
+            let mut words = line.split_whitespace();
+            if words.next() == Some("include")
+                && let Some(name) = words.next()
+            {
+                let included = path.parent().unwrap_or(Path::new(".")).join(name);
+                if let Ok(inner) = std::fs::read_to_string(&included) {
+                    gather(&included, &inner, depth - 1, all);
+                }
+            }
+        }
+    }
+    let mut all = String::new();
+    gather(path, text, 3, &mut all);
+    all
+}
+
 /// The kind of left-out line of a script's neighbour, communication and domain settings.
 pub(crate) const NEIGHBOURS: &str =
     "neighbour lists, communication and domain settings (the impact sets its own)";

@@ -27,7 +27,7 @@ use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
     ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
-    every_refusal, wall_contacts, whole_number,
+    every_refusal, wall_contacts, whole_number, with_includes,
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
@@ -521,6 +521,7 @@ impl LammpsDeck {
             }
             "pair_style" if c.word(1, "a pair style")?.starts_with("gran/") => {
                 r.pair = Some(c.clone());
+                r.pair_refused = true;
                 r.classic = Some(classic_model(c, 1)?.0);
             }
             "pair_coeff" if r.classic.is_some() => {
@@ -1068,22 +1069,15 @@ impl DeckDialect for LammpsDeck {
         (BodyElasticity::Withheld, conventions)
     }
 
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.lines().any(|l| {
+    fn recognises(&self, path: &Path, text: &str) -> bool {
+        with_includes(path, text).lines().any(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
             matches!(
                 w.as_slice(),
-                [
-                    "pair_style",
-                    "granular"
-                        | "paper"
-                        | "paper/linear"
-                        | "gran/hooke"
-                        | "gran/hooke/history"
-                        | "gran/hertz/history",
-                    ..
-                ]
-            ) || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
+                ["pair_style", "granular" | "paper" | "paper/linear", ..]
+            ) || (w.first() == Some(&"pair_style")
+                && w.get(1).is_some_and(|s| s.starts_with("gran/")))
+                || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
                 || (w.first() == Some(&"fix")
                     && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
                     && w.get(4)

@@ -21,7 +21,7 @@ use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, DeckBody, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckWall,
     ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
-    UserDeck, WallOrder, body_contacts, every_refusal, named_file, wall_contacts,
+    UserDeck, WallOrder, body_contacts, every_refusal, named_file, wall_contacts, with_includes,
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::{exact_number, fill_template};
@@ -621,8 +621,8 @@ fn wall_modulus_trap(j: u32, own: (f64, f64), wall: (f64, f64), y_star: f64) -> 
 }
 
 impl DeckDialect for LiggghtsDeck {
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.lines().map(str::trim).any(|l| {
+    fn recognises(&self, path: &Path, text: &str) -> bool {
+        with_includes(path, text).lines().map(str::trim).any(|l| {
             let words: Vec<&str> = l.split_whitespace().collect();
             matches!(words.as_slice(), ["pair_style", "gran", "model", ..])
                 || (words.first() == Some(&"fix")
