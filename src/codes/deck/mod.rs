@@ -389,8 +389,9 @@ pub struct UserDeck {
     pub walls: Vec<DeckWall>,
     /// Each pair of bodies, and each body against each wall.
     pub contacts: Vec<DeckContact>,
-    /// A speed the deck itself names as typical (LIGGGHTS' `characteristicVelocity`), m/s,
-    /// with where.
+    /// The deck's own impact speed (an insertion's `vel`, `velocity … set`, YADE's
+    /// `state.vel`), else a speed it names as typical (LIGGGHTS' `characteristicVelocity`),
+    /// m/s, with where.
     pub representative_velocity: Option<(f64, String)>,
     /// What the deck holds that the impacts leave out.
     pub left_out: Vec<String>,

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use super::bodies::{AtomSyntax, Atoms};
 use super::data::DataFile;
 use super::{DeckError, SourceLine};
-use crate::codes::script::{Command, check_si_units, checked_timestep};
+use crate::codes::script::{Command, check_si_units, checked_timestep, parse_number};
 
 /// The lines of a deck the impacts leave out, by what they are (the mill's geometry, output,
 /// the run itself), each kind with the file of its first line and the lines.
@@ -127,6 +127,9 @@ pub(crate) struct ScriptReading {
     pub atoms: Atoms,
     /// The lines the impacts leave out.
     pub left_out: LeftOut,
+    /// The deck's own impact speed, m/s, and what sets it (`velocity … set`, an insertion's
+    /// `vel`): the first that gives a speed.
+    pub impact_speed: Option<(f64, String)>,
 }
 
 impl ScriptReading {
@@ -143,6 +146,14 @@ impl ScriptReading {
                 let t = (syntax.whole)(c.number(1, "the atom type")?, c, "type")?;
                 let single = c.words.get(2).is_some_and(|w| w == "single");
                 self.atoms.create(t, &c.at, single);
+            }
+            // The speed a deck gives its particles is its impacts' speed; the line is the
+            // dialect's to leave out.
+            "velocity" => {
+                if c.words.get(2).is_some_and(|w| w == "set") {
+                    self.speed_of(c, 3, "velocity set");
+                }
+                return Ok(false);
             }
             // The group is known for a later `set group`; the line is the dialect's to leave out.
             "group" => {
@@ -184,6 +195,23 @@ impl ScriptReading {
             _ => return Ok(false),
         }
         Ok(true)
+    }
+
+    /// The speed `vx vy vz` at `c.words[k..k + 3]` gives (a `NULL` or a variable the code
+    /// evaluates at run time adds nothing), kept as the deck's impact speed (`what` sets it)
+    /// where none is yet and it is not zero.
+    pub(crate) fn speed_of(&mut self, c: &Command, k: usize, what: &str) {
+        if self.impact_speed.is_some() {
+            return;
+        }
+        let speed = (k..k + 3)
+            .filter_map(|j| c.words.get(j).and_then(|w| parse_number(w)))
+            .map(|x| x * x)
+            .sum::<f64>()
+            .sqrt();
+        if speed > 0.0 && speed.is_finite() {
+            self.impact_speed = Some((speed, format!("{what} ({})", c.at)));
+        }
     }
 
     /// The error of a command the code's reader does not take (`supported`: those it does).

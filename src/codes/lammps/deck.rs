@@ -1105,7 +1105,7 @@ impl DeckDialect for LammpsDeck {
             bodies,
             walls,
             contacts,
-            representative_velocity: None,
+            representative_velocity: r.script.impact_speed.clone(),
             left_out: r.script.left_out.lines(),
             transplant: Transplant {
                 before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),

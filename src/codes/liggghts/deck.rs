@@ -310,7 +310,14 @@ impl LiggghtsDeck {
             | "insert/pack"
             | "insert/stream"
             | "insert/rate/region"
-            | "insert/pack/dense" => r.leave_out("particle insertion", c),
+            | "insert/pack/dense" => {
+                if let Some(k) = c.words.iter().position(|w| w == "vel")
+                    && c.words.get(k + 1).is_some_and(|w| w == "constant")
+                {
+                    r.script.speed_of(c, k + 2, "insertion vel");
+                }
+                r.leave_out("particle insertion", c);
+            }
             "move/mesh" | "move" | "rotate" => r.leave_out("wall and particle motion", c),
             _ => r.leave_out("other fixes (no part of a contact)", c),
         }
@@ -684,10 +691,13 @@ impl DeckDialect for LiggghtsDeck {
                 Ok(pl)
             },
         )?);
-        let representative_velocity = r.properties.get("characteristicVelocity").and_then(|p| {
-            p.values
-                .first()
-                .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
+        // The deck's own impact speed, else the speed its Hooke model is set for.
+        let representative_velocity = r.script.impact_speed.clone().or_else(|| {
+            r.properties.get("characteristicVelocity").and_then(|p| {
+                p.values
+                    .first()
+                    .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
+            })
         });
         let left_out = r.script.left_out.lines();
         let mut common = r.property_lines.clone();

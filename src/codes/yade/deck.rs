@@ -46,6 +46,25 @@ const SCRIPT: &str = "impact.py";
 /// YADE's deck reader.
 pub struct YadeDeck;
 
+/// The deck's own impact speed: the first moving sphere's `state.vel` as the set-up leaves
+/// it (m/s), with where it was made.
+fn deck_speed(path: &Path, dump: &Dump) -> Option<(f64, String)> {
+    dump.bodies.iter().find_map(|b| {
+        let v = b.vel.as_ref()?;
+        let speed = v
+            .iter()
+            .map(|x| x.unwrap_or(0.0).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        (b.dynamic && speed > 0.0 && speed.is_finite()).then(|| {
+            let at = b.line.map_or(format!("O.bodies[{}]", b.id), |l| {
+                format!("{}:{l}", path.display())
+            });
+            (speed, format!("state.vel ({at})"))
+        })
+    })
+}
+
 impl YadeDeck {
     /// The bodies: one per size of each material, the given ones replacing their type's.
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
@@ -563,7 +582,7 @@ impl YadeDeck {
             bodies,
             walls,
             contacts,
-            representative_velocity: None,
+            representative_velocity: deck_speed(path, dump),
             left_out: left_out_lines(&r, path),
             transplant: Transplant {
                 before_box: Vec::new(),

@@ -269,6 +269,7 @@ def body(b):
     }
     if kind == "Sphere":
         out["radius"] = number(shape.radius)
+        out["vel"] = [number(x) for x in b.state.vel]
     elif kind == "Box":
         out["extents"] = [number(x) for x in shape.extents]
     return out

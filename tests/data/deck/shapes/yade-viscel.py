@@ -1,4 +1,4 @@
-# YADE: ViscElMat with tc, en and et, spheres on a facet floor
+# YADE: ViscElMat with tc, en and et, a sphere given its speed by state.vel above a facet floor
 rubber = O.materials.append(ViscElMat(tc=2e-4, en=0.6, et=0.6, frictionAngle=0.5, density=1200))
 O.bodies.append(utils.facet([(-0.1, -0.1, 0), (0.1, -0.1, 0), (0, 0.1, 0)], material=rubber, fixed=True))
 O.bodies.append(utils.sphere((0, 0, 0.02), 0.005, material=rubber))
@@ -12,5 +12,6 @@ O.engines = [
     ),
     NewtonIntegrator(damping=0, gravity=(0, 0, -9.81)),
 ]
+O.bodies[-1].state.vel = Vector3(0, 0, -1.5)
 O.dt = 1e-6
 O.run(10000)
