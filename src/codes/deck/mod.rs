@@ -25,7 +25,9 @@ mod reading;
 
 use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
-pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
+pub(crate) use contacts::{
+    PairLaw, WallOrder, body_contacts, body_contacts_formed, wall_contacts, wall_contacts_formed,
+};
 pub(crate) use data::DataFile;
 pub(crate) use impact::{DeckDialect, ImpactPlan};
 pub(crate) use reading::{
