@@ -187,7 +187,7 @@ impl ScriptReading {
             }
             "run" | "rerun" | "minimize" => self.leave_out("the run itself", c),
             "neighbor" | "neigh_modify" | "comm_modify" | "newton" | "processors" | "boundary"
-            | "atom_modify" => self.leave_out(NEIGHBOURS, c),
+            | "atom_modify" | "balance" => self.leave_out(NEIGHBOURS, c),
             "dump" | "dump_modify" | "undump" | "thermo" | "thermo_style" | "thermo_modify"
             | "compute" | "compute_modify" | "uncompute" | "print" | "write_restart"
             | "restart" | "write_data" | "write_dump" | "echo" | "log" | "shell" | "label"
