@@ -126,7 +126,7 @@ fn an_included_file_names_its_own_lines_and_a_missing_one_is_named() {
         .unwrap_err()
         .to_string();
     assert!(
-        e.starts_with("cannot read ") && e.contains("nowhere.in"),
+        e.contains("in.main:8: include ") && e.contains("`nowhere.in` does not exist"),
         "{e}"
     );
 }
@@ -228,7 +228,7 @@ fn a_lammps_line_the_build_lacks_or_a_pair_without_coefficients_is_refused() {
         .to_string();
     assert!(
         e.contains(
-            "in.dmt:10: normal model `dmt`; supported: hooke k d, hertz k d, hertz/material E d nu"
+            "in.dmt:10: normal model `dmt`: an adhesive force the impact check does not model; supported: hooke k d, hertz k d, hertz/material E d nu"
         ),
         "{e}"
     );
@@ -348,8 +348,17 @@ fn a_kratos_setup_lacking_a_part_says_what_and_how_to_give_it() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("no material_relations entry for the materials 2 (high_chrome_iron) and 2 (high_chrome_iron)"), "{e}");
-    // No .mdpa to take the radii from: named, with the flag that gives them.
-    let (_d, path) = kratos_deck(|_| {}, |p| p["problem_name"] = "elsewhere".into());
+    // No .mdpa of the problem's name: Kratos stops at it, and so does the check.
+    let (d, path) = kratos_deck(|_| {}, |p| p["problem_name"] = "elsewhere".into());
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("problem_name: ") && e.contains("`elsewhereDEM.mdpa` does not exist"),
+        "{e}"
+    );
+    // An .mdpa with no sphere to take the radii from: named, with the flag that gives them.
+    std::fs::write(d.path().join("elsewhereDEM.mdpa"), "").unwrap();
     let e = read_deck(&path, None, &DeckOptions::default())
         .unwrap_err()
         .to_string();
@@ -691,4 +700,67 @@ pair_coeff 2 2 hertz 1e9 0.5 damping tsuji tangential linear_nohistory 0 0\n",
             "{err}"
         );
     }
+}
+
+/// One pass names every line the check cannot honour, in the order the code reads them, the
+/// units first: a user fixes them all at once, not one per attempt.
+#[test]
+fn every_line_the_check_cannot_honour_is_named_in_one_pass_units_first() {
+    let text = format!(
+        "{}pair_style gran model hertz tangential histroy\nfix p all particletemplate/multisphere 1 atom_type 1\n\
+timestep ${{dt}}\nunits lj\nfix w all wall/gran model hertz primitive type 3 zplane 0.0 limitforce on\n",
+        HEAD.replace("units si\n", "")
+    );
+    let (_d, path) = deck_files(&[("in.many", &text)]);
+    let e = read_deck(&path, None, &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    let lines: Vec<&str> = e.lines().collect();
+    let at = |n: usize| format!("{}:{n}: ", path.display());
+    assert_eq!(lines.len(), 5, "{e}");
+    assert!(
+        lines[0].starts_with(&at(10)) && lines[0].contains("units lj"),
+        "{e}"
+    );
+    assert!(
+        lines[1].starts_with(&at(7))
+            && lines[1].contains("tangential `histroy`: LIGGGHTS 3.8 has no such model")
+            && lines[1].contains("supported: tangential no_history, history, tan_luding"),
+        "{e}"
+    );
+    assert!(
+        lines[2].starts_with(&at(8)) && lines[2].contains("non-spherical"),
+        "{e}"
+    );
+    assert!(
+        lines[3].starts_with(&at(9)) && lines[3].contains("`dt` is not defined"),
+        "{e}"
+    );
+    assert!(
+        lines[4].starts_with(&at(11))
+            && lines[4].contains("`limitforce on`")
+            && lines[4].contains("limitForce"),
+        "{e}"
+    );
+}
+
+/// A keyword LAMMPS does not know in a granular model is refused with the words it accepts.
+#[test]
+fn a_lammps_model_keyword_typo_names_the_words_lammps_accepts() {
+    hide_codes();
+    let head = two_types("");
+    let (_d, path) = deck_files(&[(
+        "in.typo",
+        &format!(
+            "{head}pair_coeff * * hertz/material 1e9 0.5 0.3 tangential linear_histroy 1 1 0.5\n"
+        ),
+    )]);
+    let e = read_deck(&path, Some(CodeName::Lammps), &DeckOptions::default())
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("in.typo:10: tangential `linear_histroy`: LAMMPS has no such tangential model")
+            && e.contains("supported: tangential linear_nohistory, linear_history"),
+        "{e}"
+    );
 }

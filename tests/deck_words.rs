@@ -125,19 +125,51 @@ set type 1 type 2\n"
 }
 
 #[test]
+fn a_group_of_known_atoms_sets_their_sizes_as_the_code_does() {
+    // `set group all`: every atom there is, so type 1's; the fraction made type 2 keeps it.
+    let (_d, path) = deck_file(
+        "in.all",
+        &format!(
+            "{HEAD}set group all diameter 0.01 density 7800\nset group all type/fraction 2 0.3 32452843\n"
+        ),
+    );
+    let deck = read(&path, None, &DeckOptions::default());
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(1, 0.005, 7800.0), (2, 0.005, 7800.0)]);
+    // A group of types: `group heavy type 2` after the atoms of type 2 are made.
+    let (_d, path) = deck_file(
+        "in.types",
+        &format!(
+            "{HEAD}create_atoms 2 region box\ngroup heavy type 2\nset group heavy diameter 0.02 density 2500\nset type 1 diameter 0.01 density 7800\n"
+        ),
+    );
+    let deck = read(&path, None, &DeckOptions::default());
+    let sizes: Vec<(u32, f64, f64)> = deck
+        .bodies
+        .iter()
+        .map(|b| (b.type_id, b.radius, b.density))
+        .collect();
+    assert_eq!(sizes, [(1, 0.005, 7800.0), (2, 0.01, 2500.0)]);
+}
+
+#[test]
 fn a_type_whose_size_cannot_be_known_is_named_with_its_line_and_what_to_give() {
-    // A group's atoms made type 2: the reader cannot know which atoms, so which size.
+    // A region's atoms made type 2: the reader cannot know which atoms, so which size.
     let (_d, path) = deck_file(
         "in.group",
         &format!(
-            "{HEAD}set type 1 diameter 0.01 density 7800\nset group all type/fraction 2 0.3 32452843\n"
+            "{HEAD}set type 1 diameter 0.01 density 7800\ngroup lower region box\nset group lower type/fraction 2 0.3 32452843\n"
         ),
     );
     let e = read_error(&path, None, &DeckOptions::default());
     assert_eq!(
         e,
         format!(
-            "{}:13: atoms of type 2 come from `set group all type/fraction 2 0.3 32452843` without a diameter and density the reader can know for them; supported: `set type 2 diameter D density RHO`, or --particle 2:RADIUS:DENSITY",
+            "{}:14: atoms of type 2 come from `set group lower type/fraction 2 0.3 32452843` without a diameter and density the reader can know for them; supported: `set type 2 diameter D density RHO`, or --particle 2:RADIUS:DENSITY",
             path.display()
         )
     );

@@ -13,7 +13,7 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use super::deck::{DeckError, SourceLine};
+use super::deck::{DataFile, DeckError, SourceLine};
 
 /// One command of a script after substitution: its words and where it was written.
 #[derive(Clone, Debug, PartialEq)]
@@ -111,7 +111,17 @@ enum Variable {
     Formula(String, SourceLine),
     /// A text (`index`, `string`, `loop`, `world`, `internal`: the first value).
     Text(String),
+    /// A style whose value only the running code knows (`atom`, `vector`, `python`, …), with
+    /// where it was defined: left alone until a line the check reads uses it.
+    Running(String, SourceLine),
 }
+
+/// The simulation box as `create_box` makes it from a `block` region: `xlo xhi ylo yhi zlo
+/// zhi`, m.
+type SimulationBox = [f64; 6];
+
+/// A line that could not be read, with the number of commands read before it.
+pub(crate) type Unread = (usize, DeckError);
 
 /// Reads a script and its includes.
 #[derive(Debug, Default)]
@@ -126,6 +136,16 @@ pub struct ScriptReader {
     /// Whether `variable` lines are kept among the commands (a whole deck written out again
     /// needs them: `v_NAME` references are resolved by the code at run time).
     keep_variables: bool,
+    /// Whether a line that cannot be read is kept in `errors` and the reading goes on (so
+    /// that one pass names every such line), rather than ending the reading.
+    go_on: bool,
+    /// The lines that could not be read, each with the number of commands read before it.
+    errors: Vec<Unread>,
+    /// The `block` regions defined so far, by ID.
+    regions: HashMap<String, SimulationBox>,
+    /// The box once `create_box` has made it from a block region (its bounds are what
+    /// `xlo` … `zhi` give a formula from then on).
+    simulation_box: Option<SimulationBox>,
 }
 
 /// Most nested includes followed (a file that includes itself stops here).
@@ -153,15 +173,37 @@ impl ScriptReader {
             lacking,
             ..ScriptReader::default()
         };
-        for (name, value) in preset {
-            reader
-                .variables
-                .insert(name.clone(), Variable::Text(value.clone()));
-            // `-var` makes an index-style variable.
-            reader.styles.insert(name.clone(), ("index".into(), None));
-        }
+        reader.preset(preset);
         reader.file(path)?;
         Ok(reader.commands)
+    }
+
+    /// [`ScriptReader::read_for`] that reads on past a line it cannot read: the commands
+    /// read, and each line that could not be, with the number of commands read before it
+    /// (where it stands among them). Only a deck that cannot be opened ends the reading.
+    pub(crate) fn read_each(
+        path: &Path,
+        preset: &[(String, String)],
+        lacking: (&'static str, &'static [&'static str]),
+    ) -> Result<(Vec<Command>, Vec<Unread>), DeckError> {
+        let mut reader = ScriptReader {
+            lacking,
+            go_on: true,
+            ..ScriptReader::default()
+        };
+        reader.preset(preset);
+        reader.file(path)?;
+        Ok((reader.commands, reader.errors))
+    }
+
+    /// Define the variables `preset` as `-var NAME VALUE` on the command line defines them.
+    fn preset(&mut self, preset: &[(String, String)]) {
+        for (name, value) in preset {
+            self.variables
+                .insert(name.clone(), Variable::Text(value.clone()));
+            // `-var` makes an index-style variable.
+            self.styles.insert(name.clone(), ("index".into(), None));
+        }
     }
 
     /// [`ScriptReader::read_for`] keeping the `variable` lines among the commands (with their
@@ -203,16 +245,29 @@ impl ScriptReader {
                 file: path.to_path_buf(),
                 line: first_line,
             };
-            self.line(&line, at, path)?;
+            let read = self.line(&line, at, path);
+            self.went_on(read)?;
         }
         if !pending.is_empty() {
             let at = SourceLine {
                 file: path.to_path_buf(),
                 line: first_line,
             };
-            self.line(&pending, at, path)?;
+            let read = self.line(&pending, at, path);
+            self.went_on(read)?;
         }
         Ok(())
+    }
+
+    /// A line's reading: its error kept where the reading goes on past it, else returned.
+    fn went_on(&mut self, read: Result<(), DeckError>) -> Result<(), DeckError> {
+        match read {
+            Err(e) if self.go_on => {
+                self.errors.push((self.commands.len(), e));
+                Ok(())
+            }
+            other => other,
+        }
     }
 
     fn line(&mut self, raw: &str, at: SourceLine, path: &Path) -> Result<(), DeckError> {
@@ -234,6 +289,10 @@ impl ScriptReader {
                     ));
                 }
                 let included = resolve_include(path, name);
+                // The code stops at an include it cannot open: so does the check, at its line.
+                if !included.is_file() {
+                    return Err(DeckError::missing(&at, "include", name, &included));
+                }
                 self.depth += 1;
                 let result = self.file(&included);
                 self.depth -= 1;
@@ -251,6 +310,7 @@ impl ScriptReader {
                 Ok(())
             }
             _ => {
+                self.box_of(&words, path);
                 self.commands.push(Command {
                     at,
                     words,
@@ -258,6 +318,37 @@ impl ScriptReader {
                 });
                 Ok(())
             }
+        }
+    }
+
+    /// Keep the bounds a `region ID block …` gives, and the box `create_box N ID` makes of
+    /// one: a formula after it may use `xlo` … `zhi`, `lx`, `ly`, `lz`, `vol` as LAMMPS's do.
+    fn box_of(&mut self, words: &[String], from: &Path) {
+        match (
+            words.first().map(String::as_str),
+            words.get(2).map(String::as_str),
+        ) {
+            (Some("region"), Some("block")) if words.len() >= 9 => {
+                let bounds: Option<Vec<f64>> =
+                    words[3..9].iter().map(|w| parse_number(w)).collect();
+                if let Some(b) = bounds.and_then(|b| <[f64; 6]>::try_from(b).ok()) {
+                    self.regions.insert(words[1].clone(), b);
+                } else {
+                    self.regions.remove(&words[1]);
+                }
+            }
+            (Some("create_box"), Some(region)) => {
+                self.simulation_box = self.regions.get(region).copied();
+            }
+            (Some("read_data"), _) => {
+                if let Some(name) = words.get(1) {
+                    let file = resolve_include(from, name);
+                    if let Some(b) = DataFile::header_box(&file) {
+                        self.simulation_box = Some(b);
+                    }
+                }
+            }
+            _ => {}
         }
     }
 
@@ -315,14 +406,13 @@ impl ScriptReader {
                 self.variables
                     .insert(name.clone(), Variable::Formula(formula, at.clone()));
             }
+            // A value only the running code knows: refused where a line the check reads
+            // uses it, not here (a deck that only watches its charge through it is read).
             other => {
-                return Err(DeckError::unsupported(
-                    at,
-                    format!(
-                        "variable {name} {other}: a style whose value only the running code knows"
-                    ),
-                    SUPPORTED_STYLES,
-                ));
+                self.variables.insert(
+                    name.clone(),
+                    Variable::Running(other.to_string(), at.clone()),
+                );
             }
         }
         if style != "delete" {
@@ -390,6 +480,7 @@ impl ScriptReader {
         match self.variables.get(name) {
             Some(Variable::Text(text)) => Ok(text.clone()),
             Some(Variable::Formula(..)) => Ok(fifteen_digits(self.evaluate_variable(name, at, 0)?)),
+            Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
             None => Err(DeckError::unsupported(
                 at,
                 format!("variable `{name}` is not defined"),
@@ -416,8 +507,10 @@ impl ScriptReader {
                 let lookup = |v: &str| self.evaluate_variable(v, at, depth + 1);
                 Expression::new(formula, at, &lookup)
                     .lacking(self.lacking)
+                    .in_box(self.simulation_box)
                     .evaluate()
             }
+            Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
             Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
                 DeckError::unsupported(
                     at,
@@ -460,6 +553,7 @@ impl ScriptReader {
                         let lookup = |v: &str| self.evaluate_variable(v, at, 1);
                         let x = Expression::new(formula, at, &lookup)
                             .lacking(self.lacking)
+                            .in_box(self.simulation_box)
                             .evaluate()?;
                         (printf_g(x, 20), end + 1)
                     }
@@ -500,6 +594,17 @@ fn matching_paren(chars: &[char], open: usize) -> Option<usize> {
         }
     }
     None
+}
+
+/// The error of a variable of a running-only style used where the check must know its value.
+fn running(name: &str, style: &str, defined: &SourceLine, at: &SourceLine) -> DeckError {
+    DeckError::unsupported(
+        at,
+        format!(
+            "variable {name} ({style}, {defined}): a style whose value only the running code knows, used where the check needs a number"
+        ),
+        SUPPORTED_STYLES,
+    )
 }
 
 /// An included file: relative names are found beside the including file (where the user runs
@@ -620,6 +725,7 @@ struct Expression<'a> {
     line: &'a SourceLine,
     lookup: &'a dyn Fn(&str) -> Result<f64, DeckError>,
     lacking: (&'static str, &'static [&'static str]),
+    simulation_box: Option<SimulationBox>,
 }
 
 impl<'a> Expression<'a> {
@@ -635,7 +741,32 @@ impl<'a> Expression<'a> {
             line,
             lookup,
             lacking: ("", &[]),
+            simulation_box: None,
         }
+    }
+
+    /// The box's bounds, where `create_box` has made it.
+    fn in_box(mut self, simulation_box: Option<SimulationBox>) -> Self {
+        self.simulation_box = simulation_box;
+        self
+    }
+
+    /// A thermo keyword of the box (`xlo` … `zhi`, `lx`, `ly`, `lz`, `vol`), once it is made.
+    fn box_keyword(&self, name: &str) -> Option<f64> {
+        let [xlo, xhi, ylo, yhi, zlo, zhi] = self.simulation_box?;
+        Some(match name {
+            "xlo" => xlo,
+            "xhi" => xhi,
+            "ylo" => ylo,
+            "yhi" => yhi,
+            "zlo" => zlo,
+            "zhi" => zhi,
+            "lx" => xhi - xlo,
+            "ly" => yhi - ylo,
+            "lz" => zhi - zlo,
+            "vol" => (xhi - xlo) * (yhi - ylo) * (zhi - zlo),
+            _ => return None,
+        })
     }
 
     /// The code (its name) lacks these functions.
@@ -783,6 +914,9 @@ impl<'a> Expression<'a> {
             }
             if let Some(variable) = name.strip_prefix("v_") {
                 return (self.lookup)(variable);
+            }
+            if let Some(value) = self.box_keyword(&name) {
+                return Ok(value);
             }
             return Err(self.fail(format!(
                 "`{name}` in `{}` is a thermo keyword or a name this reader does not know: a value only the running code knows",

@@ -6,6 +6,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
+use super::data::DataAtom;
 use super::{DeckBody, DeckError, DeckOptions, SourceLine, sphere_mass};
 use crate::codes::script::Command;
 
@@ -66,12 +67,81 @@ pub(crate) struct Atoms {
     of_atom_size: HashMap<usize, Size>,
     /// Types with particles from other lines (LIGGGHTS' particle templates).
     elsewhere: Vec<u32>,
+    /// The groups whose atoms the reader knows by type (`group ID type T …`), by ID; a group
+    /// of a region or of atom ids is not here.
+    groups: HashMap<String, Vec<u32>>,
 }
 
 impl Atoms {
     /// Particles of type `t` come from a line of the code's own (a particle template).
     pub(crate) fn made_elsewhere(&mut self, t: u32) {
         self.elsewhere.push(t);
+    }
+
+    /// `group ID type T1 T2 …` (or `T1:T2` ranges): the group of those types' atoms;
+    /// any other form (a region, ids, a formula) makes a group whose atoms the reader does
+    /// not know.
+    pub(crate) fn group(&mut self, c: &Command) {
+        let Some(id) = c.words.get(1) else { return };
+        let types: Option<Vec<u32>> = match c.words.get(2).map(String::as_str) {
+            Some("type") if c.words.len() > 3 => c.words[3..]
+                .iter()
+                .map(|w| match w.split_once(':') {
+                    Some((lo, hi)) => {
+                        let (lo, hi): (u32, u32) = (lo.parse().ok()?, hi.parse().ok()?);
+                        (hi >= lo && hi - lo < 1024).then(|| (lo..=hi).collect::<Vec<u32>>())
+                    }
+                    None => w.parse::<u32>().ok().map(|t| vec![t]),
+                })
+                .collect::<Option<Vec<Vec<u32>>>>()
+                .map(|v| v.concat()),
+            _ => None,
+        };
+        match types {
+            Some(t) => {
+                self.groups.insert(id.clone(), t);
+            }
+            None => {
+                self.groups.remove(id);
+            }
+        }
+    }
+
+    /// The types of the atoms group `id` holds now, where the reader knows them: `all` is
+    /// every type with atoms.
+    fn group_types(&self, id: &str) -> Option<Vec<u32>> {
+        if id == "all" {
+            return Some(self.of_type.keys().copied().collect());
+        }
+        self.groups.get(id).map(|types| {
+            types
+                .iter()
+                .copied()
+                .filter(|t| self.of_type.contains_key(t))
+                .collect()
+        })
+    }
+
+    /// The atoms of a data file (`read_data` at `at`), their ids after those of the atoms
+    /// made before where the line adds them (`add append`).
+    pub(crate) fn read_data(&mut self, atoms: &[DataAtom], at: &SourceLine, append: bool) {
+        let offset = if append { self.single.len() } else { 0 };
+        for a in atoms {
+            let id = a.id + offset;
+            self.of_type.entry(a.type_id).or_insert_with(|| at.clone());
+            if self.single.len() < id {
+                // Ids the file skips hold no atom: type 0 is no type.
+                self.single.resize(id, 0);
+            }
+            self.single[id - 1] = a.type_id;
+            // A diameter of 0 is a point particle whose density column is its mass.
+            let size = if a.diameter > 0.0 {
+                [Some(a.diameter), Some(a.density), None]
+            } else {
+                [Some(a.diameter), None, Some(a.density)]
+            };
+            self.of_atom_size.insert(id, size);
+        }
     }
 
     /// `create_atoms T …` at `at`; `single` for one atom (which has an id).
@@ -133,6 +203,28 @@ impl Atoms {
                 merge(slot);
                 Some(*slot)
             }
+            // Every atom of the group's types, those with a size of their own too, as
+            // LAMMPS sets each atom the group holds.
+            "group" => match self.group_types(c.word(2, "the group")?) {
+                Some(types) if !types.is_empty() => {
+                    for t in &types {
+                        merge(self.of_type_size.entry(*t).or_default());
+                        for (index, atom_type) in self.single.iter().enumerate() {
+                            if atom_type == t
+                                && let Some(slot) = self.of_atom_size.get_mut(&(index + 1))
+                            {
+                                merge(slot);
+                            }
+                        }
+                    }
+                    // The size the selected atoms share, where they are of one type.
+                    match types.as_slice() {
+                        [t] => self.of_type_size.get(t).copied(),
+                        _ => Some([None; 3]),
+                    }
+                }
+                _ => None,
+            },
             _ => None,
         };
         // The selected atoms keep their size and density as they change type.

@@ -66,11 +66,24 @@ impl PairLaw {
 /// for it.
 pub(crate) fn body_contacts(
     bodies: &[DeckBody],
+    law: impl FnMut(&DeckBody, &DeckBody) -> Result<PairLaw, DeckError>,
+) -> Result<Vec<DeckContact>, DeckError> {
+    body_contacts_formed(bodies, |_, _| true, law)
+}
+
+/// [`body_contacts`] of the pairs `formed` says the deck lets meet (a pair the code could not
+/// evaluate, and so the deck never lets meet, has no law to check).
+pub(crate) fn body_contacts_formed(
+    bodies: &[DeckBody],
+    formed: impl Fn(&DeckBody, &DeckBody) -> bool,
     mut law: impl FnMut(&DeckBody, &DeckBody) -> Result<PairLaw, DeckError>,
 ) -> Result<Vec<DeckContact>, DeckError> {
     let mut contacts = Vec::new();
     for (a, body) in bodies.iter().enumerate() {
         for (b, other) in bodies.iter().enumerate().skip(a) {
+            if !formed(body, other) {
+                continue;
+            }
             let types = [TypeRef::Type(body.type_id), TypeRef::Type(other.type_id)];
             contacts.push(law(body, other)?.contact(a, Partner::Body(b), types));
         }
@@ -92,6 +105,17 @@ pub(crate) fn wall_contacts<W>(
     bodies: &[DeckBody],
     walls: &[W],
     order: WallOrder,
+    law: impl FnMut(&W, &DeckBody) -> Result<PairLaw, DeckError>,
+) -> Result<Vec<DeckContact>, DeckError> {
+    wall_contacts_formed(bodies, walls, order, |_, _| true, law)
+}
+
+/// [`wall_contacts`] of the pairs `formed` says the deck lets meet.
+pub(crate) fn wall_contacts_formed<W>(
+    bodies: &[DeckBody],
+    walls: &[W],
+    order: WallOrder,
+    formed: impl Fn(&W, &DeckBody) -> bool,
     mut law: impl FnMut(&W, &DeckBody) -> Result<PairLaw, DeckError>,
 ) -> Result<Vec<DeckContact>, DeckError> {
     let pairs: Vec<(usize, usize)> = match order {
@@ -104,6 +128,7 @@ pub(crate) fn wall_contacts<W>(
     };
     pairs
         .into_iter()
+        .filter(|&(a, w)| formed(&walls[w], &bodies[a]))
         .map(|(a, w)| {
             let body = &bodies[a];
             let types = [TypeRef::Type(body.type_id), TypeRef::Wall];

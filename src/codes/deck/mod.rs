@@ -19,14 +19,20 @@ use super::{CodeError, CodeSetup, RenderedInput};
 
 mod bodies;
 mod contacts;
+mod data;
 mod impact;
 mod reading;
 
 use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
-pub(crate) use contacts::{PairLaw, WallOrder, body_contacts, wall_contacts};
+pub(crate) use contacts::{
+    PairLaw, WallOrder, body_contacts, body_contacts_formed, wall_contacts, wall_contacts_formed,
+};
+pub(crate) use data::DataFile;
 pub(crate) use impact::{DeckDialect, ImpactPlan};
-pub(crate) use reading::{NEIGHBOURS, OUTPUT, ScriptReading};
+pub(crate) use reading::{
+    NEIGHBOURS, OUTPUT, ScriptReading, every_refusal, named_file, with_includes,
+};
 
 /// Where something was written in a deck: a file and a line (from 1).
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -131,6 +137,23 @@ pub enum DeckError {
         /// How to give it.
         supported: String,
     },
+    /// A file the deck names (an include, a mesh, a data file, an `.mdpa`, a materials file)
+    /// does not exist: the code would stop at that line, so nothing is run.
+    #[error("{at}: {what} `{name}` does not exist ({} looked for; the code stops here, so nothing was run)", path.display())]
+    Missing {
+        /// The line (or field) that names it.
+        at: DeckSource,
+        /// What the file is (`include`, `mesh file`, `data file`).
+        what: String,
+        /// The file as the deck names it.
+        name: String,
+        /// The file as the code would look for it.
+        path: PathBuf,
+    },
+    /// Several lines (or fields) the check cannot honour, found in one pass: each its own
+    /// line, in the deck's order (the units first).
+    #[error("{}", join_lines(.0))]
+    Several(Vec<DeckError>),
     /// A file of the deck cannot be read.
     #[error("cannot read {}: {source}", path.display())]
     Read {
@@ -190,7 +213,41 @@ impl crate::error::Blame for DeckError {
     }
 }
 
+/// Each error on a line of its own.
+fn join_lines(errors: &[DeckError]) -> String {
+    let lines: Vec<String> = errors.iter().map(ToString::to_string).collect();
+    lines.join("\n")
+}
+
 impl DeckError {
+    /// The file `path` that the line (or field) `at` names as `what` is missing.
+    /// `name`: as the deck writes it.
+    pub(crate) fn missing(at: impl Into<DeckSource>, what: &str, name: &str, path: &Path) -> Self {
+        DeckError::Missing {
+            at: at.into(),
+            what: what.into(),
+            name: name.into(),
+            path: path.to_path_buf(),
+        }
+    }
+
+    /// `errors` as one error: none is `Ok`, one itself, more [`DeckError::Several`] (each
+    /// [`DeckError::Several`] among them flattened).
+    pub(crate) fn all(errors: Vec<DeckError>) -> Result<(), DeckError> {
+        let mut flat = Vec::new();
+        for e in errors {
+            match e {
+                DeckError::Several(inner) => flat.extend(inner),
+                e => flat.push(e),
+            }
+        }
+        match flat.len() {
+            0 => Ok(()),
+            1 => Err(flat.remove(0)),
+            _ => Err(DeckError::Several(flat)),
+        }
+    }
+
     /// A deck (`path`) that lacks `what`, naming what is `supported`.
     pub(crate) fn lacking(path: &Path, what: &str, supported: &str) -> Self {
         DeckError::Lacking {
@@ -334,8 +391,9 @@ pub struct UserDeck {
     pub walls: Vec<DeckWall>,
     /// Each pair of bodies, and each body against each wall.
     pub contacts: Vec<DeckContact>,
-    /// A speed the deck itself names as typical (LIGGGHTS' `characteristicVelocity`), m/s,
-    /// with where.
+    /// The deck's own impact speed (an insertion's `vel`, `velocity … set`, YADE's
+    /// `state.vel`), else a speed it names as typical (LIGGGHTS' `characteristicVelocity`),
+    /// m/s, with where.
     pub representative_velocity: Option<(f64, String)>,
     /// What the deck holds that the impacts leave out.
     pub left_out: Vec<String>,

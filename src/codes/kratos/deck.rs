@@ -605,8 +605,36 @@ impl DeckDialect for KratosDeck {
         let (project_path, project_value) = files.project;
         let project_file: ProjectFile = files::typed(&project_path, &project_value)?;
         let (project, named_by_project) = Project::read(&project_path, &project_file)?;
+        // Kratos reads the spheres' model part before anything runs, and stops where it is
+        // not there: so does the check, naming the field its name comes from.
+        let spheres_name = format!(
+            "{}DEM.mdpa",
+            project.problem_name.as_deref().unwrap_or_default()
+        );
+        let spheres = project.folder.join(&spheres_name);
+        if !spheres.is_file() {
+            return Err(DeckError::missing(
+                DeckSource::field(&project_path, "problem_name"),
+                "the spheres' model part (problem_name + \"DEM.mdpa\")",
+                &spheres_name,
+                &spheres,
+            ));
+        }
         let (materials_path, materials_value) = match files.materials {
             None => {
+                if !named_by_project.is_file() {
+                    return Err(DeckError::missing(
+                        DeckSource::field(
+                            &project_path,
+                            "solver_settings.material_import_settings.materials_filename",
+                        ),
+                        "the materials file",
+                        &named_by_project
+                            .file_name()
+                            .map_or(String::new(), |n| n.to_string_lossy().into_owned()),
+                        &named_by_project,
+                    ));
+                }
                 let value = read_json(&named_by_project)?;
                 (named_by_project, value)
             }

@@ -27,9 +27,9 @@ use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
     ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
-    wall_contacts, whole_number,
+    every_refusal, wall_contacts, whole_number, with_includes,
 };
-use crate::codes::script::{Command, ScriptReader};
+use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
@@ -65,6 +65,89 @@ struct WallFix {
     model: GranularModel,
     at: SourceLine,
     geometry: String,
+    /// The classic model's words as the deck has them (`hooke/history Kn Kt γn γt μ flag`),
+    /// for a wall of a classic style.
+    classic: Option<String>,
+}
+
+/// The classic granular styles (`pair_style gran/…`, `fix wall/gran …`).
+const CLASSIC: [&str; 3] = ["hooke", "hooke/history", "hertz/history"];
+
+/// A classic style's words from `c.words[k..]`: `STYLE Kn Kt γn γt μ dampflag [limit_damping]`
+/// (`STYLE` `gran/hooke` … on a pair_style line, `hooke` … on a wall), read as the granular
+/// model LAMMPS documents it to equal (`src/GRANULAR/pair_gran_hooke_history.cpp`,
+/// `pair_gran_hertz_history.cpp`, `fix_wall_gran.cpp`): the normal force of `hooke` and
+/// `hooke/history` is `Kn δ − m* γn δ̇` (`hooke Kn γn damping mass_velocity`), that of
+/// `hertz/history` is `sqrt(R* δ) (Kn δ − m* γn δ̇)` (`hertz Kn γn damping viscoelastic`);
+/// `Kt`, `γt`, μ and dampflag are tangential. Returns the model and the index after it.
+fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usize), DeckError> {
+    let written = c.word(k, "a classic style")?;
+    let style = written.strip_prefix("gran/").unwrap_or(written);
+    let form = "STYLE Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] (Kt, gamma_t may be NULL)";
+    if !CLASSIC.contains(&style) {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!(
+                "`{written}`: LAMMPS has no such classic granular style and stops at this line"
+            ),
+            "pair_style gran/hooke, gran/hooke/history, gran/hertz/history; fix wall/gran hooke, hooke/history, hertz/history; or granular",
+        ));
+    }
+    let kn = c.number(k + 1, "Kn")?;
+    let gamma_n = c.number(k + 3, "gamma_n")?;
+    for (j, what) in [(k + 2, "Kt"), (k + 4, "gamma_t")] {
+        if c.word(j, what)? != "NULL" {
+            c.number(j, what)?;
+        }
+    }
+    c.number(k + 5, "xmu")?;
+    let flag = c.number(k + 6, "dampflag")?;
+    #[allow(clippy::float_cmp)] // a flag is written 0 or 1
+    if flag != 0.0 && flag != 1.0 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("dampflag {flag}"),
+            &format!("dampflag 0 or 1 ({form})"),
+        ));
+    }
+    if kn <= 0.0 || gamma_n < 0.0 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("Kn {kn}, gamma_n {gamma_n}"),
+            "Kn > 0 and gamma_n >= 0 (LAMMPS stops otherwise: \"Illegal pair_style command\")",
+        ));
+    }
+    let mut end = k + 7;
+    let limit_damping = c.words.get(end).is_some_and(|w| w == "limit_damping");
+    if limit_damping {
+        end += 1;
+    }
+    let hertz = style == "hertz/history";
+    let model = GranularModel {
+        normal: if hertz { "hertz" } else { "hooke" }.into(),
+        values: vec![kn, gamma_n],
+        damping: if hertz {
+            "viscoelastic"
+        } else {
+            "mass_velocity"
+        }
+        .into(),
+        limit_damping,
+        tangential: format!("classic {style}"),
+        rolling: String::new(),
+        twisting: String::new(),
+        words: c.words[k..end].to_vec(),
+    };
+    Ok((model, end))
+}
+
+/// A model as the table names it: the classic style by its own name and the granular model
+/// it equals, a granular model by its normal and damping models.
+fn model_name(model: &GranularModel) -> String {
+    match model.tangential.strip_prefix("classic ") {
+        Some(style) => format!("{style} (= {} damping {})", model.normal, model.damping),
+        None => format!("{} damping {}", model.normal, model.damping),
+    }
 }
 
 /// The contact stiffness a line of the paper plugin gives.
@@ -193,6 +276,10 @@ struct Reading {
     paper_linear: Option<bool>,
     paper_coeffs: Vec<(String, String, PaperCoeff, Command)>,
     paper_walls: Vec<PaperWall>,
+    /// The classic style of `pair_style gran/…`, as the granular model it equals.
+    classic: Option<GranularModel>,
+    /// Whether the pair style was refused (its `pair_coeff` lines are then not read).
+    pair_refused: bool,
 }
 
 impl Reading {
@@ -395,141 +482,200 @@ impl LammpsDeck {
             } else {
                 ("", &[])
             };
-        let commands = ScriptReader::read_for(path, &options.variables, lacking)?;
+        let (commands, unread) = ScriptReader::read_each(path, &options.variables, lacking)?;
         let mut r = Reading::default();
-        for c in &commands {
-            if r.script.command(c, &SYNTAX)? {
-                continue;
-            }
-            match c.name() {
-                "atom_style" => r.atom_style = Some(c.clone()),
-                "plugin" => r.leave_out(
-                    "plugin commands (the impact loads the paper plugin itself)",
-                    c,
-                ),
-                "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
-                    r.paper_linear = Some(c.words[1] == "paper/linear");
-                    r.pair = Some(c.clone());
-                }
-                "pair_coeff" if r.paper_linear.is_some() => {
-                    let linear = r.paper_linear == Some(true);
-                    let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
-                    r.paper_coeffs.push((
-                        c.word(1, "I")?.to_string(),
-                        c.word(2, "J")?.to_string(),
-                        coeff,
-                        c.clone(),
-                    ));
-                }
-                "pair_style" => {
-                    if c.word(1, "a pair style")? != "granular" {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!("pair_style {}", c.words[1]),
-                            "pair_style granular, or paper and paper/linear of the paper plugin",
-                        ));
-                    }
-                    r.pair = Some(c.clone());
-                }
-                "pair_coeff" => {
-                    let (model, k) = read_model(c, 3, &[])?;
-                    if k != c.words.len() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!("`{}`", c.text),
-                            "pair_coeff I J MODEL …",
-                        ));
-                    }
-                    if !c.words[3..].iter().any(|w| w == "tangential") {
-                        return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
-                    }
-                    r.coeffs
-                        .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
-                }
-                "fix" => match c.word(3, "the fix style")? {
-                    "wall/paper" => {
-                        let planes = ["xplane", "yplane", "zplane"];
-                        let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
-                            DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
-                        })?;
-                        let linear = match c.word(4, "hertz or linear")? {
-                            "hertz" => false,
-                            "linear" => true,
-                            other => {
-                                return Err(DeckError::unsupported(
-                                    &c.at,
-                                    format!("wall/paper model `{other}`"),
-                                    "hertz, linear",
-                                ));
-                            }
-                        };
-                        r.paper_walls.push(PaperWall {
-                            id: c.words[1].clone(),
-                            coeff: paper_coeff(c, 5, k, linear, false)?,
-                            model: c.words[4..k].to_vec(),
-                            at: c.at.clone(),
-                            geometry: c.words[k..].join(" "),
-                        });
-                    }
-                    "wall/gran" | "wall/gran/region" => {
-                        if c.word(4, "granular")? != "granular" {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                format!("fix {} {}", c.words[3], c.words[4]),
-                                "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
-                            ));
-                        }
-                        let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
-                        let (model, k) = read_model(c, 5, &stops)?;
-                        if k >= c.words.len() {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                "a wall without its style".into(),
-                                "xplane, yplane, zplane, zcylinder, region",
-                            ));
-                        }
-                        r.walls.push(WallFix {
-                            id: c.words[1].clone(),
-                            group: c.words[2].clone(),
-                            model,
-                            at: c.at.clone(),
-                            geometry: c.words[k..].join(" "),
-                        });
-                    }
-                    "nve/sphere" => r.leave_out(
-                        "the integrator (the impact runs fix nve/sphere, as the deck)",
-                        c,
-                    ),
-                    "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid"
-                    | "rigid/small" => {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!(
-                                "fix {}: an integrator whose step the harness does not model",
-                                c.words[3]
-                            ),
-                            "fix nve/sphere",
-                        ));
-                    }
-                    "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
-                    "pour" | "deposit" => Self::inserts(c, &mut r)?,
-                    _ => r.leave_out("other fixes (no part of a contact)", c),
-                },
-                "region" | "lattice" => r.leave_out("regions (the geometry)", c),
-                "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
-                "info" => r.leave_out(OUTPUT, c),
-                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
-                | "change_box" | "reset_timestep" | "run_style" | "mass" | "pair_modify"
-                | "special_bonds" => r.leave_out("other settings", c),
-                _ => {
-                    return Err(ScriptReading::unknown(
-                        c,
-                        "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
-                    ));
-                }
+        let mut refused = Vec::new();
+        for (k, c) in commands.iter().enumerate() {
+            if let Err(e) = Self::command(c, &mut r) {
+                refused.push((k, e));
             }
         }
+        let units = check_si_units(r.script.units.as_ref(), path, "LAMMPS").err();
+        every_refusal(units, unread, refused)?;
         Ok(r)
+    }
+
+    fn command(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        if r.script.command(c, &SYNTAX)? {
+            return Ok(());
+        }
+        match c.name() {
+            "atom_style" => r.atom_style = Some(c.clone()),
+            "plugin" => r.leave_out(
+                "plugin commands (the impact loads the paper plugin itself)",
+                c,
+            ),
+            "pair_style" if matches!(c.word(1, "a pair style")?, "paper" | "paper/linear") => {
+                r.paper_linear = Some(c.words[1] == "paper/linear");
+                r.pair = Some(c.clone());
+            }
+            "pair_coeff" if r.paper_linear.is_some() => {
+                let linear = r.paper_linear == Some(true);
+                let coeff = paper_coeff(c, 3, c.words.len(), linear, true)?;
+                r.paper_coeffs.push((
+                    c.word(1, "I")?.to_string(),
+                    c.word(2, "J")?.to_string(),
+                    coeff,
+                    c.clone(),
+                ));
+            }
+            "pair_style" if c.word(1, "a pair style")?.starts_with("gran/") => {
+                r.pair = Some(c.clone());
+                r.pair_refused = true;
+                r.classic = Some(classic_model(c, 1)?.0);
+            }
+            "pair_coeff" if r.classic.is_some() => {
+                let model = r.classic.clone().unwrap_or_else(|| unreachable!());
+                if c.words.len() != 3 {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("`{}`", c.text),
+                        "pair_coeff I J with no coefficients (the classic styles take theirs on the pair_style line)",
+                    ));
+                }
+                r.coeffs
+                    .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
+            }
+            "pair_style" => {
+                if c.word(1, "a pair style")? != "granular" {
+                    r.pair_refused = true;
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("pair_style {}", c.words[1]),
+                        "pair_style granular, or paper and paper/linear of the paper plugin",
+                    ));
+                }
+                r.pair = Some(c.clone());
+            }
+            // The coefficients of a refused pair style are not read: the style's refusal says it.
+            "pair_coeff" if r.pair_refused => {}
+            "pair_coeff" => {
+                let (model, k) = read_model(c, 3, &[])?;
+                if k != c.words.len() {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("`{}`", c.text),
+                        "pair_coeff I J MODEL …",
+                    ));
+                }
+                if !c.words[3..].iter().any(|w| w == "tangential") {
+                    return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
+                }
+                r.coeffs
+                    .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
+            }
+            "fix" => match c.word(3, "the fix style")? {
+                "wall/paper" => {
+                    let planes = ["xplane", "yplane", "zplane"];
+                    let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
+                        DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
+                    })?;
+                    let linear = match c.word(4, "hertz or linear")? {
+                        "hertz" => false,
+                        "linear" => true,
+                        other => {
+                            return Err(DeckError::unsupported(
+                                &c.at,
+                                format!("wall/paper model `{other}`"),
+                                "hertz, linear",
+                            ));
+                        }
+                    };
+                    r.paper_walls.push(PaperWall {
+                        id: c.words[1].clone(),
+                        coeff: paper_coeff(c, 5, k, linear, false)?,
+                        model: c.words[4..k].to_vec(),
+                        at: c.at.clone(),
+                        geometry: c.words[k..].join(" "),
+                    });
+                }
+                "wall/gran" | "wall/gran/region"
+                    if CLASSIC.contains(&c.word(4, "a wall model")?) =>
+                {
+                    let (model, k) = classic_model(c, 4)?;
+                    let geometry = &c.words[k..];
+                    if geometry.iter().any(|w| w == "limit_damping") {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            "limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")".into(),
+                            "fix ID group wall/gran STYLE Kn Kt gamma_n gamma_t xmu dampflag limit_damping WALLSTYLE ARGS",
+                        ));
+                    }
+                    if geometry.is_empty() {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            "a wall without its style".into(),
+                            "xplane, yplane, zplane, zcylinder, region",
+                        ));
+                    }
+                    r.walls.push(WallFix {
+                        id: c.words[1].clone(),
+                        group: c.words[2].clone(),
+                        model,
+                        at: c.at.clone(),
+                        geometry: geometry.join(" "),
+                        classic: Some(c.words[4..k].join(" ")),
+                    });
+                }
+                "wall/gran" | "wall/gran/region" => {
+                    if c.word(4, "granular")? != "granular" {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            format!("fix {} {}", c.words[3], c.words[4]),
+                            "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
+                        ));
+                    }
+                    let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
+                    let (model, k) = read_model(c, 5, &stops)?;
+                    if k >= c.words.len() {
+                        return Err(DeckError::unsupported(
+                            &c.at,
+                            "a wall without its style".into(),
+                            "xplane, yplane, zplane, zcylinder, region",
+                        ));
+                    }
+                    r.walls.push(WallFix {
+                        id: c.words[1].clone(),
+                        group: c.words[2].clone(),
+                        model,
+                        at: c.at.clone(),
+                        geometry: c.words[k..].join(" "),
+                        classic: None,
+                    });
+                }
+                "nve/sphere" => r.leave_out(
+                    "the integrator (the impact runs fix nve/sphere, as the deck)",
+                    c,
+                ),
+                "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid" | "rigid/small" => {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!(
+                            "fix {}: an integrator whose step the harness does not model",
+                            c.words[3]
+                        ),
+                        "fix nve/sphere",
+                    ));
+                }
+                "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
+                "pour" | "deposit" => Self::inserts(c, r)?,
+                _ => r.leave_out("other fixes (no part of a contact)", c),
+            },
+            "region" | "lattice" => r.leave_out("regions (the geometry)", c),
+            "comm_style" | "dimension" => r.leave_out(NEIGHBOURS, c),
+            "info" => r.leave_out(OUTPUT, c),
+            "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box"
+            | "reset_timestep" | "run_style" | "mass" | "pair_modify" | "special_bonds" => {
+                r.leave_out("other settings", c)
+            }
+            _ => {
+                return Err(ScriptReading::unknown(
+                    c,
+                    "the LAMMPS commands of a granular deck (units, atom_style, create_box, region, pair_style granular, pair_coeff, fix, timestep, create_atoms, set, include, variable, output and run commands)",
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// `fix ID group pour N TYPE SEED …` and `fix ID group deposit N TYPE M SEED …` make atoms
@@ -682,7 +828,7 @@ impl LammpsDeck {
                 let (coefficients, traps) = model.coefficients(conventions, false);
                 (
                     coefficients,
-                    format!("{} damping {}", model.normal, model.damping),
+                    model_name(model),
                     traps,
                     vec![c.at.clone()],
                     &c.at,
@@ -750,7 +896,10 @@ impl LammpsDeck {
         )?;
         traps.extend(law_traps);
         traps.push(plane_trap(&wall.geometry));
-        let model = format!("{} damping {}", wall.model.normal, wall.model.damping);
+        let model = match &wall.classic {
+            Some(_) => format!("wall/gran {}", model_name(&wall.model)),
+            None => model_name(&wall.model),
+        };
         Ok(PairLaw::new(model, law, entered, traps).set_by([&wall.at]))
     }
 
@@ -891,13 +1040,18 @@ impl LammpsDeck {
         let wall_lines = r
             .walls
             .iter()
-            .map(|wall| {
-                format!(
+            .map(|wall| match &wall.classic {
+                // The classic wall as the deck has it.
+                Some(words) => format!(
+                    "fix {} {} wall/gran {words} zplane 0 NULL",
+                    wall.id, wall.group
+                ),
+                None => format!(
                     "fix {} {} wall/gran granular {} zplane 0 NULL",
                     wall.id,
                     wall.group,
                     wall.model.words.join(" ")
-                )
+                ),
             })
             .collect();
         let mut common = Vec::new();
@@ -915,16 +1069,19 @@ impl DeckDialect for LammpsDeck {
         (BodyElasticity::Withheld, conventions)
     }
 
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.lines().any(|l| {
+    fn recognises(&self, path: &Path, text: &str) -> bool {
+        with_includes(path, text).lines().any(|l| {
             let w: Vec<&str> = l.split_whitespace().collect();
             matches!(
                 w.as_slice(),
                 ["pair_style", "granular" | "paper" | "paper/linear", ..]
-            ) || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
+            ) || (w.first() == Some(&"pair_style")
+                && w.get(1).is_some_and(|s| s.starts_with("gran/")))
+                || (w.first() == Some(&"fix") && w.get(3) == Some(&"wall/paper"))
                 || (w.first() == Some(&"fix")
                     && w.get(3).is_some_and(|s| s.starts_with("wall/gran"))
-                    && w.get(4) == Some(&"granular"))
+                    && w.get(4)
+                        .is_some_and(|m| *m == "granular" || CLASSIC.contains(m)))
         })
     }
 
@@ -948,7 +1105,7 @@ impl DeckDialect for LammpsDeck {
             bodies,
             walls,
             contacts,
-            representative_velocity: None,
+            representative_velocity: r.script.impact_speed.clone(),
             left_out: r.script.left_out.lines(),
             transplant: Transplant {
                 before_box: r.atom_style.iter().map(|c| c.text.clone()).collect(),

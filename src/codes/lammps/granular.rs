@@ -7,6 +7,18 @@ use crate::codes::deck::DeckError;
 use crate::codes::script::Command;
 
 const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
+/// The tangential models of LAMMPS' granular styles (`*_classic` from 2025 on).
+const TANGENTIAL: [&str; 8] = [
+    "linear_nohistory",
+    "linear_history",
+    "linear_history_classic",
+    "mindlin",
+    "mindlin_rescale",
+    "mindlin/force",
+    "mindlin_rescale/force",
+    "mindlin_classic",
+];
+
 const DAMPING: &str = "damping velocity, mass_velocity, viscoelastic, tsuji, coeff_restitution (a build from 2023 on)";
 
 /// Read a granular model from `words[start..]`, up to the first word of `stop` (a wall style).
@@ -19,10 +31,21 @@ pub(super) fn read_model(
     let n = match normal.as_str() {
         "hooke" | "hertz" => 2,
         "hertz/material" => 3,
+        adhesive @ ("dmt" | "jkr") => {
+            return Err(DeckError::unsupported(
+                &c.at,
+                format!(
+                    "normal model `{adhesive}`: an adhesive force the impact check does not model"
+                ),
+                NORMAL,
+            ));
+        }
         other => {
             return Err(DeckError::unsupported(
                 &c.at,
-                format!("normal model `{other}`"),
+                format!(
+                    "normal model `{other}`: LAMMPS has no such normal model and stops at this line"
+                ),
                 NORMAL,
             ));
         }
@@ -64,6 +87,20 @@ pub(super) fn read_model(
                     ("twisting", "sds") => 3,
                     _ => 0,
                 };
+                let known: &[&str] = match word.as_str() {
+                    "tangential" => &TANGENTIAL,
+                    "rolling" => &["none", "sds"],
+                    _ => &["none", "marshall", "sds"],
+                };
+                if !known.contains(&style.as_str()) {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!(
+                            "{word} `{style}`: LAMMPS has no such {word} model and stops at this line"
+                        ),
+                        &format!("{word} {}", known.join(", ")),
+                    ));
+                }
                 let named = if style == "none" {
                     String::new()
                 } else {

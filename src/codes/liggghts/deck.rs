@@ -21,9 +21,9 @@ use super::{Liggghts, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, DeckBody, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckWall,
     ImpactPlan, NEIGHBOURS, PairLaw, Partner, ScriptReading, SourceLine, Transplant, TypeRef,
-    UserDeck, WallOrder, body_contacts, wall_contacts,
+    UserDeck, WallOrder, body_contacts, every_refusal, named_file, wall_contacts, with_includes,
 };
-use crate::codes::script::{Command, ScriptReader};
+use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::{exact_number, fill_template};
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
 use crate::model::exact;
@@ -148,52 +148,63 @@ fn constant_after(command: &Command, key: &str) -> Result<Option<f64>, DeckError
 
 impl LiggghtsDeck {
     fn gather(path: &Path, options: &DeckOptions) -> Result<Reading, DeckError> {
-        let commands =
-            ScriptReader::read_for(path, &options.variables, ("LIGGGHTS 3.8", &["ternary"]))?;
+        let (commands, unread) =
+            ScriptReader::read_each(path, &options.variables, ("LIGGGHTS 3.8", &["ternary"]))?;
         let mut r = Reading::default();
-        for c in &commands {
-            if r.script.command(c, &SYNTAX)? {
-                continue;
-            }
-            match c.name() {
-                "atom_style" => r.before_box.push(c.text.clone()),
-                "hard_particles" => {
-                    r.hard_particles = c.word(1, "yes or no")? == "yes";
-                    r.before_box.push(c.text.clone());
-                }
-                "soft_particles" => {
-                    r.soft_particles = c.word(1, "yes or no")? == "yes";
-                    r.before_box.push(c.text.clone());
-                }
-                "pair_style" => {
-                    if c.word(1, "a pair style")? != "gran" {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!("pair_style {}", c.words[1]),
-                            "pair_style gran model …",
-                        ));
-                    }
-                    let (mut model, k) = read_model(c, 2)?;
-                    read_settings(c, k, &mut model)?;
-                    r.pair = Some((model, c.clone()));
-                }
-                "pair_coeff" => r.pair_coeffs.push(c.clone()),
-                "fix" => Self::fix(c, &mut r)?,
-                "region" => r.leave_out("regions (the mill's geometry)", c),
-                "communicate" | "modify_timing" => r.leave_out(NEIGHBOURS, c),
-                "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms"
-                | "change_box" => r.leave_out("changes to the running simulation", c),
-                "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep"
-                | "run_style" | "atom_style_modify" => r.leave_out("other settings", c),
-                _ => {
-                    return Err(ScriptReading::unknown(
-                        c,
-                        "the LIGGGHTS commands of a granular deck (units, atom_style, create_box, region, fix, pair_style gran, pair_coeff, timestep, create_atoms, set, include, variable, output and run commands)",
-                    ));
-                }
+        let mut refused = Vec::new();
+        for (k, c) in commands.iter().enumerate() {
+            if let Err(e) = Self::command(c, &mut r) {
+                refused.push((k, e));
             }
         }
+        let units = check_si_units(r.script.units.as_ref(), path, "LIGGGHTS").err();
+        every_refusal(units, unread, refused)?;
         Ok(r)
+    }
+
+    fn command(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
+        if r.script.command(c, &SYNTAX)? {
+            return Ok(());
+        }
+        match c.name() {
+            "atom_style" => r.before_box.push(c.text.clone()),
+            "hard_particles" => {
+                r.hard_particles = c.word(1, "yes or no")? == "yes";
+                r.before_box.push(c.text.clone());
+            }
+            "soft_particles" => {
+                r.soft_particles = c.word(1, "yes or no")? == "yes";
+                r.before_box.push(c.text.clone());
+            }
+            "pair_style" => {
+                if c.word(1, "a pair style")? != "gran" {
+                    return Err(DeckError::unsupported(
+                        &c.at,
+                        format!("pair_style {}", c.words[1]),
+                        "pair_style gran model …",
+                    ));
+                }
+                let (mut model, k) = read_model(c, 2)?;
+                read_settings(c, k, &mut model)?;
+                r.pair = Some((model, c.clone()));
+            }
+            "pair_coeff" => r.pair_coeffs.push(c.clone()),
+            "fix" => Self::fix(c, r)?,
+            "region" => r.leave_out("regions (the mill's geometry)", c),
+            "communicate" | "modify_timing" => r.leave_out(NEIGHBOURS, c),
+            "unfix" | "group" | "velocity" | "delete_atoms" | "displace_atoms" | "change_box" => {
+                r.leave_out("changes to the running simulation", c)
+            }
+            "pair_modify" | "mass" | "dimension" | "lattice" | "reset_timestep" | "run_style"
+            | "atom_style_modify" => r.leave_out("other settings", c),
+            _ => {
+                return Err(ScriptReading::unknown(
+                    c,
+                    "the LIGGGHTS commands of a granular deck (units, atom_style, create_box, region, fix, pair_style gran, pair_coeff, timestep, create_atoms, set, include, variable, output and run commands)",
+                ));
+            }
+        }
+        Ok(())
     }
 
     fn fix(c: &Command, r: &mut Reading) -> Result<(), DeckError> {
@@ -250,6 +261,11 @@ impl LiggghtsDeck {
                     "mesh walls' geometry (each wall/gran wall is met as a flat plane)",
                     c,
                 );
+                // LIGGGHTS stops at a mesh it cannot open ("Cannot open mesh file"); the mesh
+                // is known all the same, so the walls that name it are read on.
+                if let Some(f) = c.words.iter().position(|w| w == "file") {
+                    named_file(c, f + 1, "mesh file")?;
+                }
             }
             "particletemplate/sphere" => {
                 let k = c.words.iter().position(|w| w == "atom_type").ok_or_else(|| {
@@ -294,7 +310,14 @@ impl LiggghtsDeck {
             | "insert/pack"
             | "insert/stream"
             | "insert/rate/region"
-            | "insert/pack/dense" => r.leave_out("particle insertion", c),
+            | "insert/pack/dense" => {
+                if let Some(k) = c.words.iter().position(|w| w == "vel")
+                    && c.words.get(k + 1).is_some_and(|w| w == "constant")
+                {
+                    r.script.speed_of(c, k + 2, "insertion vel");
+                }
+                r.leave_out("particle insertion", c);
+            }
             "move/mesh" | "move" | "rotate" => r.leave_out("wall and particle motion", c),
             _ => r.leave_out("other fixes (no part of a contact)", c),
         }
@@ -605,8 +628,8 @@ fn wall_modulus_trap(j: u32, own: (f64, f64), wall: (f64, f64), y_star: f64) -> 
 }
 
 impl DeckDialect for LiggghtsDeck {
-    fn recognises(&self, _path: &Path, text: &str) -> bool {
-        text.lines().map(str::trim).any(|l| {
+    fn recognises(&self, path: &Path, text: &str) -> bool {
+        with_includes(path, text).lines().map(str::trim).any(|l| {
             let words: Vec<&str> = l.split_whitespace().collect();
             matches!(words.as_slice(), ["pair_style", "gran", "model", ..])
                 || (words.first() == Some(&"fix")
@@ -668,10 +691,13 @@ impl DeckDialect for LiggghtsDeck {
                 Ok(pl)
             },
         )?);
-        let representative_velocity = r.properties.get("characteristicVelocity").and_then(|p| {
-            p.values
-                .first()
-                .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
+        // The deck's own impact speed, else the speed its Hooke model is set for.
+        let representative_velocity = r.script.impact_speed.clone().or_else(|| {
+            r.properties.get("characteristicVelocity").and_then(|p| {
+                p.values
+                    .first()
+                    .map(|v| (*v, format!("characteristicVelocity ({})", p.at)))
+            })
         });
         let left_out = r.script.left_out.lines();
         let mut common = r.property_lines.clone();

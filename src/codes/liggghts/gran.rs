@@ -105,6 +105,7 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
         model.spec.push(value);
         k += 2;
     }
+    check_known_words(command, &model)?;
     if model.normal.is_empty() {
         return Err(DeckError::unsupported(
             &command.at,
@@ -141,6 +142,87 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
     Ok((model, k))
 }
 
+/// The words LIGGGHTS 3.8 knows after each model keyword (its `style_*_model.h` tables, with
+/// the `off`/`default` it takes for none), and the paper's models of liggghts-paper.
+const KNOWN_MODELS: [(&str, &[&str]); 5] = [
+    (
+        "model",
+        &[
+            "hooke",
+            "hooke/stiffness",
+            "hooke/hysteresis",
+            "hertz",
+            "hertz/stiffness",
+            "thornton_ning",
+            "edinburgh",
+            "edinburgh/stiffness",
+            "luding",
+            "paper",
+            "paper/linear",
+        ],
+    ),
+    ("tangential", &["no_history", "history", "tan_luding"]),
+    (
+        "cohesion",
+        &[
+            "off",
+            "sjkr",
+            "sjkr2",
+            "easo/capillary/viscous",
+            "washino/capillary/viscous",
+        ],
+    ),
+    (
+        "rolling_friction",
+        &["off", "cdt", "epsd", "epsd2", "epsd3", "luding"],
+    ),
+    ("surface", &["default", "multicontact", "superquadric"]),
+];
+
+/// The on/off and number settings LIGGGHTS 3.8's contact models register (a word none of them
+/// knows stops it: "Unknown argument or wrong keyword order").
+const KNOWN_SETTINGS: [&str; 20] = [
+    "absolute_damping",
+    "computeDissipatedEnergy",
+    "computeElasticPotential",
+    "disableNormalWhenBonded",
+    "disableTangentialWhenBonded",
+    "fixKc",
+    "heating_normal_hertz",
+    "heating_normal_hooke",
+    "heating_tangential_history",
+    "heating_tracking",
+    "ktToKnUser",
+    "limitForce",
+    "limitLiquidContent",
+    "modifyLbVolume",
+    "tangential_damping",
+    "tangential_reduce",
+    "torsion",
+    "torsionTorque",
+    "viscous",
+    "curvatureLimitFactor",
+];
+
+/// A model word LIGGGHTS does not know (a typo: `tangential histroy`) is refused with the
+/// line and the words it accepts there, as LIGGGHTS stops at it.
+fn check_known_words(command: &Command, model: &GranModel) -> Result<(), DeckError> {
+    for pair in model.spec.chunks(2) {
+        let [key, value] = pair else { continue };
+        let Some((_, known)) = KNOWN_MODELS.iter().find(|(k, _)| k == key) else {
+            continue;
+        };
+        if !known.contains(&value.as_str()) {
+            return Err(DeckError::unsupported(
+                &command.at,
+                format!("{key} `{value}`: LIGGGHTS 3.8 has no such model and stops at this line"),
+                &format!("{key} {}", known.join(", ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Read `key value` settings from `words[start..]` into `model`.
 pub(super) fn read_settings(
     command: &Command,
@@ -169,6 +251,19 @@ pub(super) fn read_settings(
     }
     for pair in words.chunks(2) {
         let (key, value) = (&pair[0], &pair[1]);
+        if !KNOWN_SETTINGS.contains(&key.as_str()) {
+            let model_words = KNOWN_MODELS.map(|(k, _)| k).join(", ");
+            return Err(DeckError::unsupported(
+                &command.at,
+                format!(
+                    "`{key} {value}`: LIGGGHTS 3.8 knows no such model keyword or setting and stops at this line (\"Unknown argument or wrong keyword order\")"
+                ),
+                &format!(
+                    "the model keywords {model_words} (in that order), then settings {}",
+                    KNOWN_SETTINGS.join(", ")
+                ),
+            ));
+        }
         let switch = value == "on";
         match key.as_str() {
             "viscous" | "disableNormalWhenBonded" if switch => {

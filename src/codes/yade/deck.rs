@@ -46,6 +46,58 @@ const SCRIPT: &str = "impact.py";
 /// YADE's deck reader.
 pub struct YadeDeck;
 
+/// Whether the script's physics functors can form a contact of the materials `a`, `b`.
+fn formed(r: &Reading, a: u32, b: u32) -> bool {
+    r.physics.iter().all(|f| f.evaluates(a, b))
+}
+
+/// The pairs of the bodies' materials (and of a body's with a wall's) the script's
+/// `MatchMaker`s give YADE no value for: left out, as the script never lets them meet.
+fn unformed(r: &Reading, bodies: &[DeckBody]) -> Option<String> {
+    let mut types: Vec<u32> = bodies.iter().map(|b| b.type_id).collect();
+    types.sort_unstable();
+    types.dedup();
+    let mut pairs = Vec::new();
+    for (k, a) in types.iter().enumerate() {
+        for b in &types[k..] {
+            if !formed(r, *a, *b) {
+                pairs.push(format!("{a}–{b}"));
+            }
+        }
+        for w in &r.walls {
+            if !formed(r, *a, w.material) {
+                pairs.push(format!("{a}–{}", w.name));
+            }
+        }
+    }
+    pairs.dedup();
+    (!pairs.is_empty()).then(|| {
+        format!(
+            "pairs the script's MatchMaker gives YADE no value for, so that they never meet (YADE stops at a contact it cannot evaluate): {}",
+            pairs.join(", ")
+        )
+    })
+}
+
+/// The deck's own impact speed: the first moving sphere's `state.vel` as the set-up leaves
+/// it (m/s), with where it was made.
+fn deck_speed(path: &Path, dump: &Dump) -> Option<(f64, String)> {
+    dump.bodies.iter().find_map(|b| {
+        let v = b.vel.as_ref()?;
+        let speed = v
+            .iter()
+            .map(|x| x.unwrap_or(0.0).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        (b.dynamic && speed > 0.0 && speed.is_finite()).then(|| {
+            let at = b.line.map_or(format!("O.bodies[{}]", b.id), |l| {
+                format!("{}:{l}", path.display())
+            });
+            (speed, format!("state.vel ({at})"))
+        })
+    })
+}
+
 impl YadeDeck {
     /// The bodies: one per size of each material, the given ones replacing their type's.
     fn bodies(r: &Reading, path: &Path, options: &DeckOptions) -> Result<Vec<DeckBody>, DeckError> {
@@ -554,8 +606,14 @@ impl YadeDeck {
         });
         let (timestep, timestep_from) = dump_timestep(path, dump)?;
         // Contacts: each pair of bodies, then each body against each wall.
-        let mut contacts = Self::body_contacts(&r, &bodies, &loop_at)?;
-        let (walls, wall_lines) = Self::wall_contacts(&r, &bodies, &loop_at, &mut contacts)?;
+        let mut contacts = Self::body_contacts(&r, &bodies, &loop_at, false)?;
+        let (walls, wall_lines) = Self::wall_contacts(&r, &bodies, &loop_at, &mut contacts, false)?;
+        if contacts.is_empty() {
+            // No pair the script could let meet: what YADE says of the first is the refusal.
+            Self::body_contacts(&r, &bodies, &loop_at, true)?;
+            Self::wall_contacts(&r, &bodies, &loop_at, &mut contacts, true)?;
+        }
+        let unformed_pairs = unformed(&r, &bodies);
         Ok(UserDeck {
             path: path.to_path_buf(),
             timestep,
@@ -563,8 +621,11 @@ impl YadeDeck {
             bodies,
             walls,
             contacts,
-            representative_velocity: None,
-            left_out: left_out_lines(&r, path),
+            representative_velocity: deck_speed(path, dump),
+            left_out: left_out_lines(&r, path)
+                .into_iter()
+                .chain(unformed_pairs)
+                .collect(),
             transplant: Transplant {
                 before_box: Vec::new(),
                 common: common_lines(&r)?,
@@ -574,13 +635,16 @@ impl YadeDeck {
         })
     }
 
-    /// Each pair of bodies with the law YADE's functors give their two materials.
+    /// Each pair of bodies with the law YADE's functors give their two materials: the pairs
+    /// the script can let meet, or `every` pair.
     fn body_contacts(
         r: &Reading,
         bodies: &[DeckBody],
         loop_at: &DeckSource,
+        every: bool,
     ) -> Result<Vec<DeckContact>, DeckError> {
-        crate::codes::deck::body_contacts(bodies, |body, other| {
+        let formed = |a: &DeckBody, b: &DeckBody| every || formed(r, a.type_id, b.type_id);
+        crate::codes::deck::body_contacts_formed(bodies, formed, |body, other| {
             let m_a = &r.materials[body.type_id as usize];
             let m_b = &r.materials[other.type_id as usize];
             let geometry = geometry_for(
@@ -612,13 +676,15 @@ impl YadeDeck {
         }
     }
 
-    /// The script's walls, with each body's contact against each pushed onto `contacts`; the
-    /// walls and the Python each impact carries to place its wall.
+    /// The script's walls, with each body's contact against each (that the script can let
+    /// meet, or `every` one) pushed onto `contacts`; the walls and the Python each impact
+    /// carries to place its wall.
     fn wall_contacts(
         r: &Reading,
         bodies: &[DeckBody],
         loop_at: &DeckSource,
         contacts: &mut Vec<DeckContact>,
+        every: bool,
     ) -> Result<(Vec<DeckWall>, Vec<String>), DeckError> {
         let mut walls = Vec::new();
         for wall in &r.walls {
@@ -636,42 +702,50 @@ impl YadeDeck {
             });
         }
         let order = WallOrder::ByWall;
-        let laws = crate::codes::deck::wall_contacts(bodies, &r.walls, order, |wall, body| {
-            let m_w = &r.materials[wall.material as usize];
-            let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
-            let factor = match wall.kind {
-                WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
-                    HERTZIAN_WALL_RADIUS_FACTOR
+        let formed = |w: &WallRead, b: &DeckBody| every || formed(r, b.type_id, w.material);
+        let laws = crate::codes::deck::wall_contacts_formed(
+            bodies,
+            &r.walls,
+            order,
+            formed,
+            |wall, body| {
+                let m_w = &r.materials[wall.material as usize];
+                let geometry = geometry_for(r, wall.kind.geometry(), &wall.at, loop_at)?;
+                let factor = match wall.kind {
+                    WallKind::Plane | WallKind::Facet if geometry.flag("hertzian") => {
+                        HERTZIAN_WALL_RADIUS_FACTOR
+                    }
+                    WallKind::Facet => 2.0,
+                    _ => 1.0,
+                };
+                let m_a = &r.materials[body.type_id as usize];
+                let a = Self::side(body, m_a);
+                let b = Side {
+                    id: wall.material,
+                    material: m_w,
+                    radius: factor * body.radius,
+                    mass: wall.mass,
+                };
+                let mut pair =
+                    Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
+                if wall.lines.len() > 1 {
+                    pair.traps.push(format!(
+                        "{} bodies of this kind and material (lines {}) are one wall here",
+                        wall.lines.len(),
+                        wall.lines
+                            .iter()
+                            .map(usize::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ));
                 }
-                WallKind::Facet => 2.0,
-                _ => 1.0,
-            };
-            let m_a = &r.materials[body.type_id as usize];
-            let a = Self::side(body, m_a);
-            let b = Side {
-                id: wall.material,
-                material: m_w,
-                radius: factor * body.radius,
-                mass: wall.mass,
-            };
-            let mut pair = Self::pair_law(r, &a, &b, Some((wall.kind, wall)), body.mass, geometry)?;
-            if wall.lines.len() > 1 {
-                pair.traps.push(format!(
-                    "{} bodies of this kind and material (lines {}) are one wall here",
-                    wall.lines.len(),
-                    wall.lines
-                        .iter()
-                        .map(usize::to_string)
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ));
-            }
-            pair.traps.extend(edit_traps(m_a));
-            if wall.material != body.type_id {
-                pair.traps.extend(edit_traps(m_w));
-            }
-            Ok(pair.set_by([m_a.at.clone(), wall.at.clone(), loop_at.clone()]))
-        })?;
+                pair.traps.extend(edit_traps(m_a));
+                if wall.material != body.type_id {
+                    pair.traps.extend(edit_traps(m_w));
+                }
+                Ok(pair.set_by([m_a.at.clone(), wall.at.clone(), loop_at.clone()]))
+            },
+        )?;
         contacts.extend(laws);
         Ok((walls, r.walls.iter().map(wall_placement).collect()))
     }

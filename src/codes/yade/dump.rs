@@ -197,6 +197,10 @@ pub struct BodyDump {
     pub radius: Option<f64>,
     /// A box's half-sizes, m.
     pub extents: Option<Vec<Option<f64>>>,
+    /// A sphere's velocity as the set-up leaves it (`state.vel`), m/s; none in a dump of a
+    /// reader that did not record it.
+    #[serde(default)]
+    pub vel: Option<Vec<Option<f64>>>,
 }
 
 impl Attribute {

@@ -197,6 +197,20 @@ impl Functor {
         matches!(self.param(key), Some(Attribute::Flag(true)))
     }
 
+    /// Whether YADE can form a contact of the materials `a`, `b` with this functor: each of
+    /// its `MatchMaker`s gives a number for them (YADE stops at a contact one cannot
+    /// evaluate, so a script that runs never lets such a pair meet).
+    pub(super) fn evaluates(&self, a: u32, b: u32) -> bool {
+        self.dump.attributes.iter().all(|(key, attribute)| {
+            !matches!(attribute, Attribute::MatchMaker { .. })
+                || self.dump.per_pair.get(key).is_none_or(|table| {
+                    table
+                        .iter()
+                        .any(|(i, j, x)| *i == i64::from(a) && *j == i64::from(b) && x.is_some())
+                })
+        })
+    }
+
     /// The parameter's value for the materials `a`, `b` (a `MatchMaker` as YADE evaluates it
     /// for their ids), or `None` where it is not given.
     pub(super) fn pair_value(&self, key: &str, a: u32, b: u32) -> Result<Option<f64>, DeckError> {

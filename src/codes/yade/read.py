@@ -27,6 +27,43 @@ if "yade" not in sys.modules:
 import yade
 import yade.wrapper as wrapper
 
+
+class Inert(object):
+    """What the GUI gives a script read headless: anything asked of it is another Inert, any
+    call returns one, any value set on it is kept nowhere."""
+
+    def __getattr__(self, name):
+        return Inert()
+
+    def __setattr__(self, name, value):
+        pass
+
+    def __call__(self, *args, **kwargs):
+        return Inert()
+
+    def __getitem__(self, key):
+        return Inert()
+
+    def __iter__(self):
+        return iter(())
+
+    def __len__(self):
+        return 0
+
+
+class InertModule(type(sys)):
+    """`yade.qt` read headless, as `O.run` is disarmed: `import yade.qt`, `from yade import qt`,
+    `qt.View()`, `qt.Controller()` and whatever they hold do nothing, and the set-up goes on."""
+
+    def __getattr__(self, name):
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return Inert()
+
+
+sys.modules["yade.qt"] = InertModule("yade.qt")
+yade.qt = sys.modules["yade.qt"]
+
 SCRIPT = os.path.abspath(sys.argv[1])
 DUMP = sys.argv[2]
 
@@ -232,6 +269,7 @@ def body(b):
     }
     if kind == "Sphere":
         out["radius"] = number(shape.radius)
+        out["vel"] = [number(x) for x in b.state.vel]
     elif kind == "Box":
         out["extents"] = [number(x) for x in shape.extents]
     return out
