@@ -111,6 +111,9 @@ enum Variable {
     Formula(String, SourceLine),
     /// A text (`index`, `string`, `loop`, `world`, `internal`: the first value).
     Text(String),
+    /// A style whose value only the running code knows (`atom`, `vector`, `python`, …), with
+    /// where it was defined: left alone until a line the check reads uses it.
+    Running(String, SourceLine),
 }
 
 /// Reads a script and its includes.
@@ -315,14 +318,13 @@ impl ScriptReader {
                 self.variables
                     .insert(name.clone(), Variable::Formula(formula, at.clone()));
             }
+            // A value only the running code knows: refused where a line the check reads
+            // uses it, not here (a deck that only watches its charge through it is read).
             other => {
-                return Err(DeckError::unsupported(
-                    at,
-                    format!(
-                        "variable {name} {other}: a style whose value only the running code knows"
-                    ),
-                    SUPPORTED_STYLES,
-                ));
+                self.variables.insert(
+                    name.clone(),
+                    Variable::Running(other.to_string(), at.clone()),
+                );
             }
         }
         if style != "delete" {
@@ -390,6 +392,7 @@ impl ScriptReader {
         match self.variables.get(name) {
             Some(Variable::Text(text)) => Ok(text.clone()),
             Some(Variable::Formula(..)) => Ok(fifteen_digits(self.evaluate_variable(name, at, 0)?)),
+            Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
             None => Err(DeckError::unsupported(
                 at,
                 format!("variable `{name}` is not defined"),
@@ -418,6 +421,7 @@ impl ScriptReader {
                     .lacking(self.lacking)
                     .evaluate()
             }
+            Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
             Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
                 DeckError::unsupported(
                     at,
@@ -500,6 +504,17 @@ fn matching_paren(chars: &[char], open: usize) -> Option<usize> {
         }
     }
     None
+}
+
+/// The error of a variable of a running-only style used where the check must know its value.
+fn running(name: &str, style: &str, defined: &SourceLine, at: &SourceLine) -> DeckError {
+    DeckError::unsupported(
+        at,
+        format!(
+            "variable {name} ({style}, {defined}): a style whose value only the running code knows, used where the check needs a number"
+        ),
+        SUPPORTED_STYLES,
+    )
 }
 
 /// An included file: relative names are found beside the including file (where the user runs

@@ -168,6 +168,10 @@ pub struct MillDeck {
     commands: Vec<Command>,
     first_run: usize,
     rotation_start: usize,
+    /// The steps each `run` line runs (by its index among the commands), `upto` resolved.
+    run_lengths: std::collections::HashMap<usize, u64>,
+    /// The index of the last mesh `wall/gran` fix (what `wall/gran/local` attaches to).
+    recorded_wall_at: Option<usize>,
 }
 
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -175,10 +179,29 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
     (n.is_finite() && n > 0.0).then(|| [v[0] / n, v[1] / n, v[2] / n])
 }
 
-/// The steps of a `run N` line (only `N`, and `pre`/`post` settings, are taken).
-fn run_steps(c: &Command) -> Result<u64, DeckError> {
-    let n = c.number(1, "the number of steps")?;
-    let extra = &c.words[2..];
+/// A whole number of steps written at word `k` of `c` (`what` names it).
+fn whole_steps(c: &Command, k: usize, what: &str) -> Result<u64, DeckError> {
+    let n = c.number(k, what)?;
+    if n < 0.0 || n.fract() != 0.0 || n > 1e15 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("{} {n}", c.name()),
+            "a whole number of steps",
+        ));
+    }
+    // A whole number below 1e15: exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok(n as u64)
+}
+
+/// The steps a `run N` line runs when the step counter stands at `step` (only `N`, `upto`
+/// and `pre`/`post` settings are taken). `run N upto` runs until step `N`, as LIGGGHTS reads
+/// it: `N − step` steps, and LIGGGHTS stops at an `N` below the step reached ("Invalid run
+/// command upto value").
+fn run_steps(c: &Command, step: u64) -> Result<u64, DeckError> {
+    let n = whole_steps(c, 1, "the number of steps")?;
+    let upto = c.words[2..].iter().any(|w| w == "upto");
+    let extra: Vec<&String> = c.words[2..].iter().filter(|w| *w != "upto").collect();
     let settings_only = extra.len().is_multiple_of(2)
         && extra
             .chunks(2)
@@ -187,19 +210,21 @@ fn run_steps(c: &Command) -> Result<u64, DeckError> {
         return Err(DeckError::unsupported(
             &c.at,
             format!("`{}`: a run the mill comparison cannot cut", c.text),
-            "run N [pre yes|no] [post yes|no]",
+            "run N [upto] [pre yes|no] [post yes|no]",
         ));
     }
-    if n < 0.0 || n.fract() != 0.0 || n > 1e15 {
-        return Err(DeckError::unsupported(
+    if !upto {
+        return Ok(n);
+    }
+    n.checked_sub(step).ok_or_else(|| {
+        DeckError::unsupported(
             &c.at,
-            format!("run {n}"),
-            "a whole number of steps",
-        ));
-    }
-    // A whole number below 1e15: exact.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    Ok(n as u64)
+            format!(
+                "run {n} upto at step {step}: LIGGGHTS stops at it (Invalid run command upto value)"
+            ),
+            "run N upto with N at or after the step the runs above reach",
+        )
+    })
 }
 
 /// The `N×N` table of a `fix … property/global NAME peratomtypepair N …` line.
@@ -247,6 +272,10 @@ const OUTPUT_COMMANDS: [&str; 9] = [
     "log",
     "shell",
 ];
+
+/// The compute that records particle–wall contacts (after the mesh `wall/gran` fix it
+/// attaches to).
+const WALL_COMPUTE: &str = "compute millimpact_walls all wall/gran/local pos vel id force_normal";
 
 /// A fix style that takes an insertion seed.
 fn is_insertion(style: &str) -> bool {
@@ -359,6 +388,11 @@ impl MillDeck {
         let mut left_out: Vec<String> = Vec::new();
         let mut gravity = None;
         let mut tables: Vec<(&str, Vec<f64>, SourceLine)> = Vec::new();
+        let mut step = 0u64;
+        let mut run_lengths = std::collections::HashMap::new();
+        let mut recorded_wall_at = None;
+        // Other motions (`linear`, `wiggle`, …) before the rotation, by fix ID, while in force.
+        let mut moving: Vec<(String, String, SourceLine)> = Vec::new();
         for (index, c) in commands.iter().enumerate() {
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
             match c.name() {
@@ -370,14 +404,28 @@ impl MillDeck {
                     ));
                 }
                 "timestep" => timestep = c.number(1, "the time step")?,
+                "reset_timestep" => step = whole_steps(c, 1, "the step")?,
+                "unfix" => moving.retain(|(id, ..)| c.words.get(1) != Some(id)),
                 "run" => {
-                    let n = run_steps(c)?;
+                    let n = run_steps(c, step)?;
+                    step += n;
+                    run_lengths.insert(index, n);
                     first_run.get_or_insert(index);
                     if rotation_start.is_some() {
                         rotation_steps += n;
                     } else if rotating.is_empty() {
                         settling_steps += n;
                     } else {
+                        if let Some((id, motion, at)) = moving.first() {
+                            return Err(DeckError::unsupported(
+                                at,
+                                format!(
+                                    "fix {id} move/mesh {motion} still moves its mesh when the rotation starts ({}): a motion whose power the comparison does not measure",
+                                    c.at
+                                ),
+                                "moves before the rotation ended by `unfix ID` before its first run",
+                            ));
+                        }
                         rotation_start = Some(index);
                         rotation_steps += n;
                     }
@@ -400,6 +448,7 @@ impl MillDeck {
                     law = Some(Self::law_of(c, &wall.model, law)?);
                     if !wall.meshes.is_empty() {
                         wall_meshes = wall.meshes.clone();
+                        recorded_wall_at = Some(index);
                     }
                 }
                 "fix" if style.starts_with("mesh/surface") => {
@@ -414,7 +463,14 @@ impl MillDeck {
                             "every fix move/mesh before the first run of the rotation",
                         ));
                     }
-                    rotating.push(Self::rotation(c, &meshes)?);
+                    // A motion other than a rotation, before the rotation starts, runs as
+                    // written (as the settling does).
+                    match c.words.get(6).map(String::as_str) {
+                        Some(motion) if motion != "rotate" && rotating.is_empty() => {
+                            moving.push((c.words[1].clone(), motion.to_string(), c.at.clone()));
+                        }
+                        _ => rotating.push(Self::rotation(c, &meshes)?),
+                    }
                 }
                 "fix" if is_insertion(style) => insertion_seeds += 1,
                 "fix" if style == "gravity" => gravity = gravity_of(c)?.or(gravity),
@@ -473,6 +529,8 @@ impl MillDeck {
             commands,
             first_run,
             rotation_start,
+            run_lengths,
+            recorded_wall_at,
         })
     }
 
@@ -486,6 +544,17 @@ impl MillDeck {
         let law = match model.normal.as_str() {
             "hertz" => MillLaw::Hertz,
             "paper" => MillLaw::Paper,
+            // Its damping is set by coefficientRestitution as Hertz's is, but its spring is
+            // linear (from characteristicVelocity): switched to the paper's law, Hertzian, the
+            // two runs would differ in the spring as well as the damping, and the difference
+            // could not be laid on the damping law.
+            "hooke" => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    "model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping".into(),
+                    "model hertz (switched to model paper at the η of each pair's coefficientRestitution) or model paper (switched to model hertz)",
+                ));
+            }
             other => {
                 return Err(DeckError::unsupported(
                     &c.at,
@@ -627,11 +696,8 @@ impl MillDeck {
                 out.push(
                     "compute millimpact_pairs all pair/gran/local pos vel id force_normal".into(),
                 );
-                if !self.recorded_wall_meshes.is_empty() {
-                    out.push(
-                        "compute millimpact_walls all wall/gran/local pos vel id force_normal"
-                            .into(),
-                    );
+                if self.recorded_wall_at.is_some_and(|at| at < index) {
+                    out.push(WALL_COMPUTE.into());
                 }
             }
             if index == self.rotation_start {
@@ -659,7 +725,14 @@ impl MillDeck {
                     }
                     out.push(self.switched(c, law));
                 }
-                "fix" if style == "wall/gran" => out.push(self.switched(c, law)),
+                "fix" if style == "wall/gran" => {
+                    out.push(self.switched(c, law));
+                    // LIGGGHTS stops at a wall/gran/local before the mesh wall/gran fix it
+                    // attaches to: one the deck defines after its first run gets it here.
+                    if self.recorded_wall_at == Some(index) && index > self.first_run {
+                        out.push(WALL_COMPUTE.into());
+                    }
+                }
                 "fix" if law != self.law && is_property(c, law.property()) => {
                     out.push(format!("# replaced by millimpact_law: {}", c.text));
                 }
@@ -679,7 +752,7 @@ impl MillDeck {
                     out.push(join_quoted(&words, c));
                 }
                 "run" if index >= self.rotation_start => {
-                    let n = run_steps(c).unwrap_or(0);
+                    let n = self.run_lengths.get(&index).copied().unwrap_or(0);
                     let start = rotation_done;
                     let end = (start + n).min(plan.rotation_steps);
                     let split = plan.rotation_steps - plan.spectra_steps;
