@@ -160,7 +160,8 @@ pub struct MillDeck {
     pub tangential_and_rolling: String,
     /// The number of insertion seeds the deck has (what `--seeds` replaces).
     pub insertion_seeds: usize,
-    /// What of the deck the instrumented runs leave out (its own output files), with lines.
+    /// What of the deck the instrumented runs leave out (its own output files), with lines,
+    /// and the particle–wall spectra where LIGGGHTS cannot record them.
     pub left_out: Vec<String>,
     /// Gravity's acceleration (`fix … gravity G vector X Y Z`: `G` along the unit vector of
     /// `X Y Z`), m/s², where set.
@@ -170,8 +171,6 @@ pub struct MillDeck {
     rotation_start: usize,
     /// The steps each `run` line runs (by its index among the commands), `upto` resolved.
     run_lengths: std::collections::HashMap<usize, u64>,
-    /// The index of the last mesh `wall/gran` fix (what `wall/gran/local` attaches to).
-    recorded_wall_at: Option<usize>,
 }
 
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -273,8 +272,8 @@ const OUTPUT_COMMANDS: [&str; 9] = [
     "shell",
 ];
 
-/// The compute that records particle–wall contacts (after the mesh `wall/gran` fix it
-/// attaches to).
+/// The compute that records particle–wall contacts (before the first run, after a mesh
+/// `wall/gran` fix: LIGGGHTS stops otherwise).
 const WALL_COMPUTE: &str = "compute millimpact_walls all wall/gran/local pos vel id force_normal";
 
 /// A fix style that takes an insertion seed.
@@ -390,7 +389,7 @@ impl MillDeck {
         let mut tables: Vec<(&str, Vec<f64>, SourceLine)> = Vec::new();
         let mut step = 0u64;
         let mut run_lengths = std::collections::HashMap::new();
-        let mut recorded_wall_at = None;
+        let mut first_wall: Option<(usize, String, SourceLine)> = None;
         // Other motions (`linear`, `wiggle`, …) before the rotation, by fix ID, while in force.
         let mut moving: Vec<(String, String, SourceLine)> = Vec::new();
         for (index, c) in commands.iter().enumerate() {
@@ -448,7 +447,7 @@ impl MillDeck {
                     law = Some(Self::law_of(c, &wall.model, law)?);
                     if !wall.meshes.is_empty() {
                         wall_meshes = wall.meshes.clone();
-                        recorded_wall_at = Some(index);
+                        first_wall.get_or_insert((index, c.text.clone(), c.at.clone()));
                     }
                 }
                 "fix" if style.starts_with("mesh/surface") => {
@@ -511,6 +510,17 @@ impl MillDeck {
         let restitution = restitution_of(path, law, &tables)?;
         let rotation_from = commands[rotation_start].at.clone();
         let first_run = first_run.unwrap_or(rotation_start);
+        // LIGGGHTS defines `wall/gran/local` only before the first run ("Need to define this
+        // compute before first run") and only after a mesh wall/gran fix ("This fix has to come
+        // before the compute"); at each run it records the last such fix. A deck with none
+        // before its first run leaves the particle–wall spectra out.
+        if let Some((_, text, at)) = first_wall.filter(|(index, ..)| *index > first_run) {
+            left_out.push(format!(
+                "the particle–wall collision spectra of {text} ({at}): LIGGGHTS records a mesh wall's contacts (compute wall/gran/local) only where a mesh wall/gran fix comes before the first run ({})",
+                commands[first_run].at
+            ));
+            wall_meshes.clear();
+        }
         Ok(MillDeck {
             path: path.to_path_buf(),
             law,
@@ -530,7 +540,6 @@ impl MillDeck {
             first_run,
             rotation_start,
             run_lengths,
-            recorded_wall_at,
         })
     }
 
@@ -696,7 +705,7 @@ impl MillDeck {
                 out.push(
                     "compute millimpact_pairs all pair/gran/local pos vel id force_normal".into(),
                 );
-                if self.recorded_wall_at.is_some_and(|at| at < index) {
+                if !self.recorded_wall_meshes.is_empty() {
                     out.push(WALL_COMPUTE.into());
                 }
             }
@@ -725,14 +734,7 @@ impl MillDeck {
                     }
                     out.push(self.switched(c, law));
                 }
-                "fix" if style == "wall/gran" => {
-                    out.push(self.switched(c, law));
-                    // LIGGGHTS stops at a wall/gran/local before the mesh wall/gran fix it
-                    // attaches to: one the deck defines after its first run gets it here.
-                    if self.recorded_wall_at == Some(index) && index > self.first_run {
-                        out.push(WALL_COMPUTE.into());
-                    }
-                }
+                "fix" if style == "wall/gran" => out.push(self.switched(c, law)),
                 "fix" if law != self.law && is_property(c, law.property()) => {
                     out.push(format!("# replaced by millimpact_law: {}", c.text));
                 }
