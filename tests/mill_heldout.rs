@@ -197,11 +197,14 @@ fn deck_timestep(deck: &Path) -> f64 {
         .unwrap_or_else(|| panic!("{}: no `variable dt equal …`", deck.display()))
 }
 
-/// The measurement deck of `law` written to `scratch` with its rotation time `tmill` set to
-/// `ROTATION`, every other line as it is.
-fn measurement_deck(law: MillLaw, scratch: &Path) -> PathBuf {
-    let name = format!("in.drum.measure-{law}");
-    let text = std::fs::read_to_string(heldout().join(&name)).unwrap();
+/// The measurement deck `DECK.measure-LAW` of the deck `deck` written to `scratch` with its
+/// rotation time `tmill` set to `rotation`, every other line as it is.
+fn measurement_deck(deck: &Path, law: MillLaw, rotation: f64, scratch: &Path) -> PathBuf {
+    let name = format!(
+        "{}.measure-{law}",
+        deck.file_name().unwrap().to_string_lossy()
+    );
+    let text = std::fs::read_to_string(deck.with_file_name(&name)).unwrap();
     let mut set = 0;
     let lines: Vec<String> = text
         .lines()
@@ -209,7 +212,7 @@ fn measurement_deck(law: MillLaw, scratch: &Path) -> PathBuf {
             let words: Vec<&str> = line.split_whitespace().collect();
             if words.len() >= 4 && words[..3] == ["variable", "tmill", "equal"] {
                 set += 1;
-                format!("variable tmill equal {ROTATION}")
+                format!("variable tmill equal {rotation}")
             } else {
                 line.to_string()
             }
@@ -284,18 +287,19 @@ fn binary(law: MillLaw) -> PathBuf {
     }
 }
 
-/// Start a measurement deck (turning the drum for `ROTATION`) in the held-out folder (its
-/// meshes are relative to it), its log and screen output written in `scratch` (LIGGGHTS 3.8
-/// crashes reading a mesh with `-screen none`, so the screen goes to a file).
-fn start_measurement(law: MillLaw, scratch: &Path) -> (Child, PathBuf) {
+/// Start the measurement deck of `deck` under `law` (turning the drum for `rotation`) in the
+/// deck's folder (its meshes are relative to it), its log and screen output written in
+/// `scratch` (LIGGGHTS 3.8 crashes reading a mesh with `-screen none`, so the screen goes to a
+/// file).
+fn start_measurement(deck: &Path, law: MillLaw, rotation: f64, scratch: &Path) -> (Child, PathBuf) {
     let log = scratch.join(format!("log.{law}"));
     let screen = std::fs::File::create(scratch.join(format!("screen.{law}"))).unwrap();
     let child = Command::new(binary(law))
         .arg("-in")
-        .arg(measurement_deck(law, scratch))
+        .arg(measurement_deck(deck, law, rotation, scratch))
         .arg("-log")
         .arg(&log)
-        .current_dir(heldout())
+        .current_dir(deck.parent().unwrap())
         .stdin(Stdio::null())
         .stdout(screen.try_clone().unwrap())
         .stderr(screen)
@@ -328,8 +332,9 @@ fn live_the_heldout_drum_power_agrees_with_an_independent_measurement() {
     let elsewhere = tempfile::tempdir().unwrap();
     let keep = scratch.path().join("mill");
     // The measurements and the mill command's two runs, all at once.
-    let hertz = start_measurement(MillLaw::Hertz, scratch.path());
-    let paper = start_measurement(MillLaw::Paper, scratch.path());
+    let deck = heldout().join("in.drum");
+    let hertz = start_measurement(&deck, MillLaw::Hertz, ROTATION, scratch.path());
+    let paper = start_measurement(&deck, MillLaw::Paper, ROTATION, scratch.path());
     let started = Instant::now();
     // From another working folder than the repository, as a user runs it.
     let output = assert_cmd::Command::cargo_bin("millimpact")
@@ -505,4 +510,111 @@ fn live_the_heldout_meshes_are_what_their_script_writes() {
         .status()
         .unwrap();
     assert!(status.success());
+}
+
+/// The small lifter drum that watches its charge (`tests/data/mill/watched/in.watched`: 100
+/// balls of 10 mm in the held-out drum's liner, the charge's potential energy printed through
+/// `variable pe atom mass*9.81*z` and `compute pe all reduce sum v_pe`, the rotation run
+/// `upto` its last step), with its measurement decks beside it.
+const WATCHED: &str = "tests/data/mill/watched/in.watched";
+/// The watched deck's own rotation (`variable tmill equal 0.6`), s: run whole.
+const WATCHED_ROTATION: f64 = 0.6;
+
+#[test]
+fn the_watched_deck_is_read_with_its_watch_and_its_upto_rotation() {
+    let deck = MillDeck::read(&root().join(WATCHED)).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(deck.timestep, 1.5e-6);
+    // round(0.1 / 1.5e-6) settling steps, then up to round(0.7 / 1.5e-6).
+    assert_eq!(deck.settling_steps, 66_667);
+    assert_eq!(deck.rotation_steps, 466_667 - 66_667);
+    assert_eq!(deck.recorded_wall_meshes, ["shell", "caps"]);
+    let text = deck.render(MillLaw::Paper, &common::mill::small_plan());
+    for watch in [
+        "variable pe atom mass*9.81*z",
+        "compute  pe all reduce sum v_pe",
+        "thermo_style  custom step atoms ke c_rke c_pe",
+    ] {
+        assert!(text.lines().any(|l| l == watch), "`{watch}` not kept");
+    }
+}
+
+#[test]
+#[ignore = "live: runs millimpact mill on the watched lifter drum (liggghts and liggghts-paper) and its two measurement decks, four runs of 0.7 s of 100 balls, about 45 s of CPU each"]
+fn live_the_watched_drum_power_agrees_with_an_independent_measurement() {
+    let deck = root().join(WATCHED);
+    let scratch = tempfile::tempdir().unwrap();
+    let keep = scratch.path().join("mill");
+    let hertz = start_measurement(&deck, MillLaw::Hertz, WATCHED_ROTATION, scratch.path());
+    let paper = start_measurement(&deck, MillLaw::Paper, WATCHED_ROTATION, scratch.path());
+    let output = assert_cmd::Command::cargo_bin("millimpact")
+        .unwrap()
+        .arg("mill")
+        .arg(&deck)
+        .args(["--format", "json", "--keep"])
+        .arg(&keep)
+        .output()
+        .unwrap();
+    let (hertz_log, _) = finish_measurement(hertz, MillLaw::Hertz);
+    let (paper_log, _) = finish_measurement(paper, MillLaw::Paper);
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(output.status.success(), "{stderr}");
+    let report: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    let timestep = deck_timestep(&deck.with_file_name("in.watched.measure-hertz"));
+    let power = &report["quantities"][0];
+    assert_eq!(power["quantity"], "power draw");
+    for (side, law, log) in [
+        ("written", MillLaw::Hertz, &hertz_log),
+        ("switched", MillLaw::Paper, &paper_log),
+    ] {
+        let m = measure(log, timestep);
+        assert_eq!(
+            report["rotation_steps"].as_f64(),
+            Some(m.rotation_steps),
+            "{law}"
+        );
+        let mill = power[side]["mean"].as_f64().unwrap();
+        let error = power[side]["standard_error"].as_f64().unwrap();
+        let torque = m.torque_power;
+        println!(
+            "{law}: mill {mill:.4} ± {error:.4} W; torque on the meshes {:.4} ± {:.4} W (mill/measured − 1 = {:+.3}); ω M g d {:.4} ± {:.4} W",
+            torque.mean,
+            torque.standard_error,
+            mill / torque.mean - 1.0,
+            m.balance_power.mean,
+            m.balance_power.standard_error,
+        );
+        assert!(torque.mean > 0.0, "{law}: the drum draws no power: {m:?}");
+        assert!(error > 0.0, "{law}: no standard error: {power}");
+        assert!(
+            (mill - torque.mean).abs() <= POWER_TOLERANCE * torque.mean,
+            "{law}: mill {mill} W against the torque measurement {} W",
+            torque.mean
+        );
+    }
+    // The deck's own watch ran in both of the mill's runs: the charge's potential energy
+    // printed every thermo step, and moving as the drum lifts the charge.
+    let mut runs = 0;
+    for folder in std::fs::read_dir(&keep).unwrap() {
+        let log = std::fs::read_to_string(folder.unwrap().path().join("log.txt")).unwrap();
+        let blocks = thermo_blocks(&log);
+        let rotation = blocks.last().expect("thermo output");
+        let pe = rotation.column("pe");
+        let values: Vec<f64> = rotation.rows.iter().map(|r| r[pe]).collect();
+        assert!(
+            values.len() > 2 && values.iter().all(|v| v.is_finite()),
+            "{values:?}"
+        );
+        let (low, high) = values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+                (a.min(v), b.max(v))
+            });
+        println!(
+            "  potential energy printed {} times, {low:.5} to {high:.5} J",
+            values.len()
+        );
+        assert!(high > low, "the charge's potential energy never moves");
+        runs += 1;
+    }
+    assert_eq!(runs, 2);
 }

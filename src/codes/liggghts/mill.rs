@@ -160,7 +160,8 @@ pub struct MillDeck {
     pub tangential_and_rolling: String,
     /// The number of insertion seeds the deck has (what `--seeds` replaces).
     pub insertion_seeds: usize,
-    /// What of the deck the instrumented runs leave out (its own output files), with lines.
+    /// What of the deck the instrumented runs leave out (its own output files), with lines,
+    /// and the particle–wall spectra where LIGGGHTS cannot record them.
     pub left_out: Vec<String>,
     /// Gravity's acceleration (`fix … gravity G vector X Y Z`: `G` along the unit vector of
     /// `X Y Z`), m/s², where set.
@@ -168,6 +169,8 @@ pub struct MillDeck {
     commands: Vec<Command>,
     first_run: usize,
     rotation_start: usize,
+    /// The steps each `run` line runs (by its index among the commands), `upto` resolved.
+    run_lengths: std::collections::HashMap<usize, u64>,
 }
 
 fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
@@ -175,10 +178,29 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
     (n.is_finite() && n > 0.0).then(|| [v[0] / n, v[1] / n, v[2] / n])
 }
 
-/// The steps of a `run N` line (only `N`, and `pre`/`post` settings, are taken).
-fn run_steps(c: &Command) -> Result<u64, DeckError> {
-    let n = c.number(1, "the number of steps")?;
-    let extra = &c.words[2..];
+/// A whole number of steps written at word `k` of `c` (`what` names it).
+fn whole_steps(c: &Command, k: usize, what: &str) -> Result<u64, DeckError> {
+    let n = c.number(k, what)?;
+    if n < 0.0 || n.fract() != 0.0 || n > 1e15 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("{} {n}", c.name()),
+            "a whole number of steps",
+        ));
+    }
+    // A whole number below 1e15: exact.
+    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+    Ok(n as u64)
+}
+
+/// The steps a `run N` line runs when the step counter stands at `step` (only `N`, `upto`
+/// and `pre`/`post` settings are taken). `run N upto` runs until step `N`, as LIGGGHTS reads
+/// it: `N − step` steps, and LIGGGHTS stops at an `N` below the step reached ("Invalid run
+/// command upto value").
+fn run_steps(c: &Command, step: u64) -> Result<u64, DeckError> {
+    let n = whole_steps(c, 1, "the number of steps")?;
+    let upto = c.words[2..].iter().any(|w| w == "upto");
+    let extra: Vec<&String> = c.words[2..].iter().filter(|w| *w != "upto").collect();
     let settings_only = extra.len().is_multiple_of(2)
         && extra
             .chunks(2)
@@ -187,19 +209,21 @@ fn run_steps(c: &Command) -> Result<u64, DeckError> {
         return Err(DeckError::unsupported(
             &c.at,
             format!("`{}`: a run the mill comparison cannot cut", c.text),
-            "run N [pre yes|no] [post yes|no]",
+            "run N [upto] [pre yes|no] [post yes|no]",
         ));
     }
-    if n < 0.0 || n.fract() != 0.0 || n > 1e15 {
-        return Err(DeckError::unsupported(
+    if !upto {
+        return Ok(n);
+    }
+    n.checked_sub(step).ok_or_else(|| {
+        DeckError::unsupported(
             &c.at,
-            format!("run {n}"),
-            "a whole number of steps",
-        ));
-    }
-    // A whole number below 1e15: exact.
-    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
-    Ok(n as u64)
+            format!(
+                "run {n} upto at step {step}: LIGGGHTS stops at it (Invalid run command upto value)"
+            ),
+            "run N upto with N at or after the step the runs above reach",
+        )
+    })
 }
 
 /// The `N×N` table of a `fix … property/global NAME peratomtypepair N …` line.
@@ -247,6 +271,10 @@ const OUTPUT_COMMANDS: [&str; 9] = [
     "log",
     "shell",
 ];
+
+/// The compute that records particle–wall contacts (before the first run, after a mesh
+/// `wall/gran` fix: LIGGGHTS stops otherwise).
+const WALL_COMPUTE: &str = "compute millimpact_walls all wall/gran/local pos vel id force_normal";
 
 /// A fix style that takes an insertion seed.
 fn is_insertion(style: &str) -> bool {
@@ -359,6 +387,11 @@ impl MillDeck {
         let mut left_out: Vec<String> = Vec::new();
         let mut gravity = None;
         let mut tables: Vec<(&str, Vec<f64>, SourceLine)> = Vec::new();
+        let mut step = 0u64;
+        let mut run_lengths = std::collections::HashMap::new();
+        let mut first_wall: Option<(usize, String, SourceLine)> = None;
+        // Other motions (`linear`, `wiggle`, …) before the rotation, by fix ID, while in force.
+        let mut moving: Vec<(String, String, SourceLine)> = Vec::new();
         for (index, c) in commands.iter().enumerate() {
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
             match c.name() {
@@ -370,14 +403,28 @@ impl MillDeck {
                     ));
                 }
                 "timestep" => timestep = c.number(1, "the time step")?,
+                "reset_timestep" => step = whole_steps(c, 1, "the step")?,
+                "unfix" => moving.retain(|(id, ..)| c.words.get(1) != Some(id)),
                 "run" => {
-                    let n = run_steps(c)?;
+                    let n = run_steps(c, step)?;
+                    step += n;
+                    run_lengths.insert(index, n);
                     first_run.get_or_insert(index);
                     if rotation_start.is_some() {
                         rotation_steps += n;
                     } else if rotating.is_empty() {
                         settling_steps += n;
                     } else {
+                        if let Some((id, motion, at)) = moving.first() {
+                            return Err(DeckError::unsupported(
+                                at,
+                                format!(
+                                    "fix {id} move/mesh {motion} still moves its mesh when the rotation starts ({}): a motion whose power the comparison does not measure",
+                                    c.at
+                                ),
+                                "moves before the rotation ended by `unfix ID` before its first run",
+                            ));
+                        }
                         rotation_start = Some(index);
                         rotation_steps += n;
                     }
@@ -400,6 +447,7 @@ impl MillDeck {
                     law = Some(Self::law_of(c, &wall.model, law)?);
                     if !wall.meshes.is_empty() {
                         wall_meshes = wall.meshes.clone();
+                        first_wall.get_or_insert((index, c.text.clone(), c.at.clone()));
                     }
                 }
                 "fix" if style.starts_with("mesh/surface") => {
@@ -414,7 +462,14 @@ impl MillDeck {
                             "every fix move/mesh before the first run of the rotation",
                         ));
                     }
-                    rotating.push(Self::rotation(c, &meshes)?);
+                    // A motion other than a rotation, before the rotation starts, runs as
+                    // written (as the settling does).
+                    match c.words.get(6).map(String::as_str) {
+                        Some(motion) if motion != "rotate" && rotating.is_empty() => {
+                            moving.push((c.words[1].clone(), motion.to_string(), c.at.clone()));
+                        }
+                        _ => rotating.push(Self::rotation(c, &meshes)?),
+                    }
                 }
                 "fix" if is_insertion(style) => insertion_seeds += 1,
                 "fix" if style == "gravity" => gravity = gravity_of(c)?.or(gravity),
@@ -455,6 +510,17 @@ impl MillDeck {
         let restitution = restitution_of(path, law, &tables)?;
         let rotation_from = commands[rotation_start].at.clone();
         let first_run = first_run.unwrap_or(rotation_start);
+        // LIGGGHTS defines `wall/gran/local` only before the first run ("Need to define this
+        // compute before first run") and only after a mesh wall/gran fix ("This fix has to come
+        // before the compute"); at each run it records the last such fix. A deck with none
+        // before its first run leaves the particle–wall spectra out.
+        if let Some((_, text, at)) = first_wall.filter(|(index, ..)| *index > first_run) {
+            left_out.push(format!(
+                "the particle–wall collision spectra of {text} ({at}): LIGGGHTS records a mesh wall's contacts (compute wall/gran/local) only where a mesh wall/gran fix comes before the first run ({})",
+                commands[first_run].at
+            ));
+            wall_meshes.clear();
+        }
         Ok(MillDeck {
             path: path.to_path_buf(),
             law,
@@ -473,6 +539,7 @@ impl MillDeck {
             commands,
             first_run,
             rotation_start,
+            run_lengths,
         })
     }
 
@@ -486,6 +553,17 @@ impl MillDeck {
         let law = match model.normal.as_str() {
             "hertz" => MillLaw::Hertz,
             "paper" => MillLaw::Paper,
+            // Its damping is set by coefficientRestitution as Hertz's is, but its spring is
+            // linear (from characteristicVelocity): switched to the paper's law, Hertzian, the
+            // two runs would differ in the spring as well as the damping, and the difference
+            // could not be laid on the damping law.
+            "hooke" => {
+                return Err(DeckError::unsupported(
+                    &c.at,
+                    "model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping".into(),
+                    "model hertz (switched to model paper at the η of each pair's coefficientRestitution) or model paper (switched to model hertz)",
+                ));
+            }
             other => {
                 return Err(DeckError::unsupported(
                     &c.at,
@@ -628,10 +706,7 @@ impl MillDeck {
                     "compute millimpact_pairs all pair/gran/local pos vel id force_normal".into(),
                 );
                 if !self.recorded_wall_meshes.is_empty() {
-                    out.push(
-                        "compute millimpact_walls all wall/gran/local pos vel id force_normal"
-                            .into(),
-                    );
+                    out.push(WALL_COMPUTE.into());
                 }
             }
             if index == self.rotation_start {
@@ -679,7 +754,7 @@ impl MillDeck {
                     out.push(join_quoted(&words, c));
                 }
                 "run" if index >= self.rotation_start => {
-                    let n = run_steps(c).unwrap_or(0);
+                    let n = self.run_lengths.get(&index).copied().unwrap_or(0);
                     let start = rotation_done;
                     let end = (start + n).min(plan.rotation_steps);
                     let split = plan.rotation_steps - plan.spectra_steps;
