@@ -229,7 +229,8 @@ pub(super) fn read_settings(
     start: usize,
     model: &mut GranModel,
 ) -> Result<(), DeckError> {
-    let words = &command.words[start..];
+    // A keyword's arguments cut short at the line's end leave `start` past it: no settings.
+    let words = command.words.get(start..).unwrap_or_default();
     if PAPER_MODELS.contains(&model.normal.as_str())
         && let Some(key) = words.first()
     {
