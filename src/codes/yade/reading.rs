@@ -204,7 +204,18 @@ impl Reading {
                 // YADE moves no sphere that is not dynamic, nor one blocked in every
                 // translation: a ball meets it as a wall of its own radius.
                 let blocked = ['x', 'y', 'z'].iter().all(|d| body.blocked.contains(*d));
-                if !body.dynamic || blocked {
+                // ViscElPhys tuned against a fixed sphere's own mass is not yet matched to
+                // what YADE realises (a live remainder of 1e-3): such a sphere is still
+                // checked as a free one, and said so.
+                let viscel =
+                    self.materials[material as usize].class == super::objects::Class::ViscEl;
+                if (!body.dynamic || blocked) && viscel {
+                    self.leave_out(
+                        "fixed spheres of a ViscElMat, checked as free ones",
+                        body.line,
+                    );
+                }
+                if (!body.dynamic || blocked) && !viscel {
                     self.take_wall(path, body, WallKind::Sphere, material, at)?;
                 } else if !given.contains(&material) {
                     self.spheres.push(SphereRead {
