@@ -352,7 +352,8 @@ pub fn read_deck(
             continue;
         };
         if code.is_some() || reader.recognises(path, &text) {
-            return build_for(c, code, reader.read(path, options)?);
+            // A polydisperse pack is checked by size classes, whichever code reads it.
+            return build_for(c, code, reader.read(path, options)?.in_size_classes());
         }
     }
     Err(DeckError::Unrecognised {

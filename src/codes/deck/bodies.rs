@@ -7,7 +7,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::Path;
 
 use super::data::DataAtom;
-use super::{DeckBody, DeckError, DeckOptions, SourceLine, sphere_mass};
+use super::{DeckBody, DeckError, DeckOptions, Partner, SourceLine, UserDeck, sphere_mass};
 use crate::codes::script::Command;
 
 /// A size as a script's lines give it: diameter (m), density (kg/m³) and mass (kg), each
@@ -389,5 +389,126 @@ impl<'o> Bodies<'o> {
             });
         }
         Ok(self.bodies)
+    }
+}
+
+/// Most distinct radii one type (of one density) keeps as bodies of their own: a pack with
+/// more is polydisperse, and is checked by size classes (every size against every other would
+/// be tens of thousands of impacts: a mill of 242 radii forms ~29,600 pairs).
+pub const MAX_SIZES: usize = 5;
+/// The size classes a polydisperse type is grouped into: equal counts of its distinct radii,
+/// smallest to largest.
+pub const SIZE_CLASSES: usize = 3;
+
+/// The radius a size class is checked at: its middle size (of an even count, the smaller of
+/// the two middle ones, so that it is a size the deck has).
+fn class_median(radii: &[f64]) -> f64 {
+    radii[(radii.len() - 1) / 2]
+}
+
+/// A radius in mm, to four significant digits, for the notes.
+fn mm(radius: f64) -> String {
+    format!("{:.4} mm", radius * 1e3)
+}
+
+impl UserDeck {
+    /// The deck with each polydisperse type (more than [`MAX_SIZES`] distinct radii of one type
+    /// and density) grouped into [`SIZE_CLASSES`] classes of equal count by radius, each
+    /// checked at its median size: its pairs, with every other class and every wall, are the
+    /// pairs of those bodies. Each class is named among the notes (its radius range, how many
+    /// sizes it holds and their spread about the median) and in its body's `from`. A deck with
+    /// fewer sizes is returned as it is.
+    pub fn in_size_classes(mut self) -> Self {
+        // The bodies of each type and density, by index.
+        let mut groups: BTreeMap<(u32, u64), Vec<usize>> = BTreeMap::new();
+        for (k, b) in self.bodies.iter().enumerate() {
+            groups
+                .entry((b.type_id, b.density.to_bits()))
+                .or_default()
+                .push(k);
+        }
+        let mut keep = vec![true; self.bodies.len()];
+        let mut notes = Vec::new();
+        for ((t, _), mut members) in groups {
+            if members.len() <= MAX_SIZES {
+                continue;
+            }
+            members.sort_by(|a, b| self.bodies[*a].radius.total_cmp(&self.bodies[*b].radius));
+            let n = members.len();
+            let (smallest, largest) = (
+                self.bodies[members[0]].radius,
+                self.bodies[members[n - 1]].radius,
+            );
+            let mut classes = Vec::new();
+            for c in 0..SIZE_CLASSES {
+                // Equal counts, the remainder spread over the first classes.
+                let (lo, hi) = (c * n / SIZE_CLASSES, (c + 1) * n / SIZE_CLASSES);
+                let class = &members[lo..hi];
+                let radii: Vec<f64> = class.iter().map(|k| self.bodies[*k].radius).collect();
+                let median = class_median(&radii);
+                let chosen = class[(class.len() - 1) / 2];
+                for k in class {
+                    keep[*k] = *k == chosen;
+                }
+                let (first, last) = (radii[0], radii[radii.len() - 1]);
+                let spread = format!(
+                    "−{:.1} %/+{:.1} % of its median",
+                    100.0 * (median - first) / median,
+                    100.0 * (last - median) / median
+                );
+                let body = &mut self.bodies[chosen];
+                body.from = format!(
+                    "median of size class {} of {SIZE_CLASSES} of type {t} ({} sizes, R {}–{}); {}",
+                    c + 1,
+                    class.len(),
+                    mm(first),
+                    mm(last),
+                    body.from
+                );
+                classes.push(format!(
+                    "class {} R {}–{} ({} sizes, checked at R {}, spread {spread})",
+                    c + 1,
+                    mm(first),
+                    mm(last),
+                    class.len(),
+                    mm(median)
+                ));
+            }
+            notes.push(format!(
+                "type {t}'s other sizes: {n} radii from {} to {}, more than {MAX_SIZES}, grouped into {SIZE_CLASSES} size classes of equal count, each checked at its median size: {}",
+                mm(smallest),
+                mm(largest),
+                classes.join("; ")
+            ));
+        }
+        if notes.is_empty() {
+            return self;
+        }
+        // The new index of each body kept.
+        let mut index = vec![None; self.bodies.len()];
+        let mut next = 0;
+        for (k, kept) in keep.iter().enumerate() {
+            if *kept {
+                index[k] = Some(next);
+                next += 1;
+            }
+        }
+        self.contacts = std::mem::take(&mut self.contacts)
+            .into_iter()
+            .filter_map(|mut c| {
+                c.body = index[c.body]?;
+                if let Partner::Body(o) = c.partner {
+                    c.partner = Partner::Body(index[o]?);
+                }
+                Some(c)
+            })
+            .collect();
+        let mut k = 0;
+        self.bodies.retain(|_| {
+            k += 1;
+            keep[k - 1]
+        });
+        self.left_out.extend(notes);
+        self
     }
 }

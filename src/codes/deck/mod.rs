@@ -25,6 +25,7 @@ mod reading;
 
 use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
+pub use bodies::{MAX_SIZES, SIZE_CLASSES};
 pub(crate) use contacts::{
     PairLaw, WallOrder, body_contacts, body_contacts_formed, wall_contacts, wall_contacts_formed,
 };

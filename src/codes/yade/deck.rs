@@ -205,9 +205,9 @@ fn wall_radius_trap(
         "wall radius: {} gives {} ({}) the radius {factor} R, so R* = {:.4} R, not a flat face's R{hertz}{}",
         geometry.class,
         w.name,
-        match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box" },
+        match kind { WallKind::Plane => "a wall", WallKind::Facet => "a facet", WallKind::Box => "a box", WallKind::Sphere => "a fixed sphere" },
         factor / (1.0 + factor),
-        if kind == WallKind::Box { "" } else { " (hertzian=True gives it 1e8 R)" }
+        if matches!(kind, WallKind::Box | WallKind::Sphere) { "" } else { " (hertzian=True gives it 1e8 R)" }
     ));
 }
 
@@ -570,6 +570,7 @@ impl YadeDeck {
         let tuned_mass = matches!(model.as_str(), "ViscEl tc, en" | "ViscEl young, en");
         if tuned_mass {
             match wall {
+                Some((WallKind::Sphere, w)) => traps.push(format!("the fixed sphere's own mass ({:.4e} kg) enters the tuning: kn, cn are set for the reduced mass {mass_r:.6e} kg of the two spheres, not for the ball's {mass:.6e} kg that moves ({:+.2e} relative)", w.mass, mass_r / mass - 1.0)),
                 Some((WallKind::Box, w)) => traps.push(format!("the fixed box's own mass ({:.4e} kg) enters the tuning: kn, cn are set for the reduced mass {mass_r:.6e} kg of the ball and the box, not for the ball's {mass:.6e} kg that moves ({:+.2e} relative)", w.mass, mass_r / mass - 1.0)),
                 Some(_) => traps.push(format!("a wall's mass is 0, and YADE takes the sphere's for it: kn, cn are tuned for m/2 = {mass_r:.4e} kg while the ball's {mass:.4e} kg moves, so the contact lasts √2 longer and its damping ratio is 1/√2 of the one tuned")),
                 None => {}
@@ -723,7 +724,11 @@ impl YadeDeck {
                 let b = Side {
                     id: wall.material,
                     material: m_w,
-                    radius: factor * body.radius,
+                    // A fixed sphere keeps its own radius: R* is of both radii.
+                    radius: match wall.kind {
+                        WallKind::Sphere => wall.radius,
+                        _ => factor * body.radius,
+                    },
                     mass: wall.mass,
                 };
                 let mut pair =
@@ -827,11 +832,25 @@ fn wall_placement(wall: &WallRead) -> String {
             ),
             Some(wall.mass),
         ),
+        // Its top at the face z = 0 the ball meets, centres on the line of the impact.
+        WallKind::Sphere => (
+            format!(
+                "utils.sphere((0.0, 0.0, -{r}), {r}, fixed=True, material={})",
+                wall.material,
+                r = exact_number(wall.radius)
+            ),
+            Some(wall.mass),
+        ),
     };
     let mut snippet = format!("b2 = O.bodies.append({placement})");
     if let Some(m) = mass {
+        let what = if wall.kind == WallKind::Sphere {
+            "sphere"
+        } else {
+            "box"
+        };
         snippet.push_str(&format!(
-            "\nO.bodies[b2].state.mass = {}  # the script's box, as YADE holds it",
+            "\nO.bodies[b2].state.mass = {}  # the script's {what}, as YADE holds it",
             exact_number(m)
         ));
     }

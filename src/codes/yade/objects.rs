@@ -277,6 +277,9 @@ pub(super) enum WallKind {
     Facet,
     /// A fixed `Box` (`utils.box`): `Ig2_Box_Sphere_ScGeom`.
     Box,
+    /// A sphere YADE does not move (`fixed=True`, or every translation in `blockedDOFs`):
+    /// `Ig2_Sphere_Sphere_ScGeom` with its own radius, so `R*` is of both radii.
+    Sphere,
 }
 
 impl WallKind {
@@ -286,6 +289,7 @@ impl WallKind {
             WallKind::Plane => ["Ig2_Wall_Sphere_ScGeom", "Ig2_Wall_Sphere_ScGeom"],
             WallKind::Facet => ["Ig2_Facet_Sphere_ScGeom", "Ig2_Facet_Sphere_ScGeom6D"],
             WallKind::Box => ["Ig2_Box_Sphere_ScGeom", "Ig2_Box_Sphere_ScGeom6D"],
+            WallKind::Sphere => ["Ig2_Sphere_Sphere_ScGeom", "Ig2_Sphere_Sphere_ScGeom6D"],
         }
     }
 
@@ -347,13 +351,17 @@ pub(super) fn wall_name(path: &Path, line: Option<usize>, kind: WallKind) -> Str
         WallKind::Plane => "wall",
         WallKind::Facet => "facet",
         WallKind::Box => "box",
+        WallKind::Sphere => "sphere",
     };
     let called = line.and_then(|l| line_text(path, l)).and_then(|text| {
         text.split(|c: char| !(c.is_alphanumeric() || c == '_'))
             .find(|word| {
                 text.contains(&format!("{word}("))
                     && (word.starts_with("facet")
-                        || matches!(*word, "wall" | "box" | "stl" | "gmsh" | "gts" | "unv"))
+                        || matches!(
+                            *word,
+                            "wall" | "box" | "stl" | "gmsh" | "gts" | "unv" | "sphere"
+                        ))
             })
             .map(str::to_string)
     });
