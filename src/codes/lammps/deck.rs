@@ -20,8 +20,9 @@
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
-use super::granular::read_model;
+use super::granular::{CLASSIC, classic_model, model_name, read_model};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
+use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
@@ -32,8 +33,7 @@ use crate::codes::deck::{
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
 use crate::codes::{CodeDriver, CodeError, RenderedInput};
-use crate::model::exact;
-use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
+use crate::model::law::DashpotLaw;
 use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
 
@@ -70,181 +70,6 @@ struct WallFix {
     classic: Option<String>,
 }
 
-/// The classic granular styles (`pair_style gran/…`, `fix wall/gran …`).
-const CLASSIC: [&str; 3] = ["hooke", "hooke/history", "hertz/history"];
-
-/// A classic style's words from `c.words[k..]`: `STYLE Kn Kt γn γt μ dampflag [limit_damping]`
-/// (`STYLE` `gran/hooke` … on a pair_style line, `hooke` … on a wall), read as the granular
-/// model LAMMPS documents it to equal (`src/GRANULAR/pair_gran_hooke_history.cpp`,
-/// `pair_gran_hertz_history.cpp`, `fix_wall_gran.cpp`): the normal force of `hooke` and
-/// `hooke/history` is `Kn δ − m* γn δ̇` (`hooke Kn γn damping mass_velocity`), that of
-/// `hertz/history` is `sqrt(R* δ) (Kn δ − m* γn δ̇)` (`hertz Kn γn damping viscoelastic`);
-/// `Kt`, `γt`, μ and dampflag are tangential. Returns the model and the index after it.
-fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usize), DeckError> {
-    let written = c.word(k, "a classic style")?;
-    let style = written.strip_prefix("gran/").unwrap_or(written);
-    let form = "STYLE Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] (Kt, gamma_t may be NULL)";
-    if !CLASSIC.contains(&style) {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!(
-                "`{written}`: LAMMPS has no such classic granular style and stops at this line"
-            ),
-            "pair_style gran/hooke, gran/hooke/history, gran/hertz/history; fix wall/gran hooke, hooke/history, hertz/history; or granular",
-        ));
-    }
-    let kn = c.number(k + 1, "Kn")?;
-    let gamma_n = c.number(k + 3, "gamma_n")?;
-    for (j, what) in [(k + 2, "Kt"), (k + 4, "gamma_t")] {
-        if c.word(j, what)? != "NULL" {
-            c.number(j, what)?;
-        }
-    }
-    c.number(k + 5, "xmu")?;
-    let flag = c.number(k + 6, "dampflag")?;
-    #[allow(clippy::float_cmp)] // a flag is written 0 or 1
-    if flag != 0.0 && flag != 1.0 {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("dampflag {flag}"),
-            &format!("dampflag 0 or 1 ({form})"),
-        ));
-    }
-    if kn <= 0.0 || gamma_n < 0.0 {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("Kn {kn}, gamma_n {gamma_n}"),
-            "Kn > 0 and gamma_n >= 0 (LAMMPS stops otherwise: \"Illegal pair_style command\")",
-        ));
-    }
-    let mut end = k + 7;
-    let limit_damping = c.words.get(end).is_some_and(|w| w == "limit_damping");
-    if limit_damping {
-        end += 1;
-    }
-    let hertz = style == "hertz/history";
-    let model = GranularModel {
-        normal: if hertz { "hertz" } else { "hooke" }.into(),
-        values: vec![kn, gamma_n],
-        damping: if hertz {
-            "viscoelastic"
-        } else {
-            "mass_velocity"
-        }
-        .into(),
-        limit_damping,
-        tangential: format!("classic {style}"),
-        rolling: String::new(),
-        twisting: String::new(),
-        words: c.words[k..end].to_vec(),
-    };
-    Ok((model, end))
-}
-
-/// A model as the table names it: the classic style by its own name and the granular model
-/// it equals, a granular model by its normal and damping models.
-fn model_name(model: &GranularModel) -> String {
-    match model.tangential.strip_prefix("classic ") {
-        Some(style) => format!("{style} (= {} damping {})", model.normal, model.damping),
-        None => format!("{} damping {}", model.normal, model.damping),
-    }
-}
-
-/// The contact stiffness a line of the paper plugin gives.
-#[derive(Clone, Copy, Debug)]
-enum PaperStiffness {
-    /// `pair_style paper`, `wall/paper hertz`: `C = (4/3) E* sqrt(R*)` with this E*, Pa.
-    Hertz(f64),
-    /// `pair_style paper/linear`, `wall/paper linear`: `C = kn`, N/m.
-    Linear(f64),
-}
-
-/// What a `pair_coeff` or `fix wall/paper` line of the paper plugin sets: η and the stiffness.
-#[derive(Clone, Copy, Debug)]
-struct PaperCoeff {
-    eta: f64,
-    stiffness: PaperStiffness,
-}
-
-/// Read the plugin's coefficients from `c.words[start..end]`: `eta E nu [E2 nu2]` (Hertz,
-/// `E2 nu2` allowed where `two_materials`) or `eta kn` (linear), checked as the plugin checks
-/// them.
-fn paper_coeff(
-    c: &Command,
-    start: usize,
-    end: usize,
-    linear: bool,
-    two_materials: bool,
-) -> Result<PaperCoeff, DeckError> {
-    let form = match (linear, two_materials) {
-        (true, _) => "eta kn",
-        (false, true) => "eta E nu [E2 nu2]",
-        (false, false) => "eta E nu Ewall nuwall",
-    };
-    let counts: &[usize] = match (linear, two_materials) {
-        (true, _) => &[2],
-        (false, true) => &[3, 5],
-        (false, false) => &[5],
-    };
-    if !counts.contains(&(end.saturating_sub(start))) {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("`{}`", c.text),
-            &format!("the paper plugin's {form}"),
-        ));
-    }
-    let values = (start..end)
-        .map(|k| c.number(k, form))
-        .collect::<Result<Vec<_>, _>>()?;
-    let eta = values[0];
-    if !(0.0..1.0).contains(&eta) {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("eta = {eta}"),
-            "0 <= eta < 1 (the plugin stops the run otherwise: eta >= 1 never separates the bodies, eta < 0 creates energy)",
-        ));
-    }
-    let stiffness = if linear {
-        PaperStiffness::Linear(values[1])
-    } else {
-        let (e1, nu1) = (values[1], values[2]);
-        let (e2, nu2) = if values.len() == 5 {
-            (values[3], values[4])
-        } else {
-            (e1, nu1)
-        };
-        PaperStiffness::Hertz(super::paper_plugin_modulus(e1, nu1, e2, nu2))
-    };
-    Ok(PaperCoeff { eta, stiffness })
-}
-
-/// The paper's law the plugin's coefficients give a pair of `R*` and mass `(r_star, mass)`: its
-/// η, the COR it is built to realise entered, a trap saying so first among `traps`.
-fn paper_law(
-    model: &str,
-    coeff: &PaperCoeff,
-    (r_star, mass): (f64, f64),
-    traps: Vec<String>,
-) -> PairLaw {
-    let (stiffness, exponent) = match coeff.stiffness {
-        PaperStiffness::Hertz(modulus) => (4.0 / 3.0 * modulus * r_star.sqrt(), 1.5),
-        PaperStiffness::Linear(kn) => (kn, 1.0),
-    };
-    let law = PaperLaw {
-        mass,
-        stiffness,
-        exponent,
-        loss_coefficient: coeff.eta,
-    };
-    let e = exact::restitution(coeff.eta);
-    let eta_trap = format!(
-        "eta is η itself, not a COR: {} gives e = sqrt((1 − η)/(1 + η)) = {e:.6}",
-        coeff.eta
-    );
-    let traps = std::iter::once(eta_trap).chain(traps).collect();
-    PairLaw::new(model, CodeLaw::Paper(law), Some(e), traps)
-}
-
 /// A deck's bodies, walls, pairs, the lines every impact carries and each wall's line.
 type Pairs = (
     Vec<DeckBody>,
@@ -253,17 +78,6 @@ type Pairs = (
     Vec<String>,
     Vec<String>,
 );
-
-/// A `fix wall/paper` as read.
-#[derive(Clone, Debug)]
-struct PaperWall {
-    id: String,
-    coeff: PaperCoeff,
-    /// The model's words (`hertz eta E nu Ewall nuwall`, `linear eta kn`).
-    model: Vec<String>,
-    at: SourceLine,
-    geometry: String,
-}
 
 #[derive(Default)]
 struct Reading {

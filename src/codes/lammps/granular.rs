@@ -1,6 +1,8 @@
 //! The contact model words of `pair_coeff` (`pair_style granular`) and `fix wall/gran granular`,
 //! read as LAMMPS's granular model reads them: a normal model and its coefficients, then the
-//! damping, tangential, rolling, twisting, heat and `synchronized_verlet` keywords with theirs.
+//! damping, tangential, rolling, twisting, heat and `synchronized_verlet` keywords with theirs;
+//! and the classic styles (`pair_style gran/…`, `fix wall/gran hooke…`) as the granular models
+//! they equal.
 
 use super::mixing::GranularModel;
 use crate::codes::deck::DeckError;
@@ -151,4 +153,84 @@ pub(super) fn read_model(
     let k = k.min(c.words.len());
     model.words = c.words[start..k].to_vec();
     Ok((model, k))
+}
+
+/// The classic granular styles (`pair_style gran/…`, `fix wall/gran …`).
+pub(super) const CLASSIC: [&str; 3] = ["hooke", "hooke/history", "hertz/history"];
+
+/// A classic style's words from `c.words[k..]`: `STYLE Kn Kt γn γt μ dampflag [limit_damping]`
+/// (`STYLE` `gran/hooke` … on a pair_style line, `hooke` … on a wall), read as the granular
+/// model LAMMPS documents it to equal (`src/GRANULAR/pair_gran_hooke_history.cpp`,
+/// `pair_gran_hertz_history.cpp`, `fix_wall_gran.cpp`): the normal force of `hooke` and
+/// `hooke/history` is `Kn δ − m* γn δ̇` (`hooke Kn γn damping mass_velocity`), that of
+/// `hertz/history` is `sqrt(R* δ) (Kn δ − m* γn δ̇)` (`hertz Kn γn damping viscoelastic`);
+/// `Kt`, `γt`, μ and dampflag are tangential. Returns the model and the index after it.
+pub(super) fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usize), DeckError> {
+    let written = c.word(k, "a classic style")?;
+    let style = written.strip_prefix("gran/").unwrap_or(written);
+    let form = "STYLE Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] (Kt, gamma_t may be NULL)";
+    if !CLASSIC.contains(&style) {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!(
+                "`{written}`: LAMMPS has no such classic granular style and stops at this line"
+            ),
+            "pair_style gran/hooke, gran/hooke/history, gran/hertz/history; fix wall/gran hooke, hooke/history, hertz/history; or granular",
+        ));
+    }
+    let kn = c.number(k + 1, "Kn")?;
+    let gamma_n = c.number(k + 3, "gamma_n")?;
+    for (j, what) in [(k + 2, "Kt"), (k + 4, "gamma_t")] {
+        if c.word(j, what)? != "NULL" {
+            c.number(j, what)?;
+        }
+    }
+    c.number(k + 5, "xmu")?;
+    let flag = c.number(k + 6, "dampflag")?;
+    #[allow(clippy::float_cmp)] // a flag is written 0 or 1
+    if flag != 0.0 && flag != 1.0 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("dampflag {flag}"),
+            &format!("dampflag 0 or 1 ({form})"),
+        ));
+    }
+    if kn <= 0.0 || gamma_n < 0.0 {
+        return Err(DeckError::unsupported(
+            &c.at,
+            format!("Kn {kn}, gamma_n {gamma_n}"),
+            "Kn > 0 and gamma_n >= 0 (LAMMPS stops otherwise: \"Illegal pair_style command\")",
+        ));
+    }
+    let mut end = k + 7;
+    let limit_damping = c.words.get(end).is_some_and(|w| w == "limit_damping");
+    if limit_damping {
+        end += 1;
+    }
+    let hertz = style == "hertz/history";
+    let model = GranularModel {
+        normal: if hertz { "hertz" } else { "hooke" }.into(),
+        values: vec![kn, gamma_n],
+        damping: if hertz {
+            "viscoelastic"
+        } else {
+            "mass_velocity"
+        }
+        .into(),
+        limit_damping,
+        tangential: format!("classic {style}"),
+        rolling: String::new(),
+        twisting: String::new(),
+        words: c.words[k..end].to_vec(),
+    };
+    Ok((model, end))
+}
+
+/// A model as the table names it: the classic style by its own name and the granular model
+/// it equals, a granular model by its normal and damping models.
+pub(super) fn model_name(model: &GranularModel) -> String {
+    match model.tangential.strip_prefix("classic ") {
+        Some(style) => format!("{style} (= {} damping {})", model.normal, model.damping),
+        None => format!("{} damping {}", model.normal, model.damping),
+    }
 }

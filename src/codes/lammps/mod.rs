@@ -36,6 +36,7 @@ pub(crate) mod deck;
 pub(crate) mod granular;
 pub(crate) mod mixing;
 pub mod paper;
+pub(crate) mod plugin_coeffs;
 pub mod probe;
 
 pub(crate) use build_2025::Lammps2025;
