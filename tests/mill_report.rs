@@ -202,3 +202,17 @@ fn the_books_mill_figures_are_drawn_from_the_stored_example_run() {
         .unwrap();
     }
 }
+
+/// The spectra's note names the wall fix LIGGGHTS records only where the spectra have wall
+/// rows: a mill whose wall spectra were left out (its mesh walls come after its first run) says
+/// nothing of a wall it did not record.
+#[test]
+fn the_spectra_note_names_the_wall_only_where_wall_rows_are() {
+    let mut mill = stored_example();
+    let wall_note = "the wall is the last mesh wall/gran fix";
+    assert!(mill.spectra.iter().any(|s| s.pair.ends_with("-wall")));
+    assert!(export(&mill, Format::Table).unwrap().contains(wall_note));
+    mill.spectra.retain(|s| !s.pair.ends_with("-wall"));
+    assert!(!mill.spectra.is_empty());
+    assert!(!export(&mill, Format::Table).unwrap().contains(wall_note));
+}

@@ -784,9 +784,16 @@ impl Summary for MillReport {
                     s.verdict.to_string(),
                 ]);
             }
-            spectra.notes = vec![
-                "a contact is seen only every recorded step: one shorter than the interval can be missed, its v_n is taken up to one interval into it and its peak is the largest force recorded; the wall is the last mesh wall/gran fix (LIGGGHTS's wall/gran/local records that one); standard errors are Poisson's for one run (they leave out that one window sees one arrangement of the charge), from the runs' spread with --seeds".into(),
-            ];
+            // The wall is named only where the spectra have wall rows: a deck whose mesh walls
+            // come after its first run has none (LIGGGHTS records no wall contacts there).
+            let wall = if self.spectra.iter().any(|s| s.pair.ends_with("-wall")) {
+                "; the wall is the last mesh wall/gran fix (LIGGGHTS's wall/gran/local records that one)"
+            } else {
+                ""
+            };
+            spectra.notes = vec![format!(
+                "a contact is seen only every recorded step: one shorter than the interval can be missed, its v_n is taken up to one interval into it and its peak is the largest force recorded{wall}; standard errors are Poisson's for one run (they leave out that one window sees one arrangement of the charge), from the runs' spread with --seeds"
+            )];
             sections.push(spectra);
         }
         let mut runs = Section::new(
