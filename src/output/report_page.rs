@@ -6,6 +6,22 @@ use serde::Serialize;
 
 use super::OutputError;
 
+/// One figure of a report: the SVG, the data behind it as CSV, and how to reproduce it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ReportFigure {
+    /// File stem (`<id>.svg`, `<id>.csv`).
+    pub id: String,
+    /// Title.
+    pub title: String,
+    /// What it shows.
+    pub caption: String,
+    /// The figure.
+    pub svg: String,
+    /// Its data.
+    pub csv: String,
+    /// The command that reproduces it.
+    pub command: String,
+}
 const HTML: &str = include_str!("templates/report.html");
 const MARKDOWN: &str = include_str!("templates/report.md");
 

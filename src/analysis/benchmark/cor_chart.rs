@@ -5,11 +5,11 @@
 use serde::Serialize;
 
 use super::{BenchmarkError, BenchmarkReport, CHUNG_OOI, Quantity};
-use crate::analysis::report::ReportFigure;
 use crate::codes::damping::thornton_damping_ratio;
 use crate::codes::lammps::tsuji_alpha;
 use crate::model::law::DashpotLaw;
 use crate::output::chart::{Chart, Series, Style, chart_svg};
+use crate::output::report_page::ReportFigure;
 use crate::output::{OutputError, csv_string};
 use crate::solve::SolveError;
 use crate::solve::dashpot::accurate_metrics;

@@ -20,10 +20,10 @@ use thiserror::Error;
 pub use contacts::{ContactEvent, ContactSample};
 pub(crate) use report::TRACE_POINTS;
 pub use report::{
-    Estimate, MillRecord, MillReport, MillRun, PowerBalance, ProfilePoint, QuantityRow,
-    SpectrumRow, TracePoint, Verdict, difference,
+    MillRecord, MillReport, MillRun, PowerBalance, ProfilePoint, QuantityRow, SpectrumRow,
+    TracePoint, Verdict, difference,
 };
-pub use stats::MIN_SEEDS;
+pub use stats::{Estimate, MIN_SEEDS};
 
 use crate::codes::deck::DeckError;
 use crate::codes::liggghts::mill::{

@@ -5,7 +5,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::contacts::{ENERGY_BINS_J, FORCE_BINS_N, REST_SPEED, bin};
-use super::stats::{CONFIDENCE, MIN_SEEDS, lag1, t_factor, welch};
+use super::stats::{CONFIDENCE, Estimate, MIN_SEEDS, lag1, t_factor, welch};
 use super::{BLOCKS, DEFAULT_CONTACT_EVERY, MillOptions, RunResult};
 use crate::codes::liggghts::mill::{MillDeck, MillLaw, MillPlan};
 use crate::output::invocation::Invocation;
@@ -13,24 +13,6 @@ use crate::output::{Section, Summary};
 
 /// The quantity of the power draw from the torque balance of the charge's weight.
 pub(crate) const WEIGHT_POWER: &str = "power draw by the torque balance (ω × the weight's torque)";
-
-/// A mean with its standard error.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Estimate {
-    /// The mean.
-    pub mean: f64,
-    /// Its standard error.
-    pub standard_error: f64,
-    /// The degrees of freedom of the standard error: runs − 1 over seeds, blocks − 1 within one
-    /// run, Welch–Satterthwaite's for a difference (`None`: a Poisson count's, taken as normal).
-    #[serde(default)]
-    pub degrees_of_freedom: Option<f64>,
-    /// The lag-1 autocorrelation of the block means the standard error is taken from (one run
-    /// only; `None` over seeds, whose runs are independent): well above zero, the blocks are
-    /// not independent and the standard error is too small.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub lag1_autocorrelation: Option<f64>,
-}
 
 /// Whether a difference stands out of its uncertainty.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -3,9 +3,26 @@
 //! of one run's block means, which says whether the blocks are as independent as their
 //! standard error assumes.
 
+use serde::{Deserialize, Serialize};
 use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 
-use super::report::Estimate;
+/// A mean with its standard error.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Estimate {
+    /// The mean.
+    pub mean: f64,
+    /// Its standard error.
+    pub standard_error: f64,
+    /// The degrees of freedom of the standard error: runs − 1 over seeds, blocks − 1 within one
+    /// run, Welch–Satterthwaite's for a difference (`None`: a Poisson count's, taken as normal).
+    #[serde(default)]
+    pub degrees_of_freedom: Option<f64>,
+    /// The lag-1 autocorrelation of the block means the standard error is taken from (one run
+    /// only; `None` over seeds, whose runs are independent): well above zero, the blocks are
+    /// not independent and the standard error is too small.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lag1_autocorrelation: Option<f64>,
+}
 
 /// The two-sided confidence a difference must clear to be resolved: 95 %.
 pub(crate) const CONFIDENCE: f64 = 0.95;

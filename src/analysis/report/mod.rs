@@ -29,26 +29,10 @@ use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::shipped::shipped_case;
 use crate::output::chart::{Chart, Series, Style, chart_svg, map_svg};
 use crate::output::invocation::Invocation;
+pub use crate::output::report_page::ReportFigure;
 use crate::output::{Format, OutputError, Section, Summary, csv_string, export};
 use crate::solve::paper::{self, Settings};
 use crate::solve::{Method, SolveError};
-
-/// One figure: the SVG, the data behind it as CSV, and how to reproduce it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct ReportFigure {
-    /// File stem (`<id>.svg`, `<id>.csv`).
-    pub id: String,
-    /// Title.
-    pub title: String,
-    /// What it shows.
-    pub caption: String,
-    /// The figure.
-    pub svg: String,
-    /// Its data.
-    pub csv: String,
-    /// The command that reproduces it.
-    pub command: String,
-}
 
 /// One table: formatted cells, the data behind it, and how to reproduce it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
