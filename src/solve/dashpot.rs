@@ -501,6 +501,25 @@ mod tests {
     use super::*;
     use crate::model::trajectory::trajectory_metrics;
 
+    /// A law whose force is not a number anywhere (a missing modulus) never turns the body:
+    /// the accurate solve says so instead of growing its step without end.
+    #[test]
+    fn a_law_without_force_never_turns_and_says_so() {
+        let law = DashpotLaw {
+            mass: 0.016,
+            stiffness: f64::NAN,
+            exponent: 1.5,
+            damping: f64::NAN,
+            damping_exponent: 0.25,
+            clamp_attractive: true,
+        };
+        let error = accurate_metrics(&law, 1.0, 1e-12).expect_err("no contact end");
+        assert!(
+            matches!(error, crate::solve::SolveError::NoTurn { .. }),
+            "{error}"
+        );
+    }
+
     fn paper(exponent: f64) -> CodeLaw {
         CodeLaw::Paper(PaperLaw {
             mass: 0.26,

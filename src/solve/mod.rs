@@ -39,6 +39,15 @@ pub enum SolveError {
         /// Dimensionless time reached.
         time: f64,
     },
+    /// The adaptive step grew without bound: nothing stops the bodies (a law whose force is
+    /// zero or not a number everywhere), so the contact would never turn.
+    #[error("{method}: the contact never turns (no force stops the bodies by τ = {time:e})")]
+    NoTurn {
+        /// Method name.
+        method: &'static str,
+        /// Dimensionless time reached.
+        time: f64,
+    },
     /// A fixed step in seconds beyond the method's stability limit for the case.
     #[error(
         "{method}: time step {timestep:e} s gives ω·Δt = {omega_dt:.4}, above the stability limit {limit} of the method (ω = {omega:e} rad/s); use Δt < {max_timestep:e} s"
@@ -172,6 +181,13 @@ where
         }
         if h <= t.abs().max(1.0) * 1e-15 {
             return Err(SolveError::StepUnderflow {
+                method: "march",
+                time: t,
+            });
+        }
+        // A step that overflows would be rejected and halved from infinity forever.
+        if !(t + h).is_finite() {
+            return Err(SolveError::NoTurn {
                 method: "march",
                 time: t,
             });

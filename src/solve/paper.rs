@@ -959,6 +959,12 @@ impl Lanes {
                 time: self.t[l],
             }));
         }
+        if !(self.t[l] + self.h[l]).is_finite() {
+            return Some(Err(SolveError::NoTurn {
+                method: "march",
+                time: self.t[l],
+            }));
+        }
         if self.unloading[l]
             && self.v[l] < 0.0
             && series.within_reach_of_end(self.k[l], self.y[l], self.v[l], self.a[l])

@@ -333,6 +333,9 @@ fn march4(
         if h <= 1e-15 * t.max(1.0) {
             return Err(SolveError::StepUnderflow { method, time: t });
         }
+        if !(t + h).is_finite() {
+            return Err(SolveError::NoTurn { method, time: t });
+        }
         let (next, error, calls) = stepper.step(f, &y, h);
         stats.rhs_evaluations += calls;
         if error > 1.0 || !next.iter().all(|x| x.is_finite()) {
