@@ -202,3 +202,39 @@ proptest! {
         prop_assert!(read.is_ok(), "{} panicked", dump.display());
     }
 }
+
+/// A dump that names a material's attribute as set but gives it no value (found by the
+/// `deck_readers` fuzz target) is refused in one line naming the attribute, not a panic.
+#[test]
+fn a_set_attribute_without_a_value_is_refused() {
+    let path = root().join("tests/data/deck/yade/base.dump.json");
+    let mut dump: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let material = &mut dump["materials"][0];
+    let key = material["changed"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|k| k.as_str().unwrap().to_string())
+        .find(|k| k != "id")
+        .expect("the seed's material sets an attribute");
+    material["attributes"]
+        .as_object_mut()
+        .unwrap()
+        .remove(&key)
+        .expect("the attribute has a value in the seed");
+    let read = catch_unwind(AssertUnwindSafe(|| {
+        YadeDeck::read_dump(
+            Path::new("script.py"),
+            &dump.to_string(),
+            &DeckOptions::default(),
+        )
+    }))
+    .expect("no panic");
+    let error = read.expect_err("refused").to_string();
+    assert!(
+        error.contains(&format!("{key}: set in the dump but given no value")),
+        "{error}"
+    );
+    assert!(!error.contains('\n'), "{error}");
+}

@@ -153,7 +153,18 @@ impl Material {
     pub(super) fn python(&self) -> Result<String, DeckError> {
         let mut args = Vec::new();
         for key in self.changed.iter().filter(|k| *k != "id") {
-            let value = &self.values[key];
+            // A dump that names a set attribute without its value was not written by the
+            // reading script (it writes both from one object): refused, not indexed blindly.
+            let Some(value) = self.values.get(key) else {
+                return Err(DeckError::unsupported(
+                    self.at.clone(),
+                    format!(
+                        "{}'s {key}: set in the dump but given no value",
+                        self.class.name()
+                    ),
+                    "a dump as YADE's reading script writes it (every attribute it sets has a value)",
+                ));
+            };
             let literal = python(value).ok_or_else(|| {
                 DeckError::unsupported(
                     self.at.clone(),
@@ -251,7 +262,13 @@ impl Functor {
     pub(super) fn python(&self) -> Result<String, DeckError> {
         let mut args = Vec::new();
         for key in &self.dump.changed {
-            let value = &self.dump.attributes[key];
+            let Some(value) = self.dump.attributes.get(key) else {
+                return Err(DeckError::unsupported(
+                    self.at.clone(),
+                    format!("{}'s {key}: set in the dump but given no value", self.class),
+                    "a dump as YADE's reading script writes it (every attribute it sets has a value)",
+                ));
+            };
             if matches!(value, Attribute::Null) {
                 continue;
             }
