@@ -423,6 +423,24 @@ fn the_binary_refuses_what_it_cannot_run() {
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("not yet run by the DEM codes"), "{stderr}");
+    assert!(stderr.contains("tangential_velocity = 3"), "{stderr}");
+    // A spin alone: the line names the key the case sets, not one it leaves out.
+    let spin = dir.path().join("spin.toml");
+    // Top-level keys go before the case's first table.
+    let text = "angular_velocity = -300.0\nfriction_coefficient = 0.3\n".to_string()
+        + &std::fs::read_to_string(common::root().join("cases/ball_plate.toml")).unwrap();
+    std::fs::write(&spin, text).unwrap();
+    let out = assert_cmd::Command::cargo_bin("millimpact")
+        .unwrap()
+        .args(["compare", spin.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("angular_velocity = -300") && !stderr.contains("tangential_velocity"),
+        "{stderr}"
+    );
 }
 
 /// A fixed step the normal half takes but the tangential spring does not is refused (exit 2),

@@ -134,15 +134,25 @@ impl Case {
     pub fn refuse_oblique(&self, what: &str) -> Result<(), CaseError> {
         match &self.oblique {
             None => Ok(()),
-            Some(o) => Err(CaseError::new(
-                &self.path.display().to_string(),
-                "tangential_velocity",
-                &o.tangential_velocity.to_string(),
-                &format!(
-                    "an oblique case is not yet run by the DEM codes ({what} takes normal \
+            Some(o) => {
+                // The key the case sets that makes it oblique: a spin alone names the spin.
+                let (key, value) = if o.tangential_velocity != 0.0 {
+                    ("tangential_velocity", o.tangential_velocity)
+                } else if o.angular_velocity != 0.0 {
+                    ("angular_velocity", o.angular_velocity)
+                } else {
+                    ("friction_coefficient", o.friction_coefficient)
+                };
+                Err(CaseError::new(
+                    &self.path.display().to_string(),
+                    key,
+                    &value.to_string(),
+                    &format!(
+                        "an oblique case is not yet run by the DEM codes ({what} takes normal \
                      impacts only; `millimpact run` integrates it)"
-                ),
-            )),
+                    ),
+                ))
+            }
         }
     }
 
