@@ -8,6 +8,8 @@
 #     book's examples; the examples are built), which needs no DEM code: run by
 #     scripts/fast-tier.sh with every DEM code and tool replaced by a tripwire, it fails if one
 #     of them is started;
+#   - the fuzz targets (scripts/fuzz.sh: the case reader and the four deck readers on arbitrary
+#     input, a minute each, from their seeds; a panic or an input that does not end fails);
 #   - the live tier, `cargo test --release -- --ignored`: the tests marked
 #     `#[ignore = "live: ..."]`, which run LIGGGHTS, YADE, both LAMMPS builds and Kratos, GNU
 #     parallel, Slurm and Chromium, and fail (not skip) when one is missing;
@@ -36,6 +38,7 @@ find src tests benches examples fuzz -name target -prune -o -name '*.rs' -print0
 cargo clippy --release --all-targets -- -D warnings \
     -W clippy::cast_possible_truncation -W clippy::cast_sign_loss -W clippy::float_cmp
 bash scripts/fast-tier.sh
+bash scripts/fuzz.sh
 cargo test --release -- --ignored
 cargo run --release --example regression_test
 "$mdbook" build docs

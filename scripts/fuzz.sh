@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The fuzz targets (fuzz/fuzz_targets/: the case reader and the four deck readers) run for a
+# fixed time each, from their seeds (fuzz/corpus/<target>/): a panic, an input that runs longer
+# than a few seconds, or one that takes gigabytes fails the run, and libFuzzer's reproducer is
+# kept in fuzz/artifacts/<target>/ (`cargo fuzz run <target> <that file>` runs it again).
+#
+# - cargo-fuzz is installed once (pinned, into cargo's bin folder); the targets are built with
+#   the stable toolchain (RUSTC_BOOTSTRAP=1 lets it take the sanitizer flags cargo-fuzz passes).
+# - The instrumented build is kept outside the clone, so a fresh clone builds only what changed:
+#   ${XDG_CACHE_HOME:-$HOME/.cache}/millimpact/fuzz-target (MILLIMPACT_CACHE_DIR replaces
+#   ${XDG_CACHE_HOME:-$HOME/.cache}/millimpact, as for the LAMMPS plugin).
+# - What libFuzzer finds on the way is written to a scratch corpus, never into the clone.
+# - MILLIMPACT_FUZZ_SECONDS sets each target's time (default 60).
+set -euo pipefail
+cd "$(dirname "$0")/../fuzz"
+
+seconds="${MILLIMPACT_FUZZ_SECONDS:-60}"
+cargo_fuzz="$(command -v cargo-fuzz || echo "${CARGO_HOME:-$HOME/.cargo}/bin/cargo-fuzz")"
+if [ ! -x "$cargo_fuzz" ]; then
+    cargo install cargo-fuzz --version 0.13.2 --locked
+fi
+export CARGO_TARGET_DIR="${MILLIMPACT_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}/millimpact}/fuzz-target"
+export RUSTC_BOOTSTRAP=1
+# Both readers reach the DEM codes' names only through their environment variables: a LAMMPS
+# deck's reader asks its build for its conventions where a binary is found, and a fuzz run
+# starts no code.
+export MILLIMPACT_LAMMPS_BINARY=/nonexistent MILLIMPACT_LAMMPS_2025_BINARY=/nonexistent
+
+scratch="$(mktemp -d)"
+trap 'rm -rf "$scratch"' EXIT
+for target in case_reader deck_readers; do
+    mkdir -p "$scratch/$target"
+    echo "fuzz: $target for ${seconds} s"
+    cargo fuzz run -O "$target" "$scratch/$target" "corpus/$target" -- \
+        -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1
+done
