@@ -491,3 +491,117 @@ fn live_a_spinning_pair_slides_as_the_closed_form_on_one_and_two_processes() {
         assert!(misses.iter().all(|&x| x < bound), "{label}: {misses:?}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The deck reader (no binary needed).
+
+/// The shipped plugin deck with `edit` applied, written to a scratch file named `in.paper`.
+fn edited_mill(edit: impl Fn(String) -> String) -> (tempfile::TempDir, std::path::PathBuf) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let text =
+        std::fs::read_to_string(root.join("tests/data/deck/lammps-paper/in.paper_mill")).unwrap();
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("in.paper");
+    std::fs::write(&path, edit(text)).unwrap();
+    (dir, path)
+}
+
+/// A deck whose plugin lines carry the tangential words is read, not refused: each pair keeps
+/// the paper's law of its normal coefficients, says which tangential force its line gives,
+/// and the impacts carry the lines as written.
+#[test]
+fn a_deck_with_the_plugins_tangential_words_is_read() {
+    let (_dir, path) = edited_mill(|t| {
+        t.replace(
+            "pair_coeff      1 1 0.35 ${steel_E} 0.3\n",
+            "pair_coeff      1 1 0.35 ${steel_E} 0.3 tangential mindlin 0.4\n",
+        )
+        .replace(
+            "pair_coeff      2 2 0.30 ${steel_E} 0.3\n",
+            "pair_coeff      2 2 0.30 ${steel_E} 0.3 tangential linear 2e6 0.3\n",
+        )
+        .replace(
+            "wall/paper hertz 0.25 ${steel_E} 0.3 ${steel_E} 0.3 zplane",
+            "wall/paper hertz 0.25 ${steel_E} 0.3 ${steel_E} 0.3 tangential mindlin 0.5 zplane",
+        )
+    });
+    let (_, deck) = millimpact::analysis::deck::read_deck(
+        &path,
+        None,
+        &millimpact::codes::deck::DeckOptions::default(),
+    )
+    .unwrap();
+    use millimpact::codes::deck::TypeRef::{Type, Wall};
+    let traps = |types: [millimpact::codes::deck::TypeRef; 2]| {
+        let c = deck.contacts.iter().find(|c| c.types == types).unwrap();
+        let millimpact::model::law::CodeLaw::Paper(law) = c.law else {
+            panic!("{:?}", c.law)
+        };
+        (law.loss_coefficient, c.traps.join(" | "))
+    };
+    let (eta, t) = traps([Type(1), Type(1)]);
+    assert!((eta - 0.35).abs() < 1e-15);
+    assert!(
+        t.contains("tangential mindlin 0.4: k_t = 8 G* sqrt(R* δ)"),
+        "{t}"
+    );
+    let (eta, t) = traps([Type(2), Type(2)]);
+    assert!((eta - 0.30).abs() < 1e-15);
+    assert!(t.contains("tangential linear 2000000 0.3"), "{t}");
+    let (_, t) = traps([Type(1), Wall]);
+    assert!(t.contains("tangential mindlin 0.5"), "{t}");
+    let (_, t) = traps([Type(1), Type(3)]);
+    assert!(!t.contains("tangential"), "{t}");
+    assert!(
+        deck.transplant.walls[0].contains("tangential mindlin 0.5 zplane 0 NULL"),
+        "{:?}",
+        deck.transplant.walls
+    );
+}
+
+/// Bad tangential words are refused before a run, in one line naming the file and line, the
+/// word and its value, and what is allowed (exit 2).
+#[test]
+fn bad_tangential_words_are_refused_in_one_line() {
+    let pair = "pair_coeff      2 3 0.50 ${steel_E} 0.3 ${alumina_E} 0.22";
+    let cases: [(&str, String, &str); 5] = [
+        (
+            "a negative μ",
+            format!("{pair} tangential mindlin -0.2"),
+            "in.paper:22: tangential MU = -0.2; supported: a finite MU >= 0",
+        ),
+        (
+            "a zero k_t",
+            format!("{pair} tangential linear 0 0.3"),
+            "in.paper:22: tangential KT = 0; supported: KT > 0",
+        ),
+        (
+            "an unknown model",
+            format!("{pair} tangential mindlin/rescale 0.3"),
+            "in.paper:22: tangential model `mindlin/rescale`; supported: tangential mindlin MU, or tangential linear KT MU",
+        ),
+        (
+            "a missing μ",
+            format!("{pair} tangential linear 1e6"),
+            "in.paper:22: `tangential linear 1e6` (3 words); supported: tangential mindlin MU, or tangential linear KT MU",
+        ),
+        (
+            "μ not a number",
+            format!("{pair} tangential mindlin rough"),
+            "in.paper:22: tangential MU `rough` is not a number",
+        ),
+    ];
+    for (what, line, expected) in cases {
+        let (_dir, path) = edited_mill(|t| t.replace(pair, &line));
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_millimpact"))
+            .args(["deck"])
+            .arg(&path)
+            .args(["--impact-velocity", "2"])
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{what}");
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(err.lines().count(), 1, "{what}: {err}");
+        assert!(err.contains(expected), "{what}: {err}");
+    }
+}
