@@ -608,3 +608,116 @@ fn bad_tangential_words_are_refused_in_one_line() {
         assert!(err.contains(expected), "{what}: {err}");
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// A poured bed with friction: many contacts per sphere, atoms changing process.
+
+/// 245 glass-like spheres (r 5 mm, ρ 2500, E 100 MPa, ν 0.3, η 0.5) thrown sideways into a
+/// box of wall/paper planes under gravity, `tangential` words on the pair and the walls (the
+/// floor with a linear spring); kinetic and rotational energy at 0.1 s and 0.6 s.
+fn bed_deck(tangential: bool) -> String {
+    let (mindlin, linear) = if tangential {
+        ("tangential mindlin 0.5", "tangential linear 2e4 0.5")
+    } else {
+        ("", "")
+    };
+    let wall = "wall/paper hertz 0.5 1e8 0.3 1e8 0.3";
+    format!(
+        "plugin          load paperplugin.so\n\
+         units           si\n\
+         atom_style      sphere\n\
+         atom_modify     map array\n\
+         boundary        f f f\n\
+         newton          ${{newton}}\n\
+         processors      * 1 1\n\
+         comm_modify     vel yes\n\
+         region          box block -0.05 0.05 -0.05 0.05 0 0.2 units box\n\
+         create_box      1 box\n\
+         lattice         sc 0.012\n\
+         region          fill block -0.04 0.04 -0.04 0.04 0.012 0.07 units box\n\
+         create_atoms    1 region fill\n\
+         displace_atoms  all random 0.001 0.001 0.001 4821 units box\n\
+         set             type 1 diameter 0.01\n\
+         set             type 1 density 2500\n\
+         velocity        all set 0.3 0 -0.5 units box\n\
+         pair_style      paper\n\
+         pair_coeff      * * 0.5 1e8 0.3 {mindlin}\n\
+         fix             xwalls all {wall} {mindlin} xplane -0.05 0.05\n\
+         fix             ywalls all {wall} {mindlin} yplane -0.05 0.05\n\
+         fix             floor all {wall} {linear} zplane 0 NULL\n\
+         fix             gravity all gravity 9.81 vector 0 0 -1\n\
+         fix             integrate all nve/sphere\n\
+         neighbor        0.002 bin\n\
+         neigh_modify    delay 0\n\
+         compute         rke all erotate/sphere\n\
+         thermo_style    custom step atoms ke c_rke\n\
+         timestep        2e-5\n\
+         thermo          5000\n\
+         run             5000\n\
+         print           \"BED 0.1 $(ke:%.10g) $(c_rke:%.10g) $(count(all))\"\n\
+         run             25000\n\
+         print           \"BED 0.6 $(ke:%.10g) $(c_rke:%.10g) $(count(all))\"\n\
+         write_dump      all custom final.txt id proc x vx vy vz omegax omegay omegaz modify format float %.17g\n"
+    )
+}
+
+/// The bed's printed energies: `[(kinetic, rotational, atoms) at 0.1 s, at 0.6 s]`, J.
+fn bed(tangential: bool, newton: &str, processes: u32) -> [(f64, f64, f64); 2] {
+    let executable = LammpsPaper.locate().unwrap();
+    let dir = tempfile::TempDir::new().unwrap();
+    std::fs::write(dir.path().join("bed.in"), bed_deck(tangential)).unwrap();
+    let venv = executable.program.ancestors().nth(5).unwrap();
+    let out = Command::new(venv.join("bin/mpiexec"))
+        .envs(executable.env.iter().map(|(k, v)| (k, v)))
+        .args(["-n", &processes.to_string()])
+        .arg(&executable.program)
+        .args(["-in", "bed.in", "-var", "newton", newton])
+        .args(["-log", "none", "-echo", "none", "-nocite"])
+        .current_dir(dir.path())
+        .env("TMPDIR", dir.path())
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "bed, newton {newton}, {processes} processes: {}{text}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let at = |time: &str| {
+        let prefix = format!("BED {time} ");
+        let line = text
+            .lines()
+            .find(|l| l.starts_with(&prefix))
+            .unwrap_or_else(|| panic!("no `{prefix}` line: {text}"));
+        let w: Vec<f64> = line[prefix.len()..]
+            .split_whitespace()
+            .map(|x| x.parse().unwrap())
+            .collect();
+        (w[0], w[1], w[2])
+    };
+    [at("0.1"), at("0.6")]
+}
+
+/// The bed with friction runs in one and two processes, newton_pair on and off (every sphere
+/// kept, several history partners each, atoms crossing between processes): friction spins the
+/// spheres (rotational energy above a tenth of the translational at 0.1 s) and the bed settles
+/// (less than 1 % of the 0.1 s kinetic energy left at 0.6 s, spin included); without the words
+/// nothing spins at all.
+#[test]
+#[ignore = "live: runs LAMMPS 2025 with the paper plugin (bash scripts/test.sh)"]
+fn live_a_poured_bed_with_friction_spins_and_settles_on_one_and_two_processes() {
+    require_build();
+    for (newton, processes) in [("on", 1), ("off", 1), ("on", 2), ("off", 2)] {
+        let [(k0, r0, n0), (k1, r1, n1)] = bed(true, newton, processes);
+        let label = format!("newton {newton}, {processes} processes");
+        eprintln!("bed, {label}: 0.1 s {k0:e} J + {r0:e} J spin; 0.6 s {k1:e} J + {r1:e} J spin");
+        assert!(
+            (n0 - 245.0).abs() < 0.5 && (n1 - 245.0).abs() < 0.5,
+            "{label}: {n0} {n1} atoms"
+        );
+        assert!(r0 > 0.1 * k0, "{label}: {r0} J spin of {k0} J");
+        assert!(k1 + r1 < 1e-2 * (k0 + r0), "{label}: {k1} + {r1} J left");
+    }
+    let [(_, r0, _), (_, r1, _)] = bed(false, "on", 1);
+    assert_eq!((r0.to_bits(), r1.to_bits()), (0, 0), "frictionless");
+}
