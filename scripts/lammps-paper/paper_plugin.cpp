@@ -290,7 +290,10 @@ class PairPaper : public Pair {
 
   ~PairPaper() override
   {
-    if (history) modify->delete_fix(history->id);
+    if (history)
+      modify->delete_fix(history_id());
+    else if (placeholder)
+      modify->delete_fix(history_id() + "_DUMMY");
     if (allocated) {
       memory->destroy(setflag);
       memory->destroy(cutsq);
@@ -324,6 +327,14 @@ class PairPaper : public Pair {
                  linear ? "eta kn" : "eta E nu [E2 nu2]", normal);
     Tangential t;
     if (normal < narg) t = read_tangential(lmp, error, style, normal, narg, arg, !linear);
+    // The first line with a tangential force reserves the history fix's place among the fixes
+    // (before a fix that migrates atoms in pre_exchange, such as fix balance, which the history
+    // must precede); the fix itself is made at the run's start, with the newton setting then
+    // in force, as the granular pair styles do.
+    if (t.model != TANGENTIAL_NONE && !history && !placeholder) {
+      modify->add_fix(history_id() + "_DUMMY all DUMMY");
+      placeholder = true;
+    }
     if (!allocated) allocate();
     int ilo, ihi, jlo, jhi;
     utils::bounds(FLERR, arg[0], 1, atom->ntypes, ilo, ihi, error);
@@ -382,11 +393,14 @@ class PairPaper : public Pair {
         error->all(FLERR, "{}: a tangential force needs atom attributes omega and torque", style);
       neighbor->add_request(this, NeighConst::REQ_SIZE | NeighConst::REQ_HISTORY);
       if (!history) {
-        const std::string id = "PAPER_NEIGH_HISTORY" + std::to_string(instance_me);
-        history = static_cast<NeighHistoryHead *>(modify->add_fix(id + " all NEIGH_HISTORY 3"));
-        if (strcmp(history->style, "NEIGH_HISTORY") != 0)
-          error->all(FLERR, "{}: fix {} is {}, not LAMMPS' NEIGH_HISTORY", style, id,
-                     history->style);
+        const std::string command = history_id() + " all NEIGH_HISTORY 3";
+        Fix *made = placeholder ? modify->replace_fix(history_id() + "_DUMMY", command, 1)
+                                : modify->add_fix(command);
+        placeholder = false;
+        if (strcmp(made->style, "NEIGH_HISTORY") != 0)
+          error->all(FLERR, "{}: fix {} is {}, not LAMMPS' NEIGH_HISTORY", style, history_id(),
+                     made->style);
+        history = static_cast<NeighHistoryHead *>(made);
         history->pair = this;
       }
     } else {
@@ -472,8 +486,10 @@ class PairPaper : public Pair {
   // The tangential force of each pair of types: model, linear k_t, mu, G* (Pa).
   int **tmodel = nullptr;
   double **tkt = nullptr, **tmu = nullptr, **shear = nullptr;
-  bool use_history = false;
+  bool use_history = false, placeholder = false;
   NeighHistoryHead *history = nullptr;
+
+  std::string history_id() const { return "PAPER_NEIGH_HISTORY" + std::to_string(instance_me); }
 
   /* compute() where some pair of types has a tangential force: the normal force as without
      it, then each touching pair's history spring; flags and shear displacement per neighbour
