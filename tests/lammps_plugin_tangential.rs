@@ -724,3 +724,67 @@ fn live_a_poured_bed_with_friction_spins_and_settles_on_one_and_two_processes() 
     let [(_, r0, _), (_, r1, _)] = bed(false, "on", 1);
     assert_eq!((r0.to_bits(), r1.to_bits()), (0, 0), "frictionless");
 }
+
+/// The plugin's tangential refusals stop LAMMPS with its own ERROR line (exit status 1): Mindlin
+/// on a linear normal law, KT <= 0, μ < 0, a word missing, an unknown model, on the pair and on
+/// the wall.
+#[test]
+#[ignore = "live: runs LAMMPS 2025 with the paper plugin (bash scripts/test.sh)"]
+fn live_the_plugins_tangential_refusals_are_lammps_errors() {
+    require_build();
+    let pair = |style: &str, coeff: &str| {
+        head(0.01, [(0.003, 0.0), (-0.003, 0.0)])
+            + &format!("pair_style      {style}\npair_coeff      * * {coeff}\n")
+            + &tail(1e-7, 1)
+    };
+    let wall = |words: &str| {
+        head(0.01, [(0.003, 0.003), (-0.003, 0.003)])
+            + &format!("fix             w all wall/paper {words} zplane 0 NULL\n")
+            + &tail(1e-7, 1)
+    };
+    let cases = [
+        (
+            pair("paper/linear", "0.1 1e6 tangential mindlin 0.4"),
+            "ERROR: pair paper/linear: tangential mindlin needs the bodies' E and nu",
+        ),
+        (
+            pair("paper", "0.1 2e11 0.3 tangential linear 0 0.4"),
+            "ERROR: pair paper: tangential KT must be positive, got 0",
+        ),
+        (
+            pair("paper", "0.1 2e11 0.3 tangential mindlin -0.4"),
+            "ERROR: pair paper: tangential MU must be finite and >= 0, got -0.4",
+        ),
+        (
+            pair("paper", "0.1 2e11 0.3 tangential linear 1e6"),
+            "ERROR: pair paper: tangential linear KT MU (got 3 words)",
+        ),
+        (
+            wall("hertz 0.1 2e11 0.3 2e11 0.3 tangential history 0.4"),
+            "ERROR: fix wall/paper: unknown tangential model history",
+        ),
+        (
+            wall("linear 0.1 1e6 tangential mindlin 0.4"),
+            "ERROR: fix wall/paper: tangential mindlin needs the bodies' E and nu",
+        ),
+    ];
+    let executable = LammpsPaper.locate().unwrap();
+    for (deck, wanted) in cases {
+        let dir = tempfile::TempDir::new().unwrap();
+        std::fs::write(dir.path().join("impact.in"), &deck).unwrap();
+        let out = executable
+            .command()
+            .args(["-in", "impact.in", "-var", "newton", "on"])
+            .args(["-log", "none", "-echo", "none", "-nocite"])
+            .current_dir(dir.path())
+            .env("TMPDIR", dir.path())
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert_eq!(out.status.code(), Some(1), "{wanted}: {text}");
+        assert!(
+            text.lines().any(|l| l.starts_with(wanted)),
+            "{wanted}: {text}"
+        );
+    }
+}
