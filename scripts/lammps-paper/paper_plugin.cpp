@@ -506,7 +506,8 @@ class PairPaper : public Pair {
     const int inum = list->inum;
     const int *ilist = list->ilist, *numneigh = list->numneigh;
     int **firstneigh = list->firstneigh;
-    if (history->nlocal_neigh != nlocal || history->nall_neigh != nlocal + atom->nghost)
+    if (history->pair != this || history->nlocal_neigh != nlocal ||
+        history->nall_neigh != nlocal + atom->nghost)
       error->one(FLERR,
                  "{}: LAMMPS' neighbour history does not have the layout this plugin was written "
                  "for (LAMMPS 2025); rebuild the plugin against this LAMMPS",
