@@ -24,6 +24,11 @@ pub enum OtherBallMotion {
     /// The point mirror of the ball through the contact point: centre at `−tangential_velocity`
     /// and the same spin vector (so the slip of the contact doubles for equal balls).
     Opposed,
+    /// The mirror image of the ball in the contact plane: centre at `+tangential_velocity` and
+    /// the opposite spin vector, so that for equal balls both surfaces move together at the
+    /// contact and nothing slips (Chung & Ooi's test 7: two spheres spinning in opposite
+    /// senses).
+    Mirrored,
 }
 
 /// The tangential spring of the law.
@@ -159,6 +164,10 @@ impl TangentialBodies {
                     OtherBallMotion::Opposed => PlaneMotion {
                         tangential_velocity: -oblique.tangential_velocity,
                         angular_velocity: oblique.angular_velocity,
+                    },
+                    OtherBallMotion::Mirrored => PlaneMotion {
+                        tangential_velocity: oblique.tangential_velocity,
+                        angular_velocity: -oblique.angular_velocity,
                     },
                 };
                 Some(TangentialBodies {
