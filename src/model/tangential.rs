@@ -379,6 +379,40 @@ mod tests {
         assert!((after.tangential_velocity - (5.0 * 1.0 + 2.0 * r * -20.0) / 7.0).abs() < 1e-14);
     }
 
+    /// The mirrored other ball's surface moves with the ball's at the contact: two equal balls
+    /// spinning in opposite senses do not slip, whatever their speed along the plane.
+    #[test]
+    fn a_mirrored_ball_does_not_slip() {
+        use crate::model::scene::{Ball, Material};
+        let ball = Ball {
+            radius: 0.1,
+            density: 2700.0,
+            material: Material {
+                youngs_modulus: 7e10,
+                poisson_ratio: 0.33,
+            },
+        };
+        let scene = Scene::BallBall { ball, other: ball };
+        let oblique = Oblique {
+            tangential_velocity: 0.3,
+            angular_velocity: 7.0,
+            friction_coefficient: 0.4,
+            other_ball: OtherBallMotion::Mirrored,
+            law: TangentialLaw::default(),
+        };
+        let bodies = TangentialBodies::of(&scene, &oblique).unwrap();
+        assert!(bodies.slip().abs() < 1e-15, "{}", bodies.slip());
+        let opposed = Oblique {
+            other_ball: OtherBallMotion::Opposed,
+            ..oblique
+        };
+        let doubled = TangentialBodies::of(&scene, &opposed).unwrap().slip();
+        assert!(
+            (doubled - 2.0 * (0.3 - 0.1 * 7.0)).abs() < 1e-15,
+            "{doubled}"
+        );
+    }
+
     /// For two equal balls the slip responds to the impulse on the first with 7/2 over M*.
     #[test]
     fn two_balls_share_the_slip_factor() {
