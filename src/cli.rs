@@ -86,8 +86,9 @@ pub enum Command {
     /// Measure a build's conventions with short probe runs (LAMMPS builds): each item with
     /// the measured number, the value each hypothesis predicts, and the verdict.
     Probe(ProbeArgs),
-    /// A published benchmark (Chung & Ooi's normal-impact tests 1–3) by the exact solution,
-    /// the paper's law and each code asked for, every figure against its published value.
+    /// A published benchmark (Chung & Ooi's tests 1–8) by the exact solution, the paper's law,
+    /// the tangential solver and each code asked for, every figure against its published value
+    /// or closed form.
     Benchmark(BenchmarkArgs),
     /// Run a user's whole LIGGGHTS mill deck twice at once: as written and with every contact
     /// line switched between damped Hertz and the paper's law at each pair's COR; the power
@@ -100,7 +101,8 @@ pub enum Command {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum BenchmarkName {
     /// Chung & Ooi (2011), tests 1–3: two spheres head on, a sphere on a rigid plane, the COR
-    /// set from 0.2 to 1.0.
+    /// set from 0.2 to 1.0; tests 4–8: oblique and spinning impacts on a plane and between two
+    /// spheres.
     ChungOoi,
 }
 
@@ -132,7 +134,8 @@ pub struct BenchmarkArgs {
     pub timeout: f64,
     /// Write test 3's COR chart into this folder (it must exist): `cor-chart-<case>.svg` and
     /// `.csv` per material, every source's COR against the COR set, and `cor-chart-typed.svg`
-    /// and `.csv`, each code's law with the COR typed in directly.
+    /// and `.csv`, each code's law with the COR typed in directly; and one chart per test 4–8,
+    /// `oblique-chart-test-<N>.svg` and `.csv`.
     #[arg(long, value_name = "DIR")]
     pub chart: Option<PathBuf>,
 }

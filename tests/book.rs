@@ -192,7 +192,11 @@ fn the_books_cor_chart_is_what_benchmark_draws() {
         "--chart",
         dir.path().to_str().unwrap(),
     ]);
-    for name in ["cor-chart-chung_ooi_3_alumina.svg", "cor-chart-typed.svg"] {
+    for name in [
+        "cor-chart-chung_ooi_3_alumina.svg",
+        "cor-chart-typed.svg",
+        "oblique-chart-test-4.svg",
+    ] {
         let drawn = std::fs::read(dir.path().join(name)).unwrap();
         let path = root().join("docs/src/figures").join(name);
         if std::fs::read(&path).ok().as_deref() == Some(drawn.as_slice()) {

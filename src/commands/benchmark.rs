@@ -8,6 +8,7 @@ use super::CommandOutput;
 use super::render;
 use crate::cli::{BenchmarkArgs, BenchmarkName};
 use millimpact::analysis::benchmark::cor_chart::cor_chart;
+use millimpact::analysis::benchmark::oblique_chart::oblique_figures;
 use millimpact::analysis::benchmark::{
     BenchmarkOptions, CodeRuns, STEPS_PER_CONTACT, STORED_FOLDER, chung_ooi,
 };
@@ -58,7 +59,10 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
         BenchmarkName::ChungOoi => chung_ooi(&options)?,
     };
     if let Some(folder) = &args.chart {
-        let figures = cor_chart(&report)?.figures()?;
+        let mut figures = cor_chart(&report)?.figures()?;
+        let cor_figures = figures.len();
+        figures.extend(oblique_figures(&report)?);
+        let oblique_count = figures.len() - cor_figures;
         let mut files = Vec::new();
         for figure in figures {
             for (extension, text) in [("svg", figure.svg), ("csv", figure.csv)] {
@@ -72,7 +76,7 @@ pub(super) fn benchmark(args: &BenchmarkArgs) -> Result<CommandOutput> {
             super::write_output(path, text.as_bytes(), "COR chart")?;
         }
         warnings.push(format!(
-            "the COR chart of test 3: {} files in {}",
+            "the COR chart of test 3 and the charts of tests 4–8 ({oblique_count} figures): {} files in {}",
             files.len(),
             folder.display()
         ));

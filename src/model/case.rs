@@ -545,11 +545,12 @@ impl Reader<'_> {
             }
             Some(Value::String(s)) if s == "at_rest" => OtherBallMotion::AtRest,
             Some(Value::String(s)) if s == "opposed" => OtherBallMotion::Opposed,
+            Some(Value::String(s)) if s == "mirrored" => OtherBallMotion::Mirrored,
             Some(v) => {
                 return Err(self.error(
                     "other_ball_motion",
                     &v.to_string(),
-                    "must be \"at_rest\" or \"opposed\" (centre at -tangential_velocity, the same spin)",
+                    "must be \"at_rest\", \"opposed\" (centre at -tangential_velocity, the same spin) or \"mirrored\" (centre at tangential_velocity, the opposite spin)",
                 ));
             }
         };

@@ -24,6 +24,11 @@ pub enum OtherBallMotion {
     /// The point mirror of the ball through the contact point: centre at `−tangential_velocity`
     /// and the same spin vector (so the slip of the contact doubles for equal balls).
     Opposed,
+    /// The mirror image of the ball in the contact plane: centre at `+tangential_velocity` and
+    /// the opposite spin vector, so that for equal balls both surfaces move together at the
+    /// contact and nothing slips (Chung & Ooi's test 7: two spheres spinning in opposite
+    /// senses).
+    Mirrored,
 }
 
 /// The tangential spring of the law.
@@ -159,6 +164,10 @@ impl TangentialBodies {
                     OtherBallMotion::Opposed => PlaneMotion {
                         tangential_velocity: -oblique.tangential_velocity,
                         angular_velocity: oblique.angular_velocity,
+                    },
+                    OtherBallMotion::Mirrored => PlaneMotion {
+                        tangential_velocity: oblique.tangential_velocity,
+                        angular_velocity: -oblique.angular_velocity,
                     },
                 };
                 Some(TangentialBodies {
@@ -368,6 +377,40 @@ mod tests {
         let (after, _) = bodies.after(rigid_stick_impulse(m, bodies.slip()));
         assert!((after.tangential_velocity - r * after.angular_velocity).abs() < 1e-14);
         assert!((after.tangential_velocity - (5.0 * 1.0 + 2.0 * r * -20.0) / 7.0).abs() < 1e-14);
+    }
+
+    /// The mirrored other ball's surface moves with the ball's at the contact: two equal balls
+    /// spinning in opposite senses do not slip, whatever their speed along the plane.
+    #[test]
+    fn a_mirrored_ball_does_not_slip() {
+        use crate::model::scene::{Ball, Material};
+        let ball = Ball {
+            radius: 0.1,
+            density: 2700.0,
+            material: Material {
+                youngs_modulus: 7e10,
+                poisson_ratio: 0.33,
+            },
+        };
+        let scene = Scene::BallBall { ball, other: ball };
+        let oblique = Oblique {
+            tangential_velocity: 0.3,
+            angular_velocity: 7.0,
+            friction_coefficient: 0.4,
+            other_ball: OtherBallMotion::Mirrored,
+            law: TangentialLaw::default(),
+        };
+        let bodies = TangentialBodies::of(&scene, &oblique).unwrap();
+        assert!(bodies.slip().abs() < 1e-15, "{}", bodies.slip());
+        let opposed = Oblique {
+            other_ball: OtherBallMotion::Opposed,
+            ..oblique
+        };
+        let doubled = TangentialBodies::of(&scene, &opposed).unwrap().slip();
+        assert!(
+            (doubled - 2.0 * (0.3 - 0.1 * 7.0)).abs() < 1e-15,
+            "{doubled}"
+        );
     }
 
     /// For two equal balls the slip responds to the impulse on the first with 7/2 over M*.

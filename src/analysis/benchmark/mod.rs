@@ -13,6 +13,8 @@
 //! means.
 
 pub mod cor_chart;
+pub(crate) mod oblique;
+pub(crate) mod oblique_chart;
 
 use std::path::{Path, PathBuf};
 
@@ -211,6 +213,22 @@ pub(crate) enum Quantity {
     ContactTimeByForce,
     /// The realised COR against the COR set (test 3).
     Cor,
+    /// Thornton's normalised rebound angle `ψ' = 2 s' / (μ (1+e) v_n)` of the contact point's
+    /// slip `s'` at separation (tests 4–6 and 8).
+    NormalisedReboundAngle,
+    /// The tangential COR of the ball's centre, `v_t' / v_t` (tests 4 and 5).
+    TangentialCor,
+    /// The tangential COR of the contact point, `−s' / s` (tests 6 and 8, whose centre has no
+    /// tangential speed to start with).
+    ContactTangentialCor,
+    /// The ball's rebound spin, rad/s.
+    ReboundSpin,
+    /// The ball's rebound tangential velocity, m/s (test 7).
+    ReboundTangentialVelocity,
+    /// The other ball's rebound spin, rad/s (tests 7 and 8).
+    OtherReboundSpin,
+    /// The other ball's rebound tangential velocity, m/s (test 7).
+    OtherReboundTangentialVelocity,
 }
 
 impl Quantity {
@@ -222,22 +240,24 @@ impl Quantity {
         Quantity::ContactTimeByForce,
     ];
 
-    /// The impact figure it is: the value a source gives for it.
-    fn figure(self) -> figures::Quantity {
+    /// The normal impact figure it is, the value a source gives for it; `None` for a
+    /// tangential figure.
+    fn figure(self) -> Option<figures::Quantity> {
         match self {
-            Quantity::PeakOverlap => figures::Quantity::PeakDeformation,
-            Quantity::PeakForce => figures::Quantity::PeakForce,
-            Quantity::ContactTimeByOverlap => figures::Quantity::ContactTime,
-            Quantity::ContactTimeByForce => figures::Quantity::ForceContactTime,
-            Quantity::Cor => figures::Quantity::Cor,
+            Quantity::PeakOverlap => Some(figures::Quantity::PeakDeformation),
+            Quantity::PeakForce => Some(figures::Quantity::PeakForce),
+            Quantity::ContactTimeByOverlap => Some(figures::Quantity::ContactTime),
+            Quantity::ContactTimeByForce => Some(figures::Quantity::ForceContactTime),
+            Quantity::Cor => Some(figures::Quantity::Cor),
+            _ => None,
         }
     }
 
     /// The published figure it is compared with: the paper tabulates one contact time, which
     /// both contact times are held to.
-    fn published(self) -> figures::Quantity {
+    fn published(self) -> Option<figures::Quantity> {
         match self {
-            Quantity::ContactTimeByForce => figures::Quantity::ContactTime,
+            Quantity::ContactTimeByForce => Some(figures::Quantity::ContactTime),
             q => q.figure(),
         }
     }
@@ -249,14 +269,22 @@ impl Quantity {
             Quantity::ContactTimeByOverlap => "contact time, overlap (s)",
             Quantity::ContactTimeByForce => "contact time, force (s)",
             Quantity::Cor => "COR",
+            Quantity::NormalisedReboundAngle => "normalised rebound angle ψ'",
+            Quantity::TangentialCor => "tangential COR v_t'/v_t",
+            Quantity::ContactTangentialCor => "contact tangential COR −s'/s",
+            Quantity::ReboundSpin => "rebound spin ω' (rad/s)",
+            Quantity::ReboundTangentialVelocity => "rebound v_t' (m/s)",
+            Quantity::OtherReboundSpin => "other ball's rebound spin ω2' (rad/s)",
+            Quantity::OtherReboundTangentialVelocity => "other ball's rebound v_t2' (m/s)",
         }
     }
 }
 
-/// One figure of one source against its published value.
+/// One figure of one source against its published value (tests 1–3) or against the closed
+/// form and the other solver (tests 4–8).
 #[derive(Clone, Debug, Serialize)]
 pub(crate) struct BenchmarkRow {
-    /// The test (1, 2 or 3).
+    /// The test (1 to 8).
     pub test: u8,
     /// The material.
     pub material: &'static str,
@@ -264,14 +292,16 @@ pub(crate) struct BenchmarkRow {
     pub source: Source,
     /// The figure.
     pub quantity: Quantity,
-    /// The COR set (test 3's COR rows; 1 for the elastic figures).
+    /// The COR set (test 3's COR rows; 1 for the elastic figures; the case's COR in tests
+    /// 4–8).
     pub cor_set: f64,
-    /// The paper's value (for a COR row, the COR set), in the quantity's unit.
-    pub published: f64,
+    /// The paper's value (for a COR row, the COR set), in the quantity's unit; `None` in tests
+    /// 4–8, whose figures the paper plots but does not tabulate.
+    pub published: Option<f64>,
     /// This source's value.
     pub value: f64,
-    /// `value / published − 1`.
-    pub relative_difference: f64,
+    /// `value / published − 1`, where there is a published value.
+    pub relative_difference: Option<f64>,
     /// The largest |relative difference| that passes.
     pub tolerance: f64,
     /// Whether it is within the tolerance.
@@ -283,11 +313,19 @@ pub(crate) struct BenchmarkRow {
     /// The shipped case run (`cases/benchmarks/<case>.toml`).
     pub case: &'static str,
     /// The closed form's value for this case (its own plane), in the quantity's unit: for a COR
-    /// row the COR set.
-    pub closed_form: f64,
-    /// `value / closed_form − 1`: what is left once the plane is accounted for (the step, and
-    /// a rigid plane's own compliance).
-    pub closed_form_difference: f64,
+    /// row the COR set; in tests 4–8 only where one is exact (Coulomb sliding throughout, or no
+    /// slip at all).
+    pub closed_form: Option<f64>,
+    /// Tests 1–3: `value / closed_form − 1`, what is left once the plane is accounted for (the
+    /// step, and a rigid plane's own compliance). Tests 4–8:
+    /// `(value − closed_form) / max(|closed_form|, 1)`.
+    pub closed_form_difference: Option<f64>,
+    /// What the test sweeps (tests 4–8).
+    pub swept: Option<oblique::Swept>,
+    /// The swept value at this row, in its unit (tests 4–8).
+    pub swept_value: Option<f64>,
+    /// Tests 4–8: `(value − the other solver's) / max(|the other solver's|, 1)`.
+    pub method_difference: Option<f64>,
 }
 
 /// A code's run the benchmark needs that the store does not hold.
@@ -317,6 +355,13 @@ pub enum BenchmarkError {
         /// Why.
         source: SolveError,
     },
+    /// A built-in oblique case gave the tangential solver no tangential half (a fault of the
+    /// build).
+    #[error("{case}: the oblique benchmark case has no tangential half")]
+    NotOblique {
+        /// The case.
+        case: String,
+    },
     /// A stored run could not be read.
     #[error("reading the stored benchmark runs")]
     Stored(#[source] Box<StoreError>),
@@ -336,7 +381,9 @@ impl Blame for BenchmarkError {
     fn is_user_error(&self) -> bool {
         match self {
             BenchmarkError::Case(_) => true,
-            BenchmarkError::Solve { .. } | BenchmarkError::Stored(_) => false,
+            BenchmarkError::Solve { .. }
+            | BenchmarkError::NotOblique { .. }
+            | BenchmarkError::Stored(_) => false,
             BenchmarkError::Code { source, .. } => source.is_user_error(),
         }
     }
@@ -353,6 +400,8 @@ pub(crate) struct BenchmarkReport {
     pub rows: Vec<BenchmarkRow>,
     /// The stored runs it needed and did not find (their code's rows are left out).
     pub missing: Vec<MissingRun>,
+    /// Tests 4–8, whose DEM code rows are absent: which builds are to run each.
+    pub codes_pending: Vec<oblique::PendingCodes>,
 }
 
 impl BenchmarkReport {
@@ -422,14 +471,17 @@ fn row(impact: &PublishedImpact, source: Source, figure: Figure) -> BenchmarkRow
         source,
         quantity: figure.quantity,
         cor_set: figure.cor_set,
-        published: figure.published,
+        published: Some(figure.published),
         value: figure.value,
-        relative_difference,
+        relative_difference: Some(relative_difference),
         tolerance: figure.tolerance,
         pass: relative_difference.abs() <= figure.tolerance,
         expected_pass: impact.meets_the_paper(),
-        closed_form: figure.closed_form,
-        closed_form_difference: figure.value / figure.closed_form - 1.0,
+        closed_form: Some(figure.closed_form),
+        closed_form_difference: Some(figure.value / figure.closed_form - 1.0),
+        swept: None,
+        swept_value: None,
+        method_difference: None,
     }
 }
 
@@ -443,20 +495,20 @@ fn elastic_rows(
 ) -> Vec<BenchmarkRow> {
     Quantity::ELASTIC
         .into_iter()
-        .map(|quantity| {
-            let figure = quantity.figure();
-            row(
+        .filter_map(|quantity| {
+            let figure = quantity.figure()?;
+            Some(row(
                 impact,
                 source,
                 Figure {
                     quantity,
                     cor_set: 1.0,
-                    published: *impact.published.get(quantity.published()),
+                    published: *impact.published.get(quantity.published()?),
                     closed_form: *exact.get(figure),
                     value: *metrics.get(figure),
                     tolerance: ELASTIC_TOLERANCE,
                 },
-            )
+            ))
         })
         .collect()
 }
@@ -545,7 +597,9 @@ fn source_rows(
 }
 
 /// Run Chung & Ooi's tests 1–3 by the exact solution, the paper's law by `rk4-event`, and the
-/// codes of `options.codes`: every build's stored runs, or the codes asked for run now.
+/// codes of `options.codes`: every build's stored runs, or the codes asked for run now; and
+/// tests 4–8 by the tangential solver (`rk4-event`, `dopri5`) against the closed form where
+/// it holds and against each other.
 pub(crate) fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, BenchmarkError> {
     let mut sources = vec![
         Source::Method(Method::Exact),
@@ -584,11 +638,13 @@ pub(crate) fn chung_ooi(options: &BenchmarkOptions) -> Result<BenchmarkReport, B
             rows.extend(found);
         }
     }
+    rows.extend(oblique::oblique_rows()?);
     Ok(BenchmarkReport {
         benchmark: "chung-ooi",
-        reference: "Chung & Ooi, Granular Matter 13 (2011) 643–656, tests 1–3 (Hertz values of its tables)",
+        reference: "Chung & Ooi, Granular Matter 13 (2011) 643–656: tests 1–3 (Hertz values of its tables), tests 4–8 (the published set-ups, by the harness's tangential solver and closed forms)",
         rows,
         missing,
+        codes_pending: oblique::pending_codes(),
     })
 }
 
@@ -637,9 +693,10 @@ impl Summary for BenchmarkReport {
                     r.source.to_string(),
                     r.quantity.label().to_string(),
                     format!("{}", r.cor_set),
-                    format!("{:.6e}", r.published),
+                    r.published.map_or("–".to_string(), |p| format!("{p:.6e}")),
                     format!("{:.6e}", r.value),
-                    format!("{:+.2e}", r.relative_difference),
+                    r.relative_difference
+                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
                     format!("{:.1e}", r.tolerance),
                     match (r.pass, r.expected_pass) {
                         (true, true) => "pass",
@@ -648,12 +705,61 @@ impl Summary for BenchmarkReport {
                         (true, false) => "PASSES: trap not shown",
                     }
                     .to_string(),
-                    format!("{:.6e}", r.closed_form),
-                    format!("{:+.2e}", r.closed_form_difference),
+                    r.closed_form
+                        .map_or("–".to_string(), |c| format!("{c:.6e}")),
+                    r.closed_form_difference
+                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
                 ]);
             }
             out.push(section);
         }
+        for impact in &oblique::OBLIQUE_TESTS {
+            let plane = if impact.plane().is_some() {
+                ", rigid plane"
+            } else {
+                ", two spheres"
+            };
+            let mut section = Section::new(
+                Some(format!(
+                    "test {} {}{plane} (cases/benchmarks/{}.toml, swept)",
+                    impact.test, impact.material, impact.case
+                )),
+                &[
+                    "source",
+                    impact.swept.label(),
+                    "quantity",
+                    "value",
+                    "closed form",
+                    "vs closed form",
+                    "vs other solver",
+                    "tolerance",
+                    "verdict",
+                ],
+            );
+            for r in self.rows.iter().filter(|r| r.case == impact.case) {
+                section.rows.push(vec![
+                    r.source.to_string(),
+                    r.swept_value.map_or("–".to_string(), |v| format!("{v:.6}")),
+                    r.quantity.label().to_string(),
+                    format!("{:.6e}", r.value),
+                    r.closed_form
+                        .map_or("–".to_string(), |c| format!("{c:.6e}")),
+                    r.closed_form_difference
+                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
+                    r.method_difference
+                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
+                    format!("{:.1e}", r.tolerance),
+                    if r.pass { "pass" } else { "FAIL" }.to_string(),
+                ]);
+            }
+            out.push(section);
+        }
+        out.push(Section::text(
+            self.codes_pending
+                .iter()
+                .map(oblique::PendingCodes::line)
+                .collect(),
+        ));
         if !self.missing.is_empty() {
             out.push(Section::text(
                 self.missing
@@ -673,6 +779,8 @@ impl Summary for BenchmarkReport {
             "same-material wall: test 2 with the wall given the sphere's own material, the trap the paper warns of (E* halves); its rows should fail against the published values, and its difference from its own closed form shows the code running that wall as the law says".to_string(),
             "vs closed form: value / closed form of the case run (its own plane) − 1; on the rigid plane, what a code's stand-in for rigidity and its step leave".to_string(),
             "contact time by overlap: first touch until the overlap returns to zero; by force: until the normal force first returns to zero".to_string(),
+            "tests 4–8: each sweep point run by rk4-event and dopri5 (the tangential solver); the closed form where it is exact (Coulomb sliding throughout: |Δv_t| = μ(1+e)v_n, |Δω| = 5μ(1+e)v_n/(2R); test 7's contact, which never slips: no tangential impulse); vs closed form and vs other solver: (value − reference) / max(|reference|, 1), each within 1e-6".to_string(),
+            "ψ' = 2 s'/(μ(1+e)v_n), Thornton's normalised rebound angle of the contact point's slip s' at separation (in gross sliding ψ' = ψ − 7)".to_string(),
         ]));
         out
     }
@@ -740,8 +848,11 @@ mod tests {
     #[test]
     fn the_methods_pass_every_row() {
         let report = chung_ooi(&BenchmarkOptions::default()).unwrap();
-        // 8 cases × 2 sources × 4 elastic figures, and 2 materials × 2 sources × 9 CORs.
-        assert_eq!(report.rows.len(), 8 * 2 * 4 + 2 * 2 * 9);
+        // 8 cases × 2 sources × 4 elastic figures, and 2 materials × 2 sources × 9 CORs; then
+        // tests 4–8 (their own tests: `oblique`).
+        let normal = report.rows.iter().filter(|r| r.test <= 3).count();
+        assert_eq!(normal, 8 * 2 * 4 + 2 * 2 * 9);
+        assert!(report.rows.iter().any(|r| r.test > 3));
         assert!(report.failures().is_empty(), "{:#?}", report.failures());
         // The trap's rows all fail against the paper, and none of the others does.
         let (trap, rest): (Vec<_>, Vec<_>) = report
@@ -751,7 +862,7 @@ mod tests {
         assert_eq!(trap.len(), 2 * 2 * 4);
         assert!(
             trap.iter()
-                .all(|r| !r.pass && r.closed_form_difference.abs() < 1e-6)
+                .all(|r| !r.pass && r.closed_form_difference.is_some_and(|d| d.abs() < 1e-6))
         );
         assert!(rest.iter().all(|r| r.pass));
     }
