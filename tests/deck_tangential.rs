@@ -120,7 +120,10 @@ fn the_lammps_reader_records_each_walls_friction_as_written() {
             .unwrap()
             .unwrap();
         assert!(input.setup.case_name.ends_with("-oblique"));
-        assert!(input.input.text.contains(" vz -1.2e0 vx 6.72e0\n"), "{path}");
+        assert!(
+            input.input.text.contains(" vz -1.2e0 vx 6.72e0\n"),
+            "{path}"
+        );
         assert!(
             input.input.text.contains(
                 "print           \"MILLIMPACT_TANGENTIAL ${millimpact_vt_1} ${millimpact_w_1}\""
