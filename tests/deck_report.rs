@@ -427,6 +427,7 @@ impl ImpactRunner for SteppedLaw {
         Ok(ImpactRun {
             trajectory,
             code_version: "the law stepped".into(),
+            tangential: None,
         })
     }
 }

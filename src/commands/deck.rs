@@ -13,7 +13,7 @@ use millimpact::analysis::deck::{
 };
 use millimpact::codes::CodeError;
 use millimpact::codes::deck::DeckImpactInput;
-use millimpact::codes::deck::{DeckOptions, GivenParticle, UserDeck};
+use millimpact::codes::deck::{DeckOptions, GivenParticle, Partner, UserDeck};
 use millimpact::codes::{CodeName, RunOptions};
 use millimpact::error::CheckFailed;
 use millimpact::model::law::CodeLaw;
@@ -101,7 +101,14 @@ fn check_with_progress(
     timeout: f64,
 ) -> Result<DeckReport> {
     let live = live_runner(timeout);
-    let runs = deck.contacts.len() * deck_velocities(deck, velocities).0.len();
+    // Each wall with friction adds its oblique impact (walls merged as identical run once, and
+    // the bar ends short of its length, cleared).
+    let oblique = deck
+        .contacts
+        .iter()
+        .filter(|c| c.friction.is_some() && matches!(c.partner, Partner::Wall(_)))
+        .count();
+    let runs = deck.contacts.len() * deck_velocities(deck, velocities).0.len() + oblique;
     let template = "{bar:40} {pos}/{len} impacts  {per_sec}  ETA {eta}";
     let Some(bar) = super::progress_bar(runs as u64, template) else {
         return check_with(code, deck, velocities, given, &live);

@@ -9,6 +9,7 @@
 //! Rayleigh time, the traps the lines meet, and the paper's η for the COR realised.
 
 pub(crate) mod speed;
+pub mod tangential;
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -23,8 +24,8 @@ use super::compare::phase::{DEFAULT_PHASES, Range, over_phases};
 use super::run::HERTZ_MAX_STRAIN;
 use super::store::verify::REMAINDER_TOLERANCE;
 use crate::codes::deck::{
-    DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckWall, Partner, TypeRef, UserDeck,
-    rayleigh_time,
+    DeckBody, DeckError, DeckImpactInput, DeckOptions, DeckWall, Partner, TANGENTIAL_LINE, TypeRef,
+    UserDeck, rayleigh_time,
 };
 use crate::codes::runner::process::Output;
 use crate::codes::runner::{locate, run_rendered};
@@ -38,6 +39,7 @@ use crate::output::invocation::Invocation;
 use crate::output::{Section, Summary, sci, signed};
 use crate::solve::Method;
 use crate::solve::dashpot::{CodeStepping, accurate_metrics};
+pub use tangential::{DeckTangentialImpact, TangentialRun};
 
 /// The speed the default velocities are spread around when the deck names none, m/s (the
 /// canonical cases' speed, typical of a ball's fall in a mill).
@@ -190,6 +192,9 @@ pub struct DeckReport {
     pub left_out: Vec<String>,
     /// One entry per pair and velocity.
     pub impacts: Vec<DeckImpact>,
+    /// One oblique impact per wall with friction, at the first speed, against Coulomb's
+    /// closed form (see [`tangential`]).
+    pub tangential: Vec<DeckTangentialImpact>,
     /// Per pair checked at two speeds or more: its COR against the speed, realised and exact
     /// (empty at one speed).
     pub cor_against_speed: Vec<speed::SpeedCurve>,
@@ -205,6 +210,10 @@ pub struct ImpactRun {
     pub trajectory: CodeTrajectory,
     /// The code's version as it printed it.
     pub code_version: String,
+    /// What an oblique impact's run printed after its steps: the motions along the contact
+    /// plane (none for a normal impact).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialRun>,
 }
 
 /// Runs the impacts of a deck: the installed code ([`LiveRunner`]), or runs recorded from it
@@ -248,6 +257,7 @@ impl ImpactRunner for LiveRunner {
         Ok(ImpactRun {
             trajectory: run.trajectory,
             code_version: run.code_version,
+            tangential: TangentialRun::from_log(&run.log, TANGENTIAL_LINE),
         })
     }
 }
@@ -597,6 +607,7 @@ pub fn check_deck(
             })));
         }
     }
+    let oblique = plan_oblique(deck, &groups, reader, &velocities.0)?;
     // Each impact runs and is read on its own; the rows keep the plan's order.
     let rows: Vec<(DeckImpact, Option<String>)> = planned
         .par_iter()
@@ -619,6 +630,25 @@ pub fn check_deck(
             ),
         })
         .collect();
+    let tangential: Vec<DeckTangentialImpact> = oblique
+        .par_iter()
+        .map(|o| {
+            let run = runner.run(code, &o.impact, &deck.contacts[o.contact].law);
+            let row = tangential::ObliqueRow {
+                deck,
+                contact: o.contact,
+                pair: group_label(deck, &o.group),
+                run: record_key(&o.impact),
+                velocity: o.velocity,
+                tangential_velocity: o.tangential_velocity,
+            };
+            row.row(
+                run.as_ref()
+                    .map(|r| (&r.trajectory, r.tangential))
+                    .map_err(ToString::to_string),
+            )
+        })
+        .collect();
     let version = rows.iter().find_map(|(_, v)| v.clone());
     let mut impacts: Vec<DeckImpact> = rows.into_iter().map(|(row, _)| row).collect();
     let cor_against_speed = speed::speed_curves(&impacts);
@@ -639,11 +669,82 @@ pub fn check_deck(
         velocities_from: velocities.1,
         bodies: deck.bodies.clone(),
         walls: deck.walls.clone(),
-        left_out: deck.left_out.clone(),
+        left_out: tangential_left_out(deck, reader.reads_friction(), code),
         impacts,
+        tangential,
         cor_against_speed,
         given: Vec::new(),
     })
+}
+
+/// One oblique impact planned: its contact (with those it stands for), speeds and input.
+struct Oblique {
+    contact: usize,
+    group: Vec<usize>,
+    velocity: f64,
+    tangential_velocity: f64,
+    impact: DeckImpactInput,
+}
+
+/// The oblique impacts of a deck: per wall contact whose lines give friction (μ > 0), one at
+/// the first speed `v_n` with the slip `14 μ v_n` ([`tangential::SLIP_OVER_FRICTION`]), run as
+/// long as the normal impact at that speed. A pair of balls has none yet (their contact normal
+/// turns as they slide past each other, which the closed form of a fixed plane leaves out).
+fn plan_oblique(
+    deck: &UserDeck,
+    groups: &[Vec<usize>],
+    reader: &dyn crate::codes::deck::DeckReader,
+    velocities: &[f64],
+) -> Result<Vec<Oblique>, DeckCheckError> {
+    let Some(&v) = velocities.first() else {
+        return Ok(Vec::new());
+    };
+    let mut planned = Vec::new();
+    for (k, contact) in deck.contacts.iter().enumerate() {
+        let Some(friction) = &contact.friction else {
+            continue;
+        };
+        if groups[k].is_empty()
+            || !matches!(contact.partner, Partner::Wall(_))
+            || contact
+                .law
+                .dashpot()
+                .and_then(DashpotLaw::never_separates)
+                .is_some()
+        {
+            continue;
+        }
+        let exact = law_metrics(&contact.law, v, 1e-12)?;
+        let steps = ceil_count(1.05 * exact.contact_time / deck.timestep)
+            .map_or(u64::MAX, |n| n.saturating_add(3));
+        if steps > MAX_STEPS {
+            // The normal impact at this speed is refused with the reason already.
+            continue;
+        }
+        let slip = tangential::SLIP_OVER_FRICTION * friction.coefficient * v;
+        if let Some(impact) = reader.render_oblique(deck, k, v, slip, steps)? {
+            planned.push(Oblique {
+                contact: k,
+                group: groups[k].clone(),
+                velocity: v,
+                tangential_velocity: slip,
+                impact,
+            });
+        }
+    }
+    Ok(planned)
+}
+
+/// The deck's left-out lines, and where its reader reads no friction, that no oblique impact
+/// is run.
+fn tangential_left_out(deck: &UserDeck, reads_friction: bool, code: CodeName) -> Vec<String> {
+    let mut left_out = deck.left_out.clone();
+    if !reads_friction {
+        left_out.push(format!(
+            "friction: the {code} deck reader reads no tangential lines, so no oblique impact is run"
+        ));
+    }
+    left_out
 }
 
 /// Where given speeds come from (see [`velocities`]).
@@ -1067,6 +1168,26 @@ pub struct DeckImpactRecord {
     pub cor_realised_max: f64,
     /// The COR of the run itself (first contact at the start of a step).
     pub cor_realised_run: f64,
+    /// The oblique impact's tangential speed at the start, m/s, on the row of the pair and
+    /// speed where one was run (a wall with friction, at the first speed); the columns after it
+    /// are that impact's, each empty elsewhere.
+    pub tangential_velocity: Option<f64>,
+    /// Coulomb's μ of the lines.
+    pub friction_coefficient: Option<f64>,
+    /// The ball's tangential velocity after, as the code gives it, m/s.
+    pub tangential_velocity_out: Option<f64>,
+    /// Its spin after, as the code gives it, rad/s.
+    pub angular_velocity_out: Option<f64>,
+    /// The tangential velocity after, from Coulomb sliding throughout, m/s.
+    pub tangential_velocity_closed_form: Option<f64>,
+    /// The spin after, from Coulomb sliding throughout, rad/s.
+    pub angular_velocity_closed_form: Option<f64>,
+    /// The code's change of tangential velocity less the closed form's, m/s.
+    pub tangential_difference: Option<f64>,
+    /// What it may be, m/s.
+    pub tangential_tolerance: Option<f64>,
+    /// Whether the tangential row failed.
+    pub tangential_failed: Option<bool>,
 }
 
 fn percent(x: f64) -> String {
@@ -1088,29 +1209,43 @@ impl Summary for DeckReport {
     fn records(&self) -> Vec<DeckImpactRecord> {
         self.impacts
             .iter()
-            .map(|i| DeckImpactRecord {
-                deck: self.deck.clone(),
-                code: self.code,
-                pair: i.pair.clone(),
-                first_type: i.types[0].to_string(),
-                second_type: i.types[1].to_string(),
-                impact_velocity: i.impact_velocity,
-                cor_entered: i.cor_entered,
-                realised: i.realised.select(),
-                cor_law: i.cor_law,
-                cor_law_stepped: i.cor_law_stepped,
-                model_difference: i.model_difference,
-                integration_difference: i.integration_difference,
-                remainder: i.remainder,
-                peak_overlap_ratio: i.peak_overlap_ratio,
-                timestep: i.timestep,
-                steps_per_contact: i.steps_per_contact,
-                step_over_rayleigh: i.step_over_rayleigh,
-                paper_loss_coefficient: i.paper_loss_coefficient,
-                warnings: i.warnings.join(" | "),
-                cor_realised_min: i.cor_realised_band.min,
-                cor_realised_max: i.cor_realised_band.max,
-                cor_realised_run: i.cor_realised_run,
+            .map(|i| {
+                let t = self.tangential.iter().find(|t| {
+                    t.pair == i.pair && t.impact_velocity.total_cmp(&i.impact_velocity).is_eq()
+                });
+                DeckImpactRecord {
+                    deck: self.deck.clone(),
+                    code: self.code,
+                    pair: i.pair.clone(),
+                    first_type: i.types[0].to_string(),
+                    second_type: i.types[1].to_string(),
+                    impact_velocity: i.impact_velocity,
+                    cor_entered: i.cor_entered,
+                    realised: i.realised.select(),
+                    cor_law: i.cor_law,
+                    cor_law_stepped: i.cor_law_stepped,
+                    model_difference: i.model_difference,
+                    integration_difference: i.integration_difference,
+                    remainder: i.remainder,
+                    peak_overlap_ratio: i.peak_overlap_ratio,
+                    timestep: i.timestep,
+                    steps_per_contact: i.steps_per_contact,
+                    step_over_rayleigh: i.step_over_rayleigh,
+                    paper_loss_coefficient: i.paper_loss_coefficient,
+                    warnings: i.warnings.join(" | "),
+                    cor_realised_min: i.cor_realised_band.min,
+                    cor_realised_max: i.cor_realised_band.max,
+                    cor_realised_run: i.cor_realised_run,
+                    tangential_velocity: t.map(|t| t.tangential_velocity),
+                    friction_coefficient: t.map(|t| t.friction_coefficient),
+                    tangential_velocity_out: t.map(|t| t.tangential_velocity_out),
+                    angular_velocity_out: t.map(|t| t.angular_velocity_out),
+                    tangential_velocity_closed_form: t.map(|t| t.tangential_velocity_closed_form),
+                    angular_velocity_closed_form: t.map(|t| t.angular_velocity_closed_form),
+                    tangential_difference: t.map(|t| t.difference),
+                    tangential_tolerance: t.map(|t| t.tolerance),
+                    tangential_failed: t.map(|t| t.failed || t.failure.is_some()),
+                }
             })
             .collect()
     }
@@ -1204,6 +1339,9 @@ impl Summary for DeckReport {
             ));
         }
         let mut out = vec![table];
+        if !self.tangential.is_empty() {
+            out.push(tangential_section(&self.tangential));
+        }
         if !self.cor_against_speed.is_empty() {
             out.push(speed_section(&self.cor_against_speed));
         }
@@ -1254,6 +1392,15 @@ impl Summary for DeckReport {
                     .collect::<Vec<_>>()
             })
             .collect();
+        let warned: Vec<String> = warned
+            .into_iter()
+            .chain(
+                self.tangential
+                    .iter()
+                    .filter_map(tangential_failure)
+                    .map(|f| format!("  {f}")),
+            )
+            .collect();
         if !warned.is_empty() {
             let mut lines = vec!["warnings:".to_string()];
             lines.extend(warned);
@@ -1273,6 +1420,62 @@ impl Summary for DeckReport {
     fn footer(&self) -> Vec<String> {
         vec![format!("reproduce: {}", self.reproduce())]
     }
+}
+
+/// The tangential rows: per wall with friction, the oblique impact against Coulomb's closed
+/// form.
+fn tangential_section(rows: &[DeckTangentialImpact]) -> Section {
+    let mut section = Section::new(
+        Some("tangential: one oblique impact per wall with friction, in gross sliding".to_string()),
+        &[
+            "pair",
+            "tangential model",
+            "v_n, v_t (m/s)",
+            "COR realised",
+            "v_t' code / closed form (m/s)",
+            "ω' code / closed form (rad/s)",
+            "Δv_t code − closed [tolerance] (m/s)",
+            "check",
+        ],
+    );
+    for t in rows {
+        let mut row = vec![
+            t.pair.clone(),
+            t.tangential_model.clone(),
+            format!(
+                "{}, {}",
+                speed_text(t.impact_velocity),
+                speed_text(t.tangential_velocity)
+            ),
+        ];
+        if t.failure.is_some() {
+            row.push("failed (see warnings)".into());
+            row.resize(section.headers.len(), "—".to_string());
+            section.rows.push(row);
+            continue;
+        }
+        row.extend([
+            fixed(t.cor_realised),
+            format!(
+                "{} / {}",
+                fixed(t.tangential_velocity_out),
+                fixed(t.tangential_velocity_closed_form)
+            ),
+            format!(
+                "{:.3} / {:.3}",
+                t.angular_velocity_out, t.angular_velocity_closed_form
+            ),
+            format!("{} [{}]", signed(t.difference), sci(t.tolerance)),
+            if t.failed { "FAILED" } else { "ok" }.to_string(),
+        ]);
+        section.rows.push(row);
+    }
+    section.notes.push(format!(
+        "the deck's first speed v_n with the ball sliding along the plane at v_t = {} μ v_n (twice the rigid-body bound (7/2) μ (1+e) v_n at e = 1: Coulomb sliding throughout), the wall's own lines; closed form: the tangential impulse μ (1+e) M* v_n against the slip, e the normal COR this run realised; tolerance: {} of the closed form's change (the history spring reaches the bound within the first steps), plus the friction of the run's attractive tail where a code bounds by μ|F_n|",
+        tangential::SLIP_OVER_FRICTION,
+        percent(tangential::RELATIVE_TOLERANCE)
+    ));
+    section
 }
 
 /// The COR against the speed, per pair: realised, the law's exact curve, Müller & Pöschel's
@@ -1336,7 +1539,8 @@ impl DeckReport {
     }
 }
 
-/// The failures of a report's runs, one line each (empty when every run finished).
+/// The failures of a report's runs, one line each (empty when every run finished and every
+/// tangential row met its closed form).
 pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
     report
         .impacts
@@ -1346,5 +1550,36 @@ pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
                 .as_ref()
                 .map(|f| format!("{} at {} m/s: {f}", i.pair, speed_text(i.impact_velocity)))
         })
+        .chain(report.tangential.iter().filter_map(tangential_failure))
         .collect()
+}
+
+/// The failure of a tangential row, naming its wall and "tangential".
+fn tangential_failure(t: &DeckTangentialImpact) -> Option<String> {
+    let at = format!(
+        "{} tangential ({}, {}) at {} m/s",
+        t.wall
+            .as_ref()
+            .map_or_else(|| t.pair.clone(), |w| format!("wall {w}")),
+        t.pair,
+        t.tangential_model,
+        speed_text(t.impact_velocity)
+    );
+    if let Some(f) = &t.failure {
+        return Some(format!("{at}: {f}"));
+    }
+    t.failed.then(|| {
+        format!(
+            "{at}: the ball leaves at v_t' = {:.6} m/s, ω' = {:.2} rad/s where Coulomb sliding throughout gives {:.6} m/s, {:.2} rad/s (μ(1+e)v_n with the run's own e = {:.6}): the code delivers {:.1} % of its friction, off by {} m/s beyond the tolerance {} m/s",
+            t.tangential_velocity_out,
+            t.angular_velocity_out,
+            t.tangential_velocity_closed_form,
+            t.angular_velocity_closed_form,
+            t.cor_realised,
+            100.0 * (t.tangential_velocity - t.tangential_velocity_out)
+                / (t.tangential_velocity - t.tangential_velocity_closed_form),
+            signed(t.difference),
+            sci(t.tolerance)
+        )
+    })
 }

@@ -1,7 +1,7 @@
 //! The pairs of a deck: each pair of bodies and each body against each wall, with the law a
 //! code's own lines give it ([`PairLaw`]; each reader forms it by its code's rules).
 
-use super::{DeckBody, DeckContact, DeckError, DeckSource, Partner, TypeRef};
+use super::{DeckBody, DeckContact, DeckError, DeckFriction, DeckSource, Partner, TypeRef};
 use crate::model::law::CodeLaw;
 
 /// The contact law the user's lines make a code integrate for one pair: the model as the deck
@@ -19,7 +19,13 @@ pub(crate) struct PairLaw {
     pub traps: Vec<String>,
     /// The lines (or fields) that set this pair's contact.
     pub lines: Vec<DeckSource>,
+    /// The friction the lines give, where the reader reads it.
+    pub friction: Option<DeckFriction>,
 }
+
+/// What an oblique impact's case name adds to its normal impact's, so that the two runs at one
+/// speed are told apart (a recorded run's key is its case name and speed).
+pub(crate) const OBLIQUE_SUFFIX: &str = "-oblique";
 
 impl PairLaw {
     /// The law `law` of the model `model`, with the COR entered and the traps; no lines yet.
@@ -35,7 +41,14 @@ impl PairLaw {
             cor_entered,
             traps,
             lines: Vec::new(),
+            friction: None,
         }
+    }
+
+    /// The same law, with the friction its lines give.
+    pub(crate) fn with_friction(mut self, friction: Option<DeckFriction>) -> Self {
+        self.friction = friction;
+        self
     }
 
     /// The same law, set by `lines`.
@@ -58,6 +71,7 @@ impl PairLaw {
             law: self.law,
             traps: self.traps,
             lines: self.lines,
+            friction: self.friction,
         }
     }
 }

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use super::{
     BodyElasticity, Conventions, DeckBody, DeckContact, DeckError, DeckImpactInput, DeckOptions,
-    DeckReader, Partner, UserDeck,
+    DeckReader, OBLIQUE_SUFFIX, Partner, UserDeck,
 };
 use crate::codes::{CodeError, CodeSetup, CodeSphere};
 use crate::model::law::{CodeLaw, ContactForce};
@@ -30,6 +30,10 @@ pub(crate) struct ImpactPlan<'d> {
     pub velocity: f64,
     /// The steps of the deck's own time step the run takes.
     pub steps: u64,
+    /// For an oblique impact, the moving body's centre velocity along the contact plane
+    /// relative to its partner's at the start, m/s (a pair's split as the normal one is, so that
+    /// the centre of mass stays at rest); `None` for the normal impact.
+    pub tangential_velocity: Option<f64>,
 }
 
 /// A code's deck reader as a dialect of the one pipeline: its syntax (what it recognises and
@@ -48,6 +52,11 @@ pub(crate) trait DeckDialect: Send + Sync {
     }
     /// The input of a planned impact, in the code's own syntax.
     fn input(&self, deck: &UserDeck, plan: ImpactPlan<'_>) -> Result<DeckImpactInput, CodeError>;
+    /// Whether [`DeckDialect::input`] renders an oblique plan (its `tangential_velocity`) and
+    /// reads the deck's friction; a dialect that does not runs no tangential impact.
+    fn renders_oblique(&self) -> bool {
+        false
+    }
 }
 
 impl<T: DeckDialect> DeckReader for T {
@@ -73,6 +82,28 @@ impl<T: DeckDialect> DeckReader for T {
         let (elasticity, conventions) = self.setup_basis();
         let plan = deck.impact_plan(contact, velocity, steps, elasticity, conventions);
         self.input(deck, plan)
+    }
+
+    fn reads_friction(&self) -> bool {
+        self.renders_oblique()
+    }
+
+    fn render_oblique(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        tangential_velocity: f64,
+        steps: u64,
+    ) -> Result<Option<DeckImpactInput>, CodeError> {
+        if !self.renders_oblique() {
+            return Ok(None);
+        }
+        let (elasticity, conventions) = self.setup_basis();
+        let mut plan = deck.impact_plan(contact, velocity, steps, elasticity, conventions);
+        plan.setup.case_name.push_str(OBLIQUE_SUFFIX);
+        plan.tangential_velocity = Some(tangential_velocity);
+        self.input(deck, plan).map(Some)
     }
 }
 
@@ -144,6 +175,7 @@ impl UserDeck {
             reach: body.radius + other.map_or(0.0, |o| o.radius),
             velocity,
             steps,
+            tangential_velocity: None,
         }
     }
 }

@@ -27,7 +27,8 @@ use crate::model::law::CodeLaw;
 pub(crate) use bodies::{AtomSyntax, Bodies, whole_number};
 pub use bodies::{MAX_SIZES, SIZE_CLASSES};
 pub(crate) use contacts::{
-    PairLaw, WallOrder, body_contacts, body_contacts_formed, wall_contacts, wall_contacts_formed,
+    OBLIQUE_SUFFIX, PairLaw, WallOrder, body_contacts, body_contacts_formed, wall_contacts,
+    wall_contacts_formed,
 };
 pub(crate) use data::DataFile;
 pub(crate) use impact::{DeckDialect, ImpactPlan};
@@ -361,6 +362,19 @@ pub struct DeckContact {
     pub traps: Vec<String>,
     /// The lines (or fields) that set this pair's contact.
     pub lines: Vec<DeckSource>,
+    /// The friction the lines give the pair, where the reader reads it (`None`: no friction
+    /// read, and no tangential impact run).
+    pub friction: Option<DeckFriction>,
+}
+
+/// A pair's friction as its lines write it: Coulomb's μ and the tangential model.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct DeckFriction {
+    /// Coulomb's friction coefficient μ.
+    pub coefficient: f64,
+    /// The tangential model as written (`tangential mindlin NULL 1.0 0.4`; for a classic
+    /// style `hooke/history: xmu 0.4, dampflag 1`).
+    pub model: String,
 }
 
 /// The lines of the user's deck an impact input carries, as the code will read them
@@ -464,7 +478,27 @@ pub trait DeckReader: Send + Sync {
         velocity: f64,
         steps: u64,
     ) -> Result<DeckImpactInput, CodeError>;
+    /// The oblique impact of `deck.contacts[contact]`: normal speed `velocity` (m/s), the moving
+    /// body's centre along the contact plane at `tangential_velocity` (m/s), the same lines and
+    /// steps as [`DeckReader::render`], its run printing the tangential velocity and spin it
+    /// leaves with (see [`TANGENTIAL_LINE`]); `None` where the reader renders no oblique impact.
+    fn render_oblique(
+        &self,
+        deck: &UserDeck,
+        contact: usize,
+        velocity: f64,
+        tangential_velocity: f64,
+        steps: u64,
+    ) -> Result<Option<DeckImpactInput>, CodeError>;
+    /// Whether the reader reads a pair's friction (and renders its oblique impact).
+    fn reads_friction(&self) -> bool;
 }
+
+/// The word that starts the line an oblique impact's run prints after its steps:
+/// `MILLIMPACT_TANGENTIAL VT OMEGA [VT2 OMEGA2]`, the ball's centre velocity along the contact
+/// plane (m/s) and its spin (rad/s, the sign of [`crate::model::tangential`]), then the
+/// partner's for a pair.
+pub const TANGENTIAL_LINE: &str = "MILLIMPACT_TANGENTIAL";
 
 /// The mass of a sphere, kg, as the codes form it from radius (m) and density (kg/m³).
 pub(crate) fn sphere_mass(radius: f64, density: f64) -> f64 {

@@ -20,15 +20,15 @@
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
-use super::granular::{CLASSIC, classic_model, model_name, read_model};
+use super::granular::{CLASSIC, classic_model, friction, model_name, read_model};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
-    ScriptReading, SourceLine, Transplant, TypeRef, UserDeck, WallOrder, body_contacts,
-    every_refusal, wall_contacts, whole_number, with_includes,
+    ScriptReading, SourceLine, TANGENTIAL_LINE, Transplant, TypeRef, UserDeck, WallOrder,
+    body_contacts, every_refusal, wall_contacts, whole_number, with_includes,
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
@@ -55,6 +55,49 @@ fn plane_wall(id: &str, at: &SourceLine) -> DeckWall {
 /// The trap every wall's contact carries: its geometry met as a flat plane.
 fn plane_trap(geometry: &str) -> String {
     format!("wall: `{geometry}` met as the plane zplane 0 NULL (R* = R at a flat wall)")
+}
+
+/// The end of an oblique impact's input: its steps, then the line [`TANGENTIAL_LINE`] with the
+/// ball's velocity along the plane and its spin (and the partner's, for a `pair`). At a wall
+/// the plane's axis is x and the spin the ball's ω_y (its surface at the contact, −z from its
+/// centre, moves at v_x − R ω_y); between two balls on the x axis it is y and the spin −ω_z.
+/// A spin is read through a reduce over a group of the one atom (the 2025 build refuses a
+/// per-atom vector's element in an equal-style variable), evaluated by the thermo output of
+/// the last step so that it is current after the run.
+fn oblique_lines(pair: bool, steps: u64) -> Vec<String> {
+    let (velocity, spin, sign) = if pair {
+        ("vy", "omegaz", "-")
+    } else {
+        ("vx", "omegay", "")
+    };
+    let ids: &[u32] = if pair { &[1, 2] } else { &[1] };
+    let mut lines = vec![format!(
+        "compute         millimpact_spin all property/atom {spin}"
+    )];
+    let mut printed = Vec::new();
+    let mut thermo = vec!["thermo_style    custom step".to_string()];
+    for id in ids {
+        lines.extend([
+            format!("group           millimpact_{id} id {id}"),
+            format!(
+                "compute         millimpact_spin_{id} millimpact_{id} reduce sum c_millimpact_spin"
+            ),
+            format!("variable        millimpact_vt_{id} equal {velocity}[{id}]"),
+            format!("variable        millimpact_w_{id} equal {sign}c_millimpact_spin_{id}"),
+        ]);
+        thermo.push(format!("v_millimpact_vt_{id} v_millimpact_w_{id}"));
+        printed.push(format!("${{millimpact_vt_{id}}} ${{millimpact_w_{id}}}"));
+    }
+    lines.extend([
+        thermo.join(" "),
+        "thermo          0".into(),
+        format!("run             {steps}"),
+        format!(
+            "print           \"{TANGENTIAL_LINE} {}\"",
+            printed.join(" ")
+        ),
+    ]);
+    lines
 }
 
 /// A wall fix as read.
@@ -306,6 +349,25 @@ impl LammpsDeck {
         }
         let units = check_si_units(r.script.units.as_ref(), path, "LAMMPS").err();
         every_refusal(units, unread, refused)?;
+        // The oblique impact runs against each wall only: the pairs' friction is not checked.
+        let pairs: Vec<Command> = r
+            .coeffs
+            .iter()
+            .filter(|x| friction(&x.2).is_some())
+            .map(|x| x.3.clone())
+            .chain(
+                r.classic
+                    .as_ref()
+                    .filter(|m| friction(m).is_some())
+                    .and_then(|_| r.pair.clone()),
+            )
+            .collect();
+        for c in &pairs {
+            r.leave_out(
+                "the pairs' friction (the oblique impact runs against each wall only)",
+                c,
+            );
+        }
         Ok(r)
     }
 
@@ -714,7 +776,9 @@ impl LammpsDeck {
             Some(_) => format!("wall/gran {}", model_name(&wall.model)),
             None => model_name(&wall.model),
         };
-        Ok(PairLaw::new(model, law, entered, traps).set_by([&wall.at]))
+        Ok(PairLaw::new(model, law, entered, traps)
+            .set_by([&wall.at])
+            .with_friction(friction(&wall.model)))
     }
 
     /// A deck of the paper plugin: each pair of particle types by its `pair_coeff` (every pair
@@ -878,6 +942,10 @@ impl LammpsDeck {
 }
 
 impl DeckDialect for LammpsDeck {
+    fn renders_oblique(&self) -> bool {
+        true
+    }
+
     fn setup_basis(&self) -> (BodyElasticity, Option<Conventions>) {
         let conventions = self.1.measured_conventions().ok().flatten();
         (BodyElasticity::Withheld, conventions)
@@ -939,7 +1007,9 @@ impl DeckDialect for LammpsDeck {
             TypeRef::Wall => 1,
         };
         let r1 = body.radius;
-        let h = exact_number(4.0 * plan.reach + plan.velocity * plan.setup.duration() + gap);
+        // The box holds the bodies' whole travel, along the plane too in an oblique impact.
+        let travel = plan.velocity + plan.tangential_velocity.map_or(0.0, f64::abs);
+        let h = exact_number(4.0 * plan.reach + travel * plan.setup.duration() + gap);
         let mut lines = vec![
             "# millimpact deck: one normal impact with the contact lines of a user's deck (its time step;".to_string(),
             format!("# its lines between the markers, variables substituted). {} at {} m/s, {}.", format_args!("{} on {}", c.types[0], c.types[1]), plan.velocity, deck.path.display()),
@@ -969,12 +1039,16 @@ impl DeckDialect for LammpsDeck {
                     t(c.types[1]),
                     exact_number(o.radius)
                 ));
+                // Along the plane (y) the bodies move as along the normal: the centre of mass
+                // at rest, the slip split by the masses.
+                let share = |v: f64| plan.tangential_velocity.map(|s| s * v / (v1 - v2));
                 for (id, b, v) in [(1, body, v1), (2, o, v2)] {
                     lines.push(format!(
-                        "set             atom {id} diameter {} density {} vx {}",
+                        "set             atom {id} diameter {} density {} vx {}{}",
                         exact_number(2.0 * b.radius),
                         exact_number(b.density),
-                        exact_number(v)
+                        exact_number(v),
+                        share(v).map_or(String::new(), |t| format!(" vy {}", exact_number(t)))
                     ));
                 }
                 (
@@ -990,10 +1064,12 @@ impl DeckDialect for LammpsDeck {
                     exact_number(r1 + gap)
                 ));
                 lines.push(format!(
-                    "set             atom 1 diameter {} density {} vz {}",
+                    "set             atom 1 diameter {} density {} vz {}{}",
                     exact_number(2.0 * r1),
                     exact_number(body.density),
-                    exact_number(-v1)
+                    exact_number(-v1),
+                    plan.tangential_velocity
+                        .map_or(String::new(), |t| format!(" vx {}", exact_number(t)))
                 ));
                 (
                     format!("({})-z[1]", exact_number(r1)),
@@ -1016,10 +1092,15 @@ impl DeckDialect for LammpsDeck {
             format!("variable        approach equal {approach}"),
             format!("variable        force equal {force}"),
             format!("fix             trajectory all print 1 \"${{t}} ${{overlap}} ${{approach}} ${{force}}\" file {TRAJECTORY_FILE} screen no title \"# time overlap approach_velocity normal_force\""),
-            "thermo_style    custom step".into(),
-            "thermo          0".into(),
-            format!("run             {}", plan.steps),
         ]);
+        match plan.tangential_velocity {
+            None => lines.extend([
+                "thermo_style    custom step".to_string(),
+                "thermo          0".into(),
+                format!("run             {}", plan.steps),
+            ]),
+            Some(_) => lines.extend(oblique_lines(other.is_some(), plan.steps)),
+        }
         Ok(DeckImpactInput {
             input: RenderedInput {
                 file_name: INPUT_FILE.into(),

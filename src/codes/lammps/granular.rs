@@ -5,7 +5,7 @@
 //! they equal.
 
 use super::mixing::GranularModel;
-use crate::codes::deck::DeckError;
+use crate::codes::deck::{DeckError, DeckFriction};
 use crate::codes::script::Command;
 
 const NORMAL: &str = "hooke k d, hertz k d, hertz/material E d nu";
@@ -233,4 +233,27 @@ pub(super) fn model_name(model: &GranularModel) -> String {
         Some(style) => format!("{style} (= {} damping {})", model.normal, model.damping),
         None => format!("{} damping {}", model.normal, model.damping),
     }
+}
+
+/// The friction a model's words give: a classic style's `xmu` (with its dampflag, as written),
+/// a granular model's `tangential STYLE …` whose last coefficient is μ (`linear_nohistory γt μ`,
+/// the others `kt γt μ`, as `gran_sub_mod_tangential.cpp` reads them); `None` for a model
+/// without one or with μ = 0 (no friction to check).
+pub(super) fn friction(model: &GranularModel) -> Option<DeckFriction> {
+    let words = &model.words;
+    let (coefficient, written) = if model.tangential.starts_with("classic ") {
+        let (xmu, flag) = (words.get(5)?, words.get(6)?);
+        (xmu, format!("{}: xmu {xmu}, dampflag {flag}", words[0]))
+    } else {
+        let k = words.iter().position(|w| w == "tangential")?;
+        let style = words.get(k + 1)?;
+        let args = if style == "linear_nohistory" { 2 } else { 3 };
+        let mu = words.get(k + 1 + args)?;
+        (mu, words[k..=k + 1 + args].join(" "))
+    };
+    let coefficient: f64 = coefficient.parse().ok()?;
+    (coefficient > 0.0).then_some(DeckFriction {
+        coefficient,
+        model: written,
+    })
 }
