@@ -35,6 +35,7 @@ pub(crate) mod conventions;
 pub(crate) mod deck;
 pub(crate) mod granular;
 pub(crate) mod mixing;
+mod oblique;
 pub mod paper;
 pub(crate) mod plugin_coeffs;
 pub mod probe;
