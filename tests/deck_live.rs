@@ -706,10 +706,10 @@ fn the_debian_build_runs_a_mixed_pair_as_hooke_of_the_mixed_numbers() {
             i.warnings
         );
     }
-    // The glass ball on the drum meets Coulomb's closed form; the steel one (e 0.6, tsuji, the
-    // Mindlin spring with its tangential dashpot) gets less friction than μ (1+e) M* v_n in this
-    // build, by more than the tolerance, where the 2025 build meets it.
-    tangential_rows_pass(&report, &["1–wall"]);
+    // Both balls on the drum meet Coulomb's closed form with the tangential dashpot off (with
+    // it, the steel one, e 0.7 under tsuji, gets 94 % of μ (1+e) M* v_n in this build and 99 %
+    // in the 2025 build: the damped history spring lags its bound, by its build's damping).
+    tangential_rows_pass(&report, &["1–wall", "2–wall"]);
     let runs = with_snapshot_speed(MIXED, CodeName::Lammps, runs);
     write_runs("lammps-mixed", &runs);
     // hertz with damping velocity: the mixed pair is hooke too, resolved at this deck's step,

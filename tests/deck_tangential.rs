@@ -229,6 +229,8 @@ fn live_the_2025_classic_history_walls_fail_their_tangential_row() {
         );
         let row = &report["tangential"][0];
         assert_eq!(row["failed"], true, "{path}");
+        // Checked with the dashpot off: the bound itself is what the build misses.
+        assert_eq!(row["tangential_damping_off"], "dampflag 1", "{path}");
         assert!(delivered(row) < 0.7, "{path}: {}", delivered(row));
         let (status, report, stderr) = deck_cli(path, "lammps");
         assert_eq!(status, 0, "{path}: {stderr}");
@@ -250,6 +252,10 @@ fn live_the_granular_mindlin_wall_meets_the_closed_form_in_both_builds() {
         let (status, report, stderr) = deck_cli(MINDLIN, code);
         assert_eq!(status, 0, "{code}: {stderr}");
         let row = &report["tangential"][0];
+        assert_eq!(
+            row["tangential_damping_off"], "damping coefficient 1.0",
+            "{code}"
+        );
         assert_eq!(row["failed"], false, "{code}");
         assert!(
             (delivered(row) - 1.0).abs() < 5e-3,

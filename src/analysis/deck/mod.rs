@@ -1172,6 +1172,8 @@ pub struct DeckImpactRecord {
     /// speed where one was run (a wall with friction, at the first speed); the columns after it
     /// are that impact's, each empty elsewhere.
     pub tangential_velocity: Option<f64>,
+    /// The tangential damping of the lines the oblique run turned off.
+    pub tangential_damping_off: Option<String>,
     /// Coulomb's μ of the lines.
     pub friction_coefficient: Option<f64>,
     /// The ball's tangential velocity after, as the code gives it, m/s.
@@ -1237,6 +1239,7 @@ impl Summary for DeckReport {
                     cor_realised_max: i.cor_realised_band.max,
                     cor_realised_run: i.cor_realised_run,
                     tangential_velocity: t.map(|t| t.tangential_velocity),
+                    tangential_damping_off: t.and_then(|t| t.tangential_damping_off.clone()),
                     friction_coefficient: t.map(|t| t.friction_coefficient),
                     tangential_velocity_out: t.map(|t| t.tangential_velocity_out),
                     angular_velocity_out: t.map(|t| t.angular_velocity_out),
@@ -1441,7 +1444,10 @@ fn tangential_section(rows: &[DeckTangentialImpact]) -> Section {
     for t in rows {
         let mut row = vec![
             t.pair.clone(),
-            t.tangential_model.clone(),
+            match &t.tangential_damping_off {
+                Some(d) => format!("{} ({d} off)", t.tangential_model),
+                None => t.tangential_model.clone(),
+            },
             format!(
                 "{}, {}",
                 speed_text(t.impact_velocity),
@@ -1471,7 +1477,7 @@ fn tangential_section(rows: &[DeckTangentialImpact]) -> Section {
         section.rows.push(row);
     }
     section.notes.push(format!(
-        "the deck's first speed v_n with the ball sliding along the plane at v_t = {} μ v_n (twice the rigid-body bound (7/2) μ (1+e) v_n at e = 1: Coulomb sliding throughout), the wall's own lines; closed form: the tangential impulse μ (1+e) M* v_n against the slip, e the normal COR this run realised; tolerance: {} of the closed form's change (the history spring reaches the bound within the first steps), plus the friction of the run's attractive tail where a code bounds by μ|F_n|",
+        "the deck's first speed v_n with the ball sliding along the plane at v_t = {} μ v_n (twice the rigid-body bound (7/2) μ (1+e) v_n at e = 1: Coulomb sliding throughout), the wall's own lines with their tangential damping off (\"off\": a damped history spring lags its bound by what its build decides, which the closed form does not hold; Coulomb's bound is what is checked); closed form: the tangential impulse μ (1+e) M* v_n against the slip, e the normal COR this run realised; tolerance: {} of the closed form's change (the history spring reaches the bound within the first steps), plus the friction of the run's attractive tail where a code bounds by μ|F_n|",
         tangential::SLIP_OVER_FRICTION,
         percent(tangential::RELATIVE_TOLERANCE)
     ));
@@ -1557,12 +1563,15 @@ pub(crate) fn failures(report: &DeckReport) -> Vec<String> {
 /// The failure of a tangential row, naming its wall and "tangential".
 fn tangential_failure(t: &DeckTangentialImpact) -> Option<String> {
     let at = format!(
-        "{} tangential ({}, {}) at {} m/s",
+        "{} tangential ({}, {}{}) at {} m/s",
         t.wall
             .as_ref()
             .map_or_else(|| t.pair.clone(), |w| format!("wall {w}")),
         t.pair,
         t.tangential_model,
+        t.tangential_damping_off
+            .as_ref()
+            .map_or(String::new(), |d| format!(", {d} off")),
         speed_text(t.impact_velocity)
     );
     if let Some(f) = &t.failure {

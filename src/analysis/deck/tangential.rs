@@ -85,6 +85,10 @@ pub struct DeckTangentialImpact {
     pub wall: Option<String>,
     /// The tangential model as the lines write it.
     pub tangential_model: String,
+    /// The tangential damping the lines set that the run turned off (`dampflag 1`, `damping
+    /// coefficient 1.0`): the closed form is Coulomb's bound reached throughout, which a
+    /// damped history spring lags by what its build decides; `None` where the lines set none.
+    pub tangential_damping_off: Option<String>,
     /// Coulomb's μ of the lines.
     pub friction_coefficient: f64,
     /// Normal approach speed, m/s (the deck's first impact speed).
@@ -169,6 +173,7 @@ impl ObliqueRow<'_> {
                 Partner::Body(_) => None,
             },
             tangential_model: friction.map_or(String::new(), |f| f.model.clone()),
+            tangential_damping_off: friction.and_then(|f| f.damping.clone()),
             friction_coefficient: mu,
             impact_velocity: self.velocity,
             tangential_velocity: self.tangential_velocity,

@@ -375,6 +375,9 @@ pub struct DeckFriction {
     /// The tangential model as written (`tangential mindlin NULL 1.0 0.4`; for a classic
     /// style `hooke/history: xmu 0.4, dampflag 1`).
     pub model: String,
+    /// The tangential damping the lines set (`dampflag 1`, `damping coefficient 1.0`), which
+    /// the check's oblique run turns off; `None` where they set none.
+    pub damping: Option<String>,
 }
 
 /// The lines of the user's deck an impact input carries, as the code will read them

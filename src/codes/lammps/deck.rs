@@ -22,7 +22,7 @@ use std::path::Path;
 use super::conventions::{Conventions, exact_hertz_alpha};
 use super::granular::{CLASSIC, classic_model, friction, model_name, read_model};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
-use super::oblique::oblique_lines;
+use super::oblique::{oblique_lines, undamped_wall};
 use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
 use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
 use crate::codes::deck::{
@@ -1039,7 +1039,11 @@ impl DeckDialect for LammpsDeck {
         lines.push("# --- the deck's lines ---".into());
         lines.extend(deck.transplant.common.iter().cloned());
         if let Partner::Wall(w) = c.partner {
-            lines.push(deck.transplant.walls[w].clone());
+            let line = &deck.transplant.walls[w];
+            lines.push(match plan.tangential_velocity {
+                Some(_) => undamped_wall(line),
+                None => line.clone(),
+            });
         }
         lines.push("# --- end of the deck's lines ---".into());
         lines.extend([

@@ -241,19 +241,28 @@ pub(super) fn model_name(model: &GranularModel) -> String {
 /// without one or with μ = 0 (no friction to check).
 pub(super) fn friction(model: &GranularModel) -> Option<DeckFriction> {
     let words = &model.words;
-    let (coefficient, written) = if model.tangential.starts_with("classic ") {
+    let (coefficient, written, damping) = if model.tangential.starts_with("classic ") {
         let (xmu, flag) = (words.get(5)?, words.get(6)?);
-        (xmu, format!("{}: xmu {xmu}, dampflag {flag}", words[0]))
+        let damping = (flag != "0").then(|| format!("dampflag {flag}"));
+        (
+            xmu,
+            format!("{}: xmu {xmu}, dampflag {flag}", words[0]),
+            damping,
+        )
     } else {
         let k = words.iter().position(|w| w == "tangential")?;
         let style = words.get(k + 1)?;
         let args = if style == "linear_nohistory" { 2 } else { 3 };
         let mu = words.get(k + 1 + args)?;
-        (mu, words[k..=k + 1 + args].join(" "))
+        let damp = words.get(k + args)?;
+        let damping =
+            (damp.parse::<f64>().ok() != Some(0.0)).then(|| format!("damping coefficient {damp}"));
+        (mu, words[k..=k + 1 + args].join(" "), damping)
     };
     let coefficient: f64 = coefficient.parse().ok()?;
     (coefficient > 0.0).then_some(DeckFriction {
         coefficient,
         model: written,
+        damping,
     })
 }
