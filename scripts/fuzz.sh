@@ -32,8 +32,8 @@ export MILLIMPACT_LAMMPS_BINARY=/nonexistent MILLIMPACT_LAMMPS_2025_BINARY=/none
 
 scratch="$(mktemp -d)"
 trap 'rm -rf "$scratch"' EXIT
-# Inputs per target: the case reader runs about 6,000 a second here, the deck readers about 330.
-for run in case_reader:300000 deck_readers:20000; do
+# Inputs per target: the case reader runs about 8,000 a second here, the deck readers about 670.
+for run in case_reader:500000 deck_readers:40000; do
     target="${run%%:*}"
     runs=$(( ${run##*:} * scale ))
     mkdir -p "$scratch/$target"
