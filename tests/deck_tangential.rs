@@ -124,6 +124,13 @@ fn the_lammps_reader_records_each_walls_friction_as_written() {
             input.input.text.contains(" vz -1.2e0 vx 6.72e0\n"),
             "{path}"
         );
+        // Checked with the wall's tangential dashpot off, its line otherwise as written.
+        assert!(
+            input.input.text.contains(" 0.4 0 zplane 0 NULL\n")
+                || input.input.text.contains(" NULL 0 0.4 zplane 0 NULL\n"),
+            "{}",
+            input.input.text
+        );
         assert!(
             input.input.text.contains(
                 "print           \"MILLIMPACT_TANGENTIAL ${millimpact_vt_1} ${millimpact_w_1}\""
@@ -261,6 +268,33 @@ fn live_the_granular_mindlin_wall_meets_the_closed_form_in_both_builds() {
             (delivered(row) - 1.0).abs() < 5e-3,
             "{code}: {}",
             delivered(row)
+        );
+    }
+}
+
+/// A wall whose tangential force is its dashpot alone (the classic `hooke`, `linear_nohistory`)
+/// has no closed form: no oblique impact, and the report says so at its line.
+#[test]
+fn a_dashpot_only_wall_is_left_out_of_the_tangential_check() {
+    hide_codes();
+    std::env::set_current_dir(common::root()).unwrap();
+    for path in [
+        "tests/data/deck/shapes/lmp-classic-hooke.in",
+        "tests/data/deck/lammps-viscoelastic.in",
+    ] {
+        let (_, deck) = read_deck(
+            Path::new(path),
+            Some(CodeName::Lammps),
+            &DeckOptions::default(),
+        )
+        .unwrap();
+        assert!(deck.contacts.iter().all(|c| c.friction.is_none()), "{path}");
+        assert!(
+            deck.left_out
+                .iter()
+                .any(|l| l.starts_with("a wall's friction that is its tangential dashpot alone")),
+            "{path}: {:?}",
+            deck.left_out
         );
     }
 }

@@ -20,7 +20,7 @@
 use std::path::Path;
 
 use super::conventions::{Conventions, exact_hertz_alpha};
-use super::granular::{CLASSIC, classic_model, friction, model_name, read_model};
+use super::granular::{CLASSIC, classic_model, dashpot_only, friction, model_name, read_model};
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::oblique::{oblique_lines, undamped_wall};
 use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
@@ -325,6 +325,9 @@ impl LammpsDeck {
                 "the pairs' friction (the oblique impact runs against each wall only)",
                 c,
             );
+        }
+        for wall in r.walls.iter().filter(|w| dashpot_only(&w.model)) {
+            r.script.left_out.leave_out("a wall's friction that is its tangential dashpot alone (classic hooke, linear_nohistory: its impulse is what its damping decides, no closed form), not checked", &wall.at);
         }
         Ok(r)
     }

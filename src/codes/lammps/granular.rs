@@ -240,6 +240,9 @@ pub(super) fn model_name(model: &GranularModel) -> String {
 /// the others `kt γt μ`, as `gran_sub_mod_tangential.cpp` reads them); `None` for a model
 /// without one or with μ = 0 (no friction to check).
 pub(super) fn friction(model: &GranularModel) -> Option<DeckFriction> {
+    if dashpot_only(model) {
+        return None;
+    }
     let words = &model.words;
     let (coefficient, written, damping) = if model.tangential.starts_with("classic ") {
         let (xmu, flag) = (words.get(5)?, words.get(6)?);
@@ -265,4 +268,21 @@ pub(super) fn friction(model: &GranularModel) -> Option<DeckFriction> {
         model: written,
         damping,
     })
+}
+
+/// Whether a model's tangential force is its dashpot alone (the classic `hooke`, granular
+/// `linear_nohistory`): bounded by μ F_n, its impulse is what its damping coefficient decides
+/// (none at dampflag 0), so Coulomb's closed form does not hold and its friction is not checked.
+pub(super) fn dashpot_only(model: &GranularModel) -> bool {
+    match model.tangential.strip_prefix("classic ") {
+        Some(style) => style == "hooke",
+        None => {
+            let words = &model.words;
+            words
+                .iter()
+                .position(|w| w == "tangential")
+                .and_then(|k| words.get(k + 1))
+                .is_some_and(|style| style == "linear_nohistory")
+        }
+    }
 }
