@@ -8,7 +8,6 @@
 //! The live tests FAIL (not skip) when the build is not installed.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use millimpact::codes::lammps::paper::{LammpsPaper, plugin_stiffness};
 use millimpact::codes::lammps::paper_plugin_modulus as plugin_modulus;
@@ -25,7 +24,7 @@ mod common;
 
 use common::paper_build::{
     ETAS, SCENES, assert_cor_within_the_step_band, assert_refuses_eta_outside_its_range,
-    assert_run_is_the_law_stepped, stepped,
+    assert_run_is_the_law_stepped, run_lammps_paper, stepped,
 };
 use common::{millimpact, root, shipped};
 
@@ -398,44 +397,9 @@ struct Bed {
 
 /// Run the bed deck with `newton` in `processes` MPI processes (the venv's MPICH `mpiexec`).
 fn run_bed(newton: &str, processes: u32) -> Bed {
-    let executable = LammpsPaper.locate().unwrap();
     let dir = tempfile::TempDir::new().unwrap();
     let deck = root().join("tests/data/lammps-paper/in.bed");
-    let lmp_args = [
-        "-in",
-        deck.to_str().unwrap(),
-        "-var",
-        "newton",
-        newton,
-        "-log",
-        "none",
-        "-echo",
-        "none",
-        "-nocite",
-    ];
-    let mut command = if processes == 1 {
-        executable.command()
-    } else {
-        // bin/mpiexec beside the venv's lib/python3.X/site-packages/lammps/lmp.
-        let venv = executable.program.ancestors().nth(5).unwrap();
-        let mut c = Command::new(venv.join("bin/mpiexec"));
-        c.envs(executable.env.iter().map(|(k, v)| (k, v)))
-            .args(["-n", &processes.to_string()])
-            .arg(&executable.program);
-        c
-    };
-    let out = command
-        .args(lmp_args)
-        .current_dir(dir.path())
-        .env("TMPDIR", dir.path())
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "bed, newton {newton}, {processes} processes: {}{text}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = run_lammps_paper(deck.to_str().unwrap(), dir.path(), newton, processes, "bed");
     let numbers = |prefix: &str| -> Vec<f64> {
         let line = text
             .lines()

@@ -15,10 +15,12 @@
 //!
 //! The live tests FAIL (not skip) when the build is not installed.
 
+mod common;
+
 use std::collections::HashMap;
 use std::path::Path;
-use std::process::Command;
 
+use common::paper_build::run_lammps_paper;
 use millimpact::codes::CodeDriver;
 use millimpact::codes::lammps::paper::LammpsPaper;
 use millimpact::codes::lammps::paper_plugin_modulus;
@@ -97,44 +99,9 @@ fn require_build() {
 /// Run `deck` with `newton` in `processes` MPI processes (the venv's MPICH `mpiexec` for two)
 /// and read the balls of its final `write_dump`, by atom ID.
 fn run(deck: &str, newton: &str, processes: u32) -> HashMap<u32, Ball> {
-    let executable = LammpsPaper.locate().unwrap();
     let dir = tempfile::TempDir::new().unwrap();
     std::fs::write(dir.path().join("impact.in"), deck).unwrap();
-    let lmp_args = [
-        "-in",
-        "impact.in",
-        "-var",
-        "newton",
-        newton,
-        "-log",
-        "none",
-        "-echo",
-        "none",
-        "-nocite",
-    ];
-    let mut command = if processes == 1 {
-        executable.command()
-    } else {
-        // bin/mpiexec beside the venv's lib/python3.X/site-packages/lammps/lmp.
-        let venv = executable.program.ancestors().nth(5).unwrap();
-        let mut c = Command::new(venv.join("bin/mpiexec"));
-        c.envs(executable.env.iter().map(|(k, v)| (k, v)))
-            .args(["-n", &processes.to_string()])
-            .arg(&executable.program);
-        c
-    };
-    let out = command
-        .args(lmp_args)
-        .current_dir(dir.path())
-        .env("TMPDIR", dir.path())
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "newton {newton}, {processes} processes: {}{text}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = run_lammps_paper("impact.in", dir.path(), newton, processes, "impact");
     let grid = format!("{processes} by 1 by 1 MPI processor grid");
     assert!(text.contains(&grid), "not {grid}: {text}");
     read_dump(&dir.path().join("final.txt"))
@@ -666,26 +633,9 @@ fn bed_deck(tangential: bool) -> String {
 
 /// The bed's printed energies: `[(kinetic, rotational, atoms) at 0.1 s, at 0.6 s]`, J.
 fn bed(tangential: bool, newton: &str, processes: u32) -> [(f64, f64, f64); 2] {
-    let executable = LammpsPaper.locate().unwrap();
     let dir = tempfile::TempDir::new().unwrap();
     std::fs::write(dir.path().join("bed.in"), bed_deck(tangential)).unwrap();
-    let venv = executable.program.ancestors().nth(5).unwrap();
-    let out = Command::new(venv.join("bin/mpiexec"))
-        .envs(executable.env.iter().map(|(k, v)| (k, v)))
-        .args(["-n", &processes.to_string()])
-        .arg(&executable.program)
-        .args(["-in", "bed.in", "-var", "newton", newton])
-        .args(["-log", "none", "-echo", "none", "-nocite"])
-        .current_dir(dir.path())
-        .env("TMPDIR", dir.path())
-        .output()
-        .unwrap();
-    let text = String::from_utf8_lossy(&out.stdout).into_owned();
-    assert!(
-        out.status.success(),
-        "bed, newton {newton}, {processes} processes: {}{text}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let text = run_lammps_paper("bed.in", dir.path(), newton, processes, "bed");
     let at = |time: &str| {
         let prefix = format!("BED {time} ");
         let line = text

@@ -132,3 +132,44 @@ pub fn clamp_refused_in_one_line(code: &str) -> String {
     assert!(stderr.contains(code), "{stderr}");
     stderr
 }
+
+/// Run the plugin build's LAMMPS on `input` (a path, or a file in `dir`) in `dir` with
+/// `-var newton NEWTON`, in `processes` MPI processes (one: the build's own executable; more: the
+/// venv's MPICH `mpiexec` beside it), and return its standard output; a failed run fails the test,
+/// naming `what`.
+pub fn run_lammps_paper(
+    input: &str,
+    dir: &std::path::Path,
+    newton: &str,
+    processes: u32,
+    what: &str,
+) -> String {
+    use millimpact::codes::lammps::paper::LammpsPaper;
+    let executable = LammpsPaper.locate().unwrap();
+    let mut command = if processes == 1 {
+        executable.command()
+    } else {
+        // bin/mpiexec beside the venv's lib/python3.X/site-packages/lammps/lmp.
+        let venv = executable.program.ancestors().nth(5).unwrap();
+        let mut c = std::process::Command::new(venv.join("bin/mpiexec"));
+        c.envs(executable.env.iter().map(|(k, v)| (k, v)))
+            .args(["-n", &processes.to_string()])
+            .arg(&executable.program);
+        c
+    };
+    let out = command
+        .args([
+            "-in", input, "-var", "newton", newton, "-log", "none", "-echo", "none", "-nocite",
+        ])
+        .current_dir(dir)
+        .env("TMPDIR", dir)
+        .output()
+        .unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        out.status.success(),
+        "{what}, newton {newton}, {processes} processes: {}{text}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    text
+}

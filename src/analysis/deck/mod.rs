@@ -642,11 +642,7 @@ pub fn check_deck(
                 velocity: o.velocity,
                 tangential_velocity: o.tangential_velocity,
             };
-            row.row(
-                run.as_ref()
-                    .map(|r| (&r.trajectory, r.tangential))
-                    .map_err(ToString::to_string),
-            )
+            row.row(run.as_ref())
         })
         .collect();
     let version = rows.iter().find_map(|(_, v)| v.clone());

@@ -10,11 +10,14 @@
 //! the tangential part.
 
 use serde::{Deserialize, Serialize};
+use thiserror::Error;
 
-use crate::codes::deck::{Partner, TypeRef, UserDeck};
+use super::ImpactRun;
+use crate::codes::CodeError;
+use crate::codes::deck::{Partner, TANGENTIAL_LINE, TypeRef, UserDeck};
 use crate::model::law::ContactForce;
 use crate::model::tangential::{PlaneMotion, TangentialBodies, gross_sliding_impulse};
-use crate::model::trajectory::{CodeTrajectory, trajectory_metrics};
+use crate::model::trajectory::{CodeTrajectory, TrajectoryError, trajectory_metrics};
 
 /// The slip of the oblique impact over `μ v_n`: twice the rigid-body bound of gross sliding,
 /// `(7/2) μ (1+e) v_n`, at `e = 1`.
@@ -27,7 +30,7 @@ pub const SLIP_OVER_FRICTION: f64 = 14.0;
 /// the history spring's start from zero: it reaches the Coulomb bound within the first steps
 /// of the contact, where the closed form has the bound from the first instant. The builds
 /// whose friction is right miss by 0.3 % or less in the measurements
-/// (`docs/src/commands/deck.md`); the LAMMPS 2025 classic walls by 40 to 60 %.
+/// (`docs/src/commands/deck.md`); the LAMMPS 2025 classic walls, dashpot off, by 50 to 100 %.
 pub const RELATIVE_TOLERANCE: f64 = 1e-2;
 
 /// What a run of an oblique impact leaves with along the contact plane: the ball's motion and,
@@ -152,12 +155,25 @@ pub(crate) struct ObliqueRow<'a> {
     pub tangential_velocity: f64,
 }
 
+/// Why an oblique impact gives no figures.
+#[derive(Debug, Error)]
+enum ObliqueFailure<'a> {
+    /// The code's run failed (its log kept where the error says).
+    #[error(transparent)]
+    Run(&'a CodeError),
+    /// Its trajectory does not read as an impact.
+    #[error("the run's trajectory: {0}")]
+    Trajectory(#[from] TrajectoryError),
+    /// It printed no motion after its steps.
+    #[error(
+        "the run printed no `{TANGENTIAL_LINE}` line (the ball's tangential velocity and spin)"
+    )]
+    NoMotion,
+}
+
 impl ObliqueRow<'_> {
     /// The row of the run `run` (its trajectory and printed motion) or of its failure.
-    pub(crate) fn row(
-        &self,
-        run: Result<(&CodeTrajectory, Option<TangentialRun>), String>,
-    ) -> DeckTangentialImpact {
+    pub(crate) fn row(&self, run: Result<&ImpactRun, &CodeError>) -> DeckTangentialImpact {
         let c = &self.deck.contacts[self.contact];
         let friction = c.friction.as_ref();
         let mu = friction.map_or(0.0, |f| f.coefficient);
@@ -187,21 +203,15 @@ impl ObliqueRow<'_> {
             failed: false,
             failure: None,
         };
-        let read = run.and_then(|(trajectory, motion)| {
-            let metrics =
-                trajectory_metrics(trajectory).map_err(|e| format!("the run's trajectory: {e}"))?;
-            let motion = motion.ok_or_else(|| {
-                format!(
-                    "the run printed no `{}` line (the ball's tangential velocity and spin)",
-                    crate::codes::deck::TANGENTIAL_LINE
-                )
-            })?;
-            Ok((trajectory, metrics.cor, motion))
+        let read = run.map_err(ObliqueFailure::Run).and_then(|run| {
+            let metrics = trajectory_metrics(&run.trajectory)?;
+            let motion = run.tangential.ok_or(ObliqueFailure::NoMotion)?;
+            Ok((&run.trajectory, metrics.cor, motion))
         });
         let (trajectory, cor, motion) = match read {
             Ok(read) => read,
             Err(e) => {
-                row.failure = Some(e);
+                row.failure = Some(e.to_string());
                 return row;
             }
         };
