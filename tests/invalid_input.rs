@@ -818,3 +818,18 @@ fn validity_warnings_go_to_stderr_and_the_json() {
         );
     }
 }
+
+/// A value written as a TOML multi-line string (or a quoted key with a line break) is refused on
+/// one line, its breaks written `\n` (the case reader's fuzz target found the break printed).
+#[test]
+fn a_value_with_line_breaks_is_refused_on_one_line() {
+    let dir = TempDir::new().unwrap();
+    let text = "scene = \"\"\"ball\nplate\"\"\"\nimpact_velocity = 2.0\nloss_coefficient = 0.35\n";
+    let path = write(dir.path(), "multiline.toml", text);
+    let file = path.display().to_string();
+    rejected(
+        dir.path(),
+        &["run", &file],
+        &[&file, "scene = \"ball\\nplate\""],
+    );
+}

@@ -32,7 +32,7 @@ pub(crate) const MAX_CASE_BYTES: u64 = 64 * 1024;
 
 /// A rejected case file.
 #[derive(Debug, Error, Clone, PartialEq)]
-#[error("{file}: {key} = {value}: {allowed}")]
+#[error("{}: {} = {}: {allowed}", one_line(.file), one_line(.key), one_line(.value))]
 pub struct CaseError {
     /// The file.
     pub file: String,
@@ -42,6 +42,16 @@ pub struct CaseError {
     pub value: String,
     /// What is allowed.
     pub allowed: String,
+}
+
+/// `text` on one line: a line break (a TOML multi-line string, a quoted key) written as `\n`,
+/// so that a refusal stays the one line it promises.
+fn one_line(text: &str) -> std::borrow::Cow<'_, str> {
+    if text.contains(['\n', '\r']) {
+        text.replace('\r', "\\r").replace('\n', "\\n").into()
+    } else {
+        text.into()
+    }
 }
 
 /// An invalid case is the user's: exit code 2.
