@@ -272,7 +272,10 @@ impl TangentialReport {
                 self.regime_changes
             ),
             match self.tangential_exact {
-                Some(x) => format!("tangential closed form: {}", closed_form_name(x.kind)),
+                Some(x) => format!(
+                    "tangential closed form: {}",
+                    ClosedFormKind::describe(x.kind)
+                ),
                 None => "tangential closed form: none holds for this case (partial slip)".into(),
             },
         ]
@@ -295,13 +298,6 @@ fn law_name(law: &TangentialLaw) -> String {
         format!("{spring}, damping ratio {}", law.damping_ratio)
     } else {
         spring
-    }
-}
-
-fn closed_form_name(kind: ClosedFormKind) -> &'static str {
-    match kind {
-        ClosedFormKind::GrossSliding => "Coulomb sliding throughout",
-        ClosedFormKind::StickReversal => "stick reversal (2/7 spring, no slip)",
     }
 }
 

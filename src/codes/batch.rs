@@ -93,6 +93,12 @@ pub fn run_batch_with(
     let Some(runner) = driver.batch() else {
         return Err(unsupported(BatchError::OnePerProcess.to_string()));
     };
+    // A batch renders the normal half only: an oblique impact runs alone (`run_code`).
+    if setups.iter().any(|s| s.oblique.is_some()) {
+        return Err(unsupported(
+            "an oblique impact runs alone, not in a batch".to_string(),
+        ));
+    }
     let input = runner
         .render_batch(setups)
         .map_err(|reason| unsupported(reason.to_string()))?;

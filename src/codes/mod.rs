@@ -33,11 +33,13 @@ use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::{CodeFrame, CodeStepping, StepScheme, own_law_metrics};
 pub(crate) use batch::BatchError;
 pub use conventions::{Conventions, DampingVelocity, TsujiFit, WallModulus};
-pub use parse::ParseError;
+pub use parse::{ParseError, TangentialRun};
 pub use probe::{Hypothesis, Measured, ProbeError, ProbeItem, ProbeReport};
 pub use runner::{CodeError, CodeRun, LocateError, RunOptions, run_code};
 pub(crate) use setup::setup_for_case;
-pub use setup::{CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with};
+pub use setup::{
+    CodeOblique, CodeSetup, CodeSphere, SetupError, elastic_contact_time, prepare, prepare_with,
+};
 
 /// What a driver's parser returns.
 #[derive(Clone, Debug, PartialEq)]
@@ -163,6 +165,13 @@ pub trait CodeDriver: Send + Sync {
     /// cannot; `None` where it can (or always does).
     fn clamp_refusal(&self) -> Option<&'static str> {
         None
+    }
+    /// Whether the build renders an oblique or spinning ball-on-plate impact
+    /// ([`CodeSetup::oblique`]): the ball's motion along the plane, the friction, the
+    /// tangential law, and after the run one line [`deck::TANGENTIAL_LINE`]` VT OMEGA` in its
+    /// output. A build that does not is refused such a setup before it starts.
+    fn runs_oblique(&self) -> bool {
+        false
     }
     /// Many independent impacts in one process, where the code can.
     fn batch(&self) -> Option<&dyn BatchRunner> {

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use thiserror::Error;
 
+use crate::model::tangential::PlaneMotion;
 use crate::model::trajectory::{CodeTrajectory, TrajectoryError};
 
 /// Output of a code that cannot be read as the run asked.
@@ -62,6 +63,13 @@ pub enum ParseError {
         ran: u64,
         /// Steps asked.
         asked: u64,
+    },
+    /// An oblique impact's run printed no motion along the contact plane after its steps
+    /// (no line `MILLIMPACT_TANGENTIAL VT OMEGA`, or one that does not read as numbers).
+    #[error("no line `{word} VT OMEGA` with the motion along the contact plane after the run")]
+    NoPlaneMotion {
+        /// The line's first word.
+        word: &'static str,
     },
     /// A reported value is not a number.
     #[error("bad {field} `{value}`")]
@@ -185,6 +193,47 @@ pub(crate) fn parse_csv_columns(text: &str, file: &str) -> Result<CodeTrajectory
         t.normal_force.push(value(iff)?);
     }
     Ok(t)
+}
+
+/// What a run of an oblique impact leaves with along the contact plane: the ball's motion and,
+/// for a pair, the partner's (as the code printed them after its steps).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
+pub struct TangentialRun {
+    /// The moving ball.
+    pub ball: PlaneMotion,
+    /// The partner ball, for a pair.
+    pub partner: Option<PlaneMotion>,
+}
+
+impl TangentialRun {
+    /// The motions on the last line starting with `word` in `log` (`WORD VT OMEGA [VT2
+    /// OMEGA2]`); `None` where there is none or it does not read as numbers.
+    pub fn from_log(log: &str, word: &str) -> Option<TangentialRun> {
+        let line = log
+            .lines()
+            .rev()
+            .find_map(|l| l.trim().strip_prefix(word))?;
+        let values: Vec<f64> = line
+            .split_whitespace()
+            .map(str::parse)
+            .collect::<Result<_, _>>()
+            .ok()?;
+        let motion = |k: usize| PlaneMotion {
+            tangential_velocity: values[k],
+            angular_velocity: values[k + 1],
+        };
+        match values.len() {
+            2 => Some(TangentialRun {
+                ball: motion(0),
+                partner: None,
+            }),
+            4 => Some(TangentialRun {
+                ball: motion(0),
+                partner: Some(motion(2)),
+            }),
+            _ => None,
+        }
+    }
 }
 
 #[cfg(test)]

@@ -212,6 +212,9 @@ pub struct CodeRun {
     pub loop_time: Option<f64>,
     /// The combined stdout and stderr.
     pub log: String,
+    /// An oblique impact's motion along the contact plane after the run, as the code printed
+    /// it; `None` for a normal impact.
+    pub plane_motion: Option<super::TangentialRun>,
 }
 
 /// Time limit and scratch location for [`run_code`].
@@ -454,6 +457,7 @@ pub fn run_code(
     setup: &CodeSetup,
     options: &RunOptions,
 ) -> Result<CodeRun, CodeError> {
+    refuse_oblique(driver, setup)?;
     let executable = locate(driver)?;
     check_conventions(driver, &executable, std::slice::from_ref(setup))?;
     let input = driver.render(setup)?;
@@ -493,6 +497,20 @@ pub(crate) fn run_rendered(
         Ok(parsed) => parsed,
         Err(reason) => return Err(ran.unparsable(code, reason)),
     };
+    let plane_motion = match setup.oblique {
+        None => None,
+        Some(_) => match super::TangentialRun::from_log(&log, super::deck::TANGENTIAL_LINE) {
+            Some(motion) => Some(motion),
+            None => {
+                return Err(ran.unparsable(
+                    code,
+                    ParseError::NoPlaneMotion {
+                        word: super::deck::TANGENTIAL_LINE,
+                    },
+                ));
+            }
+        },
+    };
     Ok(CodeRun {
         code: code.to_string(),
         code_version: parsed.version.unwrap_or_else(|| "unknown".to_string()),
@@ -501,7 +519,41 @@ pub(crate) fn run_rendered(
         wall_time: ran.wall_time,
         loop_time: parsed.loop_time,
         log,
+        plane_motion,
     })
+}
+
+/// Refuses an oblique setup that `driver`'s build does not render, or that no build runs: two
+/// balls, whose contact normal turns with their tangential motion while every driver reads
+/// the normal trajectory along the fixed line of the centres at the start.
+pub(crate) fn refuse_oblique(driver: &dyn CodeDriver, setup: &CodeSetup) -> Result<(), CodeError> {
+    if setup.oblique.is_none() {
+        return Ok(());
+    }
+    if setup.scene != crate::model::scene::SceneKind::BallPlate {
+        return Err(setup.unsupported(
+            driver.name(),
+            "an oblique ball_ball case turns the contact normal, and the codes' trajectories are \
+             read along the line of the centres at the start: the DEM codes run oblique \
+             ball_plate cases (`millimpact run` integrates this one)",
+        ));
+    }
+    if !driver.runs_oblique() {
+        let builds: Vec<&str> = super::CodeName::ALL
+            .iter()
+            .map(|c| c.driver())
+            .filter(|d| d.runs_oblique())
+            .map(|d| d.name())
+            .collect();
+        return Err(setup.unsupported(
+            driver.name(),
+            format!(
+                "this build does not run an oblique impact; the builds that do: {}",
+                builds.join(", ")
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// `run` as a run of `setup` is read: its whole trajectory, no more rows and no fewer than

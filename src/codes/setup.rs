@@ -10,6 +10,7 @@ use super::conventions::Conventions;
 use crate::model::case::Case;
 use crate::model::count::ceil_count;
 use crate::model::scene::{Ball, Plate, Scene, SceneKind, SpringModel, pair_radius, reduced_mass};
+use crate::model::tangential::{PlaneMotion, TangentialBodies, TangentialLaw};
 use crate::solve::SolveError;
 use crate::solve::dashpot::own_law_metrics;
 
@@ -94,6 +95,25 @@ pub struct CodeSetup {
     /// plans with the conventions its build was measured to have.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub conventions: Option<Conventions>,
+    /// The tangential half of an oblique or spinning impact; `None` for a normal one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub oblique: Option<CodeOblique>,
+}
+
+/// The tangential half of an oblique or spinning impact as a DEM code is given it: each
+/// ball's motion along the contact plane at first contact (sign convention of
+/// [`crate::model::tangential`]; at a plate the plane's axis is the code's x and the spin the
+/// ball's ω_y), Coulomb's μ and the tangential law.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CodeOblique {
+    /// The ball's centre velocity along the plane (m/s) and spin (rad/s).
+    pub ball: PlaneMotion,
+    /// The other ball's, for two balls; `None` at a plate.
+    pub partner: Option<PlaneMotion>,
+    /// Coulomb's friction coefficient μ.
+    pub friction_coefficient: f64,
+    /// The tangential law the case names.
+    pub law: TangentialLaw,
 }
 
 impl CodeSetup {
@@ -306,6 +326,15 @@ pub(crate) fn setup_for_case(case: &Case, timestep: f64) -> CodeSetup {
         steps: 0,
         clamp_attractive: false,
         conventions: None,
+        oblique: case.oblique.as_ref().and_then(|oblique| {
+            let bodies = TangentialBodies::of(scene, oblique)?;
+            Some(CodeOblique {
+                ball: bodies.ball.2,
+                partner: bodies.other.map(|(_, _, motion)| motion),
+                friction_coefficient: oblique.friction_coefficient,
+                law: oblique.law,
+            })
+        }),
     }
 }
 

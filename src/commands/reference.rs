@@ -8,13 +8,20 @@ use super::CommandOutput;
 use super::render;
 use crate::cli::ReferenceArgs;
 use millimpact::analysis::store::{ReferenceOptions, run_reference, save};
-use millimpact::error::UserError;
+use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::output::Format;
 
 pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     let mut case = Case::load(&args.case)?;
-    case.refuse_oblique("reference")?;
+    if args.save && case.oblique.is_some() {
+        return Err(UserError::argument(
+            "--save",
+            args.case.display(),
+            "an oblique case's run is shown, not stored: reference/ and verify hold normal impacts",
+        )
+        .into());
+    }
     if let Some(eta) = args.loss_coefficient {
         if !(0.0..1.0).contains(&eta) {
             return Err(UserError::argument("--loss-coefficient", eta, "must be in [0, 1)").into());
@@ -48,6 +55,14 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
         timeout: Duration::from_secs_f64(args.timeout),
     };
     let record = run_reference(args.code, &case, &options)?;
+    let missed = record.tangential.as_ref().filter(|t| t.missed()).map(|t| {
+        CheckFailed(format!(
+            "reference --code {} {}: {}",
+            args.code,
+            args.case.display(),
+            t.verdict()
+        ))
+    });
     let mut text = render(&record, args.format)?;
     if args.save {
         let path = save(&args.reference, &record)?;
@@ -55,5 +70,9 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
             text += &format!("stored in {}\n", path.display());
         }
     }
-    Ok(CommandOutput::passed(text))
+    Ok(CommandOutput {
+        warnings: Vec::new(),
+        text,
+        failure: missed,
+    })
 }

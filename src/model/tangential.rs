@@ -224,7 +224,7 @@ pub fn inertia(mass: f64, radius: f64) -> f64 {
 pub const SLIP_FACTOR: f64 = 3.5;
 
 /// Which closed form a tangential result is compared with.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ClosedFormKind {
     /// Coulomb sliding throughout the contact.
@@ -232,6 +232,16 @@ pub enum ClosedFormKind {
     /// An undamped proportional spring of ratio 2/7 that never reaches the Coulomb bound: the
     /// slip turns round exactly.
     StickReversal,
+}
+
+impl ClosedFormKind {
+    /// Its name in words.
+    pub fn describe(self) -> &'static str {
+        match self {
+            ClosedFormKind::GrossSliding => "Coulomb sliding throughout",
+            ClosedFormKind::StickReversal => "stick reversal (2/7 spring, no slip)",
+        }
+    }
 }
 
 /// The tangential closed form of an impact: the tangential impulse on the ball, N·s.

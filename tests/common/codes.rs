@@ -157,6 +157,7 @@ pub fn code_setup(which: Canonical, e: f64, per_contact: f64, run_length: f64) -
         steps: round_count(run_length * per_contact).expect("a step count"),
         clamp_attractive: false,
         conventions: None,
+        oblique: None,
     };
     setup.timestep = elastic_contact_time(&setup) / per_contact;
     setup

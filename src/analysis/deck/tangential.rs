@@ -9,11 +9,12 @@
 //! realised (read from its trajectory), so the normal law's own step error is not charged to
 //! the tangential part.
 
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use thiserror::Error;
 
 use super::ImpactRun;
 use crate::codes::CodeError;
+pub use crate::codes::TangentialRun;
 use crate::codes::deck::{Partner, TANGENTIAL_LINE, TypeRef, UserDeck};
 use crate::model::law::ContactForce;
 use crate::model::tangential::{PlaneMotion, TangentialBodies, gross_sliding_impulse};
@@ -32,47 +33,6 @@ pub const SLIP_OVER_FRICTION: f64 = 14.0;
 /// whose friction is right miss by 0.3 % or less in the measurements
 /// (`docs/src/commands/deck.md`); the LAMMPS 2025 classic walls, dashpot off, by 50 to 100 %.
 pub const RELATIVE_TOLERANCE: f64 = 1e-2;
-
-/// What a run of an oblique impact leaves with along the contact plane: the ball's motion and,
-/// for a pair, the partner's (as the code printed them after its steps).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct TangentialRun {
-    /// The moving ball.
-    pub ball: PlaneMotion,
-    /// The partner ball, for a pair.
-    pub partner: Option<PlaneMotion>,
-}
-
-impl TangentialRun {
-    /// The motions on the last line starting with `word` in `log` (`WORD VT OMEGA [VT2
-    /// OMEGA2]`); `None` where there is none or it does not read as numbers.
-    pub fn from_log(log: &str, word: &str) -> Option<TangentialRun> {
-        let line = log
-            .lines()
-            .rev()
-            .find_map(|l| l.trim().strip_prefix(word))?;
-        let values: Vec<f64> = line
-            .split_whitespace()
-            .map(str::parse)
-            .collect::<Result<_, _>>()
-            .ok()?;
-        let motion = |k: usize| PlaneMotion {
-            tangential_velocity: values[k],
-            angular_velocity: values[k + 1],
-        };
-        match values.len() {
-            2 => Some(TangentialRun {
-                ball: motion(0),
-                partner: None,
-            }),
-            4 => Some(TangentialRun {
-                ball: motion(0),
-                partner: Some(motion(2)),
-            }),
-            _ => None,
-        }
-    }
-}
 
 /// The tangential row of one wall (of a ball against it): the oblique impact in gross sliding
 /// against Coulomb's closed form.

@@ -7,6 +7,7 @@
 //! (own law exact − paper law exact), an integration error (own law stepped − own law exact)
 //! and a remainder (code − own law stepped) that nothing explains.
 
+pub mod tangential;
 pub mod verify;
 
 use std::path::{Path, PathBuf};
@@ -294,6 +295,9 @@ pub struct ReferenceRecord {
     pub date: String,
     /// The command that reproduces it.
     pub command: String,
+    /// An oblique impact's tangential half against its closed form; `None` for a normal one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<tangential::CodeTangential>,
 }
 
 /// The file `reference/<code>/<case>.json`: the runs of one code on one case, one per η.
@@ -400,6 +404,9 @@ pub fn run_reference(
     };
     let run = run_code(driver, &setup, &run_options)?;
     let metrics = code_metrics(code, &run.trajectory)?;
+    let tangential = run.plane_motion.as_ref().and_then(|motion| {
+        tangential::CodeTangential::of_run(case, &setup, &run.trajectory, metrics.cor, motion)
+    });
     let (law, law_at_step, law_exact) = own_law(code, &setup)?;
     let command = Invocation::new("reference")
         .option("--code", code)
@@ -438,6 +445,7 @@ pub fn run_reference(
         setup,
         date: chrono::Utc::now().to_rfc3339_opts(chrono::SecondsFormat::Secs, true),
         command,
+        tangential,
     })
 }
 
@@ -607,6 +615,14 @@ pub struct RecordRow {
     /// Wall time of the whole run (sizing and probe included), s; empty in a record stored
     /// without it.
     pub whole_wall_time: Option<f64>,
+    /// An oblique impact's velocity along the plane after it, m/s; empty for a normal one.
+    pub tangential_velocity_out: Option<f64>,
+    /// Its spin after it, rad/s.
+    pub angular_velocity_out: Option<f64>,
+    /// Its change of velocity along the plane against the closed form's, relative.
+    pub tangential_change_error: Option<f64>,
+    /// Its change of spin against the closed form's, relative.
+    pub spin_change_error: Option<f64>,
 }
 
 impl Summary for ReferenceRecord {
@@ -628,6 +644,13 @@ impl Summary for ReferenceRecord {
             wall_time: self.wall_time,
             loop_time: self.loop_time,
             whole_wall_time: self.whole_wall_time,
+            tangential_velocity_out: self.tangential.as_ref().map(|t| t.tangential_velocity_out),
+            angular_velocity_out: self.tangential.as_ref().map(|t| t.angular_velocity_out),
+            tangential_change_error: self
+                .tangential
+                .as_ref()
+                .and_then(|t| t.tangential_change_error),
+            spin_change_error: self.tangential.as_ref().and_then(|t| t.spin_change_error),
         }]
     }
 
@@ -697,7 +720,43 @@ impl Summary for ReferenceRecord {
             ),
             format!("reproduce: {}", r.command),
         ];
-        vec![t]
+        let mut sections = vec![t];
+        if let Some(tan) = &r.tangential {
+            let mut s = Section::new(
+                Some(format!(
+                    "{} on {}, the tangential half: v_t = {} m/s, ω = {} rad/s, μ = {}",
+                    r.code,
+                    r.case,
+                    tan.tangential_velocity,
+                    tan.angular_velocity,
+                    tan.friction_coefficient
+                )),
+                &[
+                    "source",
+                    "tangential velocity out (m/s)",
+                    "angular velocity out (rad/s)",
+                ],
+            );
+            s.rows.push(vec![
+                format!("{} {}", r.code, r.code_version),
+                sci(tan.tangential_velocity_out),
+                sci(tan.angular_velocity_out),
+            ]);
+            if let (Some(kind), Some(v), Some(w)) = (
+                tan.closed_form,
+                tan.tangential_velocity_closed_form,
+                tan.angular_velocity_closed_form,
+            ) {
+                s.rows.push(vec![
+                    format!("closed form ({})", kind.describe()),
+                    sci(v),
+                    sci(w),
+                ]);
+            }
+            s.notes = vec![tan.verdict()];
+            sections.push(s);
+        }
+        sections
     }
 }
 

@@ -163,6 +163,7 @@ impl UserDeck {
             steps,
             clamp_attractive: c.law.clamp_attractive(),
             conventions,
+            oblique: None,
         };
         setup.effective_radius = Some(setup.pair_radius());
         let velocities = setup.centre_of_mass_velocities();

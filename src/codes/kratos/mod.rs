@@ -412,6 +412,7 @@ mod tests {
             steps: 50,
             clamp_attractive: false,
             conventions: None,
+            oblique: None,
         }
     }
 

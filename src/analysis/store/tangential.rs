@@ -1,0 +1,138 @@
+//! The tangential half of an oblique impact a code ran: the ball's motion along the plane and
+//! its spin after the impact, against the closed form of the case at the normal COR the same
+//! run realised (so the normal law's own difference is not charged to the tangential part).
+
+use serde::{Deserialize, Serialize};
+
+use crate::analysis::deck::tangential::{RELATIVE_TOLERANCE, tolerance};
+use crate::codes::{CodeSetup, TangentialRun};
+use crate::model::case::Case;
+use crate::model::tangential::{
+    ClosedFormKind, PlaneMotion, SLIP_FACTOR, TangentialBodies, gross_sliding_impulse,
+};
+use crate::model::trajectory::CodeTrajectory;
+use crate::solve::tangential::closed_form;
+
+/// An oblique impact's tangential figures in a code's run, beside the case's closed form.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CodeTangential {
+    /// Coulomb's μ.
+    pub friction_coefficient: f64,
+    /// The ball's centre velocity along the plane at first contact, m/s.
+    pub tangential_velocity: f64,
+    /// Its spin at first contact, rad/s.
+    pub angular_velocity: f64,
+    /// Its centre velocity along the plane after the impact, as the code printed it, m/s.
+    pub tangential_velocity_out: f64,
+    /// Its spin after the impact, as the code printed it, rad/s.
+    pub angular_velocity_out: f64,
+    /// The closed form that holds for the case; `None` where none does (partial slip).
+    pub closed_form: Option<ClosedFormKind>,
+    /// The normal COR the closed form is taken at: the one the run realised.
+    pub closed_form_restitution: f64,
+    /// The closed form's velocity along the plane after the impact, m/s.
+    pub tangential_velocity_closed_form: Option<f64>,
+    /// The closed form's spin after the impact, rad/s.
+    pub angular_velocity_closed_form: Option<f64>,
+    /// The code's change of velocity along the plane less the closed form's, over the closed
+    /// form's change.
+    pub tangential_change_error: Option<f64>,
+    /// The code's change of spin less the closed form's, over the closed form's change.
+    pub spin_change_error: Option<f64>,
+    /// The largest relative miss allowed, over the closed form's change: [`RELATIVE_TOLERANCE`]
+    /// plus the friction an attractive tail carries in a code that bounds the tangential force
+    /// by `μ |F_n|` ([`tolerance`]).
+    pub allowed_change_error: Option<f64>,
+}
+
+impl CodeTangential {
+    /// The figures of a run of `case` (set up as `setup`) whose trajectory is `trajectory`,
+    /// whose normal COR was `restitution` and which printed `motion`; `None` for a normal
+    /// impact.
+    pub fn of_run(
+        case: &Case,
+        setup: &CodeSetup,
+        trajectory: &CodeTrajectory,
+        restitution: f64,
+        motion: &TangentialRun,
+    ) -> Option<CodeTangential> {
+        let oblique = setup.oblique?;
+        let bodies = TangentialBodies::of(&case.scene, case.oblique.as_ref()?)?;
+        let mass = setup.pair_mass();
+        let kind = closed_form(case).map(|c| c.kind);
+        let closed = kind.map(|kind| {
+            let impulse = match kind {
+                ClosedFormKind::GrossSliding => gross_sliding_impulse(
+                    mass,
+                    setup.impact_velocity,
+                    restitution,
+                    oblique.friction_coefficient,
+                    bodies.slip(),
+                ),
+                ClosedFormKind::StickReversal => -2.0 * bodies.slip() * mass / SLIP_FACTOR,
+            };
+            bodies.after(impulse).0
+        });
+        let start = oblique.ball;
+        let out = motion.ball;
+        let change_error = |value: fn(&PlaneMotion) -> f64| {
+            closed.map(|c| (value(&out) - value(&c)) / (value(&c) - value(&start)).abs())
+        };
+        let allowed = closed.map(|c| {
+            let change = c.tangential_velocity - start.tangential_velocity;
+            tolerance(
+                change,
+                oblique.friction_coefficient,
+                mass,
+                setup.timestep,
+                trajectory,
+            ) / change.abs()
+        });
+        Some(CodeTangential {
+            friction_coefficient: oblique.friction_coefficient,
+            tangential_velocity: start.tangential_velocity,
+            angular_velocity: start.angular_velocity,
+            tangential_velocity_out: out.tangential_velocity,
+            angular_velocity_out: out.angular_velocity,
+            closed_form: kind,
+            closed_form_restitution: restitution,
+            tangential_velocity_closed_form: closed.map(|c| c.tangential_velocity),
+            angular_velocity_closed_form: closed.map(|c| c.angular_velocity),
+            tangential_change_error: change_error(|m| m.tangential_velocity),
+            spin_change_error: change_error(|m| m.angular_velocity),
+            allowed_change_error: allowed,
+        })
+    }
+
+    /// Whether the code misses the closed form by more than allowed, in either figure (a
+    /// NaN it printed is a miss); `false` where no closed form holds.
+    pub fn missed(&self) -> bool {
+        let Some(allowed) = self.allowed_change_error else {
+            return false;
+        };
+        [self.tangential_change_error, self.spin_change_error]
+            .into_iter()
+            .flatten()
+            .any(|e| e.is_nan() || e.abs() > allowed)
+    }
+
+    /// The figure's largest miss and what is allowed, in words.
+    pub fn verdict(&self) -> String {
+        match (
+            self.tangential_change_error,
+            self.spin_change_error,
+            self.allowed_change_error,
+        ) {
+            (Some(v), Some(w), Some(allowed)) => format!(
+                "tangential: change of v_t {} and of ω {} of the closed form's (at the run's COR {:.6}), allowed {:.2e} ({:.0e} and the attractive tail's friction): {}",
+                crate::output::signed(v),
+                crate::output::signed(w),
+                self.closed_form_restitution,
+                allowed,
+                RELATIVE_TOLERANCE,
+                if self.missed() { "missed" } else { "met" }
+            ),
+            _ => "tangential: no closed form holds for this case (partial slip); the code's motion is shown alone".to_string(),
+        }
+    }
+}
