@@ -422,7 +422,10 @@ fn the_binary_refuses_what_it_cannot_run() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(stderr.contains("not yet run by the DEM codes"), "{stderr}");
+    assert!(
+        stderr.contains("compare takes normal impacts only") && stderr.contains("reference --code"),
+        "{stderr}"
+    );
     assert!(stderr.contains("tangential_velocity = 3"), "{stderr}");
     // A spin alone: the line names the key the case sets, not one it leaves out.
     let spin = dir.path().join("spin.toml");

@@ -523,21 +523,28 @@ pub(crate) fn run_rendered(
     })
 }
 
-/// Refuses an oblique setup that `driver`'s build does not render, or that no build runs: two
-/// balls, whose contact normal turns with their tangential motion while every driver reads
-/// the normal trajectory along the fixed line of the centres at the start.
-pub(crate) fn refuse_oblique(driver: &dyn CodeDriver, setup: &CodeSetup) -> Result<(), CodeError> {
-    if setup.oblique.is_none() {
-        return Ok(());
-    }
-    if setup.scene != crate::model::scene::SceneKind::BallPlate {
+/// Refuses, as `code`, an oblique setup of two balls: their contact normal turns with their
+/// tangential motion while every driver reads the normal trajectory along the fixed line of
+/// the centres at the start.
+pub(crate) fn refuse_two_oblique_balls(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
+    if setup.oblique.is_some() && setup.scene != crate::model::scene::SceneKind::BallPlate {
         return Err(setup.unsupported(
-            driver.name(),
+            code,
             "an oblique ball_ball case turns the contact normal, and the codes' trajectories are \
              read along the line of the centres at the start: the DEM codes run oblique \
              ball_plate cases (`millimpact run` integrates this one)",
         ));
     }
+    Ok(())
+}
+
+/// Refuses an oblique setup that `driver`'s build does not render, or that no build runs
+/// ([`refuse_two_oblique_balls`]).
+pub(crate) fn refuse_oblique(driver: &dyn CodeDriver, setup: &CodeSetup) -> Result<(), CodeError> {
+    if setup.oblique.is_none() {
+        return Ok(());
+    }
+    refuse_two_oblique_balls(driver.name(), setup)?;
     if !driver.runs_oblique() {
         let builds: Vec<&str> = super::CodeName::ALL
             .iter()

@@ -245,6 +245,17 @@ impl CodeSetup {
         }
     }
 
+    /// Mindlin's effective shear modulus `G*` of a ball scene, Pa: `1/G* = Σ (2 − ν)/G` over
+    /// the sphere and its [`partner_material`](CodeSetup::partner_material) (the rigid
+    /// plate's stand-in adds nothing a double can hold); `None` for the rod, or a partner
+    /// without ν.
+    pub(crate) fn effective_shear_modulus(&self) -> Option<f64> {
+        use crate::model::tangential::mindlin_compliance;
+        let (e2, nu2) = self.partner_material()?;
+        let own = mindlin_compliance(self.sphere.youngs_modulus, self.sphere.poisson_ratio?);
+        Some(1.0 / (own + mindlin_compliance(e2, nu2)))
+    }
+
     /// `code`'s refusal of this setup, for `reason`.
     pub(crate) fn unsupported(&self, code: &str, reason: impl Into<String>) -> super::CodeError {
         super::CodeError::Unsupported {

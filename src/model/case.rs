@@ -138,9 +138,9 @@ impl Case {
         Ok(())
     }
 
-    /// Refuse an oblique case where `what` would run only its normal half (the DEM codes'
-    /// drivers and the commands built on them take normal impacts only): one line naming the
-    /// file and the first tangential key.
+    /// Refuse an oblique case where `what` would run only its normal half (the commands that
+    /// run many impacts or store them take normal impacts only): one line naming the file and
+    /// the first tangential key.
     pub fn refuse_oblique(&self, what: &str) -> Result<(), CaseError> {
         match &self.oblique {
             None => Ok(()),
@@ -158,8 +158,9 @@ impl Case {
                     key,
                     &value.to_string(),
                     &format!(
-                        "an oblique case is not yet run by the DEM codes ({what} takes normal \
-                     impacts only; `millimpact run` integrates it)"
+                        "a normal case: {what} takes normal impacts only (`millimpact run` \
+                     integrates an oblique case, `millimpact reference --code CODE` runs it in a \
+                     DEM code)"
                     ),
                 ))
             }

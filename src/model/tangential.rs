@@ -103,7 +103,7 @@ fn shear_modulus(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
 }
 
 /// Mindlin's `(2 − ν)/G` of one body, 1/Pa.
-fn mindlin_compliance(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
+pub(crate) fn mindlin_compliance(youngs_modulus: f64, poisson_ratio: f64) -> f64 {
     (2.0 - poisson_ratio) / shear_modulus(youngs_modulus, poisson_ratio)
 }
 

@@ -136,6 +136,7 @@ pub mod calibrate;
 pub mod codes;
 pub mod deck;
 pub mod mill;
+pub mod oblique;
 pub mod paper_build;
 
 /// For every registered build, its `MILLIMPACT_<CODE>_BINARY` naming a file that does not

@@ -58,6 +58,10 @@ macro_rules! lammps_driver_methods {
             $build.start_gap(setup)
         }
 
+        fn runs_oblique(&self) -> bool {
+            true
+        }
+
         fn shares_law_with(&self) -> Option<$crate::codes::CodeName> {
             Some($crate::codes::CodeName::Liggghts)
         }

@@ -270,6 +270,7 @@ pub fn parse_loop_time(log: &str) -> Option<f64> {
 impl Build {
     /// The input deck for `setup`.
     pub(crate) fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        crate::codes::runner::refuse_two_oblique_balls(self.name, setup)?;
         let plan = self.plan(setup)?;
         if setup.steps == 0 || setup.timestep.is_nan() || setup.timestep <= 0.0 {
             return Err(setup.unsupported(self.name, "no steps or no positive timestep"));
@@ -296,6 +297,16 @@ impl Build {
         };
         let text = fill_template(template, &values)
             .map_err(|reason| setup.unsupported(self.name, reason.to_string()))?;
+        let text = match pair {
+            Some(_) => text,
+            None => oblique::oblique_wall_input(
+                self.name,
+                setup,
+                text,
+                oblique::TangentialSlot::Replace("tangential linear_nohistory 0 0"),
+                &oblique::granular_tangential(self.name, setup)?,
+            )?,
+        };
         Ok(deck_input(text))
     }
 

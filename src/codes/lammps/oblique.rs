@@ -2,6 +2,133 @@
 //! bodies' motion along the contact plane, which the live runner reads from the log.
 
 use crate::codes::deck::TANGENTIAL_LINE;
+use crate::codes::template::exact_number;
+use crate::codes::{CodeError, CodeSetup};
+use crate::model::tangential::TangentialSpring;
+
+/// Where a wall's tangential words go in a normal impact's input.
+pub(super) enum TangentialSlot<'a> {
+    /// In place of these words (a stock build's `tangential linear_nohistory 0 0`).
+    Replace(&'a str),
+    /// Before ` zplane` on the wall's line (the plugin's `fix wall/paper`, which has none).
+    BeforePlane,
+}
+
+/// The input of `setup`'s oblique impact at a wall, from its normal impact's input `text`
+/// (rendered by `code` from its wall template): the ball's velocity along x and its spin ω_y
+/// set beside its vz, the wall's `tangential` words, and the run's end of [`oblique_lines`].
+/// `text` itself for a normal setup.
+pub(super) fn oblique_wall_input(
+    code: &str,
+    setup: &CodeSetup,
+    text: String,
+    slot: TangentialSlot,
+    tangential: &str,
+) -> Result<String, CodeError> {
+    let Some(oblique) = setup.oblique else {
+        return Ok(text);
+    };
+    let ours = |what: &str| setup.unsupported(code, format!("the wall template has no {what}"));
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let velocity = lines
+        .iter_mut()
+        .find(|l| l.starts_with("set ") && l.contains(" vz "))
+        .ok_or_else(|| ours("`set … vz` line"))?;
+    velocity.push_str(&format!(
+        " vx {} omega 0 {} 0",
+        exact_number(oblique.ball.tangential_velocity),
+        exact_number(oblique.ball.angular_velocity)
+    ));
+    let wall = lines
+        .iter_mut()
+        .find(|l| l.starts_with("fix ") && l.contains(" zplane "))
+        .ok_or_else(|| ours("wall line"))?;
+    *wall = match slot {
+        TangentialSlot::Replace(words) if wall.contains(words) => {
+            wall.replacen(words, tangential, 1)
+        }
+        TangentialSlot::Replace(words) => return Err(ours(words)),
+        TangentialSlot::BeforePlane => {
+            wall.replacen(" zplane ", &format!(" {tangential} zplane "), 1)
+        }
+    };
+    // The template ends with the run: thermo_style, thermo, run.
+    let run_start = lines
+        .iter()
+        .rposition(|l| l.starts_with("thermo_style"))
+        .ok_or_else(|| ours("run at its end"))?;
+    lines.truncate(run_start);
+    lines.extend(oblique_lines(false, setup.steps));
+    Ok(lines.join("\n") + "\n")
+}
+
+/// A stock build's `tangential` words of `setup`'s law at a wall of `fix wall/gran granular`:
+/// Mindlin's spring as `mindlin 8G* 0 μ` (the code scales k_t by the contact radius
+/// `a = sqrt(R* δ)`, so `8 G* a` is the case's spring with the case's own G*, not the one the
+/// code would mix from the `E = 2E*, ν = 0` its normal model is given), a constant spring as
+/// `linear_history k_t 0 μ`, the proportional one as `mindlin ratio·C/sqrt(R*) 0 μ` (`k_t a`
+/// is then `ratio C sqrt(δ)`); the tangential damping off (`x_γ,t = 0`). A case's dashpot is
+/// refused: the code's tangential damping is a multiple of its normal one, not a ratio of
+/// `k_t`.
+pub(super) fn granular_tangential(code: &str, setup: &CodeSetup) -> Result<String, CodeError> {
+    let Some(oblique) = setup.oblique else {
+        return Ok(String::new());
+    };
+    refuse_damped(code, setup)?;
+    let mu = exact_number(oblique.friction_coefficient);
+    Ok(match oblique.law.spring {
+        TangentialSpring::Mindlin => {
+            let g = setup.effective_shear_modulus().ok_or_else(|| {
+                setup.unsupported(code, "Mindlin's spring needs both bodies' E and ν")
+            })?;
+            format!("tangential mindlin {} 0 {mu}", exact_number(8.0 * g))
+        }
+        TangentialSpring::Linear { stiffness } => {
+            format!(
+                "tangential linear_history {} 0 {mu}",
+                exact_number(stiffness)
+            )
+        }
+        TangentialSpring::Proportional { ratio } => format!(
+            "tangential mindlin {} 0 {mu}",
+            exact_number(ratio * setup.stiffness / setup.pair_radius().sqrt())
+        ),
+    })
+}
+
+/// The plugin's `tangential` words of `setup`'s law: `mindlin μ` (its G* from the bodies' E
+/// and ν, as the case forms it) or `linear k_t μ`; it has no proportional spring and no
+/// dashpot.
+pub(super) fn plugin_tangential(code: &str, setup: &CodeSetup) -> Result<String, CodeError> {
+    let Some(oblique) = setup.oblique else {
+        return Ok(String::new());
+    };
+    refuse_damped(code, setup)?;
+    let mu = exact_number(oblique.friction_coefficient);
+    match oblique.law.spring {
+        TangentialSpring::Mindlin => Ok(format!("tangential mindlin {mu}")),
+        TangentialSpring::Linear { stiffness } => {
+            Ok(format!("tangential linear {} {mu}", exact_number(stiffness)))
+        }
+        TangentialSpring::Proportional { .. } => Err(setup.unsupported(
+            code,
+            "[tangential] spring = \"proportional\": the plugin's springs are `mindlin` and `linear`",
+        )),
+    }
+}
+
+fn refuse_damped(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
+    match setup.oblique {
+        Some(o) if o.law.damping_ratio != 0.0 => Err(setup.unsupported(
+            code,
+            format!(
+                "[tangential] damping_ratio = {}: this build's tangential dashpot is not a ratio of k_t; the case's law runs undamped only",
+                o.law.damping_ratio
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
 
 /// The end of an oblique impact's input: its steps, then the line [`TANGENTIAL_LINE`] with the
 /// ball's velocity along the plane and its spin (and the partner's, for a `pair`). At a wall

@@ -25,6 +25,7 @@ use std::path::Path;
 use crate::codes::batch_fns::BatchFns;
 use crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
 use crate::codes::lammps::build_2025::{self, venv_executable};
+use crate::codes::lammps::oblique::{TangentialSlot, oblique_wall_input, plugin_tangential};
 use crate::codes::lammps::{body_values, deck_input, paper_plugin_modulus, parse_run};
 use crate::codes::paper_law::paper_law_methods;
 use crate::codes::runner::locate_override_or_installed;
@@ -165,6 +166,7 @@ impl CodeDriver for LammpsPaper {
     }
 
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
+        crate::codes::runner::refuse_two_oblique_balls(self.name(), setup)?;
         self.validate(setup)?;
         let mut values = vec![
             ("timestep", exact_number(setup.timestep)),
@@ -190,7 +192,21 @@ impl CodeDriver for LammpsPaper {
         };
         let text = fill_template(template, &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
+        let text = match pair {
+            Some(_) => text,
+            None => oblique_wall_input(
+                self.name(),
+                setup,
+                text,
+                TangentialSlot::BeforePlane,
+                &plugin_tangential(self.name(), setup)?,
+            )?,
+        };
         Ok(deck_input(text))
+    }
+
+    fn runs_oblique(&self) -> bool {
+        true
     }
 
     fn parse(
