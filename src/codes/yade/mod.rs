@@ -21,6 +21,10 @@
 //!   substitution of the `tc`/`en` form does not apply) and `Law2_ScGeom_ViscElPhys_Basic`:
 //!   `F = k y + c ẏ`, clamped at zero. `c` is chosen so that the clamped law realises the target
 //!   restitution.
+//! - Oblique impacts ([`CodeSetup::oblique`], ball on a plate): the ball also moves along x and
+//!   turns about y, the materials carry `frictionAngle = atan(μ)`, the Mindlin law runs without
+//!   its shear dashpot, and the motion along the plane is printed after the steps (see
+//!   `oblique.rs` for the law and what it cannot render).
 //! - Stepping: leap-frog; the force of iteration `i` sees the position `x_i` and the half-step
 //!   velocity `v_{i-1/2}`; the initial velocity is `v_{-1/2}`.
 
@@ -29,6 +33,7 @@ pub(crate) mod card;
 pub mod deck;
 pub(crate) mod dump;
 mod objects;
+mod oblique;
 pub mod paper;
 mod reading;
 mod viscel;
@@ -160,6 +165,7 @@ impl CodeDriver for Yade {
         values.push(("restitution", exact_number(Self::input_restitution(setup))));
         let text = fill_template(TEMPLATE, &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
+        let text = oblique::with_tangential_half(self.name(), setup, text)?;
         Ok(script_input(SCRIPT, text))
     }
 
@@ -179,6 +185,10 @@ impl CodeDriver for Yade {
                     .map(|v| v.trim().to_string())
             }),
         })
+    }
+
+    fn runs_oblique(&self) -> bool {
+        true
     }
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
