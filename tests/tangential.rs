@@ -489,3 +489,34 @@ fn oblique_json_is_as_reviewed() {
         });
     }
 }
+
+/// `reference` refuses, before any run, an oblique case a build cannot run: in a build that
+/// does not render one (naming the builds that do), or of two balls; one line, exit 2.
+#[test]
+fn reference_refuses_an_oblique_case_a_build_cannot_run() {
+    for (code, case, expected) in [
+        (
+            "yade-paper",
+            "ball_plate_sliding",
+            "tangential_velocity = 3: a normal case in yade-paper, which does not run an oblique impact (the builds that do: ",
+        ),
+        (
+            "lammps",
+            "ball_ball_sliding",
+            "scene = ball_ball: ball_plate for an oblique case in a DEM code",
+        ),
+    ] {
+        let out = common::millimpact()
+            .args(["reference", "--code", code])
+            .arg(format!("cases/oblique/{case}.toml"))
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{code} {case}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains(&format!("cases/oblique/{case}.toml")) && stderr.contains(expected),
+            "{stderr}"
+        );
+    }
+}

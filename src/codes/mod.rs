@@ -410,6 +410,15 @@ code_registry! {
 }
 
 impl CodeName {
+    /// The names of the builds that run an oblique impact ([`CodeDriver::runs_oblique`]).
+    pub fn oblique_builds() -> Vec<&'static str> {
+        CodeName::ALL
+            .iter()
+            .filter(|c| c.driver().runs_oblique())
+            .map(|c| c.name())
+            .collect()
+    }
+
     /// The name on the command line, in reports and in `reference/<name>/`.
     pub fn name(self) -> &'static str {
         self.driver().name()

@@ -546,12 +546,7 @@ pub(crate) fn refuse_oblique(driver: &dyn CodeDriver, setup: &CodeSetup) -> Resu
     }
     refuse_two_oblique_balls(driver.name(), setup)?;
     if !driver.runs_oblique() {
-        let builds: Vec<&str> = super::CodeName::ALL
-            .iter()
-            .map(|c| c.driver())
-            .filter(|d| d.runs_oblique())
-            .map(|d| d.name())
-            .collect();
+        let builds = super::CodeName::oblique_builds();
         return Err(setup.unsupported(
             driver.name(),
             format!(

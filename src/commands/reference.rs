@@ -8,12 +8,18 @@ use super::CommandOutput;
 use super::render;
 use crate::cli::ReferenceArgs;
 use millimpact::analysis::store::{ReferenceOptions, run_reference, save};
+use millimpact::codes::CodeName;
 use millimpact::error::{CheckFailed, UserError};
 use millimpact::model::case::Case;
 use millimpact::output::Format;
 
 pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
     let mut case = Case::load(&args.case)?;
+    case.refuse_oblique_in(
+        args.code.name(),
+        args.code.driver().runs_oblique(),
+        &CodeName::oblique_builds(),
+    )?;
     if args.save && case.oblique.is_some() {
         return Err(UserError::argument(
             "--save",

@@ -138,33 +138,73 @@ impl Case {
         Ok(())
     }
 
+    /// The key that makes the case oblique and its value: the tangential velocity, else the
+    /// spin (a spin alone names the spin), else μ; `None` for a normal case.
+    fn oblique_key(&self) -> Option<(&'static str, f64)> {
+        let o = self.oblique.as_ref()?;
+        Some(if o.tangential_velocity != 0.0 {
+            ("tangential_velocity", o.tangential_velocity)
+        } else if o.angular_velocity != 0.0 {
+            ("angular_velocity", o.angular_velocity)
+        } else {
+            ("friction_coefficient", o.friction_coefficient)
+        })
+    }
+
     /// Refuse an oblique case where `what` would run only its normal half (the commands that
     /// run many impacts or store them take normal impacts only): one line naming the file and
     /// the first tangential key.
     pub fn refuse_oblique(&self, what: &str) -> Result<(), CaseError> {
-        match &self.oblique {
+        match self.oblique_key() {
             None => Ok(()),
-            Some(o) => {
-                // The key the case sets that makes it oblique: a spin alone names the spin.
-                let (key, value) = if o.tangential_velocity != 0.0 {
-                    ("tangential_velocity", o.tangential_velocity)
-                } else if o.angular_velocity != 0.0 {
-                    ("angular_velocity", o.angular_velocity)
-                } else {
-                    ("friction_coefficient", o.friction_coefficient)
-                };
-                Err(CaseError::new(
-                    &self.path.display().to_string(),
-                    key,
-                    &value.to_string(),
-                    &format!(
-                        "a normal case: {what} takes normal impacts only (`millimpact run` \
+            Some((key, value)) => Err(CaseError::new(
+                &self.path.display().to_string(),
+                key,
+                &value.to_string(),
+                &format!(
+                    "a normal case: {what} takes normal impacts only (`millimpact run` \
                      integrates an oblique case, `millimpact reference --code CODE` runs it in a \
                      DEM code)"
-                    ),
-                ))
-            }
+                ),
+            )),
         }
+    }
+
+    /// Refuse an oblique case that the DEM code `code` cannot run: one of two balls (their
+    /// contact normal turns, and the codes' trajectories are read along a fixed line), or one
+    /// in a build that does not render oblique impacts (`builds` names those that do).
+    pub fn refuse_oblique_in(
+        &self,
+        code: &str,
+        runs_oblique: bool,
+        builds: &[&str],
+    ) -> Result<(), CaseError> {
+        let Some((key, value)) = self.oblique_key() else {
+            return Ok(());
+        };
+        let file = self.path.display().to_string();
+        if self.scene.kind() != SceneKind::BallPlate {
+            return Err(CaseError::new(
+                &file,
+                "scene",
+                self.scene.kind().name(),
+                "ball_plate for an oblique case in a DEM code (two balls' contact normal turns, \
+                 and the codes' trajectories are read along the line of the centres at the \
+                 start; `millimpact run` integrates it)",
+            ));
+        }
+        if !runs_oblique {
+            return Err(CaseError::new(
+                &file,
+                key,
+                &value.to_string(),
+                &format!(
+                    "a normal case in {code}, which does not run an oblique impact (the builds that do: {})",
+                    builds.join(", ")
+                ),
+            ));
+        }
+        Ok(())
     }
 
     /// The paper's law for this case.
