@@ -753,6 +753,16 @@ impl Summary for ReferenceRecord {
                     sci(w),
                 ]);
             }
+            if let (Some(v), Some(w)) = (
+                tan.tangential_velocity_case_law,
+                tan.angular_velocity_case_law,
+            ) {
+                s.rows.push(vec![
+                    "the case's law (paper's normal law), dopri5".to_string(),
+                    sci(v),
+                    sci(w),
+                ]);
+            }
             s.notes = vec![tan.verdict()];
             sections.push(s);
         }
