@@ -95,6 +95,17 @@ fn the_oblique_input_carries_the_friction_the_motion_and_the_printed_line() {
                 "{what}: the tangential set comes after the normal one"
             );
 
+            // The box holds the ball's travel along x over the run (the slip bounds how far
+            // friction can speed it up), beside its reach.
+            let region = words_of(&text, "region");
+            let half: f64 = region[4].parse().unwrap();
+            let plane_speed = oblique.ball.tangential_velocity.abs()
+                + setup.sphere.radius * oblique.ball.angular_velocity.abs();
+            assert!(
+                half > setup.sphere.radius + plane_speed * setup.duration(),
+                "{what}: box half {half}"
+            );
+
             // The motion printed after the run, at full precision.
             let lines: Vec<&str> = text.lines().collect();
             let run = lines.iter().rposition(|l| l.starts_with("run ")).unwrap();

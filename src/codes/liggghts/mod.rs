@@ -221,7 +221,10 @@ pub(crate) fn render_deck(
             r1,
         ),
     };
-    let half = 4.0 * reach + setup.impact_velocity * setup.duration() + gap;
+    let half = 4.0 * reach
+        + setup.impact_velocity * setup.duration()
+        + gap
+        + oblique::plane_speed_bound(setup) * setup.duration();
     let h = exact_number(half);
     let domain = format!("-{h} {h} -{h} {h} -{h} {h}");
     let values = [

@@ -105,6 +105,15 @@ pub(super) fn friction(setup: &CodeSetup) -> String {
         .map_or_else(|| "0".into(), |o| exact_number(o.friction_coefficient))
 }
 
+/// A bound on the ball's speed along the plane over the run, m/s, which the box must hold:
+/// its own plus its surface's from the spin (friction changes the centre's velocity by less
+/// than the slip), 0 for a normal impact (whose box is then as before, to the bit).
+pub(super) fn plane_speed_bound(setup: &CodeSetup) -> f64 {
+    setup.oblique.map_or(0.0, |o| {
+        o.ball.tangential_velocity.abs() + setup.sphere.radius * o.ball.angular_velocity.abs()
+    })
+}
+
 /// The impact's kind as the deck's first line names it.
 pub(super) fn kind(setup: &CodeSetup) -> &'static str {
     if setup.oblique.is_some() {
