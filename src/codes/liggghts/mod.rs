@@ -7,6 +7,9 @@
 //! - `rod_end` runs `model hooke/stiffness absolute_damping on`, which takes the spring
 //!   constant `kn` and the dashpot `gamman_abs` directly, so both are exactly the rod's.
 //!
+//! An oblique or spinning impact on the plate adds friction and `tangential history` (both
+//! builds; `oblique.rs` in this folder says what it renders and why).
+//!
 //! The plate is a `wall/gran` primitive with its own atom type (type 2) whose material is mixed
 //! into `E*`; the second ball is atom 2. What the installed version really does, and the
 //! measurements behind each choice here, are in `reference/liggghts/CONVENTIONS.md`.
@@ -16,6 +19,7 @@ pub(crate) mod card;
 pub(crate) mod deck;
 pub(crate) mod gran;
 pub mod mill;
+mod oblique;
 pub mod paper;
 
 pub(crate) use paper::LiggghtsPaper;
@@ -135,8 +139,9 @@ pub(crate) fn material_properties(setup: &CodeSetup) -> [String; 2] {
     ]
 }
 
-/// The checks LIGGGHTS itself would fail on, whatever the contact model, reported before it is
-/// run by `code`.
+/// The checks LIGGGHTS itself would fail on, whatever the contact model, and the oblique
+/// impacts its tangential model cannot run as the case asks, reported before it is run by
+/// `code`.
 pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeError> {
     let unsupported = |reason: String| setup.unsupported(code, reason);
     if !(setup.timestep > 0.0 && setup.impact_velocity > 0.0 && setup.steps > 0) {
@@ -161,7 +166,7 @@ pub(crate) fn validate_scene(code: &str, setup: &CodeSetup) -> Result<(), CodeEr
             }
         }
     }
-    Ok(())
+    oblique::refuse(code, setup)
 }
 
 /// The deck (the template in this folder) for `setup` with `contact`'s model, as run by `code`.
@@ -186,6 +191,11 @@ pub(crate) fn render_deck(
         )
     };
     let mut atoms = sphere_lines(1, z1, r1, setup.sphere.density, -v1);
+    if let Some(line) = oblique::motion_line(setup) {
+        atoms.push('\n');
+        atoms.push_str(&line);
+    }
+    let tangential = oblique::tangential_model(setup);
     let model = contact.style;
     let settings = &contact.settings;
     let (wall, overlap, approach, reach) = match setup.other_sphere {
@@ -202,7 +212,7 @@ pub(crate) fn render_deck(
         }
         _ => (
             format!(
-                "fix             plate all wall/gran model {model} tangential no_history primitive type 2 zplane 0.0 {settings}"
+                "fix             plate all wall/gran model {model} tangential {tangential} primitive type 2 zplane 0.0 {settings}"
             )
             .trim_end()
             .to_string(),
@@ -211,17 +221,23 @@ pub(crate) fn render_deck(
             r1,
         ),
     };
-    let half = 4.0 * reach + setup.impact_velocity * setup.duration() + gap;
+    let half = 4.0 * reach
+        + setup.impact_velocity * setup.duration()
+        + gap
+        + oblique::plane_speed_bound(setup) * setup.duration();
     let h = exact_number(half);
     let domain = format!("-{h} {h} -{h} {h} -{h} {h}");
     let values = [
         ("case_name", setup.case_name.clone()),
         ("code", code.to_string()),
         ("scene", setup.scene.name().to_string()),
+        ("kind", oblique::kind(setup).to_string()),
+        ("about", oblique::about(setup).to_string()),
         ("domain", domain),
         ("skin", exact_number(reach)),
         ("properties", contact.properties.clone()),
         ("model", model.to_string()),
+        ("tangential", tangential.to_string()),
         ("settings", settings.clone()),
         ("wall", wall),
         ("timestep", exact_number(setup.timestep)),
@@ -231,8 +247,12 @@ pub(crate) fn render_deck(
         ("force", "fz[1]".to_string()),
         ("steps", setup.steps.to_string()),
     ];
-    let text = fill_template(TEMPLATE, &values)
+    let mut text = fill_template(TEMPLATE, &values)
         .map_err(|reason| setup.unsupported(code, reason.to_string()))?;
+    if let Some(line) = oblique::printed_line(setup) {
+        text.push_str(&line);
+        text.push('\n');
+    }
     Ok(RenderedInput {
         file_name: INPUT_FILE.to_string(),
         // A style without settings leaves no trailing blank on its lines.
@@ -307,7 +327,7 @@ impl Liggghts {
                     pair_property("kt", "0"),
                     pair_property("gamman_abs", &exact_number(law.damping)),
                     pair_property("gammat_abs", "0"),
-                    pair_property("coefficientFriction", "0"),
+                    pair_property("coefficientFriction", &oblique::friction(setup)),
                 ];
                 ContactModel {
                     style: "hooke/stiffness",
@@ -323,7 +343,7 @@ impl Liggghts {
                     young,
                     poisson,
                     pair_property("coefficientRestitution", &e),
-                    pair_property("coefficientFriction", "0"),
+                    pair_property("coefficientFriction", &oblique::friction(setup)),
                 ];
                 ContactModel {
                     style: "hertz",
@@ -404,6 +424,12 @@ impl CodeDriver for Liggghts {
 
     fn batch(&self) -> Option<&dyn BatchRunner> {
         Some(&batch::LIGGGHTS_BATCH)
+    }
+
+    /// A ball on the plate with `tangential history` (the Mindlin spring, no dashpot): the
+    /// lines in `oblique.rs`.
+    fn runs_oblique(&self) -> bool {
+        true
     }
 
     fn law(&self, setup: &CodeSetup) -> CodeLaw {

@@ -56,13 +56,13 @@ impl LiggghtsPaper {
     }
 
     /// `model paper` with the materials for the balls, `model paper/linear` with the rod's
-    /// `kn` for the rod; η per type pair, no friction.
+    /// `kn` for the rod; η per type pair, friction only in an oblique impact.
     fn contact_model(&self, setup: &CodeSetup) -> ContactModel {
         let eta = pair_property(
             "lossCoefficient",
             &exact_number(paper_loss_coefficient(setup)),
         );
-        let friction = pair_property("coefficientFriction", "0");
+        let friction = pair_property("coefficientFriction", &super::oblique::friction(setup));
         match setup.scene {
             SceneKind::RodEnd => ContactModel {
                 style: "paper/linear",
@@ -139,6 +139,12 @@ impl CodeDriver for LiggghtsPaper {
     }
 
     paper_law_methods!(CLAMP_REFUSAL, PAPER_BATCH, LiggghtsPaperCard);
+
+    /// The paper's normal law beside LIGGGHTS' own `tangential history` (the Mindlin spring
+    /// `model paper` hands it, no dashpot), as the stock build renders it.
+    fn runs_oblique(&self) -> bool {
+        true
+    }
 
     /// A LIGGGHTS user's deck, read as the stock build's (this build runs the stock models as
     /// Debian's does, and the paper's).
