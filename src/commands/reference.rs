@@ -20,14 +20,6 @@ pub(super) fn reference(args: &ReferenceArgs) -> Result<CommandOutput> {
         args.code.driver().runs_oblique(),
         &CodeName::oblique_builds(),
     )?;
-    if args.save && case.oblique.is_some() {
-        return Err(UserError::argument(
-            "--save",
-            args.case.display(),
-            "an oblique case's run is shown, not stored: reference/ and verify hold normal impacts",
-        )
-        .into());
-    }
     if let Some(eta) = args.loss_coefficient {
         if !(0.0..1.0).contains(&eta) {
             return Err(UserError::argument("--loss-coefficient", eta, "must be in [0, 1)").into());

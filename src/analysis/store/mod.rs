@@ -8,6 +8,10 @@
 //! and a remainder (code − own law stepped) that nothing explains.
 
 pub mod tangential;
+
+/// The folder of the stored oblique runs inside a reference store:
+/// `<reference>/oblique/<code>/<case>.json`, beside the cases of `<cases>/oblique/`.
+pub(crate) const OBLIQUE_FOLDER: &str = "oblique";
 pub mod verify;
 
 use std::path::{Path, PathBuf};
@@ -473,6 +477,15 @@ pub fn load(path: &Path) -> Result<ReferenceFile, StoreError> {
 
 /// Store `record`, replacing a stored run of the same η.
 pub fn save(folder: &Path, record: &ReferenceRecord) -> Result<PathBuf, StoreError> {
+    // An oblique run is a store of its own, as the benchmark's runs are: the canonical store's
+    // readers (its whole-ness check, `compare`) see none of it.
+    let oblique_store;
+    let folder = if record.setup.oblique.is_some() {
+        oblique_store = folder.join(OBLIQUE_FOLDER);
+        &oblique_store
+    } else {
+        folder
+    };
     let path = reference_path(folder, record.code, &record.case);
     let dir = path.parent().unwrap_or(folder);
     let io = |doing, path: &Path| {

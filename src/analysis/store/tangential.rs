@@ -127,6 +127,33 @@ impl CodeTangential {
         })
     }
 
+    /// The same figures taken again now from the stored motion, for `case` set up as `setup`
+    /// at the run's COR `restitution`, with the allowed error as stored (the attractive tail
+    /// it holds was read from the run's trajectory, which a record does not keep).
+    pub fn retaken(
+        &self,
+        case: &Case,
+        setup: &CodeSetup,
+        restitution: f64,
+    ) -> Option<CodeTangential> {
+        let pushing = CodeTrajectory {
+            time: Vec::new(),
+            overlap: Vec::new(),
+            approach_velocity: Vec::new(),
+            normal_force: Vec::new(),
+        };
+        let motion = TangentialRun {
+            ball: PlaneMotion {
+                tangential_velocity: self.tangential_velocity_out,
+                angular_velocity: self.angular_velocity_out,
+            },
+            partner: None,
+        };
+        let mut now = CodeTangential::of_run(case, setup, &pushing, restitution, &motion)?;
+        now.allowed_change_error = self.allowed_change_error;
+        Some(now)
+    }
+
     /// Whether the code misses the closed form by more than allowed, in either figure (a
     /// NaN it printed is a miss); `false` where no closed form holds.
     pub fn missed(&self) -> bool {
@@ -178,8 +205,15 @@ mod tests {
     #[test]
     fn a_run_is_held_to_the_closed_form_at_its_own_cor() {
         let case = held_out("ball_plate_sliding");
-        let setup = prepare_with(CodeName::Lammps.driver(), &case, Some(200), None, false, None)
-            .unwrap();
+        let setup = prepare_with(
+            CodeName::Lammps.driver(),
+            &case,
+            Some(200),
+            None,
+            false,
+            None,
+        )
+        .unwrap();
         let e = 0.8;
         let pushing = CodeTrajectory {
             time: vec![0.0, 1.0, 2.0],
@@ -205,13 +239,19 @@ mod tests {
         };
         let met = run(exact, &pushing);
         assert_eq!(met.closed_form, Some(ClosedFormKind::GrossSliding));
-        assert!(met.tangential_change_error.unwrap().abs() < 1e-14, "{met:?}");
+        assert!(
+            met.tangential_change_error.unwrap().abs() < 1e-14,
+            "{met:?}"
+        );
         assert!(met.spin_change_error.unwrap().abs() < 1e-14, "{met:?}");
         assert!((met.allowed_change_error.unwrap() - RELATIVE_TOLERANCE).abs() < 1e-15);
         assert!(!met.missed());
         let more = bodies.after(1.02 * impulse).0;
         let missed = run(more, &pushing);
-        assert!((missed.tangential_change_error.unwrap() + 0.02).abs() < 1e-12, "{missed:?}");
+        assert!(
+            (missed.tangential_change_error.unwrap() + 0.02).abs() < 1e-12,
+            "{missed:?}"
+        );
         assert!(missed.missed());
         // A pull of impulse P lets the bound carry 2 μ P more.
         let pull = 0.01 * impulse.abs() / 0.3;

@@ -9,7 +9,7 @@ use crate::analysis::benchmark::{CHUNG_OOI, STEPS_PER_CONTACT, STORED_FOLDER};
 use crate::analysis::run::run_case;
 use crate::analysis::source::Source;
 use crate::analysis::store::{
-    ReferenceRecord, Shown, StoreError, files_in, hex, load, stored_files,
+    OBLIQUE_FOLDER, ReferenceRecord, Shown, StoreError, files_in, hex, load, stored_files,
 };
 use crate::analysis::tolerance::{Differences, Tolerance};
 use crate::codes::{CodeName, prepare_with};
@@ -64,6 +64,10 @@ pub enum Check {
     Provenance,
     /// The store as a whole: every expected record present, no file that is not one.
     Store,
+    /// A stored oblique run's motion after the impact against Coulomb's closed form, taken
+    /// again now at the run's stored COR: its change errors as stored and within what is
+    /// allowed.
+    Tangential,
 }
 
 impl Check {
@@ -75,6 +79,7 @@ impl Check {
             Check::Target => "own law exact vs target (abs)",
             Check::Provenance => "provenance",
             Check::Store => "store",
+            Check::Tangential => "tangential vs closed form",
         }
     }
 }
@@ -314,9 +319,15 @@ pub(crate) fn verify_stored(folder: &Path, cases: &Path) -> Result<Vec<VerifyRow
             folder: folder.to_path_buf(),
         });
     }
-    let expected: Vec<(&str, Vec<f64>)> = CANONICAL_CASES
+    let expected: Vec<Expected> = CANONICAL_CASES
         .iter()
-        .map(|&case| (case, STORED_LOSS_COEFFICIENTS.to_vec()))
+        .map(|&case| {
+            (
+                case,
+                STORED_LOSS_COEFFICIENTS.to_vec(),
+                CodeName::ALL.to_vec(),
+            )
+        })
         .collect();
     check_store(folder, cases, &expected, "", "")
 }
@@ -331,15 +342,67 @@ pub(crate) fn verify_benchmark_store(
     folder: &Path,
     cases: &Path,
 ) -> Result<Vec<VerifyRow>, StoreError> {
-    let expected: Vec<(&str, Vec<f64>)> = CHUNG_OOI
+    let expected: Vec<Expected> = CHUNG_OOI
         .iter()
-        .map(|impact| (impact.case, impact.loss_coefficients()))
+        .map(|impact| {
+            (
+                impact.case,
+                impact.loss_coefficients(),
+                CodeName::ALL.to_vec(),
+            )
+        })
         .collect();
     // A stored run's command holds its step already; a run to make needs it given.
     let save_options = format!(" --reference {}", folder.display());
     let make_options = format!(" --steps-per-contact {STEPS_PER_CONTACT}{save_options}");
     check_store(folder, cases, &expected, &make_options, &save_options)
 }
+
+/// The checks of the stored oblique runs, `folder` (`<reference>/oblique`), against the
+/// oblique cases in `cases` (`<cases>/oblique`), as [`verify_stored`] checks the canonical
+/// store, and each run's motion after the impact against Coulomb's closed form
+/// ([`Check::Tangential`]): a run, at the case's own η, of every ball-on-plate case there by
+/// every build that renders it (one that runs oblique impacts,
+/// [`crate::codes::CodeDriver::runs_oblique`], and has the case's tangential law). A record
+/// regenerates into `reference` (a save files an oblique run under `oblique/` itself).
+pub(crate) fn verify_oblique_store(
+    reference: &Path,
+    cases: &Path,
+) -> Result<Vec<VerifyRow>, StoreError> {
+    let folder = reference.join(OBLIQUE_FOLDER);
+    let mut held = Vec::new();
+    for path in files_in(cases, "toml").map_err(|source| StoreError::Read {
+        path: cases.to_path_buf(),
+        source,
+    })? {
+        // A case that does not read is the case check's finding, not the store's.
+        let Ok(case) = Case::load(&path) else {
+            continue;
+        };
+        if case.scene.kind() != crate::model::scene::SceneKind::BallPlate || case.oblique.is_none()
+        {
+            continue;
+        }
+        let renders = |code: &CodeName| {
+            let driver = code.driver();
+            driver.runs_oblique()
+                && prepare_with(driver, &case, Some(STEPS_PER_CONTACT), None, false, None)
+                    .is_ok_and(|setup| driver.render(&setup).is_ok())
+        };
+        let codes = CodeName::ALL.iter().copied().filter(renders).collect();
+        held.push((case.name.clone(), case.loss_coefficient, codes));
+    }
+    let expected: Vec<Expected> = held
+        .iter()
+        .map(|(name, eta, codes)| (name.as_str(), vec![*eta], Vec::clone(codes)))
+        .collect();
+    let save_options = format!(" --reference {}", reference.display());
+    let make_options = format!(" --steps-per-contact {STEPS_PER_CONTACT}{save_options}");
+    check_store(&folder, cases, &expected, &make_options, &save_options)
+}
+
+/// A case a store is expected to hold: its name, the η of its runs and the builds that run it.
+type Expected<'a> = (&'a str, Vec<f64>, Vec<CodeName>);
 
 /// The checks of the store in `folder` against the cases in `cases`: every record in it, and a
 /// record of every code on each `expected` case (present in `cases`) at each of its η.
@@ -348,7 +411,7 @@ pub(crate) fn verify_benchmark_store(
 fn check_store(
     folder: &Path,
     cases: &Path,
-    expected: &[(&str, Vec<f64>)],
+    expected: &[Expected],
     make_options: &str,
     save_options: &str,
 ) -> Result<Vec<VerifyRow>, StoreError> {
@@ -485,6 +548,51 @@ fn check_stored_run(
     }
     rows.push(own_law_stepped_row(record, name, &regenerate));
     rows.push(target_row(record, name));
+    if record.setup.oblique.is_some() {
+        rows.push(finding(
+            name,
+            eta,
+            source,
+            Check::Tangential,
+            tangential_finding(record, cases, &regenerate),
+        ));
+    }
+}
+
+/// What is wrong with a stored oblique run's tangential half, if anything: none stored, a
+/// case that does not read, change errors that are not those of the closed form taken again
+/// now at the run's COR (to 1e-9), or a miss beyond what is allowed.
+fn tangential_finding(record: &ReferenceRecord, cases: &Path, regenerate: &str) -> Option<String> {
+    let Some(stored) = &record.tangential else {
+        return Some(format!(
+            "no tangential motion stored; regenerate: {regenerate}"
+        ));
+    };
+    let path = cases.join(format!("{}.toml", record.case));
+    let case = match Case::load(&path) {
+        Ok(case) => case.with_loss_coefficient(record.loss_coefficient),
+        Err(e) => return Some(format!("its case file: {e}")),
+    };
+    let Some(now) = stored.retaken(&case, &record.setup, record.figures.cor) else {
+        return Some("the case has no tangential half now".to_string());
+    };
+    let differs = |a: Option<f64>, b: Option<f64>| match (a, b) {
+        (Some(a), Some(b)) => (a - b).abs() > 1e-9 || a.is_nan() != b.is_nan(),
+        (a, b) => a.is_some() != b.is_some(),
+    };
+    if differs(stored.tangential_change_error, now.tangential_change_error)
+        || differs(stored.spin_change_error, now.spin_change_error)
+        || stored.closed_form != now.closed_form
+    {
+        return Some(format!(
+            "stored change errors {:?} and {:?} are not the closed form's now ({:?} and {:?}); regenerate: {regenerate}",
+            stored.tangential_change_error,
+            stored.spin_change_error,
+            now.tangential_change_error,
+            now.spin_change_error
+        ));
+    }
+    now.missed().then(|| now.verdict())
 }
 
 /// The stored run's figures against its own law stepped now as the code steps, each within
@@ -573,18 +681,18 @@ fn target_row(record: &ReferenceRecord, name: &str) -> VerifyRow {
 /// A finding for each run of every code on each `expected` case (present in `cases`) at each
 /// of its η that the store does not hold, with the command that makes it.
 fn missing_runs(
-    expected: &[(&str, Vec<f64>)],
+    expected: &[Expected],
     cases: &Path,
     present: &[(CodeName, String, f64)],
     make_options: &str,
 ) -> Vec<VerifyRow> {
     let mut rows = Vec::new();
-    for (case, etas) in expected {
+    for (case, etas, codes) in expected {
         let case = *case;
         if !cases.join(format!("{case}.toml")).is_file() {
             continue;
         }
-        for &code in CodeName::ALL {
+        for &code in codes {
             for &eta in etas {
                 let held = present
                     .iter()
@@ -637,6 +745,10 @@ fn stray_files(folder: &Path) -> Result<Vec<PathBuf>, StoreError> {
 pub fn verify(cases: &Path, reference: &Path) -> Result<VerifyReport, StoreError> {
     let mut rows = verify_cases(cases)?;
     rows.extend(verify_stored(reference, cases)?);
+    let oblique_cases = cases.join(OBLIQUE_FOLDER);
+    if oblique_cases.is_dir() {
+        rows.extend(verify_oblique_store(reference, &oblique_cases)?);
+    }
     let benchmark_cases = cases.join(STORED_FOLDER);
     if benchmark_cases.is_dir() {
         rows.extend(verify_benchmark_store(
