@@ -4,7 +4,7 @@
 //! The scene is built by the Python template `scripts/kratos/impact.py`: a `DEMAnalysisStage`
 //! whose model is made in the script (no mdpa or materials file), one sphere moving along an
 //! axis towards a second sphere or a wall of two `RigidFace3D3N` triangles, no gravity, no
-//! friction, no rotation, no global damping, no output files, and the script's own step loop
+//! friction and no rotation (but in an oblique impact, below), no global damping, no output files, and the script's own step loop
 //! of exactly `setup.steps` steps. It writes one row per step, aligned as YADE's rows.
 //!
 //! What the installed version really integrates, as measured (see
@@ -23,6 +23,20 @@
 //!   damping ratio at which the clamped dashpot realises the target.
 //! - Stepping: the default `Symplectic_Euler` scheme is leap-frog (the force of step `n` sees
 //!   `x_n` and the velocity `v_{n-1/2}`); `Forward_Euler` gains energy and is not used.
+//!
+//! - Oblique and spinning impacts at a plate (the script's part from `oblique.py`, rendered
+//!   only for them): rotation on, μ as the contact's `STATIC_FRICTION` = `DYNAMIC_FRICTION`,
+//!   the ball's `VELOCITY_X` and `ANGULAR_VELOCITY_Y` (the wall's normal is +z, so `ω_y` has
+//!   millimpact's sign).
+//!   The tangential law is the Hertz law's own and fixed: Mindlin's spring `8 G* sqrt(R* δ)`
+//!   stepped by increments (the old force scaled by `sqrt(δ/δ_old)` while unloading), a dashpot
+//!   `2 γ sqrt(M* k_t)` at the normal `γ`, and spring plus dashpot bounded by μ times the
+//!   whole clamped normal force. So a case's linear or proportional spring is refused, and
+//!   its undamped Mindlin spring is run only where that dashpot is off (COR above 0.999) or
+//!   never acts on the outcome (the contact slides throughout), and refused elsewhere. The
+//!   moment arm at a wall is `R − δ`, so the spin changes by the force-weighted `(R − δ)/R`
+//!   of a rigid sphere's change: 2.1e-3 short in the held-out gross-sliding case, 8e-4 in
+//!   the spin case.
 //!
 //! Settings without which the answer silently changes, each set by the template and checked by
 //! the tests: the integration scheme in the particles' properties (and the properties proxies)
@@ -50,9 +64,11 @@ use super::damping::{
     clamped_hertz_law, clamped_linear_law, fit_restitution, hertz_input_or_target,
     refuse_for_clamped_law, rod_damping_ratio, thornton_damping_ratio,
 };
+use super::deck::TANGENTIAL_LINE;
 use super::parse::{ParseError, log_value, parse_csv_columns};
 use super::runner::{self, CodesDir};
 use super::script_values::{body_values, reported};
+use super::setup::CodeOblique;
 use super::template::{exact_number, fill_template};
 use super::{
     CalibrationCard, CodeDriver, CodeError, CodeSetup, Executable, LocateError, ParsedRun,
@@ -60,6 +76,7 @@ use super::{
 };
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::{SceneKind, pair_radius};
+use crate::model::tangential::{PlaneMotion, SLIP_FACTOR, TangentialSpring};
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::dashpot::StepScheme;
 
@@ -75,6 +92,15 @@ const COMMON: &str = include_str!("common.py");
 fn with_common(template: &str) -> String {
     template.replacen("{{common}}", COMMON.trim_end(), 1)
 }
+
+/// The Python an oblique or spinning impact adds to [`TEMPLATE`], in place of its
+/// [`OBLIQUE_LINE`]: the stage with rotation on, μ in the contact's properties, the ball's
+/// motion along the wall and its spin, and the line [`TANGENTIAL_LINE`] after the steps.
+const OBLIQUE: &str = include_str!("oblique.py");
+
+/// The line of [`TEMPLATE`] that [`OBLIQUE`] replaces; a normal impact drops it whole, so its
+/// script is the one rendered before oblique impacts existed, byte for byte.
+const OBLIQUE_LINE: &str = "{{oblique}}\n";
 
 /// The name of the rendered script in the scratch directory.
 pub(crate) const SCRIPT: &str = "impact.py";
@@ -304,6 +330,106 @@ impl Kratos {
     }
 }
 
+/// The slip of an oblique ball-on-plate start, m/s: the ball's surface at the contact, which
+/// moves at `v_t − R ω`.
+fn plate_slip(setup: &CodeSetup, ball: PlaneMotion) -> f64 {
+    ball.tangential_velocity - setup.sphere.radius * ball.angular_velocity
+}
+
+/// Why `DEM_D_Hertz_viscous_Coulomb` cannot run `law` for `setup` as the case states it, if it
+/// cannot. Its tangential half is fixed: Mindlin's spring `k_t = 8 G* sqrt(R* δ)` (the case's
+/// `mindlin`), a dashpot `2 γ sqrt(M* k_t)` at the normal law's damping ratio `γ`, and spring
+/// plus dashpot bounded by μ times the whole normal force. An undamped case law is therefore
+/// rendered only where that dashpot is zero (an elastic normal law, `γ` = 0) or never acts on
+/// the outcome: a contact that slides throughout (the rigid-body condition
+/// `|s0| ≥ (7/2) μ (1+e) v_n`), where Kratos holds spring and dashpot together at the bound at
+/// every step whatever the dashpot.
+fn tangential_law_refusal(setup: &CodeSetup, oblique: &CodeOblique) -> Option<String> {
+    let offered = "DEM_D_Hertz_viscous_Coulomb's tangential law is Mindlin's spring \
+                   k_t = 8 G* sqrt(R* δ) (spring = \"mindlin\") with a dashpot at the normal \
+                   damping ratio";
+    let law = oblique.law;
+    match law.spring {
+        TangentialSpring::Mindlin => {}
+        TangentialSpring::Linear { stiffness } => {
+            return Some(format!(
+                "tangential spring \"linear\" (k_t = {stiffness} N/m): {offered}"
+            ));
+        }
+        TangentialSpring::Proportional { ratio } => {
+            return Some(format!(
+                "tangential spring \"proportional\" (stiffness_ratio = {ratio}): {offered}"
+            ));
+        }
+    }
+    let gamma = hertz_damping_gamma(hertz_input_or_target(setup));
+    // The case's dashpot is rendered only where it is Kratos' own, bit for bit (both zero).
+    #[allow(clippy::float_cmp)]
+    let same_dashpot = law.damping_ratio == gamma;
+    if same_dashpot {
+        return None;
+    }
+    if law.damping_ratio != 0.0 {
+        return Some(format!(
+            "tangential damping_ratio = {}: {offered} (here {gamma}), not another",
+            law.damping_ratio
+        ));
+    }
+    let slip = plate_slip(setup, oblique.ball).abs();
+    let bound = SLIP_FACTOR
+        * oblique.friction_coefficient
+        * (1.0 + setup.target_restitution)
+        * setup.impact_velocity;
+    (slip < bound).then(|| {
+        format!(
+            "an undamped tangential spring in a contact that sticks (slip {slip} m/s below \
+             (7/2) μ (1+e) v_n = {bound} m/s): {offered}, γ = {gamma} here, which acts while \
+             the contact sticks; it runs such a law only in gross sliding or at e > {UNDAMPED_ABOVE}"
+        )
+    })
+}
+
+/// A script's values: each placeholder's name and its text.
+type ScriptValues = Vec<(&'static str, String)>;
+
+/// The Python an oblique `setup` adds to the script and the values it is filled with, or why
+/// Kratos cannot run it; nothing for a normal impact.
+fn oblique_section(
+    code: &str,
+    setup: &CodeSetup,
+) -> Result<(&'static str, ScriptValues), CodeError> {
+    let Some(oblique) = setup.oblique else {
+        return Ok(("", Vec::new()));
+    };
+    if setup.scene != SceneKind::BallPlate || oblique.partner.is_some() {
+        return Err(setup.unsupported(
+            code,
+            format!(
+                "an oblique impact in scene \"{}\": the Kratos driver renders one at a plate only",
+                setup.scene.name()
+            ),
+        ));
+    }
+    if let Some(reason) = tangential_law_refusal(setup, &oblique) {
+        return Err(setup.unsupported(code, reason));
+    }
+    Ok((
+        OBLIQUE,
+        vec![
+            (
+                "tangential_velocity",
+                exact_number(oblique.ball.tangential_velocity),
+            ),
+            (
+                "angular_velocity",
+                exact_number(oblique.ball.angular_velocity),
+            ),
+            ("friction", exact_number(oblique.friction_coefficient)),
+            ("tangential_line", TANGENTIAL_LINE.to_string()),
+        ],
+    ))
+}
+
 impl CodeDriver for Kratos {
     fn card(&self) -> Option<&dyn CalibrationCard> {
         Some(&card::KratosCard)
@@ -328,9 +454,16 @@ impl CodeDriver for Kratos {
         locate_python(self)
     }
 
+    fn runs_oblique(&self) -> bool {
+        true
+    }
+
     fn render(&self, setup: &CodeSetup) -> Result<RenderedInput, CodeError> {
-        let values = self.script_values(setup)?;
-        let text = fill_template(&with_common(TEMPLATE), &values)
+        let mut values = self.script_values(setup)?;
+        let (section, oblique_values) = oblique_section(self.name(), setup)?;
+        values.extend(oblique_values);
+        let template = with_common(TEMPLATE).replacen(OBLIQUE_LINE, section, 1);
+        let text = fill_template(&template, &values)
             .map_err(|reason| setup.unsupported(self.name(), reason.to_string()))?;
         Ok(script_input(SCRIPT, text))
     }
