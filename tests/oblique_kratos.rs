@@ -163,31 +163,43 @@ fn laws_kratos_cannot_render_are_refused() {
         "friction_coefficient = 0.3\n\n[tangential]\nspring = \"linear\"\nstiffness = 1.0e6\n",
     );
     assert_refused(&linear, "tangential spring \"linear\"");
-    // The default undamped Mindlin spring where the contact sticks (slip 0.5 m/s against
-    // (7/2) 0.3 (1 + 0.816) 1.2 = 2.29 m/s) and Kratos' dashpot (γ > 0 at e 0.816) would act.
+    // The default Mindlin spring where the contact sticks (slip 0.5 m/s against
+    // (7/2) 0.3 (1 + 0.816) 1.2 = 2.29 m/s): Kratos' increments and dashpot would act.
     let sticking = edited(
         dir.path(),
         SLIDING,
         "tangential_velocity = 3.0",
         "tangential_velocity = 0.5",
     );
-    assert_refused(
-        &sticking,
-        "an undamped tangential spring in a contact that sticks",
-    );
-    // The same slip with an elastic normal law: Kratos' dashpot is off, the law is rendered.
+    let asked = "the Mindlin spring in a contact that sticks";
+    assert_refused(&sticking, asked);
+    // Also with an elastic normal law, where Kratos' dashpot is off: its spring's increments
+    // are not the case's spring.
     let elastic = edited(
         dir.path(),
         "oblique/ball_plate_reversal",
         "[tangential]\nspring = \"proportional\"\nstiffness_ratio = 0.2857142857142857\n",
         "",
     );
-    assert!(
-        CodeName::Kratos
-            .driver()
-            .render(&setup_of(&elastic))
-            .is_ok()
+    assert_refused(&elastic, asked);
+    // At the rigid-body condition's edge the contact slides throughout: run.
+    let case = load(SLIDING);
+    let e = setup_of(&case).target_restitution;
+    let edge = 3.5 * 0.3 * (1.0 + e) * 1.2;
+    let just = edited(
+        dir.path(),
+        SLIDING,
+        "tangential_velocity = 3.0",
+        &format!("tangential_velocity = {}", edge * (1.0 + 1e-9)),
     );
+    assert!(CodeName::Kratos.driver().render(&setup_of(&just)).is_ok());
+    let short = edited(
+        dir.path(),
+        SLIDING,
+        "tangential_velocity = 3.0",
+        &format!("tangential_velocity = {}", edge * (1.0 - 1e-9)),
+    );
+    assert_refused(&short, asked);
 }
 
 /// `reference --code kratos CASE --format json`'s tangential section, and the run's wall time.
