@@ -202,6 +202,29 @@ fn laws_kratos_cannot_render_are_refused() {
     assert_refused(&short, asked);
 }
 
+/// A ball carried along the wall further than its radius in the run would near the wall's
+/// edge: refused, naming the speed.
+#[test]
+fn a_ball_that_would_leave_the_wall_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let fast = edited(
+        dir.path(),
+        SLIDING,
+        "tangential_velocity = 3.0",
+        "tangential_velocity = 300.0",
+    );
+    match CodeName::Kratos.driver().render(&setup_of(&fast)) {
+        Err(CodeError::Unsupported { reason, .. }) => {
+            assert!(!reason.contains('\n'), "{reason}");
+            assert!(
+                reason.starts_with("tangential_velocity = 300 m/s carries the ball"),
+                "{reason}"
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}
+
 /// `reference --code kratos CASE --format json`'s tangential section, and the run's wall time.
 fn reference(case: &Path) -> (Value, f64) {
     let output = millimpact()

@@ -403,6 +403,19 @@ fn oblique_section(
     if let Some(reason) = tangential_law_refusal(setup, &oblique) {
         return Err(setup.unsupported(code, reason));
     }
+    // The ball meets the wall 2 R inside its nearest edge (the script's L = 4 R): a run that
+    // carries it a radius along the wall would bring the edge near the contact.
+    let travel = oblique.ball.tangential_velocity.abs() * setup.timestep * (setup.steps as f64);
+    if travel >= setup.sphere.radius {
+        return Err(setup.unsupported(
+            code,
+            format!(
+                "tangential_velocity = {} m/s carries the ball {travel} m along the wall in the \
+                 run, more than its radius {} m: the Kratos wall is 2 R wide of the contact",
+                oblique.ball.tangential_velocity, setup.sphere.radius
+            ),
+        ));
+    }
     Ok((
         OBLIQUE,
         vec![
