@@ -4,8 +4,9 @@
 //! The scene is built by the Python template `scripts/kratos/impact.py`: a `DEMAnalysisStage`
 //! whose model is made in the script (no mdpa or materials file), one sphere moving along an
 //! axis towards a second sphere or a wall of two `RigidFace3D3N` triangles, no gravity, no
-//! friction and no rotation (but in an oblique impact, below), no global damping, no output files, and the script's own step loop
-//! of exactly `setup.steps` steps. It writes one row per step, aligned as YADE's rows.
+//! friction and no rotation (but in an oblique impact, below), no global damping, no output
+//! files, and the script's own step loop of exactly `setup.steps` steps. It writes one row per
+//! step, aligned as YADE's rows.
 //!
 //! What the installed version really integrates, as measured (see
 //! `reference/kratos/CONVENTIONS.md` for the runs and numbers):
@@ -27,16 +28,14 @@
 //! - Oblique and spinning impacts at a plate (the script's part from `oblique.py`, rendered
 //!   only for them): rotation on, μ as the contact's `STATIC_FRICTION` = `DYNAMIC_FRICTION`,
 //!   the ball's `VELOCITY_X` and `ANGULAR_VELOCITY_Y` (the wall's normal is +z, so `ω_y` has
-//!   millimpact's sign).
-//!   The tangential law is the Hertz law's own and fixed: Mindlin's spring `8 G* sqrt(R* δ)`
-//!   stepped by increments (the old force scaled by `sqrt(δ/δ_old)` while unloading), a dashpot
-//!   `2 γ sqrt(M* k_t)` at the normal `γ`, and spring plus dashpot bounded by μ times the
-//!   whole clamped normal force. Spring and dashpot act only while the contact sticks, so a
-//!   case's Mindlin law is run where the contact slides throughout and refused elsewhere, and
-//!   a linear or proportional spring is refused. The
-//!   moment arm at a wall is `R − δ`, so the spin changes by the force-weighted `(R − δ)/R`
-//!   of a rigid sphere's change: 2.1e-3 short in the held-out gross-sliding case, 8e-4 in
-//!   the spin case.
+//!   millimpact's sign). The tangential law is the Hertz law's own and fixed: Mindlin's spring
+//!   `8 G* sqrt(R* δ)` stepped by increments (the old force scaled by `sqrt(δ/δ_old)` while
+//!   unloading), a dashpot `2 γ sqrt(M* k_t)` at the normal `γ`, and spring plus dashpot
+//!   bounded by μ times the whole clamped normal force. Spring and dashpot act only while the
+//!   contact sticks, so a case's Mindlin law is run where the contact slides throughout and
+//!   refused elsewhere, and a linear or proportional spring is refused. The moment arm at a
+//!   wall is `R − δ`, so the spin changes by the force-weighted `(R − δ)/R` of a rigid
+//!   sphere's change: 2.1e-3 short in the held-out gross-sliding case, 8e-4 in the spin case.
 //!
 //! Settings without which the answer silently changes, each set by the template and checked by
 //! the tests: the integration scheme in the particles' properties (and the properties proxies)
