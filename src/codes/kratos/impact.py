@@ -69,6 +69,7 @@ class Impact(OneImpact):
         self.all_model_parts.ComputeMaxIds()
 
 
+{{oblique}}
 if SCHEME not in SCHEMES:
     raise SystemExit("unknown translational scheme %r" % SCHEME)
 print_version()
