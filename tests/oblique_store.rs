@@ -105,7 +105,10 @@ fn a_changed_motion_and_a_missing_run_are_found() {
         .expect("the changed motion's row");
     assert_eq!(changed["source"], "lammps");
     assert!(
-        changed["detail"].as_str().unwrap().contains("not the closed form's now"),
+        changed["detail"]
+            .as_str()
+            .unwrap()
+            .contains("not the closed form's now"),
         "{changed}"
     );
     let missing = failing
