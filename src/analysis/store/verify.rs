@@ -892,7 +892,7 @@ impl Summary for VerifyReport {
                 self.cases.display()
             ),
             format!(
-                "reproduce a stored row: the `command` field of {0}/CODE/CASE.json ({0}/{STORED_FOLDER}/CODE/CASE.json for the benchmark's runs)",
+                "reproduce a stored row: the `command` field of {0}/CODE/CASE.json ({0}/{STORED_FOLDER}/CODE/CASE.json for the benchmark's runs, {0}/{OBLIQUE_FOLDER}/CODE/CASE.json for the oblique ones)",
                 self.reference.display()
             ),
         ]
