@@ -104,6 +104,34 @@ fn write_and_check_the_report(codes_hidden: bool) -> (tempfile::TempDir, Vec<Str
         assert!(out.path().join(link).is_file(), "broken link {link}");
     }
     assert!(!html.contains("<img"), "figures are inline, not images");
+    // The tangential half: a row per stored oblique run, each build that runs one named.
+    let tangential = std::fs::read_to_string(out.path().join("tangential.csv")).unwrap();
+    let rows = tangential.lines().count() - 1;
+    let stored: usize = std::fs::read_dir(root.join("reference/oblique"))
+        .unwrap()
+        .map(|d| {
+            std::fs::read_dir(d.unwrap().path())
+                .unwrap()
+                .filter(|f| {
+                    f.as_ref()
+                        .unwrap()
+                        .path()
+                        .extension()
+                        .is_some_and(|e| e == "json")
+                })
+                .count()
+        })
+        .sum();
+    assert_eq!(rows, stored, "{tangential}");
+    for code in millimpact::codes::CodeName::oblique_builds() {
+        assert!(
+            csv::Reader::from_reader(tangential.as_bytes())
+                .records()
+                .any(|r| r
+                    .is_ok_and(|r| r.get(0).is_some_and(|b| b.starts_with(&format!("{code} "))))),
+            "no {code} row: {tangential}"
+        );
+    }
     (out, ids)
 }
 
