@@ -345,23 +345,40 @@ fn march4(
         }
         let g_next: Vec<f64> = events.iter().map(|e| e(&next)).collect();
         // The earliest of the events that crossed on this step, located on the step itself.
-        let mut first: Option<(f64, State, usize)> = None;
+        let mut first: Option<Crossing> = None;
         for (i, (&a, &b)) in g.iter().zip(&g_next).enumerate() {
             // A phase starts on the root of the event that began it (or at first contact, where
             // every force vanishes): an event that leaves such a start on the wrong side has
             // crossed at once, however small the start's rounding.
             let from_root = steps == 0 && a.abs() <= 1e-12 && b < 0.0;
             if (a > 0.0 && b <= 0.0) || from_root {
-                let (theta, state) = locate4(stepper, f, &y, h, events[i], a, b, stats);
-                if first.as_ref().is_none_or(|(t0, _, _)| theta < *t0) {
-                    first = Some((theta, state, i));
+                let crossing = locate4(stepper, f, &y, h, events[i], (a, b), i, stats);
+                if first.as_ref().is_none_or(|c| crossing.theta < c.theta) {
+                    first = Some(crossing);
                 }
             }
         }
         stats.steps += 1;
         steps += 1;
-        if let Some((theta, state, i)) = first {
-            return Ok((t + theta * h, state, i));
+        if let Some(mut crossing) = first {
+            // An event may cross and come back to zero within the step: the regime's margin
+            // vanishes with the overlap where the contact ends (for a spring proportional to the
+            // normal stiffness, both sides of the bound vanish as y^n), so past the contact's end
+            // it reads zero, its located root lands on that flat zero after the end, and the
+            // crossing before it is lost. Each other event is read once more just before the
+            // earliest crossing; one already across there crossed earlier and is located there.
+            for _ in 1..events.len() {
+                let Some(earlier) = (0..events.len())
+                    .filter(|&j| j != crossing.event && g[j] > 0.0)
+                    .find_map(|j| {
+                        crossed_before(stepper, f, &y, h, events[j], g[j], j, &crossing, stats)
+                    })
+                else {
+                    break;
+                };
+                crossing = earlier;
+            }
+            return Ok((t + crossing.theta * h, crossing.state, crossing.event));
         }
         t += h;
         y = next;
@@ -370,8 +387,60 @@ fn march4(
     }
 }
 
-/// The fraction of the step `h` from `y` where `event` reaches zero (Illinois regula falsi on
-/// the method's own step), and the state there, on the side where the event has crossed.
+/// An event's root located on a step: the fraction of the step where it is reached, the state
+/// there (on the side where the event has crossed), the last fraction found on the side where
+/// it has not, and which event.
+struct Crossing {
+    theta: f64,
+    state: State,
+    before: f64,
+    event: usize,
+}
+
+/// Event `index`, positive (`g_start`) at the step's start, located on `[0, earliest.before]`
+/// if it is already across at `earliest.before`, the last point found before the earliest
+/// crossing.
+#[allow(clippy::too_many_arguments)]
+fn crossed_before(
+    stepper: &dyn Step4,
+    f: &dyn Fn(&State) -> State,
+    y: &State,
+    h: f64,
+    event: &dyn Fn(&State) -> f64,
+    g_start: f64,
+    index: usize,
+    earliest: &Crossing,
+    stats: &mut Stats,
+) -> Option<Crossing> {
+    if earliest.before <= 0.0 {
+        return None;
+    }
+    let (state, _, calls) = stepper.step(f, y, earliest.before * h);
+    stats.rhs_evaluations += calls;
+    let g_before = event(&state);
+    if g_before > 0.0 {
+        return None;
+    }
+    let scale = earliest.before;
+    let within = locate4(
+        stepper,
+        f,
+        y,
+        scale * h,
+        event,
+        (g_start, g_before),
+        index,
+        stats,
+    );
+    Some(Crossing {
+        theta: within.theta * scale,
+        before: within.before * scale,
+        ..within
+    })
+}
+
+/// Where `event` reaches zero on the step `h` from `y` (Illinois regula falsi on the method's
+/// own step), from its values `(start, end)` at the step's ends.
 #[allow(clippy::too_many_arguments)]
 fn locate4(
     stepper: &dyn Step4,
@@ -379,10 +448,10 @@ fn locate4(
     y: &State,
     h: f64,
     event: &dyn Fn(&State) -> f64,
-    g_start: f64,
-    g_end: f64,
+    (g_start, g_end): (f64, f64),
+    index: usize,
     stats: &mut Stats,
-) -> (f64, State) {
+) -> Crossing {
     let mut step_to = |theta: f64| {
         let (state, _, calls) = stepper.step(f, y, theta * h);
         stats.rhs_evaluations += calls;
@@ -424,7 +493,12 @@ fn locate4(
             side = 1;
         }
     }
-    best
+    Crossing {
+        theta: best.0,
+        state: best.1,
+        before: lo,
+        event: index,
+    }
 }
 
 /// The dimensionless result: the state at separation and the regime record.
