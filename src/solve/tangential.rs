@@ -787,6 +787,12 @@ fn check_tangential_step(
 /// (when [`tangential::gross_sliding_holds`] says so) or the stick reversal
 /// ([`tangential::stick_reversal_holds`]); `None` elsewhere (partial slip has none).
 pub fn closed_form(case: &Case) -> Option<TangentialClosedForm> {
+    closed_form_at(case, exact::restitution(case.law().loss_coefficient))
+}
+
+/// [`closed_form`] with its impulse taken at the normal COR `restitution`, as a code's run of
+/// the case realised it (which form holds is decided at the case's own COR).
+pub fn closed_form_at(case: &Case, restitution: f64) -> Option<TangentialClosedForm> {
     let oblique = case.oblique.as_ref()?;
     let bodies = TangentialBodies::of(&case.scene, oblique)?;
     let law = case.law();
@@ -814,6 +820,6 @@ pub fn closed_form(case: &Case) -> Option<TangentialClosedForm> {
     )?;
     sliding.then(|| TangentialClosedForm {
         kind: ClosedFormKind::GrossSliding,
-        impulse: tangential::gross_sliding_impulse(law.mass, v_n, e, mu, slip),
+        impulse: tangential::gross_sliding_impulse(law.mass, v_n, restitution, mu, slip),
     })
 }

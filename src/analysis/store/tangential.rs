@@ -7,13 +7,11 @@ use serde::{Deserialize, Serialize};
 use crate::analysis::deck::tangential::{RELATIVE_TOLERANCE, tolerance};
 use crate::codes::{CodeSetup, TangentialRun};
 use crate::model::case::Case;
-use crate::model::tangential::{
-    ClosedFormKind, PlaneMotion, SLIP_FACTOR, TangentialBodies, gross_sliding_impulse,
-};
+use crate::model::tangential::{ClosedFormKind, PlaneMotion, TangentialBodies};
 use crate::model::trajectory::CodeTrajectory;
 use crate::solve::Method;
 use crate::solve::paper::Settings;
-use crate::solve::tangential::{closed_form, solve_oblique};
+use crate::solve::tangential::{closed_form_at, solve_oblique};
 
 /// An oblique impact's tangential figures in a code's run, beside the case's closed form.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -67,23 +65,13 @@ impl CodeTangential {
         restitution: f64,
         motion: &TangentialRun,
     ) -> Option<CodeTangential> {
-        let oblique = setup.oblique?;
-        let bodies = TangentialBodies::of(&case.scene, case.oblique.as_ref()?)?;
+        let friction = setup.oblique?.friction_coefficient;
         let mass = setup.pair_mass();
-        let kind = closed_form(case).map(|c| c.kind);
-        let closed = kind.map(|kind| {
-            let impulse = match kind {
-                ClosedFormKind::GrossSliding => gross_sliding_impulse(
-                    mass,
-                    setup.impact_velocity,
-                    restitution,
-                    oblique.friction_coefficient,
-                    bodies.slip(),
-                ),
-                ClosedFormKind::StickReversal => -2.0 * bodies.slip() * mass / SLIP_FACTOR,
-            };
-            bodies.after(impulse).0
-        });
+        let allowed = |change: f64| {
+            tolerance(change, friction, mass, setup.timestep, trajectory) / change.abs()
+        };
+        let mut figures =
+            Self::against_closed_form(case, setup, restitution, motion.ball, allowed)?;
         let case_law = solve_oblique(
             case,
             &Settings {
@@ -94,64 +82,69 @@ impl CodeTangential {
         .ok()
         .flatten()
         .map(|outcome| outcome.ball);
-        let start = oblique.ball;
-        let out = motion.ball;
-        let change_error = |value: fn(&PlaneMotion) -> f64| {
-            closed.map(|c| (value(&out) - value(&c)) / (value(&c) - value(&start)).abs())
-        };
-        let allowed = closed.map(|c| {
-            let change = c.tangential_velocity - start.tangential_velocity;
-            tolerance(
-                change,
-                oblique.friction_coefficient,
-                mass,
-                setup.timestep,
-                trajectory,
-            ) / change.abs()
-        });
-        Some(CodeTangential {
-            friction_coefficient: oblique.friction_coefficient,
-            tangential_velocity: start.tangential_velocity,
-            angular_velocity: start.angular_velocity,
-            tangential_velocity_out: out.tangential_velocity,
-            angular_velocity_out: out.angular_velocity,
-            closed_form: kind,
-            closed_form_restitution: restitution,
-            tangential_velocity_closed_form: closed.map(|c| c.tangential_velocity),
-            angular_velocity_closed_form: closed.map(|c| c.angular_velocity),
-            tangential_change_error: change_error(|m| m.tangential_velocity),
-            spin_change_error: change_error(|m| m.angular_velocity),
-            allowed_change_error: allowed,
-            tangential_velocity_case_law: case_law.map(|m| m.tangential_velocity),
-            angular_velocity_case_law: case_law.map(|m| m.angular_velocity),
-        })
+        figures.tangential_velocity_case_law = case_law.map(|m| m.tangential_velocity);
+        figures.angular_velocity_case_law = case_law.map(|m| m.angular_velocity);
+        Some(figures)
     }
 
     /// The same figures taken again now from the stored motion, for `case` set up as `setup`
-    /// at the run's COR `restitution`, with the allowed error as stored (the attractive tail
-    /// it holds was read from the run's trajectory, which a record does not keep).
+    /// at the run's COR `restitution`, with the allowed error and the case's own law as stored
+    /// (the attractive tail the allowance holds was read from the run's trajectory, which a
+    /// record does not keep).
     pub fn retaken(
         &self,
         case: &Case,
         setup: &CodeSetup,
         restitution: f64,
     ) -> Option<CodeTangential> {
-        let pushing = CodeTrajectory {
-            time: Vec::new(),
-            overlap: Vec::new(),
-            approach_velocity: Vec::new(),
-            normal_force: Vec::new(),
+        let out = PlaneMotion {
+            tangential_velocity: self.tangential_velocity_out,
+            angular_velocity: self.angular_velocity_out,
         };
-        let motion = TangentialRun {
-            ball: PlaneMotion {
-                tangential_velocity: self.tangential_velocity_out,
-                angular_velocity: self.angular_velocity_out,
-            },
-            partner: None,
-        };
-        let mut now = CodeTangential::of_run(case, setup, &pushing, restitution, &motion)?;
+        let stored_allowance = self.allowed_change_error.unwrap_or(f64::NAN);
+        let mut now =
+            Self::against_closed_form(case, setup, restitution, out, |_| stored_allowance)?;
         now.allowed_change_error = self.allowed_change_error;
+        now.tangential_velocity_case_law = self.tangential_velocity_case_law;
+        now.angular_velocity_case_law = self.angular_velocity_case_law;
         Some(now)
+    }
+
+    /// The motion `out` a run of `case` left, against the closed form at the COR
+    /// `restitution` it realised; `allowed` gives the allowed relative error from the closed
+    /// form's change of velocity along the plane.
+    fn against_closed_form(
+        case: &Case,
+        setup: &CodeSetup,
+        restitution: f64,
+        out: PlaneMotion,
+        allowed: impl Fn(f64) -> f64,
+    ) -> Option<CodeTangential> {
+        let oblique = setup.oblique?;
+        let bodies = TangentialBodies::of(&case.scene, case.oblique.as_ref()?)?;
+        let form = closed_form_at(case, restitution);
+        let closed = form.map(|c| bodies.after(c.impulse).0);
+        let start = oblique.ball;
+        let change_error = |value: fn(&PlaneMotion) -> f64| {
+            closed.map(|c| (value(&out) - value(&c)) / (value(&c) - value(&start)).abs())
+        };
+        Some(CodeTangential {
+            friction_coefficient: oblique.friction_coefficient,
+            tangential_velocity: start.tangential_velocity,
+            angular_velocity: start.angular_velocity,
+            tangential_velocity_out: out.tangential_velocity,
+            angular_velocity_out: out.angular_velocity,
+            closed_form: form.map(|c| c.kind),
+            closed_form_restitution: restitution,
+            tangential_velocity_closed_form: closed.map(|c| c.tangential_velocity),
+            angular_velocity_closed_form: closed.map(|c| c.angular_velocity),
+            tangential_change_error: change_error(|m| m.tangential_velocity),
+            spin_change_error: change_error(|m| m.angular_velocity),
+            allowed_change_error: closed
+                .map(|c| allowed(c.tangential_velocity - start.tangential_velocity)),
+            tangential_velocity_case_law: None,
+            angular_velocity_case_law: None,
+        })
     }
 
     /// Whether the code misses the closed form by more than allowed, in either figure (a
@@ -191,6 +184,7 @@ impl CodeTangential {
 mod tests {
     use super::*;
     use crate::codes::{CodeName, prepare_with};
+    use crate::model::tangential::gross_sliding_impulse;
 
     fn held_out(name: &str) -> Case {
         let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -263,5 +257,8 @@ mod tests {
         assert!(!allowed.missed(), "{allowed:?}");
         // The case's own law is set beside the run.
         assert!(met.tangential_velocity_case_law.is_some_and(f64::is_finite));
+        // Taken again from the stored motion, the figures are the ones stored, the allowance
+        // from the trajectory (which a record does not keep) included.
+        assert_eq!(allowed.retaken(&case, &setup, e), Some(allowed.clone()));
     }
 }
