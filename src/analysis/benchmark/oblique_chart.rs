@@ -149,7 +149,6 @@ pub(crate) fn oblique_figures(report: &BenchmarkReport) -> Result<Vec<ReportFigu
             y_label: y_label.into(),
             series,
         };
-        let csv_points: Vec<&ObliquePoint> = points.iter().collect();
         figures.push(ReportFigure {
             id: format!("oblique-chart-test-{test}"),
             title: chart.title.clone(),
@@ -157,7 +156,7 @@ pub(crate) fn oblique_figures(report: &BenchmarkReport) -> Result<Vec<ReportFigu
                 "Chung & Ooi's test {test}: {what}, by rk4-event and dopri5 (the tangential solver) per material, and the closed form where it is exact (dots). The CSV holds every figure of the test's rows."
             ),
             svg: chart_svg(&chart, 960, 520)?,
-            csv: csv_string(&csv_points)?,
+            csv: csv_string(&points)?,
             command: "millimpact benchmark chung-ooi --chart DIR".into(),
         });
     }
