@@ -16,3 +16,20 @@ pub(crate) mod stability;
 pub mod store;
 pub mod sweep;
 pub(crate) mod tolerance;
+
+/// `items` grouped by `key`, the groups in the order their keys first come, each group's items
+/// in their order.
+pub(crate) fn groups<'a, T, K: PartialEq>(
+    items: impl IntoIterator<Item = &'a T>,
+    key: impl Fn(&'a T) -> K,
+) -> Vec<(K, Vec<&'a T>)> {
+    let mut groups: Vec<(K, Vec<&T>)> = Vec::new();
+    for item in items {
+        let k = key(item);
+        match groups.iter_mut().find(|(g, _)| *g == k) {
+            Some((_, members)) => members.push(item),
+            None => groups.push((k, vec![item])),
+        }
+    }
+    groups
+}

@@ -71,23 +71,22 @@ pub(super) fn report(args: &ReportArgs) -> Result<CommandOutput> {
         }
     };
     let mut report = build_report(&cases, &options, &mut progress)?;
-    let mut checks = Vec::new();
-    for (code, deck) in &decks {
-        progress(&format!("{}: running {code}", deck.path.display()));
-        checks.push(super::deck::check(
-            *code,
-            deck,
-            &args.deck_impact_velocity,
-            &given,
-            args.timeout,
-        )?);
-    }
+    let checks = decks
+        .iter()
+        .map(|(code, deck)| {
+            progress(&format!("{}: running {code}", deck.path.display()));
+            let velocities = &args.deck_impact_velocity;
+            super::deck::check(*code, deck, velocities, &given, args.timeout)
+        })
+        .collect::<Result<Vec<_>>>()?;
     add_decks(&mut report, &checks)?;
-    let mut compared = Vec::new();
-    for (deck, options) in &mills {
-        progress(&format!("{}: running both laws", deck.path.display()));
-        compared.push(run_mill(deck, options, &|_| {})?);
-    }
+    let compared = mills
+        .iter()
+        .map(|(deck, options)| {
+            progress(&format!("{}: running both laws", deck.path.display()));
+            run_mill(deck, options, &|_| {})
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     add_mills(&mut report, &compared)?;
     if let Some(bar) = &bar {
         bar.finish_and_clear();
@@ -144,7 +143,6 @@ fn read_mills(args: &ReportArgs) -> Result<Vec<(MillDeck, MillOptions)>> {
         .collect::<Result<Vec<_>>>()
 }
 
-/// The report's progress bar, one step per stage.
 /// Write the report's files into `out` (replaced whole); how many were written, the marker not
 /// counted.
 fn write_report(out: &std::path::Path, report: &Report, html: &str, md: &str) -> Result<usize> {

@@ -66,11 +66,29 @@ fn colour(i: usize) -> RGBColor {
     COLOURS[i % COLOURS.len()]
 }
 
-fn fail(figure: &'static str) -> impl Fn(&dyn std::fmt::Display) -> OutputError {
-    move |e| OutputError::Plot {
-        figure,
-        reason: e.to_string(),
+/// What plotters gives back when drawing fails.
+pub(crate) type DrawResult = Result<(), Box<dyn std::error::Error>>;
+
+/// An SVG of `size` pixels: a white page on which `draw` draws; a failure to draw is the
+/// `figure`'s [`OutputError::Plot`].
+pub(crate) fn svg(
+    figure: &'static str,
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<SVGBackend<'_>, plotters::coord::Shift>) -> DrawResult,
+) -> Result<String, OutputError> {
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        let drawn: DrawResult = root.fill(&WHITE).map_err(Into::into);
+        drawn
+            .and_then(|()| draw(&root))
+            .and_then(|()| Ok(root.present()?))
+            .map_err(|e| OutputError::Plot {
+                figure,
+                reason: e.to_string(),
+            })?;
     }
+    Ok(svg)
 }
 
 /// A tick label: plain digits for ordinary magnitudes, scientific otherwise.
@@ -107,7 +125,6 @@ fn range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
 /// Render `chart` as an SVG string, `width × height` pixels, the legend in a panel on the
 /// right.
 pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String, OutputError> {
-    let fail = fail("chart");
     let points = || chart.series.iter().flat_map(|s| s.points.iter());
     let (Some((x0, x1)), Some((y0, y1))) =
         (range(points().map(|p| p.0)), range(points().map(|p| p.1)))
@@ -117,10 +134,7 @@ pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String
             reason: format!("`{}` has no finite point", chart.title),
         });
     };
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
+    svg("chart", (width, height), |root| {
         let legend_width = 270.min(width / 3);
         let (plot, legend) = root.split_horizontally(width - legend_width);
         let mut c = ChartBuilder::on(&plot)
@@ -128,8 +142,7 @@ pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(78)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(|e| fail(&e))?;
+            .build_cartesian_2d(x0..x1, y0..y1)?;
         c.configure_mesh()
             .x_desc(&chart.x_label)
             .y_desc(&chart.y_label)
@@ -139,8 +152,7 @@ pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String
             .y_labels(8)
             .y_label_formatter(&|v| tick(*v))
             .x_label_formatter(&|v| tick(*v))
-            .draw()
-            .map_err(|e| fail(&e))?;
+            .draw()?;
         for (i, s) in chart.series.iter().enumerate() {
             let colour = colour(i);
             let pts: Vec<(f64, f64)> = s
@@ -152,12 +164,10 @@ pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String
             match s.style {
                 Style::Line | Style::Thin => {
                     let w = if s.style == Style::Line { 2 } else { 1 };
-                    c.draw_series(LineSeries::new(pts, colour.stroke_width(w)))
-                        .map_err(|e| fail(&e))?;
+                    c.draw_series(LineSeries::new(pts, colour.stroke_width(w)))?;
                 }
                 Style::Dots => {
-                    c.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, colour.filled())))
-                        .map_err(|e| fail(&e))?;
+                    c.draw_series(pts.into_iter().map(|p| Circle::new(p, 4, colour.filled())))?;
                 }
             }
         }
@@ -165,27 +175,20 @@ pub(crate) fn chart_svg(chart: &Chart, width: u32, height: u32) -> Result<String
             let colour = colour(i);
             let y = 50 + 24 * i32::try_from(i).unwrap_or(i32::MAX / 48);
             match s.style {
-                Style::Dots => legend
-                    .draw(&Circle::new((22, y), 4, colour.filled()))
-                    .map_err(|e| fail(&e))?,
-                Style::Line | Style::Thin => legend
-                    .draw(&PathElement::new(
-                        vec![(10, y), (34, y)],
-                        colour.stroke_width(if s.style == Style::Line { 2 } else { 1 }),
-                    ))
-                    .map_err(|e| fail(&e))?,
+                Style::Dots => legend.draw(&Circle::new((22, y), 4, colour.filled()))?,
+                Style::Line | Style::Thin => legend.draw(&PathElement::new(
+                    vec![(10, y), (34, y)],
+                    colour.stroke_width(if s.style == Style::Line { 2 } else { 1 }),
+                ))?,
             }
-            legend
-                .draw(&Text::new(
-                    s.name.clone(),
-                    (42, y - 7),
-                    ("sans-serif", 14).into_font(),
-                ))
-                .map_err(|e| fail(&e))?;
+            legend.draw(&Text::new(
+                s.name.clone(),
+                (42, y - 7),
+                ("sans-serif", 14).into_font(),
+            ))?;
         }
-        root.present().map_err(|e| fail(&e))?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }
 
 /// A categorical map: one row per `rows` entry, one cell per column, each cell coloured by
@@ -198,7 +201,6 @@ pub(crate) fn map_svg(
     width: u32,
     height: u32,
 ) -> Result<String, OutputError> {
-    let fail = fail("map");
     let columns = rows.iter().map(|r| r.1.len()).max().unwrap_or(0);
     if rows.is_empty() || columns == 0 {
         return Err(OutputError::Plot {
@@ -206,10 +208,7 @@ pub(crate) fn map_svg(
             reason: "no cells".into(),
         });
     }
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
+    svg("map", (width, height), |root| {
         let legend_width = 270.min(width / 3);
         let (plot, legend) = root.split_horizontally(width - legend_width);
         let names: Vec<String> = rows.iter().map(|r| r.0.clone()).collect();
@@ -218,8 +217,7 @@ pub(crate) fn map_svg(
             .margin(12)
             .x_label_area_size(48)
             .y_label_area_size(90)
-            .build_cartesian_2d(0f64..columns as f64, 0f64..rows.len() as f64)
-            .map_err(|e| fail(&e))?;
+            .build_cartesian_2d(0f64..columns as f64, 0f64..rows.len() as f64)?;
         c.configure_mesh()
             .disable_mesh()
             .x_desc(x_label)
@@ -239,31 +237,24 @@ pub(crate) fn map_svg(
             })
             .label_style(("sans-serif", 14))
             .axis_desc_style(("sans-serif", 16))
-            .draw()
-            .map_err(|e| fail(&e))?;
+            .draw()?;
         for (r, (_, cells)) in rows.iter().enumerate() {
             c.draw_series(cells.iter().enumerate().map(|(k, &class)| {
                 Rectangle::new(
                     [(k as f64, r as f64 + 0.1), (k as f64 + 1.0, r as f64 + 0.9)],
                     classes[class].1.filled(),
                 )
-            }))
-            .map_err(|e| fail(&e))?;
+            }))?;
         }
         for (i, (name, colour)) in classes.iter().enumerate() {
             let y = 50 + 24 * i32::try_from(i).unwrap_or(i32::MAX / 48);
-            legend
-                .draw(&Rectangle::new([(10, y - 7), (30, y + 7)], colour.filled()))
-                .map_err(|e| fail(&e))?;
-            legend
-                .draw(&Text::new(
-                    name.to_string(),
-                    (40, y - 7),
-                    ("sans-serif", 14).into_font(),
-                ))
-                .map_err(|e| fail(&e))?;
+            legend.draw(&Rectangle::new([(10, y - 7), (30, y + 7)], colour.filled()))?;
+            legend.draw(&Text::new(
+                name.to_string(),
+                (40, y - 7),
+                ("sans-serif", 14).into_font(),
+            ))?;
         }
-        root.present().map_err(|e| fail(&e))?;
-    }
-    Ok(svg)
+        Ok(())
+    })
 }

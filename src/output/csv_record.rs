@@ -74,15 +74,7 @@ impl CsvRecords {
     /// Append `record` as one CSV record. On an error nothing of it is kept.
     pub fn push<T: Serialize + ?Sized>(&mut self, record: &T) -> Result<(), RecordError> {
         let start = self.bytes.len();
-        let mut fields = Fields {
-            out: &mut self.bytes,
-            quoting: &QUOTING,
-            count: 0,
-            newlines: 0,
-            header: false,
-            key: None,
-            unnamed: false,
-        };
+        let mut fields = Fields::new(&mut self.bytes, false);
         let written = record.serialize(&mut fields);
         let (count, newlines) = (fields.count, fields.newlines);
         let width = *self.width.get_or_insert(count);
@@ -139,15 +131,7 @@ impl CsvRecords {
 /// fields they write), with its line end; empty for a value without field names (a tuple).
 pub fn header_of<T: Serialize + ?Sized>(record: &T) -> Result<Vec<u8>, RecordError> {
     let mut bytes = Vec::new();
-    let mut fields = Fields {
-        out: &mut bytes,
-        quoting: &QUOTING,
-        count: 0,
-        newlines: 0,
-        header: true,
-        key: None,
-        unnamed: false,
-    };
+    let mut fields = Fields::new(&mut bytes, true);
     record.serialize(&mut fields)?;
     if fields.unnamed || fields.count == 0 {
         return Ok(Vec::new());
@@ -173,6 +157,19 @@ struct Fields<'a> {
 }
 
 impl Fields<'_> {
+    /// A record's serialiser writing into `out`: its header when `header`, else its fields.
+    fn new(out: &mut Vec<u8>, header: bool) -> Fields<'_> {
+        Fields {
+            out,
+            quoting: &QUOTING,
+            count: 0,
+            newlines: 0,
+            header,
+            key: None,
+            unnamed: false,
+        }
+    }
+
     /// Start a field: a delimiter before every field but the first.
     fn next(&mut self) {
         if self.count > 0 {
@@ -390,44 +387,29 @@ impl ser::Serializer for &mut Fields<'_> {
     }
 }
 
-impl ser::SerializeSeq for &mut Fields<'_> {
-    type Ok = ();
-    type Error = RecordError;
+/// The compounds whose parts are fields in turn: a sequence's, a tuple's elements.
+macro_rules! compounds {
+    ($($compound:ident::$method:ident),*) => {$(
+        impl ser::$compound for &mut Fields<'_> {
+            type Ok = ();
+            type Error = RecordError;
 
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), RecordError> {
-        value.serialize(&mut **self)
-    }
+            fn $method<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), RecordError> {
+                value.serialize(&mut **self)
+            }
 
-    fn end(self) -> Result<(), RecordError> {
-        Ok(())
-    }
+            fn end(self) -> Result<(), RecordError> {
+                Ok(())
+            }
+        }
+    )*};
 }
 
-impl ser::SerializeTuple for &mut Fields<'_> {
-    type Ok = ();
-    type Error = RecordError;
-
-    fn serialize_element<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), RecordError> {
-        value.serialize(&mut **self)
-    }
-
-    fn end(self) -> Result<(), RecordError> {
-        Ok(())
-    }
-}
-
-impl ser::SerializeTupleStruct for &mut Fields<'_> {
-    type Ok = ();
-    type Error = RecordError;
-
-    fn serialize_field<T: Serialize + ?Sized>(&mut self, value: &T) -> Result<(), RecordError> {
-        value.serialize(&mut **self)
-    }
-
-    fn end(self) -> Result<(), RecordError> {
-        Ok(())
-    }
-}
+compounds!(
+    SerializeSeq::serialize_element,
+    SerializeTuple::serialize_element,
+    SerializeTupleStruct::serialize_field
+);
 
 impl ser::SerializeMap for &mut Fields<'_> {
     type Ok = ();

@@ -3,6 +3,7 @@
 use plotters::prelude::*;
 
 use super::OutputError;
+use super::chart::svg;
 
 /// Render a sweep: the method's COR at each η (points), the closed form `sqrt((1-η)/(1+η))`
 /// (line) and the small-η approximation `1 - η` (thin line) it bends away from.
@@ -20,15 +21,8 @@ pub(crate) fn restitution_svg(
             reason: "no points to plot".into(),
         });
     }
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (800, 600)).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| OutputError::Plot {
-            figure: "restitution",
-            reason: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
-        let mut chart = ChartBuilder::on(&root)
+    svg("restitution", (800, 600), |root| {
+        let mut chart = ChartBuilder::on(root)
             .caption(
                 format!("COR against loss coefficient, case {case}"),
                 ("sans-serif", 22),
@@ -36,28 +30,24 @@ pub(crate) fn restitution_svg(
             .margin(20)
             .x_label_area_size(50)
             .y_label_area_size(60)
-            .build_cartesian_2d(0f64..1f64, 0f64..1.05f64)
-            .map_err(|e| fail(&e))?;
+            .build_cartesian_2d(0f64..1f64, 0f64..1.05f64)?;
         chart
             .configure_mesh()
             .x_desc("loss coefficient η")
             .y_desc("coefficient of restitution e")
-            .draw()
-            .map_err(|e| fail(&e))?;
+            .draw()?;
         let exact_curve = (0..=400).map(|i| {
             let eta = 0.9999 * i as f64 / 400.0;
             (eta, exact(eta))
         });
         let blue = BLUE.stroke_width(2);
         chart
-            .draw_series(LineSeries::new(exact_curve, blue))
-            .map_err(|e| fail(&e))?
+            .draw_series(LineSeries::new(exact_curve, blue))?
             .label("exact: sqrt((1-η)/(1+η))")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], blue));
         let grey = BLACK.mix(0.4).stroke_width(1);
         chart
-            .draw_series(LineSeries::new([(0.0, 1.0), (1.0, 0.0)], grey))
-            .map_err(|e| fail(&e))?
+            .draw_series(LineSeries::new([(0.0, 1.0), (1.0, 0.0)], grey))?
             .label("1 - η (small η)")
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 24, y)], grey));
         chart
@@ -65,8 +55,7 @@ pub(crate) fn restitution_svg(
                 points
                     .iter()
                     .map(|&(eta, cor)| Circle::new((eta, cor), 4, RED.filled())),
-            )
-            .map_err(|e| fail(&e))?
+            )?
             .label(method)
             .legend(|(x, y)| Circle::new((x + 12, y), 4, RED.filled()));
         chart
@@ -75,9 +64,7 @@ pub(crate) fn restitution_svg(
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
-    }
-    Ok(svg)
+            .draw()?;
+        Ok(())
+    })
 }

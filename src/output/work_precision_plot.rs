@@ -7,6 +7,7 @@ const SMALLEST_ERROR: f64 = 1e-17;
 use plotters::prelude::*;
 
 use super::OutputError;
+use super::chart::svg;
 
 /// Render the work–precision diagram of `case`: one series per source, each point
 /// `(largest relative error, run time in s)`; errors are drawn no lower than 1e-17 (an exact
@@ -48,41 +49,29 @@ pub(crate) fn work_precision_svg(
     let x_range = decade_below(x_lo)..decade_above(x_hi);
     let y_range = decade_below(y_lo)..decade_above(y_hi);
 
-    let mut svg = String::new();
-    {
-        let root = SVGBackend::with_string(&mut svg, (960, 640)).into_drawing_area();
-        let fail = |e: &dyn std::fmt::Display| OutputError::Plot {
-            figure: "work-precision",
-            reason: e.to_string(),
-        };
-        root.fill(&WHITE).map_err(|e| fail(&e))?;
-        let mut chart = ChartBuilder::on(&root)
+    svg("work-precision", (960, 640), |root| {
+        let mut chart = ChartBuilder::on(root)
             .caption(format!("Work–precision, case {case}"), ("sans-serif", 22))
             .margin(20)
             .x_label_area_size(55)
             .y_label_area_size(80)
-            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())
-            .map_err(|e| fail(&e))?;
+            .build_cartesian_2d(x_range.log_scale(), y_range.log_scale())?;
         chart
             .configure_mesh()
             .x_desc("largest relative error of COR, peak deformation, contact time")
             .y_desc("run time of one impact (s)")
             .x_label_formatter(&|x| format!("{x:.0e}"))
             .y_label_formatter(&|y| format!("{y:.0e}"))
-            .draw()
-            .map_err(|e| fail(&e))?;
+            .draw()?;
         for (i, (name, points)) in series.iter().enumerate() {
             let color = Palette99::pick(i).to_rgba();
             chart
-                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))
-                .map_err(|e| fail(&e))?
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
                 .label(*name)
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 24, y)], color.stroke_width(2))
                 });
-            chart
-                .draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))
-                .map_err(|e| fail(&e))?;
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
         }
         chart
             .configure_series_labels()
@@ -90,9 +79,7 @@ pub(crate) fn work_precision_svg(
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(|e| fail(&e))?;
-        root.present().map_err(|e| fail(&e))?;
-    }
-    Ok(svg)
+            .draw()?;
+        Ok(())
+    })
 }

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use super::{BenchmarkError, BenchmarkReport, CHUNG_OOI, Quantity};
+use crate::analysis::groups;
 use crate::codes::damping::thornton_damping_ratio;
 use crate::codes::lammps::tsuji_alpha;
 use crate::model::law::DashpotLaw;
@@ -183,25 +184,14 @@ pub(crate) fn cor_chart(report: &BenchmarkReport) -> Result<CorChart, BenchmarkE
 impl CorChart {
     /// The points of one curve of one series, in order of the COR set.
     fn series(&self, curve: Curve, material: Option<&str>) -> Vec<Series> {
-        let mut names: Vec<&str> = Vec::new();
-        for p in self
+        let of_curve = self
             .points
             .iter()
-            .filter(|p| p.curve == curve && p.material == material)
-        {
-            if !names.contains(&p.series.as_str()) {
-                names.push(&p.series);
-            }
-        }
-        names
+            .filter(|p| p.curve == curve && p.material == material);
+        groups(of_curve, |p| p.series.as_str())
             .into_iter()
-            .map(|name| {
-                let points = self
-                    .points
-                    .iter()
-                    .filter(|p| p.curve == curve && p.material == material && p.series == name)
-                    .map(|p| (p.cor_set, p.deviation))
-                    .collect();
+            .map(|(name, points)| {
+                let points = points.iter().map(|p| (p.cor_set, p.deviation)).collect();
                 Series::new(name, points, Style::Line)
             })
             .collect()

@@ -661,6 +661,9 @@ impl Summary for BenchmarkReport {
     }
 
     fn sections(&self) -> Vec<Section> {
+        // A figure and a difference where there is one, a dash where not.
+        let figure = |x: Option<f64>| x.map_or("–".to_string(), |x| format!("{x:.6e}"));
+        let difference = |d: Option<f64>| d.map_or("–".to_string(), |d| format!("{d:+.2e}"));
         let mut out = Vec::new();
         for impact in &CHUNG_OOI {
             let plane = match impact.plane {
@@ -693,10 +696,9 @@ impl Summary for BenchmarkReport {
                     r.source.to_string(),
                     r.quantity.label().to_string(),
                     format!("{}", r.cor_set),
-                    r.published.map_or("–".to_string(), |p| format!("{p:.6e}")),
+                    figure(r.published),
                     format!("{:.6e}", r.value),
-                    r.relative_difference
-                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
+                    difference(r.relative_difference),
                     format!("{:.1e}", r.tolerance),
                     match (r.pass, r.expected_pass) {
                         (true, true) => "pass",
@@ -705,10 +707,8 @@ impl Summary for BenchmarkReport {
                         (true, false) => "PASSES: trap not shown",
                     }
                     .to_string(),
-                    r.closed_form
-                        .map_or("–".to_string(), |c| format!("{c:.6e}")),
-                    r.closed_form_difference
-                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
+                    figure(r.closed_form),
+                    difference(r.closed_form_difference),
                 ]);
             }
             out.push(section);
@@ -742,12 +742,9 @@ impl Summary for BenchmarkReport {
                     r.swept_value.map_or("–".to_string(), |v| format!("{v:.6}")),
                     r.quantity.label().to_string(),
                     format!("{:.6e}", r.value),
-                    r.closed_form
-                        .map_or("–".to_string(), |c| format!("{c:.6e}")),
-                    r.closed_form_difference
-                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
-                    r.method_difference
-                        .map_or("–".to_string(), |d| format!("{d:+.2e}")),
+                    figure(r.closed_form),
+                    difference(r.closed_form_difference),
+                    difference(r.method_difference),
                     format!("{:.1e}", r.tolerance),
                     if r.pass { "pass" } else { "FAIL" }.to_string(),
                 ]);

@@ -7,6 +7,7 @@ use serde::Serialize;
 
 use super::oblique::{OBLIQUE_TESTS, ObliqueImpact};
 use super::{BenchmarkReport, BenchmarkRow, Quantity};
+use crate::analysis::groups;
 use crate::model::exact;
 use crate::model::tangential::{TangentialBodies, normalised_angle};
 use crate::output::chart::{Chart, Series, Style, chart_svg};
@@ -109,21 +110,10 @@ pub(crate) fn oblique_figures(report: &BenchmarkReport) -> Result<Vec<ReportFigu
         }
         let mut series: Vec<Series> = Vec::new();
         for &quantity in drawn(test) {
-            let mut names: Vec<(&str, String)> = Vec::new();
-            for p in points.iter().filter(|p| p.quantity == quantity) {
-                if !names
+            let of_quantity = points.iter().filter(|p| p.quantity == quantity);
+            for ((material, name), group) in groups(of_quantity, |p| (p.material, &p.series)) {
+                let xy: Vec<(f64, f64)> = group
                     .iter()
-                    .any(|(m, s)| *m == p.material && *s == p.series)
-                {
-                    names.push((p.material, p.series.clone()));
-                }
-            }
-            for (material, name) in names {
-                let xy: Vec<(f64, f64)> = points
-                    .iter()
-                    .filter(|p| {
-                        p.quantity == quantity && p.material == material && p.series == name
-                    })
                     .filter(|p| test == 7 || p.x <= PSI_DRAWN_MAX)
                     .map(|p| (p.x, p.y))
                     .collect();
@@ -159,7 +149,6 @@ pub(crate) fn oblique_figures(report: &BenchmarkReport) -> Result<Vec<ReportFigu
             y_label: y_label.into(),
             series,
         };
-        let csv_points: Vec<&ObliquePoint> = points.iter().collect();
         figures.push(ReportFigure {
             id: format!("oblique-chart-test-{test}"),
             title: chart.title.clone(),
@@ -167,7 +156,7 @@ pub(crate) fn oblique_figures(report: &BenchmarkReport) -> Result<Vec<ReportFigu
                 "Chung & Ooi's test {test}: {what}, by rk4-event and dopri5 (the tangential solver) per material, and the closed form where it is exact (dots). The CSV holds every figure of the test's rows."
             ),
             svg: chart_svg(&chart, 960, 520)?,
-            csv: csv_string(&csv_points)?,
+            csv: csv_string(&points)?,
             command: "millimpact benchmark chung-ooi --chart DIR".into(),
         });
     }

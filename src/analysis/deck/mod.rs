@@ -1344,37 +1344,31 @@ impl Summary for DeckReport {
         if !self.cor_against_speed.is_empty() {
             out.push(speed_section(&self.cor_against_speed));
         }
+        let material = |e: Option<f64>, nu: Option<f64>| match (e, nu) {
+            (Some(e), Some(nu)) => format!(", E = {e:e} Pa, ν = {nu}"),
+            _ => String::new(),
+        };
         let mut bodies = vec!["particles:".to_string()];
         for b in &self.bodies {
-            let material = match (b.youngs_modulus, b.poisson_ratio) {
-                (Some(e), Some(nu)) => format!(", E = {e:e} Pa, ν = {nu}"),
-                _ => String::new(),
-            };
             bodies.push(format!(
-                "  type {}: R = {} m, ρ = {} kg/m³, m = {} kg{material} (from {})",
+                "  type {}: R = {} m, ρ = {} kg/m³, m = {} kg{} (from {})",
                 b.type_id,
                 b.radius,
                 b.density,
                 sci(b.mass),
+                material(b.youngs_modulus, b.poisson_ratio),
                 b.from
             ));
         }
         for w in &self.walls {
-            let material = match (w.youngs_modulus, w.poisson_ratio) {
-                (Some(e), Some(nu)) => format!(", E = {e:e} Pa, ν = {nu}"),
-                _ => String::new(),
-            };
             let t = w.type_id.map_or(String::new(), |t| format!(" type {t}"));
+            let material = material(w.youngs_modulus, w.poisson_ratio);
             bodies.push(format!("  wall {}{t}{material} ({})", w.name, w.from));
         }
         out.push(Section::text(bodies));
         let mut traps = vec!["traps of these lines:".to_string()];
-        let mut seen = Vec::new();
-        for i in &self.impacts {
-            if seen.contains(&i.pair) {
-                continue;
-            }
-            seen.push(i.pair.clone());
+        let mut seen = std::collections::HashSet::new();
+        for i in self.impacts.iter().filter(|i| seen.insert(&i.pair)) {
             traps.push(format!("  {} (model {}):", i.pair, i.model));
             traps.extend(i.traps.iter().map(|t| format!("    {t}")));
         }
@@ -1386,13 +1380,10 @@ impl Summary for DeckReport {
                 let at = format!("{} at {} m/s", i.pair, speed_text(i.impact_velocity));
                 i.failure
                     .iter()
-                    .map(|f| format!("  {at}: failed: {f}"))
-                    .chain(i.warnings.iter().map(|w| format!("  {at}: {w}")))
-                    .collect::<Vec<_>>()
+                    .map(|f| format!("failed: {f}"))
+                    .chain(i.warnings.iter().cloned())
+                    .map(move |w| format!("  {at}: {w}"))
             })
-            .collect();
-        let warned: Vec<String> = warned
-            .into_iter()
             .chain(
                 self.tangential
                     .iter()

@@ -91,16 +91,9 @@ impl SpeedCurve {
 /// The curve of each pair of `impacts` checked at two speeds or more, in the order the pairs
 /// first appear.
 pub(crate) fn speed_curves(impacts: &[DeckImpact]) -> Vec<SpeedCurve> {
-    let mut pairs: Vec<&str> = Vec::new();
-    for impact in impacts {
-        if !pairs.contains(&impact.pair.as_str()) {
-            pairs.push(&impact.pair);
-        }
-    }
-    pairs
+    crate::analysis::groups(impacts, |i| i.pair.as_str())
         .into_iter()
-        .filter_map(|pair| {
-            let rows: Vec<&DeckImpact> = impacts.iter().filter(|i| i.pair == pair).collect();
+        .filter_map(|(pair, rows)| {
             if rows.len() < 2 {
                 return None;
             }

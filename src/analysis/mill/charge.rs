@@ -73,11 +73,13 @@ pub(super) fn read_positions(text: &str) -> Result<Vec<Positions>, ReadFault> {
     Ok(frames)
 }
 
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+/// The dot product of two 3-vectors.
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: &[f64], b: &[f64]) -> [f64; 3] {
+/// The cross product of two 3-vectors.
+pub(super) fn cross(a: &[f64], b: &[f64]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],

@@ -12,6 +12,7 @@ use std::collections::HashMap;
 
 use serde::Serialize;
 
+use super::charge::{cross, dot};
 use crate::codes::liggghts::mill::MillDeck;
 
 /// Edges of the impact-energy bins, J (a bin below the first and one above the last besides).
@@ -140,18 +141,6 @@ pub fn read_frames(text: &str) -> Result<Vec<Frame>, ReadFault> {
 
 fn sub(a: &[f64], b: &[f64]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: &[f64], b: &[f64]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn unit(v: [f64; 3]) -> [f64; 3] {

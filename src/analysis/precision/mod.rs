@@ -595,14 +595,8 @@ pub(crate) fn precision_report(
     let mut orders_by_quantity = BTreeMap::new();
     let mut tolerance_slopes = BTreeMap::new();
     let mut envelopes = BTreeMap::new();
-    let mut sources: Vec<Source> = points.iter().map(|p| p.source).collect();
-    sources.dedup();
-    for source in sources {
-        let own: Vec<WorkPrecisionPoint> = points
-            .iter()
-            .filter(|p| p.source == source)
-            .cloned()
-            .collect();
+    for (source, own) in crate::analysis::groups(&points, |p| p.source) {
+        let own: Vec<WorkPrecisionPoint> = own.into_iter().cloned().collect();
         let q = observed_orders(&own);
         let source = source.name();
         if own[0].knob == SweepKnob::Rtol {
@@ -796,17 +790,10 @@ impl PrecisionReport {
     /// The points of each source as `(largest relative error, run time in s)`, in sweep order:
     /// the series of the work–precision diagram.
     pub(crate) fn series(&self) -> Vec<(String, Vec<(f64, f64)>)> {
-        let mut sources: Vec<Source> = self.points.iter().map(|p| p.source).collect();
-        sources.dedup();
-        sources
+        crate::analysis::groups(&self.points, |p| p.source)
             .into_iter()
-            .map(|source| {
-                let points = self
-                    .points
-                    .iter()
-                    .filter(|p| p.source == source)
-                    .map(|p| (p.max_error, p.time_s))
-                    .collect();
+            .map(|(source, points)| {
+                let points = points.iter().map(|p| (p.max_error, p.time_s)).collect();
                 (source.to_string(), points)
             })
             .collect()

@@ -203,6 +203,16 @@ fn table_from(id: String, s: &Section, command: &str) -> ReportTable {
     }
 }
 
+/// The paper's law on `case` by `settings`.
+fn solve_case(case: &Case, settings: &Settings) -> Result<paper::Outcome, ReportError> {
+    paper::solve(&case.law(), case.impact_velocity, settings).map_err(|source| {
+        ReportError::PaperLaw {
+            case: case.name.clone(),
+            source,
+        }
+    })
+}
+
 /// The paper's Figure 2: the rod end at η = 0.35 with two-sided contact, displacement and
 /// velocity against time, beside the damped harmonic oscillator with the same loss per
 /// half-cycle.
@@ -217,10 +227,7 @@ fn figure_2() -> Result<Vec<ReportFigure>, ReportError> {
         periods: 3.0,
         ..Settings::default()
     };
-    let out = paper::solve(&law, v0, &settings).map_err(|source| ReportError::PaperLaw {
-        case: case.name.clone(),
-        source,
-    })?;
+    let out = solve_case(&case, &settings)?;
     let e = exact::restitution(law.loss_coefficient);
     let zeta = DashpotLaw::damping_ratio(e);
     let w0 = (law.stiffness / law.mass).sqrt();
@@ -302,24 +309,17 @@ fn figure_3() -> Result<ReportFigure, ReportError> {
         ("ball on plate, rk4 (dots)", "ball_plate", Style::Dots),
     ] {
         let case = shipped_case(file)?;
-        let mut pts = Vec::new();
-        for &eta in &etas {
-            let at = case.with_loss_coefficient(eta);
-            let settings = Settings {
-                method: Method::Rk4,
-                ..Settings::default()
-            };
-            pts.push((
-                eta,
-                paper::solve(&at.law(), at.impact_velocity, &settings)
-                    .map_err(|source| ReportError::PaperLaw {
-                        case: case.name.clone(),
-                        source,
-                    })?
-                    .figures
-                    .cor,
-            ));
-        }
+        let settings = Settings {
+            method: Method::Rk4,
+            ..Settings::default()
+        };
+        let pts = etas
+            .iter()
+            .map(|&eta| {
+                let out = solve_case(&case.with_loss_coefficient(eta), &settings)?;
+                Ok((eta, out.figures.cor))
+            })
+            .collect::<Result<_, ReportError>>()?;
         series.push(Series::new(name, pts, style));
     }
     let fine: Vec<f64> = (0..=200).map(|i| 0.95 * i as f64 / 200.0).collect();
@@ -350,17 +350,13 @@ fn figure_3() -> Result<ReportFigure, ReportError> {
 /// Force–overlap loops and force–time curves of the paper's law and each code's law.
 fn force_figures(case: &Case) -> Result<Vec<ReportFigure>, ReportError> {
     let law = case.law();
-    let v0 = case.impact_velocity;
     let settings = Settings {
         method: Method::Rk4Event,
         steps_per_period: 2000,
         record: true,
         ..Settings::default()
     };
-    let out = paper::solve(&law, v0, &settings).map_err(|source| ReportError::PaperLaw {
-        case: case.name.clone(),
-        source,
-    })?;
+    let out = solve_case(case, &settings)?;
     let (um, kn, us) = (1e6, 1e-3, 1e6);
     let mut loops = vec![Series::new(
         "paper's law",
@@ -830,26 +826,28 @@ pub(crate) fn build_report(
         tables: vec![],
     });
     progress("force–overlap loops");
-    let mut force = Vec::new();
-    for case in cases {
-        force.extend(force_figures(case)?);
-    }
+    let force = cases
+        .iter()
+        .map(force_figures)
+        .collect::<Result<Vec<_>, _>>()?;
     parts.push(ReportPart {
         id: "models".into(),
         title: "The model difference at a glance".into(),
         intro: "At equal COR the codes' viscoelastic laws and the paper's hysteretic law draw different loops: lower peak force, and a force that ends before the overlap closes.".into(),
-        figures: force,
+        figures: force.concat(),
         tables: vec![],
     });
-    let sections = compared.sections();
-    let mut tables = Vec::new();
-    for (i, s) in sections.iter().enumerate() {
-        tables.push(table_from(format!("agreement-{i}"), s, &compare_command));
-    }
-    let mut by_e = Vec::new();
-    for c in &compared.cases {
-        by_e.push(model_by_e_figure(c)?);
-    }
+    let tables = compared
+        .sections()
+        .iter()
+        .enumerate()
+        .map(|(i, s)| table_from(format!("agreement-{i}"), s, &compare_command))
+        .collect();
+    let by_e = compared
+        .cases
+        .iter()
+        .map(model_by_e_figure)
+        .collect::<Result<_, _>>()?;
     parts.push(ReportPart {
         id: "agreement".into(),
         title: "Agreement: every figure, every source".into(),

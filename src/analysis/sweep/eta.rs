@@ -13,13 +13,12 @@ use serde::Serialize;
 use toml::Table;
 
 use super::error::SweepError;
-use super::grid::{Axis, AxisValues, GridPoint, PointCases, ResolvedSource, SweepFile};
+use super::grid::{Axis, GridPoint, PointCases, ResolvedSource, SweepFile};
 use super::point::{GridOptions, method_settings, solve_points};
 use crate::analysis::run::{IntegrationOptions, RunRecord, RunReport, solve_failure};
 use crate::analysis::source::{Resolution, Source};
 use crate::error::UserError;
 use crate::model::case::Case;
-use crate::model::count::round_count;
 use crate::output::csv_record::{CsvRecords, header_of};
 use crate::output::{Format, Section, Summary, export, markdown_row, sci, signed};
 use crate::solve::Method;
@@ -38,34 +37,17 @@ pub fn loss_coefficient_axis(text: &str, case: &str) -> Result<Axis, UserError> 
     let Some([start, stop, step]) = numbers
         .as_deref()
         .and_then(|v| <[f64; 3]>::try_from(v).ok())
+        .filter(|v| v.iter().all(|x| x.is_finite()))
+        .filter(|&[start, stop, step]| 0.0 <= start && start <= stop && stop < 1.0 && step > 0.0)
     else {
         return Err(refuse(
             "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0",
         ));
     };
-    let finite = start.is_finite() && stop.is_finite() && step.is_finite();
-    if !finite || start < 0.0 || stop >= 1.0 || start > stop || step <= 0.0 {
-        return Err(refuse(
-            "START:STOP:STEP with 0 <= START <= STOP < 1 and STEP > 0",
-        ));
-    }
-    // The count is checked as a float before it becomes an integer: a tiny step must be
-    // refused, not wrap.
-    let most = super::grid::MAX_POINTS;
-    let count = ((stop - start) / step + 1e-9).floor() + 1.0;
-    let count = (count.is_finite() && count <= most as f64)
-        .then(|| round_count(count))
-        .flatten()
-        .and_then(|n| usize::try_from(n).ok())
-        .ok_or_else(|| refuse(&format!("at most {most} values")))?;
     Ok(Axis {
         key: "loss_coefficient".into(),
-        values: AxisValues::Spaced {
-            start,
-            step,
-            count,
-            last: None,
-        },
+        values: super::grid::stepped(start, stop, step)
+            .ok_or_else(|| refuse(&format!("at most {} values", super::grid::MAX_POINTS)))?,
     })
 }
 
@@ -260,10 +242,10 @@ impl EtaSweep {
                 for row in &rows {
                     records.push(row)?;
                 }
-                bytes = match rows.first().filter(|_| first) {
-                    Some(row) => [header_of(row)?, records.into_bytes()].concat(),
-                    None => records.into_bytes(),
-                };
+                if let Some(row) = rows.first().filter(|_| first) {
+                    bytes = header_of(row)?;
+                }
+                bytes.extend(records.into_bytes());
             }
             Format::Json => {
                 for (i, row) in rows.iter().enumerate() {

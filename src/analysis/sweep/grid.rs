@@ -809,6 +809,24 @@ impl<'a> PointCases<'a> {
     }
 }
 
+/// The values from `start` to `stop` (included, within 1e-9 of a step) `step` apart, for
+/// finite `start <= stop` and `step > 0`; `None` beyond [`MAX_POINTS`] values.
+pub(crate) fn stepped(start: f64, stop: f64, step: f64) -> Option<AxisValues> {
+    // The count is checked as a float before it becomes an integer: a tiny step must be
+    // refused, not wrap.
+    let count = ((stop - start) / step + 1e-9).floor() + 1.0;
+    let count = (count <= MAX_POINTS as f64)
+        .then(|| crate::model::count::ceil_count(count))
+        .flatten()
+        .and_then(|n| usize::try_from(n).ok())?;
+    Some(AxisValues::Spaced {
+        start,
+        step,
+        count,
+        last: None,
+    })
+}
+
 /// The values of one axis: a list, or `{ start, stop, step }` (stop included) or
 /// `{ start, stop, count }` (evenly spaced, both ends included).
 fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<AxisValues, CaseError> {
@@ -846,19 +864,8 @@ fn axis_values(value: &Value, refuse: impl Fn(&str) -> CaseError) -> Result<Axis
                     if !(step.is_finite() && step > 0.0) {
                         return Err(refuse(allowed));
                     }
-                    let count = ((stop - start) / step + 1e-9).floor() + 1.0;
-                    if count.is_nan() || count > MAX_POINTS as f64 {
-                        return Err(refuse(&format!("at most {MAX_POINTS} values")));
-                    }
-                    let count = crate::model::count::ceil_count(count)
-                        .and_then(|n| usize::try_from(n).ok())
-                        .ok_or_else(|| refuse(&format!("at most {MAX_POINTS} values")))?;
-                    Ok(AxisValues::Spaced {
-                        start,
-                        step,
-                        count,
-                        last: None,
-                    })
+                    stepped(start, stop, step)
+                        .ok_or_else(|| refuse(&format!("at most {MAX_POINTS} values")))
                 }
                 (None, Some(count)) => {
                     #[allow(clippy::float_cmp)] // one point names one value: the same number twice
