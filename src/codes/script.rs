@@ -33,6 +33,11 @@ impl Command {
         &self.words[0]
     }
 
+    /// An error at this command's line: `what` it holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        DeckError::unsupported(&self.at, what, supported)
+    }
+
     /// Word `k` (0 is the command), or an error naming the line and what was expected there.
     pub(crate) fn word(&self, k: usize, expected: &str) -> Result<&str, DeckError> {
         self.words.get(k).map(String::as_str).ok_or_else(|| {
@@ -65,8 +70,7 @@ pub(crate) fn check_si_units(
 ) -> Result<(), DeckError> {
     match units {
         Some(c) if c.words.get(1).is_some_and(|u| u == "si") => Ok(()),
-        Some(c) => Err(DeckError::unsupported(
-            &c.at,
+        Some(c) => Err(c.refuse(
             format!("units {}", c.words.get(1).map_or("", String::as_str)),
             "units si",
         )),
@@ -279,7 +283,7 @@ impl ScriptReader {
         match words[0].as_str() {
             "include" => {
                 let name = words.get(1).ok_or_else(|| {
-                    DeckError::unsupported(&at, "include without a file".into(), "include FILE")
+                    DeckError::unsupported(&at, "include without a file", "include FILE")
                 })?;
                 if self.depth >= MAX_INCLUDE_DEPTH {
                     return Err(DeckError::unsupported(
@@ -356,7 +360,7 @@ impl ScriptReader {
         let (Some(name), Some(style)) = (words.get(1), words.get(2)) else {
             return Err(DeckError::unsupported(
                 at,
-                "variable without a name and style".into(),
+                "variable without a name and style",
                 SUPPORTED_STYLES,
             ));
         };
@@ -538,14 +542,14 @@ impl ScriptReader {
                 let (value, next) = match chars[i + 1] {
                     '{' => {
                         let end = find(&chars, i + 2, '}').ok_or_else(|| {
-                            DeckError::unsupported(at, "`${` without `}`".into(), "${NAME}")
+                            DeckError::unsupported(at, "`${` without `}`", "${NAME}")
                         })?;
                         let name: String = chars[i + 2..end].iter().collect();
                         (self.value(&name, at)?, end + 1)
                     }
                     '(' => {
                         let end = matching_paren(&chars, i + 1).ok_or_else(|| {
-                            DeckError::unsupported(at, "`$(` without `)`".into(), "$(formula)")
+                            DeckError::unsupported(at, "`$(` without `)`", "$(formula)")
                         })?;
                         let inner: String = chars[i + 2..end].iter().collect();
                         // `$(formula:format)`: the format only changes how it is written.
@@ -657,7 +661,7 @@ fn split_words(line: &str, at: &SourceLine) -> Result<Vec<String>, DeckError> {
 fn unclosed(at: &SourceLine) -> DeckError {
     DeckError::unsupported(
         at,
-        "a quote that is not closed".into(),
+        "a quote that is not closed",
         "quoted words closed on their line",
     )
 }

@@ -260,10 +260,14 @@ impl DeckError {
     }
 
     /// An unsupported or unresolvable line (or field).
-    pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
+    pub(crate) fn unsupported(
+        at: impl Into<DeckSource>,
+        what: impl Into<String>,
+        supported: &str,
+    ) -> Self {
         DeckError::Unsupported {
             at: at.into(),
-            what,
+            what: what.into(),
             supported: supported.to_string(),
         }
     }

@@ -154,9 +154,7 @@ impl<'a> PairCoeffLines<'a> {
             match (a.parse::<u32>(), b.parse::<u32>()) {
                 (Ok(i), Ok(j)) if j < i => {
                     if !mixing.reorders_types() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            format!(
+                        return Err(c.refuse(format!(
                                 "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
                             ),
                             &format!("pair_coeff {b} {a}"),
@@ -364,9 +362,7 @@ impl LammpsDeck {
             "pair_coeff" if r.classic.is_some() => {
                 let model = r.classic.clone().unwrap_or_else(|| unreachable!());
                 if c.words.len() != 3 {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("`{}`", c.text),
+                    return Err(c.refuse(format!("`{}`", c.text),
                         "pair_coeff I J with no coefficients (the classic styles take theirs on the pair_style line)",
                     ));
                 }
@@ -376,8 +372,7 @@ impl LammpsDeck {
             "pair_style" => {
                 if c.word(1, "a pair style")? != "granular" {
                     r.pair_refused = true;
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("pair_style {}", c.words[1]),
                         "pair_style granular, or paper and paper/linear of the paper plugin",
                     ));
@@ -389,14 +384,10 @@ impl LammpsDeck {
             "pair_coeff" => {
                 let (model, k) = read_model(c, 3, &[])?;
                 if k != c.words.len() {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("`{}`", c.text),
-                        "pair_coeff I J MODEL …",
-                    ));
+                    return Err(c.refuse(format!("`{}`", c.text), "pair_coeff I J MODEL …"));
                 }
                 if !c.words[3..].iter().any(|w| w == "tangential") {
-                    return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
+                    return Err(c.refuse("a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")", "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
                 }
                 r.coeffs
                     .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
@@ -405,17 +396,15 @@ impl LammpsDeck {
                 "wall/paper" => {
                     let planes = ["xplane", "yplane", "zplane"];
                     let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
-                        DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
+                        c.refuse("a wall/paper without its plane", "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
                     })?;
                     let linear = match c.word(4, "hertz or linear")? {
                         "hertz" => false,
                         "linear" => true,
                         other => {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                format!("wall/paper model `{other}`"),
-                                "hertz, linear",
-                            ));
+                            return Err(
+                                c.refuse(format!("wall/paper model `{other}`"), "hertz, linear")
+                            );
                         }
                     };
                     r.paper_walls.push(PaperWall {
@@ -432,16 +421,13 @@ impl LammpsDeck {
                     let (model, k) = classic_model(c, 4)?;
                     let geometry = &c.words[k..];
                     if geometry.iter().any(|w| w == "limit_damping") {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")".into(),
+                        return Err(c.refuse("limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")",
                             "fix ID group wall/gran STYLE Kn Kt gamma_n gamma_t xmu dampflag limit_damping WALLSTYLE ARGS",
                         ));
                     }
                     if geometry.is_empty() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "a wall without its style".into(),
+                        return Err(c.refuse(
+                            "a wall without its style",
                             "xplane, yplane, zplane, zcylinder, region",
                         ));
                     }
@@ -456,8 +442,7 @@ impl LammpsDeck {
                 }
                 "wall/gran" | "wall/gran/region" => {
                     if c.word(4, "granular")? != "granular" {
-                        return Err(DeckError::unsupported(
-                            &c.at,
+                        return Err(c.refuse(
                             format!("fix {} {}", c.words[3], c.words[4]),
                             "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
                         ));
@@ -465,9 +450,8 @@ impl LammpsDeck {
                     let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
                     let (model, k) = read_model(c, 5, &stops)?;
                     if k >= c.words.len() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "a wall without its style".into(),
+                        return Err(c.refuse(
+                            "a wall without its style",
                             "xplane, yplane, zplane, zcylinder, region",
                         ));
                     }
@@ -485,8 +469,7 @@ impl LammpsDeck {
                     c,
                 ),
                 "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid" | "rigid/small" => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!(
                             "fix {}: an integrator whose step the harness does not model",
                             c.words[3]
@@ -600,7 +583,7 @@ impl LammpsDeck {
                 if !conventions.coeff_restitution {
                     return Err(DeckError::unsupported(
                         at,
-                        "damping coeff_restitution: this build (probed) has none".into(),
+                        "damping coeff_restitution: this build (probed) has none",
                         "damping velocity, mass_velocity, viscoelastic, tsuji in this build; --code lammps-2025 has coeff_restitution",
                     ));
                 }
@@ -753,16 +736,14 @@ impl LammpsDeck {
         types: u32,
     ) -> Result<Pairs, DeckError> {
         if let Some((_, _, _, c)) = r.coeffs.first() {
-            return Err(DeckError::unsupported(
-                &c.at,
-                "granular lines beside the paper plugin's".into(),
+            return Err(c.refuse("granular lines beside the paper plugin's",
                 "one contact law per deck: pair_style paper with fix wall/paper, or pair_style granular with fix wall/gran granular",
             ));
         }
         if let Some(w) = r.walls.first() {
             return Err(DeckError::unsupported(
                 &w.at,
-                "fix wall/gran beside the paper plugin's styles".into(),
+                "fix wall/gran beside the paper plugin's styles",
                 "fix wall/paper with pair_style paper",
             ));
         }

@@ -108,8 +108,7 @@ const SYNTAX: AtomSyntax = AtomSyntax {
     mass: false,
     makes: &["type", "type/fraction"],
     refuses: |c, word| match word {
-        "type/ratio" | "type/subset" => Err(DeckError::unsupported(
-            &c.at,
+        "type/ratio" | "type/subset" => Err(c.refuse(
             format!(
                 "set … {word}: LIGGGHTS 3.8 has no such keyword (it stops: \"Illegal set command\")"
             ),
@@ -178,8 +177,7 @@ impl LiggghtsDeck {
             }
             "pair_style" => {
                 if c.word(1, "a pair style")? != "gran" {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("pair_style {}", c.words[1]),
                         "pair_style gran model …",
                     ));
@@ -220,8 +218,7 @@ impl LiggghtsDeck {
                         (type_number(n, c)? as usize, 7)
                     }
                     other => {
-                        return Err(DeckError::unsupported(
-                            &c.at,
+                        return Err(c.refuse(
                             format!("property/global style {other}"),
                             "scalar, vector, peratomtype, peratomtypepair, matrix",
                         ));
@@ -249,8 +246,7 @@ impl LiggghtsDeck {
             | "mesh/surface/planar"
             | "mesh/surface/stress/servo" => {
                 let k = c.words.iter().position(|w| w == "type").ok_or_else(|| {
-                    DeckError::unsupported(
-                        &c.at,
+                    c.refuse(
                         format!("fix {style} without `type`"),
                         "fix ID group mesh/surface file F type T …",
                     )
@@ -269,7 +265,7 @@ impl LiggghtsDeck {
             }
             "particletemplate/sphere" => {
                 let k = c.words.iter().position(|w| w == "atom_type").ok_or_else(|| {
-                    DeckError::unsupported(&c.at, "particletemplate/sphere without atom_type".into(), "particletemplate/sphere SEED atom_type T density constant RHO radius constant R")
+                    c.refuse("particletemplate/sphere without atom_type", "particletemplate/sphere SEED atom_type T density constant RHO radius constant R")
                 })?;
                 let t = type_number(c.number(k + 1, "the template's atom type")?, c)?;
                 let density = constant_after(c, "density")?;
@@ -278,8 +274,7 @@ impl LiggghtsDeck {
                 r.script.atoms.made_elsewhere(t);
             }
             "particletemplate/multisphere" | "particletemplate/superquadric" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("fix {style}: a non-spherical particle"),
                     "particletemplate/sphere",
                 ));
@@ -290,17 +285,15 @@ impl LiggghtsDeck {
             ),
             "nve" | "nve/limit" | "nve/sphere/limit" | "nve/asphere" | "nvt" | "rigid"
             | "multisphere" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("fix {style}: an integrator whose step the harness does not model"),
                     "fix nve/sphere",
                 ));
             }
             "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
             "coarsegraining" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    "fix coarsegraining: it scales the contact law".into(),
+                return Err(c.refuse(
+                    "fix coarsegraining: it scales the contact law",
                     "decks without coarse-graining",
                 ));
             }
@@ -331,9 +324,7 @@ impl LiggghtsDeck {
                 continue;
             }
             let (Some(radius), Some(density)) = (radius, density) else {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    format!(
+                return Err(c.refuse(format!(
                         "the template {} has no constant radius and density",
                         c.words[1]
                     ),

@@ -344,12 +344,16 @@ impl YadeDeck {
         r_star: f64,
     ) -> Result<PairLaw, DeckError> {
         if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
-            return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
+            return Err(DeckError::unsupported(
+                &law2.at,
+                "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model",
+                "includeAdhesion=False, or gamma=0",
+            ));
         }
         if law2.flag("nothing") {
             return Err(DeckError::unsupported(
                 &law2.at,
-                "nothing=True: the law computes no force".into(),
+                "nothing=True: the law computes no force",
                 "nothing=False",
             ));
         }
@@ -361,7 +365,7 @@ impl YadeDeck {
             (Some(_), Some(_)) => {
                 return Err(DeckError::unsupported(
                     &ip2.at,
-                    "both en and betan".into(),
+                    "both en and betan",
                     "one of en, betan (YADE refuses both)",
                 ));
             }
@@ -473,7 +477,7 @@ impl YadeDeck {
         if m1.value("mRtype") != m2.value("mRtype") {
             return Err(DeckError::unsupported(
                 &m2.at,
-                "mRtype differs from the other material's (YADE stops)".into(),
+                "mRtype differs from the other material's (YADE stops)",
                 "the same mRtype, 1 or 2",
             ));
         }
@@ -561,8 +565,7 @@ impl YadeDeck {
             } else {
                 return Err(DeckError::unsupported(
                     &m1.at,
-                    "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs"
-                        .into(),
+                    "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs",
                     "tc, en, et; or kn, ks, cn, cs; or young with en or with cn, cs (YADE: \"Inconsistent material constants\")",
                 ));
             }

@@ -249,7 +249,7 @@ impl Reading {
         if kind == WallKind::Box && body.dynamic {
             return Err(DeckError::unsupported(
                 at,
-                "a free box: a box that moves is a particle the check does not model".into(),
+                "a free box: a box that moves is a particle the check does not model",
                 "box(…, fixed=True) as a wall",
             ));
         }
