@@ -362,7 +362,8 @@ impl LammpsDeck {
             "pair_coeff" if r.classic.is_some() => {
                 let model = r.classic.clone().unwrap_or_else(|| unreachable!());
                 if c.words.len() != 3 {
-                    return Err(c.refuse(format!("`{}`", c.text),
+                    return Err(c.refuse(
+                        format!("`{}`", c.text),
                         "pair_coeff I J with no coefficients (the classic styles take theirs on the pair_style line)",
                     ));
                 }
@@ -421,7 +422,8 @@ impl LammpsDeck {
                     let (model, k) = classic_model(c, 4)?;
                     let geometry = &c.words[k..];
                     if geometry.iter().any(|w| w == "limit_damping") {
-                        return Err(c.refuse("limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")",
+                        return Err(c.refuse(
+                            "limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")",
                             "fix ID group wall/gran STYLE Kn Kt gamma_n gamma_t xmu dampflag limit_damping WALLSTYLE ARGS",
                         ));
                     }
@@ -736,7 +738,8 @@ impl LammpsDeck {
         types: u32,
     ) -> Result<Pairs, DeckError> {
         if let Some((_, _, _, c)) = r.coeffs.first() {
-            return Err(c.refuse("granular lines beside the paper plugin's",
+            return Err(c.refuse(
+                "granular lines beside the paper plugin's",
                 "one contact law per deck: pair_style paper with fix wall/paper, or pair_style granular with fix wall/gran granular",
             ));
         }

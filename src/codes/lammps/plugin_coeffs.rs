@@ -129,7 +129,8 @@ pub(super) fn paper_coeff(
         .collect::<Result<Vec<_>, _>>()?;
     let eta = values[0];
     if !(0.0..1.0).contains(&eta) {
-        return Err(c.refuse(format!("eta = {eta}"),
+        return Err(c.refuse(
+            format!("eta = {eta}"),
             "0 <= eta < 1 (the plugin stops the run otherwise: eta >= 1 never separates the bodies, eta < 0 creates energy)",
         ));
     }

@@ -107,7 +107,8 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
     }
     check_known_words(command, &model)?;
     if model.normal.is_empty() {
-        return Err(command.refuse(format!("`{}`: no `model` keyword", command.text),
+        return Err(command.refuse(
+            format!("`{}`: no `model` keyword", command.text),
             "LIGGGHTS 3.x granular lines: `model M [tangential T] [cohesion C] [rolling_friction R] [surface S]`",
         ));
     }

@@ -386,7 +386,8 @@ impl MillDeck {
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
             match c.name() {
                 "label" | "jump" | "next" | "if" => {
-                    return Err(c.refuse(format!("`{}`: a loop or branch of the deck", c.text),
+                    return Err(c.refuse(
+                        format!("`{}`: a loop or branch of the deck", c.text),
                         "a deck that runs straight through (the mill comparison cuts its runs by step counts)",
                     ));
                 }
@@ -545,7 +546,8 @@ impl MillDeck {
             // two runs would differ in the spring as well as the damping, and the difference
             // could not be laid on the damping law.
             "hooke" => {
-                return Err(c.refuse("model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping",
+                return Err(c.refuse(
+                    "model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping",
                     "model hertz (switched to model paper at the η of each pair's coefficientRestitution) or model paper (switched to model hertz)",
                 ));
             }
@@ -558,7 +560,8 @@ impl MillDeck {
             }
         };
         if let Some((key, value)) = model.settings.iter().find(|(k, v)| !droppable(k, v)) {
-            return Err(c.refuse(format!("{key} {value}: a setting the paper's law has no counterpart for"),
+            return Err(c.refuse(
+                format!("{key} {value}: a setting the paper's law has no counterpart for"),
                 "no settings, or tangential_damping on|off and limitForce off (the paper's styles take none)",
             ));
         }
