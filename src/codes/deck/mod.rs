@@ -51,6 +51,13 @@ impl fmt::Display for SourceLine {
     }
 }
 
+impl SourceLine {
+    /// An error here: `what` this line holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        DeckError::unsupported(self, what, supported)
+    }
+}
+
 impl Serialize for SourceLine {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_str(self)
@@ -80,6 +87,13 @@ impl DeckSource {
             file: file.to_path_buf(),
             path: path.into(),
         }
+    }
+}
+
+impl DeckSource {
+    /// An error here: `what` this line or field holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        DeckError::unsupported(self, what, supported)
     }
 }
 

@@ -346,8 +346,7 @@ fn sizes_of(
                     .and_then(|r| r.parse::<f64>().ok())
                     .filter(|r| *r > 0.0)
                     .ok_or_else(|| {
-                        DeckError::unsupported(
-                            &at,
+                        at.refuse(
                             format!("the inlet {name} has no positive RADIUS"),
                             "RADIUS R in its SubModelPartData",
                         )

@@ -203,9 +203,7 @@ impl<'a> PairCoeffLines<'a> {
                     (self.for_pair(i, i), self.for_pair(j, j))
                     && a.form() != b.form()
                 {
-                    return Err(DeckError::unsupported(
-                        &at_b.at,
-                        format!(
+                    return Err(at_b.at.refuse(format!(
                             "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
                             at_a.at,
                             a.form(),
@@ -583,15 +581,13 @@ impl LammpsDeck {
             }
             _ => {
                 if !conventions.coeff_restitution {
-                    return Err(DeckError::unsupported(
-                        at,
+                    return Err(at.refuse(
                         "damping coeff_restitution: this build (probed) has none",
                         "damping velocity, mass_velocity, viscoelastic, tsuji in this build; --code lammps-2025 has coeff_restitution",
                     ));
                 }
                 if !(d > 0.0 && d <= 1.0) {
-                    return Err(DeckError::unsupported(
-                        at,
+                    return Err(at.refuse(
                         format!("damping coeff_restitution with e = {d}"),
                         "0 < e <= 1 (the build runs e = 0 as NaN and e > 1 as energy gain without a word)",
                     ));
@@ -744,8 +740,7 @@ impl LammpsDeck {
             ));
         }
         if let Some(w) = r.walls.first() {
-            return Err(DeckError::unsupported(
-                &w.at,
+            return Err(w.at.refuse(
                 "fix wall/gran beside the paper plugin's styles",
                 "fix wall/paper with pair_style paper",
             ));

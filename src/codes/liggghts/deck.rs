@@ -48,8 +48,7 @@ impl Property {
     fn of_type(&self, name: &str, t: u32) -> Result<f64, DeckError> {
         let k = t as usize - 1;
         self.values.get(k).copied().ok_or_else(|| {
-            DeckError::unsupported(
-                &self.at,
+            self.at.refuse(
                 format!("{name} has {} values, none for type {t}", self.values.len()),
                 "one value per atom type (peratomtype)",
             )
@@ -59,8 +58,7 @@ impl Property {
     fn of_pair(&self, name: &str, i: u32, j: u32) -> Result<f64, DeckError> {
         let (i, j) = (i as usize - 1, j as usize - 1);
         if self.columns == 0 {
-            return Err(DeckError::unsupported(
-                &self.at,
+            return Err(self.at.refuse(
                 format!("{name} is not a table of type pairs"),
                 "peratomtypepair N v11 v12 … vNN",
             ));
@@ -69,8 +67,7 @@ impl Property {
             .get(i * self.columns + j)
             .copied()
             .ok_or_else(|| {
-                DeckError::unsupported(
-                    &self.at,
+                self.at.refuse(
                     format!("{name} has no value for the types {} and {}", i + 1, j + 1),
                     "peratomtypepair N with N×N values",
                 )
@@ -78,9 +75,10 @@ impl Property {
     }
 
     fn scalar(&self, name: &str) -> Result<f64, DeckError> {
-        self.values.first().copied().ok_or_else(|| {
-            DeckError::unsupported(&self.at, format!("{name} has no value"), "scalar V")
-        })
+        self.values
+            .first()
+            .copied()
+            .ok_or_else(|| self.at.refuse(format!("{name} has no value"), "scalar V"))
     }
 }
 
@@ -357,22 +355,19 @@ impl Materials<'_> {
             nu.of_type("poissonsRatio", t)?,
         );
         if !(0.0..=0.5).contains(&nuv) {
-            return Err(DeckError::unsupported(
-                &nu.at,
+            return Err(nu.at.refuse(
                 format!("poissonsRatio {nuv} of type {t}"),
                 "0 <= poissonsRatio <= 0.5 (LIGGGHTS stops otherwise)",
             ));
         }
         if ev > 1e9 && !self.r.hard_particles {
-            return Err(DeckError::unsupported(
-                &e.at,
+            return Err(e.at.refuse(
                 format!("youngsModulus {ev} of type {t} without `hard_particles yes`"),
                 "youngsModulus <= 1e9, or hard_particles yes (LIGGGHTS stops otherwise)",
             ));
         }
         if ev < 5e6 && !self.r.soft_particles {
-            return Err(DeckError::unsupported(
-                &e.at,
+            return Err(e.at.refuse(
                 format!("youngsModulus {ev} of type {t} without `soft_particles yes`"),
                 "youngsModulus >= 5e6, or soft_particles yes (LIGGGHTS stops otherwise)",
             ));
@@ -406,8 +401,7 @@ impl Materials<'_> {
             .property("coefficientRestitution", self.path, needed_by)?;
         let e = p.of_pair("coefficientRestitution", i, j)?;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(DeckError::unsupported(
-                &p.at,
+            return Err(p.at.refuse(
                 format!("coefficientRestitution {e} for the types {i} and {j}"),
                 "0.05 < coefficientRestitution <= 1 (LIGGGHTS stops otherwise)",
             ));
@@ -448,8 +442,7 @@ impl Materials<'_> {
                             .property("characteristicVelocity", self.path, &needed_by)?;
                     let v = v_prop.scalar("characteristicVelocity")?;
                     if v < 1e-2 {
-                        return Err(DeckError::unsupported(
-                            &v_prop.at,
+                        return Err(v_prop.at.refuse(
                             format!("characteristicVelocity {v}"),
                             "characteristicVelocity >= 1e-2 (LIGGGHTS stops otherwise)",
                         ));
@@ -554,8 +547,7 @@ impl Materials<'_> {
             let kt_p = self.r.property("kt", self.path, &needed_by)?;
             kt_p.of_pair("kt", i, j)?;
             if kn.is_nan() || kn <= 0.0 {
-                return Err(DeckError::unsupported(
-                    &kn_p.at,
+                return Err(kn_p.at.refuse(
                     format!("kn {kn} for the types {i} and {j}"),
                     "a positive stiffness kn, N/m",
                 ));
@@ -574,9 +566,7 @@ impl Materials<'_> {
             .enumerate()
             .find(|(_, v)| !(0.0..1.0).contains(*v))
         {
-            return Err(DeckError::unsupported(
-                &eta_p.at,
-                format!(
+            return Err(eta_p.at.refuse(format!(
                     "lossCoefficient {bad} for the types {} and {}",
                     k / columns + 1,
                     k % columns + 1

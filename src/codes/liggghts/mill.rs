@@ -405,9 +405,7 @@ impl MillDeck {
                         settling_steps += n;
                     } else {
                         if let Some((id, motion, at)) = moving.first() {
-                            return Err(DeckError::unsupported(
-                                at,
-                                format!(
+                            return Err(at.refuse(format!(
                                     "fix {id} move/mesh {motion} still moves its mesh when the rotation starts ({}): a motion whose power the comparison does not measure",
                                     c.at
                                 ),
@@ -488,8 +486,7 @@ impl MillDeck {
                         .into(),
                     supported: "a mill deck turns its drum with `fix ID all move/mesh mesh MESH rotate origin X Y Z axis X Y Z period T` and runs after it".into(),
                 },
-                Some(m) => DeckError::unsupported(
-                    &m.from,
+                Some(m) => m.from.refuse(
                     "no `run` after the drum starts turning",
                     "a `run` after the fix move/mesh (the rotation)",
                 ),
