@@ -711,13 +711,8 @@ impl DeckDialect for KratosDeck {
         // The script starts the bodies one ulp apart (`math.nextafter`), as the driver does.
         let start_gap = plan.reach.next_up() - plan.reach;
         let num = exact_number;
-        let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| {
-            CodeError::Unsupported {
-                code: "kratos".into(),
-                case: plan.setup.case_name.clone(),
-                reason: e.to_string(),
-            }
-        })?;
+        let materials = serde_json::to_string(&deck.transplant.common.join("\n"))
+            .map_err(|e| plan.setup.unsupported("kratos", e.to_string()))?;
         let values = [
             ("scene", plan.setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
@@ -732,13 +727,8 @@ impl DeckDialect for KratosDeck {
             // Last: the user's text is filled in after every placeholder.
             ("materials", materials),
         ];
-        let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| {
-            CodeError::Unsupported {
-                code: "kratos".into(),
-                case: plan.setup.case_name.clone(),
-                reason: e.to_string(),
-            }
-        })?;
+        let text = fill_template(&super::with_common(TEMPLATE), &values)
+            .map_err(|e| plan.setup.unsupported("kratos", e.to_string()))?;
         Ok(DeckImpactInput {
             input: RenderedInput {
                 file_name: SCRIPT.to_string(),

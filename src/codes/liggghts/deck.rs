@@ -770,11 +770,8 @@ impl DeckDialect for LiggghtsDeck {
             ("steps", plan.steps.to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
-            code: Liggghts.name().into(),
-            case: plan.setup.case_name.clone(),
-            reason: e.to_string(),
-        })?;
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|e| plan.setup.unsupported(Liggghts.name(), e.to_string()))?;
         Ok(DeckImpactInput {
             input: RenderedInput {
                 file_name: INPUT_FILE.into(),

@@ -911,11 +911,8 @@ impl DeckDialect for YadeDeck {
                 },
             ),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
-            code: "yade".into(),
-            case: plan.setup.case_name.clone(),
-            reason: e.to_string(),
-        })?;
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|e| plan.setup.unsupported("yade", e.to_string()))?;
         Ok(DeckImpactInput {
             input: RenderedInput {
                 file_name: SCRIPT.into(),
