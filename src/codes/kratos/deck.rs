@@ -37,6 +37,7 @@ use super::{
     LOWEST_RESTITUTION, SCHEME, SCRIPT, UNDAMPED_ABOVE, hertz_damping_gamma, linear_damping_gamma,
     mixed_modulus, particle_mass,
 };
+use crate::codes::CodeError;
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
@@ -44,7 +45,6 @@ use crate::codes::deck::{
     body_contacts, wall_contacts,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, RenderedInput};
 use crate::model::law::DashpotLaw;
 
 /// The Python template of one impact with a user's materials.
@@ -730,11 +730,7 @@ impl DeckDialect for KratosDeck {
         let text = fill_template(&super::with_common(TEMPLATE), &values)
             .map_err(|e| plan.setup.unsupported("kratos", e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: SCRIPT.to_string(),
-                text,
-                args: vec![SCRIPT.to_string()],
-            },
+            input: super::script_input(SCRIPT, text),
             setup: plan.setup,
             start_gap,
         })

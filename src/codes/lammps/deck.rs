@@ -24,7 +24,7 @@ use super::granular::{CLASSIC, classic_model, dashpot_only, friction, model_name
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::oblique::{oblique_lines, undamped_wall};
 use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
-use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
+use super::{Build, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
@@ -33,7 +33,7 @@ use crate::codes::deck::{
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
-use crate::codes::{CodeDriver, CodeError, RenderedInput};
+use crate::codes::{CodeDriver, CodeError};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
@@ -1046,15 +1046,7 @@ impl DeckDialect for LammpsDeck {
             Some(_) => lines.extend(oblique_lines(other.is_some(), plan.steps)),
         }
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: INPUT_FILE.into(),
-                text: lines.join("\n") + "\n",
-                args: [
-                    "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-                ]
-                .map(String::from)
-                .to_vec(),
-            },
+            input: super::deck_input(lines.join("\n") + "\n"),
             setup: plan.setup,
             start_gap: gap,
         })

@@ -25,13 +25,12 @@ use crate::codes::deck::{
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeDriver, CodeError, RenderedInput};
+use crate::codes::{CodeDriver, CodeError};
 use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
 use crate::model::scene::{pair_radius, reduced_mass};
 
 const TEMPLATE: &str = include_str!("deck.in");
-const INPUT_FILE: &str = "impact.in";
 
 /// LIGGGHTS's deck reader.
 pub(crate) struct LiggghtsDeck;
@@ -773,13 +772,7 @@ impl DeckDialect for LiggghtsDeck {
         let text = fill_template(TEMPLATE, &values)
             .map_err(|e| plan.setup.unsupported(Liggghts.name(), e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: INPUT_FILE.into(),
-                text,
-                args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
-                    .map(String::from)
-                    .to_vec(),
-            },
+            input: super::input_file(text),
             setup: plan.setup,
             start_gap: gap,
         })

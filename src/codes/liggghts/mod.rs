@@ -253,20 +253,21 @@ pub(crate) fn render_deck(
         text.push_str(&line);
         text.push('\n');
     }
-    Ok(RenderedInput {
+    // A style without settings leaves no trailing blank on its lines.
+    let lines: Vec<&str> = text.lines().map(str::trim_end).collect();
+    Ok(input_file(lines.join("\n") + "\n"))
+}
+
+/// The input file holding `text` and the arguments that run it (`-log none`: the default
+/// log.liggghts would duplicate the screen output).
+fn input_file(text: String) -> RenderedInput {
+    RenderedInput {
         file_name: INPUT_FILE.to_string(),
-        // A style without settings leaves no trailing blank on its lines.
-        text: text
-            .lines()
-            .map(str::trim_end)
-            .collect::<Vec<_>>()
-            .join("\n")
-            + "\n",
-        // `-log none`: the default log.liggghts would duplicate the screen output.
+        text,
         args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
             .map(String::from)
             .to_vec(),
-    })
+    }
 }
 
 /// Read a run of the deck in `workdir` (its trajectory file and screen `log`), refusing a run

@@ -29,13 +29,13 @@ use super::reading::{
 };
 use super::viscel::{series, viscel_cn_from_en, viscel_en_from_cn};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
+use crate::codes::CodeError;
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
     DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
@@ -914,11 +914,7 @@ impl DeckDialect for YadeDeck {
         let text = fill_template(TEMPLATE, &values)
             .map_err(|e| plan.setup.unsupported("yade", e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: SCRIPT.into(),
-                text,
-                args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
-            },
+            input: super::script_input(SCRIPT, text),
             setup: plan.setup,
             start_gap: gap,
         })
