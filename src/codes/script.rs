@@ -581,7 +581,8 @@ fn matching_paren(chars: &[char], open: usize) -> Option<usize> {
 
 /// The error of a variable of a running-only style used where the check must know its value.
 fn running(name: &str, style: &str, defined: &SourceLine, at: &SourceLine) -> DeckError {
-    at.refuse(format!(
+    at.refuse(
+        format!(
             "variable {name} ({style}, {defined}): a style whose value only the running code knows, used where the check needs a number"
         ),
         SUPPORTED_STYLES,

@@ -339,7 +339,8 @@ impl<'o> Bodies<'o> {
             }
             if !found {
                 let (radius, density) = size([None; 3]).ok_or_else(|| {
-                    at.refuse(match atoms.made_by.get(t) {
+                    at.refuse(
+                        match atoms.made_by.get(t) {
                             Some(text) => format!(
                                 "atoms of type {t} come from `{text}` without a diameter and density{mass_words} the reader can know for them"
                             ),

@@ -154,7 +154,8 @@ impl<'a> PairCoeffLines<'a> {
             match (a.parse::<u32>(), b.parse::<u32>()) {
                 (Ok(i), Ok(j)) if j < i => {
                     if !mixing.reorders_types() {
-                        return Err(c.refuse(format!(
+                        return Err(c.refuse(
+                            format!(
                                 "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
                             ),
                             &format!("pair_coeff {b} {a}"),
@@ -203,7 +204,8 @@ impl<'a> PairCoeffLines<'a> {
                     (self.for_pair(i, i), self.for_pair(j, j))
                     && a.form() != b.form()
                 {
-                    return Err(at_b.at.refuse(format!(
+                    return Err(at_b.at.refuse(
+                        format!(
                             "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
                             at_a.at,
                             a.form(),

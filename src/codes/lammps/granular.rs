@@ -30,25 +30,26 @@ pub(super) fn read_model(
     stop: &[&str],
 ) -> Result<(GranularModel, usize), DeckError> {
     let normal = c.word(start, "a normal model")?.to_string();
-    let n =
-        match normal.as_str() {
-            "hooke" | "hertz" => 2,
-            "hertz/material" => 3,
-            adhesive @ ("dmt" | "jkr") => {
-                return Err(c.refuse(format!(
+    let n = match normal.as_str() {
+        "hooke" | "hertz" => 2,
+        "hertz/material" => 3,
+        adhesive @ ("dmt" | "jkr") => {
+            return Err(c.refuse(
+                format!(
                     "normal model `{adhesive}`: an adhesive force the impact check does not model"
                 ),
                 NORMAL,
             ));
-            }
-            other => {
-                return Err(c.refuse(format!(
+        }
+        other => {
+            return Err(c.refuse(
+                format!(
                     "normal model `{other}`: LAMMPS has no such normal model and stops at this line"
                 ),
                 NORMAL,
             ));
-            }
-        };
+        }
+    };
     let values = (start + 1..start + 1 + n)
         .map(|k| c.number(k, &normal))
         .collect::<Result<Vec<_>, _>>()?;
@@ -92,7 +93,8 @@ pub(super) fn read_model(
                     _ => &["none", "marshall", "sds"],
                 };
                 if !known.contains(&style.as_str()) {
-                    return Err(c.refuse(format!(
+                    return Err(c.refuse(
+                        format!(
                             "{word} `{style}`: LAMMPS has no such {word} model and stops at this line"
                         ),
                         &format!("{word} {}", known.join(", ")),
@@ -160,7 +162,8 @@ pub(super) fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usi
     let style = written.strip_prefix("gran/").unwrap_or(written);
     let form = "STYLE Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] (Kt, gamma_t may be NULL)";
     if !CLASSIC.contains(&style) {
-        return Err(c.refuse(format!(
+        return Err(c.refuse(
+            format!(
                 "`{written}`: LAMMPS has no such classic granular style and stops at this line"
             ),
             "pair_style gran/hooke, gran/hooke/history, gran/hertz/history; fix wall/gran hooke, hooke/history, hertz/history; or granular",

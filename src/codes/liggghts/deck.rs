@@ -321,7 +321,8 @@ impl LiggghtsDeck {
                 continue;
             }
             let (Some(radius), Some(density)) = (radius, density) else {
-                return Err(c.refuse(format!(
+                return Err(c.refuse(
+                    format!(
                         "the template {} has no constant radius and density",
                         c.words[1]
                     ),
@@ -565,7 +566,8 @@ impl Materials<'_> {
             .enumerate()
             .find(|(_, v)| !(0.0..1.0).contains(*v))
         {
-            return Err(eta_p.at.refuse(format!(
+            return Err(eta_p.at.refuse(
+                format!(
                     "lossCoefficient {bad} for the types {} and {}",
                     k / columns + 1,
                     k % columns + 1

@@ -226,7 +226,8 @@ pub(super) fn read_settings(
     if PAPER_MODELS.contains(&model.normal.as_str())
         && let Some(key) = words.first()
     {
-        return Err(command.refuse(format!(
+        return Err(command.refuse(
+            format!(
                 "`{key}` after model {}: the paper's styles take no settings (liggghts-paper stops: \"Unknown argument or wrong keyword order\")",
                 model.normal
             ),
@@ -243,7 +244,8 @@ pub(super) fn read_settings(
         let (key, value) = (&pair[0], &pair[1]);
         if !KNOWN_SETTINGS.contains(&key.as_str()) {
             let model_words = KNOWN_MODELS.map(|(k, _)| k).join(", ");
-            return Err(command.refuse(format!(
+            return Err(command.refuse(
+                format!(
                     "`{key} {value}`: LIGGGHTS 3.8 knows no such model keyword or setting and stops at this line (\"Unknown argument or wrong keyword order\")"
                 ),
                 &format!(

@@ -405,7 +405,8 @@ impl MillDeck {
                         settling_steps += n;
                     } else {
                         if let Some((id, motion, at)) = moving.first() {
-                            return Err(at.refuse(format!(
+                            return Err(at.refuse(
+                                format!(
                                     "fix {id} move/mesh {motion} still moves its mesh when the rotation starts ({}): a motion whose power the comparison does not measure",
                                     c.at
                                 ),
@@ -549,7 +550,8 @@ impl MillDeck {
                 ));
             }
             other => {
-                return Err(c.refuse(format!(
+                return Err(c.refuse(
+                    format!(
                         "model {other}: a law the switch cannot express (its stiffness or damping is not set by a COR)"
                     ),
                     "model hertz (switched to model paper at the η of each pair's coefficientRestitution) or model paper (switched to model hertz)",
@@ -568,7 +570,8 @@ impl MillDeck {
             model.rolling.to_ascii_uppercase()
         );
         if !PAPER_WHITELIST.lines().any(|l| l.trim() == combination) {
-            return Err(c.refuse(format!(
+            return Err(c.refuse(
+                format!(
                     "tangential {} with rolling_friction {}: liggghts-paper is not built with model paper in that combination",
                     model.tangential, model.rolling
                 ),

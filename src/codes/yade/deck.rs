@@ -257,7 +257,8 @@ impl YadeDeck {
             (Some(f), _) => *f,
             (None, [f]) => **f,
             (None, []) => {
-                return Err(at.refuse(format!(
+                return Err(at.refuse(
+                    format!(
                         "no Ip2 functor in the InteractionLoop takes {}–{}: YADE would make no contact of this pair",
                         a.name(),
                         b.name()
@@ -452,7 +453,8 @@ impl YadeDeck {
                 } else {
                     (m2, m1)
                 };
-                return Err(lacking.at.refuse(format!(
+                return Err(lacking.at.refuse(
+                    format!(
                         "ViscElMat without {key}, met by the ViscElMat of {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")",
                         given.at
                     ),

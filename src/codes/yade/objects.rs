@@ -155,7 +155,8 @@ impl Material {
             // A dump that names a set attribute without its value was not written by the
             // reading script (it writes both from one object): refused, not indexed blindly.
             let Some(value) = self.values.get(key) else {
-                return Err(self.at.refuse(format!(
+                return Err(self.at.refuse(
+                    format!(
                         "{}'s {key}: set in the dump but given no value",
                         self.class.name()
                     ),
@@ -232,7 +233,8 @@ impl Functor {
                         .and_then(|(_, _, x)| *x)
                 });
                 value.map(Some).ok_or_else(|| {
-                    self.at.refuse(format!(
+                    self.at.refuse(
+                        format!(
                             "{}'s {key}: its MatchMaker gives YADE no number for the materials {a} and {b} (no match, algo '{}')",
                             self.class, match_maker.algo
                         ),

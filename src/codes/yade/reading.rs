@@ -125,7 +125,8 @@ impl Reading {
             .unwrap_or(0.0);
         if damping != 0.0 {
             let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
-            return Err(at.refuse(format!(
+            return Err(at.refuse(
+                format!(
                     "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
                     if engine.changed.iter().any(|c| c == "damping") {
                         ""
@@ -171,7 +172,8 @@ impl Reading {
             .and_then(|m| u32::try_from(m).ok())
             .filter(|m| (*m as usize) < self.materials.len())
             .ok_or_else(|| {
-                at.refuse(format!(
+                at.refuse(
+                    format!(
                         "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
                         body.material.map_or("none".into(), |m| m.to_string())
                     ),
