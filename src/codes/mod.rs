@@ -25,8 +25,6 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
-
 use crate::model::law::{CodeLaw, DashpotLaw};
 use crate::model::scene::SceneKind;
 use crate::model::trajectory::CodeTrajectory;
@@ -435,29 +433,7 @@ impl CodeName {
     }
 }
 
-impl std::fmt::Display for CodeName {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl Serialize for CodeName {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
-
-impl<'de> Deserialize<'de> for CodeName {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let name = String::deserialize(deserializer)?;
-        CodeName::from_name(&name).ok_or_else(|| {
-            serde::de::Error::custom(format!(
-                "unknown code `{name}`; known: {}",
-                CodeName::names().join(", ")
-            ))
-        })
-    }
-}
+crate::solve::method::by_name!(CodeName, "code");
 
 #[cfg(test)]
 mod tests {

@@ -125,10 +125,7 @@ pub(crate) fn parse_columns(text: &str, file: &str) -> Result<CodeTrajectory, Pa
                 values.len()
             )));
         };
-        out.time.push(t);
-        out.overlap.push(overlap);
-        out.approach_velocity.push(approach);
-        out.normal_force.push(force);
+        out.push_row(t, overlap, approach, force);
     }
     Ok(out)
 }
@@ -187,10 +184,7 @@ pub(crate) fn parse_csv_columns(text: &str, file: &str) -> Result<CodeTrajectory
                 reason: format!("`{}`: {e}", fields[i]),
             })
         };
-        t.time.push(value(it)?);
-        t.overlap.push(value(iy)?);
-        t.approach_velocity.push(value(iv)?);
-        t.normal_force.push(value(iff)?);
+        t.push_row(value(it)?, value(iy)?, value(iv)?, value(iff)?);
     }
     Ok(t)
 }

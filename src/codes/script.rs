@@ -33,14 +33,16 @@ impl Command {
         &self.words[0]
     }
 
+    /// An error at this command's line: `what` it holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        self.at.refuse(what, supported)
+    }
+
     /// Word `k` (0 is the command), or an error naming the line and what was expected there.
     pub(crate) fn word(&self, k: usize, expected: &str) -> Result<&str, DeckError> {
         self.words.get(k).map(String::as_str).ok_or_else(|| {
-            DeckError::unsupported(
-                &self.at,
-                format!("`{}`: missing {expected}", self.text),
-                expected,
-            )
+            self.at
+                .refuse(format!("`{}`: missing {expected}", self.text), expected)
         })
     }
 
@@ -48,8 +50,7 @@ impl Command {
     pub(crate) fn number(&self, k: usize, what: &str) -> Result<f64, DeckError> {
         let word = self.word(k, what)?;
         parse_number(word).ok_or_else(|| {
-            DeckError::unsupported(
-                &self.at,
+            self.at.refuse(
                 format!("{what} `{word}` is not a number"),
                 "a number, or a variable that resolves to one",
             )
@@ -65,8 +66,7 @@ pub(crate) fn check_si_units(
 ) -> Result<(), DeckError> {
     match units {
         Some(c) if c.words.get(1).is_some_and(|u| u == "si") => Ok(()),
-        Some(c) => Err(DeckError::unsupported(
-            &c.at,
+        Some(c) => Err(c.refuse(
             format!("units {}", c.words.get(1).map_or("", String::as_str)),
             "units si",
         )),
@@ -90,11 +90,7 @@ pub(crate) fn checked_timestep(
         supported: "timestep DT (s)".into(),
     })?;
     if timestep.is_nan() || timestep <= 0.0 {
-        return Err(DeckError::unsupported(
-            &timestep_at,
-            format!("timestep {timestep}"),
-            "a positive time step, s",
-        ));
+        return Err(timestep_at.refuse(format!("timestep {timestep}"), "a positive time step, s"));
     }
     Ok((timestep, timestep_at))
 }
@@ -278,12 +274,11 @@ impl ScriptReader {
         }
         match words[0].as_str() {
             "include" => {
-                let name = words.get(1).ok_or_else(|| {
-                    DeckError::unsupported(&at, "include without a file".into(), "include FILE")
-                })?;
+                let name = words
+                    .get(1)
+                    .ok_or_else(|| at.refuse("include without a file", "include FILE"))?;
                 if self.depth >= MAX_INCLUDE_DEPTH {
-                    return Err(DeckError::unsupported(
-                        &at,
+                    return Err(at.refuse(
                         format!("include {name}: more than {MAX_INCLUDE_DEPTH} nested includes"),
                         "includes that end",
                     ));
@@ -354,17 +349,12 @@ impl ScriptReader {
 
     fn define(&mut self, words: &[String], at: &SourceLine) -> Result<(), DeckError> {
         let (Some(name), Some(style)) = (words.get(1), words.get(2)) else {
-            return Err(DeckError::unsupported(
-                at,
-                "variable without a name and style".into(),
-                SUPPORTED_STYLES,
-            ));
+            return Err(at.refuse("variable without a name and style", SUPPORTED_STYLES));
         };
         let values = &words[3..];
         let first = || {
             values.first().cloned().ok_or_else(|| {
-                DeckError::unsupported(
-                    at,
+                at.refuse(
                     format!("variable {name} {style} without a value"),
                     SUPPORTED_STYLES,
                 )
@@ -397,8 +387,7 @@ impl ScriptReader {
             "equal" => {
                 let formula = values.join(" ");
                 if formula.is_empty() {
-                    return Err(DeckError::unsupported(
-                        at,
+                    return Err(at.refuse(
                         format!("variable {name} equal without a formula"),
                         SUPPORTED_STYLES,
                     ));
@@ -471,7 +460,7 @@ impl ScriptReader {
                 ),
             ),
         };
-        Err(DeckError::unsupported(at, what, &supported))
+        Err(at.refuse(what, &supported))
     }
 
     /// The text of variable `name`, used at `at`: a formula evaluated now, written to 15
@@ -481,8 +470,7 @@ impl ScriptReader {
             Some(Variable::Text(text)) => Ok(text.clone()),
             Some(Variable::Formula(..)) => Ok(fifteen_digits(self.evaluate_variable(name, at, 0)?)),
             Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
-            None => Err(DeckError::unsupported(
-                at,
+            None => Err(at.refuse(
                 format!("variable `{name}` is not defined"),
                 "variables defined in the deck before their use, or given with --var NAME=VALUE",
             )),
@@ -496,8 +484,7 @@ impl ScriptReader {
         depth: usize,
     ) -> Result<f64, DeckError> {
         if depth > 64 {
-            return Err(DeckError::unsupported(
-                at,
+            return Err(at.refuse(
                 format!("variable `{name}` refers to itself"),
                 "variables that resolve to numbers",
             ));
@@ -512,14 +499,12 @@ impl ScriptReader {
             }
             Some(Variable::Running(style, defined)) => Err(running(name, style, defined, at)),
             Some(Variable::Text(text)) => parse_number(text).ok_or_else(|| {
-                DeckError::unsupported(
-                    at,
+                at.refuse(
                     format!("variable `{name}` = `{text}` is not a number"),
                     "numeric variables in formulas",
                 )
             }),
-            None => Err(DeckError::unsupported(
-                at,
+            None => Err(at.refuse(
                 format!("variable `{name}` is not defined"),
                 "variables defined in the deck before their use, or given with --var NAME=VALUE",
             )),
@@ -537,16 +522,14 @@ impl ScriptReader {
             if c == '$' && !single && !double && i + 1 < chars.len() {
                 let (value, next) = match chars[i + 1] {
                     '{' => {
-                        let end = find(&chars, i + 2, '}').ok_or_else(|| {
-                            DeckError::unsupported(at, "`${` without `}`".into(), "${NAME}")
-                        })?;
+                        let end = find(&chars, i + 2, '}')
+                            .ok_or_else(|| at.refuse("`${` without `}`", "${NAME}"))?;
                         let name: String = chars[i + 2..end].iter().collect();
                         (self.value(&name, at)?, end + 1)
                     }
                     '(' => {
-                        let end = matching_paren(&chars, i + 1).ok_or_else(|| {
-                            DeckError::unsupported(at, "`$(` without `)`".into(), "$(formula)")
-                        })?;
+                        let end = matching_paren(&chars, i + 1)
+                            .ok_or_else(|| at.refuse("`$(` without `)`", "$(formula)"))?;
                         let inner: String = chars[i + 2..end].iter().collect();
                         // `$(formula:format)`: the format only changes how it is written.
                         let formula = inner.split(':').next().unwrap_or_default();
@@ -598,8 +581,7 @@ fn matching_paren(chars: &[char], open: usize) -> Option<usize> {
 
 /// The error of a variable of a running-only style used where the check must know its value.
 fn running(name: &str, style: &str, defined: &SourceLine, at: &SourceLine) -> DeckError {
-    DeckError::unsupported(
-        at,
+    at.refuse(
         format!(
             "variable {name} ({style}, {defined}): a style whose value only the running code knows, used where the check needs a number"
         ),
@@ -655,9 +637,8 @@ fn split_words(line: &str, at: &SourceLine) -> Result<Vec<String>, DeckError> {
 }
 
 fn unclosed(at: &SourceLine) -> DeckError {
-    DeckError::unsupported(
-        at,
-        "a quote that is not closed".into(),
+    at.refuse(
+        "a quote that is not closed",
         "quoted words closed on their line",
     )
 }
@@ -789,7 +770,7 @@ impl<'a> Expression<'a> {
     }
 
     fn fail(&self, what: String) -> DeckError {
-        DeckError::unsupported(self.line, what, FORMULA_SUPPORTED)
+        self.line.refuse(what, FORMULA_SUPPORTED)
     }
 
     fn skip_space(&mut self) {
@@ -1057,7 +1038,7 @@ mod tests {
         };
         let lookup = |name: &str| match name {
             "r" => Ok(0.5),
-            _ => Err(DeckError::unsupported(&at, format!("no {name}"), "")),
+            _ => Err(at.refuse(format!("no {name}"), "")),
         };
         Expression::new(text, &at, &lookup).evaluate()
     }

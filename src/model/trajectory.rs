@@ -48,6 +48,16 @@ pub struct CodeTrajectory {
     pub normal_force: Vec<f64>,
 }
 
+impl CodeTrajectory {
+    /// Append one row: time (s), overlap (m), approach rate (m/s), force (N).
+    pub(crate) fn push_row(&mut self, time: f64, overlap: f64, approach_velocity: f64, force: f64) {
+        self.time.push(time);
+        self.overlap.push(overlap);
+        self.approach_velocity.push(approach_velocity);
+        self.normal_force.push(force);
+    }
+}
+
 /// Check that a trajectory is complete enough to read figures from: at least three rows,
 /// columns of one length, every value finite.
 pub(crate) fn check_trajectory(t: &CodeTrajectory) -> Result<(), TrajectoryError> {

@@ -76,14 +76,6 @@ impl CodeTrajectory {
             normal_force: Vec::with_capacity(rows),
         }
     }
-
-    /// Append one row: time (s), overlap (m), approach rate (m/s), force (N).
-    fn push_row(&mut self, time: f64, overlap: f64, approach_velocity: f64, force: f64) {
-        self.time.push(time);
-        self.overlap.push(overlap);
-        self.approach_velocity.push(approach_velocity);
-        self.normal_force.push(force);
-    }
 }
 
 /// How a DEM code advances one step.

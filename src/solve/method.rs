@@ -3,7 +3,7 @@
 //! integration itself is read from a method's [`MethodDescriptor`], so that a new method is
 //! its integrator plus one line in the registry below.
 
-use serde::{Deserialize, Deserializer, Serialize, Serializer};
+use serde::Serialize;
 
 /// How a method steps.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -251,29 +251,41 @@ impl Method {
     }
 }
 
-impl std::fmt::Display for Method {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
+/// `Display`, `Serialize` and `Deserialize` of a registry's entry (a method, a code) by its
+/// `name()`: read back by `from_name`, an unknown name refused with every one of `names()`
+/// (`$what` says what it names).
+macro_rules! by_name {
+    ($type:ty, $what:literal) => {
+        impl std::fmt::Display for $type {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                f.write_str(self.name())
+            }
+        }
+
+        impl serde::Serialize for $type {
+            fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+                serializer.serialize_str(self.name())
+            }
+        }
+
+        impl<'de> serde::Deserialize<'de> for $type {
+            fn deserialize<D: serde::Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+                let name = <String as serde::Deserialize>::deserialize(deserializer)?;
+                <$type>::from_name(&name).ok_or_else(|| {
+                    serde::de::Error::custom(format!(
+                        concat!("unknown ", $what, " `{}`; known: {}"),
+                        name,
+                        <$type>::names().join(", ")
+                    ))
+                })
+            }
+        }
+    };
 }
 
-impl Serialize for Method {
-    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
-        serializer.serialize_str(self.name())
-    }
-}
+pub(crate) use by_name;
 
-impl<'de> Deserialize<'de> for Method {
-    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
-        let name = String::deserialize(deserializer)?;
-        Method::from_name(&name).ok_or_else(|| {
-            serde::de::Error::custom(format!(
-                "unknown method `{name}`; known: {}",
-                Method::names().join(", ")
-            ))
-        })
-    }
-}
+by_name!(Method, "method");
 
 #[cfg(test)]
 mod tests {

@@ -173,25 +173,7 @@ where
     let mut phase_steps = 0u64;
     let mut g_now = events.values(&y);
     loop {
-        if phase_steps > STEP_BUDGET {
-            return Err(SolveError::StepBudget {
-                method: "march",
-                steps: phase_steps,
-            });
-        }
-        if h <= t.abs().max(1.0) * 1e-15 {
-            return Err(SolveError::StepUnderflow {
-                method: "march",
-                time: t,
-            });
-        }
-        // A step that overflows would be rejected and halved from infinity forever.
-        if !(t + h).is_finite() {
-            return Err(SolveError::NoTurn {
-                method: "march",
-                time: t,
-            });
-        }
+        step_guard(phase_steps, t, h)?;
         // Near a non-smooth end the derivatives of y^n grow without bound and a one-step
         // method loses its order, however short its last step: the series takes over as soon
         // as the end is within the series' reach.
@@ -209,7 +191,7 @@ where
                 event: 0,
             });
         }
-        let trial = stepper.attempt_with(&rhs, &y, &fy, h);
+        let trial = stepper.attempt(&rhs, &y, &fy, h);
         stats.rhs_evaluations += trial.rhs_evaluations;
         let g_next = events.values(&trial.state);
         let crossed = g_now
@@ -249,6 +231,25 @@ where
     }
 }
 
+/// The checks a [`march`] makes before each step of `h` at time `t`, `phase_steps` into its
+/// phase: the step budget, the step's underflow, and a step that overflows (it would be
+/// rejected and halved from infinity forever).
+pub(crate) fn step_guard(phase_steps: u64, t: f64, h: f64) -> Result<(), SolveError> {
+    let method = "march";
+    if phase_steps > STEP_BUDGET {
+        Err(SolveError::StepBudget {
+            method,
+            steps: phase_steps,
+        })
+    } else if h <= t.abs().max(1.0) * 1e-15 {
+        Err(SolveError::StepUnderflow { method, time: t })
+    } else if !(t + h).is_finite() {
+        Err(SolveError::NoTurn { method, time: t })
+    } else {
+        Ok(())
+    }
+}
+
 /// Whether an event function going from `a` to `b` has crossed zero: `a != 0` and
 /// `signum(a) != signum(b)` (a NaN on either side counts) or `b == 0`, with the signs compared
 /// as bits.
@@ -273,7 +274,7 @@ pub(crate) fn locate<R: Fn(&State) -> State, S: Stepper>(
     stats: &mut Stats,
 ) -> (f64, State) {
     let mut step_to = |theta: f64| {
-        let attempt = stepper.attempt_with(rhs, y, fy, theta * h);
+        let attempt = stepper.attempt(rhs, y, fy, theta * h);
         stats.rhs_evaluations += attempt.rhs_evaluations;
         attempt.state
     };

@@ -89,6 +89,20 @@ pub struct Outcome {
     pub crossing_speeds: Vec<f64>,
 }
 
+impl Outcome {
+    /// The outcome of the closed forms alone: no steps, no trajectory.
+    fn closed_form(figures: ImpactFigures, wall_time: f64) -> Outcome {
+        Outcome {
+            figures,
+            stats: Stats::default(),
+            wall_time,
+            timestep: None,
+            trajectory: Vec::new(),
+            crossing_speeds: Vec::new(),
+        }
+    }
+}
+
 /// Trajectory samples drawn from each stretch the contact series carries.
 const SERIES_SAMPLES: usize = 16;
 
@@ -151,14 +165,10 @@ pub fn solve(
     let plan = match Plan::of(law, impact_velocity, settings)? {
         Planned::Integrate(plan) => plan,
         Planned::Exact(figures) => {
-            return Ok(Outcome {
+            return Ok(Outcome::closed_form(
                 figures,
-                stats: Stats::default(),
-                wall_time: started.elapsed().as_secs_f64(),
-                timestep: None,
-                trajectory: Vec::new(),
-                crossing_speeds: Vec::new(),
-            });
+                started.elapsed().as_secs_f64(),
+            ));
         }
     };
     let (n, eta, h) = (plan.exponent, plan.loss_coefficient, plan.step);
@@ -249,14 +259,7 @@ pub fn solve_many(
         .into_iter()
         .zip(scaled)
         .map(|(plan, scaled)| match plan? {
-            Planned::Exact(figures) => Ok(Outcome {
-                figures,
-                stats: Stats::default(),
-                wall_time,
-                timestep: None,
-                trajectory: Vec::new(),
-                crossing_speeds: Vec::new(),
-            }),
+            Planned::Exact(figures) => Ok(Outcome::closed_form(figures, wall_time)),
             Planned::Integrate(plan) => {
                 let scaled = scaled.expect("every planned impact was stepped")?;
                 Ok(plan.outcome(scaled, wall_time))
@@ -299,7 +302,7 @@ impl Plan {
         let y_scale = law.elastic_peak(v0);
         let t_scale = y_scale / v0;
         let (n, eta) = (law.exponent, law.loss_coefficient);
-        let period = 4.0 * j_integral_for(n);
+        let period = 4.0 * j_integral(n);
         let method = settings.method;
         if !method.integrates() {
             return Ok(Planned::Exact(exact::paper_impact(law, v0)));
@@ -382,11 +385,6 @@ impl Plan {
             crossing_speeds: scaled.crossing_speeds.iter().map(|s| s * v0).collect(),
         }
     }
-}
-
-/// [`j_integral`] (remembered per thread for the last exponent asked for).
-fn j_integral_for(n: f64) -> f64 {
-    j_integral(n)
 }
 
 /// `y^n` for `y >= 0`, in the cheapest exact-to-rounding form for the exponent: the right-hand
@@ -947,23 +945,8 @@ impl Lanes {
         series: &ContactSeries,
         n: f64,
     ) -> Option<Result<Scaled, SolveError>> {
-        if self.phase_steps[l] > super::STEP_BUDGET {
-            return Some(Err(SolveError::StepBudget {
-                method: "march",
-                steps: self.phase_steps[l],
-            }));
-        }
-        if self.h[l] <= self.t[l].abs().max(1.0) * 1e-15 {
-            return Some(Err(SolveError::StepUnderflow {
-                method: "march",
-                time: self.t[l],
-            }));
-        }
-        if !(self.t[l] + self.h[l]).is_finite() {
-            return Some(Err(SolveError::NoTurn {
-                method: "march",
-                time: self.t[l],
-            }));
+        if let Err(e) = super::step_guard(self.phase_steps[l], self.t[l], self.h[l]) {
+            return Some(Err(e));
         }
         if self.unloading[l]
             && self.v[l] < 0.0

@@ -21,23 +21,15 @@ pub(crate) struct Attempt {
 
 /// A one-step method together with its step-size policy.
 pub(crate) trait Stepper {
-    /// Attempt one step of size `h` from `y`, where `fy = f(y)` is already known.
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt;
-    /// [`Stepper::attempt`] with the right-hand side's type known, so that a method can inline
-    /// it into its stages instead of calling it through a pointer; the same arithmetic.
-    #[inline]
-    fn attempt_with<F: Fn(&State) -> State>(
+    /// Attempt one step of size `h` from `y`, where `fy = f(y)` is already known; generic over
+    /// the right-hand side so that a method inlines it into its stages.
+    fn attempt<F: Fn(&State) -> State>(
         &mut self,
         rhs: &F,
         y: &State,
         fy: &State,
         h: f64,
-    ) -> Attempt
-    where
-        Self: Sized,
-    {
-        self.attempt(rhs, y, fy, h)
-    }
+    ) -> Attempt;
     /// The step to try first in a new phase.
     fn first_step(&self) -> f64;
     /// The step to try after an attempt of size `h` with error norm `error`.
@@ -66,31 +58,21 @@ impl Rk4 {
     }
 }
 
-impl Rk4 {
-    #[inline]
-    fn step<F: Fn(&State) -> State + ?Sized>(rhs: &F, y: &State, fy: &State, h: f64) -> Attempt {
-        Attempt {
-            state: rk4_step(rhs, y, fy, h),
-            error: 0.0,
-            end_derivative: None,
-            rhs_evaluations: 3,
-        }
-    }
-}
-
 impl Stepper for Rk4 {
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
-        Rk4::step(rhs, y, fy, h)
-    }
     #[inline]
-    fn attempt_with<F: Fn(&State) -> State>(
+    fn attempt<F: Fn(&State) -> State>(
         &mut self,
         rhs: &F,
         y: &State,
         fy: &State,
         h: f64,
     ) -> Attempt {
-        Rk4::step(rhs, y, fy, h)
+        Attempt {
+            state: rk4_step(rhs, y, fy, h),
+            error: 0.0,
+            end_derivative: None,
+            rhs_evaluations: 3,
+        }
     }
     fn first_step(&self) -> f64 {
         self.step
@@ -167,10 +149,10 @@ const E5: f64 = -17253.0 / 339200.0;
 const E6: f64 = 22.0 / 525.0;
 const E7: f64 = -1.0 / 40.0;
 
-impl Dopri5 {
+impl Stepper for Dopri5 {
     #[inline]
-    fn step<F: Fn(&State) -> State + ?Sized>(
-        &self,
+    fn attempt<F: Fn(&State) -> State>(
+        &mut self,
         rhs: &F,
         y: &State,
         fy: &State,
@@ -196,22 +178,6 @@ impl Dopri5 {
             end_derivative: Some(k7),
             rhs_evaluations: 6,
         }
-    }
-}
-
-impl Stepper for Dopri5 {
-    fn attempt(&mut self, rhs: &dyn Fn(&State) -> State, y: &State, fy: &State, h: f64) -> Attempt {
-        self.step(rhs, y, fy, h)
-    }
-    #[inline]
-    fn attempt_with<F: Fn(&State) -> State>(
-        &mut self,
-        rhs: &F,
-        y: &State,
-        fy: &State,
-        h: f64,
-    ) -> Attempt {
-        self.step(rhs, y, fy, h)
     }
     fn first_step(&self) -> f64 {
         // About the step at which the local error of a smooth O(1) solution meets rtol.

@@ -27,11 +27,7 @@ pub(crate) fn whole_number(
         #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
         Ok(x as u32)
     } else {
-        Err(DeckError::unsupported(
-            at,
-            format!("{what} `{x}`"),
-            supported,
-        ))
+        Err(at.refuse(format!("{what} `{x}`"), supported))
     }
 }
 
@@ -343,8 +339,7 @@ impl<'o> Bodies<'o> {
             }
             if !found {
                 let (radius, density) = size([None; 3]).ok_or_else(|| {
-                    DeckError::unsupported(
-                        at,
+                    at.refuse(
                         match atoms.made_by.get(t) {
                             Some(text) => format!(
                                 "atoms of type {t} come from `{text}` without a diameter and density{mass_words} the reader can know for them"

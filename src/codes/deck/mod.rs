@@ -51,6 +51,13 @@ impl fmt::Display for SourceLine {
     }
 }
 
+impl SourceLine {
+    /// An error here: `what` this line holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        DeckError::unsupported(self, what, supported)
+    }
+}
+
 impl Serialize for SourceLine {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         serializer.collect_str(self)
@@ -80,6 +87,13 @@ impl DeckSource {
             file: file.to_path_buf(),
             path: path.into(),
         }
+    }
+}
+
+impl DeckSource {
+    /// An error here: `what` this line or field holds that is not `supported`.
+    pub(crate) fn refuse(&self, what: impl Into<String>, supported: &str) -> DeckError {
+        DeckError::unsupported(self, what, supported)
     }
 }
 
@@ -260,10 +274,14 @@ impl DeckError {
     }
 
     /// An unsupported or unresolvable line (or field).
-    pub(crate) fn unsupported(at: impl Into<DeckSource>, what: String, supported: &str) -> Self {
+    pub(crate) fn unsupported(
+        at: impl Into<DeckSource>,
+        what: impl Into<String>,
+        supported: &str,
+    ) -> Self {
         DeckError::Unsupported {
             at: at.into(),
-            what,
+            what: what.into(),
             supported: supported.to_string(),
         }
     }

@@ -216,7 +216,7 @@ impl ScriptReading {
 
     /// The error of a command the code's reader does not take (`supported`: those it does).
     pub(crate) fn unknown(c: &Command, supported: &str) -> DeckError {
-        DeckError::unsupported(&c.at, format!("command `{}`", c.name()), supported)
+        c.refuse(format!("command `{}`", c.name()), supported)
     }
 
     /// Leave out the command `c`, of the kind `what`.

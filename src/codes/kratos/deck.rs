@@ -37,6 +37,7 @@ use super::{
     LOWEST_RESTITUTION, SCHEME, SCRIPT, UNDAMPED_ABOVE, hertz_damping_gamma, linear_damping_gamma,
     mixed_modulus, particle_mass,
 };
+use crate::codes::CodeError;
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
@@ -44,7 +45,6 @@ use crate::codes::deck::{
     body_contacts, wall_contacts,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, RenderedInput};
 use crate::model::law::DashpotLaw;
 
 /// The Python template of one impact with a user's materials.
@@ -346,8 +346,7 @@ fn sizes_of(
                     .and_then(|r| r.parse::<f64>().ok())
                     .filter(|r| *r > 0.0)
                     .ok_or_else(|| {
-                        DeckError::unsupported(
-                            &at,
+                        at.refuse(
                             format!("the inlet {name} has no positive RADIUS"),
                             "RADIUS R in its SubModelPartData",
                         )
@@ -712,13 +711,8 @@ impl DeckDialect for KratosDeck {
         // The script starts the bodies one ulp apart (`math.nextafter`), as the driver does.
         let start_gap = plan.reach.next_up() - plan.reach;
         let num = exact_number;
-        let materials = serde_json::to_string(&deck.transplant.common.join("\n")).map_err(|e| {
-            CodeError::Unsupported {
-                code: "kratos".into(),
-                case: plan.setup.case_name.clone(),
-                reason: e.to_string(),
-            }
-        })?;
+        let materials = serde_json::to_string(&deck.transplant.common.join("\n"))
+            .map_err(|e| plan.setup.unsupported("kratos", e.to_string()))?;
         let values = [
             ("scene", plan.setup.scene.name().to_string()),
             ("timestep", num(deck.timestep)),
@@ -733,19 +727,10 @@ impl DeckDialect for KratosDeck {
             // Last: the user's text is filled in after every placeholder.
             ("materials", materials),
         ];
-        let text = fill_template(&super::with_common(TEMPLATE), &values).map_err(|e| {
-            CodeError::Unsupported {
-                code: "kratos".into(),
-                case: plan.setup.case_name.clone(),
-                reason: e.to_string(),
-            }
-        })?;
+        let text = fill_template(&super::with_common(TEMPLATE), &values)
+            .map_err(|e| plan.setup.unsupported("kratos", e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: SCRIPT.to_string(),
-                text,
-                args: vec![SCRIPT.to_string()],
-            },
+            input: super::script_input(SCRIPT, text),
             setup: plan.setup,
             start_gap,
         })

@@ -53,9 +53,8 @@ impl Mdpa {
             let line = raw.split("//").next().unwrap_or("").trim();
             let words: Vec<&str> = line.split_whitespace().collect();
             let id = |w: &str| -> Result<u64, DeckError> {
-                w.parse().map_err(|_| {
-                    DeckError::unsupported(&at, format!("`{w}` is not an id"), "whole numbers")
-                })
+                w.parse()
+                    .map_err(|_| at.refuse(format!("`{w}` is not an id"), "whole numbers"))
             };
             match words.as_slice() {
                 [] => {}
@@ -87,8 +86,7 @@ impl Mdpa {
                 _ => match stack.last() {
                     Some(Block::Elements) => {
                         let node = words.get(2).ok_or_else(|| {
-                            DeckError::unsupported(
-                                &at,
+                            at.refuse(
                                 format!("`{line}`: an element without its node"),
                                 "ID PROPERTIES NODE",
                             )
@@ -101,11 +99,7 @@ impl Mdpa {
                             .and_then(|w| w.parse::<f64>().ok())
                             .filter(|r| *r > 0.0);
                         let value = value.ok_or_else(|| {
-                            DeckError::unsupported(
-                                &at,
-                                format!("`{line}`: no positive radius"),
-                                "NODE FIXED RADIUS",
-                            )
+                            at.refuse(format!("`{line}`: no positive radius"), "NODE FIXED RADIUS")
                         })?;
                         mdpa.radius.insert(id(words[0])?, value);
                     }

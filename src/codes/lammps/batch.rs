@@ -13,7 +13,7 @@ use std::path::Path;
 
 use crate::codes::batch::{SEQUENCE_INPUT_FILE, render_in_sequence};
 use crate::codes::lammps::{
-    Build, LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version, run_args,
+    LOG_FILE, TRAJECTORY_FILE, parse_loop_time, parse_trajectory, parse_version, run_args,
 };
 use crate::codes::parse::{ParseError, read_output};
 use crate::codes::{BatchError, CodeError, CodeSetup, ParsedRun, RenderedInput};
@@ -28,16 +28,6 @@ pub(crate) const BATCH_INPUT_FILE: &str = SEQUENCE_INPUT_FILE;
 /// The trajectory file of impact `i` (from 0) of a batch.
 pub(crate) fn batch_trajectory_file(i: usize) -> String {
     format!("trajectory-{}.txt", i + 1)
-}
-
-/// The batch input for `setups` in `build`: their single inputs in sequence.
-pub(crate) fn render_batch(
-    build: &Build,
-    setups: &[CodeSetup],
-) -> Result<RenderedInput, BatchError> {
-    render_sequence("src/codes/lammps/batch.rs", setups, |setup| {
-        build.render(setup)
-    })
 }
 
 /// The batch input of the single inputs `single` renders for `setups`, in sequence, each

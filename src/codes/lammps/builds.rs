@@ -40,11 +40,16 @@ macro_rules! lammps_driver_methods {
         }
 
         fn batch(&self) -> Option<&dyn $crate::codes::BatchRunner> {
-            use $crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_batch};
+            use $crate::codes::lammps::batch::{MAX_BATCH, parse_batch, render_sequence};
+            // The build's single inputs in sequence.
             static BATCH: $crate::codes::batch_fns::BatchFns =
                 $crate::codes::batch_fns::BatchFns::new(
                     MAX_BATCH,
-                    |setups| render_batch(&$build, setups),
+                    |setups| {
+                        render_sequence("src/codes/lammps/batch.rs", setups, |setup| {
+                            $build.render(setup)
+                        })
+                    },
                     parse_batch,
                 );
             Some(&BATCH)

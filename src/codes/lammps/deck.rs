@@ -24,7 +24,7 @@ use super::granular::{CLASSIC, classic_model, dashpot_only, friction, model_name
 use super::mixing::{Coefficients, GranularModel, PairMixing};
 use super::oblique::{oblique_lines, undamped_wall};
 use super::plugin_coeffs::{PaperCoeff, PaperWall, paper_coeff, paper_law};
-use super::{Build, INPUT_FILE, LOG_FILE, TRAJECTORY_FILE};
+use super::{Build, TRAJECTORY_FILE};
 use crate::codes::deck::{
     AtomSyntax, Bodies, BodyElasticity, DeckBody, DeckContact, DeckDialect, DeckError,
     DeckImpactInput, DeckOptions, DeckWall, ImpactPlan, NEIGHBOURS, OUTPUT, PairLaw, Partner,
@@ -33,7 +33,7 @@ use crate::codes::deck::{
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::exact_number;
-use crate::codes::{CodeDriver, CodeError, RenderedInput};
+use crate::codes::{CodeDriver, CodeError};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
@@ -154,8 +154,7 @@ impl<'a> PairCoeffLines<'a> {
             match (a.parse::<u32>(), b.parse::<u32>()) {
                 (Ok(i), Ok(j)) if j < i => {
                     if !mixing.reorders_types() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
+                        return Err(c.refuse(
                             format!(
                                 "pair_coeff {a} {b}: this build sets no pair for J < I (LAMMPS: \"Incorrect args for pair coefficients\")"
                             ),
@@ -205,8 +204,7 @@ impl<'a> PairCoeffLines<'a> {
                     (self.for_pair(i, i), self.for_pair(j, j))
                     && a.form() != b.form()
                 {
-                    return Err(DeckError::unsupported(
-                        &at_b.at,
+                    return Err(at_b.at.refuse(
                         format!(
                             "no pair_coeff sets the types {i} and {j}, and LAMMPS refuses to mix them from pair_coeff {i} {i} ({}: {}) and {j} {j} (here: {}): their functional forms differ (\"Granular pair style functional forms are different\")",
                             at_a.at,
@@ -364,8 +362,7 @@ impl LammpsDeck {
             "pair_coeff" if r.classic.is_some() => {
                 let model = r.classic.clone().unwrap_or_else(|| unreachable!());
                 if c.words.len() != 3 {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("`{}`", c.text),
                         "pair_coeff I J with no coefficients (the classic styles take theirs on the pair_style line)",
                     ));
@@ -376,8 +373,7 @@ impl LammpsDeck {
             "pair_style" => {
                 if c.word(1, "a pair style")? != "granular" {
                     r.pair_refused = true;
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("pair_style {}", c.words[1]),
                         "pair_style granular, or paper and paper/linear of the paper plugin",
                     ));
@@ -389,14 +385,10 @@ impl LammpsDeck {
             "pair_coeff" => {
                 let (model, k) = read_model(c, 3, &[])?;
                 if k != c.words.len() {
-                    return Err(DeckError::unsupported(
-                        &c.at,
-                        format!("`{}`", c.text),
-                        "pair_coeff I J MODEL …",
-                    ));
+                    return Err(c.refuse(format!("`{}`", c.text), "pair_coeff I J MODEL …"));
                 }
                 if !c.words[3..].iter().any(|w| w == "tangential") {
-                    return Err(DeckError::unsupported(&c.at, "a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")".into(), "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
+                    return Err(c.refuse("a pair_coeff without a tangential model (LAMMPS refuses it: \"must specify … tangential\")", "pair_coeff I J NORMAL … tangential STYLE …, e.g. tangential linear_nohistory 0 0"));
                 }
                 r.coeffs
                     .push((c.words[1].clone(), c.words[2].clone(), model, c.clone()));
@@ -405,17 +397,15 @@ impl LammpsDeck {
                 "wall/paper" => {
                     let planes = ["xplane", "yplane", "zplane"];
                     let k = c.words.iter().position(|w| planes.contains(&w.as_str())).ok_or_else(|| {
-                        DeckError::unsupported(&c.at, "a wall/paper without its plane".into(), "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
+                        c.refuse("a wall/paper without its plane", "fix ID group wall/paper hertz eta E nu Ewall nuwall PLANE lo hi, or linear eta kn PLANE lo hi")
                     })?;
                     let linear = match c.word(4, "hertz or linear")? {
                         "hertz" => false,
                         "linear" => true,
                         other => {
-                            return Err(DeckError::unsupported(
-                                &c.at,
-                                format!("wall/paper model `{other}`"),
-                                "hertz, linear",
-                            ));
+                            return Err(
+                                c.refuse(format!("wall/paper model `{other}`"), "hertz, linear")
+                            );
                         }
                     };
                     r.paper_walls.push(PaperWall {
@@ -432,16 +422,14 @@ impl LammpsDeck {
                     let (model, k) = classic_model(c, 4)?;
                     let geometry = &c.words[k..];
                     if geometry.iter().any(|w| w == "limit_damping") {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")".into(),
+                        return Err(c.refuse(
+                            "limit_damping after the wall's style: LAMMPS stops at it (\"Illegal fix wall/gran command\")",
                             "fix ID group wall/gran STYLE Kn Kt gamma_n gamma_t xmu dampflag limit_damping WALLSTYLE ARGS",
                         ));
                     }
                     if geometry.is_empty() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "a wall without its style".into(),
+                        return Err(c.refuse(
+                            "a wall without its style",
                             "xplane, yplane, zplane, zcylinder, region",
                         ));
                     }
@@ -456,8 +444,7 @@ impl LammpsDeck {
                 }
                 "wall/gran" | "wall/gran/region" => {
                     if c.word(4, "granular")? != "granular" {
-                        return Err(DeckError::unsupported(
-                            &c.at,
+                        return Err(c.refuse(
                             format!("fix {} {}", c.words[3], c.words[4]),
                             "fix ID group wall/gran granular MODEL … WALLSTYLE ARGS",
                         ));
@@ -465,9 +452,8 @@ impl LammpsDeck {
                     let stops = ["xplane", "yplane", "zplane", "zcylinder", "region"];
                     let (model, k) = read_model(c, 5, &stops)?;
                     if k >= c.words.len() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "a wall without its style".into(),
+                        return Err(c.refuse(
+                            "a wall without its style",
                             "xplane, yplane, zplane, zcylinder, region",
                         ));
                     }
@@ -485,8 +471,7 @@ impl LammpsDeck {
                     c,
                 ),
                 "nve" | "nve/limit" | "nvt/sphere" | "nve/asphere" | "rigid" | "rigid/small" => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!(
                             "fix {}: an integrator whose step the harness does not model",
                             c.words[3]
@@ -598,15 +583,13 @@ impl LammpsDeck {
             }
             _ => {
                 if !conventions.coeff_restitution {
-                    return Err(DeckError::unsupported(
-                        at,
-                        "damping coeff_restitution: this build (probed) has none".into(),
+                    return Err(at.refuse(
+                        "damping coeff_restitution: this build (probed) has none",
                         "damping velocity, mass_velocity, viscoelastic, tsuji in this build; --code lammps-2025 has coeff_restitution",
                     ));
                 }
                 if !(d > 0.0 && d <= 1.0) {
-                    return Err(DeckError::unsupported(
-                        at,
+                    return Err(at.refuse(
                         format!("damping coeff_restitution with e = {d}"),
                         "0 < e <= 1 (the build runs e = 0 as NaN and e > 1 as energy gain without a word)",
                     ));
@@ -753,16 +736,14 @@ impl LammpsDeck {
         types: u32,
     ) -> Result<Pairs, DeckError> {
         if let Some((_, _, _, c)) = r.coeffs.first() {
-            return Err(DeckError::unsupported(
-                &c.at,
-                "granular lines beside the paper plugin's".into(),
+            return Err(c.refuse(
+                "granular lines beside the paper plugin's",
                 "one contact law per deck: pair_style paper with fix wall/paper, or pair_style granular with fix wall/gran granular",
             ));
         }
         if let Some(w) = r.walls.first() {
-            return Err(DeckError::unsupported(
-                &w.at,
-                "fix wall/gran beside the paper plugin's styles".into(),
+            return Err(w.at.refuse(
+                "fix wall/gran beside the paper plugin's styles",
                 "fix wall/paper with pair_style paper",
             ));
         }
@@ -1067,15 +1048,7 @@ impl DeckDialect for LammpsDeck {
             Some(_) => lines.extend(oblique_lines(other.is_some(), plan.steps)),
         }
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: INPUT_FILE.into(),
-                text: lines.join("\n") + "\n",
-                args: [
-                    "-in", INPUT_FILE, "-log", LOG_FILE, "-nocite", "-echo", "none",
-                ]
-                .map(String::from)
-                .to_vec(),
-            },
+            input: super::deck_input(lines.join("\n") + "\n"),
             setup: plan.setup,
             start_gap: gap,
         })

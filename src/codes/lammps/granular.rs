@@ -34,8 +34,7 @@ pub(super) fn read_model(
         "hooke" | "hertz" => 2,
         "hertz/material" => 3,
         adhesive @ ("dmt" | "jkr") => {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!(
                     "normal model `{adhesive}`: an adhesive force the impact check does not model"
                 ),
@@ -43,8 +42,7 @@ pub(super) fn read_model(
             ));
         }
         other => {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!(
                     "normal model `{other}`: LAMMPS has no such normal model and stops at this line"
                 ),
@@ -95,8 +93,7 @@ pub(super) fn read_model(
                     _ => &["none", "marshall", "sds"],
                 };
                 if !known.contains(&style.as_str()) {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!(
                             "{word} `{style}`: LAMMPS has no such {word} model and stops at this line"
                         ),
@@ -126,8 +123,7 @@ pub(super) fn read_model(
                 }
             }
             other => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("`{other}` in a granular model"),
                     &format!("{NORMAL}; {DAMPING}; tangential, rolling, twisting; limit_damping"),
                 ));
@@ -142,11 +138,7 @@ pub(super) fn read_model(
         "coeff_restitution",
     ];
     if !known.contains(&model.damping.as_str()) {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("damping {}", model.damping),
-            DAMPING,
-        ));
+        return Err(c.refuse(format!("damping {}", model.damping), DAMPING));
     }
     // A model whose last keyword lacks its arguments ends at the line's end: the build refuses
     // such a line itself, with its own words, and the check never reads past it.
@@ -170,8 +162,7 @@ pub(super) fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usi
     let style = written.strip_prefix("gran/").unwrap_or(written);
     let form = "STYLE Kn Kt gamma_n gamma_t xmu dampflag [limit_damping] (Kt, gamma_t may be NULL)";
     if !CLASSIC.contains(&style) {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!(
                 "`{written}`: LAMMPS has no such classic granular style and stops at this line"
             ),
@@ -189,15 +180,13 @@ pub(super) fn classic_model(c: &Command, k: usize) -> Result<(GranularModel, usi
     let flag = c.number(k + 6, "dampflag")?;
     #[allow(clippy::float_cmp)] // a flag is written 0 or 1
     if flag != 0.0 && flag != 1.0 {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("dampflag {flag}"),
             &format!("dampflag 0 or 1 ({form})"),
         ));
     }
     if kn <= 0.0 || gamma_n < 0.0 {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("Kn {kn}, gamma_n {gamma_n}"),
             "Kn > 0 and gamma_n >= 0 (LAMMPS stops otherwise: \"Illegal pair_style command\")",
         ));

@@ -48,17 +48,15 @@ fn paper_tangential(
     let form = "tangential mindlin MU, or tangential linear KT MU";
     let words = &c.words[start..end];
     let count_error = || {
-        DeckError::unsupported(
-            &c.at,
+        c.refuse(
             format!("`{}` ({} words)", words.join(" "), words.len()),
             form,
         )
     };
     let tangential = match words.get(1).map(String::as_str) {
         Some("mindlin") if linear => {
-            return Err(DeckError::unsupported(
-                &c.at,
-                "tangential mindlin on a linear normal law (the line has no E and nu)".into(),
+            return Err(c.refuse(
+                "tangential mindlin on a linear normal law (the line has no E and nu)",
                 "tangential linear KT MU (the plugin stops the run otherwise)",
             ));
         }
@@ -68,8 +66,7 @@ fn paper_tangential(
         Some("linear") if words.len() == 4 => {
             let stiffness = c.number(start + 2, "tangential KT")?;
             if stiffness.is_nan() || stiffness <= 0.0 {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("tangential KT = {stiffness}"),
                     "KT > 0, N/m (the plugin stops the run otherwise)",
                 ));
@@ -81,19 +78,14 @@ fn paper_tangential(
         }
         Some("mindlin" | "linear") => return Err(count_error()),
         Some(other) => {
-            return Err(DeckError::unsupported(
-                &c.at,
-                format!("tangential model `{other}`"),
-                form,
-            ));
+            return Err(c.refuse(format!("tangential model `{other}`"), form));
         }
         None => return Err(count_error()),
     };
     let (PaperTangential::Mindlin { friction } | PaperTangential::Linear { friction, .. }) =
         tangential;
     if !(friction >= 0.0 && friction.is_finite()) {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("tangential MU = {friction}"),
             "a finite MU >= 0 (the plugin stops the run otherwise)",
         ));
@@ -127,8 +119,7 @@ pub(super) fn paper_coeff(
         (false, false) => &[5],
     };
     if !counts.contains(&(end.saturating_sub(start))) {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("`{}`", c.text),
             &format!("the paper plugin's {form}"),
         ));
@@ -138,8 +129,7 @@ pub(super) fn paper_coeff(
         .collect::<Result<Vec<_>, _>>()?;
     let eta = values[0];
     if !(0.0..1.0).contains(&eta) {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("eta = {eta}"),
             "0 <= eta < 1 (the plugin stops the run otherwise: eta >= 1 never separates the bodies, eta < 0 creates energy)",
         ));

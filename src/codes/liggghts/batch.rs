@@ -41,15 +41,10 @@ const INITIAL_ROW: (&str, &str) = (
     "print           \"${t} ${overlap} ${approach} 0\" file ",
 );
 
-/// The stock build's batch input for `setups`: their single inputs in sequence, or why they
-/// cannot run so.
-pub(crate) fn render_batch(setups: &[CodeSetup]) -> Result<RenderedInput, BatchError> {
-    render_batch_with(&Liggghts, setups)
-}
-
 /// The batch input of `driver`, a LIGGGHTS build whose single inputs are the stock deck with
-/// its own contact lines (the stock build, the paper build), for `setups`.
-pub(crate) fn render_batch_with(
+/// its own contact lines (the stock build, the paper build), for `setups`: their single inputs
+/// in sequence, or why they cannot run so.
+pub(crate) fn render_batch(
     driver: &dyn CodeDriver,
     setups: &[CodeSetup],
 ) -> Result<RenderedInput, BatchError> {
@@ -100,7 +95,11 @@ pub(crate) fn parse_batch(
 }
 
 /// The stock build's batches: many impacts in one process, in sequence.
-pub(crate) static LIGGGHTS_BATCH: BatchFns = BatchFns::new(MAX_BATCH, render_batch, parse_batch);
+pub(crate) static LIGGGHTS_BATCH: BatchFns = BatchFns::new(
+    MAX_BATCH,
+    |setups| render_batch(&Liggghts, setups),
+    parse_batch,
+);
 
 #[cfg(test)]
 mod tests {

@@ -25,13 +25,12 @@ use crate::codes::deck::{
 };
 use crate::codes::script::{Command, ScriptReader, check_si_units};
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeDriver, CodeError, RenderedInput};
+use crate::codes::{CodeDriver, CodeError};
 use crate::model::exact;
 use crate::model::law::{CodeLaw, DashpotLaw, PaperLaw};
 use crate::model::scene::{pair_radius, reduced_mass};
 
 const TEMPLATE: &str = include_str!("deck.in");
-const INPUT_FILE: &str = "impact.in";
 
 /// LIGGGHTS's deck reader.
 pub(crate) struct LiggghtsDeck;
@@ -48,8 +47,7 @@ impl Property {
     fn of_type(&self, name: &str, t: u32) -> Result<f64, DeckError> {
         let k = t as usize - 1;
         self.values.get(k).copied().ok_or_else(|| {
-            DeckError::unsupported(
-                &self.at,
+            self.at.refuse(
                 format!("{name} has {} values, none for type {t}", self.values.len()),
                 "one value per atom type (peratomtype)",
             )
@@ -59,8 +57,7 @@ impl Property {
     fn of_pair(&self, name: &str, i: u32, j: u32) -> Result<f64, DeckError> {
         let (i, j) = (i as usize - 1, j as usize - 1);
         if self.columns == 0 {
-            return Err(DeckError::unsupported(
-                &self.at,
+            return Err(self.at.refuse(
                 format!("{name} is not a table of type pairs"),
                 "peratomtypepair N v11 v12 … vNN",
             ));
@@ -69,8 +66,7 @@ impl Property {
             .get(i * self.columns + j)
             .copied()
             .ok_or_else(|| {
-                DeckError::unsupported(
-                    &self.at,
+                self.at.refuse(
                     format!("{name} has no value for the types {} and {}", i + 1, j + 1),
                     "peratomtypepair N with N×N values",
                 )
@@ -78,9 +74,10 @@ impl Property {
     }
 
     fn scalar(&self, name: &str) -> Result<f64, DeckError> {
-        self.values.first().copied().ok_or_else(|| {
-            DeckError::unsupported(&self.at, format!("{name} has no value"), "scalar V")
-        })
+        self.values
+            .first()
+            .copied()
+            .ok_or_else(|| self.at.refuse(format!("{name} has no value"), "scalar V"))
     }
 }
 
@@ -108,8 +105,7 @@ const SYNTAX: AtomSyntax = AtomSyntax {
     mass: false,
     makes: &["type", "type/fraction"],
     refuses: |c, word| match word {
-        "type/ratio" | "type/subset" => Err(DeckError::unsupported(
-            &c.at,
+        "type/ratio" | "type/subset" => Err(c.refuse(
             format!(
                 "set … {word}: LIGGGHTS 3.8 has no such keyword (it stops: \"Illegal set command\")"
             ),
@@ -178,8 +174,7 @@ impl LiggghtsDeck {
             }
             "pair_style" => {
                 if c.word(1, "a pair style")? != "gran" {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("pair_style {}", c.words[1]),
                         "pair_style gran model …",
                     ));
@@ -220,8 +215,7 @@ impl LiggghtsDeck {
                         (type_number(n, c)? as usize, 7)
                     }
                     other => {
-                        return Err(DeckError::unsupported(
-                            &c.at,
+                        return Err(c.refuse(
                             format!("property/global style {other}"),
                             "scalar, vector, peratomtype, peratomtypepair, matrix",
                         ));
@@ -249,8 +243,7 @@ impl LiggghtsDeck {
             | "mesh/surface/planar"
             | "mesh/surface/stress/servo" => {
                 let k = c.words.iter().position(|w| w == "type").ok_or_else(|| {
-                    DeckError::unsupported(
-                        &c.at,
+                    c.refuse(
                         format!("fix {style} without `type`"),
                         "fix ID group mesh/surface file F type T …",
                     )
@@ -269,7 +262,7 @@ impl LiggghtsDeck {
             }
             "particletemplate/sphere" => {
                 let k = c.words.iter().position(|w| w == "atom_type").ok_or_else(|| {
-                    DeckError::unsupported(&c.at, "particletemplate/sphere without atom_type".into(), "particletemplate/sphere SEED atom_type T density constant RHO radius constant R")
+                    c.refuse("particletemplate/sphere without atom_type", "particletemplate/sphere SEED atom_type T density constant RHO radius constant R")
                 })?;
                 let t = type_number(c.number(k + 1, "the template's atom type")?, c)?;
                 let density = constant_after(c, "density")?;
@@ -278,8 +271,7 @@ impl LiggghtsDeck {
                 r.script.atoms.made_elsewhere(t);
             }
             "particletemplate/multisphere" | "particletemplate/superquadric" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("fix {style}: a non-spherical particle"),
                     "particletemplate/sphere",
                 ));
@@ -290,17 +282,15 @@ impl LiggghtsDeck {
             ),
             "nve" | "nve/limit" | "nve/sphere/limit" | "nve/asphere" | "nvt" | "rigid"
             | "multisphere" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!("fix {style}: an integrator whose step the harness does not model"),
                     "fix nve/sphere",
                 ));
             }
             "gravity" => r.leave_out("gravity (the impact is a free normal impact)", c),
             "coarsegraining" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    "fix coarsegraining: it scales the contact law".into(),
+                return Err(c.refuse(
+                    "fix coarsegraining: it scales the contact law",
                     "decks without coarse-graining",
                 ));
             }
@@ -331,8 +321,7 @@ impl LiggghtsDeck {
                 continue;
             }
             let (Some(radius), Some(density)) = (radius, density) else {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!(
                         "the template {} has no constant radius and density",
                         c.words[1]
@@ -366,22 +355,19 @@ impl Materials<'_> {
             nu.of_type("poissonsRatio", t)?,
         );
         if !(0.0..=0.5).contains(&nuv) {
-            return Err(DeckError::unsupported(
-                &nu.at,
+            return Err(nu.at.refuse(
                 format!("poissonsRatio {nuv} of type {t}"),
                 "0 <= poissonsRatio <= 0.5 (LIGGGHTS stops otherwise)",
             ));
         }
         if ev > 1e9 && !self.r.hard_particles {
-            return Err(DeckError::unsupported(
-                &e.at,
+            return Err(e.at.refuse(
                 format!("youngsModulus {ev} of type {t} without `hard_particles yes`"),
                 "youngsModulus <= 1e9, or hard_particles yes (LIGGGHTS stops otherwise)",
             ));
         }
         if ev < 5e6 && !self.r.soft_particles {
-            return Err(DeckError::unsupported(
-                &e.at,
+            return Err(e.at.refuse(
                 format!("youngsModulus {ev} of type {t} without `soft_particles yes`"),
                 "youngsModulus >= 5e6, or soft_particles yes (LIGGGHTS stops otherwise)",
             ));
@@ -415,8 +401,7 @@ impl Materials<'_> {
             .property("coefficientRestitution", self.path, needed_by)?;
         let e = p.of_pair("coefficientRestitution", i, j)?;
         if !(e > 0.05 && e <= 1.0) {
-            return Err(DeckError::unsupported(
-                &p.at,
+            return Err(p.at.refuse(
                 format!("coefficientRestitution {e} for the types {i} and {j}"),
                 "0.05 < coefficientRestitution <= 1 (LIGGGHTS stops otherwise)",
             ));
@@ -457,8 +442,7 @@ impl Materials<'_> {
                             .property("characteristicVelocity", self.path, &needed_by)?;
                     let v = v_prop.scalar("characteristicVelocity")?;
                     if v < 1e-2 {
-                        return Err(DeckError::unsupported(
-                            &v_prop.at,
+                        return Err(v_prop.at.refuse(
                             format!("characteristicVelocity {v}"),
                             "characteristicVelocity >= 1e-2 (LIGGGHTS stops otherwise)",
                         ));
@@ -563,8 +547,7 @@ impl Materials<'_> {
             let kt_p = self.r.property("kt", self.path, &needed_by)?;
             kt_p.of_pair("kt", i, j)?;
             if kn.is_nan() || kn <= 0.0 {
-                return Err(DeckError::unsupported(
-                    &kn_p.at,
+                return Err(kn_p.at.refuse(
                     format!("kn {kn} for the types {i} and {j}"),
                     "a positive stiffness kn, N/m",
                 ));
@@ -583,8 +566,7 @@ impl Materials<'_> {
             .enumerate()
             .find(|(_, v)| !(0.0..1.0).contains(*v))
         {
-            return Err(DeckError::unsupported(
-                &eta_p.at,
+            return Err(eta_p.at.refuse(
                 format!(
                     "lossCoefficient {bad} for the types {} and {}",
                     k / columns + 1,
@@ -789,19 +771,10 @@ impl DeckDialect for LiggghtsDeck {
             ("steps", plan.steps.to_string()),
             ("trajectory", TRAJECTORY_FILE.to_string()),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
-            code: Liggghts.name().into(),
-            case: plan.setup.case_name.clone(),
-            reason: e.to_string(),
-        })?;
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|e| plan.setup.unsupported(Liggghts.name(), e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: INPUT_FILE.into(),
-                text,
-                args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
-                    .map(String::from)
-                    .to_vec(),
-            },
+            input: super::input_file(text),
             setup: plan.setup,
             start_gap: gap,
         })

@@ -107,8 +107,7 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
     }
     check_known_words(command, &model)?;
     if model.normal.is_empty() {
-        return Err(DeckError::unsupported(
-            &command.at,
+        return Err(command.refuse(
             format!("`{}`: no `model` keyword", command.text),
             "LIGGGHTS 3.x granular lines: `model M [tangential T] [cohesion C] [rolling_friction R] [surface S]`",
         ));
@@ -116,15 +115,10 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
     let supported = ["hertz", "hooke", "hertz/stiffness", "hooke/stiffness"];
     if !supported.contains(&model.normal.as_str()) && !PAPER_MODELS.contains(&model.normal.as_str())
     {
-        return Err(DeckError::unsupported(
-            &command.at,
-            format!("normal model `{}`", model.normal),
-            NORMAL_MODELS,
-        ));
+        return Err(command.refuse(format!("normal model `{}`", model.normal), NORMAL_MODELS));
     }
     if model.cohesion != "off" {
-        return Err(DeckError::unsupported(
-            &command.at,
+        return Err(command.refuse(
             format!(
                 "cohesion {}: it adds a normal force the impact check does not model",
                 model.cohesion
@@ -133,8 +127,7 @@ pub(super) fn read_model(command: &Command, start: usize) -> Result<(GranModel, 
         ));
     }
     if model.surface != "default" {
-        return Err(DeckError::unsupported(
-            &command.at,
+        return Err(command.refuse(
             format!("surface {}", model.surface),
             "surface default (spheres)",
         ));
@@ -213,8 +206,7 @@ fn check_known_words(command: &Command, model: &GranModel) -> Result<(), DeckErr
             continue;
         };
         if !known.contains(&value.as_str()) {
-            return Err(DeckError::unsupported(
-                &command.at,
+            return Err(command.refuse(
                 format!("{key} `{value}`: LIGGGHTS 3.8 has no such model and stops at this line"),
                 &format!("{key} {}", known.join(", ")),
             ));
@@ -234,8 +226,7 @@ pub(super) fn read_settings(
     if PAPER_MODELS.contains(&model.normal.as_str())
         && let Some(key) = words.first()
     {
-        return Err(DeckError::unsupported(
-            &command.at,
+        return Err(command.refuse(
             format!(
                 "`{key}` after model {}: the paper's styles take no settings (liggghts-paper stops: \"Unknown argument or wrong keyword order\")",
                 model.normal
@@ -244,8 +235,7 @@ pub(super) fn read_settings(
         ));
     }
     if !words.len().is_multiple_of(2) {
-        return Err(DeckError::unsupported(
-            &command.at,
+        return Err(command.refuse(
             format!("`{}`: a setting without its value", command.text),
             "settings as `key on|off` pairs (limitForce on, tangential_damping off, …)",
         ));
@@ -254,8 +244,7 @@ pub(super) fn read_settings(
         let (key, value) = (&pair[0], &pair[1]);
         if !KNOWN_SETTINGS.contains(&key.as_str()) {
             let model_words = KNOWN_MODELS.map(|(k, _)| k).join(", ");
-            return Err(DeckError::unsupported(
-                &command.at,
+            return Err(command.refuse(
                 format!(
                     "`{key} {value}`: LIGGGHTS 3.8 knows no such model keyword or setting and stops at this line (\"Unknown argument or wrong keyword order\")"
                 ),
@@ -268,8 +257,7 @@ pub(super) fn read_settings(
         let switch = value == "on";
         match key.as_str() {
             "viscous" | "disableNormalWhenBonded" if switch => {
-                return Err(DeckError::unsupported(
-                    &command.at,
+                return Err(command.refuse(
                     format!("{key} on: a normal force the impact check does not model"),
                     &format!("{key} off"),
                 ));
@@ -293,11 +281,9 @@ pub(super) fn read_wall(
         match word.as_str() {
             "primitive" => {
                 if command.word(k + 1, "`type` after primitive")? != "type" {
-                    return Err(DeckError::unsupported(
-                        &command.at,
-                        "primitive without `type`".into(),
-                        "primitive type T STYLE ARGS",
-                    ));
+                    return Err(
+                        command.refuse("primitive without `type`", "primitive type T STYLE ARGS")
+                    );
                 }
                 let t = command.number(k + 2, "the wall's type")?;
                 wall_type = Some(type_number(t, command)?);
@@ -306,8 +292,7 @@ pub(super) fn read_wall(
                     "xplane" | "yplane" | "zplane" => 1,
                     "xcylinder" | "ycylinder" | "zcylinder" => 3,
                     other => {
-                        return Err(DeckError::unsupported(
-                            &command.at,
+                        return Err(command.refuse(
                             format!("primitive {other}"),
                             "primitive xplane, yplane, zplane, xcylinder, ycylinder, zcylinder",
                         ));
@@ -324,8 +309,7 @@ pub(super) fn read_wall(
                     .take_while(|w| meshes.contains_key(w.as_str()))
                     .count();
                 if n == 0 {
-                    return Err(DeckError::unsupported(
-                        &command.at,
+                    return Err(command.refuse(
                         format!(
                             "`meshes` names no mesh/surface fix defined before: `{}`",
                             command.text
@@ -361,8 +345,7 @@ pub(super) fn read_wall(
     if !mesh_names.is_empty() {
         let types: Vec<u32> = mesh_names.iter().map(|m| meshes[m].0).collect();
         if types.iter().any(|t| *t != types[0]) {
-            return Err(DeckError::unsupported(
-                &command.at,
+            return Err(command.refuse(
                 format!(
                     "the meshes {} have different types {types:?}",
                     mesh_names.join(", ")
@@ -374,8 +357,7 @@ pub(super) fn read_wall(
         geometry = format!("mesh {}", mesh_names.join(", "));
     }
     let wall_type = wall_type.ok_or_else(|| {
-        DeckError::unsupported(
-            &command.at,
+        command.refuse(
             format!("`{}`: no primitive or mesh wall", command.text),
             "primitive type T STYLE ARGS, or mesh n_meshes N meshes ID…",
         )

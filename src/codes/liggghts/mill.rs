@@ -182,11 +182,7 @@ fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
 fn whole_steps(c: &Command, k: usize, what: &str) -> Result<u64, DeckError> {
     let n = c.number(k, what)?;
     if n < 0.0 || n.fract() != 0.0 || n > 1e15 {
-        return Err(DeckError::unsupported(
-            &c.at,
-            format!("{} {n}", c.name()),
-            "a whole number of steps",
-        ));
+        return Err(c.refuse(format!("{} {n}", c.name()), "a whole number of steps"));
     }
     // A whole number below 1e15: exact.
     #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
@@ -206,8 +202,7 @@ fn run_steps(c: &Command, step: u64) -> Result<u64, DeckError> {
             .chunks(2)
             .all(|p| (p[0] == "pre" || p[0] == "post") && (p[1] == "yes" || p[1] == "no"));
     if !settings_only {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("`{}`: a run the mill comparison cannot cut", c.text),
             "run N [upto] [pre yes|no] [post yes|no]",
         ));
@@ -216,8 +211,7 @@ fn run_steps(c: &Command, step: u64) -> Result<u64, DeckError> {
         return Ok(n);
     }
     n.checked_sub(step).ok_or_else(|| {
-        DeckError::unsupported(
-            &c.at,
+        c.refuse(
             format!(
                 "run {n} upto at step {step}: LIGGGHTS stops at it (Invalid run command upto value)"
             ),
@@ -233,8 +227,7 @@ fn pair_table(c: &Command, name: &str, types: u32) -> Result<Vec<f64>, DeckError
     #[allow(clippy::float_cmp)]
     let other = n != f64::from(types);
     if other {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("{name} is a {n}×{n} table, the deck has {types} types"),
             "peratomtypepair N with N the number of atom types",
         ));
@@ -244,8 +237,7 @@ fn pair_table(c: &Command, name: &str, types: u32) -> Result<Vec<f64>, DeckError
         .collect::<Result<Vec<_>, _>>()?;
     let cells = (types * types) as usize;
     if values.len() != cells {
-        return Err(DeckError::unsupported(
-            &c.at,
+        return Err(c.refuse(
             format!("{name} has {} values", values.len()),
             &format!("{cells} values (peratomtypepair {types})"),
         ));
@@ -301,8 +293,7 @@ fn droppable(key: &str, value: &str) -> bool {
 /// `folder`, as LIGGGHTS reads it from there) is refused.
 fn check_mesh_file(c: &Command, style: &str, folder: &Path) -> Result<(), DeckError> {
     let k = c.words.iter().position(|w| w == "file").ok_or_else(|| {
-        DeckError::unsupported(
-            &c.at,
+        c.refuse(
             format!("fix {style} without `file`"),
             "fix ID group mesh/surface file FILE type T …",
         )
@@ -312,8 +303,7 @@ fn check_mesh_file(c: &Command, style: &str, folder: &Path) -> Result<(), DeckEr
     if resolved.is_file() {
         return Ok(());
     }
-    Err(DeckError::unsupported(
-        &c.at,
+    Err(c.refuse(
         format!(
             "mesh file `{file}` does not exist ({} looked for)",
             resolved.display()
@@ -396,8 +386,7 @@ impl MillDeck {
             let style = c.words.get(3).map(String::as_str).unwrap_or_default();
             match c.name() {
                 "label" | "jump" | "next" | "if" => {
-                    return Err(DeckError::unsupported(
-                        &c.at,
+                    return Err(c.refuse(
                         format!("`{}`: a loop or branch of the deck", c.text),
                         "a deck that runs straight through (the mill comparison cuts its runs by step counts)",
                     ));
@@ -416,8 +405,7 @@ impl MillDeck {
                         settling_steps += n;
                     } else {
                         if let Some((id, motion, at)) = moving.first() {
-                            return Err(DeckError::unsupported(
-                                at,
+                            return Err(at.refuse(
                                 format!(
                                     "fix {id} move/mesh {motion} still moves its mesh when the rotation starts ({}): a motion whose power the comparison does not measure",
                                     c.at
@@ -456,9 +444,8 @@ impl MillDeck {
                 }
                 "fix" if style == "move/mesh" => {
                     if rotation_start.is_some() {
-                        return Err(DeckError::unsupported(
-                            &c.at,
-                            "a fix move/mesh after rotation has started".into(),
+                        return Err(c.refuse(
+                            "a fix move/mesh after rotation has started",
                             "every fix move/mesh before the first run of the rotation",
                         ));
                     }
@@ -500,9 +487,8 @@ impl MillDeck {
                         .into(),
                     supported: "a mill deck turns its drum with `fix ID all move/mesh mesh MESH rotate origin X Y Z axis X Y Z period T` and runs after it".into(),
                 },
-                Some(m) => DeckError::unsupported(
-                    &m.from,
-                    "no `run` after the drum starts turning".into(),
+                Some(m) => m.from.refuse(
+                    "no `run` after the drum starts turning",
                     "a `run` after the fix move/mesh (the rotation)",
                 ),
             });
@@ -558,15 +544,13 @@ impl MillDeck {
             // two runs would differ in the spring as well as the damping, and the difference
             // could not be laid on the damping law.
             "hooke" => {
-                return Err(DeckError::unsupported(
-                    &c.at,
-                    "model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping".into(),
+                return Err(c.refuse(
+                    "model hooke: a linear spring (its stiffness from characteristicVelocity), which the paper's law, a Hertzian spring, cannot stand in for: the runs would differ in the spring, not only the damping",
                     "model hertz (switched to model paper at the η of each pair's coefficientRestitution) or model paper (switched to model hertz)",
                 ));
             }
             other => {
-                return Err(DeckError::unsupported(
-                    &c.at,
+                return Err(c.refuse(
                     format!(
                         "model {other}: a law the switch cannot express (its stiffness or damping is not set by a COR)"
                     ),
@@ -575,8 +559,7 @@ impl MillDeck {
             }
         };
         if let Some((key, value)) = model.settings.iter().find(|(k, v)| !droppable(k, v)) {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!("{key} {value}: a setting the paper's law has no counterpart for"),
                 "no settings, or tangential_damping on|off and limitForce off (the paper's styles take none)",
             ));
@@ -587,8 +570,7 @@ impl MillDeck {
             model.rolling.to_ascii_uppercase()
         );
         if !PAPER_WHITELIST.lines().any(|l| l.trim() == combination) {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!(
                     "tangential {} with rolling_friction {}: liggghts-paper is not built with model paper in that combination",
                     model.tangential, model.rolling
@@ -597,8 +579,7 @@ impl MillDeck {
             ));
         }
         if let Some(before) = before.filter(|b| *b != law) {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!("model {law} where the lines above use model {before}"),
                 "one normal law for the particles and the walls (model hertz, or model paper)",
             ));
@@ -610,32 +591,28 @@ impl MillDeck {
     fn rotation(c: &Command, meshes: &[(String, SourceLine)]) -> Result<RotatingMesh, DeckError> {
         let supported = "fix ID group move/mesh mesh MESH rotate origin X Y Z axis X Y Z period T";
         if c.word(4, "`mesh`")? != "mesh" {
-            return Err(DeckError::unsupported(
-                &c.at,
-                format!("`{}`", c.text),
-                supported,
-            ));
+            return Err(c.refuse(format!("`{}`", c.text), supported));
         }
         let mesh = c.word(5, "the mesh's ID")?.to_string();
         if !meshes.iter().any(|(m, _)| *m == mesh) {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!("move/mesh of `{mesh}`, which no fix mesh/surface above defines"),
                 supported,
             ));
         }
         let motion = c.word(6, "the motion")?;
         if motion != "rotate" {
-            return Err(DeckError::unsupported(
-                &c.at,
+            return Err(c.refuse(
                 format!("move/mesh {motion}: a motion whose power the comparison does not measure"),
                 supported,
             ));
         }
         let after = |key: &str| -> Result<[f64; 3], DeckError> {
-            let k = c.words.iter().position(|w| w == key).ok_or_else(|| {
-                DeckError::unsupported(&c.at, format!("rotate without `{key}`"), supported)
-            })?;
+            let k = c
+                .words
+                .iter()
+                .position(|w| w == key)
+                .ok_or_else(|| c.refuse(format!("rotate without `{key}`"), supported))?;
             Ok([
                 c.number(k + 1, key)?,
                 c.number(k + 2, key)?,
@@ -643,23 +620,16 @@ impl MillDeck {
             ])
         };
         let origin = after("origin")?;
-        let axis = unit(after("axis")?).ok_or_else(|| {
-            DeckError::unsupported(&c.at, "a zero rotation axis".into(), supported)
-        })?;
-        let k = c.words.iter().position(|w| w == "period").ok_or_else(|| {
-            DeckError::unsupported(
-                &c.at,
-                "rotate without a constant `period`".into(),
-                supported,
-            )
-        })?;
+        let axis =
+            unit(after("axis")?).ok_or_else(|| c.refuse("a zero rotation axis", supported))?;
+        let k = c
+            .words
+            .iter()
+            .position(|w| w == "period")
+            .ok_or_else(|| c.refuse("rotate without a constant `period`", supported))?;
         let period = c.number(k + 1, "the period")?;
         if period.is_nan() || period == 0.0 {
-            return Err(DeckError::unsupported(
-                &c.at,
-                format!("period {period}"),
-                "a non-zero period, s",
-            ));
+            return Err(c.refuse(format!("period {period}"), "a non-zero period, s"));
         }
         Ok(RotatingMesh {
             mesh,

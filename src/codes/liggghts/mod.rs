@@ -24,9 +24,9 @@ pub mod paper;
 
 pub(crate) use paper::LiggghtsPaper;
 
-use std::f64::consts::PI;
 use std::path::Path;
 
+use super::deck::sphere_mass;
 use super::parse::{ParseError, parse_columns};
 use super::template::{exact_number, fill_template};
 use super::{
@@ -54,11 +54,6 @@ pub(crate) fn contact_gap(setup: &CodeSetup) -> f64 {
     (1e-6 * setup.impact_velocity * setup.timestep).max(1e-13 * radius)
 }
 
-/// A sphere's mass the way LIGGGHTS computes it from `set diameter` and `set density`.
-fn code_mass(radius: f64, density: f64) -> f64 {
-    4.0 * PI / 3.0 * radius * radius * radius * density
-}
-
 /// The effective modulus LIGGGHTS uses for a ball scene, Pa: its `createYeff`,
 /// `1/((1-ν1²)/E1 + (1-ν2²)/E2)` over the two atom types (the wall's type included), type 2
 /// being the [`CodeSetup::partner_material`]. LIGGGHTS has no rigid wall (the wall type's
@@ -74,10 +69,10 @@ pub(crate) fn code_effective_modulus(setup: &CodeSetup) -> Option<f64> {
 /// The mass the contact sees, kg: the sphere's own mass at a wall (the wall is immovable),
 /// the reduced mass between two spheres.
 pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
-    let m1 = code_mass(setup.sphere.radius, setup.sphere.density);
+    let m1 = sphere_mass(setup.sphere.radius, setup.sphere.density);
     let m2 = setup
         .other_sphere
-        .map_or(f64::INFINITY, |o| code_mass(o.radius, o.density));
+        .map_or(f64::INFINITY, |o| sphere_mass(o.radius, o.density));
     reduced_mass(m1, m2)
 }
 
@@ -87,7 +82,7 @@ pub fn code_effective_mass(setup: &CodeSetup) -> f64 {
 /// writes it (exactly).
 pub(crate) fn code_frame(setup: &CodeSetup) -> CodeFrame {
     setup.frame_below(setup.sphere.radius + contact_gap(setup), |s| {
-        code_mass(s.radius, s.density)
+        sphere_mass(s.radius, s.density)
     })
 }
 
@@ -253,20 +248,21 @@ pub(crate) fn render_deck(
         text.push_str(&line);
         text.push('\n');
     }
-    Ok(RenderedInput {
+    // A style without settings leaves no trailing blank on its lines.
+    let lines: Vec<&str> = text.lines().map(str::trim_end).collect();
+    Ok(input_file(lines.join("\n") + "\n"))
+}
+
+/// The input file holding `text` and the arguments that run it (`-log none`: the default
+/// log.liggghts would duplicate the screen output).
+fn input_file(text: String) -> RenderedInput {
+    RenderedInput {
         file_name: INPUT_FILE.to_string(),
-        // A style without settings leaves no trailing blank on its lines.
-        text: text
-            .lines()
-            .map(str::trim_end)
-            .collect::<Vec<_>>()
-            .join("\n")
-            + "\n",
-        // `-log none`: the default log.liggghts would duplicate the screen output.
+        text,
         args: ["-in", INPUT_FILE, "-log", "none", "-echo", "none"]
             .map(String::from)
             .to_vec(),
-    })
+    }
 }
 
 /// Read a run of the deck in `workdir` (its trajectory file and screen `log`), refusing a run

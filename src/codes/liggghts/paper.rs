@@ -19,7 +19,7 @@
 
 use std::path::Path;
 
-use super::batch::{parse_batch, render_batch_with};
+use super::batch::{parse_batch, render_batch};
 use super::{
     ContactModel, code_effective_mass, code_frame, code_stiffness, material_properties,
     pair_property, parse_run, render_deck, validate_scene,
@@ -161,7 +161,7 @@ impl CodeDriver for LiggghtsPaper {
 /// the stock build's), each with its own η.
 static PAPER_BATCH: BatchFns = BatchFns::new(
     super::batch::MAX_BATCH,
-    |setups| render_batch_with(&LiggghtsPaper, setups),
+    |setups| render_batch(&LiggghtsPaper, setups),
     parse_batch,
 );
 

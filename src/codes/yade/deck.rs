@@ -29,13 +29,13 @@ use super::reading::{
 };
 use super::viscel::{series, viscel_cn_from_en, viscel_en_from_cn};
 use super::{HERTZIAN_WALL_RADIUS_FACTOR, TRAJECTORY_FILE, thornton_damping_ratio};
+use crate::codes::CodeError;
 use crate::codes::damping::hertz_input_restitution;
 use crate::codes::deck::{
     DeckBody, DeckContact, DeckDialect, DeckError, DeckImpactInput, DeckOptions, DeckSource,
     DeckWall, ImpactPlan, PairLaw, Partner, SourceLine, Transplant, TypeRef, UserDeck, WallOrder,
 };
 use crate::codes::template::{exact_number, fill_template};
-use crate::codes::{CodeError, RenderedInput};
 use crate::model::law::DashpotLaw;
 use crate::model::scene::{pair_radius, reduced_mass};
 use crate::solve::dashpot::accurate_metrics;
@@ -257,8 +257,7 @@ impl YadeDeck {
             (Some(f), _) => *f,
             (None, [f]) => **f,
             (None, []) => {
-                return Err(DeckError::unsupported(
-                    at,
+                return Err(at.refuse(
                     format!(
                         "no Ip2 functor in the InteractionLoop takes {}–{}: YADE would make no contact of this pair",
                         a.name(),
@@ -268,8 +267,7 @@ impl YadeDeck {
                 ));
             }
             (None, [f, g, ..]) => {
-                return Err(DeckError::unsupported(
-                    &g.at,
+                return Err(g.at.refuse(
                     format!(
                         "{} and {} ({}) both take FrictMat pairs",
                         g.class, f.class, f.at
@@ -284,7 +282,7 @@ impl YadeDeck {
             _ => "Law2_ScGeom_ViscElPhys_Basic",
         };
         let law2 = r.laws.iter().find(|f| f.class == law).ok_or_else(|| {
-            DeckError::unsupported(&ip2.at, format!("{} without {law} in the InteractionLoop: YADE would leave its contacts without a force", ip2.class), FUNCTORS)
+            ip2.at.refuse(format!("{} without {law} in the InteractionLoop: YADE would leave its contacts without a force", ip2.class), FUNCTORS)
         })?;
         Ok((ip2, law2))
     }
@@ -344,14 +342,15 @@ impl YadeDeck {
         r_star: f64,
     ) -> Result<PairLaw, DeckError> {
         if ip2.number("gamma").is_some_and(|g| g != 0.0) && law2.flag("includeAdhesion") {
-            return Err(DeckError::unsupported(&law2.at, "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model".into(), "includeAdhesion=False, or gamma=0"));
+            return Err(law2.at.refuse(
+                "includeAdhesion=True with the Ip2's gamma: an adhesive force the check does not model",
+                "includeAdhesion=False, or gamma=0",
+            ));
         }
         if law2.flag("nothing") {
-            return Err(DeckError::unsupported(
-                &law2.at,
-                "nothing=True: the law computes no force".into(),
-                "nothing=False",
-            ));
+            return Err(law2
+                .at
+                .refuse("nothing=True: the law computes no force", "nothing=False"));
         }
         let e_star = mixed_modulus(a.material, b.material);
         let kno = 4.0 / 3.0 * e_star * r_star.sqrt();
@@ -359,19 +358,13 @@ impl YadeDeck {
         let betan = ip2.pair_value("betan", a.id, b.id)?;
         let beta = match (en, betan) {
             (Some(_), Some(_)) => {
-                return Err(DeckError::unsupported(
-                    &ip2.at,
-                    "both en and betan".into(),
-                    "one of en, betan (YADE refuses both)",
-                ));
+                return Err(ip2
+                    .at
+                    .refuse("both en and betan", "one of en, betan (YADE refuses both)"));
             }
             (Some(e), None) => {
                 if !(e > 0.0 && e <= 1.0) {
-                    return Err(DeckError::unsupported(
-                        &ip2.at,
-                        format!("en = {e}"),
-                        "0 < en <= 1",
-                    ));
+                    return Err(ip2.at.refuse(format!("en = {e}"), "0 < en <= 1"));
                 }
                 thornton_damping_ratio(e)
             }
@@ -460,8 +453,7 @@ impl YadeDeck {
                 } else {
                     (m2, m1)
                 };
-                return Err(DeckError::unsupported(
-                    &lacking.at,
+                return Err(lacking.at.refuse(
                     format!(
                         "ViscElMat without {key}, met by the ViscElMat of {} that has it (YADE stops: \"Both materials should have the same defined set of variables\")",
                         given.at
@@ -471,9 +463,8 @@ impl YadeDeck {
             }
         }
         if m1.value("mRtype") != m2.value("mRtype") {
-            return Err(DeckError::unsupported(
-                &m2.at,
-                "mRtype differs from the other material's (YADE stops)".into(),
+            return Err(m2.at.refuse(
+                "mRtype differs from the other material's (YADE stops)",
                 "the same mRtype, 1 or 2",
             ));
         }
@@ -549,7 +540,7 @@ impl YadeDeck {
                         m2.value("en")
                     ));
                 }
-                let c = viscel_cn_from_en(en, mass_r, kn).ok_or_else(|| DeckError::unsupported(&m1.at, format!("en = {en}: YADE's Newton iteration for cn does not converge in 15 steps (it then runs cn = 0, an elastic contact)"), "an en the iteration reaches, or tc, en, et"))?;
+                let c = viscel_cn_from_en(en, mass_r, kn).ok_or_else(|| m1.at.refuse(format!("en = {en}: YADE's Newton iteration for cn does not converge in 15 steps (it then runs cn = 0, an elastic contact)"), "an en the iteration reaches, or tc, en, et"))?;
                 let realised = viscel_en_from_cn(c, mass_r, kn);
                 traps.push(format!("cn from en by YADE's Newton iteration, stopped within 1 % of en: cn = {c:.6e} N·s/m, whose clamped law realises {realised:.6} on the mass it is tuned for"));
                 (
@@ -559,10 +550,8 @@ impl YadeDeck {
                     "ViscEl young, en".to_string(),
                 )
             } else {
-                return Err(DeckError::unsupported(
-                    &m1.at,
-                    "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs"
-                        .into(),
+                return Err(m1.at.refuse(
+                    "a ViscElMat with neither tc, en, et nor kn, ks, cn, cs nor en or cn, cs",
                     "tc, en, et; or kn, ks, cn, cs; or young with en or with cn, cs (YADE: \"Inconsistent material constants\")",
                 ));
             }
@@ -772,8 +761,7 @@ fn dump_timestep(path: &Path, dump: &Dump) -> Result<(f64, String), DeckError> {
     };
     let timestep = dump.dt.unwrap_or(f64::NAN);
     if !(timestep > 0.0 && timestep.is_finite()) {
-        return Err(DeckError::unsupported(
-            &dt_at,
+        return Err(dt_at.refuse(
             format!("O.dt = {timestep} after the set-up"),
             "a positive time step, s",
         ));
@@ -797,8 +785,7 @@ fn geometry_for<'r>(
         .iter()
         .find(|f| names.contains(&f.class.as_str()))
         .ok_or_else(|| {
-            DeckError::unsupported(
-                at.clone(),
+            at.refuse(
                 format!(
                     "no {} in the InteractionLoop ({loop_at}): YADE would make no contact here",
                     names[0]
@@ -926,17 +913,10 @@ impl DeckDialect for YadeDeck {
                 },
             ),
         ];
-        let text = fill_template(TEMPLATE, &values).map_err(|e| CodeError::Unsupported {
-            code: "yade".into(),
-            case: plan.setup.case_name.clone(),
-            reason: e.to_string(),
-        })?;
+        let text = fill_template(TEMPLATE, &values)
+            .map_err(|e| plan.setup.unsupported("yade", e.to_string()))?;
         Ok(DeckImpactInput {
-            input: RenderedInput {
-                file_name: SCRIPT.into(),
-                text,
-                args: ["-j1", "-n", "-x", SCRIPT].map(String::from).to_vec(),
-            },
+            input: super::script_input(SCRIPT, text),
             setup: plan.setup,
             start_gap: gap,
         })

@@ -88,8 +88,7 @@ impl Material {
     pub(super) fn from_dump(path: &Path, m: &MaterialDump) -> Result<Self, DeckError> {
         let at = source(path, m.line, || format!("O.materials[{}]", m.id));
         let class = class_of(&m.class).ok_or_else(|| {
-            DeckError::unsupported(
-                at.clone(),
+            at.refuse(
                 format!("material class `{}` (O.materials[{}])", m.class, m.id),
                 "FrictMat, ViscElMat",
             )
@@ -156,8 +155,7 @@ impl Material {
             // A dump that names a set attribute without its value was not written by the
             // reading script (it writes both from one object): refused, not indexed blindly.
             let Some(value) = self.values.get(key) else {
-                return Err(DeckError::unsupported(
-                    self.at.clone(),
+                return Err(self.at.refuse(
                     format!(
                         "{}'s {key}: set in the dump but given no value",
                         self.class.name()
@@ -166,8 +164,7 @@ impl Material {
                 ));
             };
             let literal = python(value).ok_or_else(|| {
-                DeckError::unsupported(
-                    self.at.clone(),
+                self.at.refuse(
                     format!(
                         "{}'s {key}: an object the impact cannot carry",
                         self.class.name()
@@ -236,8 +233,7 @@ impl Functor {
                         .and_then(|(_, _, x)| *x)
                 });
                 value.map(Some).ok_or_else(|| {
-                    DeckError::unsupported(
-                        self.at.clone(),
+                    self.at.refuse(
                         format!(
                             "{}'s {key}: its MatchMaker gives YADE no number for the materials {a} and {b} (no match, algo '{}')",
                             self.class, match_maker.algo
@@ -246,8 +242,7 @@ impl Functor {
                     )
                 })
             }
-            Some(other) => Err(DeckError::unsupported(
-                self.at.clone(),
+            Some(other) => Err(self.at.refuse(
                 format!(
                     "{}'s {key} = {}",
                     self.class,
@@ -263,8 +258,7 @@ impl Functor {
         let mut args = Vec::new();
         for key in &self.dump.changed {
             let Some(value) = self.dump.attributes.get(key) else {
-                return Err(DeckError::unsupported(
-                    self.at.clone(),
+                return Err(self.at.refuse(
                     format!("{}'s {key}: set in the dump but given no value", self.class),
                     "a dump as YADE's reading script writes it (every attribute it sets has a value)",
                 ));
@@ -273,8 +267,7 @@ impl Functor {
                 continue;
             }
             let literal = python(value).ok_or_else(|| {
-                DeckError::unsupported(
-                    self.at.clone(),
+                self.at.refuse(
                     format!("{}'s {key}: an object the impact cannot carry", self.class),
                     "numbers, flags, MatchMakers",
                 )
@@ -337,11 +330,7 @@ pub(super) fn known_functors(
                 format!("{what}[{i}]")
             });
             if !KNOWN_FUNCTORS.contains(&f.class.as_str()) {
-                return Err(DeckError::unsupported(
-                    here,
-                    format!("functor {}", f.class),
-                    FUNCTORS,
-                ));
+                return Err(here.refuse(format!("functor {}", f.class), FUNCTORS));
             }
             Ok(Functor {
                 class: f.class.clone(),

@@ -69,8 +69,7 @@ impl Reading {
             let at = source(path, engine_line, || format!("O.engines[{k}]"));
             if let Some(functors) = &engine.functors {
                 if let Some(first) = &self.loop_at {
-                    return Err(DeckError::unsupported(
-                        at,
+                    return Err(at.refuse(
                         format!("a second InteractionLoop (O.engines[{k}]; the first: {first})"),
                         "one InteractionLoop",
                     ));
@@ -91,8 +90,7 @@ impl Reading {
             } else if engine.class == "NewtonIntegrator" {
                 self.take_newton(engine, at, engine_line)?;
             } else if engine.class.ends_with("TimeStepper") {
-                return Err(DeckError::unsupported(
-                    at,
+                return Err(at.refuse(
                     format!(
                         "{}: the time step is set while the script runs",
                         engine.class
@@ -127,8 +125,7 @@ impl Reading {
             .unwrap_or(0.0);
         if damping != 0.0 {
             let e = ((1.0 - damping) / (1.0 + damping)).sqrt();
-            return Err(DeckError::unsupported(
-                at,
+            return Err(at.refuse(
                 format!(
                     "NewtonIntegrator damping = {damping}{}: YADE's local damping scales every body's force by 1 ∓ {damping} against its own velocity, on top of the contact law (alone it makes a Hertz impact on a fixed wall rebound at {e:.4}, and between two moving balls it depends on their absolute velocities): the check models contact laws",
                     if engine.changed.iter().any(|c| c == "damping") {
@@ -175,8 +172,7 @@ impl Reading {
             .and_then(|m| u32::try_from(m).ok())
             .filter(|m| (*m as usize) < self.materials.len())
             .ok_or_else(|| {
-                DeckError::unsupported(
-                    at.clone(),
+                at.refuse(
                     format!(
                         "a {shape} whose material is not in O.materials (its id is {}; the check numbers types by their O.materials ids)",
                         body.material.map_or("none".into(), |m| m.to_string())
@@ -192,8 +188,7 @@ impl Reading {
         match kind {
             None => {
                 let radius = body.radius.filter(|r| *r > 0.0).ok_or_else(|| {
-                    DeckError::unsupported(
-                        at.clone(),
+                    at.refuse(
                         format!(
                             "a sphere of radius {}",
                             body.radius.map_or("NaN".into(), |r| r.to_string())
@@ -247,9 +242,8 @@ impl Reading {
             _ => 0.0,
         };
         if kind == WallKind::Box && body.dynamic {
-            return Err(DeckError::unsupported(
-                at,
-                "a free box: a box that moves is a particle the check does not model".into(),
+            return Err(at.refuse(
+                "a free box: a box that moves is a particle the check does not model",
                 "box(…, fixed=True) as a wall",
             ));
         }
