@@ -176,10 +176,12 @@ pub(super) fn oblique_lines(pair: bool, steps: u64) -> Vec<String> {
 /// A wall's line (`fix ID GROUP wall/gran STYLE …`, as the impact carries it) with its
 /// tangential damping off: a classic style's dampflag, a granular model's tangential damping
 /// coefficient (`linear_nohistory γt μ`, the others `kt γt μ`) made 0. Coulomb's closed form
-/// holds for a force on its bound throughout; a damped history spring lags its bound by what
-/// the build's own damping decides (at e 0.7 the same `tangential mindlin NULL 1.0 0.3` line
-/// delivers 94 % of Coulomb's friction in the 2021 build and 99 % in the 2025 one, both 102 %
-/// undamped), so the check runs the bound undamped.
+/// holds for a force on its bound throughout; with a dashpot, the history stored against it at
+/// the bound makes the force point forward in the first steps of the contact, for as long as
+/// the spring's stiffness against the normal one decides (at e 0.7 the same `tangential mindlin
+/// NULL 1.0 0.3` line delivers 94 % of Coulomb's friction in the 2021 build, whose wall forms a
+/// softer `NULL` spring, and 99 % in the 2025 one, both 102 % undamped:
+/// `tests/lammps_wall_mindlin.rs`), so the check runs the bound undamped.
 pub(super) fn undamped_wall(line: &str) -> String {
     let mut words: Vec<&str> = line.split_whitespace().collect();
     let Some(style) = words.iter().position(|w| *w == "wall/gran").map(|g| g + 1) else {
