@@ -140,18 +140,6 @@ pub(crate) const OBLIQUE_TESTS: [ObliqueImpact; 10] = [
     },
 ];
 
-/// The builds that are to run tests 4–8 (every one but `yade-paper` and `kratos-paper`, which
-/// may refuse an oblique case).
-pub(crate) const PENDING_BUILDS: [CodeName; 7] = [
-    CodeName::Liggghts,
-    CodeName::LiggghtsPaper,
-    CodeName::Yade,
-    CodeName::Lammps,
-    CodeName::Lammps2025,
-    CodeName::LammpsPaper,
-    CodeName::Kratos,
-];
-
 /// A test whose DEM code rows are absent, and why.
 #[derive(Clone, Debug, Serialize)]
 pub(crate) struct PendingCodes {
@@ -184,7 +172,12 @@ pub(crate) fn pending_codes() -> Vec<PendingCodes> {
         .into_iter()
         .map(|test| PendingCodes {
             test,
-            builds: PENDING_BUILDS.to_vec(),
+            // The builds that run an oblique impact are to run tests 4–8.
+            builds: CodeName::ALL
+                .iter()
+                .copied()
+                .filter(|c| c.driver().runs_oblique())
+                .collect(),
             reason: if test >= 7 {
                 "two balls: the drivers refuse an oblique pair, whose contact normal turns"
             } else {
