@@ -344,6 +344,12 @@ fn march4(
             continue;
         }
         let g_next: Vec<f64> = events.iter().map(|e| e(&next)).collect();
+        let step = Step {
+            stepper,
+            f,
+            y: &y,
+            h,
+        };
         // The earliest of the events that crossed on this step, located on the step itself.
         let mut first: Option<Crossing> = None;
         for (i, (&a, &b)) in g.iter().zip(&g_next).enumerate() {
@@ -352,7 +358,7 @@ fn march4(
             // crossed at once, however small the start's rounding.
             let from_root = steps == 0 && a.abs() <= 1e-12 && b < 0.0;
             if (a > 0.0 && b <= 0.0) || from_root {
-                let crossing = locate4(stepper, f, &y, h, events[i], (a, b), i, stats);
+                let crossing = locate4(&step, events[i], (a, b), i, stats);
                 if first.as_ref().is_none_or(|c| crossing.theta < c.theta) {
                     first = Some(crossing);
                 }
@@ -370,9 +376,7 @@ fn march4(
             for _ in 1..events.len() {
                 let Some(earlier) = (0..events.len())
                     .filter(|&j| j != crossing.event && g[j] > 0.0)
-                    .find_map(|j| {
-                        crossed_before(stepper, f, &y, h, events[j], g[j], j, &crossing, stats)
-                    })
+                    .find_map(|j| crossed_before(&step, events[j], g[j], j, &crossing, stats))
                 else {
                     break;
                 };
@@ -397,15 +401,29 @@ struct Crossing {
     event: usize,
 }
 
+/// One step of a method from `y`, taken to any fraction of `h`: what locating an event steps.
+#[derive(Clone, Copy)]
+struct Step<'a> {
+    stepper: &'a dyn Step4,
+    f: &'a dyn Fn(&State) -> State,
+    y: &'a State,
+    h: f64,
+}
+
+impl Step<'_> {
+    /// The state at the fraction `theta` of the step.
+    fn to(&self, theta: f64, stats: &mut Stats) -> State {
+        let (state, _, calls) = self.stepper.step(self.f, self.y, theta * self.h);
+        stats.rhs_evaluations += calls;
+        state
+    }
+}
+
 /// Event `index`, positive (`g_start`) at the step's start, located on `[0, earliest.before]`
 /// if it is already across at `earliest.before`, the last point found before the earliest
 /// crossing.
-#[allow(clippy::too_many_arguments)]
 fn crossed_before(
-    stepper: &dyn Step4,
-    f: &dyn Fn(&State) -> State,
-    y: &State,
-    h: f64,
+    step: &Step,
     event: &dyn Fn(&State) -> f64,
     g_start: f64,
     index: usize,
@@ -415,23 +433,16 @@ fn crossed_before(
     if earliest.before <= 0.0 {
         return None;
     }
-    let (state, _, calls) = stepper.step(f, y, earliest.before * h);
-    stats.rhs_evaluations += calls;
-    let g_before = event(&state);
+    let g_before = event(&step.to(earliest.before, stats));
     if g_before > 0.0 {
         return None;
     }
     let scale = earliest.before;
-    let within = locate4(
-        stepper,
-        f,
-        y,
-        scale * h,
-        event,
-        (g_start, g_before),
-        index,
-        stats,
-    );
+    let part = Step {
+        h: scale * step.h,
+        ..*step
+    };
+    let within = locate4(&part, event, (g_start, g_before), index, stats);
     Some(Crossing {
         theta: within.theta * scale,
         before: within.before * scale,
@@ -439,24 +450,16 @@ fn crossed_before(
     })
 }
 
-/// Where `event` reaches zero on the step `h` from `y` (Illinois regula falsi on the method's
-/// own step), from its values `(start, end)` at the step's ends.
-#[allow(clippy::too_many_arguments)]
+/// Where `event` reaches zero on `step` (Illinois regula falsi on the method's own step), from
+/// its values `(start, end)` at the step's ends.
 fn locate4(
-    stepper: &dyn Step4,
-    f: &dyn Fn(&State) -> State,
-    y: &State,
-    h: f64,
+    step: &Step,
     event: &dyn Fn(&State) -> f64,
     (g_start, g_end): (f64, f64),
     index: usize,
     stats: &mut Stats,
 ) -> Crossing {
-    let mut step_to = |theta: f64| {
-        let (state, _, calls) = stepper.step(f, y, theta * h);
-        stats.rhs_evaluations += calls;
-        state
-    };
+    let mut step_to = |theta: f64| step.to(theta, stats);
     let (mut lo, mut g_lo) = (0.0f64, g_start);
     let (mut hi, mut g_hi) = (1.0f64, g_end);
     let mut best = (1.0, step_to(1.0));
